@@ -1,0 +1,72 @@
+"""Entry point of `diffctl`: maps every subcommand to the package that owns it and reports errors.
+
+Any `DiffctlError` that escapes a command is printed as one line and turned into its exit code; a
+traceback reaching the user is a bug.
+"""
+
+from __future__ import annotations
+
+import sys
+
+import click
+
+from diffctl import __version__
+from diffctl.cli.lazy import LazyGroup
+
+COMMANDS: dict[str, tuple[str, str]] = {
+    "router": ("diffctl.cli.router:router", "Run a Zenoh router alone (rmw_zenohd)."),
+    "topic": ("diffctl.cli.topic:topic", "List, echo, publish, measure topics (ros2 topic)."),
+    "node": ("diffctl.cli.graph:node", "List nodes and show what they publish and serve (ros2 node)."),
+    "service": ("diffctl.cli.graph:service", "List and call services (ros2 service)."),
+    "interface": ("diffctl.cli.graph:interface", "Show message and service definitions (ros2 interface)."),
+    "launch": ("diffctl.launch.cli:launch", "Start a launch file and supervise it (ros2 launch)."),
+    "sim": ("diffctl.sim.cli:sim", "Run the PyBullet simulator on an SDF world (gz sim)."),
+    "spawn": ("diffctl.cli.spawn:spawn", "Spawn an entity into the sim or a controller into the manager."),
+    "robot-state-publisher": (
+        "diffctl.robot_state_publisher.cli:robot_state_publisher",
+        "Publish /robot_description and TF from joint states.",
+    ),
+    "control": ("diffctl.control.cli:control", "Controller manager and its commands (ros2 control)."),
+    "bridge": ("diffctl.bridge.cli:bridge", "Bridge simulator topics to ROS topics (ros_gz_bridge)."),
+    "viz": ("diffctl.viz.cli:viz", "Browser visualizer (rviz2)."),
+    "teleop": ("diffctl.teleop.cli:teleop", "Drive the robot from a keyboard or a game pad."),
+}
+
+
+@click.group(cls=LazyGroup, lazy_commands=COMMANDS, context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, "--version", prog_name="diffctl")
+def cli() -> None:
+    """diffctl: launch, simulate, control and watch a differential-drive robot, ROS 2 style, without ROS.
+
+    \b
+    Example:
+      diffctl launch sim_control
+      diffctl topic pub cmd_vel '{twist: {linear: {x: 0.5}}}' --rate 10
+    """
+
+
+def main(argv: list[str] | None = None) -> None:
+    from diffctl import ros_args
+    from diffctl.errors import DiffctlError
+
+    argv, ros = ros_args.split_argv(sys.argv[1:] if argv is None else list(argv))
+    ros_args.set_current(ros)
+    try:
+        cli.main(args=argv, prog_name="diffctl", standalone_mode=False)
+    except click.exceptions.Abort:
+        sys.exit(130)
+    except click.exceptions.Exit as e:
+        sys.exit(e.exit_code)
+    except click.ClickException as e:
+        e.show()
+        sys.exit(e.exit_code)
+    except DiffctlError as e:
+        from diffctl.console import error
+
+        error(str(e))
+        sys.exit(e.exit_code)
+    except KeyboardInterrupt:
+        sys.exit(130)
+    except BrokenPipeError:
+        sys.exit(0)
+    sys.exit(0)
