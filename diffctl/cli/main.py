@@ -19,7 +19,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "node": ("diffctl.cli.graph:node", "List nodes and show what they publish and serve (ros2 node)."),
     "service": ("diffctl.cli.graph:service", "List and call services (ros2 service)."),
     "interface": ("diffctl.cli.graph:interface", "Show message and service definitions (ros2 interface)."),
-    "launch": ("diffctl.launch.cli:launch", "Start a launch file and supervise it (ros2 launch)."),
+    "launch": ("diffctl.cli.launch:launch", "Start a launch file and supervise it (ros2 launch)."),
     "sim": ("diffctl.sim.cli:sim", "Run the PyBullet simulator on an SDF world (gz sim)."),
     "spawn": ("diffctl.cli.spawn:spawn", "Spawn an entity into the sim or a controller into the manager."),
     "robot-state-publisher": (
