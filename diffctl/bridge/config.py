@@ -1,0 +1,210 @@
+"""Bridge entries from ros_gz_bridge's YAML config and its `/TOPIC@ROS_TYPE@GZ_TYPE` command-line form.
+
+Every entry is validated here, once: a missing key, an unknown key, a bad direction or an unsupported type
+pair is a ConfigError naming the file, line, entry index and topic and listing what would be valid.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import Enum
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from diffctl.bridge.type_pairs import TypePair, describe_pairs, lookup, normalize_gz_type, normalize_ros_type
+from diffctl.errors import ConfigError, suggest
+
+
+class Direction(Enum):
+    BIDIRECTIONAL = "BIDIRECTIONAL"
+    GZ_TO_ROS = "GZ_TO_ROS"
+    ROS_TO_GZ = "ROS_TO_GZ"
+
+    @property
+    def to_ros(self) -> bool:
+        return self is not Direction.ROS_TO_GZ
+
+    @property
+    def to_gz(self) -> bool:
+        return self is not Direction.GZ_TO_ROS
+
+
+KEYS = (
+    "topic_name",
+    "ros_topic_name",
+    "gz_topic_name",
+    "ros_type_name",
+    "gz_type_name",
+    "direction",
+    "lazy",
+    "publisher_queue",
+    "subscriber_queue",
+)
+DEFAULT_QUEUE = 10
+# The command-line delimiters of parameter_bridge: `@` both ways, `[` gz→ros, `]` ros→gz.
+CLI_DELIMITERS = {"@": Direction.BIDIRECTIONAL, "[": Direction.GZ_TO_ROS, "]": Direction.ROS_TO_GZ}
+
+
+@dataclass(frozen=True)
+class BridgeEntry:
+    ros_topic: str
+    gz_topic: str
+    ros_type: str
+    gz_type: str
+    direction: Direction
+    pair: TypePair
+    lazy: bool = False
+    publisher_queue: int = DEFAULT_QUEUE
+    subscriber_queue: int = DEFAULT_QUEUE
+
+    def __rich__(self) -> Any:
+        return entries_table([self])
+
+    @property
+    def arrow(self) -> str:
+        return {"BIDIRECTIONAL": "<->", "GZ_TO_ROS": "<-", "ROS_TO_GZ": "->"}[self.direction.value]
+
+
+def entries_table(entries: list[BridgeEntry]) -> Any:
+    from diffctl.console import table
+
+    rows = [(e.ros_topic, e.ros_type, e.arrow, e.gz_topic, e.gz_type, "lazy" if e.lazy else "") for e in entries]
+    return table("bridge", ["ROS topic", "ROS type", "", "gz topic", "gz type", ""], rows)
+
+
+def _entry_error(message: str, source: str | None, line: int | None, index: int, topic: str | None) -> ConfigError:
+    field = f"entry {index}" + (f" ({topic})" if topic else "")
+    return ConfigError(message, source=source, line=line, field=field)
+
+
+def _as_topic(value: Any) -> str:
+    if not isinstance(value, str) or not value.strip():
+        raise ValueError(f"a topic name must be a non-empty string, got {value!r}")
+    return value.strip()
+
+
+def _as_queue(name: str, value: Any) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+        raise ValueError(f"{name} {value!r} invalid; valid: an integer >= 1")
+    return value
+
+
+def _as_bool(name: str, value: Any) -> bool:
+    if isinstance(value, bool):
+        return value
+    if isinstance(value, str) and value.lower() in ("true", "false"):
+        return value.lower() == "true"
+    raise ValueError(f"{name} {value!r} invalid; valid: true, false")
+
+
+def make_entry(
+    item: dict[str, Any], index: int, source: str | None = None, line: int | None = None, gz_prefix: str = ""
+) -> BridgeEntry:
+    """One validated entry from a YAML map with ros_gz_bridge's keys."""
+    topic_hint = item.get("topic_name") or item.get("ros_topic_name") or item.get("gz_topic_name")
+    topic_hint = topic_hint if isinstance(topic_hint, str) else None
+
+    def fail(message: str) -> ConfigError:
+        return _entry_error(message, source, line, index, topic_hint)
+
+    for k in item:
+        if k not in KEYS:
+            raise fail(f"unknown key {k!r}{suggest(str(k), KEYS)}; valid keys: {', '.join(KEYS)}")
+    try:
+        if "topic_name" in item:
+            if "ros_topic_name" in item or "gz_topic_name" in item:
+                raise ValueError("topic_name and ros_topic_name/gz_topic_name are mutually exclusive")
+            ros_topic = gz_topic = _as_topic(item["topic_name"])
+        else:
+            if "ros_topic_name" not in item and "gz_topic_name" not in item:
+                raise ValueError("missing key: give topic_name, or ros_topic_name and gz_topic_name")
+            ros_topic = _as_topic(item.get("ros_topic_name", item.get("gz_topic_name")))
+            gz_topic = _as_topic(item.get("gz_topic_name", item.get("ros_topic_name")))
+        for k in ("ros_type_name", "gz_type_name"):
+            if k not in item:
+                raise ValueError(f"missing key {k!r}")
+            if not isinstance(item[k], str) or not item[k].strip():
+                raise ValueError(f"{k} {item[k]!r} must be a type name such as 'geometry_msgs/msg/Twist'")
+        direction_text = str(item.get("direction", "BIDIRECTIONAL")).strip().upper()
+        if direction_text not in Direction.__members__:
+            raise ValueError(f"direction {item.get('direction')!r} invalid; valid: {', '.join(Direction.__members__)}")
+        lazy = _as_bool("lazy", item.get("lazy", False))
+        pub_q = _as_queue("publisher_queue", item.get("publisher_queue", DEFAULT_QUEUE))
+        sub_q = _as_queue("subscriber_queue", item.get("subscriber_queue", DEFAULT_QUEUE))
+    except ValueError as e:
+        raise fail(str(e)) from None
+    ros_type, gz_type = normalize_ros_type(item["ros_type_name"]), normalize_gz_type(item["gz_type_name"])
+    pair = lookup(ros_type, gz_type)
+    if pair is None:
+        raise fail(f"unsupported type pair {ros_type} <-> {gz_type}; supported: {describe_pairs()}")
+    if gz_prefix:
+        gz_topic = gz_prefix.rstrip("/") + "/" + gz_topic.lstrip("/")
+    return BridgeEntry(ros_topic, gz_topic, ros_type, gz_type, Direction(direction_text), pair, lazy, pub_q, sub_q)
+
+
+def load_config(path: str | Path, gz_prefix: str = "") -> list[BridgeEntry]:
+    """Entries of a ros_gz_bridge YAML file (a YAML array of maps)."""
+    p = Path(path)
+    try:
+        text = p.read_text()
+    except FileNotFoundError:
+        raise ConfigError("bridge config file not found", source=str(p)) from None
+    except OSError as e:
+        raise ConfigError(f"cannot read bridge config: {e.strerror}", source=str(p)) from None
+    try:
+        root = yaml.compose(text, Loader=yaml.SafeLoader)
+        data = yaml.safe_load(text)
+    except yaml.YAMLError as e:
+        mark = getattr(e, "problem_mark", None)
+        raise ConfigError(
+            f"malformed YAML: {getattr(e, 'problem', e)}",
+            source=str(p),
+            line=mark.line + 1 if mark else None,
+            column=mark.column + 1 if mark else None,
+        ) from None
+    if data is None:
+        return []
+    if not isinstance(data, list):
+        raise ConfigError(
+            "a bridge config must be a YAML array of maps (one '- ros_topic_name: …' per topic)", source=str(p), line=1
+        )
+    entries = []
+    for i, item in enumerate(data):
+        line = root.value[i].start_mark.line + 1 if root is not None else None
+        if not isinstance(item, dict):
+            raise _entry_error(f"must be a map of {', '.join(KEYS)}, got {item!r}", str(p), line, i, None)
+        entries.append(make_entry(item, i, str(p), line, gz_prefix))
+    return entries
+
+
+def parse_cli_entry(arg: str, index: int = 0) -> BridgeEntry:
+    """`/TOPIC@ROS_TYPE@GZ_TYPE`, with `[` (gz→ros) or `]` (ros→gz) in place of the second `@`."""
+    topic, sep, rest = arg.partition("@")
+
+    def fail(message: str) -> ConfigError:
+        return ConfigError(
+            f"{message}; expected /TOPIC@ROS_TYPE@GZ_TYPE (or [ for gz->ros, ] for ros->gz)",
+            field=f"argument {index} ({arg})",
+        )
+
+    if not sep or not topic:
+        raise fail("no topic before '@'")
+    positions = [(rest.find(d), d) for d in CLI_DELIMITERS if rest.find(d) >= 0]
+    if not positions:
+        raise fail("no delimiter between the ROS and the gz type")
+    pos, delim = min(positions)
+    ros_type, gz_type = rest[:pos], rest[pos + 1 :]
+    if not ros_type or not gz_type or any(d in gz_type for d in CLI_DELIMITERS):
+        raise fail("malformed bridge argument")
+    item = {
+        "topic_name": topic,
+        "ros_type_name": ros_type,
+        "gz_type_name": gz_type,
+        "direction": CLI_DELIMITERS[delim].value,
+    }
+    try:
+        return make_entry(item, index)
+    except ConfigError as e:
+        raise ConfigError(e.message, field=f"argument {index} ({arg})") from None

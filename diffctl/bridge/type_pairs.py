@@ -1,0 +1,94 @@
+"""The one table of type pairs the bridge can move, as ros_gz_bridge's README lists them for our messages.
+
+A pair is looked up by (ROS type, gz type); `ignition.msgs.*` is read as `gz.msgs.*` and `pkg/Type` as
+`pkg/msg/Type`, as ros_gz_bridge accepts both spellings.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from diffctl.bridge import conversions as c
+from diffctl.errors import MessageError
+
+
+@dataclass(frozen=True)
+class TypePair:
+    ros_type: str
+    gz_type: str
+    to_ros: Callable[[dict[str, Any]], Any]
+    to_gz: Callable[[Any], dict[str, Any]]
+
+    def convert_to_ros(self, gz_msg: dict[str, Any]) -> Any:
+        try:
+            return self.to_ros(gz_msg)
+        except MessageError:
+            raise
+        except (TypeError, ValueError, KeyError, AttributeError, OverflowError) as e:
+            raise MessageError(f"malformed {self.gz_type}: {e}") from None
+
+    def convert_to_gz(self, ros_msg: Any) -> dict[str, Any]:
+        try:
+            return self.to_gz(ros_msg)
+        except MessageError:
+            raise
+        except (TypeError, ValueError, KeyError, AttributeError, OverflowError) as e:
+            raise MessageError(f"malformed {self.ros_type}: {e}") from None
+
+
+TYPE_PAIRS: tuple[TypePair, ...] = (
+    TypePair("rosgraph_msgs/msg/Clock", "gz.msgs.Clock", c.clock_to_ros, c.clock_to_gz),
+    TypePair("geometry_msgs/msg/Twist", "gz.msgs.Twist", c.twist_to_ros, c.twist_to_gz),
+    TypePair("geometry_msgs/msg/TwistStamped", "gz.msgs.Twist", c.twist_stamped_to_ros, c.twist_stamped_to_gz),
+    TypePair("nav_msgs/msg/Odometry", "gz.msgs.Odometry", c.odometry_to_ros, c.odometry_to_gz),
+    TypePair("sensor_msgs/msg/JointState", "gz.msgs.Model", c.model_to_joint_state, c.joint_state_to_model),
+    TypePair("tf2_msgs/msg/TFMessage", "gz.msgs.Pose_V", c.pose_v_to_tf, c.tf_to_pose_v),
+    TypePair("sensor_msgs/msg/LaserScan", "gz.msgs.LaserScan", c.laser_scan_to_ros, c.laser_scan_to_gz),
+    TypePair("sensor_msgs/msg/Imu", "gz.msgs.IMU", c.imu_to_ros, c.imu_to_gz),
+    TypePair("sensor_msgs/msg/Image", "gz.msgs.Image", c.image_to_ros, c.image_to_gz),
+    TypePair("geometry_msgs/msg/Pose", "gz.msgs.Pose", c.pose_to_ros, c.pose_to_gz),
+    TypePair("geometry_msgs/msg/PoseStamped", "gz.msgs.Pose", c.pose_stamped_to_ros, c.pose_stamped_to_gz),
+    TypePair(
+        "std_msgs/msg/Float64",
+        "gz.msgs.Double",
+        c.scalar_to_ros("std_msgs/msg/Float64", float),
+        c.scalar_to_gz(float, finite=True),
+    ),
+    TypePair(
+        "std_msgs/msg/Float32",
+        "gz.msgs.Float",
+        c.scalar_to_ros("std_msgs/msg/Float32", float),
+        c.scalar_to_gz(float, finite=True),
+    ),
+    TypePair("std_msgs/msg/Bool", "gz.msgs.Boolean", c.scalar_to_ros("std_msgs/msg/Bool", bool), c.scalar_to_gz(bool)),
+    TypePair("std_msgs/msg/Int32", "gz.msgs.Int32", c.scalar_to_ros("std_msgs/msg/Int32", int), c.scalar_to_gz(int)),
+    TypePair(
+        "std_msgs/msg/String", "gz.msgs.StringMsg", c.scalar_to_ros("std_msgs/msg/String", str), c.scalar_to_gz(str)
+    ),
+)
+
+_BY_KEY = {(p.ros_type, p.gz_type): p for p in TYPE_PAIRS}
+
+
+def normalize_ros_type(name: str) -> str:
+    parts = name.strip().strip("/").split("/")
+    if len(parts) == 2:
+        return f"{parts[0]}/msg/{parts[1]}"
+    return "/".join(parts)
+
+
+def normalize_gz_type(name: str) -> str:
+    name = name.strip()
+    if name.startswith("ignition.msgs."):
+        return "gz.msgs." + name[len("ignition.msgs.") :]
+    return name
+
+
+def lookup(ros_type: str, gz_type: str) -> TypePair | None:
+    return _BY_KEY.get((normalize_ros_type(ros_type), normalize_gz_type(gz_type)))
+
+
+def describe_pairs() -> str:
+    return ", ".join(f"{p.ros_type}<->{p.gz_type}" for p in TYPE_PAIRS)
