@@ -1,0 +1,217 @@
+"""Publishers, subscriptions, service servers and clients on the rmw_zenoh wire format."""
+
+from __future__ import annotations
+
+import itertools
+import threading
+import time
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
+
+import zenoh
+from zenoh import ext
+
+from diffctl.bus import types, wire
+from diffctl.errors import BusError, MessageError, ServiceTimeout
+
+if TYPE_CHECKING:
+    from diffctl.bus.node import Node
+
+
+class Publisher:
+    def __init__(self, node: Node, topic: str, typename: str, *, latched: bool = False, depth: int = 10,
+                 reliable: bool = True) -> None:
+        self.node = node
+        self.topic = node.resolve(topic)
+        self.type = types.check(typename)
+        self.latched = latched
+        key = wire.topic_key(node.domain, self.topic, self.type)
+        qos = wire.qos_string(reliable=reliable, transient_local=latched, depth=1 if latched else depth)
+        token = node.context.entity_token(node, wire.KIND_PUB, self.topic, self.type, qos)
+        self.gid = wire.gid_of(token)
+        if latched:
+            self._pub = ext.declare_advanced_publisher(
+                node.session, key, cache=ext.CacheConfig(max_samples=1), publisher_detection=True
+            )
+        else:
+            self._pub = node.session.declare_publisher(key, express=True)
+        self._token = node.session.liveliness().declare_token(token)
+        self._seq = itertools.count(1)
+        node.context.add_local(self.topic, self.type, wire.KIND_PUB, node)
+
+    def publish(self, msg: Any) -> None:
+        if isinstance(msg, dict):
+            msg = types.new(self.type, msg)
+        self.publish_raw(types.serialize(msg, self.type))
+
+    def publish_raw(self, cdr: bytes) -> None:
+        self._pub.put(cdr, attachment=wire.pack_attachment(next(self._seq), time.time_ns(), self.gid))
+
+    @property
+    def subscription_count(self) -> int:
+        """ROS subscribers of this topic and type anywhere in the graph."""
+        return sum(1 for e in self.node.graph.subscribers(self.topic) if e.type == self.type)
+
+    @property
+    def matching(self) -> bool:
+        """Whether any Zenoh subscriber currently matches (cheap; used for lazy work such as cameras)."""
+        try:
+            return bool(self._pub.matching_status.matching)
+        except Exception:
+            return self.subscription_count > 0
+
+    def on_matching(self, callback: Callable[[bool], None]) -> Any:
+        """Call `callback(matching)` whenever the presence of subscribers changes."""
+        return self._pub.declare_matching_listener(lambda st: callback(bool(st.matching)))
+
+    def close(self) -> None:
+        for h in (self._token, self._pub):
+            try:
+                h.undeclare()
+            except Exception:
+                pass
+
+
+class Subscription:
+    def __init__(self, node: Node, topic: str, typename: str, callback: Callable[[Any], None], *,
+                 latched: bool = False, depth: int = 10, raw: bool = False) -> None:
+        self.node = node
+        self.topic = node.resolve(topic)
+        self.type = types.check(typename)
+        self.callback = callback
+        self.raw = raw
+        key = wire.topic_key(node.domain, self.topic, self.type)
+        qos = wire.qos_string(transient_local=latched, depth=1 if latched else depth)
+        token = node.context.entity_token(node, wire.KIND_SUB, self.topic, self.type, qos)
+        if latched:
+            self._sub = ext.declare_advanced_subscriber(
+                node.session, key, self._on_sample,
+                history=ext.HistoryConfig(detect_late_publishers=True, max_samples=1),
+                subscriber_detection=True,
+            )
+        else:
+            self._sub = node.session.declare_subscriber(key, self._on_sample)
+        self._token = node.session.liveliness().declare_token(token)
+        node.context.add_local(self.topic, self.type, wire.KIND_SUB, node)
+
+    def _on_sample(self, sample: zenoh.Sample) -> None:
+        log = self.node.log
+        if sample.attachment is None:
+            # rmw_zenoh drops samples without the attachment too; say so instead of staying silent.
+            log.throttled(f"noatt{self.topic}", f"dropped a sample on {self.topic} without rmw_zenoh attachment")
+            return
+        data = sample.payload.to_bytes()
+        if self.raw:
+            msg: Any = data
+        else:
+            try:
+                msg = types.deserialize(data, self.type)
+            except MessageError as e:
+                log.throttled(f"bad{self.topic}", f"dropped a malformed sample on {self.topic}: {e}")
+                return
+        try:
+            self.callback(msg)
+        except Exception as e:  # a user callback must not kill the transport thread
+            log.throttled(f"cb{self.topic}", f"callback for {self.topic} raised {type(e).__name__}: {e}",
+                          level="ERROR")
+
+    def close(self) -> None:
+        for h in (self._token, self._sub):
+            try:
+                h.undeclare()
+            except Exception:
+                pass
+
+
+class Service:
+    def __init__(self, node: Node, name: str, srv_type: str, handler: Callable[[Any], Any]) -> None:
+        self.node = node
+        self.name = node.resolve(name)
+        self.type = types.check_service(srv_type)
+        self.handler = handler
+        key = wire.service_key(node.domain, self.name, self.type)
+        token = node.context.entity_token(node, wire.KIND_SERVICE, self.name, self.type, wire.qos_string())
+        self._gid = wire.gid_of(token)
+        self._q = node.session.declare_queryable(key, self._on_query, complete=True)
+        self._token = node.session.liveliness().declare_token(token)
+
+    def _on_query(self, query: zenoh.Query) -> None:
+        # Handlers may block (a controller switch waits for the control loop): run them off the zenoh thread.
+        self.node.context.executor_submit(self._handle, query)
+
+    def _handle(self, query: zenoh.Query) -> None:
+        seq, gid = 0, self._gid
+        if query.attachment is not None:
+            try:
+                seq, _, gid = wire.unpack_attachment(query.attachment.to_bytes())
+            except MessageError:
+                pass
+        try:
+            payload = query.payload.to_bytes() if query.payload is not None else b""
+            req = types.deserialize(payload, self.type + "_Request")
+            resp = self.handler(req)
+            if isinstance(resp, dict):
+                resp = types.response(self.type, resp)
+            data = types.serialize(resp, self.type + "_Response")
+        except Exception as e:
+            self.node.log.error(f"service {self.name} failed: {type(e).__name__}: {e}")
+            query.reply_err(f"{type(e).__name__}: {e}")
+            return
+        query.reply(query.key_expr, data, attachment=wire.pack_attachment(seq, time.time_ns(), gid))
+
+    def close(self) -> None:
+        for h in (self._token, self._q):
+            try:
+                h.undeclare()
+            except Exception:
+                pass
+
+
+class Client:
+    def __init__(self, node: Node, name: str, srv_type: str) -> None:
+        self.node = node
+        self.name = node.resolve(name)
+        self.type = types.check_service(srv_type)
+        self._key = wire.service_key(node.domain, self.name, self.type)
+        token = node.context.entity_token(node, wire.KIND_CLIENT, self.name, self.type, wire.qos_string())
+        self._gid = wire.gid_of(token)
+        self._token = node.session.liveliness().declare_token(token)
+        self._seq = itertools.count(1)
+        self._lock = threading.Lock()
+
+    def service_is_ready(self) -> bool:
+        return any(e.type == self.type for e in self.node.graph.servers(self.name))
+
+    def wait_for_service(self, timeout: float | None = 5.0) -> bool:
+        deadline = None if timeout is None else time.monotonic() + timeout
+        while not self.service_is_ready():
+            if deadline is not None and time.monotonic() >= deadline:
+                return False
+            time.sleep(0.02)
+        return True
+
+    def call(self, request: Any = None, timeout: float = 5.0) -> Any:
+        if request is None or isinstance(request, dict):
+            request = types.request(self.type, request or {})
+        data = types.serialize(request, self.type + "_Request")
+        with self._lock:
+            seq = next(self._seq)
+        start = time.monotonic()
+        replies = self.node.session.get(
+            self._key, payload=data, attachment=wire.pack_attachment(seq, time.time_ns(), self._gid),
+            target=zenoh.QueryTarget.ALL_COMPLETE, consolidation=zenoh.ConsolidationMode.NONE, timeout=timeout,
+        )
+        for r in replies:
+            if r.ok is not None:
+                return types.deserialize(r.ok.payload.to_bytes(), self.type + "_Response")
+            raise BusError(f"service {self.name} failed: {r.err.payload.to_string()}")
+        if time.monotonic() - start < timeout * 0.9:
+            raise BusError(f"no server for service {self.name} ({self.type})",
+                           hint="`diffctl service list` shows the services that exist")
+        raise ServiceTimeout(f"service {self.name} did not answer within {timeout:g} s")
+
+    def close(self) -> None:
+        try:
+            self._token.undeclare()
+        except Exception:
+            pass

@@ -1,0 +1,116 @@
+"""The ROS graph as rmw_zenoh shares it: liveliness tokens of nodes, publishers, subscribers, services.
+
+One `Graph` per process keeps a live cache (a liveliness subscriber with history), so it also forgets
+whatever dies: a crashed process's tokens vanish when its session drops.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections import defaultdict
+from collections.abc import Callable
+
+import zenoh
+
+from diffctl.bus import wire
+from diffctl.bus.session import domain_id
+
+Listener = Callable[[str, wire.Entity], None]  # (event "put"|"delete", entity)
+
+
+class Graph:
+    def __init__(self, session: zenoh.Session, domain: int | None = None) -> None:
+        self._session = session
+        self._domain = domain_id() if domain is None else domain
+        self._lock = threading.Lock()
+        self._entities: dict[str, wire.Entity] = {}
+        self._listeners: list[Listener] = []
+        self._ready = threading.Event()
+        self._sub = session.liveliness().declare_subscriber(
+            f"{wire.LV_PREFIX}/{self._domain}/**", self._on_token, history=True
+        )
+        # History arrives asynchronously; a snapshot query tells when the initial picture is complete.
+        self.refresh()
+
+    def _on_token(self, sample: zenoh.Sample) -> None:
+        key = str(sample.key_expr)
+        ent = wire.parse_token(key)
+        if ent is None:
+            return
+        if sample.kind == zenoh.SampleKind.DELETE:
+            with self._lock:
+                self._entities.pop(key, None)
+                listeners = list(self._listeners)
+            event = "delete"
+        else:
+            with self._lock:
+                self._entities[key] = ent
+                listeners = list(self._listeners)
+            event = "put"
+        for cb in listeners:
+            try:
+                cb(event, ent)
+            except Exception:
+                pass
+
+    def refresh(self, timeout_s: float = 1.0) -> None:
+        """Query current tokens (the router answers for everyone) and merge them into the cache."""
+        try:
+            replies = self._session.liveliness().get(f"{wire.LV_PREFIX}/{self._domain}/**", timeout=timeout_s)
+            for r in replies:
+                if r.ok is not None:
+                    key = str(r.ok.key_expr)
+                    ent = wire.parse_token(key)
+                    if ent is not None:
+                        with self._lock:
+                            self._entities.setdefault(key, ent)
+        except zenoh.ZError:
+            pass
+        self._ready.set()
+
+    def add_listener(self, cb: Listener) -> None:
+        with self._lock:
+            self._listeners.append(cb)
+            current = list(self._entities.values())
+        for ent in current:
+            cb("put", ent)
+
+    def entities(self, kind: str | None = None) -> list[wire.Entity]:
+        with self._lock:
+            ents = list(self._entities.values())
+        return [e for e in ents if kind is None or e.kind == kind]
+
+    def nodes(self) -> list[str]:
+        return sorted({e.node_fqn for e in self.entities(wire.KIND_NODE)})
+
+    def _by_name(self, kinds: tuple[str, ...]) -> dict[str, list[str]]:
+        out: dict[str, set[str]] = defaultdict(set)
+        for e in self.entities():
+            if e.kind in kinds:
+                out[e.topic].add(e.type)
+        return {k: sorted(v) for k, v in sorted(out.items())}
+
+    def topics(self) -> dict[str, list[str]]:
+        """Topic name → types seen on it (more than one type means a mismatch)."""
+        return self._by_name((wire.KIND_PUB, wire.KIND_SUB))
+
+    def services(self) -> dict[str, list[str]]:
+        return self._by_name((wire.KIND_SERVICE,))
+
+    def publishers(self, topic: str) -> list[wire.Entity]:
+        return [e for e in self.entities(wire.KIND_PUB) if e.topic == topic]
+
+    def subscribers(self, topic: str) -> list[wire.Entity]:
+        return [e for e in self.entities(wire.KIND_SUB) if e.topic == topic]
+
+    def servers(self, service: str) -> list[wire.Entity]:
+        return [e for e in self.entities(wire.KIND_SERVICE) if e.topic == service]
+
+    def node_entities(self, node_fqn: str) -> list[wire.Entity]:
+        return [e for e in self.entities() if e.node_fqn == node_fqn and e.kind != wire.KIND_NODE]
+
+    def close(self) -> None:
+        try:
+            self._sub.undeclare()
+        except Exception:
+            pass

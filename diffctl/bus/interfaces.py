@@ -1,0 +1,88 @@
+"""ROS 2 Jazzy interface definitions that rosbags' Jazzy store lacks, as their .msg/.srv text.
+
+Field order and types follow the Jazzy releases of controller_manager_msgs, control_msgs and std_srvs,
+because the RIHS01 type hash (and so the rmw_zenoh key) is computed from them.
+"""
+
+from __future__ import annotations
+
+MSGS: dict[str, str] = {
+    "controller_manager_msgs/msg/ChainConnection": """
+string name
+string[] reference_interfaces
+""",
+    "controller_manager_msgs/msg/ControllerState": """
+string name
+string state
+string type
+bool is_async
+uint16 update_rate
+string[] claimed_interfaces
+string[] required_command_interfaces
+string[] required_state_interfaces
+bool is_chainable
+bool is_chained
+string[] exported_state_interfaces
+string[] reference_interfaces
+controller_manager_msgs/ChainConnection[] chain_connections
+""",
+    "controller_manager_msgs/msg/HardwareInterface": """
+string name
+string data_type
+bool is_available
+bool is_claimed
+""",
+    "controller_manager_msgs/msg/HardwareComponentState": """
+string name
+string type
+bool is_async
+uint16 rw_rate
+string plugin_name
+lifecycle_msgs/State state
+controller_manager_msgs/HardwareInterface[] command_interfaces
+controller_manager_msgs/HardwareInterface[] state_interfaces
+""",
+    "control_msgs/msg/InterfaceValue": """
+string[] interface_names
+float64[] values
+""",
+    "control_msgs/msg/DynamicJointState": """
+std_msgs/Header header
+string[] joint_names
+control_msgs/InterfaceValue[] interface_values
+""",
+}
+
+_OK = "bool ok"
+
+SRVS: dict[str, tuple[str, str]] = {
+    "controller_manager_msgs/srv/ListControllers": ("", "controller_manager_msgs/ControllerState[] controller"),
+    "controller_manager_msgs/srv/ListControllerTypes": ("", "string[] types\nstring[] base_classes"),
+    "controller_manager_msgs/srv/ListHardwareComponents": (
+        "",
+        "controller_manager_msgs/HardwareComponentState[] component",
+    ),
+    "controller_manager_msgs/srv/ListHardwareInterfaces": (
+        "",
+        "controller_manager_msgs/HardwareInterface[] command_interfaces\n"
+        "controller_manager_msgs/HardwareInterface[] state_interfaces",
+    ),
+    "controller_manager_msgs/srv/LoadController": ("string name", _OK),
+    "controller_manager_msgs/srv/ConfigureController": ("string name", _OK),
+    "controller_manager_msgs/srv/UnloadController": ("string name", _OK),
+    "controller_manager_msgs/srv/CleanupController": ("string name", _OK),
+    "controller_manager_msgs/srv/ReloadControllerLibraries": ("bool force_kill", _OK),
+    "controller_manager_msgs/srv/SwitchController": (
+        "string[] activate_controllers\nstring[] deactivate_controllers\nint32 strictness\n"
+        "int32 BEST_EFFORT=1\nint32 STRICT=2\nint32 AUTO=3\nint32 FORCE_AUTO=4\n"
+        "bool activate_asap\nbuiltin_interfaces/Duration timeout",
+        "bool ok\nstring message",
+    ),
+    "controller_manager_msgs/srv/SetHardwareComponentState": (
+        "string name\nlifecycle_msgs/State target_state",
+        "bool ok\nlifecycle_msgs/State state",
+    ),
+    "std_srvs/srv/Empty": ("", ""),
+    "std_srvs/srv/Trigger": ("", "bool success\nstring message"),
+    "std_srvs/srv/SetBool": ("bool data", "bool success\nstring message"),
+}

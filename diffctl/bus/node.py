@@ -1,0 +1,241 @@
+"""A ROS-like node on Zenoh: names, parameters, endpoints, clock, timers, logging, graph, spin.
+
+All nodes of one process share its peer session and a per-session context (entity ids for liveliness
+tokens, the graph cache, a small executor for service handlers, type-mismatch reporting).
+"""
+
+from __future__ import annotations
+
+import itertools
+import os
+import signal
+import threading
+import time
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
+from typing import Any
+
+import zenoh
+
+from diffctl import ros_args
+from diffctl.bus import wire
+from diffctl.bus.clock import Clock, Timer
+from diffctl.bus.endpoints import Client, Publisher, Service, Subscription
+from diffctl.bus.graph import Graph
+from diffctl.bus.log import Logger
+from diffctl.bus.session import domain_id, open_session, router_endpoint
+from diffctl.errors import ConfigError
+
+_contexts: dict[int, _Context] = {}
+_contexts_lock = threading.Lock()
+
+
+class _Context:
+    def __init__(self, session: zenoh.Session) -> None:
+        self.session = session
+        self.zid = str(session.zid())
+        self.domain = domain_id()
+        self._ids = itertools.count(0)
+        self._graph: Graph | None = None
+        self._graph_lock = threading.Lock()
+        self._executor: ThreadPoolExecutor | None = None
+        self._locals: dict[tuple[str, str, str], Node] = {}  # (topic, type, kind) → a node owning it
+        self._warned: set[tuple[str, str, str]] = set()
+
+    def next_id(self) -> int:
+        return next(self._ids)
+
+    def entity_token(self, node: Node, kind: str, topic: str, typename: str, qos: str) -> str:
+        return wire.entity_token(self.domain, self.zid, node.node_id, self.next_id(), kind, node.namespace,
+                                 node.name, topic, typename, qos)
+
+    @property
+    def graph(self) -> Graph:
+        with self._graph_lock:
+            if self._graph is None:
+                self._graph = Graph(self.session, self.domain)
+                self._graph.add_listener(self._check_mismatch)
+            return self._graph
+
+    def add_local(self, topic: str, typename: str, kind: str, node: Node) -> None:
+        self._locals[(topic, typename, kind)] = node
+        # Watch the graph so a mismatch is reported, including against endpoints that were already there.
+        for ent in self.graph.entities():
+            if ent.topic == topic:
+                self._check_mismatch("put", ent)
+
+    def _check_mismatch(self, event: str, ent: wire.Entity) -> None:
+        if event != "put" or ent.kind not in (wire.KIND_PUB, wire.KIND_SUB):
+            return
+        for (topic, typename, kind), node in list(self._locals.items()):
+            if topic != ent.topic or typename == ent.type:
+                continue
+            key = (topic, typename, ent.type)
+            if key in self._warned:
+                continue
+            self._warned.add(key)
+            mine = "publishes" if kind == wire.KIND_PUB else "subscribes to"
+            theirs = "publishes" if ent.kind == wire.KIND_PUB else "subscribes to"
+            node.log.warn(
+                f"type mismatch on {topic}: this node {mine} {typename} but {ent.node_fqn} {theirs} {ent.type}; "
+                "these endpoints will never exchange messages"
+            )
+
+    def executor_submit(self, fn: Callable[..., Any], *args: Any) -> None:
+        if self._executor is None:
+            self._executor = ThreadPoolExecutor(max_workers=4, thread_name_prefix="service")
+        self._executor.submit(fn, *args)
+
+
+def _context(session: zenoh.Session) -> _Context:
+    with _contexts_lock:
+        ctx = _contexts.get(id(session))
+        if ctx is None:
+            ctx = _contexts[id(session)] = _Context(session)
+        return ctx
+
+
+def _as_bool(value: Any) -> bool:
+    if isinstance(value, str):
+        return value.strip().lower() in ("true", "1", "yes", "on")
+    return bool(value)
+
+
+def validate_name(name: str, what: str = "node name") -> str:
+    if not name or not all(c.isalnum() or c == "_" for c in name) or name[0].isdigit():
+        raise ConfigError(f"invalid {what} {name!r}", hint="use letters, digits and '_', not starting with a digit")
+    return name
+
+
+class Node:
+    def __init__(
+        self,
+        name: str,
+        namespace: str = "/",
+        *,
+        use_sim_time: bool | None = None,
+        remaps: dict[str, str] | None = None,
+        params: dict[str, Any] | None = None,
+        session: zenoh.Session | None = None,
+    ) -> None:
+        self.name = validate_name(name)
+        self.namespace = "/" + namespace.strip("/") if namespace and namespace != "/" else "/"
+        self.params: dict[str, Any] = dict(params or {})
+        self.session = session or open_session()
+        self.context = _context(self.session)
+        self.domain = self.context.domain
+        self.node_id = self.context.next_id()
+        self.log = Logger(self.fqn[1:] if self.namespace == "/" else self.fqn[1:].replace("/", "."))
+        self._remaps = {self._expand(k): self._expand(v) for k, v in (remaps or {}).items()}
+        self._closables: list[Any] = []
+        self._stop = threading.Event()
+        self._token = self.session.liveliness().declare_token(
+            wire.node_token(self.domain, self.context.zid, self.node_id, self.namespace, self.name)
+        )
+        sim = self.params.get("use_sim_time", False) if use_sim_time is None else use_sim_time
+        self.clock = Clock(_as_bool(sim))
+        if self.clock.use_sim_time:
+            self.create_subscription("/clock", "rosgraph_msgs/msg/Clock", self.clock.on_clock)
+
+    @classmethod
+    def from_ros_args(cls, default_name: str, namespace: str = "/", *, defaults: dict[str, Any] | None = None,
+                      **kwargs: Any) -> Node:
+        """A node named and parameterised by this process's `--ros-args` (defaults first, then the args)."""
+        ra = ros_args.current(default_name)
+        params = {**(defaults or {}), **ra.params, **kwargs.pop("params", {})}
+        return cls(ra.node_name or default_name, ra.namespace or namespace, remaps=ra.remaps, params=params,
+                   **kwargs)
+
+    # ------------------------------------------------------------------ names
+    @property
+    def fqn(self) -> str:
+        return f"{self.namespace.rstrip('/')}/{self.name}"
+
+    def _expand(self, name: str) -> str:
+        if name.startswith("~"):
+            return self.fqn + name[1:] if name != "~" else self.fqn
+        if name.startswith("/"):
+            return name
+        return f"{self.namespace.rstrip('/')}/{name}"
+
+    def resolve(self, name: str) -> str:
+        """Fully qualified topic or service name, after `~`/namespace expansion and remapping."""
+        if not name:
+            raise ConfigError("empty topic or service name")
+        full = self._expand(name)
+        return self._remaps.get(full, full)
+
+    # ------------------------------------------------------------------ endpoints
+    def _keep(self, obj: Any) -> Any:
+        self._closables.append(obj)
+        return obj
+
+    def create_publisher(self, topic: str, typename: str, *, latched: bool = False, depth: int = 10,
+                         reliable: bool = True) -> Publisher:
+        return self._keep(Publisher(self, topic, typename, latched=latched, depth=depth, reliable=reliable))
+
+    def create_subscription(self, topic: str, typename: str, callback: Callable[[Any], None], *,
+                            latched: bool = False, depth: int = 10, raw: bool = False) -> Subscription:
+        return self._keep(Subscription(self, topic, typename, callback, latched=latched, depth=depth, raw=raw))
+
+    def create_service(self, name: str, srv_type: str, handler: Callable[[Any], Any]) -> Service:
+        return self._keep(Service(self, name, srv_type, handler))
+
+    def create_client(self, name: str, srv_type: str) -> Client:
+        return self._keep(Client(self, name, srv_type))
+
+    def create_timer(self, period_s: float, callback: Callable[[], None]) -> Timer:
+        return self._keep(Timer(self.clock, period_s, callback, self.log.error))
+
+    # ------------------------------------------------------------------ time, graph
+    def now_ns(self) -> int:
+        return self.clock.now_ns()
+
+    def now(self) -> Any:
+        from diffctl.bus.types import time_msg
+
+        return time_msg(self.now_ns())
+
+    @property
+    def graph(self) -> Graph:
+        return self.context.graph
+
+    # ------------------------------------------------------------------ lifetime
+    def request_shutdown(self) -> None:
+        self._stop.set()
+
+    @property
+    def shutting_down(self) -> bool:
+        return self._stop.is_set()
+
+    def spin(self, *, watch_router: bool = True) -> None:
+        """Block until SIGINT/SIGTERM (or request_shutdown), then close. Exits if the router disappears."""
+        if threading.current_thread() is threading.main_thread():
+            for sig in (signal.SIGINT, signal.SIGTERM):
+                signal.signal(sig, lambda *_: self._stop.set())
+        lost_since: float | None = None
+        while not self._stop.wait(0.25):
+            if not watch_router or os.environ.get("ZENOH_SESSION_CONFIG_URI"):
+                continue
+            if self.session.info.routers_zid():
+                lost_since = None
+            elif lost_since is None:
+                lost_since = time.monotonic()
+            elif time.monotonic() - lost_since > 1.0:
+                self.log.error(f"lost the Zenoh router at {router_endpoint()}; shutting down")
+                self.close()
+                raise SystemExit(1)
+        self.close()
+
+    def close(self) -> None:
+        self._stop.set()
+        for obj in reversed(self._closables):
+            try:
+                (obj.cancel if isinstance(obj, Timer) else obj.close)()
+            except Exception:
+                pass
+        self._closables.clear()
+        try:
+            self._token.undeclare()
+        except Exception:
+            pass

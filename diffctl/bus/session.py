@@ -1,0 +1,163 @@
+"""Zenoh sessions as rmw_zenoh sets them up: one peer session per process, connected to a router.
+
+Peers connect to the router endpoint (env DIFFCTL_ROUTER, default tcp/127.0.0.1:7447), listen on
+tcp/127.0.0.1:0 and never multicast-scout, so nothing is reachable beyond loopback unless a config says so.
+rmw_zenoh's ZENOH_SESSION_CONFIG_URI / ZENOH_ROUTER_CONFIG_URI / ZENOH_CONFIG_OVERRIDE are honoured, and
+ROS_DOMAIN_ID selects the domain (the first chunk of every key).
+"""
+
+from __future__ import annotations
+
+import atexit
+import json
+import os
+import socket
+import threading
+
+import zenoh
+
+from diffctl.errors import ConfigError, NoRouterError
+
+DEFAULT_ROUTER = "tcp/127.0.0.1:7447"
+CONNECT_TIMEOUT_MS = 1500
+
+_session: zenoh.Session | None = None
+_session_lock = threading.Lock()
+_log_initialised = False
+
+
+def router_endpoint() -> str:
+    return os.environ.get("DIFFCTL_ROUTER", DEFAULT_ROUTER)
+
+
+def domain_id() -> int:
+    raw = os.environ.get("ROS_DOMAIN_ID", "0") or "0"
+    try:
+        d = int(raw)
+    except ValueError:
+        raise ConfigError(f"ROS_DOMAIN_ID={raw!r} is not an integer", hint="valid: 0..232") from None
+    if not 0 <= d <= 232:
+        raise ConfigError(f"ROS_DOMAIN_ID={d} is out of range", hint="valid: 0..232")
+    return d
+
+
+def _init_log() -> None:
+    global _log_initialised
+    if not _log_initialised:
+        zenoh.init_log_from_env_or("error")
+        _log_initialised = True
+
+
+def _apply_overrides(cfg: zenoh.Config) -> None:
+    # rmw_zenoh's syntax: 'key/path=json5value;other/key=value'
+    raw = os.environ.get("ZENOH_CONFIG_OVERRIDE", "").strip()
+    for item in filter(None, (s.strip() for s in raw.split(";"))):
+        if "=" not in item:
+            raise ConfigError(f"ZENOH_CONFIG_OVERRIDE entry {item!r} must be key/path=value")
+        k, v = item.split("=", 1)
+        try:
+            cfg.insert_json5(k.strip(), v.strip())
+        except Exception as e:
+            raise ConfigError(f"ZENOH_CONFIG_OVERRIDE entry {item!r}: {e}") from None
+
+
+def _from_file(env: str) -> zenoh.Config | None:
+    path = os.environ.get(env)
+    if not path:
+        return None
+    try:
+        return zenoh.Config.from_file(path)
+    except Exception as e:
+        raise ConfigError(f"cannot load Zenoh config: {e}", source=path, field=env) from None
+
+
+def peer_config(endpoint: str | None = None) -> zenoh.Config:
+    cfg = _from_file("ZENOH_SESSION_CONFIG_URI")
+    if cfg is None:
+        cfg = zenoh.Config()
+        cfg.insert_json5("mode", '"peer"')
+        cfg.insert_json5("connect/endpoints", json.dumps([endpoint or router_endpoint()]))
+        cfg.insert_json5("listen/endpoints", '["tcp/127.0.0.1:0"]')
+        cfg.insert_json5("scouting/multicast/enabled", "false")
+        cfg.insert_json5("scouting/gossip/enabled", "true")
+    cfg.insert_json5("connect/timeout_ms", str(CONNECT_TIMEOUT_MS))
+    cfg.insert_json5("connect/exit_on_failure", "true")
+    # Advanced (latched) publishers need timestamps, as rmw_zenoh enables them.
+    cfg.insert_json5("timestamping/enabled", "true")
+    _apply_overrides(cfg)
+    return cfg
+
+
+def router_config(listen: list[str] | None = None, config_file: str | None = None) -> zenoh.Config:
+    if config_file:
+        try:
+            cfg = zenoh.Config.from_file(config_file)
+        except Exception as e:
+            raise ConfigError(f"cannot load Zenoh router config: {e}", source=config_file) from None
+    else:
+        cfg = _from_file("ZENOH_ROUTER_CONFIG_URI")
+        if cfg is None:
+            cfg = zenoh.Config()
+            cfg.insert_json5("listen/endpoints", json.dumps(listen or [router_endpoint()]))
+            cfg.insert_json5("scouting/multicast/enabled", "false")
+    if listen and config_file:
+        cfg.insert_json5("listen/endpoints", json.dumps(listen))
+    cfg.insert_json5("mode", '"router"')
+    # A router otherwise waits 500 ms for scouting before it returns.
+    cfg.insert_json5("scouting/delay", "0")
+    cfg.insert_json5("timestamping/enabled", "true")
+    _apply_overrides(cfg)
+    return cfg
+
+
+def open_session() -> zenoh.Session:
+    """This process's peer session (opened on first use, closed at exit). NoRouterError when none answers."""
+    global _session
+    with _session_lock:
+        if _session is None:
+            _init_log()
+            ep = router_endpoint()
+            try:
+                _session = zenoh.open(peer_config(ep))
+            except zenoh.ZError as e:
+                if "connect" in str(e).lower() or "timeout" in str(e).lower():
+                    raise NoRouterError(
+                        f"no Zenoh router answers at {ep}",
+                        hint="start one with `diffctl router`, or run `diffctl launch …`, which embeds one",
+                    ) from None
+                raise ConfigError(f"cannot open a Zenoh session: {e}") from None
+            atexit.register(close_session)
+        return _session
+
+
+def close_session() -> None:
+    global _session
+    with _session_lock:
+        s, _session = _session, None
+    if s is not None:
+        try:
+            s.close()
+        except Exception:
+            pass
+
+
+def endpoint_answers(endpoint: str, timeout_s: float = 0.3) -> bool:
+    """Whether something accepts TCP connections at a tcp/HOST:PORT endpoint (a router, presumably)."""
+    host, port = parse_tcp_endpoint(endpoint)
+    try:
+        with socket.create_connection((host, port), timeout=timeout_s):
+            return True
+    except OSError:
+        return False
+
+
+def parse_tcp_endpoint(endpoint: str) -> tuple[str, int]:
+    proto, _, addr = endpoint.partition("/")
+    if proto not in ("tcp", "tls") or ":" not in addr:
+        raise ConfigError(f"router endpoint {endpoint!r} is not of the form tcp/HOST:PORT")
+    host, _, port = addr.rpartition(":")
+    host = host.strip("[]")
+    try:
+        return host, int(port.split("#")[0])
+    except ValueError:
+        raise ConfigError(f"router endpoint {endpoint!r} has no valid port") from None

@@ -1,0 +1,311 @@
+"""Message and service types: rosbags' Jazzy typestore plus the ROS types it lacks, and dict ↔ message.
+
+Project types (controller_manager_msgs, control_msgs, std_srvs, …) are defined from their .msg/.srv text
+in `interfaces.py` and registered in the same store, so their RIHS01 hashes follow REP-2016 exactly as
+rosidl computes them (services hash their request/response/event wrapper).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import threading
+from dataclasses import fields as dc_fields
+from typing import Any
+
+import numpy as np
+from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+from rosbags.typesys.base import Nodetype
+
+from diffctl.errors import MessageError, suggest
+
+_lock = threading.Lock()
+_store = None
+
+_NUMPY = {
+    "bool": np.bool_, "byte": np.uint8, "char": np.uint8, "int8": np.int8, "uint8": np.uint8,
+    "int16": np.int16, "uint16": np.uint16, "int32": np.int32, "uint32": np.uint32,
+    "int64": np.int64, "uint64": np.uint64, "float32": np.float32, "float64": np.float64,
+}
+_INT_RANGE = {
+    "byte": (0, 255), "char": (0, 255), "int8": (-128, 127), "uint8": (0, 255),
+    "int16": (-(2**15), 2**15 - 1), "uint16": (0, 2**16 - 1), "int32": (-(2**31), 2**31 - 1),
+    "uint32": (0, 2**32 - 1), "int64": (-(2**63), 2**63 - 1), "uint64": (0, 2**64 - 1),
+}
+
+
+def store():
+    """The process-wide typestore (Jazzy + project types), built once."""
+    global _store
+    if _store is None:
+        with _lock:
+            if _store is None:
+                ts = get_typestore(Stores.ROS2_JAZZY)
+                _patch_char_gid(ts)
+                from diffctl.bus.interfaces import MSGS, SRVS
+
+                for name, text in MSGS.items():
+                    ts.register(get_types_from_msg(text, name))
+                for name, (req, resp) in SRVS.items():
+                    ts.register(_srv_typesdict(name, req, resp))
+                _store = ts
+    return _store
+
+
+def _patch_char_gid(ts) -> None:
+    # rosidl turns a .msg `char` into uint8; rosbags keeps it as char, which changes the RIHS01 hash of
+    # every service (its event carries ServiceEventInfo.client_gid). Same wire size, so patching is safe.
+    consts, flds = ts.fielddefs["service_msgs/msg/ServiceEventInfo"]
+    flds = [
+        (n, (Nodetype.ARRAY, ((Nodetype.BASE, ("uint8", 0)), 16))) if n == "client_gid" else (n, t) for n, t in flds
+    ]
+    ts.fielddefs["service_msgs/msg/ServiceEventInfo"] = (consts, flds)
+
+
+def _srv_typesdict(name: str, req_text: str, resp_text: str) -> dict:
+    pkg, _, short = name.split("/")
+    out: dict = {}
+    for suffix, text in (("Request", req_text), ("Response", resp_text)):
+        for k, v in get_types_from_msg(text, f"{pkg}/msg/{short}_{suffix}").items():
+            out[k.replace(f"{pkg}/msg/{short}_", f"{name}_")] = v
+    n = Nodetype
+    out[f"{name}_Event"] = ([], [
+        ("info", (n.NAME, "service_msgs/msg/ServiceEventInfo")),
+        ("request", (n.SEQUENCE, ((n.NAME, f"{name}_Request"), 1))),
+        ("response", (n.SEQUENCE, ((n.NAME, f"{name}_Response"), 1))),
+    ])
+    out[name] = ([], [
+        ("request_message", (n.NAME, f"{name}_Request")),
+        ("response_message", (n.NAME, f"{name}_Response")),
+        ("event_message", (n.NAME, f"{name}_Event")),
+    ])
+    return out
+
+
+def normalize(typename: str) -> str:
+    """`pkg/Type`, `pkg/msg/Type` or the DDS form `pkg::msg::dds_::Type_` → `pkg/msg/Type`."""
+    t = typename.strip()
+    if "::dds_::" in t:
+        return from_dds_name(t)
+    parts = [p for p in t.replace("::", "/").split("/") if p]
+    if len(parts) == 2:
+        parts = [parts[0], "msg", parts[1]]
+    if len(parts) != 3:
+        raise MessageError(
+            f"malformed type name {typename!r}", hint="expected pkg/msg/Type, e.g. geometry_msgs/msg/Twist"
+        )
+    return "/".join(parts)
+
+
+def known_types() -> list[str]:
+    return sorted(store().types)
+
+
+def exists(typename: str) -> bool:
+    try:
+        return normalize(typename) in store().types
+    except MessageError:
+        return False
+
+
+def check(typename: str) -> str:
+    """The normalized name of a known type; MessageError with close matches otherwise."""
+    t = normalize(typename)
+    ts = store()
+    if t not in ts.types:
+        raise MessageError(f"unknown message type {typename!r}{suggest(t, ts.types)}")
+    return t
+
+
+def check_service(typename: str) -> str:
+    t = normalize(typename.replace("/msg/", "/srv/")) if "/msg/" not in typename else normalize(typename)
+    if t.count("/") == 2 and t.split("/")[1] == "msg":
+        t = t.replace("/msg/", "/srv/", 1)
+    ts = store()
+    if f"{t}_Request" not in ts.types:
+        services = [k for k in ts.types if k.endswith("_Request")]
+        raise MessageError(f"unknown service type {typename!r}{suggest(t + '_Request', services)}")
+    return t
+
+
+def get_class(typename: str):
+    return store().types[check(typename)]
+
+
+@functools.cache
+def type_hash(typename: str) -> str:
+    """RIHS01 hash (REP-2016) of a message or service type."""
+    return store().hash_rihs01(typename)
+
+
+def dds_name(typename: str) -> str:
+    """`geometry_msgs/msg/Twist` → `geometry_msgs::msg::dds_::Twist_` (rmw_zenoh key and token form)."""
+    pkg, kind, name = typename.split("/")
+    return f"{pkg}::{kind}::dds_::{name}_"
+
+
+def from_dds_name(dds: str) -> str:
+    """Inverse of `dds_name`."""
+    pkg, kind, _, name = dds.split("::")
+    return f"{pkg}/{kind}/{name[:-1] if name.endswith('_') else name}"
+
+
+def serialize(msg: Any, typename: str) -> bytes:
+    return bytes(store().serialize_cdr(msg, typename))
+
+
+def deserialize(raw: bytes | bytearray | memoryview, typename: str) -> Any:
+    try:
+        return store().deserialize_cdr(raw, typename)
+    except Exception as e:  # rosbags raises assorted errors on truncated or foreign data
+        raise MessageError(f"cannot decode {typename}: {type(e).__name__}: {e}") from None
+
+
+# ----------------------------------------------------------------------------- dict ↔ message
+
+
+def _field_defs(typename: str) -> list[tuple[str, tuple]]:
+    return store().fielddefs[typename][1]
+
+
+def _default(desc: tuple) -> Any:
+    kind, spec = desc
+    if kind == Nodetype.BASE:
+        base = spec[0]
+        if base == "string" or base == "wstring":
+            return ""
+        if base == "bool":
+            return False
+        if base in ("float32", "float64"):
+            return 0.0
+        return 0
+    if kind == Nodetype.NAME:
+        return new(spec, {})
+    sub, count = spec
+    if kind == Nodetype.ARRAY:
+        if sub[0] == Nodetype.BASE and sub[1][0] in _NUMPY:
+            return np.zeros(count, dtype=_NUMPY[sub[1][0]])
+        return [_default(sub) for _ in range(count)]
+    if sub[0] == Nodetype.BASE and sub[1][0] in _NUMPY:
+        return np.zeros(0, dtype=_NUMPY[sub[1][0]])
+    return []
+
+
+def _convert(value: Any, desc: tuple, path: str) -> Any:
+    kind, spec = desc
+    if kind == Nodetype.BASE:
+        return _scalar(value, spec[0], path)
+    if kind == Nodetype.NAME:
+        if isinstance(value, dict):
+            return new(spec, value, _path=path)
+        if type(value).__name__ == spec.split("/")[-1] and hasattr(value, "__msgtype__"):
+            return value
+        raise MessageError(f"field '{path}' must be a mapping for {spec}, got {_show(value)}")
+    sub, count = spec
+    if isinstance(value, np.ndarray):
+        value = value.tolist()
+    if not isinstance(value, (list, tuple)):
+        raise MessageError(f"field '{path}' must be a list, got {_show(value)}")
+    if kind == Nodetype.ARRAY and len(value) != count:
+        raise MessageError(f"field '{path}' must have exactly {count} elements, got {len(value)}")
+    if kind == Nodetype.SEQUENCE and count and len(value) > count:
+        raise MessageError(f"field '{path}' takes at most {count} elements, got {len(value)}")
+    items = [_convert(v, sub, f"{path}[{i}]") for i, v in enumerate(value)]
+    if sub[0] == Nodetype.BASE and sub[1][0] in _NUMPY:
+        return np.array(items, dtype=_NUMPY[sub[1][0]])
+    return items
+
+
+def _show(value: Any) -> str:
+    return f"{type(value).__name__} {value!r}"
+
+
+def _scalar(value: Any, base: str, path: str) -> Any:
+    if base in ("string", "wstring"):
+        if isinstance(value, str):
+            return value
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            return str(value)
+        raise MessageError(f"field '{path}' must be a string, got {_show(value)}")
+    if base == "bool":
+        if isinstance(value, bool):
+            return value
+        raise MessageError(f"field '{path}' must be true or false, got {_show(value)}")
+    if base in ("float32", "float64"):
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            return float(value)
+        raise MessageError(f"field '{path}' must be a number ({base}), got {_show(value)}")
+    if isinstance(value, bool) or not isinstance(value, int):
+        if isinstance(value, float) and math.isfinite(value) and value.is_integer():
+            value = int(value)
+        else:
+            raise MessageError(f"field '{path}' must be an integer ({base}), got {_show(value)}")
+    lo, hi = _INT_RANGE.get(base, (-(2**63), 2**64 - 1))
+    if not lo <= value <= hi:
+        raise MessageError(f"field '{path}' = {value} is out of range for {base} [{lo}, {hi}]")
+    return value
+
+
+def new(typename: str, values: dict[str, Any] | None = None, *, _path: str = "") -> Any:
+    """A message of `typename` from a (nested) dict; missing fields take ROS defaults.
+
+    Unknown fields and wrong value types raise MessageError naming the field and listing valid ones.
+    """
+    t = check(typename) if not _path else typename
+    values = values or {}
+    if not isinstance(values, dict):
+        raise MessageError(f"{_path or t}: expected a mapping of fields, got {_show(values)}")
+    defs = _field_defs(t)
+    names = [n for n, _ in defs]
+    for k in values:
+        if k not in names:
+            where = f"{_path}.{k}" if _path else str(k)
+            raise MessageError(
+                f"unknown field '{where}' in {t}{suggest(str(k), names)}; valid fields: {', '.join(names) or '(none)'}"
+            )
+    kwargs = {}
+    for name, desc in defs:
+        p = f"{_path}.{name}" if _path else name
+        kwargs[name] = _convert(values[name], desc, p) if name in values else _default(desc)
+    return store().types[t](**kwargs)
+
+
+def to_dict(msg: Any) -> Any:
+    """A message as plain Python data (numpy arrays → lists), ready for YAML or JSON."""
+    if hasattr(msg, "__dataclass_fields__"):
+        return {f.name: to_dict(getattr(msg, f.name)) for f in dc_fields(msg) if f.name != "__msgtype__"}
+    if isinstance(msg, np.ndarray):
+        return msg.tolist()
+    if isinstance(msg, (list, tuple)):
+        return [to_dict(v) for v in msg]
+    if isinstance(msg, np.generic):
+        return msg.item()
+    return msg
+
+
+def request(service_type: str, values: dict[str, Any] | None = None) -> Any:
+    return new(check_service(service_type) + "_Request", values)
+
+
+def response(service_type: str, values: dict[str, Any] | None = None) -> Any:
+    return new(check_service(service_type) + "_Response", values)
+
+
+def time_msg(ns: int) -> Any:
+    return store().types["builtin_interfaces/msg/Time"](sec=int(ns // 1_000_000_000), nanosec=int(ns % 1_000_000_000))
+
+
+def time_ns(t: Any) -> int:
+    return int(t.sec) * 1_000_000_000 + int(t.nanosec)
+
+
+def definition(typename: str) -> str:
+    """The .msg-like text of a type (for `diffctl interface show`)."""
+    t = normalize(typename)
+    ts = store()
+    if t in ts.types:
+        return ts.generate_msgdef(t)[0].split("\n====")[0]
+    s = check_service(t)
+    req = ts.generate_msgdef(s + "_Request")[0].split("\n====")[0]
+    resp = ts.generate_msgdef(s + "_Response")[0].split("\n====")[0]
+    return f"{req.rstrip()}\n---\n{resp.rstrip()}\n"
