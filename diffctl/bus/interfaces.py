@@ -82,6 +82,12 @@ SRVS: dict[str, tuple[str, str]] = {
         "string name\nlifecycle_msgs/State target_state",
         "bool ok\nlifecycle_msgs/State state",
     ),
+    # Parameter services of every node (rclcpp); the spawner sets `<ctrl>.type` / `.params_file` through them.
+    "rcl_interfaces/srv/SetParameters": ("rcl_interfaces/Parameter[] parameters",
+                                         "rcl_interfaces/SetParametersResult[] results"),
+    "rcl_interfaces/srv/GetParameters": ("string[] names", "rcl_interfaces/ParameterValue[] values"),
+    "rcl_interfaces/srv/ListParameters": ("string[] prefixes\nuint64 depth\nuint64 DEPTH_RECURSIVE=0",
+                                          "rcl_interfaces/ListParametersResult result"),
     "std_srvs/srv/Empty": ("", ""),
     "std_srvs/srv/Trigger": ("", "bool success\nstring message"),
     "std_srvs/srv/SetBool": ("bool data", "bool success\nstring message"),
