@@ -1,0 +1,198 @@
+"""mock_components/GenericSystem: hardware that mirrors commands to states, or integrates them.
+
+Hardware `<param>`s, as in ros2_control's mock components:
+  calculate_dynamics (false)   false: a position command sets the position state (+ offset); any other
+                               command is mirrored to the state of the same name. true: the claimed
+                               command (position, velocity or acceleration; one per joint) is integrated
+                               into position/velocity/acceleration states.
+  position_state_following_offset (0.0), custom_interface_with_following_offset ("")
+  disable_commands (false)     states never follow commands (warned about, throttled)
+  mock_sensor_commands, mock_gpio_commands (false)  command interfaces for sensor/GPIO states, mirrored.
+States start at their `initial_value` or 0.0 at configure; commands start as NaN (no command).
+A NaN command is ignored; an infinite one makes read() return ERROR.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+from diffctl.control.controller_interface import CommandInterface, ReturnType, StateInterface
+from diffctl.control.hardware_interface import HardwareComponent, HardwareInfo
+from diffctl.errors import ParameterError
+
+_MODES = ("position", "velocity", "acceleration")
+_BOOL = {"true": True, "false": False, "1": True, "0": False}
+
+
+def _bool_param(info: HardwareInfo, key: str) -> bool:
+    raw = info.hardware_parameters.get(key, "false")
+    val = _BOOL.get(str(raw).strip().lower())
+    if val is None:
+        raise ParameterError(f"{raw!r} is not a bool (true or false)", source=info.source,
+                             field=f"<ros2_control name={info.name!r}>/hardware/param[{key}]")
+    return val
+
+
+def _float_param(info: HardwareInfo, key: str) -> float:
+    raw = info.hardware_parameters.get(key, "0.0")
+    try:
+        val = float(raw)
+    except ValueError:
+        val = math.nan
+    if not math.isfinite(val):
+        raise ParameterError(f"{raw!r} is not a finite number", source=info.source,
+                             field=f"<ros2_control name={info.name!r}>/hardware/param[{key}]")
+    return val
+
+
+class GenericSystem(HardwareComponent):
+    def on_init(self, info: HardwareInfo) -> None:
+        super().on_init(info)
+        self.calculate_dynamics = _bool_param(info, "calculate_dynamics")
+        self.disable_commands = _bool_param(info, "disable_commands")
+        self.mock_sensor_commands = _bool_param(info, "mock_sensor_commands")
+        self.mock_gpio_commands = _bool_param(info, "mock_gpio_commands")
+        self.offset = _float_param(info, "position_state_following_offset")
+        self.custom_offset_interface = info.hardware_parameters.get("custom_interface_with_following_offset", "")
+        self._mode: dict[str, str | None] = {j.name: None for j in info.joints}
+        self._last_warn = 0.0
+        for j in info.joints:
+            names = [c.name for c in j.command_interfaces]
+            if self.calculate_dynamics and any(n not in _MODES for n in names):
+                bad = [n for n in names if n not in _MODES]
+                raise ParameterError(f"with calculate_dynamics, command interfaces must be among {_MODES}; "
+                                     f"joint {j.name!r} has {bad}", source=info.source)
+        self._initial: dict[str, float] = {}
+        for comp in info.components:
+            for it in comp.state_interfaces:
+                self._initial[f"{comp.name}/{it.name}"] = 0.0 if it.initial_value is None else it.initial_value
+
+    def export_command_interfaces(self) -> list[CommandInterface]:
+        out = super().export_command_interfaces()
+        extra = ((self.info.sensors, self.mock_sensor_commands), (self.info.gpios, self.mock_gpio_commands))
+        for comps, enabled in extra:
+            if not enabled:
+                continue
+            for comp in comps:
+                for it in comp.state_interfaces:
+                    name = f"{comp.name}/{it.name}"
+                    if name not in self.commands:
+                        self.commands[name] = CommandInterface(name, math.nan)
+                        out.append(self.commands[name])
+        return out
+
+    def export_state_interfaces(self) -> list[StateInterface]:
+        out = super().export_state_interfaces()
+        for it in out:
+            it.value = self._initial.get(it.name, 0.0)
+        return out
+
+    def on_configure(self) -> None:
+        for name, st in self.states.items():
+            st.value = self._initial.get(name, 0.0)
+        for c in self.commands.values():
+            c.value = math.nan
+
+    # --- command modes (only meaningful with calculate_dynamics) --------------------------------------
+    def prepare_command_mode_switch(self, start: list[str], stop: list[str]) -> bool:
+        if not self.calculate_dynamics:
+            return True
+        per_joint: dict[str, int] = {}
+        for name in start:
+            joint, _, iface = name.rpartition("/")
+            if joint in self._mode and iface in _MODES:
+                per_joint[joint] = per_joint.get(joint, 0) + 1
+        bad = [j for j, n in per_joint.items() if n > 1]
+        if bad and self.log is not None:
+            self.log.error(f"{self.name}: only one command mode per joint with calculate_dynamics; {bad} got several")
+        return not bad
+
+    def perform_command_mode_switch(self, start: list[str], stop: list[str]) -> bool:
+        for name in stop:
+            joint = name.rpartition("/")[0]
+            if joint in self._mode:
+                self._mode[joint] = None
+        for name in start:
+            joint, _, iface = name.rpartition("/")
+            if joint in self._mode and iface in _MODES:
+                self._mode[joint] = iface
+        return True
+
+    # --- real-time ---------------------------------------------------------------------------------------
+    def read(self, time_ns: int, period_s: float) -> ReturnType:
+        if self.disable_commands:
+            now = time.monotonic()
+            if self.log is not None and now - self._last_warn > 10.0:
+                self._last_warn = now
+                self.log.warn(f"{self.name}: disable_commands is set, states do not follow commands")
+            return ReturnType.OK
+        states, commands = self.states, self.commands
+        for name, cmd in commands.items():
+            v = cmd.value
+            if v != v:  # NaN: no command
+                continue
+            if math.isinf(v):
+                if self.log is not None:
+                    self.log.error(f"{self.name}: command {name} is {v}")
+                return ReturnType.ERROR
+        if self.calculate_dynamics:
+            self._integrate(period_s)
+            return ReturnType.OK
+        for name, cmd in commands.items():
+            v = cmd.value
+            if v != v:
+                continue
+            joint, _, iface = name.rpartition("/")
+            if iface == "position":
+                if self.custom_offset_interface:
+                    target = states.get(f"{joint}/{self.custom_offset_interface}")
+                    if target is not None:
+                        target.value = v + self.offset
+                    st = states.get(name)
+                    if st is not None:
+                        st.value = v
+                else:
+                    st = states.get(name)
+                    if st is not None:
+                        st.value = v + self.offset
+            else:
+                st = states.get(name)
+                if st is not None:
+                    st.value = v
+        return ReturnType.OK
+
+    def _integrate(self, dt: float) -> None:
+        if not dt > 0.0:
+            return
+        states, commands = self.states, self.commands
+        for joint, mode in self._mode.items():
+            if mode is None:
+                continue
+            cmd = commands[f"{joint}/{mode}"].value
+            if cmd != cmd:
+                continue
+            pos_s, vel_s, acc_s = (states.get(f"{joint}/{k}") for k in _MODES)
+            pos = pos_s.value if pos_s is not None else 0.0
+            vel = vel_s.value if vel_s is not None else 0.0
+            acc = acc_s.value if acc_s is not None else 0.0
+            if mode == "velocity":
+                new_vel = cmd
+                acc = (new_vel - vel) / dt
+                pos += new_vel * dt
+                vel = new_vel
+            elif mode == "position":
+                new_pos = cmd + self.offset
+                new_vel = (new_pos - pos) / dt
+                acc = (new_vel - vel) / dt
+                pos, vel = new_pos, new_vel
+            else:
+                acc = cmd
+                vel += acc * dt
+                pos += vel * dt
+            for s, v in ((pos_s, pos), (vel_s, vel), (acc_s, acc)):
+                if s is not None:
+                    s.value = v
+
+    def write(self, time_ns: int, period_s: float) -> ReturnType:
+        return ReturnType.OK

@@ -1,0 +1,429 @@
+"""The controller manager core: loaded controllers, hardware, switching and the read → update → write cycle.
+
+Bus-free: the node that exposes it (ros2_control_node.py) gives it a logger and a factory for controller
+nodes, and drives `read/update/write` from its real-time loop. Administrative calls (load, configure,
+switch, …) come from service threads; they are serialised among themselves, and a switch is carried out
+by the real-time loop at the end of `update()` (as controller_manager does), the caller waiting for it.
+When no loop runs (unit tests, before start-up) a switch is carried out at once.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from diffctl.control.controller_interface import (
+    CommandInterface,
+    ControllerNode,
+    InterfaceConfiguration,
+    Logger,
+    ReturnType,
+    StateInterface,
+)
+from diffctl.control.hardware_interface import HardwareInfo
+from diffctl.control.lifecycle import ManagedController, State, TransitionError, hook_message
+from diffctl.control.params import ManagerParams, controller_node_params, with_controller_param
+from diffctl.control.plugin_registry import controller_class
+from diffctl.control.resource_manager import ResourceManager
+from diffctl.control.switching import STRICT, ControllerView, SwitchPlan, plan_switch
+from diffctl.errors import ConfigError, ParameterError
+
+NodeFactory = Callable[[str, dict[str, Any]], ControllerNode]
+
+
+@dataclass
+class _PendingSwitch:
+    plan: SwitchPlan
+    done: threading.Event = field(default_factory=threading.Event)
+    ok: bool = False
+    message: str = ""
+
+
+class ControllerManager:
+    def __init__(
+        self,
+        params: ManagerParams,
+        *,
+        log: Logger,
+        node_factory: NodeFactory,
+        robot_description: str = "",
+    ) -> None:
+        self.params = params
+        self.log = log
+        self.node_factory = node_factory
+        self.robot_description = robot_description
+        self.rm = ResourceManager(log.warn)
+        self.controllers: dict[str, ManagedController] = {}
+        self.loop_running = False
+        self._lock = threading.RLock()  # held by the real-time cycle and by structural changes
+        self._admin = threading.RLock()  # serialises service calls
+        self._active: tuple[ManagedController, ...] = ()
+        self._pending: _PendingSwitch | None = None
+        self.cycle_count = 0
+
+    @property
+    def update_rate(self) -> int:
+        return self.params.update_rate
+
+    # ---------------------------------------------------------------------------------------------- hardware
+    def load_hardware(self, infos: Sequence[HardwareInfo]) -> None:
+        """Load every component, then bring it to its initial state (active unless the parameters say not)."""
+        with self._admin, self._lock:
+            for info in infos:
+                self.rm.load(info, self.log)
+            for info in infos:
+                if info.name in self.params.hardware_unconfigured:
+                    continue
+                target = State.INACTIVE if info.name in self.params.hardware_inactive else State.ACTIVE
+                try:
+                    self.rm.set_state(info.name, target)
+                except TransitionError as e:
+                    raise ConfigError(str(e), source=info.source) from e
+                self.log.info(f"hardware '{info.name}' ({info.plugin_name}) is {target.value}")
+
+    def set_hardware_component_state(self, name: str, target: State) -> State:
+        with self._admin, self._lock:
+            h = self.rm.components.get(name)
+            if h is None:
+                raise TransitionError(f"no hardware component named '{name}'; known: {', '.join(self.rm.components)}")
+            # Controllers that would lose interfaces are deactivated first.
+            losing = set(h.commands) if target is not State.ACTIVE else set()
+            if target in (State.UNCONFIGURED, State.FINALIZED):
+                losing |= set(h.states)
+            names = {i.name for i in losing}
+            users = [mc for mc in self._active if names & set(mc.claimed + mc.required_state)]
+            for mc in users:
+                self.log.warn(f"deactivating controller '{mc.name}': hardware '{name}' goes to {target.value}")
+                self._deactivate(mc)
+            self._refresh_active()
+            return self.rm.set_state(name, target)
+
+    # ---------------------------------------------------------------------------------------------- loading
+    def set_controller_param(self, name: str, key: str, value: Any) -> None:
+        with self._admin:
+            self.params = with_controller_param(self.params, name, key, value)
+
+    def load_controller(self, name: str, type_name: str | None = None) -> ManagedController:
+        with self._admin:
+            if name in self.controllers:
+                raise TransitionError(f"a controller named '{name}' was already loaded inside the controller manager")
+            spec = self.params.controllers.get(name)
+            ctype = type_name or (spec.type if spec else None)
+            if not ctype:
+                raise TransitionError(f"the 'type' param was not defined for '{name}' (set '{name}.type' in the "
+                                      "controller manager's parameters or pass the controller's --param-file)")
+            try:
+                cls = controller_class(ctype)
+                params = controller_node_params(name, self.params)
+                rate = _controller_rate(name, params, self.update_rate, self.log)
+            except ConfigError as e:
+                raise TransitionError(f"could not load controller '{name}': {e}") from e
+            node = self.node_factory(name, params)
+            inst = cls()
+            inst.name, inst.node, inst.update_rate = name, node, rate
+            inst.robot_description = self.robot_description
+            try:
+                inst.on_init()
+            except Exception as e:
+                _close(node)
+                raise TransitionError(f"could not initialize controller '{name}': {hook_message(e)}") from e
+            fallbacks = spec.fallback_controllers if spec else ()
+            mc = ManagedController(name, ctype, inst, State.UNCONFIGURED, rate, fallback_controllers=fallbacks)
+            with self._lock:
+                self.controllers[name] = mc
+            self.log.info(f"loaded controller '{name}' ({ctype})")
+            return mc
+
+    def _get(self, name: str) -> ManagedController:
+        mc = self.controllers.get(name)
+        if mc is None:
+            known = ", ".join(self.controllers) or "none"
+            raise TransitionError(f"controller '{name}' is not loaded (loaded: {known})")
+        return mc
+
+    def configure_controller(self, name: str) -> None:
+        with self._admin:
+            mc = self._get(name)
+            mc.configure()
+            mc.required_command = self._resolve(mc.instance.command_interface_configuration(), command=True)
+            mc.required_state = self._resolve(mc.instance.state_interface_configuration(), command=False)
+            self.log.info(f"configured controller '{name}'")
+
+    def cleanup_controller(self, name: str) -> None:
+        with self._admin:
+            self._get(name).cleanup()
+            self.log.info(f"cleaned up controller '{name}'")
+
+    def unload_controller(self, name: str) -> None:
+        with self._admin:
+            mc = self._get(name)
+            if mc.state is State.ACTIVE:
+                raise TransitionError(f"could not unload controller '{name}': it is still active; deactivate it first")
+            try:
+                mc.shutdown()
+            finally:
+                with self._lock:
+                    del self.controllers[name]
+                _close(mc.instance.node)
+            self.log.info(f"unloaded controller '{name}'")
+
+    def _resolve(self, cfg: InterfaceConfiguration, *, command: bool) -> list[str]:
+        if cfg.type == "none":
+            return []
+        if cfg.type == "all":
+            return list(self.rm.command_interfaces if command else self.rm.state_interfaces)
+        if cfg.type == "individual":
+            return list(cfg.names)
+        raise TransitionError(f"interface configuration type {cfg.type!r} is not one of all, individual, none")
+
+    # ---------------------------------------------------------------------------------------------- switching
+    def switch_controller(
+        self,
+        activate: Sequence[str],
+        deactivate: Sequence[str],
+        strictness: int = 0,
+        activate_asap: bool = False,
+        timeout_s: float = 0.0,
+    ) -> tuple[bool, str]:
+        """Check and carry out a switch; (ok, message). Waits for the real-time loop up to `timeout_s` (0 = 1 s)."""
+        with self._admin:
+            with self._lock:
+                plan = self._plan(activate, deactivate, strictness or self.params.default_strictness)
+            for w in plan.warnings:
+                self.log.warn(w)
+            if not plan.ok or plan.empty:
+                if not plan.ok:
+                    self.log.error(plan.message)
+                return plan.ok, plan.message
+            start = [i for n in plan.activate for i in self.controllers[n].required_command]
+            stop = [i for n in plan.deactivate for i in self.controllers[n].claimed]
+            reason = self.rm.prepare_switch(start, stop)
+            if reason:
+                self.log.error(reason)
+                return False, reason
+            pending = _PendingSwitch(plan)
+            if not self.loop_running:
+                with self._lock:
+                    self._execute(pending)
+                return pending.ok, pending.message
+            with self._lock:
+                self._pending = pending
+            timeout = timeout_s if timeout_s > 0 else 1.0
+            if not pending.done.wait(timeout):
+                with self._lock:
+                    if self._pending is pending:
+                        self._pending = None
+                        msg = f"Switch controller timed out after {timeout:g} seconds!"
+                        self.log.error(msg)
+                        return False, msg
+            return pending.ok, pending.message
+
+    def _plan(self, activate: Sequence[str], deactivate: Sequence[str], strictness: int) -> SwitchPlan:
+        views = {}
+        for n, mc in self.controllers.items():
+            if mc.state is State.INACTIVE:
+                # Resolved again at switch time: hardware may have come up since configure.
+                mc.required_command = self._resolve(mc.instance.command_interface_configuration(), command=True)
+                mc.required_state = self._resolve(mc.instance.state_interface_configuration(), command=False)
+            views[n] = ControllerView(mc.state, mc.required_command, mc.required_state)
+        return plan_switch(views, list(activate), list(deactivate), strictness, claimed=self.rm.claimed,
+                           command_available=self.rm.command_available, state_available=self.rm.state_available)
+
+    def _execute(self, pending: _PendingSwitch) -> None:
+        """Carry out a checked switch (real-time thread, `_lock` held): mode switch → deactivate → activate."""
+        plan = pending.plan
+        start = [i for n in plan.activate for i in self.controllers[n].required_command]
+        stop = [i for n in plan.deactivate for i in self.controllers[n].claimed]
+        failures = []
+        reason = self.rm.perform_switch(start, stop)
+        if reason:
+            failures.append(reason)
+        for n in plan.deactivate:
+            self._deactivate(self.controllers[n])
+        if not reason:
+            for n in plan.activate:
+                err = self._activate(self.controllers[n])
+                if err:
+                    failures.append(err)
+        self._refresh_active()
+        pending.ok = not failures
+        pending.message = "; ".join(failures)
+        for f in failures:
+            self.log.error(f)
+        done = [f"activated {n}" for n in plan.activate if self.controllers[n].state is State.ACTIVE]
+        done += [f"deactivated {n}" for n in plan.deactivate]
+        if done:
+            self.log.info("switch: " + ", ".join(done))
+        pending.done.set()
+
+    def _activate(self, mc: ManagedController) -> str | None:
+        inst = mc.instance
+        try:
+            cmds: list[CommandInterface] = self.rm.claim(mc.required_command, mc.name)
+        except TransitionError as e:
+            return f"could not activate controller '{mc.name}': {e}"
+        mc.claimed = list(mc.required_command)
+        inst.command_interfaces = cmds
+        inst.state_interfaces = [self.rm.state_interfaces[n] for n in mc.required_state]
+        try:
+            inst.on_activate()
+        except Exception as e:
+            self.rm.release(mc.claimed)
+            mc.claimed = []
+            inst.command_interfaces, inst.state_interfaces = [], []
+            return f"could not activate controller '{mc.name}': on_activate failed: {hook_message(e)}"
+        mc.state = State.ACTIVE
+        mc.last_update_ns = None
+        mc.last_error = ""
+        return None
+
+    def _deactivate(self, mc: ManagedController) -> None:
+        try:
+            mc.instance.on_deactivate()
+        except Exception as e:
+            self.log.error(f"controller '{mc.name}': on_deactivate failed: {hook_message(e)}")
+        self.rm.release(mc.claimed)
+        mc.claimed = []
+        mc.instance.command_interfaces, mc.instance.state_interfaces = [], []
+        mc.state = State.INACTIVE
+
+    def _refresh_active(self) -> None:
+        self._active = tuple(mc for mc in self.controllers.values() if mc.state is State.ACTIVE)
+
+    # ---------------------------------------------------------------------------------------------- real time
+    def read(self, time_ns: int, period_s: float) -> None:
+        with self._lock:
+            failed = self.rm.read(time_ns, period_s, self.update_rate)
+            if failed:
+                self._hardware_failed(failed)
+
+    def write(self, time_ns: int, period_s: float) -> None:
+        with self._lock:
+            failed = self.rm.write(time_ns, period_s, self.update_rate)
+            if failed:
+                self._hardware_failed(failed)
+
+    def _hardware_failed(self, failed: list[tuple[str, str]]) -> None:
+        for comp, reason in failed:
+            h = self.rm.components[comp]
+            names = {i.name for i in h.commands} | {i.name for i in h.states}
+            users = [mc for mc in self._active if names & set(mc.claimed + mc.required_state)]
+            self.log.error(f"hardware '{comp}' {reason}: deactivating controllers "
+                           f"[{', '.join(mc.name for mc in users)}]; the component goes to unconfigured")
+            for mc in users:
+                mc.last_error = f"hardware '{comp}' {reason}"
+                self._deactivate(mc)
+            self.rm.fail_component(comp)
+        self._refresh_active()
+
+    def update(self, time_ns: int, period_s: float) -> None:
+        with self._lock:
+            self.cycle_count += 1
+            rate = self.update_rate
+            failed: list[tuple[ManagedController, str]] = []
+            for mc in self._active:
+                period = period_s
+                if mc.update_rate and mc.update_rate < rate and mc.last_update_ns is not None:
+                    # ros2_control: run on the cycle whose elapsed time is closest to the controller's period.
+                    actual = (time_ns - mc.last_update_ns) * 1e-9
+                    r = mc.update_rate
+                    if abs(actual * r - 1.0) > abs((actual + 1.0 / rate) * r - 1.0):
+                        continue
+                    period = actual
+                try:
+                    ret = mc.instance.update(time_ns, period)
+                    reason = "update() returned ERROR"
+                except Exception as e:
+                    if not self.params.handle_exceptions:
+                        raise
+                    ret, reason = ReturnType.ERROR, f"update() raised {hook_message(e)}"
+                mc.last_update_ns = time_ns
+                mc.update_count += 1
+                if ret is not ReturnType.OK:
+                    failed.append((mc, reason))
+            if failed:
+                self._controllers_failed(failed)
+            if self._pending is not None:
+                pending, self._pending = self._pending, None
+                self._execute(pending)
+
+    def _controllers_failed(self, failed: list[tuple[ManagedController, str]]) -> None:
+        fallbacks: list[str] = []
+        for mc, reason in failed:
+            mc.last_error = reason
+            self.log.error(f"controller '{mc.name}' {reason}: deactivating it")
+            try:
+                mc.instance.on_error()
+            except Exception as e:
+                self.log.error(f"controller '{mc.name}': on_error raised {hook_message(e)}")
+            self._deactivate(mc)
+            fallbacks.extend(mc.fallback_controllers)
+        self._refresh_active()
+        if fallbacks:
+            plan = self._plan(fallbacks, [], STRICT)
+            if plan.ok and not plan.empty:
+                self.log.warn(f"activating fallback controllers [{', '.join(plan.activate)}]")
+                self._execute(_PendingSwitch(plan))
+            elif not plan.ok:
+                self.log.error(f"fallback controllers could not be activated: {plan.message}")
+
+    # ---------------------------------------------------------------------------------------------- shutdown
+    def shutdown(self) -> None:
+        """Deactivate, unload every controller and finalize the hardware (manager exit)."""
+        with self._admin, self._lock:
+            if self._pending is not None:
+                self._pending.message = "controller manager is shutting down"
+                self._pending.done.set()
+                self._pending = None
+            for mc in reversed(list(self.controllers.values())):
+                if mc.state is State.ACTIVE:
+                    self._deactivate(mc)
+                try:
+                    mc.shutdown()
+                except Exception as e:
+                    self.log.warn(f"controller '{mc.name}': shutdown: {hook_message(e)}")
+                _close(mc.instance.node)
+            self.controllers.clear()
+            self._active = ()
+            for name in list(self.rm.components):
+                try:
+                    self.rm.set_state(name, State.FINALIZED)
+                except Exception as e:
+                    self.log.warn(f"hardware '{name}': shutdown: {hook_message(e)}")
+
+    # ---------------------------------------------------------------------------------------------- views
+    def interface_users(self) -> dict[str, str]:
+        return dict(self.rm.claimed)
+
+    def state_value(self, name: str) -> float:
+        it: StateInterface | CommandInterface | None = self.rm.state_interfaces.get(name)
+        it = it or self.rm.command_interfaces.get(name)
+        return float("nan") if it is None else it.value
+
+
+def _controller_rate(name: str, params: dict[str, Any], cm_rate: int, log: Logger) -> int:
+    raw = params.get("update_rate", 0)
+    if isinstance(raw, bool) or not isinstance(raw, int) or raw < 0:
+        raise ParameterError(f"{raw!r} is not a valid rate (an integer ≥ 0 in Hz; 0 = the manager's rate)",
+                             field=f"{name}.update_rate")
+    if raw == 0 or raw == cm_rate:
+        return cm_rate
+    if raw > cm_rate:
+        log.warn(f"controller '{name}': update_rate {raw} Hz is above the manager's {cm_rate} Hz; "
+                 f"it will run at {cm_rate} Hz")
+        return cm_rate
+    if cm_rate % raw:
+        log.warn(f"controller '{name}': update_rate {raw} Hz does not divide the manager's {cm_rate} Hz; "
+                 "its period will vary")
+    return raw
+
+
+def _close(node: Any) -> None:
+    close = getattr(node, "close", None)
+    if close is not None:
+        try:
+            close()
+        except Exception:  # a controller node that fails to close must not block unloading
+            pass

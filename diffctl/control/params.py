@@ -1,0 +1,185 @@
+"""Controller-manager parameters (`controller_manager.ros__parameters`) and per-controller parameter merging.
+
+The manager's parameters come, as in ros2_control_node, from its `--params-file`s (the gz_ros2_control
+`<parameters>` files become exactly that) and `-p` overrides. They are validated once, here, into a frozen
+`ManagerParams`; a controller's own parameters are the sections for its node name in the same files plus
+the files named by `<name>.params_file`, flattened to dotted keys.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from diffctl.errors import ParameterError, suggest
+from diffctl.ros_args import load_params_file
+
+STRICTNESS = {"best_effort": 1, "strict": 2, "auto": 3, "force_auto": 4}
+
+# Parameters the manager itself understands; anything else with a dot is a per-controller key.
+_MANAGER_KEYS = {
+    "update_rate",
+    "use_sim_time",
+    "enforce_command_limits",
+    "handle_exceptions",
+    "overruns.manage",
+    "defaults.switch_controller.strictness",
+    "hardware_components_initial_state.unconfigured",
+    "hardware_components_initial_state.inactive",
+    "thread_priority",
+    "cpu_affinity",
+    "lock_memory",
+    "robot_description",
+}
+_CONTROLLER_KEYS = {"type", "params_file", "update_rate", "fallback_controllers", "is_async"}
+
+
+@dataclass(frozen=True)
+class ControllerSpec:
+    """What the manager node knows about one controller: `<name>.type`, `.params_file`, `.update_rate`…"""
+
+    name: str
+    type: str | None = None
+    params_files: tuple[str, ...] = ()
+    update_rate: int | None = None
+    fallback_controllers: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class ManagerParams:
+    update_rate: int = 100
+    use_sim_time: bool = False
+    handle_exceptions: bool = True
+    manage_overruns: bool = True
+    default_strictness: int = STRICTNESS["best_effort"]
+    hardware_unconfigured: tuple[str, ...] = ()
+    hardware_inactive: tuple[str, ...] = ()
+    controllers: Mapping[str, ControllerSpec] = field(default_factory=dict)
+    params_files: tuple[str, ...] = ()  # the manager's own files; controllers inherit them
+    source: str = "controller_manager parameters"
+
+    @property
+    def period_s(self) -> float:
+        return 1.0 / self.update_rate
+
+
+def _bool(value: Any, key: str, source: str) -> bool:
+    if isinstance(value, bool):
+        return value
+    raise ParameterError(f"{value!r} is not a bool (true or false)", source=source, field=key)
+
+
+def _str_list(value: Any, key: str, source: str) -> tuple[str, ...]:
+    if isinstance(value, str):
+        return (value,)
+    if isinstance(value, list | tuple) and all(isinstance(v, str) for v in value):
+        return tuple(value)
+    raise ParameterError(f"{value!r} is not a string or a list of strings", source=source, field=key)
+
+
+def _rate(value: Any, key: str, source: str, *, allow_zero: bool = False) -> int:
+    ok = isinstance(value, int) and not isinstance(value, bool)
+    if isinstance(value, float) and math.isfinite(value) and value.is_integer():
+        value, ok = int(value), True
+    if not ok or value < 0 or (value == 0 and not allow_zero) or value > 100_000:
+        lo = "≥ 0" if allow_zero else "> 0"
+        raise ParameterError(f"{value!r} is not a valid rate: an integer in Hz, {lo} and ≤ 100000", source=source,
+                             field=key)
+    return int(value)
+
+
+def manager_params(flat: Mapping[str, Any], *, source: str = "controller_manager parameters",
+                   params_files: tuple[str, ...] = ()) -> ManagerParams:
+    """Validate the manager node's flattened parameters into a `ManagerParams` (raises ParameterError)."""
+    kw: dict[str, Any] = {}
+    specs: dict[str, dict[str, Any]] = {}
+    for key, value in flat.items():
+        if key == "update_rate":
+            kw["update_rate"] = _rate(value, key, source)
+        elif key == "use_sim_time":
+            kw["use_sim_time"] = _bool(value, key, source)
+        elif key == "handle_exceptions":
+            kw["handle_exceptions"] = _bool(value, key, source)
+        elif key == "overruns.manage":
+            kw["manage_overruns"] = _bool(value, key, source)
+        elif key == "defaults.switch_controller.strictness":
+            if value not in STRICTNESS:
+                raise ParameterError(f"{value!r} is not a strictness{suggest(str(value), STRICTNESS)}",
+                                     source=source, field=key, hint="valid: " + ", ".join(STRICTNESS))
+            kw["default_strictness"] = STRICTNESS[value]
+        elif key == "hardware_components_initial_state.unconfigured":
+            kw["hardware_unconfigured"] = _str_list(value, key, source)
+        elif key == "hardware_components_initial_state.inactive":
+            kw["hardware_inactive"] = _str_list(value, key, source)
+        elif key in _MANAGER_KEYS:
+            continue
+        elif "." in key:
+            name, _, sub = key.rpartition(".")
+            if sub in _CONTROLLER_KEYS:
+                specs.setdefault(name, {})[sub] = value
+            # Other dotted keys (a controller's own parameters written under the manager) are left to it.
+    controllers = {name: controller_spec(name, d, source) for name, d in specs.items()}
+    return ManagerParams(**kw, controllers=controllers, params_files=params_files, source=source)
+
+
+def controller_spec(name: str, d: Mapping[str, Any], source: str) -> ControllerSpec:
+    ctype = d.get("type")
+    if ctype is not None and (not isinstance(ctype, str) or "/" not in ctype):
+        raise ParameterError(f"{ctype!r} is not a controller type like 'diff_drive_controller/DiffDriveController'",
+                             source=source, field=f"{name}.type")
+    files = _str_list(d["params_file"], f"{name}.params_file", source) if "params_file" in d else ()
+    rate = _rate(d["update_rate"], f"{name}.update_rate", source, allow_zero=True) if "update_rate" in d else None
+    fallbacks = (_str_list(d["fallback_controllers"], f"{name}.fallback_controllers", source)
+                 if "fallback_controllers" in d else ())
+    return ControllerSpec(name, ctype, files, rate, fallbacks)
+
+
+def with_controller_param(params: ManagerParams, name: str, key: str, value: Any) -> ManagerParams:
+    """A copy of `params` with `<name>.<key>` set (the spawner's set_parameters on the manager node)."""
+    old = params.controllers.get(name, ControllerSpec(name))
+    d: dict[str, Any] = {"type": old.type, "params_file": list(old.params_files), "update_rate": old.update_rate,
+                         "fallback_controllers": list(old.fallback_controllers)}
+    d = {k: v for k, v in d.items() if v not in (None, [])}
+    d[key] = value
+    controllers = dict(params.controllers)
+    controllers[name] = controller_spec(name, d, f"parameter {name}.{key}")
+    return ManagerParams(**{**params.__dict__, "controllers": controllers})
+
+
+def load_manager_files(files: list[str] | tuple[str, ...], node_name: str = "controller_manager") -> dict[str, Any]:
+    """The manager's flattened parameters from its parameter files (later files win)."""
+    out: dict[str, Any] = {}
+    for f in files:
+        out.update(load_params_file(f, node_name))
+    return out
+
+
+def controller_node_params(name: str, params: ManagerParams, extra_files: tuple[str, ...] = (),
+                           inherited: Mapping[str, Any] | None = None) -> dict[str, Any]:
+    """A controller node's parameters: sections for `name` in the manager's files, then its params_files."""
+    out: dict[str, Any] = dict(inherited or {})
+    spec = params.controllers.get(name, ControllerSpec(name))
+    for f in (*params.params_files, *spec.params_files, *extra_files):
+        if not Path(f).is_file():
+            raise ParameterError("parameter file not found", source=f, field=f"{name}.params_file")
+        out.update(load_params_file(f, name))
+    out.setdefault("use_sim_time", params.use_sim_time)
+    if spec.update_rate is not None:
+        out["update_rate"] = spec.update_rate
+    return out
+
+
+def section_type(path: str, name: str) -> str | None:
+    """The `type` a parameter file gives controller `name` in its own section (what the spawner forwards)."""
+    flat = {k: v for k, v in _sections(path, name).items()}
+    t = flat.get("type")
+    return t if isinstance(t, str) else None
+
+
+def _sections(path: str, name: str) -> dict[str, Any]:
+    if not Path(path).is_file():
+        raise ParameterError("parameter file not found", source=path, hint="give an existing YAML file with -p")
+    return load_params_file(path, name)

@@ -1,0 +1,235 @@
+"""Hardware components, their lifecycle, and the registry of interfaces loaned to controllers.
+
+As in hardware_interface::ResourceManager: state interfaces are available while their component is
+inactive or active and may be shared; command interfaces are available only while it is active and are
+claimed by at most one controller. read() runs on inactive and active components, write() on active ones;
+a component whose read or write returns ERROR (or raises) is reported so the manager can deactivate the
+controllers that use it, and it goes to unconfigured.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
+
+from diffctl.control.controller_interface import CommandInterface, ReturnType, StateInterface
+from diffctl.control.hardware_interface import HardwareComponent, HardwareInfo
+from diffctl.control.lifecycle import State, TransitionError, hook_message
+from diffctl.control.plugin_registry import hardware_class
+from diffctl.errors import ConfigError
+
+
+@dataclass(eq=False)
+class HardwareHandle:
+    name: str
+    info: HardwareInfo
+    component: HardwareComponent
+    state: State = State.UNCONFIGURED
+    states: list[StateInterface] = field(default_factory=list)
+    commands: list[CommandInterface] = field(default_factory=list)
+    rw_rate: int = 0
+    last_rw_ns: int | None = None
+    read_errors: int = 0
+    write_errors: int = 0
+    due: bool = True
+    rw_period_s: float = 0.0
+
+    @property
+    def plugin_name(self) -> str:
+        return self.info.plugin_name
+
+
+class ResourceManager:
+    def __init__(self, log: Callable[[str], None] | None = None) -> None:
+        self.components: dict[str, HardwareHandle] = {}
+        self.state_interfaces: dict[str, StateInterface] = {}
+        self.command_interfaces: dict[str, CommandInterface] = {}
+        self.owner: dict[str, str] = {}  # interface name → component name
+        self.claimed: dict[str, str] = {}  # command interface → controller name
+        self._warn = log or (lambda _t: None)
+        self._active: tuple[HardwareHandle, ...] = ()
+        self._readable: tuple[HardwareHandle, ...] = ()
+
+    # --- loading ---------------------------------------------------------------------------------------
+    def load(self, info: HardwareInfo, logger: object | None = None) -> HardwareHandle:
+        if info.name in self.components:
+            raise ConfigError(f"two <ros2_control> blocks are named {info.name!r}", source=info.source)
+        cls = hardware_class(info.plugin_name)
+        comp = cls()
+        comp.log = logger
+        try:
+            comp.on_init(info)
+            states = list(comp.export_state_interfaces())
+            commands = list(comp.export_command_interfaces())
+        except ConfigError:
+            raise
+        except Exception as e:
+            raise ConfigError(f"hardware {info.name!r} ({info.plugin_name}) failed to initialise: {hook_message(e)}",
+                              source=info.source) from e
+        h = HardwareHandle(info.name, info, comp, State.UNCONFIGURED, states, commands, info.rw_rate)
+        for it in states + commands:
+            table = self.state_interfaces if isinstance(it, StateInterface) else self.command_interfaces
+            if it.name in table:
+                raise ConfigError(f"interface {it.name!r} is exported twice (by {self.owner[it.name]!r} and "
+                                  f"{info.name!r})", source=info.source)
+            table[it.name] = it
+            self.owner[it.name] = info.name
+        self.components[info.name] = h
+        return h
+
+    # --- lifecycle --------------------------------------------------------------------------------------
+    def set_state(self, name: str, target: State) -> State:
+        """Walk component `name` to `target` through the standard transitions; returns the state reached."""
+        h = self.components.get(name)
+        if h is None:
+            raise TransitionError(f"no hardware component named {name!r}; known: {', '.join(self.components)}")
+        comp = h.component
+        steps: list[tuple[State, Callable[[], None], str]] = []
+        order = [State.UNCONFIGURED, State.INACTIVE, State.ACTIVE]
+        if target is State.FINALIZED:
+            if h.state is State.ACTIVE:
+                steps.append((State.INACTIVE, comp.on_deactivate, "on_deactivate"))
+            if h.state in (State.ACTIVE, State.INACTIVE):
+                steps.append((State.UNCONFIGURED, comp.on_cleanup, "on_cleanup"))
+            if h.state is not State.FINALIZED:
+                steps.append((State.FINALIZED, comp.on_shutdown, "on_shutdown"))
+        elif target in order:
+            if h.state is State.FINALIZED:
+                raise TransitionError(f"hardware {name!r} is finalized and can not change state")
+            cur, want = order.index(h.state), order.index(target)
+            up = {1: (State.INACTIVE, comp.on_configure, "on_configure"),
+                  2: (State.ACTIVE, comp.on_activate, "on_activate")}
+            down = {1: (State.UNCONFIGURED, comp.on_cleanup, "on_cleanup"),
+                    2: (State.INACTIVE, comp.on_deactivate, "on_deactivate")}
+            steps = [up[i] for i in range(cur + 1, want + 1)] if want > cur else [down[i] for i in range(cur, want, -1)]
+        else:
+            raise TransitionError(f"hardware can not be set to {target.value!r}")
+        for new_state, hook, label in steps:
+            try:
+                hook()
+            except Exception as e:
+                self._refresh()
+                raise TransitionError(f"hardware {name!r}: {label} failed: {hook_message(e)}") from e
+            h.state = new_state
+        self._refresh()
+        return h.state
+
+    def _refresh(self) -> None:
+        comps = list(self.components.values())
+        self._active = tuple(h for h in comps if h.state is State.ACTIVE)
+        self._readable = tuple(h for h in comps if h.state in (State.ACTIVE, State.INACTIVE))
+
+    # --- availability and claims -------------------------------------------------------------------------
+    def state_available(self, name: str) -> bool:
+        o = self.owner.get(name)
+        return (name in self.state_interfaces and o is not None
+                and self.components[o].state in (State.ACTIVE, State.INACTIVE))
+
+    def command_available(self, name: str) -> bool:
+        o = self.owner.get(name)
+        return name in self.command_interfaces and o is not None and self.components[o].state is State.ACTIVE
+
+    def available_command_names(self) -> list[str]:
+        return [n for n in self.command_interfaces if self.command_available(n)]
+
+    def available_state_names(self) -> list[str]:
+        return [n for n in self.state_interfaces if self.state_available(n)]
+
+    def claim(self, names: Iterable[str], controller: str) -> list[CommandInterface]:
+        names = list(names)
+        for n in names:
+            holder = self.claimed.get(n)
+            if holder is not None and holder != controller:
+                raise TransitionError(f"Resource conflict for controller '{controller}': command interface '{n}' "
+                                      f"is already claimed by '{holder}'")
+        for n in names:
+            self.claimed[n] = controller
+        return [self.command_interfaces[n] for n in names]
+
+    def release(self, names: Iterable[str]) -> None:
+        for n in names:
+            self.claimed.pop(n, None)
+
+    def components_of(self, interface_names: Iterable[str]) -> set[str]:
+        return {self.owner[n] for n in interface_names if n in self.owner}
+
+    # --- mode switches -----------------------------------------------------------------------------------
+    def _by_component(self, names: Iterable[str]) -> dict[str, list[str]]:
+        out: dict[str, list[str]] = {}
+        for n in names:
+            if n in self.owner:
+                out.setdefault(self.owner[n], []).append(n)
+        return out
+
+    def prepare_switch(self, start: list[str], stop: list[str]) -> str | None:
+        """None when every component accepts the command-mode switch, else the reason."""
+        s, t = self._by_component(start), self._by_component(stop)
+        for comp in set(s) | set(t):
+            h = self.components[comp]
+            try:
+                ok = h.component.prepare_command_mode_switch(s.get(comp, []), t.get(comp, []))
+            except Exception as e:
+                return f"hardware {comp!r} rejected the command mode switch: {hook_message(e)}"
+            if not ok:
+                return f"hardware {comp!r} rejected the command mode switch (start {s.get(comp, [])}, " \
+                       f"stop {t.get(comp, [])})"
+        return None
+
+    def perform_switch(self, start: list[str], stop: list[str]) -> str | None:
+        s, t = self._by_component(start), self._by_component(stop)
+        for comp in set(s) | set(t):
+            h = self.components[comp]
+            try:
+                ok = h.component.perform_command_mode_switch(s.get(comp, []), t.get(comp, []))
+            except Exception as e:
+                return f"hardware {comp!r} failed the command mode switch: {hook_message(e)}"
+            if not ok:
+                return f"hardware {comp!r} failed the command mode switch"
+        return None
+
+    # --- real-time loop ----------------------------------------------------------------------------------
+    def _rw(self, handles: tuple[HardwareHandle, ...], write: bool, time_ns: int, period_s: float,
+            cm_rate: int) -> list[tuple[str, str]]:
+        failed: list[tuple[str, str]] = []
+        for h in handles:
+            period = period_s
+            if h.rw_rate and h.rw_rate < cm_rate:
+                # A slower component runs on the cycles that land closest to its own period (decided at read).
+                if not write:
+                    h.due = h.last_rw_ns is None or (time_ns - h.last_rw_ns) * h.rw_rate >= 0.999e9
+                    if h.due:
+                        h.rw_period_s = period_s if h.last_rw_ns is None else (time_ns - h.last_rw_ns) * 1e-9
+                        h.last_rw_ns = time_ns
+                if not h.due:
+                    continue
+                period = h.rw_period_s
+            try:
+                ret = (h.component.write if write else h.component.read)(time_ns, period)
+                reason = "returned ERROR"
+            except Exception as e:
+                ret, reason = ReturnType.ERROR, f"raised {hook_message(e)}"
+            if ret is not ReturnType.OK:
+                if write:
+                    h.write_errors += 1
+                else:
+                    h.read_errors += 1
+                failed.append((h.name, f"{'write' if write else 'read'} {reason}"))
+        return failed
+
+    def read(self, time_ns: int, period_s: float, cm_rate: int = 0) -> list[tuple[str, str]]:
+        return self._rw(self._readable, False, time_ns, period_s, cm_rate)
+
+    def write(self, time_ns: int, period_s: float, cm_rate: int = 0) -> list[tuple[str, str]]:
+        return self._rw(self._active, True, time_ns, period_s, cm_rate)
+
+    def fail_component(self, name: str) -> None:
+        """After a read/write error: the component goes to unconfigured and its interfaces become unavailable."""
+        h = self.components[name]
+        try:
+            on_error = getattr(h.component, "on_error", None)
+            if on_error is not None:
+                on_error()
+        except Exception as e:
+            self._warn(f"hardware {name!r}: on_error raised {hook_message(e)}")
+        h.state = State.UNCONFIGURED
+        self._refresh()
