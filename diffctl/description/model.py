@@ -351,6 +351,7 @@ class Model:
     canonical_link: str = ""
     self_collide: bool = False
     source: str = ""  # file the model came from ("<string>" when parsed from text)
+    ignored: tuple[str, ...] = ()  # elements read but not simulated (e.g. a magnetometer sensor), one line each
 
     def link(self, name: str) -> Link:
         for link in self.links:

@@ -1,0 +1,384 @@
+"""Leaf SDF elements to model dataclasses: geometry, surfaces, inertials, visuals, sensors, plugins, lights, physics.
+
+Frame resolution is not done here: elements that carry a `<pose>` get a `to_link(pose, relative_to, element)`
+callback from the loader that returns the pose in the owning link's frame.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+from lxml import etree
+
+from diffctl.description.model import (
+    Box,
+    CameraSpec,
+    Capsule,
+    Collision,
+    Cylinder,
+    Geometry,
+    ImuSpec,
+    Inertial,
+    LidarSpec,
+    Light,
+    Mesh,
+    Noise,
+    Physics,
+    Plane,
+    Plugin,
+    Sensor,
+    Sphere,
+    Surface,
+    Visual,
+)
+from diffctl.description.pose import Pose
+from diffctl.description.resources import is_remote, resolve_uri
+from diffctl.description.sdf_values import (
+    Doc,
+    Element,
+    bool_value,
+    child,
+    child_text,
+    children,
+    color_value,
+    fail,
+    float_value,
+    int_value,
+    parse_floats,
+    pose_child,
+    required_attr,
+    vec3_value,
+)
+from diffctl.errors import suggest
+
+ToLink = Callable[[Pose, str | None, Element | None], Pose]
+
+GEOMETRY_TAGS = ("box", "cylinder", "sphere", "capsule", "plane", "mesh")
+MESH_SUFFIXES = (".obj", ".stl", ".dae")
+LIDAR_SENSOR_TYPES = ("gpu_lidar", "lidar", "gpu_ray", "ray")
+CAMERA_SENSOR_TYPES = ("camera",)
+IMU_SENSOR_TYPES = ("imu",)
+NOISE_TYPES = ("none", "gaussian", "gaussian_quantized")
+
+
+def parse_geometry(doc: Doc, parent: Element) -> Geometry:
+    geo = child(parent, "geometry")
+    if geo is None:
+        fail(doc, parent, f"<{parent.tag}> needs a <geometry>", hint="one of " + ", ".join(GEOMETRY_TAGS))
+    shapes = [c for c in geo if isinstance(c.tag, str) and c.tag != "empty"]
+    if len(shapes) != 1 or shapes[0].tag not in GEOMETRY_TAGS:
+        found = ", ".join(f"<{c.tag}>" for c in shapes) or "nothing"
+        hint = suggest(shapes[0].tag, GEOMETRY_TAGS) if len(shapes) == 1 else ""
+        fail(doc, geo, f"<geometry> must hold exactly one of {', '.join(GEOMETRY_TAGS)}; found {found}{hint}")
+    shape = shapes[0]
+    tag = shape.tag
+    if tag == "box":
+        size_el = child(shape, "size")
+        if size_el is None:
+            fail(doc, shape, "<box> needs <size>x y z</size> (metres)")
+        size = parse_floats(doc, size_el, 3)
+        if not all(s > 0 for s in size):
+            fail(doc, size_el, f"<size> of a box must be three positive lengths, got {size_el.text.strip()!r}")
+        return Box((size[0], size[1], size[2]))
+    if tag in ("cylinder", "capsule"):
+        radius = float_value(doc, shape, "radius", positive=True)
+        length = float_value(doc, shape, "length", positive=True)
+        return Cylinder(radius, length) if tag == "cylinder" else Capsule(radius, length)
+    if tag == "sphere":
+        return Sphere(float_value(doc, shape, "radius", positive=True))
+    if tag == "plane":
+        normal = vec3_value(doc, shape, "normal", (0.0, 0.0, 1.0))
+        n = math.sqrt(sum(c * c for c in normal))
+        if n == 0:
+            fail(doc, child(shape, "normal"), "<normal> of a plane must not be the zero vector")
+        size_el = child(shape, "size")
+        size = (100.0, 100.0)
+        if size_el is not None:
+            size = parse_floats(doc, size_el, 2)
+            if not all(s > 0 for s in size):
+                fail(doc, size_el, f"<size> of a plane must be two positive lengths, got {size_el.text.strip()!r}")
+        return Plane((normal[0] / n, normal[1] / n, normal[2] / n), (size[0], size[1]))
+    return _parse_mesh(doc, shape)
+
+
+def _parse_mesh(doc: Doc, shape: Element) -> Mesh:
+    uri_el = child(shape, "uri")
+    uri = (uri_el.text or "").strip() if uri_el is not None else ""
+    if not uri:
+        fail(doc, shape, "<mesh> needs a <uri>")
+    scale = vec3_value(doc, shape, "scale", (1.0, 1.0, 1.0))
+    if not all(s > 0 for s in scale):
+        fail(doc, child(shape, "scale"), f"<scale> of a mesh must be positive, got {scale}")
+    if is_remote(uri):
+        if doc.check_files:
+            fail(doc, uri_el, f"mesh {uri!r} is remote", hint="download it and refer to the local file")
+        return Mesh("", uri, scale)
+    path = resolve_uri(uri, doc.base_dir, doc.search_path)
+    if path is None or not path.is_file():
+        if doc.check_files:
+            fail(
+                doc,
+                uri_el,
+                f"mesh {uri!r} not found",
+                hint="searched "
+                + ", ".join(str(d) for d in (doc.base_dir, *doc.search_path))
+                + "; set GZ_SIM_RESOURCE_PATH",
+            )
+        return Mesh("", uri, scale)
+    if path.suffix.lower() not in MESH_SUFFIXES:
+        fail(doc, uri_el, f"mesh {uri!r} has format {path.suffix!r}", hint="supported: " + ", ".join(MESH_SUFFIXES))
+    return Mesh(str(path), uri, scale)
+
+
+def parse_surface(doc: Doc, collision: Element) -> Surface:
+    surface = child(collision, "surface")
+    if surface is None:
+        return Surface()
+    mu, mu2, restitution = 1.0, 1.0, 0.0
+    friction = child(surface, "friction")
+    if friction is not None:
+        ode = child(friction, "ode")
+        if ode is not None:
+            mu = float_value(doc, ode, "mu", 1.0, minimum=0.0, allow_inf=True)
+            mu2 = float_value(doc, ode, "mu2", mu, minimum=0.0, allow_inf=True)
+        else:
+            bullet = child(friction, "bullet")
+            if bullet is not None:
+                mu = float_value(doc, bullet, "friction", 1.0, minimum=0.0)
+                mu2 = float_value(doc, bullet, "friction2", mu, minimum=0.0)
+    bounce = child(surface, "bounce")
+    if bounce is not None:
+        restitution = float_value(doc, bounce, "restitution_coefficient", 0.0, minimum=0.0)
+    return Surface(mu, mu2, restitution)
+
+
+def parse_collision(doc: Doc, el: Element, to_link: ToLink) -> Collision:
+    name = required_attr(doc, el, "name")
+    pose, rel, pose_el = pose_child(doc, el)
+    return Collision(name, to_link(pose, rel, pose_el), parse_geometry(doc, el), parse_surface(doc, el))
+
+
+def parse_visual(doc: Doc, el: Element, to_link: ToLink) -> Visual:
+    name = required_attr(doc, el, "name")
+    pose, rel, pose_el = pose_child(doc, el)
+    rgba = None
+    material = child(el, "material")
+    if material is not None:
+        rgba = color_value(doc, material, "diffuse", None) or color_value(doc, material, "ambient", None)
+    return Visual(name, to_link(pose, rel, pose_el), parse_geometry(doc, el), rgba)
+
+
+def parse_inertial(doc: Doc, el: Element, to_link: ToLink) -> Inertial:
+    mass = float_value(doc, el, "mass", 1.0, positive=True)
+    pose, rel, pose_el = pose_child(doc, el)
+    inertia = child(el, "inertia")
+    values = {"ixx": 1.0, "ixy": 0.0, "ixz": 0.0, "iyy": 1.0, "iyz": 0.0, "izz": 1.0}
+    if inertia is not None:
+        for key, default in values.items():
+            values[key] = float_value(doc, inertia, key, default, positive=key in ("ixx", "iyy", "izz"))
+    return Inertial(mass, to_link(pose, rel, pose_el), **values)
+
+
+def parse_noise(doc: Doc, parent: Element | None) -> Noise:
+    el = child(parent, "noise") if parent is not None else None
+    if el is None:
+        return Noise()
+    kind = (el.get("type") or child_text(el, "type") or "none").strip().lower()
+    if kind not in NOISE_TYPES:
+        fail(
+            doc,
+            el,
+            f"noise type {kind!r} is not valid{suggest(kind, NOISE_TYPES)}",
+            hint="valid: " + ", ".join(NOISE_TYPES),
+        )
+    return Noise(
+        kind,
+        float_value(doc, el, "mean", 0.0),
+        float_value(doc, el, "stddev", 0.0, minimum=0.0),
+        float_value(doc, el, "bias_mean", 0.0),
+        float_value(doc, el, "bias_stddev", 0.0, minimum=0.0),
+    )
+
+
+def _parse_lidar(doc: Doc, sensor: Element) -> LidarSpec:
+    body = child(sensor, "lidar")
+    if body is None:
+        body = child(sensor, "ray")
+    if body is None:
+        fail(doc, sensor, f"a {sensor.get('type')} sensor needs a <lidar> element with <scan> and <range>")
+    scan = child(body, "scan")
+    horizontal = child(scan, "horizontal") if scan is not None else None
+    vertical = child(scan, "vertical") if scan is not None else None
+    h = _scan_axis(doc, horizontal, 640)
+    v = _scan_axis(doc, vertical, 1)
+    rng = child(body, "range")
+    if rng is None:
+        fail(doc, body, f"<{body.tag}> needs <range> with <min> and <max> (metres)")
+    range_min = float_value(doc, rng, "min", 0.0, minimum=0.0)
+    range_max = float_value(doc, rng, "max", positive=True)
+    if range_max <= range_min:
+        fail(doc, rng, f"<range> <max> {range_max:g} must exceed <min> {range_min:g}")
+    return LidarSpec(
+        horizontal_samples=h[0],
+        horizontal_resolution=h[1],
+        horizontal_min_angle_rad=h[2],
+        horizontal_max_angle_rad=h[3],
+        vertical_samples=v[0],
+        vertical_resolution=v[1],
+        vertical_min_angle_rad=v[2],
+        vertical_max_angle_rad=v[3],
+        range_min_m=range_min,
+        range_max_m=range_max,
+        range_resolution_m=float_value(doc, rng, "resolution", 0.0, minimum=0.0),
+        noise=parse_noise(doc, body),
+    )
+
+
+def _scan_axis(doc: Doc, el: Element | None, samples_default: int) -> tuple[int, float, float, float]:
+    if el is None:
+        return (samples_default, 1.0, 0.0, 0.0)
+    samples = int_value(doc, el, "samples", samples_default, minimum=1)
+    resolution = float_value(doc, el, "resolution", 1.0, positive=True)
+    lo = float_value(doc, el, "min_angle", 0.0)
+    hi = float_value(doc, el, "max_angle", 0.0)
+    if hi < lo:
+        fail(doc, el, f"<max_angle> {hi:g} is below <min_angle> {lo:g}")
+    return (samples, resolution, lo, hi)
+
+
+def _parse_camera(doc: Doc, sensor: Element) -> CameraSpec:
+    cam = child(sensor, "camera")
+    if cam is None:
+        fail(doc, sensor, "a camera sensor needs a <camera> element")
+    hfov = float_value(doc, cam, "horizontal_fov", 1.047, positive=True)
+    if hfov >= math.pi:
+        fail(doc, child(cam, "horizontal_fov"), f"<horizontal_fov> must be below pi (radians), got {hfov:g}")
+    image = child(cam, "image")
+    width, height, fmt = 320, 240, "R8G8B8"
+    if image is not None:
+        width = int_value(doc, image, "width", 320, minimum=1)
+        height = int_value(doc, image, "height", 240, minimum=1)
+        fmt = child_text(image, "format", "R8G8B8") or "R8G8B8"
+    clip = child(cam, "clip")
+    near, far = 0.1, 100.0
+    if clip is not None:
+        near = float_value(doc, clip, "near", 0.1, positive=True)
+        far = float_value(doc, clip, "far", 100.0, positive=True)
+        if far <= near:
+            fail(doc, clip, f"<clip> <far> {far:g} must exceed <near> {near:g}")
+    return CameraSpec(width, height, hfov, fmt, near, far, parse_noise(doc, cam))
+
+
+def _parse_imu(doc: Doc, sensor: Element) -> ImuSpec:
+    imu = child(sensor, "imu")
+    if imu is None:
+        return ImuSpec()
+
+    def axes(tag: str) -> tuple[Noise, Noise, Noise]:
+        group = child(imu, tag)
+        if group is None:
+            return (Noise(), Noise(), Noise())
+        return (
+            parse_noise(doc, child(group, "x")),
+            parse_noise(doc, child(group, "y")),
+            parse_noise(doc, child(group, "z")),
+        )
+
+    return ImuSpec(axes("angular_velocity"), axes("linear_acceleration"))
+
+
+def sensor_kind(sdf_type: str) -> str | None:
+    if sdf_type in LIDAR_SENSOR_TYPES:
+        return "lidar"
+    if sdf_type in CAMERA_SENSOR_TYPES:
+        return "camera"
+    if sdf_type in IMU_SENSOR_TYPES:
+        return "imu"
+    return None
+
+
+_TOPIC_SUFFIX = {"lidar": "scan", "camera": "image", "imu": "imu"}
+
+
+def parse_sensor(
+    doc: Doc, el: Element, link: str, topic_prefix: str, to_link: ToLink, link_world: Pose
+) -> Sensor | None:
+    """The sensor, or None for a type diffctl does not simulate (the loader lists those as ignored)."""
+    name = required_attr(doc, el, "name")
+    sdf_type = required_attr(doc, el, "type")
+    kind = sensor_kind(sdf_type)
+    if kind is None:
+        return None
+    pose, rel, pose_el = pose_child(doc, el)
+    pose_link = to_link(pose, rel, pose_el)
+    topic = child_text(el, "topic") or f"{topic_prefix}/sensor/{name}/{_TOPIC_SUFFIX[kind]}"
+    # gz-transport makes relative topic names absolute; consumers get one spelling.
+    topic = "/" + topic.lstrip("/")
+    frame_id = child_text(el, "gz_frame_id") or child_text(el, "frame_id") or None
+    return Sensor(
+        name=name,
+        type=kind,
+        sdf_type=sdf_type,
+        link=link,
+        topic=topic,
+        update_rate_hz=float_value(doc, el, "update_rate", 0.0, minimum=0.0),
+        always_on=bool_value(doc, el, "always_on", False),
+        visualize=bool_value(doc, el, "visualize", False),
+        pose_link=pose_link,
+        pose_world=link_world.compose(pose_link),
+        frame_id=frame_id,
+        lidar=_parse_lidar(doc, el) if kind == "lidar" else None,
+        camera=_parse_camera(doc, el) if kind == "camera" else None,
+        imu=_parse_imu(doc, el) if kind == "imu" else None,
+    )
+
+
+def parse_plugin(doc: Doc, el: Element) -> Plugin:
+    filename = required_attr(doc, el, "filename")
+    params = tuple((str(c.tag), (c.text or "").strip()) for c in el if isinstance(c.tag, str))
+    xml = etree.tostring(el, encoding="unicode", with_tail=False)
+    return Plugin((el.get("name") or "").strip(), filename, params, xml)
+
+
+LIGHT_TYPES = ("directional", "point", "spot")
+
+
+def parse_light(doc: Doc, el: Element, parent_world: Pose) -> Light:
+    name = required_attr(doc, el, "name")
+    kind = (el.get("type") or "point").strip()
+    if kind not in LIGHT_TYPES:
+        fail(
+            doc,
+            el,
+            f"light type {kind!r} is not valid{suggest(kind, LIGHT_TYPES)}",
+            hint="valid: " + ", ".join(LIGHT_TYPES),
+        )
+    pose, _, _ = pose_child(doc, el)
+    return Light(
+        name=name,
+        type=kind,
+        pose_world=parent_world.compose(pose),
+        direction=vec3_value(doc, el, "direction", (0.0, 0.0, -1.0)),
+        diffuse=color_value(doc, el, "diffuse", (1.0, 1.0, 1.0, 1.0)) or (1.0, 1.0, 1.0, 1.0),
+        specular=color_value(doc, el, "specular", (0.1, 0.1, 0.1, 1.0)) or (0.1, 0.1, 0.1, 1.0),
+        cast_shadows=bool_value(doc, el, "cast_shadows", False),
+    )
+
+
+def parse_physics(doc: Doc, world: Element) -> Physics:
+    """The world's <physics> (the one marked default="true", else the first) and <gravity>."""
+    candidates = children(world, "physics")
+    el = next((p for p in candidates if (p.get("default") or "").strip().lower() in ("true", "1")), None)
+    if el is None and candidates:
+        el = candidates[0]
+    gravity_parent = world if child(world, "gravity") is not None else (el if el is not None else world)
+    gravity = vec3_value(doc, gravity_parent, "gravity", (0.0, 0.0, -9.8))
+    if el is None:
+        return Physics(gravity=gravity)
+    return Physics(
+        max_step_size_s=float_value(doc, el, "max_step_size", 0.001, positive=True),
+        real_time_factor=float_value(doc, el, "real_time_factor", 1.0, minimum=0.0),
+        gravity=gravity,
+        real_time_update_rate_hz=float_value(doc, el, "real_time_update_rate", 1000.0, minimum=0.0),
+    )
