@@ -1,0 +1,352 @@
+"""diff_drive_controller/DiffDriveController: body twist in, wheel velocities and odometry out (Jazzy tip).
+
+Topics (relative to the controller node /<name>):
+  ~/cmd_vel      geometry_msgs/msg/TwistStamped in; only twist.linear.x and twist.angular.z are used
+  ~/odom         nav_msgs/msg/Odometry out, at publish_rate
+  /tf            tf2_msgs/msg/TFMessage out (odom → base frame), at publish_rate, when enable_odom_tf
+  ~/cmd_vel_out  geometry_msgs/msg/TwistStamped out, the limited command of every update, when
+                 publish_limited_velocity
+
+Command intake follows the tip: a zero stamp means "now"; a command older than cmd_vel_timeout is dropped
+with the reason; in update(), a command older than the timeout brakes to zero through the limiter (a timeout
+of 0 disables both). Until the first command, or the timeout after activation, nothing is written or
+published. Beyond the reference: non-finite or absurd commands (command_sanity) are dropped with a warning,
+and so are commands stamped further in the future than the timeout (a wall-clock stamp sent to a sim-time
+controller would otherwise never time out).
+
+Each update: limiter (jerk → acceleration → velocity) on the references, odometry (open loop from the limited
+command, or mean wheel position / velocity feedback; non-finite feedback → ERROR, which makes the manager
+deactivate the controller), odom/tf publishing, then the same velocity to every wheel of a side.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from diffctl.bus import types
+from diffctl.control.controller_interface import (
+    CommandInterface,
+    ControllerInterface,
+    InterfaceConfiguration,
+    ReturnType,
+    StateInterface,
+)
+from diffctl.control.controllers.command_sanity import MAX_ANGULAR_RADPS, MAX_LINEAR_MPS, rejection
+from diffctl.control.controllers.diff_drive_params import DiffDriveParams
+from diffctl.control.controllers.owned_endpoints import OwnedEndpoints
+from diffctl.control.controllers.throttled_log import ThrottledLog
+from diffctl.control.math.kinematics import heading_quaternion, wheel_velocities_radps
+from diffctl.control.math.odometry import Odometry
+from diffctl.control.math.speed_limiter import SpeedLimiter
+from diffctl.errors import RuntimeFailure
+
+NAN = math.nan
+_NS = 1_000_000_000
+TWIST_STAMPED = "geometry_msgs/msg/TwistStamped"
+ODOMETRY = "nav_msgs/msg/Odometry"
+TF_MESSAGE = "tf2_msgs/msg/TFMessage"
+
+
+def _set_stamp(stamp: Any, time_ns: int) -> None:
+    stamp.sec, stamp.nanosec = divmod(time_ns, _NS)
+
+
+class DiffDriveController(ControllerInterface):
+    def __init__(self) -> None:
+        super().__init__()
+        self.params: DiffDriveParams | None = None
+        self._params_source: dict[str, Any] = {}
+        self.odometry: Odometry | None = None
+        self._limiter_linear = SpeedLimiter()
+        self._limiter_angular = SpeedLimiter()
+        self._subscriber_active = False
+        self._endpoints = OwnedEndpoints()
+        self._timeout_ns = 0
+        self._publish_period_ns = 0
+        self._last_publish_ns: int | None = None
+        self._odom_needs_init = True
+        self._odom_pub: Any = None
+        self._tf_pub: Any = None
+        self._cmd_out_pub: Any = None
+        self._left_commands: list[CommandInterface] = []
+        self._right_commands: list[CommandInterface] = []
+        self._left_feedback: list[StateInterface] = []
+        self._right_feedback: list[StateInterface] = []
+        self._reset_buffers(0)
+
+    # --- parameters and interfaces ----------------------------------------------------------------------
+    def on_init(self) -> None:
+        self._read_params()
+
+    def _read_params(self) -> None:
+        params, warnings = DiffDriveParams.from_params(self.node.params, self.name)
+        self.params = params
+        self._params_source = dict(self.node.params)
+        for text in warnings:
+            self.node.log.warn(text)
+
+    def _p(self) -> DiffDriveParams:
+        if self.params is None:
+            raise RuntimeFailure(f"controller '{self.name}' has no parameters: on_init was not run")
+        return self.params
+
+    def command_interface_configuration(self) -> InterfaceConfiguration:
+        p = self._p()
+        return InterfaceConfiguration.individual([f"{w}/velocity" for w in (*p.left_wheel_names, *p.right_wheel_names)])
+
+    def state_interface_configuration(self) -> InterfaceConfiguration:
+        p = self._p()
+        if p.open_loop:
+            return InterfaceConfiguration.none()
+        iface = p.feedback_interface
+        return InterfaceConfiguration.individual([f"{w}/{iface}" for w in (*p.left_wheel_names, *p.right_wheel_names)])
+
+    # --- lifecycle ----------------------------------------------------------------------------------------
+    def on_configure(self) -> None:
+        if self.node.params != self._params_source:
+            self._read_params()  # the reference re-reads parameters that changed since on_init
+        p = self._p()
+        self._limiter_linear = SpeedLimiter(p.linear)
+        self._limiter_angular = SpeedLimiter(p.angular)
+        self.odometry = Odometry(
+            p.effective_wheel_separation_m,
+            p.left_wheel_radius_m,
+            p.right_wheel_radius_m,
+            p.velocity_rolling_window_size,
+        )
+        self._timeout_ns = round(p.cmd_vel_timeout_s * _NS)
+        self._publish_period_ns = round(_NS / p.publish_rate_hz)
+        self._last_publish_ns = None
+        self._odom_needs_init = True
+        self._reset_buffers(self.node.now_ns())
+
+        prefix = p.frame_prefix(getattr(self.node, "namespace", "/"))
+        odom_frame, base_frame = prefix + p.odom_frame_id, prefix + p.base_frame_id
+        self._close_endpoints()
+        self._odom_msg = types.new(
+            ODOMETRY,
+            {
+                "header": {"frame_id": odom_frame},
+                "child_frame_id": base_frame,
+                "pose": {"pose": {"orientation": {"w": 1.0}}},
+            },
+        )
+        for i in range(6):
+            self._odom_msg.pose.covariance[7 * i] = p.pose_covariance_diagonal[i]
+            self._odom_msg.twist.covariance[7 * i] = p.twist_covariance_diagonal[i]
+        self._odom_pub = self._endpoints.keep(self.node.create_publisher("~/odom", ODOMETRY))
+        self._tf_msg = types.new(
+            TF_MESSAGE,
+            {"transforms": [{"header": {"frame_id": odom_frame}, "child_frame_id": base_frame}]},
+        )
+        self._tf = self._tf_msg.transforms[0]
+        self._tf.transform.rotation.w = 1.0
+        self._tf_pub = self._endpoints.keep(self.node.create_publisher("/tf", TF_MESSAGE)) if p.enable_odom_tf else None
+        self._cmd_out_msg = types.new(TWIST_STAMPED, {"header": {"frame_id": base_frame}})
+        self._cmd_out_pub = None
+        if p.publish_limited_velocity:
+            self._cmd_out_pub = self._endpoints.keep(self.node.create_publisher("~/cmd_vel_out", TWIST_STAMPED))
+        self._log = ThrottledLog(self.node.log)
+        self._endpoints.keep(self.node.create_subscription("~/cmd_vel", TWIST_STAMPED, self._on_cmd_vel))
+
+    def on_activate(self) -> None:
+        p = self._p()
+        commands = {ci.name: ci for ci in self.command_interfaces}
+        states = {si.name: si for si in self.state_interfaces}
+
+        def take(table: dict[str, Any], names: tuple[str, ...], iface: str, kind: str) -> list[Any]:
+            missing = [n for n in names if f"{n}/{iface}" not in table]
+            if missing:
+                raise RuntimeFailure(
+                    f"unable to obtain joint {kind} handle for {missing[0]!r} ({iface}); "
+                    f"this controller was given {sorted(table) or 'none'}"
+                )
+            return [table[f"{n}/{iface}"] for n in names]
+
+        self._left_commands = take(commands, p.left_wheel_names, "velocity", "command")
+        self._right_commands = take(commands, p.right_wheel_names, "velocity", "command")
+        if p.open_loop:
+            self._left_feedback, self._right_feedback = [], []
+        else:
+            self._left_feedback = take(states, p.left_wheel_names, p.feedback_interface, "state")
+            self._right_feedback = take(states, p.right_wheel_names, p.feedback_interface, "state")
+        self._subscriber_active = True
+
+    def on_deactivate(self) -> None:
+        self._subscriber_active = False
+        self._halt()
+        self._reset_buffers(self.node.now_ns())
+        self._left_commands, self._right_commands = [], []
+        self._left_feedback, self._right_feedback = [], []
+
+    def on_cleanup(self) -> None:
+        self._reset()
+        self._close_endpoints()
+
+    def on_error(self) -> None:
+        self._reset()
+
+    def on_shutdown(self) -> None:
+        self._subscriber_active = False
+        self._close_endpoints()
+
+    def _reset(self) -> None:
+        if self.odometry is not None:
+            self.odometry.reset_pose()
+        self._odom_needs_init = True
+        self._subscriber_active = False
+        self._reset_buffers(self.node.now_ns())
+
+    def _reset_buffers(self, now_ns: int) -> None:
+        # No command yet: NaN references write nothing until a command arrives or the timeout brakes.
+        self._command: tuple[float, float, int] = (NAN, NAN, now_ns)
+        self._reference_linear = NAN
+        self._reference_angular = NAN
+        self._previous_linear = (0.0, 0.0)  # last and second-to-last limited commands
+        self._previous_angular = (0.0, 0.0)
+        self._braking_logged_for: int | None = None
+
+    def _halt(self) -> None:
+        for handle in (*self._left_commands, *self._right_commands):
+            handle.set_value(0.0)
+
+    def _close_endpoints(self) -> None:
+        self._endpoints.close_all()
+        self._odom_pub = self._tf_pub = self._cmd_out_pub = None
+
+    # --- command intake (bus thread) ----------------------------------------------------------------------
+    def _on_cmd_vel(self, msg: Any) -> None:
+        if not self._subscriber_active:
+            self._log.warn("inactive", "Can't accept new commands. subscriber is inactive")
+            return
+        linear, angular = msg.twist.linear.x, msg.twist.angular.z
+        why = rejection((linear, angular), (MAX_LINEAR_MPS, MAX_ANGULAR_RADPS), ("linear.x", "angular.z"))
+        if why is not None:
+            self._log.warn("bad", f"Ignoring a velocity command: {why}; the wheels keep the previous command")
+            return
+        now_ns = self.node.now_ns()
+        stamp_ns = msg.header.stamp.sec * _NS + msg.header.stamp.nanosec
+        if stamp_ns == 0:
+            self._log.once(
+                "zero",
+                "Received TwistStamped with zero timestamp, setting it to current time, "
+                "this message will only be shown once",
+            )
+            stamp_ns = now_ns
+        age_ns = now_ns - stamp_ns
+        if self._timeout_ns and abs(age_ns) >= self._timeout_ns:
+            direction = "older than" if age_ns > 0 else "ahead of"
+            self._log.warn(
+                "stale",
+                f"Ignoring the received message (timestamp {stamp_ns / _NS:.6f}) because it is {direction} the "
+                f"current time by {abs(age_ns) / _NS:.6f} seconds, which exceeds the allowed timeout "
+                f"({self._timeout_ns / _NS:g}) (stamp it with this controller's clock, or with 0 for 'now')",
+            )
+            return
+        self._command = (float(linear), float(angular), stamp_ns)  # one atomic store, read whole by update()
+
+    # --- real-time loop ---------------------------------------------------------------------------------------
+    def update(self, time_ns: int, period_s: float) -> ReturnType:
+        linear, angular, stamp_ns = self._command
+        if self._timeout_ns and time_ns - stamp_ns > self._timeout_ns:
+            self._reference_linear = self._reference_angular = 0.0
+            if linear == linear and self._braking_logged_for != stamp_ns:  # a real command (not NaN) expired
+                self._braking_logged_for = stamp_ns
+                self.node.log.warn("Velocity command timed out. Braking.")
+        elif linear == linear and angular == angular:
+            self._reference_linear, self._reference_angular = linear, angular
+        ref_linear, ref_angular = self._reference_linear, self._reference_angular
+        if ref_linear != ref_linear or ref_angular != ref_angular:
+            return ReturnType.OK  # no command yet
+
+        last, second = self._previous_linear
+        v = self._limiter_linear.limit(ref_linear, last, second, period_s)
+        self._previous_linear = (v, last)
+        last, second = self._previous_angular
+        w = self._limiter_angular.limit(ref_angular, last, second, period_s)
+        self._previous_angular = (w, last)
+
+        if not self._update_odometry(v, w, time_ns, period_s):
+            return ReturnType.ERROR
+        self._publish(time_ns, v, w)
+
+        p = self.params
+        left, right = wheel_velocities_radps(
+            v, w, p.effective_wheel_separation_m, p.left_wheel_radius_m, p.right_wheel_radius_m
+        )
+        for handle in self._left_commands:
+            handle.set_value(left)
+        for handle in self._right_commands:
+            handle.set_value(right)
+        return ReturnType.OK
+
+    def _update_odometry(self, v: float, w: float, time_ns: int, period_s: float) -> bool:
+        odom = self.odometry
+        p = self.params
+        time_s = time_ns / _NS
+        if p.open_loop:
+            if self._odom_needs_init:
+                odom.init(time_s - period_s)
+                self._odom_needs_init = False
+            odom.update_open_loop(v, w, time_s)
+            return True
+        left_sum = right_sum = 0.0
+        for i, (lh, rh) in enumerate(zip(self._left_feedback, self._right_feedback, strict=True)):
+            lv, rv = lh.get_value(), rh.get_value()
+            if not (math.isfinite(lv) and math.isfinite(rv)):
+                self.node.log.error(
+                    f"Either the left or right wheel {p.feedback_interface} is invalid for index [{i}] "
+                    f"({lh.name} = {lv!r}, {rh.name} = {rv!r})"
+                )
+                return False
+            left_sum += lv
+            right_sum += rv
+        n = len(self._left_feedback)
+        left_mean, right_mean = left_sum / n, right_sum / n
+        if p.position_feedback:
+            if self._odom_needs_init:
+                odom.init(time_s - period_s, left_mean, right_mean)
+                self._odom_needs_init = False
+            odom.update_from_position(left_mean, right_mean, time_s)
+        else:
+            if self._odom_needs_init:
+                odom.init(time_s - period_s)
+                self._odom_needs_init = False
+            odom.update_from_step(
+                left_mean * p.left_wheel_radius_m * period_s, right_mean * p.right_wheel_radius_m * period_s, time_s
+            )
+        return True
+
+    def _publish(self, time_ns: int, v: float, w: float) -> None:
+        if self._cmd_out_pub is not None:
+            msg = self._cmd_out_msg
+            _set_stamp(msg.header.stamp, time_ns)
+            msg.twist.linear.x, msg.twist.angular.z = v, w
+            self._cmd_out_pub.publish(msg)
+
+        last = self._last_publish_ns
+        period = self._publish_period_ns
+        if last is None or time_ns < last or time_ns - last > 2 * period:
+            self._last_publish_ns = time_ns  # first publish, a clock reset, or a long pause: start over
+        elif last + period < time_ns:
+            self._last_publish_ns = last + period
+        else:
+            return
+        odom = self.odometry
+        _, _, qz, qw = heading_quaternion(odom.heading_rad)
+        msg = self._odom_msg
+        _set_stamp(msg.header.stamp, time_ns)
+        pose = msg.pose.pose
+        pose.position.x, pose.position.y = odom.x_m, odom.y_m
+        pose.orientation.z, pose.orientation.w = qz, qw
+        twist = msg.twist.twist
+        twist.linear.x, twist.angular.z = odom.linear_mps, odom.angular_radps
+        if self._odom_pub is not None:
+            self._odom_pub.publish(msg)
+        if self._tf_pub is not None:
+            tf = self._tf
+            _set_stamp(tf.header.stamp, time_ns)
+            tf.transform.translation.x, tf.transform.translation.y = odom.x_m, odom.y_m
+            tf.transform.rotation.z, tf.transform.rotation.w = qz, qw
+            self._tf_pub.publish(self._tf_msg)

@@ -1,0 +1,23 @@
+"""The publishers and subscriptions a controller created, so cleanup can close exactly those."""
+
+from __future__ import annotations
+
+from typing import Any, TypeVar
+
+T = TypeVar("T")
+
+
+class OwnedEndpoints:
+    def __init__(self) -> None:
+        self._items: list[Any] = []
+
+    def keep(self, endpoint: T) -> T:
+        self._items.append(endpoint)
+        return endpoint
+
+    def close_all(self) -> None:
+        for endpoint in self._items:
+            close = getattr(endpoint, "close", None)
+            if close is not None:
+                close()
+        self._items.clear()
