@@ -100,18 +100,25 @@ def _as_bool(name: str, value: Any) -> bool:
 
 
 def make_entry(
-    item: dict[str, Any], index: int, source: str | None = None, line: int | None = None, gz_prefix: str = ""
+    item: dict[str, Any],
+    index: int,
+    source: str | None = None,
+    line: int | None = None,
+    gz_prefix: str = "",
+    key_lines: dict[str, int] | None = None,
 ) -> BridgeEntry:
-    """One validated entry from a YAML map with ros_gz_bridge's keys."""
+    """One validated entry from a YAML map with ros_gz_bridge's keys (`key_lines`: line of each key)."""
     topic_hint = item.get("topic_name") or item.get("ros_topic_name") or item.get("gz_topic_name")
     topic_hint = topic_hint if isinstance(topic_hint, str) else None
+    key_lines = key_lines or {}
+    bad_key: list[str] = []  # the key a ValueError below is about, to point at its line
 
-    def fail(message: str) -> ConfigError:
-        return _entry_error(message, source, line, index, topic_hint)
+    def fail(message: str, key: str | None = None) -> ConfigError:
+        return _entry_error(message, source, key_lines.get(key or "", line), index, topic_hint)
 
     for k in item:
         if k not in KEYS:
-            raise fail(f"unknown key {k!r}{suggest(str(k), KEYS)}; valid keys: {', '.join(KEYS)}")
+            raise fail(f"unknown key {k!r}{suggest(str(k), KEYS)}; valid keys: {', '.join(KEYS)}", str(k))
     try:
         if "topic_name" in item:
             if "ros_topic_name" in item or "gz_topic_name" in item:
@@ -127,18 +134,22 @@ def make_entry(
                 raise ValueError(f"missing key {k!r}")
             if not isinstance(item[k], str) or not item[k].strip():
                 raise ValueError(f"{k} {item[k]!r} must be a type name such as 'geometry_msgs/msg/Twist'")
+        bad_key[:] = ["direction"]
         direction_text = str(item.get("direction", "BIDIRECTIONAL")).strip().upper()
         if direction_text not in Direction.__members__:
             raise ValueError(f"direction {item.get('direction')!r} invalid; valid: {', '.join(Direction.__members__)}")
+        bad_key[:] = ["lazy"]
         lazy = _as_bool("lazy", item.get("lazy", False))
+        bad_key[:] = ["publisher_queue"]
         pub_q = _as_queue("publisher_queue", item.get("publisher_queue", DEFAULT_QUEUE))
+        bad_key[:] = ["subscriber_queue"]
         sub_q = _as_queue("subscriber_queue", item.get("subscriber_queue", DEFAULT_QUEUE))
     except ValueError as e:
-        raise fail(str(e)) from None
+        raise fail(str(e), bad_key[0] if bad_key else None) from None
     ros_type, gz_type = normalize_ros_type(item["ros_type_name"]), normalize_gz_type(item["gz_type_name"])
     pair = lookup(ros_type, gz_type)
     if pair is None:
-        raise fail(f"unsupported type pair {ros_type} <-> {gz_type}; supported: {describe_pairs()}")
+        raise fail(f"unsupported type pair {ros_type} <-> {gz_type}; supported: {describe_pairs()}", "gz_type_name")
     if gz_prefix:
         gz_topic = gz_prefix.rstrip("/") + "/" + gz_topic.lstrip("/")
     return BridgeEntry(ros_topic, gz_topic, ros_type, gz_type, Direction(direction_text), pair, lazy, pub_q, sub_q)
@@ -172,10 +183,12 @@ def load_config(path: str | Path, gz_prefix: str = "") -> list[BridgeEntry]:
         )
     entries = []
     for i, item in enumerate(data):
-        line = root.value[i].start_mark.line + 1 if root is not None else None
+        node = root.value[i] if root is not None else None
+        line = node.start_mark.line + 1 if node is not None else None
         if not isinstance(item, dict):
             raise _entry_error(f"must be a map of {', '.join(KEYS)}, got {item!r}", str(p), line, i, None)
-        entries.append(make_entry(item, i, str(p), line, gz_prefix))
+        key_lines = {str(k.value): k.start_mark.line + 1 for k, _ in node.value} if node is not None else {}
+        entries.append(make_entry(item, i, str(p), line, gz_prefix, key_lines))
     return entries
 
 

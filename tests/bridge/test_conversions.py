@@ -17,8 +17,11 @@ H = gz.header(12_500_000_000, frame_id="robot::base_link", child_frame_id="robot
 
 # One sim-side sample per pair, in the layouts of diffctl/bus/gz.py, and what the ROS side must see.
 GZ_SAMPLES: dict[tuple[str, str], dict] = {
-    ("rosgraph_msgs/msg/Clock", "gz.msgs.Clock"): {"header": gz.header(7), "sim": {"sec": 3, "nsec": 250},
-                                                   "real": {"sec": 9, "nsec": 1}},
+    ("rosgraph_msgs/msg/Clock", "gz.msgs.Clock"): {
+        "header": gz.header(7),
+        "sim": {"sec": 3, "nsec": 250},
+        "real": {"sec": 9, "nsec": 1},
+    },
     ("geometry_msgs/msg/Twist", "gz.msgs.Twist"): {"header": H, "linear": {"x": 0.5}, "angular": {"z": -0.25}},
     ("geometry_msgs/msg/TwistStamped", "gz.msgs.Twist"): {"header": H, "linear": {"x": 0.5}, "angular": {"z": -0.25}},
     ("nav_msgs/msg/Odometry", "gz.msgs.Odometry"): {
@@ -37,30 +40,57 @@ GZ_SAMPLES: dict[tuple[str, str], dict] = {
     ("tf2_msgs/msg/TFMessage", "gz.msgs.Pose_V"): {
         "header": gz.header(42),
         "pose": [
-            {"name": "base_link", "header": gz.header(42, "odom", "base_link"),
-             "position": {"x": 1.0}, "orientation": {"w": 1.0}},
-            {"name": "robot::lidar_link", "header": {"data": [{"key": "frame_id", "value": ["robot::base_link"]}]},
-             "position": {"z": 0.2}, "orientation": {"x": 0.0, "w": 1.0}},
+            {
+                "name": "base_link",
+                "header": gz.header(42, "odom", "base_link"),
+                "position": {"x": 1.0},
+                "orientation": {"w": 1.0},
+            },
+            {
+                "name": "robot::lidar_link",
+                "header": {"data": [{"key": "frame_id", "value": ["robot::base_link"]}]},
+                "position": {"z": 0.2},
+                "orientation": {"x": 0.0, "w": 1.0},
+            },
         ],
     },
     ("sensor_msgs/msg/LaserScan", "gz.msgs.LaserScan"): {
-        "header": gz.header(99, frame_id="x"), "frame": "robot::lidar_link", "angle_min": -math.pi,
-        "angle_max": math.pi, "angle_step": math.pi / 2, "range_min": 0.1, "range_max": 10.0, "count": 4,
-        "vertical_count": 1, "ranges": [1.0, 2.0, math.inf, 0.5], "intensities": [0.0, 1.0, 0.0, 1.0],
+        "header": gz.header(99, frame_id="x"),
+        "frame": "robot::lidar_link",
+        "angle_min": -math.pi,
+        "angle_max": math.pi,
+        "angle_step": math.pi / 2,
+        "range_min": 0.1,
+        "range_max": 10.0,
+        "count": 4,
+        "vertical_count": 1,
+        "ranges": [1.0, 2.0, math.inf, 0.5],
+        "intensities": [0.0, 1.0, 0.0, 1.0],
     },
     ("sensor_msgs/msg/Imu", "gz.msgs.IMU"): {
-        "header": gz.header(3, frame_id="imu_link"), "entity_name": "imu_link",
-        "orientation": {"x": 0.0, "y": 0.0, "z": 0.0, "w": 1.0}, "angular_velocity": {"z": 0.5},
+        "header": gz.header(3, frame_id="imu_link"),
+        "entity_name": "imu_link",
+        "orientation": {"x": 0.0, "y": 0.0, "z": 0.0, "w": 1.0},
+        "angular_velocity": {"z": 0.5},
         "linear_acceleration": {"z": 9.81},
     },
     ("sensor_msgs/msg/Image", "gz.msgs.Image"): {
-        "header": gz.header(4, frame_id="camera_link"), "width": 2, "height": 2, "step": 6,
-        "pixel_format_type": "RGB_INT8", "data": base64.b64encode(bytes(range(12))).decode(),
+        "header": gz.header(4, frame_id="camera_link"),
+        "width": 2,
+        "height": 2,
+        "step": 6,
+        "pixel_format_type": "RGB_INT8",
+        "data": base64.b64encode(bytes(range(12))).decode(),
     },
-    ("geometry_msgs/msg/Pose", "gz.msgs.Pose"): {"name": "robot", "position": {"x": 1.0, "y": -2.0, "z": 0.1},
-                                                 "orientation": {"z": 0.6, "w": 0.8}},
+    ("geometry_msgs/msg/Pose", "gz.msgs.Pose"): {
+        "name": "robot",
+        "position": {"x": 1.0, "y": -2.0, "z": 0.1},
+        "orientation": {"z": 0.6, "w": 0.8},
+    },
     ("geometry_msgs/msg/PoseStamped", "gz.msgs.Pose"): {
-        "header": gz.header(8, frame_id="world"), "name": "robot", "position": {"x": 1.0},
+        "header": gz.header(8, frame_id="world"),
+        "name": "robot",
+        "position": {"x": 1.0},
         "orientation": {"w": 1.0},
     },
     ("std_msgs/msg/Float64", "gz.msgs.Double"): {"data": 2.5},
@@ -141,8 +171,12 @@ def test_laser_scan_fields_and_middle_layer() -> None:
     assert msg.header.frame_id == "robot/lidar_link"
     assert msg.angle_increment == pytest.approx(math.pi / 2)
     assert msg.ranges.dtype == np.float32 and math.isinf(msg.ranges[2])
-    three_layers = dict(GZ_SAMPLES[("sensor_msgs/msg/LaserScan", "gz.msgs.LaserScan")], vertical_count=3,
-                        ranges=[1.0] * 4 + [2.0] * 4 + [3.0] * 4, intensities=[])
+    three_layers = dict(
+        GZ_SAMPLES[("sensor_msgs/msg/LaserScan", "gz.msgs.LaserScan")],
+        vertical_count=3,
+        ranges=[1.0] * 4 + [2.0] * 4 + [3.0] * 4,
+        intensities=[],
+    )
     pair = type_pairs.lookup("sensor_msgs/msg/LaserScan", "gz.msgs.LaserScan")
     assert pair.convert_to_ros(three_layers).ranges.tolist() == [2.0] * 4
 
@@ -174,8 +208,10 @@ def test_scalars() -> None:
 
 def test_ros_to_gz_twist_stamped_and_non_finite_commands_never_reach_the_sim() -> None:
     pair = type_pairs.lookup("geometry_msgs/msg/TwistStamped", "gz.msgs.Twist")
-    msg = types.new("geometry_msgs/msg/TwistStamped",
-                    {"header": {"frame_id": "base_link"}, "twist": {"linear": {"x": 0.7}, "angular": {"z": 1.2}}})
+    msg = types.new(
+        "geometry_msgs/msg/TwistStamped",
+        {"header": {"frame_id": "base_link"}, "twist": {"linear": {"x": 0.7}, "angular": {"z": 1.2}}},
+    )
     out = pair.convert_to_gz(msg)
     assert out["linear"]["x"] == 0.7 and out["angular"]["z"] == 1.2
     assert gz.header_value(out["header"], "frame_id") == "base_link"
@@ -185,7 +221,8 @@ def test_ros_to_gz_twist_stamped_and_non_finite_commands_never_reach_the_sim() -
             type_pairs.lookup("geometry_msgs/msg/Twist", "gz.msgs.Twist").convert_to_gz(msg)
     with pytest.raises(MessageError, match="non-finite"):
         type_pairs.lookup("std_msgs/msg/Float64", "gz.msgs.Double").convert_to_gz(
-            types.new("std_msgs/msg/Float64", {"data": math.nan}))
+            types.new("std_msgs/msg/Float64", {"data": math.nan})
+        )
 
 
 def test_malformed_gz_sample_is_a_message_error() -> None:
@@ -196,6 +233,7 @@ def test_malformed_gz_sample_is_a_message_error() -> None:
 
 def test_type_name_spellings() -> None:
     assert type_pairs.lookup("geometry_msgs/Twist", "ignition.msgs.Twist") is type_pairs.lookup(
-        "geometry_msgs/msg/Twist", "gz.msgs.Twist")
+        "geometry_msgs/msg/Twist", "gz.msgs.Twist"
+    )
     assert type_pairs.lookup("geometry_msgs/msg/Twist", "gz.msgs.Odometry") is None
     assert Direction.GZ_TO_ROS.to_ros and not Direction.GZ_TO_ROS.to_gz

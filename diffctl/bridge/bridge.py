@@ -1,0 +1,267 @@
+"""The running bridge: per entry, one channel per direction between `gz/<topic>` keys and ROS topics.
+
+Semantics follow ros_gz_bridge's parameter_bridge:
+- gz→ROS converts each gz sample and publishes it on the ROS topic; ROS→gz the other way;
+- a lazy channel holds its source subscription only while its destination has subscribers (ROS side:
+  graph subscribers other than this node; gz side: Zenoh matching of the gz publisher);
+- a bidirectional entry never echoes what it published itself back to where it came from (gz side: the
+  Zenoh locality of the gz endpoints; ROS side: see `_OwnEchoes`).
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections import Counter, deque
+from typing import Any
+
+import zenoh
+
+from diffctl.bridge.config import BridgeEntry
+from diffctl.bus import Node, gz, types, wire
+from diffctl.errors import MessageError
+
+
+class _OwnEchoes:
+    """CDR payloads this process published on a ROS topic it also subscribes to, awaiting their local echo.
+
+    The bus delivers a session's own publications to its subscriptions, and the subscription callback only
+    sees bytes. Every publication comes back exactly once, so a multiset of recent payloads recognises the
+    echo; if a remote publisher sends identical bytes first, dropping either copy forwards the same data.
+    Entries expire so a lost echo cannot swallow a later message.
+    """
+
+    TTL_S = 1.0
+
+    def __init__(self) -> None:
+        self._lock = threading.Lock()
+        self._pending: Counter[bytes] = Counter()
+        self._order: deque[tuple[float, bytes]] = deque()
+
+    def add(self, cdr: bytes) -> None:
+        now = time.monotonic()
+        with self._lock:
+            self._expire(now)
+            self._pending[cdr] += 1
+            self._order.append((now, cdr))
+
+    def consume(self, cdr: bytes) -> bool:
+        """True when `cdr` is our own echo (and forget it)."""
+        with self._lock:
+            self._expire(time.monotonic())
+            if self._pending.get(cdr, 0) > 0:
+                self._pending[cdr] -= 1
+                if not self._pending[cdr]:
+                    del self._pending[cdr]
+                return True
+            return False
+
+    def _expire(self, now: float) -> None:
+        while self._order and now - self._order[0][0] > self.TTL_S:
+            _, cdr = self._order.popleft()
+            if self._pending.get(cdr, 0) > 0:
+                self._pending[cdr] -= 1
+                if not self._pending[cdr]:
+                    del self._pending[cdr]
+
+
+def _stamp_now(msg: Any, now: Any) -> None:
+    # override_timestamps_with_wall_time: every header (and each transform's) gets the wall clock.
+    if hasattr(msg, "header"):
+        msg.header.stamp = now
+    for t in getattr(msg, "transforms", ()):
+        t.header.stamp = now
+
+
+class GzToRos:
+    """gz/<topic> samples → ROS topic."""
+
+    def __init__(self, bridge: Bridge, entry: BridgeEntry, echoes: _OwnEchoes | None) -> None:
+        self.entry = entry
+        self.bridge = bridge
+        self.node = bridge.node
+        self.echoes = echoes
+        self.count = 0
+        self._lock = threading.Lock()
+        self._sub: Any = None
+        self._closed = False
+        self.pub = self.node.create_publisher(
+            entry.ros_topic, entry.ros_type, depth=entry.publisher_queue, latched=bridge.latched(entry.ros_topic)
+        )
+
+    @property
+    def active(self) -> bool:
+        return self._sub is not None
+
+    def set_active(self, on: bool) -> None:
+        with self._lock:
+            if on and self._closed:
+                return
+            if on and self._sub is None:
+                self._sub = self.node.session.declare_subscriber(
+                    gz.key(self.entry.gz_topic), self._on_sample, allowed_origin=zenoh.Locality.REMOTE
+                )
+            elif not on and self._sub is not None:
+                self._sub.undeclare()
+                self._sub = None
+
+    def other_subscribers(self) -> int:
+        mine = (self.node.context.zid, str(self.node.node_id))
+        return sum(
+            1
+            for e in self.node.graph.subscribers(self.pub.topic)
+            if e.type == self.pub.type and (e.zid, e.node_id) != mine
+        )
+
+    def _on_sample(self, sample: zenoh.Sample) -> None:
+        e = self.entry
+        try:
+            _, fields = gz.decode(sample.payload.to_bytes(), e.gz_type)
+            msg = e.pair.convert_to_ros(fields)
+            if self.bridge.wall_stamps:
+                _stamp_now(msg, types.time_msg(time.time_ns()))
+            cdr = types.serialize(msg, e.ros_type)
+        except MessageError as err:
+            self.node.log.throttled(f"gz{e.gz_topic}", f"dropped a sample on gz {e.gz_topic}: {err}")
+            return
+        if self.echoes is not None:
+            self.echoes.add(cdr)
+        self.pub.publish_raw(cdr)
+        self.count += 1
+
+    def close(self) -> None:
+        self._closed = True
+        self.set_active(False)
+
+
+class RosToGz:
+    """ROS topic → gz/<topic> samples."""
+
+    def __init__(self, bridge: Bridge, entry: BridgeEntry, echoes: _OwnEchoes | None) -> None:
+        self.entry = entry
+        self.node = bridge.node
+        self.echoes = echoes
+        self.count = 0
+        self._lock = threading.Lock()
+        self._sub: Any = None
+        self._closed = False
+        self._gz_key = gz.key(entry.gz_topic)
+        self.gz_pub = self.node.session.declare_publisher(self._gz_key, allowed_destination=zenoh.Locality.REMOTE)
+
+    @property
+    def active(self) -> bool:
+        return self._sub is not None
+
+    @property
+    def gz_matching(self) -> bool:
+        return bool(self.gz_pub.matching_status.matching)
+
+    def set_active(self, on: bool) -> None:
+        with self._lock:
+            if on and self._closed:
+                return
+            if on and self._sub is None:
+                self._sub = self.node.create_subscription(
+                    self.entry.ros_topic,
+                    self.entry.ros_type,
+                    self._on_cdr,
+                    depth=self.entry.subscriber_queue,
+                    raw=True,
+                )
+            elif not on and self._sub is not None:
+                self._sub.close()
+                self._sub = None
+
+    def _on_cdr(self, cdr: bytes) -> None:
+        if self.echoes is not None and self.echoes.consume(cdr):
+            return
+        e = self.entry
+        try:
+            msg = types.deserialize(cdr, e.ros_type)
+            payload = gz.encode(e.gz_type, e.pair.convert_to_gz(msg))
+        except MessageError as err:
+            self.node.log.throttled(f"ros{e.ros_topic}", f"dropped a message on {e.ros_topic}: {err}")
+            return
+        self.gz_pub.put(payload)
+        self.count += 1
+
+    def close(self) -> None:
+        self._closed = True
+        self.set_active(False)
+        try:
+            self.gz_pub.undeclare()
+        except zenoh.ZError:
+            pass
+
+
+class Bridge:
+    """All channels of a bridge config on one node; `start()` declares them, `close()` removes them."""
+
+    def __init__(self, node: Node, entries: list[BridgeEntry]) -> None:
+        self.node = node
+        self.entries = entries
+        self.wall_stamps = bool(node.params.get("override_timestamps_with_wall_time", False))
+        self.gz_to_ros: list[GzToRos] = []
+        self.ros_to_gz: list[RosToGz] = []
+        self._listeners: list[Any] = []
+        self._closed = False
+
+    def latched(self, ros_topic: str) -> bool:
+        # ros_gz_bridge has no qos key; durability comes from qos_overrides parameters, as in ROS.
+        value = self.node.params.get(f"qos_overrides.{self.node.resolve(ros_topic)}.publisher.durability", "")
+        return str(value).lower() == "transient_local"
+
+    def start(self) -> Bridge:
+        for e in self.entries:
+            # A bidirectional entry subscribes to what it publishes on the ROS side: remember its own output.
+            echoes = _OwnEchoes() if e.direction.to_ros and e.direction.to_gz else None
+            if e.direction.to_ros:
+                self.gz_to_ros.append(GzToRos(self, e, echoes))
+            if e.direction.to_gz:
+                self.ros_to_gz.append(RosToGz(self, e, echoes))
+        for ch in self.ros_to_gz:
+            if ch.entry.lazy:
+                self._listeners.append(
+                    ch.gz_pub.declare_matching_listener(lambda st, ch=ch: ch.set_active(bool(st.matching)))
+                )
+                ch.set_active(ch.gz_matching)
+            else:
+                ch.set_active(True)
+        for ch in self.gz_to_ros:
+            if not ch.entry.lazy:
+                ch.set_active(True)
+        if any(ch.entry.lazy for ch in self.gz_to_ros):
+            self.node.graph.add_listener(self._on_graph)
+        return self
+
+    def _on_graph(self, event: str, ent: wire.Entity) -> None:
+        # The graph keeps its listeners for the process lifetime: a closed bridge ignores them.
+        if self._closed or ent.kind != wire.KIND_SUB:
+            return
+        for ch in self.gz_to_ros:
+            if ch.entry.lazy and ent.topic == ch.pub.topic:
+                ch.set_active(ch.other_subscribers() > 0)
+
+    def channels(self) -> list[GzToRos | RosToGz]:
+        return [*self.gz_to_ros, *self.ros_to_gz]
+
+    def __rich__(self) -> Any:
+        from diffctl.console import table
+
+        rows = []
+        for ch in self.channels():
+            e = ch.entry
+            arrow = "<-" if isinstance(ch, GzToRos) else "->"
+            state = ("active" if ch.active else "idle") + (" (lazy)" if e.lazy else "")
+            rows.append((e.ros_topic, e.ros_type, arrow, e.gz_topic, e.gz_type, state, ch.count))
+        return table("bridge", ["ROS topic", "ROS type", "", "gz topic", "gz type", "state", "messages"], rows)
+
+    def close(self) -> None:
+        self._closed = True
+        for lst in self._listeners:
+            try:
+                lst.undeclare()
+            except zenoh.ZError:
+                pass
+        for ch in self.channels():
+            ch.close()

@@ -1,0 +1,87 @@
+"""`diffctl bridge`: ros_gz_bridge's parameter_bridge — a YAML config and/or `/TOPIC@ROS_TYPE@GZ_TYPE` args."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import click
+
+from diffctl import ros_args
+from diffctl.bridge.config import BridgeEntry, load_config, parse_cli_entry
+from diffctl.errors import ConfigError, ParameterError
+
+NODE_NAME = "ros_gz_bridge"
+
+
+def _bool_param(params: dict[str, Any], name: str) -> bool:
+    value = params.get(name, False)
+    if isinstance(value, bool):
+        return value
+    raise ParameterError(f"{value!r} invalid; valid: true, false", field=name)
+
+
+def collect_entries(
+    topics: tuple[str, ...], config_file: str | None, params: dict[str, Any], namespace: str | None
+) -> list[BridgeEntry]:
+    """Every entry from the config file and the command line, validated before anything starts."""
+    config_file = config_file or params.get("config_file") or None
+    gz_prefix = (namespace or "") if _bool_param(params, "expand_gz_topic_names") else ""
+    entries: list[BridgeEntry] = []
+    if config_file:
+        entries += load_config(str(config_file), gz_prefix=gz_prefix)
+    entries += [parse_cli_entry(arg, i) for i, arg in enumerate(topics)]
+    if not entries:
+        raise ConfigError(
+            "nothing to bridge",
+            hint="give --config FILE, --ros-args -p config_file:=FILE or /TOPIC@ROS_TYPE@GZ_TYPE arguments",
+        )
+    return entries
+
+
+@click.command("bridge", context_settings={"help_option_names": ["-h", "--help"]})
+@click.argument("topics", nargs=-1)
+@click.option(
+    "--config",
+    "-c",
+    "config_file",
+    type=click.Path(dir_okay=False),
+    help="ros_gz_bridge YAML config (also: --ros-args -p config_file:=FILE).",
+)
+def bridge(topics: tuple[str, ...], config_file: str | None) -> None:
+    """Bridge simulator-side (gz) topics and ROS topics, as ros_gz_bridge's parameter_bridge does.
+
+    TOPICS are `/TOPIC@ROS_TYPE@GZ_TYPE`: `@` both ways, `[` gz to ROS, `]` ROS to gz. The YAML config
+    takes ros_gz_bridge's keys as is: topic_name, ros_topic_name, gz_topic_name, ros_type_name,
+    gz_type_name, direction, lazy, publisher_queue, subscriber_queue.
+
+    \b
+    Example:
+      diffctl bridge --config config/bridge_config.yaml
+      diffctl bridge /clock@rosgraph_msgs/msg/Clock[gz.msgs.Clock
+      diffctl bridge --ros-args -p config_file:=config/bridge_config_control.yaml
+    """
+    ra = ros_args.current(NODE_NAME)
+    entries = collect_entries(topics, config_file, ra.params, ra.namespace)
+
+    from diffctl.bridge.bridge import Bridge
+    from diffctl.bus import Node
+
+    node = Node.from_ros_args(NODE_NAME)
+    running = Bridge(node, entries)
+    try:
+        running.start()
+        for e in entries:
+            if e.direction.to_ros:
+                node.log.info(
+                    f"Creating GZ->ROS Bridge: [{e.gz_topic} ({e.gz_type}) -> {e.ros_topic} ({e.ros_type})]"
+                    f" (Lazy {int(e.lazy)})"
+                )
+            if e.direction.to_gz:
+                node.log.info(
+                    f"Creating ROS->GZ Bridge: [{e.ros_topic} ({e.ros_type}) -> {e.gz_topic} ({e.gz_type})]"
+                    f" (Lazy {int(e.lazy)})"
+                )
+        node.spin()
+    finally:
+        running.close()
+        node.close()

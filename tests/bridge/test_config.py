@@ -1,0 +1,140 @@
+"""ros_gz_bridge YAML and command-line entries: what is accepted, and how a bad entry is reported."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from diffctl.bridge.cli import collect_entries
+from diffctl.bridge.config import Direction, load_config, parse_cli_entry
+from diffctl.errors import ConfigError
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def write(tmp_path: Path, text: str) -> Path:
+    p = tmp_path / "bridge.yaml"
+    p.write_text(text)
+    return p
+
+
+def test_shipped_configs_load_and_control_variant_drops_what_ros2_control_publishes() -> None:
+    full = {e.ros_topic: e for e in load_config(REPO / "config" / "bridge_config.yaml")}
+    control = {e.ros_topic: e for e in load_config(REPO / "config" / "bridge_config_control.yaml")}
+    assert {"/clock", "/joint_states", "/odom", "/tf", "/cmd_vel", "/scan", "/imu", "/camera/image_raw"} <= set(full)
+    assert set(control) == set(full) - {"/joint_states", "/odom", "/tf", "/cmd_vel"}
+    assert full["/cmd_vel"].direction is Direction.ROS_TO_GZ and full["/clock"].direction is Direction.GZ_TO_ROS
+    assert full["/camera/image_raw"].lazy
+
+
+def test_yaml_keys_defaults_and_spellings(tmp_path: Path) -> None:
+    p = write(
+        tmp_path,
+        """
+- topic_name: /chatter
+  ros_type_name: std_msgs/String
+  gz_type_name: ignition.msgs.StringMsg
+- ros_topic_name: /odom
+  gz_topic_name: /model/robot/odometry
+  ros_type_name: nav_msgs/msg/Odometry
+  gz_type_name: gz.msgs.Odometry
+  direction: GZ_TO_ROS
+  lazy: true
+  publisher_queue: 5
+  subscriber_queue: 3
+""",
+    )
+    chatter, odom = load_config(p)
+    assert (chatter.ros_topic, chatter.gz_topic, chatter.direction) == ("/chatter", "/chatter", Direction.BIDIRECTIONAL)
+    assert (chatter.ros_type, chatter.gz_type) == ("std_msgs/msg/String", "gz.msgs.StringMsg")
+    assert (chatter.lazy, chatter.publisher_queue, chatter.subscriber_queue) == (False, 10, 10)
+    assert (odom.gz_topic, odom.lazy, odom.publisher_queue, odom.subscriber_queue) == (
+        "/model/robot/odometry",
+        True,
+        5,
+        3,
+    )
+
+
+@pytest.mark.parametrize(
+    ("body", "expected"),
+    [
+        (
+            "  gz_type_name: gz.msgs.Odometry\n  direction: SIDEWAYS",
+            r"bridge.yaml:7: entry 1 \(/odom\): direction 'SIDEWAYS' invalid; "
+            r"valid: BIDIRECTIONAL, GZ_TO_ROS, ROS_TO_GZ",
+        ),
+        ("  direction: GZ_TO_ROS", r"entry 1 \(/odom\): missing key 'gz_type_name'"),
+        (
+            "  gz_type_name: gz.msgs.Twist",
+            r"entry 1 \(/odom\): unsupported type pair nav_msgs/msg/Odometry <-> gz.msgs.Twist; supported: .*Odometry",
+        ),
+        ("  gz_type_name: gz.msgs.Odometry\n  lazzy: true", r"unknown key 'lazzy' \(did you mean 'lazy'\?\)"),
+        (
+            "  gz_type_name: gz.msgs.Odometry\n  publisher_queue: 0",
+            r"publisher_queue 0 invalid; valid: an integer >= 1",
+        ),
+        ("  gz_type_name: gz.msgs.Odometry\n  topic_name: /x", r"mutually exclusive"),
+    ],
+)
+def test_bad_entry_names_file_line_entry_and_valid_values(tmp_path: Path, body: str, expected: str) -> None:
+    p = write(
+        tmp_path,
+        f"""- topic_name: /clock
+  ros_type_name: rosgraph_msgs/msg/Clock
+  gz_type_name: gz.msgs.Clock
+- ros_topic_name: /odom
+  ros_type_name: nav_msgs/msg/Odometry
+{body}
+""",
+    )
+    with pytest.raises(ConfigError, match=expected):
+        load_config(p)
+
+
+def test_file_level_errors(tmp_path: Path) -> None:
+    with pytest.raises(ConfigError, match="not found"):
+        load_config(tmp_path / "missing.yaml")
+    with pytest.raises(ConfigError, match="YAML array of maps"):
+        load_config(write(tmp_path, "topic_name: /clock\n"))
+    with pytest.raises(ConfigError, match=r"bridge.yaml:2:\d+: malformed YAML"):
+        load_config(write(tmp_path, "- a: [\n- b\n"))
+
+
+@pytest.mark.parametrize(
+    ("arg", "direction"),
+    [
+        ("/clock@rosgraph_msgs/msg/Clock[gz.msgs.Clock", Direction.GZ_TO_ROS),
+        ("/cmd_vel@geometry_msgs/msg/Twist]gz.msgs.Twist", Direction.ROS_TO_GZ),
+        ("/chatter@std_msgs/msg/String@gz.msgs.StringMsg", Direction.BIDIRECTIONAL),
+    ],
+)
+def test_command_line_form(arg: str, direction: Direction) -> None:
+    e = parse_cli_entry(arg)
+    assert e.direction is direction and e.ros_topic == e.gz_topic == arg.split("@")[0]
+
+
+@pytest.mark.parametrize(
+    ("arg", "expected"),
+    [
+        ("/clock", r"argument 0 \(/clock\): no topic before '@'|no delimiter"),
+        ("/clock@rosgraph_msgs/msg/Clock", "no delimiter between the ROS and the gz type"),
+        ("/clock@rosgraph_msgs/msg/Clock[gz.msgs.Twist", "unsupported type pair"),
+    ],
+)
+def test_command_line_form_errors(arg: str, expected: str) -> None:
+    with pytest.raises(ConfigError, match=expected):
+        parse_cli_entry(arg)
+
+
+def test_config_file_parameter_and_expand_gz_topic_names(tmp_path: Path) -> None:
+    p = write(
+        tmp_path, "- topic_name: /clock\n  ros_type_name: rosgraph_msgs/msg/Clock\n  gz_type_name: gz.msgs.Clock\n"
+    )
+    (e,) = collect_entries((), None, {"config_file": str(p), "expand_gz_topic_names": True}, "/robot1")
+    assert (e.ros_topic, e.gz_topic) == ("/clock", "/robot1/clock")
+    with pytest.raises(ConfigError, match="nothing to bridge"):
+        collect_entries((), None, {}, None)
+    with pytest.raises(ConfigError, match="expand_gz_topic_names"):
+        collect_entries((), str(p), {"expand_gz_topic_names": "maybe"}, None)
