@@ -172,13 +172,14 @@ def _axis_limits(r: ParamReader, axis: str, warnings: list[str]) -> SpeedLimits:
     for name, sign, unit in _LIMIT_FIELDS:
         key = f"{axis}.{name}"
         value = r.float(key, NAN, allow_nan=True, allow_inf=True, what=f"{units[unit]}, or .NAN for no limit")
+        raw = r.params.get(key)
         if sign > 0 and value < 0.0:
-            raise r.error(key, f"{value!r} must be ≥ 0 ({units[unit]}, it bounds the change from above)")
+            raise r.error(key, f"{raw!r} must be ≥ 0: it bounds the change from above ({units[unit]})")
         if sign < 0 and value > 0.0:
             raise r.error(
                 key,
-                f"{value!r} must be ≤ 0 ({units[unit]}, it bounds the change from below)",
-                f"write {-value!r} for a limit of {value!r} {units[unit]}",
+                f"{raw!r} must be ≤ 0: it bounds the change from below ({units[unit]})",
+                f"a limit of magnitude {value:g} is written {-value!r}",
             )
         values[name] = value
 

@@ -60,22 +60,22 @@ class ParamReader:
         allow_inf: bool = False,
         what: str = "",
     ) -> float:
-        value = self._get(key, default)
-        if not _is_number(value):
-            raise self.error(key, f"{value!r} is not a number{what_suffix(what)}")
-        value = float(value)
+        raw = self._get(key, default)
+        if not _is_number(raw):
+            raise self.error(key, f"{raw!r} is not a number{what_suffix(what)}")
+        value = float(raw)
         if math.isnan(value):
             if allow_nan:
                 return value
-            raise self.error(key, f"{value!r} is not allowed here{what_suffix(what)}", "give a finite number")
+            raise self.error(key, f"{raw!r} is not allowed here{what_suffix(what)}", "give a finite number")
         if math.isinf(value) and not allow_inf:
-            raise self.error(key, f"{value!r} is not a finite number{what_suffix(what)}")
+            raise self.error(key, f"{raw!r} is not a finite number{what_suffix(what)}")
         if gt is not None and not value > gt:
-            raise self.error(key, f"{value!r} must be > {gt:g}{what_suffix(what)}")
+            raise self.error(key, f"{raw!r} must be > {gt:g}{what_suffix(what)}")
         if ge is not None and not value >= ge:
-            raise self.error(key, f"{value!r} must be ≥ {ge:g}{what_suffix(what)}")
+            raise self.error(key, f"{raw!r} must be ≥ {ge:g}{what_suffix(what)}")
         if le is not None and not value <= le:
-            raise self.error(key, f"{value!r} must be ≤ {le:g}{what_suffix(what)}")
+            raise self.error(key, f"{raw!r} must be ≤ {le:g}{what_suffix(what)}")
         return value
 
     def int(self, key: str, default: int, *, ge: int | None = None, le: int | None = None) -> int:
