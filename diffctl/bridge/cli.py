@@ -64,7 +64,7 @@ def bridge(topics: tuple[str, ...], config_file: str | None) -> None:
     entries = collect_entries(topics, config_file, ra.params, ra.namespace)
 
     from diffctl.bridge.bridge import Bridge
-    from diffctl.bus import Node
+    from diffctl.bus import Node, close_session
 
     node = Node.from_ros_args(NODE_NAME)
     running = Bridge(node, entries)
@@ -85,3 +85,5 @@ def bridge(topics: tuple[str, ...], config_file: str | None) -> None:
     finally:
         running.close()
         node.close()
+        # Zenoh's callback threads are not daemons: close the session before the interpreter joins them.
+        close_session()
