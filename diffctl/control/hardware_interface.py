@@ -80,6 +80,7 @@ class HardwareComponent:
         self.states: dict[str, StateInterface] = {}
         self.commands: dict[str, CommandInterface] = {}
         self.log = None  # set by the resource manager: a Logger (info/warn/error)
+        self.update_rate: int = 0  # the controller manager's update_rate, set before on_init
 
     # --- lifecycle hooks ----------------------------------------------------------------------------------
     def on_init(self, info: HardwareInfo) -> None:

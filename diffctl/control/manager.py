@@ -72,7 +72,7 @@ class ControllerManager:
         """Load every component, then bring it to its initial state (active unless the parameters say not)."""
         with self._admin, self._lock:
             for info in infos:
-                self.rm.load(info, self.log)
+                self.rm.load(info, self.log, self.update_rate)
             for info in infos:
                 if info.name in self.params.hardware_unconfigured:
                     continue

@@ -51,12 +51,13 @@ class ResourceManager:
         self._readable: tuple[HardwareHandle, ...] = ()
 
     # --- loading ---------------------------------------------------------------------------------------
-    def load(self, info: HardwareInfo, logger: object | None = None) -> HardwareHandle:
+    def load(self, info: HardwareInfo, logger: object | None = None, update_rate: int = 0) -> HardwareHandle:
         if info.name in self.components:
             raise ConfigError(f"two <ros2_control> blocks are named {info.name!r}", source=info.source)
         cls = hardware_class(info.plugin_name)
         comp = cls()
         comp.log = logger
+        comp.update_rate = update_rate
         try:
             comp.on_init(info)
             states = list(comp.export_state_interfaces())

@@ -1,0 +1,131 @@
+"""A client of one controller manager's services, shared by the spawner and the `diffctl control` verbs.
+
+Each call retries on a timeout (3 attempts, as the spawner does) and raises RuntimeFailure with the
+service name when the manager cannot be reached.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from typing import Any
+
+from diffctl.control.lifecycle import State
+from diffctl.control.services import P_STRING, P_STRING_ARRAY
+from diffctl.errors import BusError, RuntimeFailure, ServiceTimeout
+
+CM = "controller_manager_msgs/srv/"
+SRV_TYPES = {
+    "list_controllers": CM + "ListControllers",
+    "list_controller_types": CM + "ListControllerTypes",
+    "list_hardware_components": CM + "ListHardwareComponents",
+    "list_hardware_interfaces": CM + "ListHardwareInterfaces",
+    "load_controller": CM + "LoadController",
+    "configure_controller": CM + "ConfigureController",
+    "cleanup_controller": CM + "CleanupController",
+    "unload_controller": CM + "UnloadController",
+    "switch_controller": CM + "SwitchController",
+    "set_hardware_component_state": CM + "SetHardwareComponentState",
+    "reload_controller_libraries": CM + "ReloadControllerLibraries",
+    "set_parameters": "rcl_interfaces/srv/SetParameters",
+}
+
+
+def manager_fqn(name: str, namespace: str = "/") -> str:
+    """`-c controller_manager` → /controller_manager (relative names take the caller's namespace)."""
+    name = name.strip()
+    if not name:
+        raise RuntimeFailure("the controller manager name is empty")
+    if name.startswith("/"):
+        return name.rstrip("/")
+    return f"{namespace.rstrip('/')}/{name}"
+
+
+class ManagerClient:
+    def __init__(self, node: Any, manager: str = "controller_manager", call_timeout_s: float = 10.0,
+                 attempts: int = 3) -> None:
+        self.node = node
+        self.manager = manager_fqn(manager, node.namespace)
+        self.call_timeout_s = call_timeout_s
+        self.attempts = attempts
+        self._clients: dict[str, Any] = {}
+
+    def client(self, service: str) -> Any:
+        if service not in self._clients:
+            self._clients[service] = self.node.create_client(f"{self.manager}/{service}", SRV_TYPES[service])
+        return self._clients[service]
+
+    def wait(self, service: str, timeout_s: float, say: Callable[[str], None] | None = None,
+             warn: Callable[[str], None] | None = None) -> None:
+        """Wait for `service`: forever when timeout_s == 0 (saying so, warning every 10 s), else up to timeout_s."""
+        cli = self.client(service)
+        name = f"{self.manager}/{service}"
+        if cli.wait_for_service(timeout=0.0):
+            return
+        if say:
+            say(f"waiting for service {name} to become available...")
+        start = time.monotonic()
+        while True:
+            step = 10.0 if timeout_s == 0 else max(0.0, min(10.0, timeout_s - (time.monotonic() - start)))
+            if cli.wait_for_service(timeout=step):
+                return
+            if timeout_s and time.monotonic() - start >= timeout_s:
+                raise RuntimeFailure(f"Could not contact service {name} within {timeout_s:g} s",
+                                     hint="is the controller manager running and has it got a robot_description?")
+            if warn:
+                warn(f"Could not contact service {name}")
+
+    def call(self, service: str, request: dict[str, Any] | None = None, timeout_s: float | None = None) -> Any:
+        cli = self.client(service)
+        timeout = timeout_s or self.call_timeout_s
+        last: Exception | None = None
+        for k in range(1, self.attempts + 1):
+            try:
+                return cli.call(request or {}, timeout=timeout)
+            except ServiceTimeout as e:
+                last = e
+                self.node.log.warn(f"Failed getting a result from calling {self.manager}/{service} in "
+                                   f"{timeout:g} s. (Attempt {k} of {self.attempts}.)")
+            except BusError as e:
+                raise RuntimeFailure(f"{self.manager}/{service}: {e.message}",
+                                     hint="is the controller manager running? `diffctl service list` shows it") from e
+        raise RuntimeFailure(f"could not get a result from {self.manager}/{service} after {self.attempts} attempts: "
+                             f"{last}")
+
+    # --- typed helpers -----------------------------------------------------------------------------------
+    def list_controllers(self) -> list[Any]:
+        return list(self.call("list_controllers").controller)
+
+    def controller_state(self, name: str) -> str | None:
+        for c in self.list_controllers():
+            if c.name == name:
+                return str(c.state)
+        return None
+
+    def ok(self, service: str, name: str) -> bool:
+        return bool(self.call(service, {"name": name}).ok)
+
+    def switch(self, activate: list[str], deactivate: list[str], strictness: int, activate_asap: bool,
+               timeout_s: float) -> tuple[bool, str]:
+        sec = int(timeout_s)
+        req = {"activate_controllers": activate, "deactivate_controllers": deactivate, "strictness": strictness,
+               "activate_asap": activate_asap,
+               "timeout": {"sec": sec, "nanosec": round((timeout_s - sec) * 1e9)}}
+        # The manager waits up to timeout_s for its loop; give the call itself that much more.
+        resp = self.call("switch_controller", req, timeout_s=max(self.call_timeout_s, timeout_s + 2.0))
+        return bool(resp.ok), str(resp.message)
+
+    def set_controller_params(self, name: str, type_name: str | None, params_files: list[str]) -> None:
+        params = [{"name": f"{name}.params_file",
+                   "value": {"type": P_STRING_ARRAY, "string_array_value": list(params_files)}}]
+        if type_name:
+            params.append({"name": f"{name}.type", "value": {"type": P_STRING, "string_value": type_name}})
+        resp = self.call("set_parameters", {"parameters": params})
+        for p, r in zip(params, resp.results, strict=False):
+            if not r.successful:
+                raise RuntimeFailure(f"could not set {p['name']} on {self.manager}: {r.reason}")
+
+    def set_hardware_state(self, name: str, state: State) -> tuple[bool, str]:
+        resp = self.call("set_hardware_component_state",
+                         {"name": name, "target_state": {"id": state.id, "label": state.value}})
+        return bool(resp.ok), str(resp.state.label)

@@ -1,0 +1,55 @@
+"""The node handle a controller gets: a bus Node named /<controller>, its parameters, and the manager's clock.
+
+The controller's time is the manager's: wall time, or sim time (the newest of the current cycle's time
+and /clock), so a command stamped by a teleop node on the same clock is compared with the same clock
+the controller's update() runs on.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+from diffctl.bus import Node
+
+
+class BusControllerNode:
+    def __init__(self, name: str, namespace: str, params: dict[str, Any], now_ns: Callable[[], int],
+                 remaps: dict[str, str] | None = None) -> None:
+        # The node's own /clock subscription is not needed: time comes from the manager.
+        self._node = Node(name, namespace, params=params, use_sim_time=False, remaps=remaps)
+        self.name = name
+        self.params = self._node.params
+        self.log = self._node.log
+        self._now_ns = now_ns
+
+    @property
+    def fqn(self) -> str:
+        return self._node.fqn
+
+    def create_publisher(self, topic: str, type_name: str, latched: bool = False, depth: int = 10) -> Any:
+        return self._node.create_publisher(topic, type_name, latched=latched, depth=depth)
+
+    def create_subscription(self, topic: str, type_name: str, callback: Callable[[Any], None],
+                            latched: bool = False, depth: int = 10) -> Any:
+        return self._node.create_subscription(topic, type_name, callback, latched=latched, depth=depth)
+
+    def now_ns(self) -> int:
+        return self._now_ns()
+
+    def now(self) -> Any:
+        from diffctl.bus.types import time_msg
+
+        return time_msg(self._now_ns())
+
+    def resolve(self, name: str) -> str:
+        return self._node.resolve(name)
+
+    def close(self) -> None:
+        self._node.close()
+
+    def __getattr__(self, item: str) -> Any:
+        # Anything else a controller may want of a node (graph, create_timer, session) comes from the bus Node.
+        if item.startswith("_"):
+            raise AttributeError(item)
+        return getattr(self._node, item)

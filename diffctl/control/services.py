@@ -1,0 +1,221 @@
+"""The controller manager's services (controller_manager_msgs) and parameter services (rcl_interfaces).
+
+Handlers translate requests into ControllerManager calls and back; a failed call answers ok=false and
+the manager logs why, as controller_manager does.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+from diffctl.control import plugin_registry
+from diffctl.control.lifecycle import State, TransitionError
+from diffctl.control.manager import ControllerManager
+from diffctl.errors import DiffctlError
+
+CM = "controller_manager_msgs/srv/"
+
+# rcl_interfaces/msg/ParameterType
+P_NOT_SET, P_BOOL, P_INT, P_DOUBLE, P_STRING = 0, 1, 2, 3, 4
+P_BOOL_ARRAY, P_INT_ARRAY, P_DOUBLE_ARRAY, P_STRING_ARRAY = 6, 7, 8, 9
+
+
+def param_value_to_python(v: Any) -> Any:
+    t = int(v.type)
+    return {
+        P_NOT_SET: lambda: None,
+        P_BOOL: lambda: bool(v.bool_value),
+        P_INT: lambda: int(v.integer_value),
+        P_DOUBLE: lambda: float(v.double_value),
+        P_STRING: lambda: str(v.string_value),
+        P_BOOL_ARRAY: lambda: [bool(x) for x in v.bool_array_value],
+        P_INT_ARRAY: lambda: [int(x) for x in v.integer_array_value],
+        P_DOUBLE_ARRAY: lambda: [float(x) for x in v.double_array_value],
+        P_STRING_ARRAY: lambda: [str(x) for x in v.string_array_value],
+    }.get(t, lambda: None)()
+
+
+def python_to_param_value(value: Any) -> dict[str, Any]:
+    if value is None:
+        return {"type": P_NOT_SET}
+    if isinstance(value, bool):
+        return {"type": P_BOOL, "bool_value": value}
+    if isinstance(value, int):
+        return {"type": P_INT, "integer_value": value}
+    if isinstance(value, float):
+        return {"type": P_DOUBLE, "double_value": value}
+    if isinstance(value, str):
+        return {"type": P_STRING, "string_value": value}
+    if isinstance(value, list | tuple):
+        if all(isinstance(x, bool) for x in value) and value:
+            return {"type": P_BOOL_ARRAY, "bool_array_value": list(value)}
+        if all(isinstance(x, int) and not isinstance(x, bool) for x in value) and value:
+            return {"type": P_INT_ARRAY, "integer_array_value": list(value)}
+        if all(isinstance(x, int | float) and not isinstance(x, bool) for x in value) and value:
+            return {"type": P_DOUBLE_ARRAY, "double_array_value": [float(x) for x in value]}
+        return {"type": P_STRING_ARRAY, "string_array_value": [str(x) for x in value]}
+    return {"type": P_STRING, "string_value": str(value)}
+
+
+class ManagerServices:
+    """Registers every service of the manager node on `node` (a bus Node named controller_manager)."""
+
+    def __init__(self, node: Any, cm: ControllerManager, node_params: dict[str, Any]) -> None:
+        self.node = node
+        self.cm = cm
+        self.params = node_params  # the manager node's own parameters (for get/list_parameters)
+        self.log = node.log
+        handlers: dict[str, tuple[str, Callable[[Any], Any]]] = {
+            "list_controllers": ("ListControllers", self.list_controllers),
+            "list_controller_types": ("ListControllerTypes", self.list_controller_types),
+            "list_hardware_components": ("ListHardwareComponents", self.list_hardware_components),
+            "list_hardware_interfaces": ("ListHardwareInterfaces", self.list_hardware_interfaces),
+            "load_controller": ("LoadController", self._simple(cm.load_controller)),
+            "configure_controller": ("ConfigureController", self._simple(cm.configure_controller)),
+            "cleanup_controller": ("CleanupController", self._simple(cm.cleanup_controller)),
+            "unload_controller": ("UnloadController", self._simple(cm.unload_controller)),
+            "switch_controller": ("SwitchController", self.switch_controller),
+            "set_hardware_component_state": ("SetHardwareComponentState", self.set_hardware_component_state),
+            "reload_controller_libraries": ("ReloadControllerLibraries", self.reload_controller_libraries),
+        }
+        self.services = [node.create_service(f"~/{name}", CM + srv, h) for name, (srv, h) in handlers.items()]
+        rcl = "rcl_interfaces/srv/"
+        self.services += [
+            node.create_service("~/set_parameters", rcl + "SetParameters", self.set_parameters),
+            node.create_service("~/get_parameters", rcl + "GetParameters", self.get_parameters),
+            node.create_service("~/list_parameters", rcl + "ListParameters", self.list_parameters),
+        ]
+
+    def close(self) -> None:
+        for s in self.services:
+            s.close()
+
+    # --- controller_manager_msgs ------------------------------------------------------------------------
+    def _simple(self, fn: Callable[[str], Any]) -> Callable[[Any], dict[str, Any]]:
+        def handler(req: Any) -> dict[str, Any]:
+            try:
+                fn(req.name)
+                return {"ok": True}
+            except DiffctlError as e:
+                self.log.error(str(e))
+                return {"ok": False}
+
+        return handler
+
+    def list_controllers(self, _req: Any) -> dict[str, Any]:
+        out = []
+        with self.cm._lock:
+            for mc in self.cm.controllers.values():
+                out.append({
+                    "name": mc.name,
+                    "state": mc.state.value,
+                    "type": mc.type_name,
+                    "is_async": False,
+                    "update_rate": mc.update_rate,
+                    "claimed_interfaces": list(mc.claimed),
+                    "required_command_interfaces": list(mc.required_command),
+                    "required_state_interfaces": list(mc.required_state),
+                    "is_chainable": bool(getattr(mc.instance, "is_chainable", False)),
+                    "is_chained": False,
+                })
+        return {"controller": out}
+
+    def list_controller_types(self, _req: Any) -> dict[str, Any]:
+        names = plugin_registry.controller_types()
+        return {"types": names, "base_classes": [plugin_registry.base_class_of(n) for n in names]}
+
+    def _interfaces(self, names: list[str], command: bool) -> list[dict[str, Any]]:
+        rm = self.cm.rm
+        out = []
+        for n in names:
+            avail = rm.command_available(n) if command else rm.state_available(n)
+            table = rm.command_interfaces if command else rm.state_interfaces
+            out.append({"name": n, "data_type": table[n].data_type, "is_available": avail,
+                        "is_claimed": command and n in rm.claimed})
+        return out
+
+    def list_hardware_components(self, _req: Any) -> dict[str, Any]:
+        out = []
+        with self.cm._lock:
+            for h in self.cm.rm.components.values():
+                out.append({
+                    "name": h.name,
+                    "type": h.info.type,
+                    "is_async": False,
+                    "rw_rate": h.rw_rate or self.cm.update_rate,
+                    "plugin_name": h.plugin_name,
+                    "state": {"id": h.state.id, "label": h.state.value},
+                    "command_interfaces": self._interfaces([c.name for c in h.commands], True),
+                    "state_interfaces": self._interfaces([s.name for s in h.states], False),
+                })
+        return {"component": out}
+
+    def list_hardware_interfaces(self, _req: Any) -> dict[str, Any]:
+        rm = self.cm.rm
+        with self.cm._lock:
+            return {"command_interfaces": self._interfaces(sorted(rm.command_interfaces), True),
+                    "state_interfaces": self._interfaces(sorted(rm.state_interfaces), False)}
+
+    def switch_controller(self, req: Any) -> dict[str, Any]:
+        timeout_s = int(req.timeout.sec) + int(req.timeout.nanosec) * 1e-9
+        ok, msg = self.cm.switch_controller(list(req.activate_controllers), list(req.deactivate_controllers),
+                                            int(req.strictness), bool(req.activate_asap), timeout_s)
+        return {"ok": ok, "message": msg}
+
+    def set_hardware_component_state(self, req: Any) -> dict[str, Any]:
+        target = req.target_state
+        try:
+            state = State.parse(target.label) if target.label else State.from_id(int(target.id))
+        except (TransitionError, ValueError):
+            self.log.error(f"set_hardware_component_state: unknown target state id={target.id} "
+                           f"label={target.label!r}")
+            h = self.cm.rm.components.get(req.name)
+            cur = h.state if h else State.UNKNOWN
+            return {"ok": False, "state": {"id": cur.id, "label": cur.value}}
+        try:
+            reached = self.cm.set_hardware_component_state(req.name, state)
+            return {"ok": reached is state, "state": {"id": reached.id, "label": reached.value}}
+        except DiffctlError as e:
+            self.log.error(str(e))
+            h = self.cm.rm.components.get(req.name)
+            cur = h.state if h else State.UNKNOWN
+            return {"ok": False, "state": {"id": cur.id, "label": cur.value}}
+
+    def reload_controller_libraries(self, req: Any) -> dict[str, Any]:
+        # Python plugins cannot be unloaded from a running process; refuse while controllers are loaded.
+        if self.cm.controllers and not req.force_kill:
+            self.log.error("can not reload controller libraries while controllers are loaded (use force_kill)")
+            return {"ok": False}
+        for name in list(self.cm.controllers):
+            mc = self.cm.controllers[name]
+            if mc.state is State.ACTIVE:
+                self.cm.switch_controller([], [name], 2)
+            self.cm.unload_controller(name)
+        return {"ok": True}
+
+    # --- rcl_interfaces ---------------------------------------------------------------------------------
+    def set_parameters(self, req: Any) -> dict[str, Any]:
+        results = []
+        for p in req.parameters:
+            name, value = str(p.name), param_value_to_python(p.value)
+            prefix, _, key = name.rpartition(".")
+            try:
+                if name == "update_rate":
+                    raise TransitionError("parameter 'update_rate' is read-only")
+                if prefix and key in ("type", "params_file", "update_rate", "fallback_controllers"):
+                    self.cm.set_controller_param(prefix, key, value)
+                self.params[name] = value
+                results.append({"successful": True, "reason": ""})
+            except DiffctlError as e:
+                results.append({"successful": False, "reason": str(e)})
+        return {"results": results}
+
+    def get_parameters(self, req: Any) -> dict[str, Any]:
+        return {"values": [python_to_param_value(self.params.get(str(n))) for n in req.names]}
+
+    def list_parameters(self, req: Any) -> dict[str, Any]:
+        prefixes = [str(p) for p in req.prefixes]
+        names = sorted(n for n in self.params if not prefixes or any(n.startswith(p) for p in prefixes))
+        return {"result": {"names": names, "prefixes": sorted({n.rpartition(".")[0] for n in names} - {""})}}
+

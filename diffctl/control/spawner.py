@@ -1,0 +1,210 @@
+"""`diffctl spawn controller`: controller_manager's spawner — load, configure and activate controllers.
+
+Flow per controller (Jazzy tip): list_controllers; load unless already loaded (after setting
+`<name>.params_file` and `<name>.type` from --param-file on the manager); configure unless --load-only;
+activate with a STRICT switch unless --inactive (one switch for all with --activate-as-group).
+Concurrent spawners are serialised by a file lock under $ROS_HOME/locks. Exit code 0 on success, 1 with
+the reason on failure. With -u it stays up and, on Ctrl-C/SIGTERM, deactivates and unloads what it spawned.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import fcntl
+import os
+import signal
+import threading
+import time
+from collections.abc import Iterator
+from pathlib import Path
+
+import click
+
+from diffctl.control.cm_client import ManagerClient
+from diffctl.control.params import section_type
+from diffctl.control.switching import STRICT
+from diffctl.errors import ParameterError, RuntimeFailure
+
+LOCK_NAME = "ros2-control-controller-spawner.lock"
+
+
+def lock_path() -> Path:
+    home = os.environ.get("ROS_HOME") or os.path.join(os.path.expanduser("~"), ".ros")
+    return Path(home) / "locks" / LOCK_NAME
+
+
+def _try_lock(fh, wait_s: float) -> bool:
+    deadline = time.monotonic() + wait_s
+    while True:
+        try:
+            fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            return True
+        except BlockingIOError:
+            if time.monotonic() >= deadline:
+                return False
+            time.sleep(0.05)
+
+
+@contextlib.contextmanager
+def spawner_lock(log, attempts: int = 5, wait_s: float = 20.0) -> Iterator[None]:
+    """Serialise spawners on one machine, as controller_manager's spawner does (5 attempts × 20 s)."""
+    path = lock_path()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with open(path, "a") as fh:
+        for k in range(1, attempts + 1):
+            if _try_lock(fh, wait_s):
+                break
+            log.warn(f"Attempt {k} of {attempts}: another spawner holds {path}")
+        else:
+            raise RuntimeFailure(f"could not take the spawner lock {path} after {attempts} attempts")
+        try:
+            yield
+        finally:
+            fcntl.flock(fh, fcntl.LOCK_UN)
+
+
+def spawn(names: list[str], *, param_files: list[str], inactive: bool, load_only: bool, manager: str,
+          manager_timeout_s: float, switch_timeout_s: float, activate_as_group: bool, unload_on_kill: bool,
+          switch_asap: bool = True, call_timeout_s: float = 10.0) -> None:
+    """The spawner; raises RuntimeFailure (exit 1) with the reason when anything fails."""
+    from diffctl import ros_args
+    from diffctl.bus import Node
+
+    for f in param_files:
+        if not Path(f).is_file():
+            raise RuntimeFailure(f"parameter file {f!r} does not exist", hint="--param-file takes an existing YAML")
+    types = {}
+    for name in names:
+        for f in param_files:
+            try:
+                t = section_type(f, name)
+            except ParameterError as e:
+                raise RuntimeFailure(str(e)) from None
+            if t:
+                types[name] = t
+    ra = ros_args.current(f"spawner_{names[0]}")
+    node = Node(ra.node_name or f"spawner_{names[0]}", ra.namespace or "/", remaps=ra.remaps, params=ra.params)
+    log = node.log
+    cm = ManagerClient(node, manager, call_timeout_s)
+    stop = threading.Event()
+
+    def on_signal(*_: object) -> None:
+        stop.set()
+        raise KeyboardInterrupt
+
+    signal.signal(signal.SIGTERM, on_signal)
+    try:
+        with spawner_lock(log):
+            cm.wait("list_controllers", manager_timeout_s, log.info, log.warn)
+            for service in ("load_controller", "configure_controller", "switch_controller", "set_parameters"):
+                cm.wait(service, manager_timeout_s, None, log.warn)
+            for name in names:
+                _load_and_configure(cm, log, name, types.get(name), param_files, load_only)
+                if not (load_only or inactive or activate_as_group):
+                    _activate(cm, log, [name], switch_timeout_s, switch_asap)
+            if activate_as_group and not (load_only or inactive):
+                _activate(cm, log, names, switch_timeout_s, switch_asap)
+        if not unload_on_kill:
+            return
+        log.info("waiting until interrupted to unload controllers (--unload-on-kill)")
+        with contextlib.suppress(KeyboardInterrupt):
+            while not stop.wait(0.25):
+                pass
+        _unload(cm, log, names, deactivate=not (inactive or load_only), switch_timeout_s=switch_timeout_s)
+    except KeyboardInterrupt:
+        if unload_on_kill:
+            _unload(cm, log, names, deactivate=not (inactive or load_only), switch_timeout_s=switch_timeout_s)
+        # Interrupted without -u: ROS's spawner exits 0.
+    finally:
+        node.close()
+
+
+def _load_and_configure(cm: ManagerClient, log, name: str, type_name: str | None, param_files: list[str],
+                        load_only: bool) -> None:
+    state = cm.controller_state(name)
+    if state is not None:
+        log.warn(f"Controller already loaded, skipping load_controller ({name} is {state})")
+    else:
+        if param_files:
+            cm.set_controller_params(name, type_name, param_files)
+        if not cm.ok("load_controller", name):
+            raise RuntimeFailure(f"Failed loading controller {name}",
+                                 hint="the controller manager's log says why (e.g. no '<name>.type' parameter)")
+        log.info(f"Loaded {name}")
+        state = "unconfigured"
+    if load_only:
+        return
+    if state == "unconfigured":
+        if not cm.ok("configure_controller", name):
+            raise RuntimeFailure(f"Failed to configure controller {name}",
+                                 hint="the controller manager's log says why")
+        log.info(f"Configured {name}")
+
+
+def _activate(cm: ManagerClient, log, names: list[str], timeout_s: float, asap: bool) -> None:
+    todo = [n for n in names if cm.controller_state(n) != "active"]
+    for n in set(names) - set(todo):
+        log.warn(f"Controller {n} is already active")
+    if not todo:
+        return
+    ok, msg = cm.switch(todo, [], STRICT, asap, timeout_s)
+    if not ok:
+        raise RuntimeFailure(f"Failed to activate controller{'s' if len(todo) > 1 else ''} {', '.join(todo)}"
+                             + (f": {msg}" if msg else ""))
+    log.info(f"Configured and activated {', '.join(todo)}")
+
+
+def _unload(cm: ManagerClient, log, names: list[str], *, deactivate: bool, switch_timeout_s: float) -> None:
+    failed = []
+    if deactivate:
+        ok, msg = cm.switch([], names, STRICT, True, switch_timeout_s)
+        if not ok:
+            failed.append(f"deactivate: {msg}")
+        else:
+            log.info(f"Deactivated {', '.join(names)}")
+    for n in names:
+        if cm.ok("unload_controller", n):
+            log.info(f"Unloaded {n}")
+        else:
+            failed.append(f"unload {n}")
+    if failed:
+        raise RuntimeFailure("Failed to unload controllers: " + "; ".join(failed))
+
+
+@click.command("controller", context_settings={"help_option_names": ["-h", "--help"]})
+@click.argument("names", nargs=-1, required=True)
+@click.option("-p", "--param-file", "param_files", multiple=True, metavar="FILE",
+              help="Controller parameter file (repeatable); sets <name>.params_file and <name>.type on the manager.")
+@click.option("--inactive", is_flag=True, help="Load and configure, but do not activate.")
+@click.option("--load-only", is_flag=True, help="Only load the controller.")
+@click.option("-c", "--controller-manager", "manager", default="controller_manager", show_default=True,
+              help="Name of the controller manager node.")
+@click.option("--controller-manager-timeout", "manager_timeout", type=float, default=0.0, show_default=True,
+              help="Seconds to wait for the manager's services; 0 waits forever (saying so every 10 s).")
+@click.option("--switch-timeout", type=float, default=5.0, show_default=True,
+              help="Seconds the manager may take to carry out the activation.")
+@click.option("--service-call-timeout", type=float, default=10.0, show_default=True,
+              help="Seconds to wait for each service answer (3 attempts).")
+@click.option("--activate-as-group", is_flag=True, help="Activate all named controllers in one switch.")
+@click.option("--switch-asap/--no-switch-asap", default=True, show_default=True,
+              help="Switch in the next control cycle.")
+@click.option("-u", "--unload-on-kill", is_flag=True,
+              help="Stay up; on Ctrl-C/SIGTERM deactivate and unload the controllers.")
+def spawn_controller(names: tuple[str, ...], param_files: tuple[str, ...], inactive: bool, load_only: bool,
+                     manager: str, manager_timeout: float, switch_timeout: float, service_call_timeout: float,
+                     activate_as_group: bool, switch_asap: bool, unload_on_kill: bool) -> None:
+    """Load, configure and activate controllers in a running controller manager (controller_manager spawner).
+
+    Exits 0 when every controller reached the requested state, 1 with the reason otherwise.
+
+    \b
+    Example:
+      diffctl spawn controller joint_state_broadcaster
+      diffctl spawn controller diffbot_base_controller --param-file config/diff_drive_controller.yaml
+      diffctl spawn controller a b --activate-as-group --controller-manager-timeout 10
+    """
+    if manager_timeout < 0 or switch_timeout < 0 or service_call_timeout <= 0:
+        raise click.BadParameter("timeouts must be ≥ 0 (the service call timeout > 0)")
+    spawn(list(names), param_files=list(param_files), inactive=inactive, load_only=load_only, manager=manager,
+          manager_timeout_s=manager_timeout, switch_timeout_s=switch_timeout, activate_as_group=activate_as_group,
+          unload_on_kill=unload_on_kill, switch_asap=switch_asap, call_timeout_s=service_call_timeout)
