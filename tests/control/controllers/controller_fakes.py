@@ -5,8 +5,6 @@ from __future__ import annotations
 
 from typing import Any
 
-import pytest
-
 from diffctl.bus import types
 from diffctl.control.controller_interface import CommandInterface, ControllerInterface, StateInterface
 
@@ -107,22 +105,12 @@ def make_controller(cls: type[ControllerInterface], name: str, params: dict[str,
     return c
 
 
-def hand_interfaces(c: ControllerInterface, values: dict[str, float] | None = None) -> dict[str, Any]:
-    """Give the controller the interfaces its configurations name, as the manager does before on_activate."""
+def hand_interfaces(
+    c: ControllerInterface, values: dict[str, float] | None = None
+) -> tuple[dict[str, CommandInterface], dict[str, StateInterface]]:
+    """Give the controller the interfaces its configurations name, as the manager does before on_activate;
+    returns (command handles, state handles) by name."""
     values = values or {}
-    handles: dict[str, Any] = {}
-    cmd = c.command_interface_configuration()
-    st = c.state_interface_configuration()
-    c.command_interfaces = [CommandInterface(n, values.get(n, 0.0)) for n in cmd.names]
-    c.state_interfaces = [StateInterface(n, values.get(n, 0.0)) for n in st.names]
-    for h in (*c.command_interfaces, *c.state_interfaces):
-        handles[h.name] = h
-    return handles
-
-
-@pytest.fixture
-def log_text():
-    def text(c: ControllerInterface, level: str | None = None) -> str:
-        return c.node.log.text(level)
-
-    return text
+    c.command_interfaces = [CommandInterface(n, values.get(n, 0.0)) for n in c.command_interface_configuration().names]
+    c.state_interfaces = [StateInterface(n, values.get(n, 0.0)) for n in c.state_interface_configuration().names]
+    return {h.name: h for h in c.command_interfaces}, {h.name: h for h in c.state_interfaces}
