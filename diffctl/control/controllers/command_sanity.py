@@ -19,6 +19,7 @@ def rejection(values: Sequence[float], bounds: Sequence[float], names: Sequence[
     for value, bound, name in zip(values, bounds, names, strict=True):
         if not isinstance(value, int | float) or isinstance(value, bool):
             return f"{name} is {value!r}, not a number"
+        value = float(value)  # numpy scalars from array fields would print as np.float64(...)
         if not math.isfinite(value):
             return f"{name} is {value!r}"
         if abs(value) > bound:
