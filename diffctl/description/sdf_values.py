@@ -184,6 +184,14 @@ def color_value(
     return (v[0], v[1], v[2], v[3] if len(v) == 4 else 1.0)
 
 
+MAX_POSITION_M = 1e7  # beyond this float64 poses lose millimetres; nothing real is that far away
+
+
+def _check_position(doc: Doc, el: Element, xyz: tuple[float, ...]) -> None:
+    if any(abs(c) > MAX_POSITION_M for c in xyz):
+        fail(doc, el, f"<pose> position {xyz} is absurd", hint=f"coordinates are metres, within ±{MAX_POSITION_M:g}")
+
+
 def parse_pose(doc: Doc, el: Element) -> tuple[Pose, str | None]:
     """A `<pose>` element: (pose, relative_to or None).
 
@@ -200,11 +208,12 @@ def parse_pose(doc: Doc, el: Element) -> tuple[Pose, str | None]:
             doc,
             el,
             "empty <pose/>",
-            hint="write six numbers 'x y z roll pitch yaw' (metres, radians), or remove the element",
+            hint="write six numbers 'x y z roll pitch yaw' in metres and radians, or remove the element",
         )
     fmt = (el.get("rotation_format") or "euler_rpy").strip()
     if fmt == "quat_xyzw":
         v = parse_floats(doc, el, 7, "with rotation_format='quat_xyzw' needs")
+        _check_position(doc, el, v[:3])
         try:
             q = quat_normalize(v[3:])
         except ValueError:
@@ -213,6 +222,7 @@ def parse_pose(doc: Doc, el: Element) -> tuple[Pose, str | None]:
     if fmt != "euler_rpy":
         fail(doc, el, f"<pose> rotation_format {fmt!r} is not valid", hint="valid: 'euler_rpy', 'quat_xyzw'")
     v = parse_floats(doc, el, 6, "needs 'x y z roll pitch yaw':")
+    _check_position(doc, el, v[:3])
     rpy = v[3:]
     degrees = el.get("degrees")
     if degrees is not None and parse_bool(doc, el, degrees):

@@ -1,0 +1,250 @@
+"""Bad SDF: one DescriptionError naming file, line and element, never a crash of the interpreter."""
+
+from __future__ import annotations
+
+import random
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from lxml import etree
+
+from diffctl.description.sdf_loader import load_model, load_world, parse_model
+from diffctl.errors import DescriptionError
+
+REPO = Path(__file__).resolve().parents[2]
+
+INERTIAL = "<inertial><mass>1</mass></inertial>"
+
+
+def model(body: str, version: str = "1.8", static: bool = False) -> str:
+    # Line 1 is the <sdf>/<model> header, so the body starts on line 2.
+    return (
+        f'<sdf version="{version}"><model name="m">{"<static>true</static>" if static else ""}\n{body}\n</model></sdf>'
+    )
+
+
+CASES = [
+    ("malformed_xml", '<sdf version="1.8"><model name="m">\n<link name="a">\n</model></sdf>', 3, ["malformed XML"]),
+    ("empty_pose", model("<link name='a'><pose/></link>", static=True), 2, ["empty <pose/>", "x y z roll pitch yaw"]),
+    ("short_pose", model("<link name='a'><pose>1 2 3</pose></link>", static=True), 2, ["<pose>", "'1 2 3'"]),
+    ("nan_pose", model("<link name='a'><pose>1 2 nan 0 0 0</pose></link>", static=True), 2, ["finite"]),
+    (
+        "unknown_joint_type",
+        model(
+            f"<link name='a'>{INERTIAL}</link><link name='b'>{INERTIAL}</link>\n"
+            "<joint name='j' type='revolut'><parent>a</parent><child>b</child></joint>"
+        ),
+        3,
+        ["'revolut'", "did you mean 'revolute'", "valid: revolute, continuous"],
+    ),
+    (
+        "unsupported_joint_type",
+        model(
+            f"<link name='a'>{INERTIAL}</link><link name='b'>{INERTIAL}</link>\n"
+            "<joint name='j' type='screw'><parent>a</parent><child>b</child></joint>"
+        ),
+        3,
+        ["'screw' is not supported"],
+    ),
+    (
+        "negative_box",
+        model(
+            "<link name='a'>\n<collision name='c'><geometry><box><size>1 -2 1</size></box></geometry></collision>"
+            "</link>",
+            static=True,
+        ),
+        3,
+        ["three positive lengths", "'1 -2 1'"],
+    ),
+    (
+        "negative_radius",
+        model(
+            "<link name='a'><visual name='v'><geometry><sphere>\n<radius>-0.1</radius></sphere></geometry></visual>"
+            "</link>",
+            static=True,
+        ),
+        3,
+        ["<radius> must be > 0", "'-0.1'"],
+    ),
+    (
+        "zero_cylinder_length",
+        model(
+            "<link name='a'><visual name='v'><geometry><cylinder><radius>1</radius>\n<length>0</length>"
+            "</cylinder></geometry></visual></link>",
+            static=True,
+        ),
+        3,
+        ["<length> must be > 0"],
+    ),
+    (
+        "two_shapes",
+        model(
+            "<link name='a'><visual name='v'>\n<geometry><box><size>1 1 1</size></box><sphere><radius>1</radius>"
+            "</sphere></geometry></visual></link>",
+            static=True,
+        ),
+        3,
+        ["exactly one of"],
+    ),
+    (
+        "missing_inertial",
+        model(
+            f"<link name='a'>{INERTIAL}</link>\n<link name='wheel'/>\n"
+            "<joint name='j' type='continuous'><parent>a</parent><child>wheel</child></joint>"
+        ),
+        3,
+        ["link 'wheel' moves", "continuous joint 'j'", "<inertial>"],
+    ),
+    ("free_body_without_mass", model("<link name='a'/>"), 2, ["link 'a' moves", "free body"]),
+    (
+        "unknown_relative_to",
+        model("<link name='a'/>\n<link name='b'><pose relative_to='aa'>0 0 0 0 0 0</pose></link>", static=True),
+        3,
+        ["relative_to 'aa' names no frame", "did you mean 'a'"],
+    ),
+    (
+        "relative_to_cycle",
+        model(
+            "<link name='a'><pose relative_to='f'>0 0 0 0 0 0</pose></link>\n"
+            "<frame name='f' attached_to='a'><pose relative_to='a'>0 0 0 0 0 0</pose></frame>",
+            static=True,
+        ),
+        2,
+        ["relative_to cycle: a → f → a"],
+    ),
+    ("duplicate_name", model("<link name='a'/>\n<frame name='a'/>", static=True), 3, ["'a' is used twice"]),
+    (
+        "two_parents",
+        model(
+            f"<link name='a'>{INERTIAL}</link><link name='b'>{INERTIAL}</link><link name='c'>{INERTIAL}</link>\n"
+            "<joint name='j1' type='fixed'><parent>a</parent><child>c</child></joint>\n"
+            "<joint name='j2' type='fixed'><parent>b</parent><child>c</child></joint>"
+        ),
+        4,
+        ["child of joints 'j1' and 'j2'", "tree"],
+    ),
+    ("bad_bool", model("<static>yes</static>\n<link name='a'/>"), 2, ["true/false", "'yes'"]),
+    ("no_link", model("<frame name='f'/>"), 1, ["has no <link>"]),
+    ("bad_version", '<sdf version="2.0"><model name="m"><link name="a"/></model></sdf>', 1, ["2.0", "supported"]),
+    ("urdf", '<robot name="r">\n<link name="a"/></robot>', 1, ["<sdf>", "URDF"]),
+    (
+        "ros2_control_unknown_joint",
+        model(
+            f"<link name='a'>{INERTIAL}</link><link name='b'>{INERTIAL}</link>"
+            "<joint name='wheel' type='continuous'><parent>a</parent><child>b</child></joint>\n"
+            "<ros2_control name='r' type='system'><hardware><plugin>x/Y</plugin></hardware>\n"
+            "<joint name='wheeel'><command_interface name='velocity'/></joint></ros2_control>"
+        ),
+        4,
+        ["'wheeel'", "did you mean 'wheel'"],
+    ),
+    (
+        "lidar_range",
+        model(
+            "<link name='a'><sensor name='s' type='gpu_lidar'><lidar>\n<range><min>5</min><max>1</max></range>"
+            "</lidar></sensor></link>",
+            static=True,
+        ),
+        3,
+        ["<max> 1 must exceed <min> 5"],
+    ),
+    ("plugin_without_filename", model("<link name='a'/>\n<plugin name='x'/>", static=True), 3, ["'filename'"]),
+]
+
+
+@pytest.mark.parametrize(("text", "line", "needles"), [c[1:] for c in CASES], ids=[c[0] for c in CASES])
+def test_bad_sdf_is_one_clear_error(text: str, line: int, needles: list[str]) -> None:
+    with pytest.raises(DescriptionError) as info:
+        parse_model(text, source="robot.sdf")
+    err = info.value
+    message = str(err)
+    assert err.exit_code == 2
+    assert message.startswith(f"robot.sdf:{line}"), message
+    for needle in needles:
+        assert needle in message, message
+
+
+def test_missing_files_and_includes(tmp_path: Path) -> None:
+    with pytest.raises(DescriptionError, match="file not found"):
+        load_world(tmp_path / "nope.world")
+    world = tmp_path / "w.sdf"
+    world.write_text('<sdf version="1.8"><world name="w">\n<include><uri>model://ghost</uri></include></world></sdf>')
+    with pytest.raises(DescriptionError) as info:
+        load_world(world)
+    assert f"{world}:2" in str(info.value) and "'model://ghost' not found" in str(info.value)
+    assert "GZ_SIM_RESOURCE_PATH" in str(info.value)
+    mesh = tmp_path / "m.sdf"
+    mesh.write_text(
+        model(
+            "<link name='a'><visual name='v'><geometry><mesh>\n<uri>meshes/x.stl</uri></mesh>"
+            "</geometry></visual></link>",
+            static=True,
+        )
+    )
+    with pytest.raises(DescriptionError, match=r"mesh 'meshes/x\.stl' not found"):
+        load_model(mesh)
+    # a description sent over the bus may carry paths of another machine: opt out of file checks
+    assert load_model(mesh, check_files=False).links[0].visuals[0].geometry.path == ""
+    loop = tmp_path / "loop.sdf"
+    loop.write_text('<sdf version="1.8"><model name="m"><include><uri>loop.sdf</uri></include></model></sdf>')
+    with pytest.raises(DescriptionError, match="include cycle"):
+        load_model(loop)
+
+
+def test_pose_relative_to_with_no_numbers_is_the_identity_in_that_frame() -> None:
+    # Gazebo's own tutorials write <pose relative_to='frame'/>; only a bare <pose/> is refused.
+    m = parse_model(
+        model(
+            "<link name='a'><pose>1 0 0 0 0 0</pose></link>\n<link name='b'><pose relative_to='a'/></link>", static=True
+        )
+    )
+    assert m.link("b").pose_model.xyz == (1, 0, 0)
+
+
+def test_unsimulated_sensor_types_are_listed_not_fatal() -> None:
+    m = parse_model(model("<link name='a'><sensor name='mag' type='magnetometer'/></link>", static=True))
+    assert m.ignored == ("sensor 'mag' of type 'magnetometer' on link 'a' is not simulated",)
+
+
+def test_random_corruption_of_the_robot_file_never_escapes_as_another_exception() -> None:
+    """Delete elements, blank texts and attributes at random: the loader loads or says DescriptionError."""
+    base = (REPO / "description" / "my_diff_car_control.sdf").read_bytes()
+    rng = random.Random(4)
+    outcomes = {"ok": 0, "error": 0}
+    for _ in range(300):
+        root = etree.fromstring(base)
+        elements = [e for e in root.iter() if isinstance(e.tag, str) and e is not root]
+        for _ in range(rng.randint(1, 3)):
+            e = rng.choice(elements)
+            action = rng.randrange(4)
+            if action == 0 and e.getparent() is not None:
+                e.getparent().remove(e)
+            elif action == 1:
+                e.text = rng.choice(["", " ", "-1", "nan", "1e400", "abc", "0 0", "1 2 3 4 5 6 7 8"])
+            elif action == 2 and e.attrib:
+                e.set(rng.choice(list(e.attrib)), rng.choice(["", "::", "__model__", "nope", "world"]))
+            else:
+                e.tag = rng.choice(["pose", "frame", "joint", "model", "include", "link"])
+        text = etree.tostring(root, encoding="unicode")
+        try:
+            parse_model(text, base_dir=REPO / "description")
+            outcomes["ok"] += 1
+        except DescriptionError as e:
+            assert str(e).startswith("<string>"), str(e)
+            outcomes["error"] += 1
+    assert outcomes["error"] > 50 and outcomes["ok"] > 10, outcomes
+
+
+def test_cli_style_child_process_survives_an_empty_pose(tmp_path: Path) -> None:
+    """PyBullet's own loadSDF aborts the process on <pose/>; ours returns an error the caller can print."""
+    bad = tmp_path / "bad.sdf"
+    bad.write_text(model("<link name='a'><pose/></link>", static=True))
+    code = (
+        "import sys\nfrom diffctl.description.sdf_loader import load_model\nfrom diffctl.errors import DiffctlError\n"
+        f"try:\n    load_model({str(bad)!r})\nexcept DiffctlError as e:\n    print(e)\n    sys.exit(e.exit_code)\n"
+    )
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert r.returncode == 2, r.stderr
+    assert f"{bad}:2: model[m]/link[a]/pose: empty <pose/>" in r.stdout
