@@ -244,7 +244,8 @@ class DiffDriveController(ControllerInterface):
                 f"({self._timeout_ns / _NS:g}) (stamp it with this controller's clock, or with 0 for 'now')",
             )
             return
-        self._command = (float(linear), float(angular), stamp_ns)  # one atomic store, read whole by update()
+        if self._subscriber_active:  # re-checked: on_deactivate may have run while this callback did
+            self._command = (float(linear), float(angular), stamp_ns)  # one atomic store, read whole by update()
 
     # --- real-time loop ---------------------------------------------------------------------------------------
     def update(self, time_ns: int, period_s: float) -> ReturnType:
