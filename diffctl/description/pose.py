@@ -26,6 +26,12 @@ def quat_from_rpy(roll_rad: float, pitch_rad: float, yaw_rad: float) -> Quat:
     )
 
 
+def quat_from_axis_angle(axis: Sequence[float], angle_rad: float) -> Quat:
+    """Rotation by `angle_rad` about the unit vector `axis` (right-hand rule)."""
+    s = math.sin(angle_rad / 2)
+    return (axis[0] * s, axis[1] * s, axis[2] * s, math.cos(angle_rad / 2))
+
+
 def rpy_from_quat(q: Quat) -> Vec3:
     x, y, z, w = q
     roll = math.atan2(2 * (w * x + y * z), 1 - 2 * (x * x + y * y))
