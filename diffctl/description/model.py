@@ -12,6 +12,7 @@ never redo frame math. Conventions:
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 
@@ -254,6 +255,8 @@ class Frame:
     pose_model: Pose
 
 
+_SYSTEM_FILENAME = re.compile(r"^(?:gz-sim|ignition-gazebo)\d*-(.+)-system$")
+
 # --- plugins and ros2_control -----------------------------------------------------------------------------
 
 
@@ -265,6 +268,19 @@ class Plugin:
     filename: str
     params: tuple[tuple[str, str], ...] = ()
     xml: str = ""
+
+    @property
+    def system(self) -> str:
+        """The Gazebo system this plugin loads, however its filename is spelled.
+
+        'gz-sim-diff-drive-system', 'libgz-sim8-diff-drive-system.so' and 'ignition-gazebo-diff-drive-system'
+        all give 'diff-drive'; gz_ros2_control gives 'gz_ros2_control'; anything else its bare filename.
+        """
+        base = self.filename.rsplit("/", 1)[-1].removesuffix(".so").removeprefix("lib")
+        if "gz_ros2_control" in base or "ign_ros2_control" in base:
+            return "gz_ros2_control"
+        match = _SYSTEM_FILENAME.match(base)
+        return match.group(1) if match else base
 
     def get(self, tag: str, default: str | None = None) -> str | None:
         for k, v in self.params:

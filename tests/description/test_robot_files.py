@@ -132,6 +132,7 @@ def test_plugin_variant_carries_gazebo_diff_drive_and_joint_state_publisher() ->
         "base_footprint",
     )
     assert float(p["odom_publish_frequency"]) == 50
+    assert [p.system for p in car.plugins] == ["diff-drive", "joint-state-publisher"]
     jsp = car.plugin("gz-sim-joint-state-publisher-system")
     assert jsp is not None and jsp.get("topic") == "joint_states"
     assert gz_ros2_control_parameters(car) == []
@@ -148,6 +149,7 @@ def test_control_variant_carries_the_tutorial_ros2_control_block_and_plugin() ->
         assert [i.name for i in j.state_interfaces] == ["position", "velocity"]
     plugin = car.plugin("gz_ros2_control")
     assert plugin is not None and plugin.filename == "libgz_ros2_control-system"
+    assert plugin.system == "gz_ros2_control"
     assert gz_ros2_control_parameters(car) == ["PARAMETERS_CONFIG_FILE_PLACEHOLDER"]
     # the same from the raw text, as the controller manager reads /robot_description
     text = CAR_CONTROL.read_text().replace("PARAMETERS_CONFIG_FILE_PLACEHOLDER", "/abs/diff_drive_controller.yaml")
@@ -170,6 +172,7 @@ def test_empty_world() -> None:
     names = [p.name for p in w.plugins]
     for system in ("Physics", "UserCommands", "SceneBroadcaster", "Sensors", "Imu"):
         assert f"gz::sim::systems::{system}" in names
+    assert [p.system for p in w.plugins] == ["physics", "user-commands", "scene-broadcaster", "sensors", "imu"]
     assert isinstance(load(WORLD), type(w)) and isinstance(load(CAR), Model)
 
 
