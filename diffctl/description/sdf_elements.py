@@ -55,7 +55,7 @@ from diffctl.errors import suggest
 ToLink = Callable[[Pose, str | None, Element | None], Pose]
 
 GEOMETRY_TAGS = ("box", "cylinder", "sphere", "capsule", "plane", "mesh")
-MESH_SUFFIXES = (".obj", ".stl", ".dae")
+MESH_SUFFIXES = (".obj", ".stl")  # what PyBullet turns into collision and visual shapes
 LIDAR_SENSOR_TYPES = ("gpu_lidar", "lidar", "gpu_ray", "ray")
 CAMERA_SENSOR_TYPES = ("camera",)
 IMU_SENSOR_TYPES = ("imu",)
@@ -127,7 +127,10 @@ def _parse_mesh(doc: Doc, shape: Element) -> Mesh:
             )
         return Mesh("", uri, scale)
     if path.suffix.lower() not in MESH_SUFFIXES:
-        fail(doc, uri_el, f"mesh {uri!r} has format {path.suffix!r}", hint="supported: " + ", ".join(MESH_SUFFIXES))
+        if doc.check_files:
+            hint = "supported: " + ", ".join(MESH_SUFFIXES) + " (convert it, e.g. with Blender or meshlab)"
+            fail(doc, uri_el, f"mesh {uri!r} has format {path.suffix!r}", hint=hint)
+        return Mesh("", uri, scale)  # TF and outlines do not need the mesh itself
     return Mesh(str(path), uri, scale)
 
 

@@ -187,6 +187,11 @@ def test_missing_files_and_includes(tmp_path: Path) -> None:
         load_model(mesh)
     # a description sent over the bus may carry paths of another machine: opt out of file checks
     assert load_model(mesh, check_files=False).links[0].visuals[0].geometry.path == ""
+    (tmp_path / "meshes").mkdir()
+    (tmp_path / "meshes" / "x.dae").write_text("<COLLADA/>")
+    mesh.write_text(mesh.read_text().replace("x.stl", "x.dae"))
+    with pytest.raises(DescriptionError, match=r"format '\.dae'.*supported: \.obj, \.stl"):
+        load_model(mesh)
     loop = tmp_path / "loop.sdf"
     loop.write_text('<sdf version="1.8"><model name="m"><include><uri>loop.sdf</uri></include></model></sdf>')
     with pytest.raises(DescriptionError, match="include cycle"):
