@@ -8,549 +8,18 @@ names. Any problem raises DescriptionError naming the file, the line and the ele
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass, field
 from pathlib import Path
 
-from lxml import etree
-
-from diffctl.description.model import (
-    JOINT_TYPES,
-    Frame,
-    Joint,
-    JointDynamics,
-    JointLimits,
-    Link,
-    Model,
-    Plugin,
-    Ros2Control,
-    Sensor,
-    World,
-)
+from diffctl.description.model import Model, World
 from diffctl.description.pose import Pose
-from diffctl.description.resources import is_remote, model_file_in, resolve_uri, search_path_for
-from diffctl.description.ros2_control import parse_ros2_control
-from diffctl.description.sdf_elements import (
-    ToLink,
-    parse_collision,
-    parse_inertial,
-    parse_light,
-    parse_physics,
-    parse_plugin,
-    parse_sensor,
-    parse_visual,
-)
-from diffctl.description.sdf_frames import MODEL_FRAME, FrameGraph, Node, Scope
-from diffctl.description.sdf_values import (
-    Doc,
-    Element,
-    bool_value,
-    child,
-    child_text,
-    children,
-    fail,
-    float_value,
-    parse_bool,
-    parse_floats,
-    pose_child,
-    required_attr,
-)
-from diffctl.errors import DescriptionError, suggest
-
-SUPPORTED_VERSIONS = ((1, 4), (1, 11))
-UNSUPPORTED_JOINT_TYPES = ("universal", "revolute2", "screw", "gearbox")
+from diffctl.description.resources import search_path_for
+from diffctl.description.sdf_documents import Include, read_file, read_include, stack_key, text_doc
+from diffctl.description.sdf_elements import parse_light, parse_physics, parse_plugin
+from diffctl.description.sdf_model import build_model
+from diffctl.description.sdf_values import Doc, Element, child, children, fail, pose_child, required_attr
+from diffctl.errors import suggest
 
 __all__ = ["load", "load_model", "load_world", "parse_model", "parse_world"]
-
-
-# --- documents -------------------------------------------------------------------------------------------
-
-
-def _doc_from_bytes(
-    data: bytes, source: str, base_dir: Path, search_path: tuple[Path, ...], check_files: bool
-) -> tuple[Element, Doc]:
-    try:
-        root = etree.fromstring(data, parser=etree.XMLParser(remove_comments=True, resolve_entities=False))
-    except etree.XMLSyntaxError as e:
-        raise DescriptionError(f"malformed XML: {e.msg}", source=source, line=e.lineno) from None
-    placeholder = Doc(source, base_dir, (1, 11), search_path, check_files)
-    if root.tag != "sdf":
-        hint = "this looks like URDF; diffctl reads SDF (gz sdf -p converts)" if root.tag == "robot" else None
-        fail(placeholder, root, f"the root element must be <sdf>, got <{root.tag}>", hint=hint)
-    text = (root.get("version") or "").strip()
-    try:
-        major, minor = (int(p) for p in text.split("."))
-    except ValueError:
-        fail(placeholder, root, f'<sdf> needs version="1.x", got {text!r}', hint='e.g. <sdf version="1.8">')
-    lo, hi = SUPPORTED_VERSIONS
-    if not lo <= (major, minor) <= hi:
-        fail(
-            placeholder,
-            root,
-            f"SDF version {text} is not supported",
-            hint=f"supported: {lo[0]}.{lo[1]} to {hi[0]}.{hi[1]}",
-        )
-    return root, Doc(source, base_dir, (major, minor), search_path, check_files)
-
-
-def _read_file(path: Path, search_path: tuple[Path, ...], check_files: bool) -> tuple[Element, Doc]:
-    try:
-        data = path.read_bytes()
-    except FileNotFoundError:
-        raise DescriptionError("file not found", source=str(path)) from None
-    except IsADirectoryError:
-        raise DescriptionError("is a directory, not an SDF file", source=str(path)) from None
-    except OSError as e:
-        raise DescriptionError(f"cannot read: {e.strerror}", source=str(path)) from None
-    base = path.resolve().parent
-    return _doc_from_bytes(data, str(path), base, search_path or search_path_for(base), check_files)
-
-
-def _text_doc(
-    text: str, source: str, base_dir: str | Path | None, search_path: tuple[str | Path, ...], check_files: bool
-) -> tuple[Element, Doc]:
-    base = Path(base_dir).resolve() if base_dir is not None else Path.cwd()
-    # lxml refuses str input that carries an encoding declaration; bytes are always accepted.
-    return _doc_from_bytes(text.encode(), source, base, search_path_for(base, search_path), check_files)
-
-
-def _stack_key(doc: Doc) -> str:
-    """The identity of a document on the include stack (resolved path; strings are unique by name)."""
-    return doc.source if doc.source.startswith("<") else str(Path(doc.source).resolve())
-
-
-# --- includes ----------------------------------------------------------------------------------------------
-
-
-@dataclass
-class _Include:
-    doc: Doc
-    model_el: Element
-    name: str
-    pose: Pose | None
-    pose_rel: str | None
-    pose_el: Element | None
-    static: bool | None
-    placement: str | None
-
-
-def _read_include(doc: Doc, inc: Element, stack: tuple[str, ...]) -> _Include:
-    uri_el = child(inc, "uri")
-    uri = (uri_el.text or "").strip() if uri_el is not None else ""
-    if not uri:
-        fail(doc, inc, "<include> needs a <uri>", hint="e.g. <uri>model://my_model</uri> or a relative path")
-    if is_remote(uri):
-        fail(
-            doc, uri_el, f"cannot include remote {uri!r}", hint="download the model and put it on GZ_SIM_RESOURCE_PATH"
-        )
-    target = resolve_uri(uri, doc.base_dir, doc.search_path)
-    if target is not None and target.is_dir():
-        target = model_file_in(target)
-    if target is None:
-        searched = ", ".join(str(d) for d in doc.search_path)
-        fail(doc, uri_el, f"included model {uri!r} not found", hint=f"searched {searched}; set GZ_SIM_RESOURCE_PATH")
-    key = str(target.resolve())
-    if key in stack:
-        fail(doc, uri_el, f"include cycle: {' → '.join([*stack, key])}")
-    root, inc_doc = _read_file(target, doc.search_path, doc.check_files)
-    models = children(root, "model")
-    if len(models) != 1:
-        fail(inc_doc, root, f"an included file must hold exactly one <model>, found {len(models)}")
-    model_el = models[0]
-    pose_el = child(inc, "pose")
-    pose, rel = (None, None)
-    if pose_el is not None:
-        pose, rel, _ = pose_child(doc, inc)
-    static_el = child(inc, "static")
-    static = parse_bool(doc, static_el, static_el.text or "") if static_el is not None else None
-    name = child_text(inc, "name") or required_attr(inc_doc, model_el, "name")
-    placement = child_text(inc, "placement_frame") or None
-    return _Include(inc_doc, model_el, name, pose, rel, pose_el, static, placement)
-
-
-# --- one top-level model ------------------------------------------------------------------------------------
-
-
-@dataclass
-class _Ref:
-    node: Node
-    scope: Scope
-    text: str | None  # as written; None → the default
-    default: str | None  # key used when text is None
-
-
-@dataclass
-class _Builder:
-    """Collects a model tree into a FrameGraph, resolves references, then builds the frozen Model."""
-
-    name: str
-    graph: FrameGraph = field(default_factory=FrameGraph)
-    links: list[tuple[str, Scope]] = field(default_factory=list)
-    joints: list[tuple[str, Scope]] = field(default_factory=list)
-    frames: list[tuple[str, Scope]] = field(default_factory=list)
-    models: list[str] = field(default_factory=list)
-    plugins: list[tuple[Doc, Element]] = field(default_factory=list)
-    ros2_control: list[tuple[Doc, Element]] = field(default_factory=list)
-    attach_refs: list[_Ref] = field(default_factory=list)
-    pose_refs: list[_Ref] = field(default_factory=list)
-    joint_refs: dict[str, tuple[str, str]] = field(default_factory=dict)  # joint key → (parent key|world, child key)
-
-    def collect(self, doc: Doc, el: Element, scope: Scope, stack: tuple[str, ...]) -> None:
-        for c in el:
-            tag = c.tag
-            if tag == "link":
-                node = self._node(doc, c, scope, "link")
-                self.pose_refs.append(_Ref(node, scope, node.relative_ref, scope.model_key))
-                self.links.append((node.key, scope))
-            elif tag == "joint":
-                node = self._node(doc, c, scope, "joint")
-                self.joints.append((node.key, scope))
-            elif tag == "frame":
-                node = self._node(doc, c, scope, "frame")
-                attached = (c.get("attached_to") or "").strip() or None
-                self.attach_refs.append(_Ref(node, scope, attached, scope.model_key))
-                self.frames.append((node.key, scope))
-            elif tag == "model":
-                self._nested(doc, c, scope, required_attr(doc, c, "name"), stack, None)
-            elif tag == "include":
-                inc = _read_include(doc, c, stack)
-                self._nested(
-                    inc.doc,
-                    inc.model_el,
-                    scope,
-                    inc.name,
-                    (*stack, _stack_key(inc.doc)),
-                    inc,
-                    include_el=c,
-                    include_doc=doc,
-                )
-            elif tag == "plugin":
-                self.plugins.append((doc, c))
-            elif tag == "ros2_control":
-                self.ros2_control.append((doc, c))
-        if scope.canonical is None:
-            wanted = (el.get("canonical_link") or "").strip()
-            if wanted:
-                key = scope.lookup(wanted)
-                if key is None or self.graph.nodes[key].kind != "link":
-                    fail(doc, el, f"canonical_link {wanted!r} is not a link of this model")
-                scope.canonical = key
-            else:
-                first = next((k for k, s in self.links if s is scope), None)
-                if first is None:
-                    first = next((s.canonical for s in scope.children.values() if s.canonical), None)
-                if first is None:
-                    fail(doc, el, f"model {el.get('name')!r} has no <link>", hint="a model needs at least one link")
-                scope.canonical = first
-
-    def _node(self, doc: Doc, el: Element, scope: Scope, kind: str) -> Node:
-        name = required_attr(doc, el, "name")
-        pose, rel, pose_el = pose_child(doc, el)
-        node = Node(scope.prefix + name, kind, pose, doc, el, relative_ref=rel, pose_el=pose_el)
-        self.graph.add(node, scope, name)
-        return node
-
-    def _nested(
-        self,
-        doc: Doc,
-        el: Element,
-        scope: Scope,
-        name: str,
-        stack: tuple[str, ...],
-        inc: _Include | None,
-        include_el: Element | None = None,
-        include_doc: Doc | None = None,
-    ) -> None:
-        pose, rel, pose_el = pose_child(doc, el)
-        placement = (el.get("placement_frame") or "").strip() or None
-        node_doc, node_el = doc, el
-        if inc is not None:
-            if inc.pose is not None:
-                pose, rel, pose_el = inc.pose, inc.pose_rel, inc.pose_el
-            placement = inc.placement or placement
-            node_doc, node_el = include_doc or doc, include_el if include_el is not None else el
-        key = scope.prefix + name
-        node = Node(key, "model", pose, node_doc, node_el, relative_ref=rel, pose_el=pose_el)
-        self.graph.add(node, scope, name)
-        # A relative_to on an include names a frame of the including scope: resolve there.
-        self.pose_refs.append(_Ref(node, scope, rel, scope.model_key))
-        sub = Scope(prefix=key + "::", model_key=key)
-        scope.children[name] = sub
-        self.models.append(key)
-        self.collect(doc, el, sub, stack)
-        node.attached_to = sub.canonical
-        if placement is not None:
-            node.placement = self.graph.resolve_ref(sub, placement, node_doc, node_el, "placement_frame")
-
-    def resolve(self, top: Scope) -> None:
-        g = self.graph
-        for ref in self.attach_refs:
-            ref.node.attached_to = (
-                g.resolve_ref(ref.scope, ref.text, ref.node.doc, ref.node.el, "attached_to")
-                if ref.text
-                else ref.default
-            )
-            # A frame's pose is relative to the frame it is attached to unless it says otherwise.
-            self.pose_refs.append(_Ref(ref.node, ref.scope, ref.node.relative_ref, ref.node.attached_to))
-        for key, scope in self.joints:
-            node = g.nodes[key]
-            parent_text = child_text(node.el, "parent")
-            child_name = child_text(node.el, "child")
-            if not parent_text or not child_name:
-                fail(node.doc, node.el, "a <joint> needs non-empty <parent> and <child>")
-            if child_name == "world":
-                fail(node.doc, child(node.el, "child"), "a joint's <child> cannot be 'world'")
-            child_key = g.resolve_ref(scope, child_name, node.doc, child(node.el, "child"), "joint child")
-            parent_key = (
-                "world"
-                if parent_text == "world"
-                else g.resolve_ref(scope, parent_text, node.doc, child(node.el, "parent"), "joint parent")
-            )
-            self.joint_refs[key] = (parent_key, child_key)
-            node.attached_to = child_key
-            self.pose_refs.append(_Ref(node, scope, node.relative_ref, child_key))
-        for ref in self.pose_refs:
-            n = ref.node
-            n.relative_to = (
-                g.resolve_ref(ref.scope, ref.text, n.doc, n.pose_el, "relative_to") if ref.text else ref.default
-            )
-            if n.relative_to == n.key:
-                fail(n.doc, n.pose_el, f"{n.kind} {n.key!r} cannot be relative_to itself")
-        for key, (parent_key, child_key) in self.joint_refs.items():
-            child_link = g.link_of(child_key)
-            parent_link = "world" if parent_key == "world" else g.link_of(parent_key)
-            if child_link == parent_link:
-                node = g.nodes[key]
-                fail(node.doc, node.el, f"joint {key!r} connects link {child_link!r} to itself")
-            self.joint_refs[key] = (parent_link, child_link)
-
-    def to_link(self, link_key: str, scope: Scope, doc: Doc) -> ToLink:
-        g = self.graph
-
-        def convert(pose: Pose, rel: str | None, pose_el: Element | None) -> Pose:
-            if rel is None:
-                return pose
-            ref_key = g.resolve_ref(scope, rel, doc, pose_el, "relative_to")
-            return g.pose_model(link_key).inverse().compose(g.pose_model(ref_key)).compose(pose)
-
-        return convert
-
-
-def _joint(b: _Builder, key: str, model_world: Pose) -> Joint:
-    g = b.graph
-    node = g.nodes[key]
-    doc, el = node.doc, node.el
-    kind = required_attr(doc, el, "type")
-    if kind not in JOINT_TYPES:
-        why = "is not supported by diffctl's simulator" if kind in UNSUPPORTED_JOINT_TYPES else "is not a joint type"
-        fail(doc, el, f"joint type {kind!r} {why}{suggest(kind, JOINT_TYPES)}", hint="valid: " + ", ".join(JOINT_TYPES))
-    parent, child_link = b.joint_refs[key]
-    pose_model = g.pose_model(key)
-    axis_model: tuple[float, float, float] | None = None
-    limits, dynamics = JointLimits(), JointDynamics()
-    axis_el = child(el, "axis")
-    if kind in ("revolute", "continuous", "prismatic"):
-        xyz = (0.0, 0.0, 1.0)
-        frame = pose_model
-        if axis_el is not None:
-            xyz_el = child(axis_el, "xyz")
-            if xyz_el is not None:
-                xyz = parse_floats(doc, xyz_el, 3)
-                expressed = (xyz_el.get("expressed_in") or "").strip()
-                if expressed:
-                    scope = next(s for k, s in b.joints if k == key)
-                    frame = g.pose_model(g.resolve_ref(scope, expressed, doc, xyz_el, "expressed_in"))
-                elif not doc.frames_v17 and bool_value(doc, axis_el, "use_parent_model_frame", False):
-                    frame = Pose()
-            norm = math.sqrt(sum(c * c for c in xyz))
-            if norm == 0:
-                fail(doc, xyz_el, "joint axis <xyz> must not be the zero vector")
-            xyz = (xyz[0] / norm, xyz[1] / norm, xyz[2] / norm)
-            limits = _limits(doc, axis_el, kind)
-            dyn = child(axis_el, "dynamics")
-            if dyn is not None:
-                dynamics = JointDynamics(
-                    damping=float_value(doc, dyn, "damping", 0.0, minimum=0.0),
-                    friction=float_value(doc, dyn, "friction", 0.0, minimum=0.0),
-                    spring_reference=float_value(doc, dyn, "spring_reference", 0.0),
-                    spring_stiffness=float_value(doc, dyn, "spring_stiffness", 0.0, minimum=0.0),
-                )
-        axis_model = frame.rotate(xyz)
-    child_pose_model = g.pose_model(child_link)
-    return Joint(
-        name=key,
-        type=kind,
-        parent=parent,
-        child=child_link,
-        pose_world=model_world.compose(pose_model),
-        pose_child=child_pose_model.inverse().compose(pose_model),
-        axis_world=model_world.rotate(axis_model) if axis_model else None,
-        axis_child=child_pose_model.inverse().rotate(axis_model) if axis_model else None,
-        limits=limits,
-        dynamics=dynamics,
-    )
-
-
-def _limits(doc: Doc, axis_el: Element, kind: str) -> JointLimits:
-    lim = child(axis_el, "limit")
-    if lim is None:
-        return JointLimits()
-    lower = float_value(doc, lim, "lower", -1e16, allow_inf=True)
-    upper = float_value(doc, lim, "upper", 1e16, allow_inf=True)
-    effort = float_value(doc, lim, "effort", -1.0, allow_inf=True)
-    velocity = float_value(doc, lim, "velocity", -1.0, allow_inf=True)
-    if kind == "continuous":
-        lower, upper = -1e16, 1e16  # Gazebo ignores position limits on continuous joints
-    elif lower > upper:
-        fail(doc, lim, f"<lower> {lower:g} is above <upper> {upper:g}")
-    # SDF: a negative effort or velocity limit means "no limit".
-    return JointLimits(lower, upper, math.inf if effort < 0 else effort, math.inf if velocity < 0 else velocity)
-
-
-def _check_tree(b: _Builder, static: bool, links: dict[str, Link]) -> None:
-    g = b.graph
-    child_of: dict[str, str] = {}
-    for key, (_, child_link) in b.joint_refs.items():
-        if child_link in child_of:
-            node = g.nodes[key]
-            fail(
-                node.doc,
-                node.el,
-                f"link {child_link!r} is the child of joints {child_of[child_link]!r} and {key!r}",
-                hint="a model's joints must form a tree",
-            )
-        child_of[child_link] = key
-    for key in b.joint_refs:  # walking up from every joint must end at a root, not loop
-        seen = set()
-        link = b.joint_refs[key][1]
-        while link in child_of:
-            if link in seen:
-                node = g.nodes[key]
-                fail(node.doc, node.el, f"joints form a loop through link {link!r}")
-            seen.add(link)
-            link = b.joint_refs[child_of[link]][0]
-    if static:
-        return
-    # Links welded by fixed joints move as one body: that body needs mass somewhere if it moves at all.
-    group_of = {name: name for name in links}
-
-    def find(x: str) -> str:
-        while group_of[x] != x:
-            x = group_of[x]
-        return x
-
-    for key, (parent, child_link) in b.joint_refs.items():
-        if g.nodes[key].el.get("type") == "fixed" and parent != "world":
-            group_of[find(child_link)] = find(parent)
-    has_mass = {find(n) for n, link in links.items() if link.inertial is not None}
-    movers = [(n, None) for n in links if n not in child_of]
-    movers += [(b.joint_refs[j][1], j) for j in b.joint_refs if g.nodes[j].el.get("type") != "fixed"]
-    for name, joint in movers:
-        if find(name) not in has_mass and not links[name].kinematic:
-            node = g.nodes[name]
-            why = f"child of {g.nodes[joint].el.get('type')} joint {joint!r}" if joint else "a free body"
-            fail(
-                node.doc,
-                node.el,
-                f"link {name!r} moves ({why}) but neither it nor any link fixed to it has an <inertial>",
-                hint="add <inertial><mass>…</mass><inertia>…</inertia></inertial>, or make the model <static>",
-            )
-
-
-def _build_model(
-    doc: Doc,
-    el: Element,
-    *,
-    name: str,
-    parent_world: Pose,
-    static: bool | None,
-    stack: tuple[str, ...],
-    pose_override: Pose | None = None,
-    placement: str | None = None,
-) -> Model:
-    b = _Builder(name)
-    top = Scope(prefix="", model_key=MODEL_FRAME)
-    b.collect(doc, el, top, stack)
-    b.graph.nodes[MODEL_FRAME] = Node(MODEL_FRAME, "model", Pose(), doc, el, attached_to=top.canonical)
-    b.resolve(top)
-    is_static = static if static is not None else bool_value(doc, el, "static", False)
-
-    pose, _, _ = pose_child(doc, el)
-    if pose_override is not None:
-        pose = pose_override
-    placement = placement or (el.get("placement_frame") or "").strip() or None
-    model_world = parent_world.compose(pose)
-    if placement is not None:
-        key = b.graph.resolve_ref(top, placement, doc, el, "placement_frame")
-        model_world = model_world.compose(b.graph.pose_model(key).inverse())
-
-    links: dict[str, Link] = {}
-    ignored: list[str] = []
-    for key, scope in b.links:
-        node = b.graph.nodes[key]
-        pm = b.graph.pose_model(key)
-        pw = model_world.compose(pm)
-        to_link = b.to_link(key, scope, node.doc)
-        inertial_el = child(node.el, "inertial")
-        sensors: list[Sensor] = []
-        for s in children(node.el, "sensor"):
-            sensor = parse_sensor(node.doc, s, key, f"/model/{name}/link/{key}", to_link, pw)
-            if sensor is None:
-                ignored.append(f"sensor {s.get('name')!r} of type {s.get('type')!r} on link {key!r} is not simulated")
-            else:
-                sensors.append(sensor)
-        links[key] = Link(
-            name=key,
-            pose_world=pw,
-            pose_model=pm,
-            inertial=parse_inertial(node.doc, inertial_el, to_link) if inertial_el is not None else None,
-            collisions=tuple(parse_collision(node.doc, c, to_link) for c in children(node.el, "collision")),
-            visuals=tuple(parse_visual(node.doc, v, to_link) for v in children(node.el, "visual")),
-            sensors=tuple(sensors),
-            gravity=bool_value(node.doc, node.el, "gravity", True),
-            kinematic=bool_value(node.doc, node.el, "kinematic", False),
-            self_collide=bool_value(node.doc, node.el, "self_collide", False),
-        )
-    joints = tuple(_joint(b, key, model_world) for key, _ in b.joints)
-    _check_tree(b, is_static, links)
-    frames = tuple(
-        Frame(key, b.graph.link_of(key), model_world.compose(b.graph.pose_model(key)), b.graph.pose_model(key))
-        for key in [k for k, _ in b.frames] + b.models
-    )
-    plugins: tuple[Plugin, ...] = tuple(parse_plugin(d, p) for d, p in b.plugins)
-    controls = tuple(_ros2_control(d, e, joints) for d, e in b.ros2_control)
-    return Model(
-        name=name,
-        static=is_static,
-        pose_world=model_world,
-        links=tuple(links.values()),
-        joints=joints,
-        frames=frames,
-        plugins=plugins,
-        ros2_control=controls,
-        canonical_link=top.canonical or "",
-        self_collide=bool_value(doc, el, "self_collide", False),
-        source=doc.source,
-        ignored=tuple(ignored),
-    )
-
-
-def _ros2_control(doc: Doc, el: Element, joints: tuple[Joint, ...]) -> Ros2Control:
-    block = parse_ros2_control(el, doc.source)
-    names = [j.name for j in joints]
-    for j in block.joints:
-        if j.name not in names:
-            line = next((c.sourceline for c in el.iter("joint") if c.get("name") == j.name), el.sourceline)
-            raise DescriptionError(
-                f"<ros2_control name={block.name!r}> names joint {j.name!r}, which the model does not have"
-                + suggest(j.name, names),
-                source=doc.source,
-                line=line,
-                field="ros2_control/joint",
-                hint="joints: " + ", ".join(names),
-            )
-    return block
-
 
 # --- public API ------------------------------------------------------------------------------------------
 
@@ -568,8 +37,8 @@ def _model_from_root(root: Element, doc: Doc, name: str | None, pose: Pose | Non
         fail(doc, models[1], f"expected one <model>, found {len(models)}")
     el = models[0]
     model_name = name or required_attr(doc, el, "name")
-    return _build_model(
-        doc, el, name=model_name, parent_world=Pose(), static=static, stack=(_stack_key(doc),), pose_override=pose
+    return build_model(
+        doc, el, name=model_name, parent_world=Pose(), static=static, stack=(stack_key(doc),), pose_override=pose
     )
 
 
@@ -584,11 +53,11 @@ def _world_from_root(root: Element, doc: Doc) -> World:
 
     # World-level frames: models, <frame>s and "world"; a model's pose may be relative_to another of them.
     entries: dict[str, tuple[Pose, str | None, Doc, Element]] = {}
-    pending: list[tuple[str, Doc, Element, _Include | None]] = []
+    pending: list[tuple[str, Doc, Element, Include | None]] = []
     for c in w:
         if c.tag in ("model", "include", "frame"):
             if c.tag == "include":
-                inc = _read_include(doc, c, (_stack_key(doc),))
+                inc = read_include(doc, c, (stack_key(doc),))
                 nm, pose, rel, d = inc.name, inc.pose or Pose(), inc.pose_rel, doc
                 if inc.pose is None:
                     pose, rel, _ = pose_child(inc.doc, inc.model_el)
@@ -629,19 +98,19 @@ def _world_from_root(root: Element, doc: Doc) -> World:
         parent = world_pose(rel, (nm,)) if rel is not None else Pose()
         if inc is not None:
             models.append(
-                _build_model(
+                build_model(
                     inc.doc,
                     inc.model_el,
                     name=nm,
                     parent_world=parent,
                     static=inc.static,
-                    stack=(_stack_key(doc), _stack_key(inc.doc)),
+                    stack=(stack_key(doc), stack_key(inc.doc)),
                     pose_override=pose,
                     placement=inc.placement,
                 )
             )
         else:
-            models.append(_build_model(d, c, name=nm, parent_world=parent, static=None, stack=(_stack_key(doc),)))
+            models.append(build_model(d, c, name=nm, parent_world=parent, static=None, stack=(stack_key(doc),)))
         resolved[nm] = models[-1].pose_world  # placement frames can move it: later references see the result
     lights = tuple(parse_light(doc, c, Pose()) for c in children(w, "light"))
     plugins = tuple(parse_plugin(doc, p) for p in children(w, "plugin"))
@@ -651,7 +120,7 @@ def _world_from_root(root: Element, doc: Doc) -> World:
 def load_world(path: str | Path, *, search_path: tuple[str | Path, ...] = (), check_files: bool = True) -> World:
     """The first <world> of an SDF file."""
     p = Path(path)
-    root, doc = _read_file(p, search_path_for(p.resolve().parent, search_path), check_files)
+    root, doc = read_file(p, search_path_for(p.resolve().parent, search_path), check_files)
     return _world_from_root(root, doc)
 
 
@@ -666,7 +135,7 @@ def load_model(
 ) -> Model:
     """The one <model> of an SDF file; `name`/`pose`/`static` override what the file says (as spawn does)."""
     p = Path(path)
-    root, doc = _read_file(p, search_path_for(p.resolve().parent, search_path), check_files)
+    root, doc = read_file(p, search_path_for(p.resolve().parent, search_path), check_files)
     return _model_from_root(root, doc, name, pose, static)
 
 
@@ -678,7 +147,7 @@ def parse_world(
     search_path: tuple[str | Path, ...] = (),
     check_files: bool = True,
 ) -> World:
-    root, doc = _text_doc(text, source, base_dir, search_path, check_files)
+    root, doc = text_doc(text, source, base_dir, search_path, check_files)
     return _world_from_root(root, doc)
 
 
@@ -694,14 +163,14 @@ def parse_model(
     check_files: bool = True,
 ) -> Model:
     """A model from SDF text (e.g. a /robot_description); relative URIs resolve against `base_dir` (default cwd)."""
-    root, doc = _text_doc(text, source, base_dir, search_path, check_files)
+    root, doc = text_doc(text, source, base_dir, search_path, check_files)
     return _model_from_root(root, doc, name, pose, static)
 
 
 def load(path: str | Path, *, search_path: tuple[str | Path, ...] = (), check_files: bool = True) -> World | Model:
     """Whatever the file holds: its <world> if it has one, else its <model>."""
     p = Path(path)
-    root, doc = _read_file(p, search_path_for(p.resolve().parent, search_path), check_files)
+    root, doc = read_file(p, search_path_for(p.resolve().parent, search_path), check_files)
     if child(root, "world") is not None:
         return _world_from_root(root, doc)
     return _model_from_root(root, doc, None, None, None)
