@@ -9,12 +9,14 @@ from __future__ import annotations
 
 import sys
 import threading
+from dataclasses import dataclass
 from typing import Any
 
 import click
 
 from diffctl import ros_args
 from diffctl.errors import ConfigError, ParameterError
+from diffctl.teleop.joy_config import JoyParams
 
 DEFAULT_TOPIC = "/diffbot_base_controller/cmd_vel"
 KEYBOARD_NODE = "teleop_twist_keyboard"
@@ -43,6 +45,39 @@ def _open_node(name: str) -> Any:
     from diffctl.bus import Node
 
     return Node.from_ros_args(name)
+
+
+@dataclass(frozen=True)
+class JoySettings:
+    params: JoyParams
+    preset: str | None
+    topic: str
+    device: str | None
+    device_id: int
+
+
+def joy_settings(
+    ra: ros_args.RosArgs, joy_config: str | None, topic: str | None, stamped: bool | None, deadzone: float | None
+) -> JoySettings:
+    """Everything `teleop joy` needs, from (lowest first) preset, config_filepath, --ros-args, CLI options."""
+    params: dict[str, Any] = {}
+    config_file = ra.params.get("config_filepath")
+    if config_file:
+        params.update(ros_args.load_params_file(str(config_file), ra.node_name or JOY_NODE))
+    params.update(ra.params)
+    preset = joy_config or params.get("joy_config") or (None if config_file else "ps3")
+    # Our stack's controller takes TwistStamped; a launch file passes teleop_twist_joy's own default (false).
+    params["publish_stamped_twist"] = _flag(params, "publish_stamped_twist", stamped, True)
+    if deadzone is not None:
+        params["deadzone"] = deadzone
+    jp = JoyParams.from_params(params, preset)
+    device_id = params.get("device_id", 0)
+    if isinstance(device_id, bool) or not str(device_id).strip().isdigit():
+        raise ParameterError(f"{device_id!r} invalid; valid: an integer >= 0", field="device_id")
+    device = params.get("dev") or params.get("device_name") or None
+    return JoySettings(
+        jp, preset, choose_topic(topic, ra.remaps), str(device) if device else None, int(str(device_id).strip())
+    )
 
 
 @click.group("teleop", context_settings={"help_option_names": ["-h", "--help"]})
@@ -177,7 +212,6 @@ def joy(
       diffctl teleop joy --list
     """
     from diffctl.teleop import evdev_reader
-    from diffctl.teleop.joy_config import JoyParams
 
     if list_only:
         from diffctl.console import console, info
@@ -188,23 +222,9 @@ def joy(
         else:
             info(evdev_reader.present(devices))
         return
-    ra = ros_args.current(JOY_NODE)
-    params: dict[str, Any] = {}
-    if ra.params.get("config_filepath"):
-        params.update(ros_args.load_params_file(str(ra.params["config_filepath"]), ra.node_name or JOY_NODE))
-    params.update(ra.params)
-    preset = joy_config or params.get("joy_config") or (None if "config_filepath" in params else "ps3")
-    # Our stack's controller takes TwistStamped; a launch file passes teleop_twist_joy's own default (false).
-    params["publish_stamped_twist"] = _flag(params, "publish_stamped_twist", stamped, True)
-    if deadzone is not None:
-        params["deadzone"] = deadzone
-    jp = JoyParams.from_params(params, preset)
-    device_id = params.get("device_id", 0)
-    try:
-        device_id = int(device_id)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{device_id!r} invalid; valid: an integer >= 0", field="device_id") from None
-    path = evdev_reader.find_device(device or params.get("dev") or params.get("device_name"), device_id)
+    settings = joy_settings(ros_args.current(JOY_NODE), joy_config, topic, stamped, deadzone)
+    jp, preset = settings.params, settings.preset
+    path = evdev_reader.find_device(device or settings.device, settings.device_id)
     source = evdev_reader.InputDevice(path)
 
     from diffctl.bus import close_session
@@ -215,9 +235,7 @@ def joy(
     try:
         node = _open_node(JOY_NODE)
         try:
-            command = TwistCommand(
-                node, choose_topic(topic, ra.remaps), stamped=jp.publish_stamped_twist, frame_id=jp.frame
-            )
+            command = TwistCommand(node, settings.topic, stamped=jp.publish_stamped_twist, frame_id=jp.frame)
             node.log.info(
                 f"reading {path} '{source.info.name}' (joy_config {preset or 'from file'}), "
                 f"publishing {command.typename} on {command.topic}"
