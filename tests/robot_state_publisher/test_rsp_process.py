@@ -9,6 +9,7 @@ from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
+import yaml
 
 from diffctl.bus import Node, types
 from diffctl.description.pose import Pose
@@ -33,17 +34,23 @@ def pose_of(tf) -> Pose:
     return Pose((t.x, t.y, t.z), (r.x, r.y, r.z, r.w))
 
 
-def test_description_static_and_moving_tf(router: str, procs) -> None:
-    rsp = procs.diffctl(
-        "robot-state-publisher",
-        "--description",
-        str(CAR),
-        "--frame-prefix",
-        "car/",
-        "--ros-args",
-        "-p",
-        "publish_frequency:=1000.0",
+def test_description_static_and_moving_tf(router: str, procs, tmp_path: Path) -> None:
+    # Started as the launcher does: parameters in a ROS params file, the SDF text as a YAML string.
+    params = tmp_path / "rsp.yaml"
+    params.write_text(
+        yaml.safe_dump(
+            {
+                "/**": {
+                    "ros__parameters": {
+                        "robot_description": CAR.read_text(),
+                        "publish_frequency": 1000.0,
+                        "frame_prefix": "car/",
+                    }
+                }
+            }
+        )
     )
+    rsp = procs.diffctl("robot-state-publisher", "--ros-args", "--params-file", str(params))
     node = Node("rsp_probe")
     assert wait_for(lambda: any(e.node == "robot_state_publisher" for e in node.graph.publishers("/tf_static"))), (
         procs.stop(rsp),
