@@ -1,0 +1,133 @@
+"""`diffctl launch`: read a launch file, resolve it, and start and supervise its processes (ros2 launch)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import click
+
+from diffctl.errors import LaunchError, suggest
+
+
+def _split_targets(targets: tuple[str, ...]) -> tuple[list[str], dict[str, str]]:
+    positional = [t for t in targets if ":=" not in t]
+    arguments: dict[str, str] = {}
+    for t in targets:
+        if ":=" in t:
+            name, value = t.split(":=", 1)
+            if not name:
+                raise LaunchError(f"launch argument {t!r} has no name", hint="write NAME:=VALUE")
+            arguments[name] = value
+    if not 1 <= len(positional) <= 2:
+        raise click.UsageError("give a launch file: NAME, PATH, or PACKAGE FILE, then any NAME:=VALUE arguments")
+    return positional, arguments
+
+
+def _bus_probes(kinds: set[str]) -> Any:
+    try:
+        from diffctl.bus.probes import BusProbes
+    except ImportError:
+        raise LaunchError(
+            "this launch file waits for " + " and ".join(sorted(kinds)) + "s, which needs the bus "
+            "(diffctl.bus.probes), and it is not available in this installation"
+        ) from None
+    return BusProbes()
+
+
+def _ensure_router(output: Any) -> Any:
+    try:
+        from diffctl.bus.router import ensure_router
+    except ImportError:
+        output.launcher("WARN", "no embedded Zenoh router in this installation; start one with `diffctl router`")
+        return None
+    return ensure_router()
+
+
+@click.command("launch")
+@click.argument("target", nargs=-1, required=True, metavar="NAME|PATH [PACKAGE FILE] [ARG:=VALUE ...]")
+@click.option("-s", "--show-args", is_flag=True, help="List the launch file's arguments and exit.")
+@click.option("-p", "--print", "print_plan", is_flag=True,
+              help="Resolve everything and print the process tree without starting anything.")
+@click.option("--log-dir", type=click.Path(file_okay=False, path_type=Path),
+              help="Directory for this run's logs (default: ~/.ros/log/<time>-<host>-<pid>).")
+@click.option("--no-color", is_flag=True, help="No colours in the output.")
+@click.option("--no-router", is_flag=True, help="Do not start the embedded Zenoh router.")
+@click.pass_context
+def launch(
+    ctx: click.Context, target: tuple[str, ...], show_args: bool, print_plan: bool, log_dir: Path | None,
+    no_color: bool, no_router: bool,
+) -> None:
+    """Start a launch file and supervise its processes (ros2 launch).
+
+    NAME is launch/NAME.yaml or launch/NAME.launch.py of the project (YAML first); PATH is any YAML or
+    Python launch file; PACKAGE FILE looks in that package's share directory. Every process gets its own
+    process group and dies with the launcher; Ctrl-C stops them all (SIGINT, then SIGTERM, then SIGKILL),
+    a second Ctrl-C kills at once. Press Enter (or send SIGUSR1) for a status table.
+
+    \b
+    Example:
+      diffctl launch sim_control
+      diffctl launch sim_control use_sim_time:=false --print
+      diffctl launch diff_sim sim_control.launch.py
+      diffctl launch ./my_robot.yaml --show-args
+    """
+    from diffctl.console import make_console, warn
+    from diffctl.launch import package_index
+    from diffctl.launch.loader import load
+    from diffctl.launch.render import ArgumentsView, PlanView
+    from diffctl.launch.resolver import Resolver, declared_arguments
+
+    positional, arguments = _split_targets(target)
+    path = package_index.find_launch_file(*positional)
+    description = load(path)
+    console = make_console(no_color=no_color)
+    if show_args:
+        console.print(ArgumentsView(declared_arguments(description, str(path))))
+        return
+    plan = Resolver().resolve(description, arguments, str(path))
+    declared = [a.name for a in plan.arguments]
+    for name in arguments:
+        if name not in declared:
+            warn(f"argument {name!r} is not declared by the launch file{suggest(name, declared)}")
+    for message in plan.warnings:
+        warn(message)
+    if print_plan:
+        console.print(PlanView(plan))
+        return
+    ctx.exit(_run(plan, log_dir=log_dir, no_color=no_color, no_router=no_router))
+
+
+def _run(plan: Any, *, log_dir: Path | None, no_color: bool, no_router: bool) -> int:
+    from diffctl.launch.loop import EventLoop
+    from diffctl.launch.output import Output, default_log_dir, link_latest
+    from diffctl.launch.readiness import ProbePoller
+    from diffctl.launch.supervisor import Supervisor
+
+    kinds = plan.uses_bus()
+    probes = _bus_probes(kinds) if kinds else None
+    run_dir = log_dir or default_log_dir()
+    output = Output(log_dir=run_dir, no_color=no_color)
+    if log_dir is None:
+        link_latest(run_dir)
+    router = None
+    poller = None
+    try:
+        output.launcher("INFO", f"All log files can be found below {run_dir}")
+        router = None if no_router else _ensure_router(output)
+        loop = EventLoop()
+        if probes is not None:
+            poller = ProbePoller({"topic": probes.topic_has_publisher, "service": probes.service_available},
+                                 notify=loop.wake)
+        supervisor = Supervisor(plan, spawner=loop.spawner, output=output, log_dir=run_dir, poller=poller)
+        code = loop.run(supervisor)
+        output.launcher("INFO", f"logs: {run_dir}")
+        return code
+    finally:
+        if poller is not None:
+            poller.close()
+        if probes is not None:
+            probes.close()
+        if router is not None:
+            router.close()
+        output.close()

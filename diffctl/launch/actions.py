@@ -1,0 +1,455 @@
+"""The description model: launch actions named as in `launch` (DeclareLaunchArgument, GroupAction, …).
+
+Both frontends build these objects: Python launch files construct them, the YAML frontend builds them with
+each class's `from_yaml`. `visit()` resolves an action in a scope into plan steps (see resolver.py).
+Processes (ExecuteProcess, Node) live in process_actions.py, event handlers in event_handlers.py.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from collections.abc import Iterable, Mapping
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, ClassVar
+
+from diffctl.errors import LaunchError
+from diffctl.launch.conditions import Condition
+from diffctl.launch.plan import Argument, LogMessage, RequestShutdown, StartTimer, Step, Where
+from diffctl.launch.readiness import WaitFor, parse_timeout, parse_wait_for
+from diffctl.launch.registry import register
+from diffctl.launch.substitutions import FileContent, SomeSubstitutions, Substitution, normalize, perform
+
+if TYPE_CHECKING:
+    from diffctl.launch.context import Scope
+    from diffctl.launch.resolver import Resolver
+    from diffctl.launch.yaml_frontend import Entity
+
+_PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
+
+
+def caller_where() -> Where:
+    """The first stack frame outside diffctl.launch: where a Python launch file built this action."""
+    frame = sys._getframe(1)
+    while frame is not None and os.path.dirname(os.path.abspath(frame.f_code.co_filename)) == _PACKAGE_DIR:
+        frame = frame.f_back
+    if frame is None:
+        return Where()
+    return Where(frame.f_code.co_filename, frame.f_lineno)
+
+
+def describe(value: Any) -> str:
+    """Substitutions as written (`$(var x)`), for labels of entities that were not resolved."""
+    if value is None:
+        return ""
+    return "".join(s.describe() for s in normalize(value))
+
+
+class Action:
+    """Base of everything a launch description holds. Every action takes `condition`, `wait_for`, `wait_timeout`."""
+
+    yaml_tags: ClassVar[tuple[str, ...]] = ()
+    yaml_attrs: ClassVar[tuple[str, ...]] = ()
+
+    def __init__(
+        self,
+        *,
+        condition: Condition | None = None,
+        wait_for: Iterable[WaitFor | Mapping[str, Any]] | None = None,
+        wait_timeout: float | None = None,
+    ) -> None:
+        self.condition = condition
+        self.wait_for: list[WaitFor] = parse_wait_for(list(wait_for) if wait_for is not None else None)
+        self.wait_timeout = parse_timeout(wait_timeout)
+        self.where = caller_where()
+
+    def label(self) -> str:
+        return self.yaml_tags[0] if self.yaml_tags else type(self).__name__
+
+    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+        raise NotImplementedError
+
+    @classmethod
+    def from_yaml(cls, e: Entity) -> Action:
+        raise NotImplementedError
+
+
+class LaunchDescription(Action):
+    """The list of entities a launch file returns; may itself be an entity of another description."""
+
+    def __init__(self, initial_entities: Iterable[Action] | None = None, **kw: Any) -> None:
+        super().__init__(**kw)
+        self.entities: list[Action] = []
+        for entity in initial_entities or []:
+            self.add_action(entity)
+
+    def add_action(self, action: Action) -> None:
+        if not isinstance(action, Action):
+            raise LaunchError(f"LaunchDescription entries must be launch actions, got {action!r}")
+        self.entities.append(action)
+
+    add_entity = add_action
+
+    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+        return r.visit_all(self.entities, scope)
+
+
+@register
+class DeclareLaunchArgument(Action):
+    yaml_tags = ("arg",)
+    yaml_attrs = ("name", "default", "description", "choices")
+
+    def __init__(
+        self,
+        name: str,
+        *,
+        default_value: SomeSubstitutions | None = None,
+        description: str = "",
+        choices: Iterable[str] | None = None,
+        **kw: Any,
+    ) -> None:
+        super().__init__(**kw)
+        if not isinstance(name, str) or not name:
+            raise LaunchError(f"a launch argument needs a name, got {name!r}")
+        self.name = name
+        self.default_value = None if default_value is None else normalize(default_value)
+        self.description = description
+        self.choices = tuple(str(c) for c in choices) if choices is not None else None
+
+    def label(self) -> str:
+        return f"arg {self.name}"
+
+    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+        default = None if self.default_value is None else perform(self.default_value, scope)
+        if self.name in scope.configurations:
+            value: str | None = scope.configurations[self.name]
+        elif default is not None:
+            value = default
+            scope.configurations[self.name] = value
+        else:
+            value = r.missing_argument(self.name, scope)
+        if self.choices is not None and value is not None and value not in self.choices:
+            raise LaunchError(
+                f"argument {self.name!r} is {value!r}, not one of its choices",
+                hint="valid: " + ", ".join(self.choices),
+            )
+        r.declare(Argument(self.name, value, default, self.description, self.choices, str(self.where)))
+        return []
+
+    @classmethod
+    def from_yaml(cls, e: Entity) -> Action:
+        choices = e.raw("choices")
+        if choices is not None and not isinstance(choices, list):
+            raise e.error("choices must be a list", key="choices")
+        return cls(
+            e.plain("name", required=True),
+            default_value=e.text("default"),
+            description=e.plain("description") or "",
+            choices=[str(c) for c in choices] if choices is not None else None,
+        )
+
+
+@register
+class SetLaunchConfiguration(Action):
+    """`let`: set a launch configuration; `let: {name, file, replace}` reads a file with placeholders replaced."""
+
+    yaml_tags = ("let",)
+    yaml_attrs = ("name", "value", "file", "replace")
+
+    def __init__(self, name: SomeSubstitutions, value: SomeSubstitutions, **kw: Any) -> None:
+        super().__init__(**kw)
+        self.name = normalize(name)
+        self.value = normalize(value)
+
+    def label(self) -> str:
+        return f"let {describe(self.name)}"
+
+    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+        scope.configurations[perform(self.name, scope)] = perform(self.value, scope)
+        return []
+
+    @classmethod
+    def from_yaml(cls, e: Entity) -> Action:
+        if e.has("file") == e.has("value"):
+            raise e.error("`let` takes either `value` or `file` (with optional `replace`)")
+        if e.has("replace") and not e.has("file"):
+            raise e.error("`replace` needs `file`", key="replace")
+        if e.has("file"):
+            replace = e.raw("replace") or {}
+            if not isinstance(replace, Mapping):
+                raise e.error("replace must map PLACEHOLDER: value", key="replace")
+            value: Any = FileContent(e.text("file"), {str(k): e.parse(str(v)) for k, v in replace.items()})
+        else:
+            value = e.text("value")
+        return cls(e.text("name", required=True), value)
+
+
+@register
+class GroupAction(Action):
+    """A group of actions; scoped by default, so configurations, environment and namespace stay inside."""
+
+    yaml_tags = ("group",)
+    yaml_attrs = ("scoped", "forwarding", "namespace", "children")
+
+    def __init__(
+        self,
+        actions: Iterable[Action],
+        *,
+        scoped: bool = True,
+        forwarding: bool = True,
+        launch_configurations: Mapping[str, SomeSubstitutions] | None = None,
+        namespace: SomeSubstitutions | None = None,
+        **kw: Any,
+    ) -> None:
+        super().__init__(**kw)
+        self.actions = list(actions)
+        self.scoped = scoped
+        self.forwarding = forwarding
+        self.launch_configurations = {k: normalize(v) for k, v in (launch_configurations or {}).items()}
+        self.namespace = None if namespace is None else normalize(namespace)
+
+    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+        inner = scope.child(forwarding=self.forwarding) if self.scoped else scope
+        for key, value in self.launch_configurations.items():
+            inner.configurations[key] = perform(value, scope)
+        if self.namespace is not None:
+            inner.push_namespace(perform(self.namespace, scope))
+        return r.visit_all(self.actions, inner)
+
+    @classmethod
+    def from_yaml(cls, e: Entity) -> Action:
+        return cls(
+            e.children(),
+            scoped=e.boolean("scoped", True),
+            forwarding=e.boolean("forwarding", True),
+            namespace=e.text("namespace"),
+        )
+
+
+@register
+class PushRosNamespace(Action):
+    yaml_tags = ("push_ros_namespace",)
+    yaml_attrs = ("namespace",)
+
+    def __init__(self, namespace: SomeSubstitutions, **kw: Any) -> None:
+        super().__init__(**kw)
+        self.namespace = normalize(namespace)
+
+    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+        scope.push_namespace(perform(self.namespace, scope))
+        return []
+
+    @classmethod
+    def from_yaml(cls, e: Entity) -> Action:
+        return cls(e.text("namespace", required=True))
+
+
+PushROSNamespace = PushRosNamespace
+
+
+@register
+class SetEnvironmentVariable(Action):
+    yaml_tags = ("set_env",)
+    yaml_attrs = ("name", "value")
+
+    def __init__(self, name: SomeSubstitutions, value: SomeSubstitutions, **kw: Any) -> None:
+        super().__init__(**kw)
+        self.name = normalize(name)
+        self.value = normalize(value)
+
+    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+        scope.set_env(perform(self.name, scope), perform(self.value, scope))
+        return []
+
+    @classmethod
+    def from_yaml(cls, e: Entity) -> Action:
+        return cls(e.text("name", required=True), e.text("value", required=True))
+
+
+@register
+class UnsetEnvironmentVariable(Action):
+    yaml_tags = ("unset_env",)
+    yaml_attrs = ("name",)
+
+    def __init__(self, name: SomeSubstitutions, **kw: Any) -> None:
+        super().__init__(**kw)
+        self.name = normalize(name)
+
+    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+        scope.set_env(perform(self.name, scope), None)
+        return []
+
+    @classmethod
+    def from_yaml(cls, e: Entity) -> Action:
+        return cls(e.text("name", required=True))
+
+
+def seconds(text: str, what: str, *, allow_zero: bool = True) -> float:
+    """A duration attribute → float seconds, rejecting negative, NaN and infinite values."""
+    try:
+        value = float(text)
+    except (TypeError, ValueError):
+        raise LaunchError(f"{what} {text!r} is not a number of seconds") from None
+    if value != value or value in (float("inf"), float("-inf")) or value < 0 or (value == 0 and not allow_zero):
+        raise LaunchError(f"{what} {text!r} must be a finite number of seconds " + ("≥ 0" if allow_zero else "> 0"))
+    return value
+
+
+@register
+class TimerAction(Action):
+    yaml_tags = ("timer",)
+    yaml_attrs = ("period", "children", "cancel_on_shutdown")
+
+    def __init__(
+        self,
+        *,
+        period: SomeSubstitutions | float,
+        actions: Iterable[Action],
+        cancel_on_shutdown: bool = True,
+        **kw: Any,
+    ) -> None:
+        super().__init__(**kw)
+        self.period = normalize(period)
+        self.actions = list(actions)
+        self.cancel_on_shutdown = cancel_on_shutdown
+
+    def label(self) -> str:
+        return f"timer {describe(self.period)} s"
+
+    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+        period = seconds(perform(self.period, scope), "timer period")
+        steps = r.visit_all(self.actions, scope.child())
+        return [StartTimer(period_s=period, steps=tuple(steps), cancel_on_shutdown=self.cancel_on_shutdown)]
+
+    @classmethod
+    def from_yaml(cls, e: Entity) -> Action:
+        return cls(period=e.text("period", required=True), actions=e.children(),
+                   cancel_on_shutdown=e.boolean("cancel_on_shutdown", True))
+
+
+@register
+class LogInfo(Action):
+    yaml_tags = ("log",)
+    yaml_attrs = ("message", "level")
+
+    def __init__(self, *, msg: SomeSubstitutions, **kw: Any) -> None:
+        super().__init__(**kw)
+        self.msg = normalize(msg)
+
+    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+        return [LogMessage(message=perform(self.msg, scope))]
+
+    @classmethod
+    def from_yaml(cls, e: Entity) -> Action:
+        level = e.plain("level")
+        if level is not None and level.upper() != "INFO":
+            raise e.error(f"log level {level!r} is not supported", key="level", hint="valid: INFO")
+        return cls(msg=e.text("message", required=True))
+
+
+@register
+class Shutdown(Action):
+    """Shut the whole launch down (the `required` idiom: `on_exit=Shutdown()` / `on_exit: shutdown`)."""
+
+    yaml_tags = ("shutdown",)
+    yaml_attrs = ("reason",)
+
+    def __init__(self, *, reason: SomeSubstitutions | None = None, **kw: Any) -> None:
+        super().__init__(**kw)
+        self.reason = None if reason is None else normalize(reason)
+
+    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+        reason = perform(self.reason, scope) if self.reason is not None else "shutdown requested by the launch file"
+        return [RequestShutdown(reason=reason)]
+
+    @classmethod
+    def from_yaml(cls, e: Entity) -> Action:
+        return cls(reason=e.text("reason"))
+
+
+class EmitEvent(Action):
+    """Emit an event; the engine knows `diffctl.launch.events.Shutdown`."""
+
+    def __init__(self, *, event: Any, **kw: Any) -> None:
+        super().__init__(**kw)
+        from diffctl.launch.events import Shutdown as ShutdownEvent
+
+        if not isinstance(event, (ShutdownEvent, Shutdown)):
+            raise LaunchError(f"EmitEvent: {type(event).__name__} events are not supported", hint="valid: Shutdown")
+        self.event = event
+
+    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+        if isinstance(self.event, Shutdown):
+            return self.event.visit(r, scope)
+        return [RequestShutdown(reason=perform(self.event.reason, scope))]
+
+
+class LaunchDescriptionSource:
+    """Where an included description comes from (Python or YAML, chosen by the file's name)."""
+
+    def __init__(self, launch_file_path: SomeSubstitutions) -> None:
+        self.location = normalize(launch_file_path)
+
+
+PythonLaunchDescriptionSource = LaunchDescriptionSource
+AnyLaunchDescriptionSource = LaunchDescriptionSource
+FrontendLaunchDescriptionSource = LaunchDescriptionSource
+YAMLLaunchDescriptionSource = LaunchDescriptionSource
+
+
+@register
+class IncludeLaunchDescription(Action):
+    """Include another launch file with arguments; what it sets stays inside it."""
+
+    yaml_tags = ("include",)
+    yaml_attrs = ("file", "arg")
+
+    def __init__(
+        self,
+        launch_description_source: LaunchDescriptionSource | SomeSubstitutions,
+        *,
+        launch_arguments: Iterable[tuple[SomeSubstitutions, SomeSubstitutions]]
+        | Mapping[str, SomeSubstitutions]
+        | None = None,
+        **kw: Any,
+    ) -> None:
+        super().__init__(**kw)
+        if isinstance(launch_description_source, LaunchDescriptionSource):
+            self.location = launch_description_source.location
+        else:
+            self.location = normalize(launch_description_source)
+        pairs = launch_arguments.items() if isinstance(launch_arguments, Mapping) else (launch_arguments or [])
+        self.launch_arguments = [(normalize(k), normalize(v)) for k, v in pairs]
+
+    def label(self) -> str:
+        return f"include {describe(self.location)}"
+
+    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+        path = Path(perform(self.location, scope))
+        if not path.is_absolute() and scope.launch_file:
+            beside = Path(scope.launch_file).parent / path
+            path = beside if beside.exists() else path
+        path = path.resolve()
+        if str(path) in scope.includes:
+            chain = " → ".join(Path(p).name for p in (*scope.includes, str(path)))
+            raise LaunchError(f"include cycle: {chain}")
+        if not path.is_file():
+            raise LaunchError(f"included launch file {path} does not exist")
+        inner = scope.child()
+        inner.launch_file = str(path)
+        inner.includes = (*scope.includes, str(path))
+        for key, value in self.launch_arguments:
+            inner.configurations[perform(key, scope)] = perform(value, scope)
+        return r.include(path, inner)
+
+    @classmethod
+    def from_yaml(cls, e: Entity) -> Action:
+        args = [(a.text("name", required=True), a.text("value", required=True))
+                for a in e.items("arg", ("name", "value"))]
+        return cls(e.text("file", required=True), launch_arguments=args)
+
+
+def is_substitution_list(value: Any) -> bool:
+    return isinstance(value, Substitution) or (
+        isinstance(value, (list, tuple)) and any(isinstance(v, Substitution) for v in value)
+    )

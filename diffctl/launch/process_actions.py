@@ -1,0 +1,449 @@
+"""Process actions: ExecuteProcess (`executable:`) and Node (`node:`), and their validated options.
+
+A Node is an ExecuteProcess whose command comes from the package index and which carries ROS node data
+(name, namespace, parameters, remappings) that become `--ros-args` when it starts.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shlex
+import shutil
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import yaml
+
+from diffctl.errors import LaunchError
+from diffctl.launch import package_index
+from diffctl.launch.actions import Action, Shutdown, describe, seconds
+from diffctl.launch.conditions import truth
+from diffctl.launch.context import join_namespace
+from diffctl.launch.plan import OUTPUTS, AddHandler, Handler, RosNode, StartProcess, Step, TargetRef
+from diffctl.launch.registry import register
+from diffctl.launch.substitutions import SomeSubstitutions, Substitution, normalize, perform
+
+if TYPE_CHECKING:
+    from diffctl.launch.context import Scope
+    from diffctl.launch.resolver import Resolver
+    from diffctl.launch.yaml_frontend import Entity
+
+_NODE_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+
+PROCESS_ATTRS = (
+    "name", "cwd", "env", "output", "respawn", "respawn_delay", "respawn_max_retries", "on_exit", "required",
+    "sigterm_timeout", "sigkill_timeout", "launch_prefix", "interactive", "emulate_tty",
+)
+
+
+@dataclass(frozen=True)
+class ProcessOptions:
+    """How a process is supervised; every value checked here, once, for both frontends."""
+
+    output: str = "screen"
+    respawn: bool = False
+    respawn_delay_s: float = 0.0
+    respawn_max_retries: int = -1
+    sigterm_timeout_s: float = 5.0
+    sigkill_timeout_s: float = 5.0
+    required: bool = False
+    interactive: bool = False
+
+    @classmethod
+    def build(cls, raw: Mapping[str, Any]) -> ProcessOptions:
+        """From attribute values already substituted (str) or given as Python literals; None = default."""
+        out: dict[str, Any] = {}
+        output = os.environ.get("OVERRIDE_LAUNCH_PROCESS_OUTPUT") or raw.get("output")
+        if output is not None:
+            output = {"own_log": "log"}.get(str(output), str(output))
+            if output not in OUTPUTS:
+                raise LaunchError(f"output {output!r} is not valid", hint="valid: " + ", ".join(OUTPUTS))
+            out["output"] = output
+        for key in ("respawn", "required", "interactive"):
+            if raw.get(key) is not None:
+                out[key] = _flag(raw[key], key)
+        if raw.get("respawn_delay") is not None:
+            out["respawn_delay_s"] = seconds(str(raw["respawn_delay"]), "respawn_delay")
+        for key in ("sigterm_timeout", "sigkill_timeout"):
+            if raw.get(key) is not None:
+                out[f"{key}_s"] = seconds(str(raw[key]), key, allow_zero=False)
+        if raw.get("respawn_max_retries") is not None:
+            text = str(raw["respawn_max_retries"])
+            try:
+                retries = int(text)
+            except ValueError:
+                raise LaunchError(f"respawn_max_retries {text!r} is not an integer") from None
+            if retries < -1:
+                raise LaunchError(f"respawn_max_retries {text!r} must be ≥ 0, or -1 for no limit")
+            out["respawn_max_retries"] = retries
+        return cls(**out)
+
+
+def _flag(value: Any, what: str) -> bool:
+    return value if isinstance(value, bool) else truth(str(value), what)
+
+
+class SplitArgs:
+    """A YAML `args:`/`cmd:` string: substituted first, then split like a shell would."""
+
+    def __init__(self, text: SomeSubstitutions) -> None:
+        self.text = normalize(text)
+
+    def split(self, scope: Scope) -> list[str]:
+        value = perform(self.text, scope)
+        try:
+            return shlex.split(value)
+        except ValueError as e:
+            raise LaunchError(f"cannot split {value!r} into arguments: {e}") from None
+
+
+def _arguments(items: Iterable[Any], scope: Scope) -> list[str]:
+    out: list[str] = []
+    for item in items:
+        if isinstance(item, SplitArgs):
+            out += item.split(scope)
+        else:
+            out.append(perform(item, scope))
+    return out
+
+
+def _option(value: Any, scope: Scope) -> Any:
+    if value is None or isinstance(value, (bool, int, float)):
+        return value
+    return perform(value, scope)
+
+
+def guess_type(text: str) -> Any:
+    """A substituted parameter value typed as ROS does: '1' → 1, 'true' → True, '[1, 2]' → [1, 2], else text."""
+    try:
+        value = yaml.safe_load(text)
+    except yaml.YAMLError:
+        return text
+    scalar = (bool, int, float)
+    if isinstance(value, scalar) or (isinstance(value, list) and all(isinstance(v, (*scalar, str)) for v in value)):
+        return value
+    return text
+
+
+class ParameterValue:
+    """launch_ros's ParameterValue: a value with an explicit type (`value_type=str` keeps text as text)."""
+
+    def __init__(self, value: Any, *, value_type: type | None = None) -> None:
+        self.value = value
+        self.value_type = value_type
+
+
+def _param_value(value: Any, scope: Scope) -> Any:
+    if isinstance(value, ParameterValue):
+        if value.value_type is None:
+            return _param_value(value.value, scope)
+        raw = value.value
+        text = perform(raw, scope) if isinstance(raw, (Substitution, list, tuple, str)) else raw
+        try:
+            return value.value_type(text) if value.value_type is not bool else truth(str(text), "ParameterValue")
+        except (TypeError, ValueError):
+            raise LaunchError(f"parameter value {text!r} is not a {value.value_type.__name__}") from None
+    if isinstance(value, Substitution) or (
+        isinstance(value, (list, tuple)) and value and all(isinstance(v, (str, Substitution)) for v in value)
+        and any(isinstance(v, Substitution) for v in value)
+    ):
+        return guess_type(perform(value, scope))
+    if isinstance(value, (list, tuple)):
+        return [_param_value(v, scope) for v in value]
+    if isinstance(value, Mapping):
+        return {str(k): _param_value(v, scope) for k, v in value.items()}
+    return value
+
+
+def _parameters(entries: Iterable[Any], scope: Scope) -> tuple[str | dict[str, Any], ...]:
+    """Parameter files and dicts in order; consecutive dicts merge, as they would on the node."""
+    out: list[str | dict[str, Any]] = []
+    for entry in entries:
+        if isinstance(entry, Mapping):
+            values = {perform(k, scope) if not isinstance(k, str) else k: _param_value(v, scope)
+                      for k, v in entry.items()}
+            if out and isinstance(out[-1], dict):
+                out[-1].update(values)
+            else:
+                out.append(values)
+            continue
+        path = Path(perform(entry, scope) if not isinstance(entry, Path) else str(entry))
+        if not path.is_file():
+            raise LaunchError(f"parameter file {path} does not exist")
+        out.append(str(path.resolve()))
+    return tuple(out)
+
+
+@register
+class ExecuteProcess(Action):
+    yaml_tags = ("executable",)
+    yaml_attrs = ("cmd", "args", "shell", *PROCESS_ATTRS)
+
+    def __init__(
+        self,
+        *,
+        cmd: Iterable[SomeSubstitutions] | SplitArgs,
+        name: SomeSubstitutions | None = None,
+        cwd: SomeSubstitutions | None = None,
+        env: Mapping[str, SomeSubstitutions] | None = None,
+        additional_env: Mapping[str, SomeSubstitutions] | None = None,
+        shell: bool = False,
+        output: SomeSubstitutions | None = None,
+        respawn: bool | SomeSubstitutions = False,
+        respawn_delay: float | SomeSubstitutions | None = None,
+        respawn_max_retries: int | SomeSubstitutions = -1,
+        sigterm_timeout: float | SomeSubstitutions = 5.0,
+        sigkill_timeout: float | SomeSubstitutions = 5.0,
+        on_exit: Any = None,
+        prefix: SomeSubstitutions | None = None,
+        required: bool | SomeSubstitutions = False,
+        interactive: bool = False,
+        emulate_tty: bool | None = None,  # accepted for compatibility: children are line-buffered anyway
+        **kw: Any,
+    ) -> None:
+        super().__init__(**kw)
+        self.cmd = [cmd] if isinstance(cmd, SplitArgs) else list(cmd)
+        self.name = None if name is None else normalize(name)
+        self.cwd = None if cwd is None else normalize(cwd)
+        self.env = None if env is None else {k: normalize(v) for k, v in env.items()}
+        self.additional_env = {k: normalize(v) for k, v in (additional_env or {}).items()}
+        self.shell = shell
+        self.prefix = None if prefix is None else normalize(prefix)
+        self.options = {
+            "output": output, "respawn": respawn, "respawn_delay": respawn_delay,
+            "respawn_max_retries": respawn_max_retries, "sigterm_timeout": sigterm_timeout,
+            "sigkill_timeout": sigkill_timeout, "required": required, "interactive": interactive,
+        }
+        if on_exit == "shutdown" or (isinstance(on_exit, Shutdown) and on_exit.reason is None):
+            # The `required` idiom: keep it a flag so YAML `on_exit: shutdown` and Python print the same.
+            self.options["required"] = True
+            on_exit = None
+        self.on_exit = [on_exit] if isinstance(on_exit, Action) else list(on_exit or [])
+
+    def label(self) -> str:
+        words = [describe(c.text if isinstance(c, SplitArgs) else c) for c in self.cmd]
+        return f"executable {describe(self.name) or ' '.join(words)}"
+
+    def command(self, scope: Scope) -> list[str]:
+        argv = _arguments(self.cmd, scope)
+        if not argv or not argv[0]:
+            raise LaunchError("the command is empty")
+        return argv
+
+    def default_name(self, argv: list[str], scope: Scope) -> str:
+        return os.path.basename(argv[0])
+
+    def ros_node(self, scope: Scope) -> tuple[RosNode | None, dict[str, str | None]]:
+        return None, {}
+
+    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+        argv = self.command(scope)
+        name = perform(self.name, scope) if self.name is not None else self.default_name(argv, scope)
+        if self.prefix is not None:
+            argv = shlex.split(perform(self.prefix, scope)) + argv
+        options = ProcessOptions.build({k: _option(v, scope) for k, v in self.options.items()})
+        env: dict[str, str | None] = {} if self.env is not None else dict(scope.env_changes)
+        if self.env is not None:
+            env.update({k: perform(v, scope) for k, v in self.env.items()})
+        env.update({k: perform(v, scope) for k, v in self.additional_env.items()})
+        cwd = perform(self.cwd, scope) if self.cwd is not None else None
+        if cwd is not None and not Path(cwd).is_dir():
+            raise LaunchError(f"working directory {cwd!r} does not exist")
+        if self.shell:
+            argv = ["/bin/sh", "-c", " ".join(argv)]
+        else:
+            _check_executable(argv[0], env.get("PATH") or scope.env.get("PATH", ""), cwd)
+        node, _ = self.ros_node(scope)
+        spec = r.add_process(
+            self,
+            name,
+            argv=tuple(argv),
+            shell=self.shell,
+            cwd=cwd,
+            env=env,
+            env_replace=self.env is not None,
+            output=options.output,
+            respawn=options.respawn,
+            respawn_delay_s=options.respawn_delay_s,
+            respawn_max_retries=options.respawn_max_retries,
+            required=options.required,
+            sigterm_timeout_s=options.sigterm_timeout_s,
+            sigkill_timeout_s=options.sigkill_timeout_s,
+            interactive=options.interactive,
+            node=node,
+            **self.index_names(scope),
+        )
+        steps: list[Step] = []
+        if self.on_exit:
+            handler_steps = r.visit_all(self.on_exit, scope.child())
+            ref = TargetRef(name=spec.name, label=spec.name)
+            steps.append(AddHandler(handler=Handler("exit", (ref,), tuple(handler_steps))))
+        steps.append(StartProcess(spec=spec))
+        return steps
+
+    def index_names(self, scope: Scope) -> dict[str, str]:
+        return {}
+
+    @classmethod
+    def yaml_process_options(cls, e: Entity) -> dict[str, Any]:
+        on_exit: Any = None
+        if e.has("on_exit"):
+            raw = e.raw("on_exit")
+            if raw == "shutdown":
+                on_exit = "shutdown"
+            elif isinstance(raw, list):
+                on_exit = e.children("on_exit")
+            else:
+                raise e.error(f"on_exit {raw!r} is not valid", key="on_exit",
+                              hint="valid: shutdown, or a list of actions")
+        env = {}
+        for item in e.items("env", ("name", "value")):
+            env[item.plain("name", required=True)] = item.text("value", required=True)
+        return {
+            "name": e.text("name"),
+            "cwd": e.text("cwd"),
+            "additional_env": env,
+            "output": e.text("output"),
+            "respawn": e.text("respawn"),
+            "respawn_delay": e.text("respawn_delay"),
+            "respawn_max_retries": e.text("respawn_max_retries"),
+            "sigterm_timeout": e.text("sigterm_timeout"),
+            "sigkill_timeout": e.text("sigkill_timeout"),
+            "required": e.text("required"),
+            "interactive": e.boolean("interactive", False),
+            "prefix": e.text("launch_prefix"),
+            "on_exit": on_exit,
+        }
+
+    @classmethod
+    def from_yaml(cls, e: Entity) -> Action:
+        cmd: list[Any] = [SplitArgs(e.text("cmd", required=True))]
+        if e.has("args"):
+            cmd.append(SplitArgs(e.text("args")))
+        kw = {k: v for k, v in cls.yaml_process_options(e).items() if v is not None}
+        return cls(cmd=cmd, shell=e.boolean("shell", False), **kw)
+
+
+def _check_executable(program: str, path: str, cwd: str | None) -> None:
+    if "/" in program:
+        full = Path(cwd or ".") / program
+        if not (full.is_file() and os.access(full, os.X_OK)):
+            raise LaunchError(f"executable {program!r} does not exist or is not executable")
+    elif shutil.which(program, path=path) is None:
+        raise LaunchError(f"executable {program!r} not found on PATH")
+
+
+@register
+class Node(ExecuteProcess):
+    """A ROS node from the package index: `Node(package="controller_manager", executable="spawner", …)`."""
+
+    yaml_tags = ("node",)
+    yaml_attrs = ("pkg", "exec", "namespace", "ns", "args", "ros_args", "param", "remap", "exec_name",
+                  *PROCESS_ATTRS)
+
+    def __init__(
+        self,
+        *,
+        executable: SomeSubstitutions,
+        package: SomeSubstitutions | None = None,
+        name: SomeSubstitutions | None = None,
+        namespace: SomeSubstitutions | None = None,
+        exec_name: SomeSubstitutions | None = None,
+        parameters: Iterable[Any] | None = None,
+        remappings: Iterable[tuple[SomeSubstitutions, SomeSubstitutions]] | None = None,
+        ros_arguments: Iterable[Any] | None = None,
+        arguments: Iterable[Any] | None = None,
+        **kw: Any,
+    ) -> None:
+        super().__init__(cmd=[], **kw)
+        if package is None:
+            raise LaunchError("Node needs a package (diffctl resolves executables through the package index)")
+        self.package = normalize(package)
+        self.executable = normalize(executable)
+        self.node_name = None if name is None else normalize(name)
+        self.name = None if exec_name is None else normalize(exec_name)
+        self.namespace = None if namespace is None else normalize(namespace)
+        self.parameters = list(parameters or [])
+        for p in self.parameters:
+            if not isinstance(p, (Mapping, str, Path, Substitution, list, tuple)):
+                raise LaunchError(f"parameters entry {p!r} must be a dict or a parameter file path")
+        self.remappings = [(normalize(a), normalize(b)) for a, b in (remappings or [])]
+        self.ros_arguments = list(ros_arguments or [])
+        self.arguments = list(arguments or [])
+
+    def label(self) -> str:
+        return f"node {describe(self.package)}/{describe(self.executable)}"
+
+    def command(self, scope: Scope) -> list[str]:
+        argv = package_index.executable_argv(perform(self.package, scope), perform(self.executable, scope))
+        argv += _arguments(self.arguments, scope)
+        if self.ros_arguments:
+            argv += ["--ros-args", *_arguments(self.ros_arguments, scope), "--"]
+        return argv
+
+    def index_names(self, scope: Scope) -> dict[str, str]:
+        return {"package": perform(self.package, scope), "executable": perform(self.executable, scope)}
+
+    def default_name(self, argv: list[str], scope: Scope) -> str:
+        return perform(self.node_name if self.node_name is not None else self.executable, scope)
+
+    def ros_node(self, scope: Scope) -> tuple[RosNode | None, dict[str, str | None]]:
+        namespace = scope.namespace
+        if self.namespace is not None:
+            namespace = join_namespace(scope.namespace, perform(self.namespace, scope))
+        node_name = perform(self.node_name, scope) if self.node_name is not None else None
+        if node_name is not None and not _NODE_NAME.fullmatch(node_name):
+            raise LaunchError(f"node name {node_name!r} is not valid",
+                              hint="letters, digits and underscores, not starting with a digit")
+        return RosNode(
+            node_name=node_name,
+            namespace=namespace,
+            params=_parameters(self.parameters, scope),
+            remaps=tuple((perform(a, scope), perform(b, scope)) for a, b in self.remappings),
+        ), {}
+
+    @classmethod
+    def from_yaml(cls, e: Entity) -> Action:
+        kw = {k: v for k, v in cls.yaml_process_options(e).items() if v is not None}
+        kw["exec_name"] = e.text("exec_name")
+        kw["name"] = e.text("name")
+        if e.has("namespace") and e.has("ns"):
+            raise e.error("give `namespace` or `ns`, not both", key="ns")
+        return cls(
+            package=e.text("pkg", required=True),
+            executable=e.text("exec", required=True),
+            namespace=e.text("namespace") if e.has("namespace") else e.text("ns"),
+            arguments=[SplitArgs(e.text("args"))] if e.has("args") else None,
+            ros_arguments=[SplitArgs(e.text("ros_args"))] if e.has("ros_args") else None,
+            parameters=_yaml_params(e),
+            remappings=[(r.text("from", required=True), r.text("to", required=True))
+                        for r in e.items("remap", ("from", "to"))],
+            **kw,
+        )
+
+
+def _yaml_params(e: Entity, key: str = "param") -> list[Any]:
+    """`param:` items: {name, value}, {from: FILE}, or {name, param: [...]} for a nested namespace."""
+    out: list[Any] = []
+    for item in e.items(key, ("name", "value", "from", "param")):
+        if item.has("from"):
+            if item.has("name") or item.has("value"):
+                raise item.error("a `from:` parameter entry takes no name or value")
+            out.append(item.text("from"))
+            continue
+        name = item.plain("name", required=True)
+        if item.has("param"):
+            nested: dict[str, Any] = {}
+            for sub in _yaml_params(item, "param"):
+                if not isinstance(sub, Mapping):
+                    raise item.error("nested parameters cannot load files", key="param")
+                nested.update(sub)
+            out.append({name: nested})
+        elif item.has("value"):
+            out.append({name: item.value("value")})
+        else:
+            raise item.error(f"parameter {name!r} needs a value", key="value")
+    return out

@@ -1,0 +1,119 @@
+"""The Python frontend: a `.launch.py` file's `generate_launch_description()` → a LaunchDescription.
+
+Launch files may import from `diffctl.launch`, or from `launch`, `launch_ros` and `ament_index_python`
+as written for ROS 2: while a file loads, those module names are aliases of `diffctl.launch`. Anything the
+file raises becomes one LaunchError naming the file and line.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import importlib.util
+import inspect
+import itertools
+import re
+import sys
+import traceback
+import types
+from collections.abc import Iterator
+from pathlib import Path
+
+from diffctl.errors import DiffctlError, LaunchError, suggest
+
+ROS_MODULES = (
+    "launch", "launch.actions", "launch.substitutions", "launch.conditions", "launch.event_handlers",
+    "launch.events", "launch.launch_description_sources", "launch_ros", "launch_ros.actions",
+    "launch_ros.substitutions", "launch_ros.parameter_descriptions", "ament_index_python",
+    "ament_index_python.packages",
+)
+
+_counter = itertools.count()
+
+
+@contextlib.contextmanager
+def ros_module_aliases() -> Iterator[None]:
+    """`from launch.actions import …` / `from launch_ros.actions import Node` resolve to diffctl.launch."""
+    import diffctl.launch as api
+
+    saved = {name: sys.modules.get(name) for name in ROS_MODULES}
+    try:
+        modules: dict[str, types.ModuleType] = {}
+        for name in ROS_MODULES:
+            module = types.ModuleType(name, f"alias of diffctl.launch for ROS 2 launch files ({name})")
+            module.__dict__.update({k: getattr(api, k) for k in api.__all__})
+            module.__path__ = []  # a package, so submodule imports work
+            modules[name] = module
+            sys.modules[name] = module
+        from diffctl.launch import events
+
+        modules["launch.events"].Shutdown = events.Shutdown  # the event, not the action of the same name
+        for name, module in modules.items():
+            parent, _, child = name.rpartition(".")
+            if parent:
+                setattr(modules[parent], child, module)
+        yield
+    finally:
+        for name, module in saved.items():
+            if module is None:
+                sys.modules.pop(name, None)
+            else:
+                sys.modules[name] = module
+
+
+def _line_in(path: str, tb: types.TracebackType | None) -> int | None:
+    line = None
+    for frame, lineno in traceback.walk_tb(tb):
+        if frame.f_code.co_filename == path:
+            line = lineno
+    return line
+
+
+def _unexpected_keyword(error: TypeError) -> str:
+    m = re.search(r"(\w+)\.__init__\(\) got an unexpected keyword argument '(\w+)'", str(error))
+    if not m:
+        return str(error)
+    import diffctl.launch as api
+
+    cls = getattr(api, m.group(1), None)
+    known: list[str] = []
+    for klass in inspect.getmro(cls) if isinstance(cls, type) else ():
+        if "__init__" in klass.__dict__:
+            known += [p for p in inspect.signature(klass.__init__).parameters if p not in ("self", "kw", "kwargs")]
+    return f"{m.group(1)}() has no argument {m.group(2)!r}{suggest(m.group(2), known)}"
+
+
+def load(path: str | Path) -> object:
+    from diffctl.launch.actions import LaunchDescription
+
+    source = str(Path(path).resolve())
+    if not Path(source).is_file():
+        raise LaunchError("launch file does not exist", source=str(path))
+    spec = importlib.util.spec_from_file_location(f"_diffctl_launch_file_{next(_counter)}", source)
+    if spec is None or spec.loader is None:
+        raise LaunchError("cannot load as Python", source=str(path))
+    module = importlib.util.module_from_spec(spec)
+    with ros_module_aliases():
+        try:
+            spec.loader.exec_module(module)
+            generate = getattr(module, "generate_launch_description", None)
+            if generate is None:
+                raise LaunchError("defines no generate_launch_description()", source=str(path))
+            description = generate()
+        except SyntaxError as e:
+            raise LaunchError(f"syntax error: {e.msg}", source=str(path), line=e.lineno, column=e.offset) from None
+        except DiffctlError as e:
+            if e.source is None:
+                e.source, e.line = str(path), _line_in(source, e.__traceback__)
+            raise
+        except TypeError as e:
+            line = _line_in(source, e.__traceback__)
+            raise LaunchError(_unexpected_keyword(e), source=str(path), line=line) from None
+        except Exception as e:
+            raise LaunchError(f"launch file raised {type(e).__name__}: {e}", source=str(path),
+                              line=_line_in(source, e.__traceback__)) from None
+    if not isinstance(description, LaunchDescription):
+        raise LaunchError(
+            f"generate_launch_description() returned {type(description).__name__}, not a LaunchDescription",
+            source=str(path),
+        )
+    return description

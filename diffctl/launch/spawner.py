@@ -1,0 +1,155 @@
+"""Starting real processes so that none outlives the launcher.
+
+- every child gets its own session (so its own process group), and PR_SET_PDEATHSIG=SIGKILL: it dies
+  with the launcher even when the launcher is SIGKILLed;
+- the launcher is a child subreaper (PR_SET_CHILD_SUBREAPER): orphaned grandchildren are re-parented to
+  it and reaped here, not by init;
+- the guard process (guard.py) SIGKILLs every known group if the launcher dies, which catches grandchildren
+  that PDEATHSIG does not reach.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import glob
+import os
+import signal
+import subprocess
+import sys
+from collections.abc import Callable
+from pathlib import Path
+from typing import IO
+
+from diffctl.launch.supervisor import Child
+
+PR_SET_PDEATHSIG = 1
+PR_SET_CHILD_SUBREAPER = 36
+
+PipesListener = Callable[[str, int, IO[bytes], IO[bytes]], None]
+
+
+def _libc() -> ctypes.CDLL | None:
+    try:
+        return ctypes.CDLL(None, use_errno=True)
+    except OSError:
+        return None
+
+
+class PosixSpawner:
+    def __init__(self, on_pipes: PipesListener | None = None, *, guard: bool = True) -> None:
+        self.on_pipes = on_pipes
+        self._libc = _libc()
+        self._prctl = self._libc.prctl if self._libc is not None and sys.platform.startswith("linux") else None
+        self._parent = os.getpid()
+        self._children: dict[int, subprocess.Popen[bytes]] = {}
+        self._groups: set[int] = set()
+        self._guard_enabled = guard
+        self._guard: subprocess.Popen[bytes] | None = None
+        if self._prctl is not None:
+            self._prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0)
+
+    # ---- the guard ---------------------------------------------------------------------------------------------
+
+    def _tell_guard(self, line: str) -> None:
+        if not self._guard_enabled:
+            return
+        if self._guard is None:
+            self._guard = subprocess.Popen(
+                [sys.executable, "-I", "-S", str(Path(__file__).with_name("guard.py"))],
+                stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                start_new_session=True, close_fds=True,
+            )
+        assert self._guard.stdin is not None
+        try:
+            self._guard.stdin.write(line.encode() + b"\n")
+            self._guard.stdin.flush()
+        except OSError:
+            pass  # a dead guard must not take the launcher down; PDEATHSIG still covers direct children
+
+    # ---- children ----------------------------------------------------------------------------------------------
+
+    def _preexec(self) -> None:
+        # Runs in the child between fork and exec: keep it to the prctl and the race check.
+        if self._prctl is not None:
+            self._prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+            if os.getppid() != self._parent:
+                os._exit(1)  # the launcher died before the death signal was armed
+
+    def spawn(self, name: str, argv: list[str], env: dict[str, str], cwd: str | None, interactive: bool) -> Child:
+        proc = subprocess.Popen(
+            argv,
+            stdin=None if interactive else subprocess.DEVNULL,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            env=env,
+            cwd=cwd,
+            start_new_session=True,
+            preexec_fn=self._preexec,
+            close_fds=True,
+            bufsize=0,
+        )
+        self._children[proc.pid] = proc
+        self._groups.add(proc.pid)
+        self._tell_guard(f"+{proc.pid}")
+        if self.on_pipes is not None and proc.stdout is not None and proc.stderr is not None:
+            self.on_pipes(name, proc.pid, proc.stdout, proc.stderr)
+        return Child(proc.pid, proc.pid)
+
+    def signal_group(self, child: Child, sig: int) -> bool:
+        try:
+            os.killpg(child.pgid, sig)
+            return True
+        except (ProcessLookupError, PermissionError):
+            return False
+
+    def group_alive(self, child: Child) -> bool:
+        return self.signal_group(child, 0)
+
+    def forget(self, child: Child) -> None:
+        if child.pgid in self._groups:
+            self._groups.discard(child.pgid)
+            self._tell_guard(f"-{child.pgid}")
+
+    def reap(self, *, orphans: bool = True) -> list[tuple[int, int]]:
+        """(pid, exit code) of children that ended; also reaps orphaned grandchildren of our groups."""
+        ended: list[tuple[int, int]] = []
+        for pid, proc in list(self._children.items()):
+            try:
+                done, status = os.waitpid(pid, os.WNOHANG)
+            except ChildProcessError:
+                done, status = pid, 0
+            if done:
+                code = os.waitstatus_to_exitcode(status)
+                proc.returncode = code
+                del self._children[pid]
+                ended.append((pid, code))
+        if orphans:
+            self._reap_orphans()
+        return ended
+
+    def _reap_orphans(self) -> None:
+        for path in glob.glob("/proc/self/task/*/children"):
+            try:
+                pids = [int(p) for p in Path(path).read_text().split()]
+            except OSError:
+                continue
+            for pid in pids:
+                if pid in self._children or (self._guard is not None and pid == self._guard.pid):
+                    continue
+                try:
+                    if os.getpgid(pid) in self._groups:
+                        os.waitpid(pid, os.WNOHANG)
+                except (ProcessLookupError, ChildProcessError):
+                    pass
+
+    def close(self) -> None:
+        """The launcher ends normally: release the guard without it killing anything."""
+        if self._guard is not None:
+            self._tell_guard("exit")
+            try:
+                assert self._guard.stdin is not None
+                self._guard.stdin.close()
+                self._guard.wait(timeout=2.0)
+            except (OSError, subprocess.TimeoutExpired):
+                self._guard.kill()
+            self._guard = None

@@ -1,0 +1,529 @@
+"""The supervisor: runs a plan's steps, starts and watches processes, fires handlers, gates, shuts down.
+
+It is a state machine driven from outside: `start()`, then `on_exit(pid, code)`, `on_line(name, …)`,
+`on_signal(sig)` and `tick()` as things happen, until `done`. The clock and the process spawner are
+injected, so unit tests run it with fakes; loop.py drives it with real processes, pipes and signals.
+
+Shutdown (Ctrl-C, SIGTERM, SIGHUP, a required process exiting, a `shutdown` action, or nothing left to
+do) sends SIGINT to every process group in reverse start order, SIGTERM after its `sigterm_timeout`,
+SIGKILL after its `sigkill_timeout`, each step logged; a second Ctrl-C sends SIGKILL at once.
+"""
+
+from __future__ import annotations
+
+import heapq
+import itertools
+import os
+import re
+import signal
+import tempfile
+import time
+from collections import deque
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Protocol
+
+from diffctl.launch import commandline
+from diffctl.launch.output import Output
+from diffctl.launch.plan import (
+    AddHandler,
+    Gate,
+    Handler,
+    LogMessage,
+    Plan,
+    ProcessSpec,
+    RequestShutdown,
+    StartProcess,
+    StartTimer,
+    Step,
+    TargetRef,
+    Wait,
+    walk,
+)
+from diffctl.launch.readiness import ProbePoller
+from diffctl.launch.status import ProcessRow, StatusView
+
+STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+
+
+class Clock(Protocol):
+    def monotonic(self) -> float: ...
+
+
+class SystemClock:
+    def monotonic(self) -> float:
+        return time.monotonic()
+
+
+@dataclass(frozen=True)
+class Child:
+    pid: int
+    pgid: int
+
+
+class Spawner(Protocol):
+    def spawn(self, name: str, argv: list[str], env: dict[str, str], cwd: str | None, interactive: bool) -> Child:
+        """Start a process in a new process group; raises OSError when it cannot start."""
+
+    def signal_group(self, child: Child, sig: int) -> bool:
+        """Signal the child's process group; False when the group no longer exists."""
+
+    def group_alive(self, child: Child) -> bool: ...
+
+    def forget(self, child: Child) -> None:
+        """The group is gone: stop guarding it."""
+
+
+@dataclass
+class ProcessState:
+    spec: ProcessSpec
+    state: str = "not started"
+    child: Child | None = None
+    lingering: Child | None = None  # leader exited, others of its group still alive
+    starts: int = 0
+    restarts: int = 0
+    started_at: float | None = None
+    exit_code: int | None = None
+    tail: deque[str] = field(default_factory=lambda: deque(maxlen=5))
+    seen_patterns: set[str] = field(default_factory=set)
+    stop_timers: list[_Timer] = field(default_factory=list)
+
+    @property
+    def alive(self) -> bool:
+        return self.child is not None or self.lingering is not None
+
+    @property
+    def respawns_left(self) -> bool:
+        limit = self.spec.respawn_max_retries
+        return self.spec.respawn and (limit < 0 or self.restarts < limit)
+
+
+@dataclass
+class _Timer:
+    callback: Callable[[], None]
+    kind: str  # "timer" | "respawn" | "stop"
+    cancelled: bool = False
+
+
+@dataclass
+class _Pending:
+    step: Step
+    gate: Gate
+    since: float
+
+
+def describe_exit(code: int) -> str:
+    if code < 0:
+        try:
+            return f"killed by {signal.Signals(-code).name}"
+        except ValueError:
+            return f"killed by signal {-code}"
+    return f"exit code {code}"
+
+
+class Supervisor:
+    def __init__(
+        self,
+        plan: Plan,
+        *,
+        spawner: Spawner,
+        output: Output,
+        clock: Clock | None = None,
+        log_dir: Path | None = None,
+        poller: ProbePoller | None = None,
+        env: dict[str, str] | None = None,
+    ) -> None:
+        self.plan = plan
+        self.spawner = spawner
+        self.output = output
+        self.clock = clock or SystemClock()
+        self.params_dir = (log_dir / "params") if log_dir else Path(tempfile.gettempdir()) / f"diffctl-{os.getpid()}"
+        self.poller = poller
+        self.base_env = dict(os.environ if env is None else env)
+        self.states = {name: ProcessState(spec) for name, spec in plan.processes.items()}
+        self.pid_names: dict[int, str] = {}
+        self.handlers: list[Handler] = []
+        self.fired: set[int] = set()
+        self.start_order: list[str] = []
+        self.pending: list[_Pending] = []
+        self.failures: list[str] = []  # why the launch failed: required process, readiness, …
+        self.failed_processes: list[str] = []
+        self.shutting_down = False
+        self.natural_end = False
+        self.done = False
+        self.exit_code = 0
+        self.started_all_at: float | None = None
+        self._timers: list[tuple[float, int, _Timer]] = []
+        self._seq = itertools.count()
+        self._t0 = 0.0
+        self._shutdown_at: float | None = None
+        self._patterns: dict[str, list[tuple[str, re.Pattern[str]]]] = {}
+        for step in walk(plan.steps):
+            for w in step.gate.waits if step.gate else ():
+                if w.kind == "log" and isinstance(w.target, TargetRef) and w.target.name and w.pattern:
+                    self._patterns.setdefault(w.target.name, []).append((w.pattern, re.compile(w.pattern)))
+
+    # ---- driving -----------------------------------------------------------------------------------------------
+
+    def now(self) -> float:
+        return self.clock.monotonic()
+
+    def start(self) -> None:
+        self._t0 = self.now()
+        self.run_steps(self.plan.steps)
+        self._after_event()
+
+    def on_exit(self, pid: int, code: int) -> None:
+        name = self.pid_names.pop(pid, None)
+        if name is None:
+            return
+        st = self.states[name]
+        child, st.child = st.child, None
+        st.exit_code = code
+        if child is not None and self.spawner.group_alive(child):
+            st.lingering = child
+        elif child is not None:
+            self.spawner.forget(child)
+        self._process_exited(st, code, pid)
+        self._after_event()
+
+    def on_line(self, name: str, stream: str, text: str) -> None:
+        st = self.states.get(name)
+        if st is None:
+            return
+        st.tail.append(text)
+        screen = st.spec.output in ("screen", "both") or stream == "stderr"
+        self.output.process_line(name, stream, text, screen=screen)
+        for pattern, compiled in self._patterns.get(name, ()):
+            if pattern not in st.seen_patterns and compiled.search(text):
+                st.seen_patterns.add(pattern)
+                self._after_event()
+
+    def on_signal(self, sig: int) -> None:
+        if sig == signal.SIGUSR1:
+            self.show_status()
+        elif sig in STOP_SIGNALS:
+            name = signal.Signals(sig).name
+            if not self.shutting_down:
+                self.shutdown(f"{'ctrl-c ' if sig == signal.SIGINT else ''}({name})")
+            else:
+                self._kill_all(f"{name} again")
+            self._after_event()
+
+    def tick(self) -> None:
+        now = self.now()
+        while self._timers and self._timers[0][0] <= now:
+            _, _, timer = heapq.heappop(self._timers)
+            if not timer.cancelled:
+                timer.callback()
+        for st in self.states.values():
+            if st.lingering is not None and not self.spawner.group_alive(st.lingering):
+                self.spawner.forget(st.lingering)
+                st.lingering = None
+        self._after_event()
+
+    def next_deadline(self) -> float | None:
+        """When `tick()` must run next (None: only when something happens)."""
+        while self._timers and self._timers[0][2].cancelled:
+            heapq.heappop(self._timers)
+        deadlines = [self._timers[0][0]] if self._timers else []
+        now = self.now()
+        if self.pending:
+            deadlines.append(now + 0.1)  # bus probes answer asynchronously; gate timeouts
+        if any(st.lingering for st in self.states.values()):
+            deadlines.append(now + 0.05)
+        return min(deadlines) if deadlines else None
+
+    # ---- steps -------------------------------------------------------------------------------------------------
+
+    def run_steps(self, steps: tuple[Step, ...]) -> None:
+        for step in steps:
+            if step.gate is not None and self._gate_state(step.gate)[0] is not True:
+                self.pending.append(_Pending(step, step.gate, self.now()))
+                for w in step.gate.waits:
+                    if w.kind in ("topic", "service") and self.poller is not None:
+                        self.poller.want(w.kind, str(w.target))
+                if isinstance(step, StartProcess):
+                    self.states[step.spec.name].state = "waiting"
+                continue
+            self._execute(step)
+
+    def _execute(self, step: Step) -> None:
+        if isinstance(step, LogMessage):
+            self.output.launcher("INFO", step.message)
+        elif self.shutting_down:
+            return  # nothing new starts once shutdown has begun
+        elif isinstance(step, StartProcess):
+            self._start(step.spec)
+        elif isinstance(step, StartTimer):
+            steps = step.steps
+            self._after(step.period_s, lambda: self.run_steps(steps), "timer")
+        elif isinstance(step, RequestShutdown):
+            self.shutdown(step.reason)
+        elif isinstance(step, AddHandler):
+            self.handlers.append(step.handler)
+
+    def _after(self, delay_s: float, callback: Callable[[], None], kind: str) -> _Timer:
+        timer = _Timer(callback, kind)
+        heapq.heappush(self._timers, (self.now() + delay_s, next(self._seq), timer))
+        return timer
+
+    # ---- processes ---------------------------------------------------------------------------------------------
+
+    def _env(self, spec: ProcessSpec) -> dict[str, str]:
+        env = {} if spec.env_replace else dict(self.base_env)
+        for key, value in spec.env.items():
+            if value is None:
+                env.pop(key, None)
+            else:
+                env[key] = value
+        env["PYTHONUNBUFFERED"] = "1"  # line-buffered output from every Python child
+        return env
+
+    def _start(self, spec: ProcessSpec) -> None:
+        st = self.states[spec.name]
+        if st.alive:
+            self.output.launcher("WARN", f"[{spec.name}] is already running (pid {st.child.pid if st.child else '?'}); "
+                                         "not starting a second one")
+            return
+        try:
+            argv = commandline.argv(spec, self.params_dir, write=True)
+            child = self.spawner.spawn(spec.name, argv, self._env(spec), spec.cwd, spec.interactive)
+        except OSError as e:
+            self.output.launcher("ERROR", f"[{spec.name}] could not start: {e.strerror or e}")
+            st.tail.append(f"could not start: {e.strerror or e}")
+            st.exit_code = 127
+            self._process_exited(st, 127, None)
+            return
+        st.child = child
+        st.state = "running"
+        st.starts += 1
+        st.started_at = self.now()
+        self.pid_names[child.pid] = spec.name
+        if spec.name not in self.start_order:
+            self.start_order.append(spec.name)
+        self.output.launcher("INFO", f"[{spec.name}] started (pid {child.pid})")
+        self._fire("start", spec.name, None)
+
+    def _process_exited(self, st: ProcessState, code: int, pid: int | None) -> None:
+        name = st.spec.name
+        ran = f", ran {self.now() - st.started_at:.1f} s" if st.started_at is not None and pid else ""
+        where = f"pid {pid}{ran}" if pid else "never started"
+        if self.shutting_down:
+            st.state = "stopped"
+            self.output.launcher("INFO", f"[{name}] stopped ({describe_exit(code)}, {where})")
+            return
+        if code == 0:
+            st.state = "exited"
+            self.output.launcher("INFO", f"[{name}] finished cleanly ({where})")
+        else:
+            st.state = "failed"
+            last = f": {st.tail[-1]}" if st.tail else ""
+            self.output.launcher("ERROR", f"[{name}] died with {describe_exit(code)} ({where}){last}")
+        self._fire("exit", name, code)
+        if self.shutting_down:
+            return
+        if st.spec.required:
+            why = f"required process {name!r} {'finished' if code == 0 else 'died with ' + describe_exit(code)}"
+            if code != 0:
+                self.failures.append(why + (f" (last output: {st.tail[-1]!r})" if st.tail else ""))
+            self.shutdown(why)
+        elif st.respawns_left:
+            st.restarts += 1
+            st.state = "respawning"
+            limit = st.spec.respawn_max_retries
+            self.output.launcher("INFO", f"[{name}] respawning in {st.spec.respawn_delay_s:g} s "
+                                         f"(restart {st.restarts}{'' if limit < 0 else f' of {limit}'})")
+            self._after(st.spec.respawn_delay_s, lambda: self._start(st.spec), "respawn")
+        elif code != 0:
+            self.failed_processes.append(f"{name} ({describe_exit(code)})")
+        if st.lingering is not None and not self.shutting_down:
+            self.output.launcher("WARN", f"[{name}] exited but left processes in its group; stopping them")
+            self._stop(st, signal.SIGINT)
+
+    def _fire(self, event: str, name: str, code: int | None) -> None:
+        for handler in list(self.handlers):
+            if handler.event == event and handler.matches(name, code):
+                self.fired.add(id(handler))
+                self.run_steps(handler.steps)
+
+    # ---- readiness ---------------------------------------------------------------------------------------------
+
+    def _wait_state(self, w: Wait) -> bool | str:
+        """True when met, False while it may still be met, or the reason it never will be."""
+        if w.kind in ("topic", "service"):
+            return self.poller is not None and self.poller.ready(w.kind, str(w.target))
+        st = self.states.get(str(w.target))
+        if st is None:
+            return f"{w.target} is not a process of this launch"
+        if w.kind == "started":
+            return st.starts > 0
+        finished = not st.alive and st.state in ("exited", "failed")
+        if w.kind == "exited":
+            if finished and st.exit_code == 0:
+                return True
+            if finished and st.state == "failed":
+                return f"{w.target} {describe_exit(st.exit_code or 0)}"
+            return False
+        if w.pattern in st.seen_patterns:
+            return True
+        return f"{w.target} ended without printing /{w.pattern}/" if finished else False
+
+    def _gate_state(self, gate: Gate) -> tuple[bool | str, Wait | None]:
+        for w in gate.waits:
+            state = self._wait_state(w)
+            if state is not True:
+                return state, w
+        return True, None
+
+    def _check_gates(self) -> None:
+        progress = True
+        while progress and self.pending and not self.shutting_down:
+            progress = False
+            for p in list(self.pending):
+                state, w = self._gate_state(p.gate)
+                what = p.step.spec.name if isinstance(p.step, StartProcess) else type(p.step).__name__
+                if state is True:
+                    self.pending.remove(p)
+                    self._execute(p.step)
+                    progress = True
+                elif isinstance(state, str):
+                    self._readiness_failed(f"{what}: cannot wait for {w.describe() if w else '?'}: {state}")
+                    return
+                elif p.gate.timeout_s is not None and self.now() - p.since >= p.gate.timeout_s:
+                    self._readiness_failed(f"{what}: still waiting for {w.describe() if w else '?'} "
+                                           f"after {p.gate.timeout_s:g} s")
+                    return
+
+    def _readiness_failed(self, why: str) -> None:
+        self.failures.append(why)
+        self.output.launcher("ERROR", why)
+        self.shutdown("a readiness condition cannot be met")
+
+    # ---- shutdown ----------------------------------------------------------------------------------------------
+
+    def shutdown(self, reason: str) -> None:
+        if self.shutting_down:
+            return
+        self.shutting_down = True  # from here on only log actions run, nothing new starts
+        self._fire("shutdown", "", None)
+        self._shutdown_at = self.now()
+        self.output.live(None)
+        self.output.launcher("WARN" if self.failures else "INFO", f"shutting down: {reason}")
+        for _, _, timer in self._timers:
+            timer.cancelled = True
+        for p in self.pending:
+            if isinstance(p.step, StartProcess):
+                self.states[p.step.spec.name].state = "not started"
+        self.pending.clear()
+        alive = [self.states[n] for n in reversed(self.start_order) if self.states[n].alive]
+        if alive:
+            self.output.launcher("INFO", "sending SIGINT to " + ", ".join(st.spec.name for st in alive))
+            for st in alive:
+                self._stop(st, signal.SIGINT, quiet=True)
+
+    def _stop(self, st: ProcessState, sig: int, *, quiet: bool = False) -> None:
+        """SIGINT the group now; SIGTERM and SIGKILL later if it is still there."""
+        target = st.child or st.lingering
+        if target is None:
+            return
+        if not quiet:
+            self.output.launcher("INFO", f"sending {signal.Signals(sig).name} to [{st.spec.name}]")
+        self.spawner.signal_group(target, sig)
+        st.state = "stopping" if st.child else st.state
+        term, kill = st.spec.sigterm_timeout_s, st.spec.sigkill_timeout_s
+        st.stop_timers = [
+            self._after(term, lambda: self._escalate(st, signal.SIGTERM, f"{term:g} s after SIGINT"), "stop"),
+            self._after(term + kill, lambda: self._escalate(st, signal.SIGKILL, f"{kill:g} s after SIGTERM"), "stop"),
+        ]
+
+    def _escalate(self, st: ProcessState, sig: int, why: str) -> None:
+        target = st.child or st.lingering
+        if target is None:
+            return
+        self.output.launcher("WARN", f"[{st.spec.name}] still running {why}: sending {signal.Signals(sig).name}")
+        self.spawner.signal_group(target, sig)
+
+    def _kill_all(self, why: str) -> None:
+        alive = [st for st in self.states.values() if st.alive]
+        if not alive:
+            return
+        self.output.launcher("WARN", f"{why}: sending SIGKILL to " + ", ".join(st.spec.name for st in alive))
+        for st in alive:
+            for timer in st.stop_timers:
+                timer.cancelled = True
+            self.spawner.signal_group(st.child or st.lingering, signal.SIGKILL)  # type: ignore[arg-type]
+
+    def _after_event(self) -> None:
+        if self.done:
+            return
+        self._check_gates()
+        if not self.shutting_down and self._idle():
+            self.natural_end = True
+            self.shutdown("all processes have exited")
+        if self.shutting_down and not any(st.alive for st in self.states.values()):
+            self._finish()
+            return
+        self._update_live()
+
+    def _idle(self) -> bool:
+        if any(st.alive for st in self.states.values()) or self.pending:
+            return False
+        return not any(not t.cancelled and t.kind in ("timer", "respawn") for _, _, t in self._timers)
+
+    def _finish(self) -> None:
+        self.done = True
+        took = self.now() - (self._shutdown_at or self.now())
+        if self.natural_end and self.failed_processes and not self.failures:
+            self.failures.append("failed: " + ", ".join(self.failed_processes))
+        self.exit_code = 1 if self.failures else 0
+        if self.failures:
+            self.output.launcher("ERROR", "launch failed: " + "; ".join(self.failures))
+        else:
+            self.output.launcher("INFO", f"all processes stopped ({took * 1000:.0f} ms after shutdown began)")
+
+    # ---- live line and status ----------------------------------------------------------------------------------
+
+    def _awaited(self) -> list[str]:
+        waiting = []
+        for p in self.pending:
+            _, w = self._gate_state(p.gate)
+            what = p.step.spec.name if isinstance(p.step, StartProcess) else "step"
+            waiting.append(f"{what} ({w.describe() if w else '…'})")
+        for handler in self.handlers:
+            starts = any(isinstance(s, StartProcess) for s in handler.steps)
+            if (starts and handler.event in ("exit", "start") and id(handler) not in self.fired
+                    and handler.exit_code in (None, 0) and handler.targets):
+                names = [t.name for t in handler.targets if t.name]
+                if any(self.states[n].alive or self.states[n].state == "not started"
+                       for n in names if n in self.states):
+                    started = [s.spec.name for s in handler.steps if isinstance(s, StartProcess)]
+                    waiting.append(f"{', '.join(started)} (on {handler.event} of {', '.join(names)})")
+        return waiting
+
+    def _update_live(self) -> None:
+        if self.shutting_down:
+            return
+        waiting = self._awaited()
+        if waiting:
+            up = [n for n in self.start_order if self.states[n].child is not None]
+            self.output.live(f"up: {', '.join(up) or '-'} │ waiting: {'; '.join(waiting)}")
+        else:
+            self.output.live(None)
+            if self.started_all_at is None and self.start_order:
+                self.started_all_at = self.now()
+                running = sum(1 for st in self.states.values() if st.starts)
+                self.output.launcher("INFO", f"all {running} processes started in "
+                                             f"{(self.started_all_at - self._t0) * 1000:.0f} ms")
+
+    def rows(self) -> list[ProcessRow]:
+        now = self.now()
+        return [
+            ProcessRow(name, st.child.pid if st.child else None, st.state, st.restarts,
+                       now - st.started_at if st.child and st.started_at is not None else None, st.exit_code)
+            for name, st in self.states.items()
+        ]
+
+    def show_status(self) -> None:
+        self.output.show(StatusView(self.rows()))
