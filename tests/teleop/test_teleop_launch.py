@@ -58,3 +58,19 @@ def test_cli_defaults_target_our_controller_stamped() -> None:
         "/diffbot_base_controller/cmd_vel",
         True,
     )
+
+
+def test_tutorial_line_runs_and_a_missing_pad_is_reported(router: str) -> None:
+    import subprocess
+    import sys
+
+    args = [f"{k}:={v}" for k, v in TUTORIAL.items()] + ["joy_dev:=99"]
+    r = subprocess.run(
+        [sys.executable, "-m", "diffctl", "launch", "teleop", *args],
+        capture_output=True,
+        text=True,
+        timeout=60,
+        start_new_session=True,
+    )
+    out = " ".join((r.stdout + r.stderr).split())
+    assert "[teleop_twist_joy_node]" in out and "no game pad number 99" in out, out
