@@ -42,8 +42,11 @@ def run_joy(
         cmd = teleop.update(state)
         if teleop.mode != mode and log is not None:
             log.info(
-                f"{teleop.mode}"
-                + (": sent one zero command" if cmd is not None and cmd.is_zero and teleop.mode == "idle" else "")
+                {
+                    "normal": "enable button held: driving",
+                    "turbo": "turbo button held: driving with turbo scales",
+                    "idle": "not enabled" + (": sent one zero command" if cmd is not None else ""),
+                }[teleop.mode]
             )
         mode = teleop.mode
         if cmd is not None:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -61,9 +63,6 @@ def test_cli_defaults_target_our_controller_stamped() -> None:
 
 
 def test_tutorial_line_runs_and_a_missing_pad_is_reported(router: str) -> None:
-    import subprocess
-    import sys
-
     args = [f"{k}:={v}" for k, v in TUTORIAL.items()] + ["joy_dev:=99"]
     r = subprocess.run(
         [sys.executable, "-m", "diffctl", "launch", "teleop", *args],
