@@ -126,7 +126,10 @@ def open_session() -> zenoh.Session:
                         hint="start one with `diffctl router`, or run `diffctl launch …`, which embeds one",
                     ) from None
                 raise ConfigError(f"cannot open a Zenoh session: {e}") from None
-            atexit.register(close_session)
+            # Zenoh's callback threads are non-daemon Python threads: the session must close before the
+            # interpreter joins them at exit, which plain atexit handlers run too late for.
+            register = getattr(threading, "_register_atexit", atexit.register)
+            register(close_session)
         return _session
 
 

@@ -69,4 +69,13 @@ def main(argv: list[str] | None = None) -> None:
         sys.exit(130)
     except BrokenPipeError:
         sys.exit(0)
+    finally:
+        _close_bus()
     sys.exit(0)
+
+
+def _close_bus() -> None:
+    # Only when a command used the bus: importing zenoh just to close nothing would slow every command.
+    session = sys.modules.get("diffctl.bus.session")
+    if session is not None:
+        session.close_session()

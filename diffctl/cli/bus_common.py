@@ -1,0 +1,97 @@
+"""Helpers shared by the bus tools (topic, node, service): YAML values, name lookup, the graph snapshot."""
+
+from __future__ import annotations
+
+import time
+from typing import Any
+
+import yaml
+
+from diffctl.bus import types, wire
+from diffctl.bus.graph import Graph
+from diffctl.bus.session import open_session
+from diffctl.console import info
+from diffctl.errors import ConfigError, MessageError
+
+
+def parse_values(text: str | None, what: str = "VALUES") -> dict[str, Any]:
+    """ROS-style YAML values (`'{twist: {linear: {x: 0.5}}}'`) → dict, with line/column on errors."""
+    if text is None or not text.strip():
+        return {}
+    try:
+        data = yaml.safe_load(text)
+    except yaml.YAMLError as e:
+        mark = getattr(e, "problem_mark", None)
+        where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""
+        raise MessageError(f"{what} is not valid YAML{where}: {getattr(e, 'problem', e)}",
+                           hint="e.g. '{twist: {linear: {x: 0.5}, angular: {z: 0.2}}}'") from None
+    if data is None:
+        return {}
+    if not isinstance(data, dict):
+        raise MessageError(f"{what} must be a YAML mapping of fields, got {type(data).__name__} {data!r}",
+                           hint="e.g. '{data: hello}'")
+    return data
+
+
+def graph() -> Graph:
+    g = Graph(open_session())
+    return g
+
+
+def resolve_name(g: Graph, name: str, names: list[str], what: str = "topic") -> str:
+    """An exact name, or the one known name whose last segment matches (`cmd_vel` → `/x/cmd_vel`)."""
+    full = "/" + name.lstrip("/")
+    if full in names:
+        return full
+    if "/" not in name.strip("/"):
+        matches = sorted(n for n in names if n.rsplit("/", 1)[-1] == name.strip("/"))
+        if len(matches) == 1:
+            info(f"using {what} {matches[0]} for {name!r}")
+            return matches[0]
+        if len(matches) > 1:
+            raise ConfigError(f"{what} {name!r} matches several: {', '.join(matches)}",
+                              hint=f"give the full {what} name")
+    return full
+
+
+def topic_types(g: Graph, topic: str) -> list[str]:
+    return g.topics().get(topic, [])
+
+
+def publisher_type(g: Graph, topic: str) -> str | None:
+    pubs = g.publishers(topic)
+    if pubs:
+        return pubs[0].type
+    ts = topic_types(g, topic)
+    return ts[0] if len(ts) == 1 else None
+
+
+def wait_for_type(g: Graph, topic: str, typename: str | None, timeout_s: float | None) -> str:
+    """The topic's type: given, or learnt from the graph (waiting for a publisher, saying so once)."""
+    if typename:
+        return types.check(typename)
+    t = publisher_type(g, topic)
+    if t:
+        return t
+    info(f"waiting for {topic} to be published…")
+    deadline = None if timeout_s is None else time.monotonic() + timeout_s
+    while True:
+        time.sleep(0.05)
+        t = publisher_type(g, topic)
+        if t:
+            return t
+        if deadline is not None and time.monotonic() > deadline:
+            raise ConfigError(f"no publisher on {topic} after {timeout_s:g} s and no TYPE given",
+                              hint="pass the type, e.g. geometry_msgs/msg/TwistStamped")
+
+
+def is_latched(g: Graph, topic: str) -> bool:
+    return any(e.transient_local for e in g.publishers(topic))
+
+
+def sim_time_running(g: Graph) -> bool:
+    return bool(g.publishers("/clock"))
+
+
+def fmt_endpoint(e: wire.Entity) -> str:
+    return f"{e.node_fqn} [{e.type}]"
