@@ -154,7 +154,7 @@ launch:
     param: [{name: use_sim_time, value: true}, {name: robot_description, value: "<sdf version='1.9'/>"}]
     remap: [{from: joint_states, to: /js}]
 """)
-    (_, name, argv), = run.spawner.spawned
+    ((_, _, argv),) = run.spawner.spawned
     tail = argv[argv.index("--ros-args"):]
     assert tail[:5] == ["--ros-args", "-r", "__node:=rsp", "-r", "__ns:=/robot1"]
     assert tail[-2:] == ["-r", "joint_states:=/js"]
