@@ -299,13 +299,30 @@ def time_ns(t: Any) -> int:
     return int(t.sec) * 1_000_000_000 + int(t.nanosec)
 
 
+def _field_type_text(desc: tuple) -> str:
+    kind, spec = desc
+    if kind == Nodetype.BASE:
+        return spec[0] + (f"<={spec[1]}" if spec[1] else "")
+    if kind == Nodetype.NAME:
+        return spec
+    sub, count = spec
+    inner = _field_type_text(sub)
+    if kind == Nodetype.ARRAY:
+        return f"{inner}[{count}]"
+    return f"{inner}[<={count}]" if count else f"{inner}[]"
+
+
+def _msg_text(typename: str) -> str:
+    consts, flds = store().fielddefs[typename]
+    lines = [f"{t} {n}={v}" for n, t, v in consts]
+    lines += [f"{_field_type_text(d)} {n}" for n, d in flds]
+    return "\n".join(lines)
+
+
 def definition(typename: str) -> str:
-    """The .msg-like text of a type (for `diffctl interface show`)."""
+    """The .msg/.srv-like text of a type (for `diffctl interface show`)."""
     t = normalize(typename)
-    ts = store()
-    if t in ts.types:
-        return ts.generate_msgdef(t)[0].split("\n====")[0]
+    if "/srv/" not in t and t in store().types:
+        return _msg_text(t) + "\n"
     s = check_service(t)
-    req = ts.generate_msgdef(s + "_Request")[0].split("\n====")[0]
-    resp = ts.generate_msgdef(s + "_Response")[0].split("\n====")[0]
-    return f"{req.rstrip()}\n---\n{resp.rstrip()}\n"
+    return f"{_msg_text(s + '_Request')}\n---\n{_msg_text(s + '_Response')}\n"
