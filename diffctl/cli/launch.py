@@ -47,16 +47,29 @@ def _ensure_router(output: Any) -> Any:
 @click.command("launch")
 @click.argument("target", nargs=-1, required=True, metavar="NAME|PATH [PACKAGE FILE] [ARG:=VALUE ...]")
 @click.option("-s", "--show-args", is_flag=True, help="List the launch file's arguments and exit.")
-@click.option("-p", "--print", "print_plan", is_flag=True,
-              help="Resolve everything and print the process tree without starting anything.")
-@click.option("--log-dir", type=click.Path(file_okay=False, path_type=Path),
-              help="Directory for this run's logs (default: ~/.ros/log/<time>-<host>-<pid>).")
+@click.option(
+    "-p",
+    "--print",
+    "print_plan",
+    is_flag=True,
+    help="Resolve everything and print the process tree without starting anything.",
+)
+@click.option(
+    "--log-dir",
+    type=click.Path(file_okay=False, path_type=Path),
+    help="Directory for this run's logs (default: ~/.ros/log/<time>-<host>-<pid>).",
+)
 @click.option("--no-color", is_flag=True, help="No colours in the output.")
 @click.option("--no-router", is_flag=True, help="Do not start the embedded Zenoh router.")
 @click.pass_context
 def launch(
-    ctx: click.Context, target: tuple[str, ...], show_args: bool, print_plan: bool, log_dir: Path | None,
-    no_color: bool, no_router: bool,
+    ctx: click.Context,
+    target: tuple[str, ...],
+    show_args: bool,
+    print_plan: bool,
+    log_dir: Path | None,
+    no_color: bool,
+    no_router: bool,
 ) -> None:
     """Start a launch file and supervise its processes (ros2 launch).
 
@@ -117,8 +130,9 @@ def _run(plan: Any, *, log_dir: Path | None, no_color: bool, no_router: bool) ->
         router = None if no_router else _ensure_router(output)
         loop = EventLoop()
         if probes is not None:
-            poller = ProbePoller({"topic": probes.topic_has_publisher, "service": probes.service_available},
-                                 notify=loop.wake)
+            poller = ProbePoller(
+                {"topic": probes.topic_has_publisher, "service": probes.service_available}, notify=loop.wake
+            )
         supervisor = Supervisor(plan, spawner=loop.spawner, output=output, log_dir=run_dir, poller=poller)
         code = loop.run(supervisor)
         output.launcher("INFO", f"logs: {run_dir}")

@@ -323,8 +323,11 @@ class TimerAction(Action):
 
     @classmethod
     def from_yaml(cls, e: Entity) -> Action:
-        return cls(period=e.text("period", required=True), actions=e.children(),
-                   cancel_on_shutdown=e.boolean("cancel_on_shutdown", True))
+        return cls(
+            period=e.text("period", required=True),
+            actions=e.children(),
+            cancel_on_shutdown=e.boolean("cancel_on_shutdown", True),
+        )
 
 
 @register
@@ -444,8 +447,9 @@ class IncludeLaunchDescription(Action):
 
     @classmethod
     def from_yaml(cls, e: Entity) -> Action:
-        args = [(a.text("name", required=True), a.text("value", required=True))
-                for a in e.items("arg", ("name", "value"))]
+        args = [
+            (a.text("name", required=True), a.text("value", required=True)) for a in e.items("arg", ("name", "value"))
+        ]
         return cls(e.text("file", required=True), launch_arguments=args)
 
 

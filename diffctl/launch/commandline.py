@@ -35,8 +35,9 @@ def params_files(spec: ProcessSpec, params_dir: Path, *, write: bool) -> list[st
         path = params_dir / (f"{file_stem(spec.name)}.yaml" if inline == 1 else f"{file_stem(spec.name)}_{inline}.yaml")
         if write:
             params_dir.mkdir(parents=True, exist_ok=True)
-            path.write_text(yaml.safe_dump({"/**": {"ros__parameters": dict(entry)}}, sort_keys=False,
-                                           allow_unicode=True))
+            path.write_text(
+                yaml.safe_dump({"/**": {"ros__parameters": dict(entry)}}, sort_keys=False, allow_unicode=True)
+            )
         files.append(str(path))
     return files
 

@@ -37,8 +37,12 @@ class Scope:
 
     @classmethod
     def initial(cls, arguments: dict[str, str], launch_file: str | None, env: dict[str, str] | None = None) -> Scope:
-        return cls(configurations=dict(arguments), env=dict(os.environ if env is None else env),
-                   launch_file=launch_file, includes=(launch_file,) if launch_file else ())
+        return cls(
+            configurations=dict(arguments),
+            env=dict(os.environ if env is None else env),
+            launch_file=launch_file,
+            includes=(launch_file,) if launch_file else (),
+        )
 
     def child(self, *, forwarding: bool = True) -> Scope:
         """A scope whose changes stay inside (scoped group, include)."""

@@ -46,8 +46,11 @@ class EventHandler:
     event = ""
 
     def __init__(self, target_action: Any = None, actions: Any = None, exit_code: int | None = None) -> None:
-        self.targets = [] if target_action is None else (
-            list(target_action) if isinstance(target_action, (list, tuple)) else [target_action])
+        self.targets = (
+            []
+            if target_action is None
+            else (list(target_action) if isinstance(target_action, (list, tuple)) else [target_action])
+        )
         self.actions = _actions(actions, type(self).__name__)
         if exit_code is not None and (isinstance(exit_code, bool) or not isinstance(exit_code, int)):
             raise LaunchError(f"exit_code {exit_code!r} must be an integer")
@@ -88,8 +91,10 @@ class RegisterEventHandler(Action):
     def __init__(self, event_handler: EventHandler, **kw: Any) -> None:
         super().__init__(**kw)
         if not isinstance(event_handler, EventHandler):
-            raise LaunchError(f"RegisterEventHandler needs an event handler, got {event_handler!r}",
-                              hint="valid: OnProcessExit, OnProcessStart, OnShutdown")
+            raise LaunchError(
+                f"RegisterEventHandler needs an event handler, got {event_handler!r}",
+                hint="valid: OnProcessExit, OnProcessStart, OnShutdown",
+            )
         self.event_handler = event_handler
 
     def label(self) -> str:

@@ -19,6 +19,7 @@ def load(path: str | Path) -> LaunchDescription:
 
         return yaml_frontend.load(path)
     if name.endswith(".xml"):
-        raise LaunchError("XML launch files are not supported", source=str(path),
-                          hint="write it in YAML (same tags) or Python")
+        raise LaunchError(
+            "XML launch files are not supported", source=str(path), hint="write it in YAML (same tags) or Python"
+        )
     raise LaunchError("unknown launch file type", source=str(path), hint="valid: NAME.yaml, NAME.launch.py")

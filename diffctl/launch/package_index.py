@@ -111,8 +111,10 @@ def executable_argv(package: str, executable: str) -> list[str]:
         )
     available = executables(package)
     if not available:
-        raise LaunchError(f"package {package!r} has no executables",
-                          hint="packages with executables: " + ", ".join(sorted(component_packages())))
+        raise LaunchError(
+            f"package {package!r} has no executables",
+            hint="packages with executables: " + ", ".join(sorted(component_packages())),
+        )
     raise LaunchError(
         f"package {package!r} has no executable {executable!r}{suggest(executable, available)}",
         hint="its executables: " + ", ".join(available),

@@ -34,8 +34,20 @@ if TYPE_CHECKING:
 _NODE_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 PROCESS_ATTRS = (
-    "name", "cwd", "env", "output", "respawn", "respawn_delay", "respawn_max_retries", "on_exit", "required",
-    "sigterm_timeout", "sigkill_timeout", "launch_prefix", "interactive", "emulate_tty",
+    "name",
+    "cwd",
+    "env",
+    "output",
+    "respawn",
+    "respawn_delay",
+    "respawn_max_retries",
+    "on_exit",
+    "required",
+    "sigterm_timeout",
+    "sigkill_timeout",
+    "launch_prefix",
+    "interactive",
+    "emulate_tty",
 )
 
 
@@ -147,7 +159,9 @@ def _param_value(value: Any, scope: Scope) -> Any:
         except (TypeError, ValueError):
             raise LaunchError(f"parameter value {text!r} is not a {value.value_type.__name__}") from None
     if isinstance(value, Substitution) or (
-        isinstance(value, (list, tuple)) and value and all(isinstance(v, (str, Substitution)) for v in value)
+        isinstance(value, (list, tuple))
+        and value
+        and all(isinstance(v, (str, Substitution)) for v in value)
         and any(isinstance(v, Substitution) for v in value)
     ):
         return guess_type(perform(value, scope))
@@ -163,8 +177,9 @@ def _parameters(entries: Iterable[Any], scope: Scope) -> tuple[str | dict[str, A
     out: list[str | dict[str, Any]] = []
     for entry in entries:
         if isinstance(entry, Mapping):
-            values = {perform(k, scope) if not isinstance(k, str) else k: _param_value(v, scope)
-                      for k, v in entry.items()}
+            values = {
+                perform(k, scope) if not isinstance(k, str) else k: _param_value(v, scope) for k, v in entry.items()
+            }
             if out and isinstance(out[-1], dict):
                 out[-1].update(values)
             else:
@@ -213,9 +228,14 @@ class ExecuteProcess(Action):
         self.shell = shell
         self.prefix = None if prefix is None else normalize(prefix)
         self.options = {
-            "output": output, "respawn": respawn, "respawn_delay": respawn_delay,
-            "respawn_max_retries": respawn_max_retries, "sigterm_timeout": sigterm_timeout,
-            "sigkill_timeout": sigkill_timeout, "required": required, "interactive": interactive,
+            "output": output,
+            "respawn": respawn,
+            "respawn_delay": respawn_delay,
+            "respawn_max_retries": respawn_max_retries,
+            "sigterm_timeout": sigterm_timeout,
+            "sigkill_timeout": sigkill_timeout,
+            "required": required,
+            "interactive": interactive,
         }
         if on_exit == "shutdown" or (isinstance(on_exit, Shutdown) and on_exit.reason is None):
             # The `required` idiom: keep it a flag so YAML `on_exit: shutdown` and Python print the same.
@@ -297,8 +317,9 @@ class ExecuteProcess(Action):
             elif isinstance(raw, list):
                 on_exit = e.children("on_exit")
             else:
-                raise e.error(f"on_exit {raw!r} is not valid", key="on_exit",
-                              hint="valid: shutdown, or a list of actions")
+                raise e.error(
+                    f"on_exit {raw!r} is not valid", key="on_exit", hint="valid: shutdown, or a list of actions"
+                )
         env = {}
         for item in e.items("env", ("name", "value")):
             env[item.plain("name", required=True)] = item.text("value", required=True)
@@ -341,8 +362,7 @@ class Node(ExecuteProcess):
     """A ROS node from the package index: `Node(package="controller_manager", executable="spawner", …)`."""
 
     yaml_tags = ("node",)
-    yaml_attrs = ("pkg", "exec", "namespace", "ns", "args", "ros_args", "param", "remap", "exec_name",
-                  *PROCESS_ATTRS)
+    yaml_attrs = ("pkg", "exec", "namespace", "ns", "args", "ros_args", "param", "remap", "exec_name", *PROCESS_ATTRS)
 
     def __init__(
         self,
@@ -396,8 +416,10 @@ class Node(ExecuteProcess):
             namespace = join_namespace(scope.namespace, perform(self.namespace, scope))
         node_name = perform(self.node_name, scope) if self.node_name is not None else None
         if node_name is not None and not _NODE_NAME.fullmatch(node_name):
-            raise LaunchError(f"node name {node_name!r} is not valid",
-                              hint="letters, digits and underscores, not starting with a digit")
+            raise LaunchError(
+                f"node name {node_name!r} is not valid",
+                hint="letters, digits and underscores, not starting with a digit",
+            )
         return RosNode(
             node_name=node_name,
             namespace=namespace,
@@ -419,8 +441,9 @@ class Node(ExecuteProcess):
             arguments=[SplitArgs(e.text("args"))] if e.has("args") else None,
             ros_arguments=[SplitArgs(e.text("ros_args"))] if e.has("ros_args") else None,
             parameters=_yaml_params(e),
-            remappings=[(r.text("from", required=True), r.text("to", required=True))
-                        for r in e.items("remap", ("from", "to"))],
+            remappings=[
+                (r.text("from", required=True), r.text("to", required=True)) for r in e.items("remap", ("from", "to"))
+            ],
             **kw,
         )
 

@@ -21,9 +21,18 @@ from pathlib import Path
 from diffctl.errors import DiffctlError, LaunchError, suggest
 
 ROS_MODULES = (
-    "launch", "launch.actions", "launch.substitutions", "launch.conditions", "launch.event_handlers",
-    "launch.events", "launch.launch_description_sources", "launch_ros", "launch_ros.actions",
-    "launch_ros.substitutions", "launch_ros.parameter_descriptions", "ament_index_python",
+    "launch",
+    "launch.actions",
+    "launch.substitutions",
+    "launch.conditions",
+    "launch.event_handlers",
+    "launch.events",
+    "launch.launch_description_sources",
+    "launch_ros",
+    "launch_ros.actions",
+    "launch_ros.substitutions",
+    "launch_ros.parameter_descriptions",
+    "ament_index_python",
     "ament_index_python.packages",
 )
 
@@ -69,17 +78,20 @@ def _line_in(path: str, tb: types.TracebackType | None) -> int | None:
 
 
 def _unexpected_keyword(error: TypeError) -> str:
-    m = re.search(r"(\w+)\.__init__\(\) got an unexpected keyword argument '(\w+)'", str(error))
-    if not m:
+    """`Node(packge=…)` → "Node() has no argument 'packge' (did you mean 'package'?)"."""
+    m = re.search(r"__init__\(\) got an unexpected keyword argument '(\w+)'", str(error))
+    cls = None
+    for frame, _ in traceback.walk_tb(error.__traceback__):
+        if frame.f_code.co_name == "__init__" and "self" in frame.f_locals:
+            cls = type(frame.f_locals["self"])
+            break
+    if not m or cls is None:
         return str(error)
-    import diffctl.launch as api
-
-    cls = getattr(api, m.group(1), None)
     known: list[str] = []
-    for klass in inspect.getmro(cls) if isinstance(cls, type) else ():
-        if "__init__" in klass.__dict__:
+    for klass in inspect.getmro(cls):
+        if "__init__" in klass.__dict__ and klass is not object:
             known += [p for p in inspect.signature(klass.__init__).parameters if p not in ("self", "kw", "kwargs")]
-    return f"{m.group(1)}() has no argument {m.group(2)!r}{suggest(m.group(2), known)}"
+    return f"{cls.__name__}() has no argument {m.group(1)!r}{suggest(m.group(1), known)}"
 
 
 def load(path: str | Path) -> object:
@@ -109,8 +121,9 @@ def load(path: str | Path) -> object:
             line = _line_in(source, e.__traceback__)
             raise LaunchError(_unexpected_keyword(e), source=str(path), line=line) from None
         except Exception as e:
-            raise LaunchError(f"launch file raised {type(e).__name__}: {e}", source=str(path),
-                              line=_line_in(source, e.__traceback__)) from None
+            raise LaunchError(
+                f"launch file raised {type(e).__name__}: {e}", source=str(path), line=_line_in(source, e.__traceback__)
+            ) from None
     if not isinstance(description, LaunchDescription):
         raise LaunchError(
             f"generate_launch_description() returned {type(description).__name__}, not a LaunchDescription",

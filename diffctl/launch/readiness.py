@@ -83,8 +83,10 @@ def parse_wait_for(value: Any, parse_text: Callable[[str], Any] = lambda s: s) -
         ((kind, arg),) = item.items()
         kind = str(kind)
         if kind not in WAIT_KINDS:
-            raise LaunchError(f"unknown wait_for condition {kind!r}{suggest(kind, WAIT_KINDS)}",
-                              hint="valid: " + ", ".join(WAIT_KINDS))
+            raise LaunchError(
+                f"unknown wait_for condition {kind!r}{suggest(kind, WAIT_KINDS)}",
+                hint="valid: " + ", ".join(WAIT_KINDS),
+            )
         if kind == "log":
             if not isinstance(arg, Mapping) or set(arg) != {"process", "regex"}:
                 raise LaunchError("wait_for `log` needs {process: NAME, regex: PATTERN}")

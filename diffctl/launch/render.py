@@ -107,8 +107,10 @@ def _process(node: _Node, spec: ProcessSpec, gate: Gate | None) -> None:
         opts.append("required (its exit shuts the launch down)")
     if spec.interactive:
         opts.append("interactive (gets the terminal's stdin)")
-    opts.append(f"stop: SIGINT, SIGTERM after {_seconds(spec.sigterm_timeout_s)}, "
-                f"SIGKILL after {_seconds(spec.sigkill_timeout_s)} more")
+    opts.append(
+        f"stop: SIGINT, SIGTERM after {_seconds(spec.sigterm_timeout_s)}, "
+        f"SIGKILL after {_seconds(spec.sigkill_timeout_s)} more"
+    )
     p.add("; ".join(opts), "dim")
 
 
@@ -147,8 +149,11 @@ class PlanView:
         if self.plan.arguments:
             out.append(Text("arguments:", style="bold"))
             for a in self.plan.arguments:
-                out.append(Text(f"    {a.name} = {a.value!r}" + (f"  (default {a.default!r})" if a.default is not None
-                                                                  else "")))
+                out.append(
+                    Text(
+                        f"    {a.name} = {a.value!r}" + (f"  (default {a.default!r})" if a.default is not None else "")
+                    )
+                )
         out.append(Text(f"actions ({len(self.plan.processes)} processes):", style="bold"))
         root = _Node(Text(""))
         _steps(root, self.plan.steps)
@@ -168,9 +173,14 @@ class ArgumentsView:
 
     def __rich__(self) -> Any:
         rows = [
-            (a.name, "(required)" if a.default is None else repr(a.default), a.description or "",
-             ", ".join(a.choices) if a.choices else "")
+            (
+                a.name,
+                "(required)" if a.default is None else repr(a.default),
+                a.description or "",
+                ", ".join(a.choices) if a.choices else "",
+            )
             for a in self.arguments
         ]
-        return table("Arguments (pass arguments as '<name>:=<value>')",
-                     ["argument", "default", "description", "choices"], rows)
+        return table(
+            "Arguments (pass arguments as '<name>:=<value>')", ["argument", "default", "description", "choices"], rows
+        )

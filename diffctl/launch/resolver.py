@@ -44,7 +44,8 @@ class Resolver:
         self.origin_names: dict[int, str] = {}
         self.arguments: list[Argument] = []
         self.warnings: list[str] = []
-        self._refs: list[tuple[TargetRef, bool]] = []  # (ref, must exist)
+        self._refs: list[tuple[TargetRef, bool, Where, str]] = []  # (ref, must exist, where, entity)
+        self._current: tuple[Where, str] = (Where(), "")
         self._declared: list[list[str]] = []
         self._skipped = False
 
@@ -83,8 +84,12 @@ class Resolver:
             if action.condition is not None and not action.condition.evaluate(scope):
                 self._skipped = True
                 return [Skipped(what=action.label(), condition=action.condition.describe(), where=str(action.where))]
-            gate = self._gate(action, scope)
-            steps = action.visit(self, scope)
+            outer, self._current = self._current, (action.where, action.label())
+            try:
+                gate = self._gate(action, scope)
+                steps = action.visit(self, scope)
+            finally:
+                self._current = outer
         except LaunchError as e:
             raise action.where.attach(e, action.label()) from None
         steps = [s if s.where else replace(s, where=str(action.where)) for s in steps]
@@ -130,7 +135,7 @@ class Resolver:
         else:
             name = perform(target, scope)
             ref = TargetRef(name=name, label=name)
-        self._refs.append((ref, must_exist))
+        self._refs.append((ref, must_exist, *self._current))
         return ref
 
     def declare(self, argument: Argument) -> None:
@@ -148,18 +153,24 @@ class Resolver:
 
     def _link(self) -> None:
         names = sorted(self.processes)
-        for ref, must_exist in self._refs:
+        for ref, must_exist, where, entity in self._refs:
             if ref.origin is not None:
                 ref.name = self.origin_names.get(ref.origin)
                 if ref.name is None and must_exist:
-                    raise LaunchError(f"wait_for names {ref.label}, which this launch never starts",
-                                      hint="is it skipped by its condition?")
+                    raise where.attach(
+                        LaunchError(
+                            f"wait_for names {ref.label}, which this launch never starts",
+                            hint="is it skipped by its condition?",
+                        ),
+                        entity,
+                    )
                 continue
             if ref.name not in self.processes:
                 message = f"unknown process {ref.name!r}{suggest(ref.name or '', names)}"
                 if must_exist or not self._skipped:
-                    raise LaunchError(message, hint="processes: " + (", ".join(names) or "none"))
-                self.warnings.append(message + " (its handler will never run)")
+                    error = LaunchError(message, hint="processes: " + (", ".join(names) or "none"))
+                    raise where.attach(error, entity)
+                self.warnings.append(f"{where}: {message} (its handler will never run)")
 
 
 def declared_names(description: LaunchDescription) -> list[str]:

@@ -38,8 +38,14 @@ class StatusView:
             self.title,
             ["process", "pid", "state", "restarts", "uptime", "exit code"],
             [
-                (r.name, r.pid if r.pid is not None else "-", r.state, r.restarts, _uptime(r.uptime_s),
-                 r.exit_code if r.exit_code is not None else "-")
+                (
+                    r.name,
+                    r.pid if r.pid is not None else "-",
+                    r.state,
+                    r.restarts,
+                    _uptime(r.uptime_s),
+                    r.exit_code if r.exit_code is not None else "-",
+                )
                 for r in self.rows
             ],
         )

@@ -201,8 +201,10 @@ class Command(Substitution):
         if done.returncode != 0:
             raise LaunchError(f"$(command {text}) exited with code {done.returncode}: {done.stderr.strip()[:200]}")
         if done.stderr.strip() and policy == "fail":
-            raise LaunchError(f"$(command {text}) wrote to stderr: {done.stderr.strip()[:200]}",
-                              hint="pass 'warn' or 'ignore' as second argument to allow it")
+            raise LaunchError(
+                f"$(command {text}) wrote to stderr: {done.stderr.strip()[:200]}",
+                hint="pass 'warn' or 'ignore' as second argument to allow it",
+            )
         if policy == "capture":
             return done.stdout + done.stderr
         return done.stdout
@@ -226,8 +228,10 @@ class FileContent(Substitution):
             raise LaunchError(f"cannot read file {path!r}: {e.strerror or e}") from None
         for placeholder, value in self.replacements.items():
             if placeholder not in text:
-                raise LaunchError(f"placeholder {placeholder!r} does not occur in {path}",
-                                  hint="check the spelling; every listed placeholder must be replaced")
+                raise LaunchError(
+                    f"placeholder {placeholder!r} does not occur in {path}",
+                    hint="check the spelling; every listed placeholder must be replaced",
+                )
             text = text.replace(placeholder, perform(value, scope))
         return text
 
@@ -350,7 +354,7 @@ class _Parser:
         name_start = self.i
         while self.i < len(self.text) and not self.text[self.i].isspace() and self.text[self.i] != ")":
             self.i += 1
-        name = self.text[name_start:self.i]
+        name = self.text[name_start : self.i]
         args: list[tuple[Substitution, ...]] = []
         while True:
             while self.i < len(self.text) and self.text[self.i].isspace():

@@ -284,8 +284,11 @@ class Supervisor:
     def _start(self, spec: ProcessSpec) -> None:
         st = self.states[spec.name]
         if st.alive:
-            self.output.launcher("WARN", f"[{spec.name}] is already running (pid {st.child.pid if st.child else '?'}); "
-                                         "not starting a second one")
+            self.output.launcher(
+                "WARN",
+                f"[{spec.name}] is already running (pid {st.child.pid if st.child else '?'}); "
+                "not starting a second one",
+            )
             return
         try:
             argv = commandline.argv(spec, self.params_dir, write=True)
@@ -333,8 +336,11 @@ class Supervisor:
             st.restarts += 1
             st.state = "respawning"
             limit = st.spec.respawn_max_retries
-            self.output.launcher("INFO", f"[{name}] respawning in {st.spec.respawn_delay_s:g} s "
-                                         f"(restart {st.restarts}{'' if limit < 0 else f' of {limit}'})")
+            self.output.launcher(
+                "INFO",
+                f"[{name}] respawning in {st.spec.respawn_delay_s:g} s "
+                f"(restart {st.restarts}{'' if limit < 0 else f' of {limit}'})",
+            )
             self._after(st.spec.respawn_delay_s, lambda: self._start(st.spec), "respawn")
         elif code != 0:
             self.failed_processes.append(f"{name} ({describe_exit(code)})")
@@ -392,8 +398,9 @@ class Supervisor:
                     self._readiness_failed(f"{what}: cannot wait for {w.describe() if w else '?'}: {state}")
                     return
                 elif p.gate.timeout_s is not None and self.now() - p.since >= p.gate.timeout_s:
-                    self._readiness_failed(f"{what}: still waiting for {w.describe() if w else '?'} "
-                                           f"after {p.gate.timeout_s:g} s")
+                    self._readiness_failed(
+                        f"{what}: still waiting for {w.describe() if w else '?'} after {p.gate.timeout_s:g} s"
+                    )
                     return
 
     def _readiness_failed(self, why: str) -> None:
@@ -493,11 +500,17 @@ class Supervisor:
             waiting.append(f"{what} ({w.describe() if w else '…'})")
         for handler in self.handlers:
             starts = any(isinstance(s, StartProcess) for s in handler.steps)
-            if (starts and handler.event in ("exit", "start") and id(handler) not in self.fired
-                    and handler.exit_code in (None, 0) and handler.targets):
+            if (
+                starts
+                and handler.event in ("exit", "start")
+                and id(handler) not in self.fired
+                and handler.exit_code in (None, 0)
+                and handler.targets
+            ):
                 names = [t.name for t in handler.targets if t.name]
-                if any(self.states[n].alive or self.states[n].state == "not started"
-                       for n in names if n in self.states):
+                if any(
+                    self.states[n].alive or self.states[n].state == "not started" for n in names if n in self.states
+                ):
                     started = [s.spec.name for s in handler.steps if isinstance(s, StartProcess)]
                     waiting.append(f"{', '.join(started)} (on {handler.event} of {', '.join(names)})")
         return waiting
@@ -514,14 +527,21 @@ class Supervisor:
             if self.started_all_at is None and self.start_order:
                 self.started_all_at = self.now()
                 running = sum(1 for st in self.states.values() if st.starts)
-                self.output.launcher("INFO", f"all {running} processes started in "
-                                             f"{(self.started_all_at - self._t0) * 1000:.0f} ms")
+                self.output.launcher(
+                    "INFO", f"all {running} processes started in {(self.started_all_at - self._t0) * 1000:.0f} ms"
+                )
 
     def rows(self) -> list[ProcessRow]:
         now = self.now()
         return [
-            ProcessRow(name, st.child.pid if st.child else None, st.state, st.restarts,
-                       now - st.started_at if st.child and st.started_at is not None else None, st.exit_code)
+            ProcessRow(
+                name,
+                st.child.pid if st.child else None,
+                st.state,
+                st.restarts,
+                now - st.started_at if st.child and st.started_at is not None else None,
+                st.exit_code,
+            )
             for name, st in self.states.items()
         ]
 

@@ -102,7 +102,9 @@ class Entity:
             if name not in allowed:
                 raise LaunchError(
                     f"unknown attribute {str(key)!r} of `{tag}`{suggest(name, allowed)}",
-                    source=source, line=km.line + 1 if km else None, column=km.column + 1 if km else None,
+                    source=source,
+                    line=km.line + 1 if km else None,
+                    column=km.column + 1 if km else None,
                     hint="valid: " + ", ".join(allowed),
                 )
             if name in self.attrs:
@@ -200,8 +202,10 @@ class Entity:
         if not isinstance(raw, list):
             raise self.error(f"`{key}` must be a list of mappings", key=key)
         marks = getattr(raw, "item_marks", [None] * len(raw))
-        return [Entity(key, item, self.source, mark or self.value_marks.get(key), allowed)
-                for item, mark in zip(raw, marks, strict=True)]
+        return [
+            Entity(key, item, self.source, mark or self.value_marks.get(key), allowed)
+            for item, mark in zip(raw, marks, strict=True)
+        ]
 
     def children(self, key: str = "children") -> list[Action]:
         if self.list_children is not None and key == "children":
@@ -223,9 +227,13 @@ def _entity(item: Any, source: str, mark: yaml.Mark | None) -> Action:
     where = _where(source, mark)
     if not isinstance(item, Mapping) or len(item) != 1:
         keys = ", ".join(map(str, item)) if isinstance(item, Mapping) else repr(item)
-        raise LaunchError(f"each entity is a mapping with one tag, found {keys}",
-                          source=where.source, line=where.line, column=where.column,
-                          hint="valid tags: " + ", ".join(sorted(registry.actions())))
+        raise LaunchError(
+            f"each entity is a mapping with one tag, found {keys}",
+            source=where.source,
+            line=where.line,
+            column=where.column,
+            hint="valid tags: " + ", ".join(sorted(registry.actions())),
+        )
     ((raw_tag, value),) = item.items()
     tag = _norm(raw_tag)
     tag_mark = getattr(item, "key_marks", {}).get(raw_tag, mark)
@@ -277,8 +285,9 @@ def load(path: str | Path) -> LaunchDescription:
         e.source = source
         raise
     if not isinstance(data, Mapping) or set(data) != {"launch"}:
-        raise LaunchError("a YAML launch file is one mapping `launch:` holding a list of entities",
-                          source=source, line=1, column=1)
+        raise LaunchError(
+            "a YAML launch file is one mapping `launch:` holding a list of entities", source=source, line=1, column=1
+        )
     entities = data["launch"] or []
     if not isinstance(entities, list):
         raise LaunchError("`launch:` must hold a list of entities", source=source)

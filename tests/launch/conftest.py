@@ -55,7 +55,10 @@ class LaunchRun:
         self._out = open(self.out_path, "w")  # noqa: SIM115
         self.proc = subprocess.Popen(
             [sys.executable, "-m", "diffctl", "launch", *args, "--no-color", "--log-dir", str(self.log_dir)],
-            stdout=self._out, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, env=full_env,
+            stdout=self._out,
+            stderr=subprocess.STDOUT,
+            stdin=subprocess.DEVNULL,
+            env=full_env,
             start_new_session=True,
         )
 
@@ -197,8 +200,14 @@ class FakeRun:
         self.spawner.clock = self.clock
         self.out = io.StringIO()
         self.output = Output(stream=self.out, live=False, log_dir=tmp / "logs", no_color=True)
-        self.sup = Supervisor(plan, spawner=self.spawner, output=self.output, clock=self.clock, log_dir=tmp / "logs",
-                              env={"PATH": os.environ.get("PATH", "")})
+        self.sup = Supervisor(
+            plan,
+            spawner=self.spawner,
+            output=self.output,
+            clock=self.clock,
+            log_dir=tmp / "logs",
+            env={"PATH": os.environ.get("PATH", "")},
+        )
         self.spawner.supervisor = self.sup
 
     def advance(self, dt: float, step: float = 0.05) -> None:

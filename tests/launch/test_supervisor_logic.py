@@ -72,8 +72,10 @@ launch:
     run.advance(0.1)
     assert run.spawner.signals == [(0.0, "worker", "SIGINT")]
     assert run.sup.done and run.sup.exit_code == 1
-    assert ("required process 'sim' died with exit code 139 (last output: 'segmentation fault in physics step')"
-            in run.text())
+    assert (
+        "required process 'sim' died with exit code 139 (last output: 'segmentation fault in physics step')"
+        in run.text()
+    )
 
 
 def test_exit_handlers_chain_and_filter_on_exit_code(fake_run) -> None:
@@ -130,11 +132,14 @@ launch:
 
 
 def test_a_process_that_cannot_start_counts_as_exit_127(fake_run) -> None:
-    run = fake_run("""
+    run = fake_run(
+        """
 launch:
 - executable: {cmd: "sleep 100", name: keeper}
 - executable: {cmd: "true", name: gone, on_exit: shutdown}
-""", start=False)
+""",
+        start=False,
+    )
     run.spawner.cannot_start.add("gone")
     run.sup.start()
     run.advance(0.1)
@@ -155,7 +160,7 @@ launch:
     remap: [{from: joint_states, to: /js}]
 """)
     ((_, _, argv),) = run.spawner.spawned
-    tail = argv[argv.index("--ros-args"):]
+    tail = argv[argv.index("--ros-args") :]
     assert tail[:5] == ["--ros-args", "-r", "__node:=rsp", "-r", "__ns:=/robot1"]
     assert tail[-2:] == ["-r", "joint_states:=/js"]
     params_file = tail[tail.index("--params-file") + 1]
