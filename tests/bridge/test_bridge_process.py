@@ -116,7 +116,8 @@ def test_bidirectional_entry_never_echoes(router: str, procs) -> None:
         )
         ros_pub.publish({"data": "from-ros"})
         gz_pub.put(gz.encode("gz.msgs.StringMsg", {"data": "from-gz"}))
-        time.sleep(0.6)
+        assert wait_for(lambda: "from-ros" in gz_seen and "from-gz" in ros_seen, 5.0)
+        time.sleep(0.5)  # time for an echo, were there one
         # Each message crosses once; nothing the bridge published comes back to the side it came from.
         assert gz_seen.count("from-ros") == 1 and ros_seen.count("from-gz") == 1
         assert ros_seen.count("from-ros") == 1  # the probe's own local copy only
