@@ -1,0 +1,207 @@
+"""Turn a loaded SDF model into PyBullet multibody plans (pure: no physics client, testable on its own).
+
+PyBullet's `loadSDF` cannot read Gazebo SDF (reference/sim_viz.md §1.1), so bodies are built from the
+parsed model with `createMultiBody`. Planning rules:
+- links joined by fixed joints merge into one PyBullet link (mass properties combined), unless their contact
+  surfaces differ: PyBullet keeps one friction per link, so a frictionless caster stays a link of its own;
+- a moving joint's frame becomes the child PyBullet link's frame (URDF semantics: joint frame = link frame),
+  and every SDF link keeps an offset from the PyBullet link it ended up in, for sensors and poses;
+- a static model becomes one massless PyBullet body; a joint to `world` pins the tree (a fixed one makes the
+  base static, a moving one hangs the tree from a static anchor);
+- each tree of links (links not connected by joints) becomes its own PyBullet body.
+A moving PyBullet link with no mass is an error: some link needs an <inertial>.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from diffctl.description.model import Collision, Geometry, Joint, Model, Surface, Visual
+from diffctl.description.pose import Pose, Vec3
+from diffctl.errors import DescriptionError
+from diffctl.sim.inertia import MassProperties, combine, from_inertial, principal
+
+DEFAULT_RGBA = (0.7, 0.7, 0.7, 1.0)
+
+
+@dataclass(frozen=True)
+class ShapeSpec:
+    geometry: Geometry
+    pose: Pose  # in the PyBullet link frame
+    rgba: tuple[float, float, float, float] = DEFAULT_RGBA
+
+
+@dataclass(frozen=True)
+class LinkPlan:
+    """One PyBullet link (index -1 = the base) and the SDF links merged into it."""
+
+    members: tuple[str, ...]  # SDF link names; members[0] names the PyBullet link ("" for a world anchor)
+    frame_world: Pose  # the PyBullet link frame at spawn
+    parent: int  # PyBullet index of the parent link (-1 = base); unused for the base
+    joint: Joint | None  # the SDF joint that attaches it (None for the base)
+    axis: Vec3  # joint axis in the PyBullet link frame
+    mass_kg: float
+    inertial_frame: Pose  # centre of mass and principal axes, in the PyBullet link frame
+    inertia_diagonal: Vec3
+    collisions: tuple[ShapeSpec, ...]
+    visuals: tuple[ShapeSpec, ...]
+    surface: Surface
+
+
+@dataclass(frozen=True)
+class BodyPlan:
+    """One PyBullet multibody: links[0] is its base, links[i] is PyBullet link i-1."""
+
+    links: tuple[LinkPlan, ...]
+
+    @property
+    def static_base(self) -> bool:
+        return self.links[0].mass_kg == 0.0
+
+
+@dataclass(frozen=True)
+class LinkRef:
+    """Where an SDF link lives: body number in the plan, PyBullet link index, pose in that link's frame."""
+
+    body: int
+    pb_link: int
+    offset: Pose
+
+
+@dataclass(frozen=True)
+class ModelPlan:
+    bodies: tuple[BodyPlan, ...]
+    links: dict[str, LinkRef]
+    joints: dict[str, tuple[int, int]]  # moving SDF joint → (body number, PyBullet joint index)
+
+
+def plan_model(model: Model) -> ModelPlan:
+    """The PyBullet bodies for `model` at the poses it was loaded (or spawned) with."""
+    if not model.links:
+        raise DescriptionError(f"model {model.name!r} has no <link>", source=model.source or None)
+    return _Planner(model).plan()
+
+
+class _Planner:
+    def __init__(self, model: Model) -> None:
+        self.m = model
+        self.by_name = {link.name: link for link in model.links}
+        self.children: dict[str, list[Joint]] = {link.name: [] for link in model.links}
+        self.world_joint: dict[str, Joint] = {}
+        child_of: set[str] = set()
+        for j in model.joints:
+            if j.parent == "world":
+                self.world_joint[j.child] = j
+                continue
+            self.children[j.parent].append(j)
+            child_of.add(j.child)
+        self.roots = [link.name for link in model.links if link.name not in child_of]
+
+    def plan(self) -> ModelPlan:
+        if self.m.static:
+            return self._static()
+        bodies: list[BodyPlan] = []
+        refs: dict[str, LinkRef] = {}
+        joints: dict[str, tuple[int, int]] = {}
+        for root in self.roots:
+            body_no = len(bodies)
+            groups: list[dict] = []
+            anchor = self.world_joint.get(root)
+            if anchor is not None and anchor.type != "fixed":
+                # A moving joint to the world: a massless static anchor at the joint frame carries the tree.
+                groups.append(self._group([], anchor.pose_world, -1, None, static=True))
+                groups.append(self._group([root], anchor.pose_world, -1, anchor))
+            else:
+                groups.append(self._group([root], self.by_name[root].pose_world, -1, None, static=anchor is not None))
+            self._grow(groups, len(groups) - 1, root)
+            links = tuple(self._finish(g) for g in groups)
+            bodies.append(BodyPlan(links))
+            for pb_index, g in enumerate(groups, start=-1):
+                for name in g["members"]:
+                    refs[name] = LinkRef(body_no, pb_index, g["frame"].inverse().compose(self.by_name[name].pose_world))
+                if g["joint"] is not None and g["joint"].type != "fixed":
+                    joints[g["joint"].name] = (body_no, pb_index)
+        return ModelPlan(tuple(bodies), refs, joints)
+
+    def _static(self) -> ModelPlan:
+        base = self.by_name[self.m.root_link()]
+        g = self._group([link.name for link in self.m.links], base.pose_world, -1, None, static=True)
+        refs = {n: LinkRef(0, -1, g["frame"].inverse().compose(self.by_name[n].pose_world)) for n in g["members"]}
+        return ModelPlan((BodyPlan((self._finish(g),)),), refs, {})
+
+    @staticmethod
+    def _group(members: list[str], frame: Pose, parent: int, joint: Joint | None, static: bool = False) -> dict:
+        return {"members": members, "frame": frame, "parent": parent, "joint": joint, "static": static}
+
+    def _grow(self, groups: list[dict], gi: int, link_name: str) -> None:
+        for j in self.children[link_name]:
+            child = j.child
+            if j.type == "fixed" and self._same_surface(groups[gi], child):
+                groups[gi]["members"].append(child)
+                self._grow(groups, gi, child)
+            else:
+                # A fixed joint that cannot merge still keeps the child's own frame (no joint pose to honour).
+                frame = j.pose_world if j.type != "fixed" else self.by_name[child].pose_world
+                groups.append(self._group([child], frame, gi - 1, j))
+                self._grow(groups, len(groups) - 1, child)
+
+    def _surfaces(self, names: list[str]) -> set[Surface]:
+        return {c.surface for n in names for c in self.by_name[n].collisions}
+
+    def _same_surface(self, group: dict, child: str) -> bool:
+        mine, theirs = self._surfaces(group["members"]), self._surfaces([child])
+        return not mine or not theirs or mine == theirs
+
+    def _finish(self, g: dict) -> LinkPlan:
+        frame: Pose = g["frame"]
+        inv = frame.inverse()
+        parts: list[MassProperties] = []
+        collisions: list[ShapeSpec] = []
+        visuals: list[ShapeSpec] = []
+        surfaces: list[Surface] = []
+        for name in g["members"]:
+            link = self.by_name[name]
+            in_frame = inv.compose(link.pose_world)
+            if link.inertial is not None:
+                parts.append(from_inertial(link.inertial, in_frame))
+            for c in link.collisions:
+                collisions.append(_shape(c, in_frame))
+                surfaces.append(c.surface)
+            for v in link.visuals:
+                visuals.append(_shape(v, in_frame))
+        mp = combine(parts)
+        joint: Joint | None = g["joint"]
+        if g["static"]:
+            mass, inertial_frame, diag = 0.0, Pose(), (0.0, 0.0, 0.0)
+        elif mp.mass_kg <= 0.0:
+            names = ", ".join(repr(n) for n in g["members"]) or "(anchor)"
+            raise DescriptionError(
+                f"link {names} of model {self.m.name!r} moves but has no mass",
+                source=self.m.source or None,
+                field=f"model {self.m.name}: link {g['members'][0] if g['members'] else ''}",
+                hint="add an <inertial> with <mass> and <inertia>, or fix it to a link that has one",
+            )
+        else:
+            mass = mp.mass_kg
+            inertial_frame, diag = principal(mp)
+        axis: Vec3 = (0.0, 0.0, 1.0)
+        if joint is not None and joint.axis_world is not None:
+            axis = frame.inverse().rotate(joint.axis_world)
+        return LinkPlan(
+            members=tuple(g["members"]),
+            frame_world=frame,
+            parent=g["parent"],
+            joint=joint,
+            axis=axis,
+            mass_kg=mass,
+            inertial_frame=inertial_frame,
+            inertia_diagonal=diag,
+            collisions=tuple(collisions),
+            visuals=tuple(visuals),
+            surface=surfaces[0] if surfaces else Surface(),
+        )
+
+
+def _shape(element: Collision | Visual, link_in_frame: Pose) -> ShapeSpec:
+    rgba = getattr(element, "rgba", None) or DEFAULT_RGBA
+    return ShapeSpec(element.geometry, link_in_frame.compose(element.pose_link), rgba)

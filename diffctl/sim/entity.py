@@ -1,0 +1,159 @@
+"""A spawned model in the physics world: where its SDF links are, its joints, and commands to them.
+
+Reads go straight to PyBullet for only what is asked (no per-step polling of joints nobody reads);
+velocity commands set PyBullet's joint motors once and persist until the next command.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import pybullet as pb
+
+from diffctl.description.model import Joint, Model
+from diffctl.description.pose import Pose, Vec3
+from diffctl.sim.body_plan import ModelPlan
+
+# A joint without an <effort> limit is driven as Gazebo's velocity command would (nearly ideally).
+DEFAULT_MAX_EFFORT = 1000.0
+
+
+@dataclass(frozen=True)
+class JointHandle:
+    name: str
+    body: int
+    index: int
+    joint: Joint
+    max_effort: float
+    max_velocity: float
+
+
+class Entity:
+    def __init__(self, client: int, model: Model, plan: ModelPlan, bodies: tuple[int, ...]) -> None:
+        self.client = client
+        self.model = model
+        self.name = model.name
+        self.plan = plan
+        self.bodies = bodies
+        self.joints: dict[str, JointHandle] = {}
+        for j in model.joints:
+            if j.name in plan.joints:
+                body_no, index = plan.joints[j.name]
+                lim = j.limits
+                effort = lim.effort if math.isfinite(lim.effort) and lim.effort > 0 else DEFAULT_MAX_EFFORT
+                vmax = lim.velocity if math.isfinite(lim.velocity) and lim.velocity > 0 else math.inf
+                self.joints[j.name] = JointHandle(j.name, bodies[body_no], index, j, effort, vmax)
+        # Spawn state, for world reset: base link frames and (zero) joint positions.
+        self._initial = [(b, plan.bodies[i].links[0]) for i, b in enumerate(bodies)]
+
+    # --- poses ---------------------------------------------------------------------------------------
+
+    def link_frame(self, name: str) -> tuple[int, int, Pose]:
+        """(PyBullet body, link index, offset of the SDF link in that PyBullet link's frame)."""
+        ref = self.plan.links[name]
+        return self.bodies[ref.body], ref.pb_link, ref.offset
+
+    def pb_link_pose(self, body: int, index: int) -> Pose:
+        """World pose of a PyBullet link frame (the base's too, which PyBullet reports at its centre of mass)."""
+        if index < 0:
+            pos, orn = pb.getBasePositionAndOrientation(body, physicsClientId=self.client)
+            inertial = self.inertial_frame(body, -1)
+            return Pose(tuple(pos), tuple(orn)).compose(inertial.inverse())
+        st = pb.getLinkState(body, index, computeForwardKinematics=1, physicsClientId=self.client)
+        return Pose(tuple(st[4]), tuple(st[5]))
+
+    def link_pose(self, name: str) -> Pose:
+        body, index, offset = self.link_frame(name)
+        return self.pb_link_pose(body, index).compose(offset)
+
+    def pose(self) -> Pose:
+        """The model frame in the world (Gazebo's model pose), following the canonical link."""
+        canonical = self.model.canonical_link or self.model.root_link()
+        link0 = self.model.link(canonical)
+        link_in_model = self.model.pose_world.inverse().compose(link0.pose_world)
+        return self.link_pose(canonical).compose(link_in_model.inverse())
+
+    def link_velocity(self, name: str, point_world: Vec3 | None = None) -> tuple[Vec3, Vec3]:
+        """(linear velocity of `point_world` (default: the link origin) on the link, angular velocity), world."""
+        body, index, offset = self.link_frame(name)
+        if index < 0:
+            lin, ang = pb.getBaseVelocity(body, physicsClientId=self.client)
+            com, _ = pb.getBasePositionAndOrientation(body, physicsClientId=self.client)
+            frame = None
+        else:
+            st = pb.getLinkState(body, index, computeLinkVelocity=1, computeForwardKinematics=1,
+                                 physicsClientId=self.client)
+            lin, ang, com = st[6], st[7], st[0]
+            frame = Pose(tuple(st[4]), tuple(st[5]))
+        if point_world is None:
+            if frame is None:
+                frame = self.pb_link_pose(body, index)
+            point_world = frame.compose(offset).xyz
+        r = (point_world[0] - com[0], point_world[1] - com[1], point_world[2] - com[2])
+        v = (
+            lin[0] + ang[1] * r[2] - ang[2] * r[1],
+            lin[1] + ang[2] * r[0] - ang[0] * r[2],
+            lin[2] + ang[0] * r[1] - ang[1] * r[0],
+        )
+        return v, (ang[0], ang[1], ang[2])
+
+    def inertial_frame(self, body: int, index: int) -> Pose:
+        """The centre-of-mass frame of a PyBullet link in its link frame (PyBullet reports and casts in it)."""
+        return self.plan.bodies[self.bodies.index(body)].links[index + 1].inertial_frame
+
+    # --- joints --------------------------------------------------------------------------------------
+
+    def joint(self, name: str) -> JointHandle:
+        try:
+            return self.joints[name]
+        except KeyError:
+            from diffctl.errors import DescriptionError, suggest
+
+            raise DescriptionError(
+                f"model {self.name!r} has no moving joint {name!r}{suggest(name, self.joints)}",
+                hint=f"moving joints: {', '.join(self.joints) or 'none'}",
+            ) from None
+
+    def joint_states(self, handles: list[JointHandle]) -> list[tuple[float, float, float]]:
+        """(position, velocity, applied motor effort) of each joint."""
+        out = []
+        for h in handles:
+            pos, vel, _forces, torque = pb.getJointState(h.body, h.index, physicsClientId=self.client)
+            out.append((pos, vel, torque))
+        return out
+
+    def set_joint_velocity(self, h: JointHandle, velocity: float) -> None:
+        """Drive a joint at `velocity` (clamped to its limit) until told otherwise; 0 holds it."""
+        v = max(-h.max_velocity, min(h.max_velocity, velocity)) if math.isfinite(velocity) else 0.0
+        pb.setJointMotorControl2(
+            h.body, h.index, pb.VELOCITY_CONTROL, targetVelocity=v, force=h.max_effort, physicsClientId=self.client
+        )
+
+    def set_joint_effort(self, h: JointHandle, effort: float) -> None:
+        """Apply `effort` for the next step only (PyBullet clears applied torques after each step)."""
+        e = max(-h.max_effort, min(h.max_effort, effort)) if math.isfinite(effort) else 0.0
+        pb.setJointMotorControl2(h.body, h.index, pb.VELOCITY_CONTROL, force=0.0, physicsClientId=self.client)
+        pb.setJointMotorControl2(h.body, h.index, pb.TORQUE_CONTROL, force=e, physicsClientId=self.client)
+
+    def release_joint(self, h: JointHandle) -> None:
+        """Back to a free joint with only its SDF friction."""
+        pb.setJointMotorControl2(
+            h.body, h.index, pb.VELOCITY_CONTROL, targetVelocity=0.0, force=h.joint.dynamics.friction,
+            physicsClientId=self.client,
+        )
+
+    # --- reset ---------------------------------------------------------------------------------------
+
+    def reset(self) -> None:
+        """Back to the spawn pose, at rest, joints at zero."""
+        cid = self.client
+        for body, base in self._initial:
+            com = base.frame_world.compose(base.inertial_frame)
+            pb.resetBasePositionAndOrientation(body, com.xyz, com.quat, physicsClientId=cid)
+            pb.resetBaseVelocity(body, [0, 0, 0], [0, 0, 0], physicsClientId=cid)
+        for h in self.joints.values():
+            if h.joint.type == "ball":
+                pb.resetJointStateMultiDof(h.body, h.index, [0, 0, 0, 1], [0, 0, 0], physicsClientId=cid)
+            else:
+                pb.resetJointState(h.body, h.index, 0.0, 0.0, physicsClientId=cid)

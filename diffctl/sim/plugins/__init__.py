@@ -1,0 +1,1 @@
+"""Gazebo system plugins the simulator provides (DiffDrive, JointStatePublisher, gz_ros2_control)."""

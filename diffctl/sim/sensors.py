@@ -1,0 +1,243 @@
+"""CPU sensors: lidar by one `rayTestBatch` per scan, IMU from link velocities, camera by TinyRenderer.
+
+Each sensor reads the physics world when asked (`sample(sim_time_ns)`) and returns its gz.msgs message as a
+dict; publishing and scheduling belong to the runner. Noise follows SDF/Gazebo: Gaussian with `mean` and
+`stddev`, plus for the IMU a bias drawn once per run from N(bias_mean, bias_stddev) with a random sign. All
+randomness comes from one seeded numpy Generator, so a seed reproduces every sample.
+"""
+
+from __future__ import annotations
+
+import base64
+import math
+
+import numpy as np
+import pybullet as pb
+
+from diffctl.bus import gz
+from diffctl.description.model import Noise, Sensor
+from diffctl.description.pose import Pose, Vec3
+from diffctl.sim.entity import Entity
+
+# PyBullet caps one rayTestBatch at this many rays (SharedMemoryPublic.h).
+MAX_RAYS = 16384
+# Camera noise is drawn from a pre-computed table (a fresh normal() per 230k pixels costs more than the render).
+NOISE_TABLE_SIZE = 1 << 20
+
+
+def _frame_id(entity: Entity, s: Sensor) -> str:
+    # Gazebo's default frame is the scoped sensor name; <gz_frame_id> overrides it.
+    return s.frame_id or f"{entity.name}::{s.link}::{s.name}"
+
+
+def _pose_msg(p: Pose) -> dict:
+    return {
+        "position": {"x": p.xyz[0], "y": p.xyz[1], "z": p.xyz[2]},
+        "orientation": {"x": p.quat[0], "y": p.quat[1], "z": p.quat[2], "w": p.quat[3]},
+    }
+
+
+def lidar_directions(
+    h_samples: int, h_min: float, h_max: float, v_samples: int, v_min: float, v_max: float
+) -> np.ndarray:
+    """Unit ray directions in the sensor frame, horizontal index fastest (Gazebo's range order), shape (n, 3)."""
+    h = np.linspace(h_min, h_max, h_samples) if h_samples > 1 else np.array([h_min])
+    v = np.linspace(v_min, v_max, v_samples) if v_samples > 1 else np.array([v_min])
+    vv, hh = np.meshgrid(v, h, indexing="ij")
+    return np.stack([np.cos(vv) * np.cos(hh), np.cos(vv) * np.sin(hh), np.sin(vv)], axis=-1).reshape(-1, 3)
+
+
+def ranges_from_hits(fractions: np.ndarray, hit: np.ndarray, range_min_m: float, range_max_m: float) -> np.ndarray:
+    """Ranges of rays cast from range_min to range_max: +inf where nothing was hit (as Gazebo reports)."""
+    r = range_min_m + fractions * (range_max_m - range_min_m)
+    return np.where(hit, r, np.inf)
+
+
+class Lidar:
+    """gpu_lidar / lidar / ray sensors. Rays start at range_min so the sensor never sees its own housing."""
+
+    def __init__(self, entity: Entity, sensor: Sensor, rng: np.random.Generator) -> None:
+        spec = sensor.lidar
+        assert spec is not None
+        self.entity, self.sensor, self.spec, self.rng = entity, sensor, spec, rng
+        self.frame_id = _frame_id(entity, sensor)
+        self.count = spec.horizontal_samples * spec.vertical_samples
+        if self.count > MAX_RAYS:
+            from diffctl.errors import DescriptionError
+
+            raise DescriptionError(
+                f"lidar {sensor.name!r} casts {self.count} rays per scan; PyBullet allows at most {MAX_RAYS}",
+                field=f"sensor {sensor.name}",
+                hint="lower <horizontal><samples> or <vertical><samples>",
+            )
+        self.body, self.link, offset = entity.link_frame(sensor.link)
+        # rayTestBatch takes rays relative to a link in that link's centre-of-mass frame.
+        inertial = entity.inertial_frame(self.body, self.link)
+        in_com = inertial.inverse().compose(offset).compose(sensor.pose_link)
+        d = lidar_directions(
+            spec.horizontal_samples, spec.horizontal_min_angle_rad, spec.horizontal_max_angle_rad,
+            spec.vertical_samples, spec.vertical_min_angle_rad, spec.vertical_max_angle_rad,
+        )
+        rot = np.array(_matrix(in_com))
+        origin = np.array(in_com.xyz)
+        world_dirs = d @ rot.T
+        self._from = (origin + world_dirs * spec.range_min_m).tolist()
+        self._to = (origin + world_dirs * spec.range_max_m).tolist()
+        self._noise = spec.noise if spec.noise.active else None
+        self._step = spec.angle_increment_rad
+        v_n = spec.vertical_samples
+        self._v_step = (spec.vertical_max_angle_rad - spec.vertical_min_angle_rad) / (v_n - 1) if v_n > 1 else 0.0
+
+    def scan(self) -> np.ndarray:
+        """Ranges in metres (with noise when the SDF asks for it), +inf where nothing is within range."""
+        res = pb.rayTestBatch(
+            self._from, self._to, parentObjectUniqueId=self.body, parentLinkIndex=self.link,
+            physicsClientId=self.entity.client,
+        )
+        hit = np.fromiter((r[0] >= 0 for r in res), dtype=bool, count=self.count)
+        frac = np.fromiter((r[2] for r in res), dtype=np.float64, count=self.count)
+        ranges = ranges_from_hits(frac, hit, self.spec.range_min_m, self.spec.range_max_m)
+        if self._noise is not None:
+            n = self._noise
+            ranges = ranges + self.rng.normal(n.mean, n.stddev, self.count) if n.stddev > 0 else ranges + n.mean
+            ranges = np.clip(ranges, self.spec.range_min_m, None)
+        return ranges
+
+    def sample(self, sim_time_ns: int) -> dict:
+        s = self.spec
+        ranges = self.scan()
+        pose = self.entity.link_pose(self.sensor.link).compose(self.sensor.pose_link)
+        return {
+            "header": gz.header(sim_time_ns, self.frame_id),
+            "frame": self.frame_id,
+            "world_pose": _pose_msg(pose),
+            "angle_min": s.horizontal_min_angle_rad,
+            "angle_max": s.horizontal_max_angle_rad,
+            "angle_step": self._step,
+            "range_min": s.range_min_m,
+            "range_max": s.range_max_m,
+            "count": s.horizontal_samples,
+            "vertical_angle_min": s.vertical_min_angle_rad,
+            "vertical_angle_max": s.vertical_max_angle_rad,
+            "vertical_angle_step": self._v_step,
+            "vertical_count": s.vertical_samples,
+            "ranges": ranges.tolist(),
+            "intensities": [],
+        }
+
+
+class ImuNoise:
+    """One axis of Gazebo's IMU noise: a constant bias (drawn once, random sign) plus white Gaussian noise."""
+
+    def __init__(self, noise: Noise, rng: np.random.Generator) -> None:
+        self.active = noise.active
+        self.mean, self.stddev = noise.mean, noise.stddev
+        bias = rng.normal(noise.bias_mean, noise.bias_stddev) if noise.bias_stddev > 0 else noise.bias_mean
+        self.bias = bias if rng.random() < 0.5 else -bias
+        self.rng = rng
+
+    def apply(self, value: float) -> float:
+        if not self.active:
+            return value
+        return value + self.bias + (self.rng.normal(self.mean, self.stddev) if self.stddev > 0 else self.mean)
+
+
+def specific_force(accel_world: Vec3, gravity: Vec3) -> Vec3:
+    """What an accelerometer measures (in world axes): acceleration minus gravity; +g upward at rest."""
+    return (accel_world[0] - gravity[0], accel_world[1] - gravity[1], accel_world[2] - gravity[2])
+
+
+class Imu:
+    """Orientation, angular velocity and linear acceleration (finite difference of the sensor point's velocity
+    between samples) of the sensor frame, with SDF noise."""
+
+    def __init__(self, entity: Entity, sensor: Sensor, gravity: Vec3, rng: np.random.Generator) -> None:
+        spec = sensor.imu
+        assert spec is not None
+        self.entity, self.sensor, self.gravity = entity, sensor, gravity
+        self.frame_id = _frame_id(entity, sensor)
+        self.gyro_noise = [ImuNoise(n, rng) for n in spec.angular_velocity_noise]
+        self.accel_noise = [ImuNoise(n, rng) for n in spec.linear_acceleration_noise]
+        self._prev: tuple[int, Vec3] | None = None
+
+    def reset(self) -> None:
+        self._prev = None
+
+    def sample(self, sim_time_ns: int) -> dict:
+        pose = self.entity.link_pose(self.sensor.link).compose(self.sensor.pose_link)
+        v, w = self.entity.link_velocity(self.sensor.link, pose.xyz)
+        accel: Vec3 = (0.0, 0.0, 0.0)
+        if self._prev is not None and sim_time_ns > self._prev[0]:
+            dt = (sim_time_ns - self._prev[0]) * 1e-9
+            pv = self._prev[1]
+            accel = ((v[0] - pv[0]) / dt, (v[1] - pv[1]) / dt, (v[2] - pv[2]) / dt)
+        self._prev = (sim_time_ns, v)
+        inv = pose.inverse()
+        f = inv.rotate(specific_force(accel, self.gravity))
+        g = inv.rotate(w)
+        f = [n.apply(x) for n, x in zip(self.accel_noise, f, strict=True)]
+        g = [n.apply(x) for n, x in zip(self.gyro_noise, g, strict=True)]
+        q = pose.quat
+        return {
+            "header": gz.header(sim_time_ns, self.frame_id),
+            "entity_name": self.frame_id,
+            "orientation": {"x": q[0], "y": q[1], "z": q[2], "w": q[3]},
+            "angular_velocity": {"x": g[0], "y": g[1], "z": g[2]},
+            "linear_acceleration": {"x": f[0], "y": f[1], "z": f[2]},
+        }
+
+
+class Camera:
+    """An RGB camera looking along the sensor's +x with +z up (Gazebo's convention), rendered on the CPU."""
+
+    def __init__(self, entity: Entity, sensor: Sensor, rng: np.random.Generator, light_direction: Vec3) -> None:
+        spec = sensor.camera
+        assert spec is not None
+        self.entity, self.sensor, self.spec = entity, sensor, spec
+        self.frame_id = _frame_id(entity, sensor)
+        self.width, self.height = spec.width_px, spec.height_px
+        self._proj = pb.computeProjectionMatrixFOV(
+            fov=math.degrees(spec.vertical_fov_rad), aspect=self.width / self.height,
+            nearVal=spec.clip_near_m, farVal=spec.clip_far_m,
+        )
+        # PyBullet wants the position the light comes from; SDF gives the direction the light travels.
+        self._light = [-light_direction[0] * 10, -light_direction[1] * 10, -light_direction[2] * 10]
+        self._noise: np.ndarray | None = None
+        if spec.noise.active:
+            table = rng.normal(spec.noise.mean * 255.0, spec.noise.stddev * 255.0, NOISE_TABLE_SIZE)
+            self._noise = np.round(table).astype(np.int16)
+        self.rng = rng
+
+    def render(self) -> np.ndarray:
+        """The current image, (height, width, 3) uint8."""
+        pose = self.entity.link_pose(self.sensor.link).compose(self.sensor.pose_link)
+        eye = pose.xyz
+        fwd = pose.rotate((1.0, 0.0, 0.0))
+        up = pose.rotate((0.0, 0.0, 1.0))
+        view = pb.computeViewMatrix(eye, (eye[0] + fwd[0], eye[1] + fwd[1], eye[2] + fwd[2]), up)
+        _, _, rgba, _, _ = pb.getCameraImage(
+            self.width, self.height, view, self._proj, lightDirection=self._light,
+            renderer=pb.ER_TINY_RENDERER, flags=pb.ER_NO_SEGMENTATION_MASK, physicsClientId=self.entity.client,
+        )
+        rgb = np.asarray(rgba, dtype=np.uint8).reshape(self.height, self.width, 4)[:, :, :3]
+        if self._noise is None:
+            return np.ascontiguousarray(rgb)
+        n = rgb.size
+        start = int(self.rng.integers(0, NOISE_TABLE_SIZE - n)) if n < NOISE_TABLE_SIZE else 0
+        noise = np.resize(self._noise[start : start + n], n).reshape(rgb.shape)
+        return np.clip(rgb.astype(np.int16) + noise, 0, 255).astype(np.uint8)
+
+    def sample(self, sim_time_ns: int) -> dict:
+        img = self.render()
+        return {
+            "header": gz.header(sim_time_ns, self.frame_id),
+            "width": self.width,
+            "height": self.height,
+            "step": self.width * 3,
+            "pixel_format_type": "RGB_INT8",
+            "data": base64.b64encode(img.tobytes()).decode("ascii"),
+        }
+
+
+def _matrix(p: Pose) -> list[list[float]]:
+    return [row[:3] for row in p.to_matrix()[:3]]

@@ -1,0 +1,292 @@
+"""The PyBullet physics world: one physics client per sim, fixed time step, bodies built from SDF models.
+
+DIRECT mode (headless, the default) or GUI mode (PyBullet's OpenGL window, Gazebo's GUI counterpart).
+Determinism: real-time simulation is off, the step is fixed to the world's `max_step_size`, overlapping
+pairs are sorted (`deterministicOverlappingPairs`), and nothing depends on wall time, so the same world,
+the same commands at the same steps and the same seed give bit-identical trajectories.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pybullet as pb
+
+from diffctl.description.model import Box, Capsule, Cylinder, Mesh, Model, Physics, Plane, Sphere
+from diffctl.description.pose import Pose, Vec3
+from diffctl.errors import DescriptionError, RuntimeFailure
+from diffctl.sim.body_plan import BodyPlan, LinkPlan, ShapeSpec, plan_model
+from diffctl.sim.entity import Entity
+
+# PyBullet defaults to 50; at 1 ms steps 10 give the same drive trajectories (to 0.1 mm over 6 s, measured)
+# for a third of the cost, which is most of the step budget.
+SOLVER_ITERATIONS = 10
+# A visual plane is drawn as a thin box just under the collision plane.
+PLANE_VISUAL_THICKNESS_M = 0.002
+
+_JOINT_TYPES = {
+    "revolute": pb.JOINT_REVOLUTE,
+    "continuous": pb.JOINT_REVOLUTE,
+    "prismatic": pb.JOINT_PRISMATIC,
+    "fixed": pb.JOINT_FIXED,
+    "ball": pb.JOINT_SPHERICAL,
+}
+
+
+class PhysicsWorld:
+    """A PyBullet client with the world's physics settings and the entities spawned into it."""
+
+    def __init__(self, physics: Physics, *, gui: bool = False) -> None:
+        step = physics.max_step_size_s
+        if not (math.isfinite(step) and 1e-5 <= step <= 0.1):
+            raise DescriptionError(
+                f"<max_step_size> {step!r} is out of range", field="physics", hint="valid: 1e-05 .. 0.1 s"
+            )
+        self.physics = physics
+        self.step_s = step
+        self.step_ns = round(step * 1e9)
+        self.gui = gui
+        self.client = pb.connect(pb.GUI if gui else pb.DIRECT)
+        if self.client < 0:
+            raise RuntimeFailure("cannot open the PyBullet window (is there a display? try without --gui)")
+        cid = self.client
+        if gui:
+            pb.configureDebugVisualizer(pb.COV_ENABLE_GUI, 0, physicsClientId=cid)
+        pb.setRealTimeSimulation(0, physicsClientId=cid)
+        pb.setTimeStep(step, physicsClientId=cid)
+        pb.setPhysicsEngineParameter(
+            numSubSteps=0,
+            numSolverIterations=SOLVER_ITERATIONS,
+            deterministicOverlappingPairs=1,
+            physicsClientId=cid,
+        )
+        pb.setGravity(*physics.gravity, physicsClientId=cid)
+        self.entities: dict[str, Entity] = {}
+
+    # --- entities ------------------------------------------------------------------------------------
+
+    def add_model(self, model: Model) -> Entity:
+        """Build `model` (poses as loaded, i.e. already at its spawn pose) and return its entity."""
+        if model.name in self.entities:
+            raise RuntimeFailure(f"an entity named {model.name!r} already exists", hint="choose another --name")
+        plan = plan_model(model)
+        bodies: list[int] = []
+        try:
+            for body_plan in plan.bodies:
+                bodies.append(self._build_body(body_plan, static=model.static))
+        except Exception:
+            for b in bodies:
+                pb.removeBody(b, physicsClientId=self.client)
+            raise
+        entity = Entity(self.client, model, plan, tuple(bodies))
+        self.entities[model.name] = entity
+        return entity
+
+    def remove(self, name: str) -> None:
+        entity = self.entities.pop(name, None)
+        if entity is None:
+            raise RuntimeFailure(f"no entity named {name!r}", hint=f"entities: {', '.join(self.entities) or 'none'}")
+        for b in entity.bodies:
+            pb.removeBody(b, physicsClientId=self.client)
+
+    def reset(self) -> None:
+        for e in self.entities.values():
+            e.reset()
+
+    def step(self) -> None:
+        pb.stepSimulation(physicsClientId=self.client)
+
+    def close(self) -> None:
+        if self.client >= 0:
+            try:
+                pb.disconnect(physicsClientId=self.client)
+            except pb.error:
+                pass
+            self.client = -1
+
+    # --- building ------------------------------------------------------------------------------------
+
+    def _build_body(self, plan: BodyPlan, *, static: bool) -> int:
+        cid = self.client
+        base, links = plan.links[0], plan.links[1:]
+        base_col = self._collision_shape(base.collisions, static or plan.static_base)
+        base_vis = self._visual_shape(base.visuals)
+        kw: dict = {}
+        if links:
+            kw = {
+                "linkMasses": [lp.mass_kg for lp in links],
+                "linkCollisionShapeIndices": [self._collision_shape(lp.collisions, False) for lp in links],
+                "linkVisualShapeIndices": [self._visual_shape(lp.visuals) for lp in links],
+                "linkPositions": [],
+                "linkOrientations": [],
+                "linkInertialFramePositions": [lp.inertial_frame.xyz for lp in links],
+                "linkInertialFrameOrientations": [lp.inertial_frame.quat for lp in links],
+                # createMultiBody counts the base as 0: PyBullet link i is index i + 1 here.
+                "linkParentIndices": [lp.parent + 1 for lp in links],
+                "linkJointTypes": [_JOINT_TYPES[lp.joint.type if lp.joint else "fixed"] for lp in links],
+                "linkJointAxis": [lp.axis for lp in links],
+            }
+            for lp in links:
+                parent_frame = plan.links[lp.parent + 1].frame_world
+                rel = parent_frame.inverse().compose(lp.frame_world)
+                kw["linkPositions"].append(rel.xyz)
+                kw["linkOrientations"].append(rel.quat)
+        body = pb.createMultiBody(
+            baseMass=base.mass_kg,
+            baseCollisionShapeIndex=base_col,
+            baseVisualShapeIndex=base_vis,
+            basePosition=base.frame_world.xyz,
+            baseOrientation=base.frame_world.quat,
+            baseInertialFramePosition=base.inertial_frame.xyz,
+            baseInertialFrameOrientation=base.inertial_frame.quat,
+            physicsClientId=cid,
+            **kw,
+        )
+        if body < 0:
+            raise DescriptionError("PyBullet refused to build the body (createMultiBody failed)")
+        for index, lp in enumerate(plan.links, start=-1):
+            self._dynamics(body, index, lp)
+        return body
+
+    def _dynamics(self, body: int, index: int, lp: LinkPlan) -> None:
+        cid = self.client
+        kw: dict = {
+            "lateralFriction": lp.surface.mu,
+            "restitution": lp.surface.restitution,
+            "rollingFriction": 0.0,
+            "spinningFriction": 0.0,
+        }
+        if index < 0:
+            # PyBullet damps base motion by default (0.04); Gazebo does not. Links reject these keys: passing
+            # them (or maxJointVelocity) makes changeDynamics silently ignore the whole call.
+            kw.update(linearDamping=0.0, angularDamping=0.0)
+        if lp.mass_kg > 0.0:
+            kw["localInertiaDiagonal"] = lp.inertia_diagonal
+        joint = lp.joint
+        if index >= 0 and joint is not None and joint.type != "fixed":
+            kw["jointDamping"] = joint.dynamics.damping
+            if joint.type in ("revolute", "prismatic") and joint.limits.bounded:
+                kw["jointLowerLimit"] = joint.limits.lower
+                kw["jointUpperLimit"] = joint.limits.upper
+        pb.changeDynamics(body, index, physicsClientId=cid, **kw)
+        if index >= 0 and joint is not None and joint.type != "fixed":
+            # PyBullet motorises every joint by default; Gazebo's joints are free except for their friction.
+            if joint.type == "ball":
+                pb.setJointMotorControlMultiDof(
+                    body, index, pb.POSITION_CONTROL, targetPosition=[0, 0, 0, 1], positionGain=0,
+                    velocityGain=1, force=[joint.dynamics.friction] * 3, physicsClientId=cid,
+                )
+            else:
+                pb.setJointMotorControl2(
+                    body, index, pb.VELOCITY_CONTROL, targetVelocity=0.0, force=joint.dynamics.friction,
+                    physicsClientId=cid,
+                )
+
+    def _collision_shape(self, shapes: tuple[ShapeSpec, ...], static: bool) -> int:
+        if not shapes:
+            return -1
+        cid = self.client
+        if len(shapes) == 1:
+            kw = _shape_kwargs(shapes[0], collision=True, static=static)
+            return pb.createCollisionShape(physicsClientId=cid, **kw)
+        arrays = _shape_arrays(shapes, collision=True, static=static)
+        return pb.createCollisionShapeArray(physicsClientId=cid, **arrays)
+
+    def _visual_shape(self, shapes: tuple[ShapeSpec, ...]) -> int:
+        if not shapes:
+            return -1
+        cid = self.client
+        if len(shapes) == 1:
+            return pb.createVisualShape(physicsClientId=cid, **_shape_kwargs(shapes[0], collision=False))
+        return pb.createVisualShapeArray(physicsClientId=cid, **_shape_arrays(shapes, collision=False))
+
+
+def _plane_visual(spec: ShapeSpec, g: Plane) -> tuple[Vec3, Vec3, tuple[float, float, float, float]]:
+    """(half extents, position, orientation) of the thin box drawn for a plane visual in a compound shape."""
+    q = _quat_z_to(g.normal)
+    t = PLANE_VISUAL_THICKNESS_M
+    pose = spec.pose.compose(Pose((0.0, 0.0, -t / 2), q))
+    return (g.size_m[0] / 2, g.size_m[1] / 2, t / 2), pose.xyz, pose.quat
+
+
+def _quat_z_to(n: Vec3) -> tuple[float, float, float, float]:
+    """The rotation taking +z onto the direction `n`."""
+    nx, ny, nz = n
+    norm = math.sqrt(nx * nx + ny * ny + nz * nz) or 1.0
+    nx, ny, nz = nx / norm, ny / norm, nz / norm
+    if nz < -0.999999:
+        return (1.0, 0.0, 0.0, 0.0)
+    x, y, z, w = -ny, nx, 0.0, 1.0 + nz
+    s = math.sqrt(x * x + y * y + z * z + w * w)
+    return (x / s, y / s, z / s, w / s)
+
+
+def plane_quad(size_x_m: float, size_y_m: float) -> tuple[list[list[float]], list[int]]:
+    """(vertices, triangle indices) of a centred rectangle in z = 0: two triangles, which TinyRenderer draws
+    faster than the twelve of a thin box."""
+    hx, hy = size_x_m / 2, size_y_m / 2
+    return [[-hx, -hy, 0.0], [hx, -hy, 0.0], [hx, hy, 0.0], [-hx, hy, 0.0]], [0, 1, 2, 0, 2, 3]
+
+
+def _shape_kwargs(spec: ShapeSpec, *, collision: bool, static: bool = False, single: bool = True) -> dict:
+    g = spec.geometry
+    frame = "collisionFrame" if collision else "visualFrame"
+    kw: dict = {f"{frame}Position": spec.pose.xyz, f"{frame}Orientation": spec.pose.quat}
+    if not collision:
+        kw["rgbaColor"] = spec.rgba
+    if isinstance(g, Box):
+        kw.update(shapeType=pb.GEOM_BOX, halfExtents=[s / 2 for s in g.size_m])
+    elif isinstance(g, Sphere):
+        kw.update(shapeType=pb.GEOM_SPHERE, radius=g.radius_m)
+    elif isinstance(g, Cylinder):
+        kw.update(shapeType=pb.GEOM_CYLINDER, radius=g.radius_m)
+        kw["height" if collision else "length"] = g.length_m
+    elif isinstance(g, Capsule):
+        kw.update(shapeType=pb.GEOM_CAPSULE, radius=g.radius_m)
+        kw["height" if collision else "length"] = g.length_m
+    elif isinstance(g, Plane):
+        if collision:
+            kw.update(shapeType=pb.GEOM_PLANE, planeNormal=g.normal)
+        elif single:
+            verts, idx = plane_quad(*g.size_m)
+            pose = spec.pose.compose(Pose((0.0, 0.0, 0.0), _quat_z_to(g.normal)))
+            kw.update(
+                shapeType=pb.GEOM_MESH, vertices=verts, indices=idx, normals=[[0.0, 0.0, 1.0]] * len(verts),
+                visualFramePosition=pose.xyz, visualFrameOrientation=pose.quat,
+            )
+        else:
+            half, pos, orn = _plane_visual(spec, g)
+            kw.update(shapeType=pb.GEOM_BOX, halfExtents=half, visualFramePosition=pos, visualFrameOrientation=orn)
+    elif isinstance(g, Mesh):
+        kw.update(shapeType=pb.GEOM_MESH, fileName=g.path, meshScale=g.scale)
+        if collision and static:
+            kw["flags"] = pb.GEOM_FORCE_CONCAVE_TRIMESH
+    else:  # pragma: no cover - the loader only produces the geometries above
+        raise DescriptionError(f"unsupported geometry {type(g).__name__}")
+    return kw
+
+
+def _shape_arrays(shapes: tuple[ShapeSpec, ...], *, collision: bool, static: bool = False) -> dict:
+    frame = "collisionFrame" if collision else "visualFrame"
+    out: dict = {
+        "shapeTypes": [], "radii": [], "halfExtents": [], "lengths": [], "fileNames": [], "meshScales": [],
+        "planeNormals": [], "flags": [], f"{frame}Positions": [], f"{frame}Orientations": [],
+    }
+    if not collision:
+        out["rgbaColors"] = []
+    for spec in shapes:
+        kw = _shape_kwargs(spec, collision=collision, static=static, single=False)
+        out["shapeTypes"].append(kw["shapeType"])
+        out["radii"].append(kw.get("radius", 0.0))
+        out["halfExtents"].append(list(kw.get("halfExtents", (0.0, 0.0, 0.0))))
+        out["lengths"].append(kw.get("height", kw.get("length", 0.0)))
+        out["fileNames"].append(kw.get("fileName", ""))
+        out["meshScales"].append(list(kw.get("meshScale", (1.0, 1.0, 1.0))))
+        out["planeNormals"].append(list(kw.get("planeNormal", (0.0, 0.0, 1.0))))
+        out["flags"].append(kw.get("flags", 0))
+        out[f"{frame}Positions"].append(list(kw[f"{frame}Position"]))
+        out[f"{frame}Orientations"].append(list(kw[f"{frame}Orientation"]))
+        if not collision:
+            out["rgbaColors"].append(list(spec.rgba))
+    return out
+
