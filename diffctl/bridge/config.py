@@ -6,6 +6,7 @@ pair is a ConfigError naming the file, line, entry index and topic and listing w
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from enum import Enum
 from pathlib import Path
@@ -79,10 +80,24 @@ def _entry_error(message: str, source: str | None, line: int | None, index: int,
     return ConfigError(message, source=source, line=line, field=field)
 
 
-def _as_topic(value: Any) -> str:
+# ROS names: tokens of letters, digits and '_' (not starting with a digit) joined by '/', optionally '~' first.
+_ROS_NAME = re.compile(r"^(~/?|/)?([A-Za-z_][A-Za-z0-9_]*)(/[A-Za-z_][A-Za-z0-9_]*)*$")
+# gz-transport names are freer, but they become Zenoh key expressions, where these characters are wildcards.
+_GZ_FORBIDDEN = re.compile(r"[\s*$?#@\[\]]|//")
+
+
+def _as_topic(value: Any, kind: str) -> str:
     if not isinstance(value, str) or not value.strip():
         raise ValueError(f"a topic name must be a non-empty string, got {value!r}")
-    return value.strip()
+    name = value.strip()
+    if kind == "ros" and not _ROS_NAME.match(name):
+        raise ValueError(
+            f"ROS topic name {name!r} invalid; valid: letters, digits and '_' in '/'-separated tokens, "
+            "none starting with a digit"
+        )
+    if kind == "gz" and (_GZ_FORBIDDEN.search(name) or not name.strip("/")):
+        raise ValueError(f"gz topic name {name!r} invalid; valid: no spaces, '//' or any of * $ ? # @ [ ]")
+    return name
 
 
 def _as_queue(name: str, value: Any) -> int:
@@ -120,16 +135,19 @@ def make_entry(
         if k not in KEYS:
             raise fail(f"unknown key {k!r}{suggest(str(k), KEYS)}; valid keys: {', '.join(KEYS)}", str(k))
     try:
+        bad_key[:] = ["topic_name" if "topic_name" in item else "ros_topic_name"]
         if "topic_name" in item:
             if "ros_topic_name" in item or "gz_topic_name" in item:
                 raise ValueError("topic_name and ros_topic_name/gz_topic_name are mutually exclusive")
-            ros_topic = gz_topic = _as_topic(item["topic_name"])
+            ros_topic, gz_topic = _as_topic(item["topic_name"], "ros"), _as_topic(item["topic_name"], "gz")
         else:
             if "ros_topic_name" not in item and "gz_topic_name" not in item:
                 raise ValueError("missing key: give topic_name, or ros_topic_name and gz_topic_name")
-            ros_topic = _as_topic(item.get("ros_topic_name", item.get("gz_topic_name")))
-            gz_topic = _as_topic(item.get("gz_topic_name", item.get("ros_topic_name")))
+            ros_topic = _as_topic(item.get("ros_topic_name", item.get("gz_topic_name")), "ros")
+            bad_key[:] = ["gz_topic_name"]
+            gz_topic = _as_topic(item.get("gz_topic_name", item.get("ros_topic_name")), "gz")
         for k in ("ros_type_name", "gz_type_name"):
+            bad_key[:] = [k]
             if k not in item:
                 raise ValueError(f"missing key {k!r}")
             if not isinstance(item[k], str) or not item[k].strip():

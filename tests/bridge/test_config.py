@@ -76,6 +76,10 @@ def test_yaml_keys_defaults_and_spellings(tmp_path: Path) -> None:
             r"publisher_queue 0 invalid; valid: an integer >= 1",
         ),
         ("  gz_type_name: gz.msgs.Odometry\n  topic_name: /x", r"mutually exclusive"),
+        (
+            "  gz_type_name: gz.msgs.Odometry\n  gz_topic_name: /model/*/odom",
+            r"bridge.yaml:7: .*gz topic name '/model/\*/odom' invalid",
+        ),
     ],
 )
 def test_bad_entry_names_file_line_entry_and_valid_values(tmp_path: Path, body: str, expected: str) -> None:
@@ -121,6 +125,7 @@ def test_command_line_form(arg: str, direction: Direction) -> None:
         ("/clock", r"argument 0 \(/clock\): no topic before '@'|no delimiter"),
         ("/clock@rosgraph_msgs/msg/Clock", "no delimiter between the ROS and the gz type"),
         ("/clock@rosgraph_msgs/msg/Clock[gz.msgs.Twist", "unsupported type pair"),
+        ("/2fast@std_msgs/msg/String@gz.msgs.StringMsg", r"ROS topic name '/2fast' invalid"),
     ],
 )
 def test_command_line_form_errors(arg: str, expected: str) -> None:
