@@ -143,3 +143,14 @@ def test_config_file_parameter_and_expand_gz_topic_names(tmp_path: Path) -> None
         collect_entries((), None, {}, None)
     with pytest.raises(ConfigError, match="expand_gz_topic_names"):
         collect_entries((), str(p), {"expand_gz_topic_names": "maybe"}, None)
+
+
+def test_entries_render_as_a_table() -> None:
+    import io
+
+    from diffctl.console import make_console
+
+    buf = io.StringIO()
+    make_console(buf, width=160).print(load_config(REPO / "config" / "bridge_config.yaml")[-1])
+    text = buf.getvalue()
+    assert "/camera/image_raw" in text and "sensor_msgs/msg/Image" in text and "<-" in text and "lazy" in text
