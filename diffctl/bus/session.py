@@ -23,6 +23,7 @@ CONNECT_TIMEOUT_MS = 1500
 
 _session: zenoh.Session | None = None
 _session_lock = threading.Lock()
+_mode = "peer"
 _log_initialised = False
 
 
@@ -71,13 +72,24 @@ def _from_file(env: str) -> zenoh.Config | None:
         raise ConfigError(f"cannot load Zenoh config: {e}", source=path, field=env) from None
 
 
+def use_client_mode() -> None:
+    """Open this process's session as a Zenoh client (before first use).
+
+    One-shot graph tools (`topic list`, `node info`, …) need a complete picture at once: a client asks the
+    router, which knows every token, whereas a fresh peer's first liveliness query can miss tokens still
+    being gossiped. Long-running components stay peers, with direct links, as rmw_zenoh does.
+    """
+    global _mode
+    _mode = "client"
+
+
 def peer_config(endpoint: str | None = None) -> zenoh.Config:
     cfg = _from_file("ZENOH_SESSION_CONFIG_URI")
     if cfg is None:
         cfg = zenoh.Config()
-        cfg.insert_json5("mode", '"peer"')
+        cfg.insert_json5("mode", json.dumps(_mode))
         cfg.insert_json5("connect/endpoints", json.dumps([endpoint or router_endpoint()]))
-        cfg.insert_json5("listen/endpoints", '["tcp/127.0.0.1:0"]')
+        cfg.insert_json5("listen/endpoints", '["tcp/127.0.0.1:0"]' if _mode == "peer" else "[]")
         cfg.insert_json5("scouting/multicast/enabled", "false")
         cfg.insert_json5("scouting/gossip/enabled", "true")
     cfg.insert_json5("connect/timeout_ms", str(CONNECT_TIMEOUT_MS))

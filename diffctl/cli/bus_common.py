@@ -9,7 +9,7 @@ import yaml
 
 from diffctl.bus import types, wire
 from diffctl.bus.graph import Graph
-from diffctl.bus.session import open_session
+from diffctl.bus.session import open_session, use_client_mode
 from diffctl.console import info
 from diffctl.errors import ConfigError, MessageError
 
@@ -34,8 +34,8 @@ def parse_values(text: str | None, what: str = "VALUES") -> dict[str, Any]:
 
 
 def graph() -> Graph:
-    g = Graph(open_session())
-    return g
+    use_client_mode()
+    return Graph(open_session())
 
 
 def resolve_name(g: Graph, name: str, names: list[str], what: str = "topic") -> str:
