@@ -61,9 +61,7 @@ def _ensure_router(output: Any) -> Any:
 )
 @click.option("--no-color", is_flag=True, help="No colours in the output.")
 @click.option("--no-router", is_flag=True, help="Do not start the embedded Zenoh router.")
-@click.pass_context
 def launch(
-    ctx: click.Context,
     target: tuple[str, ...],
     show_args: bool,
     print_plan: bool,
@@ -108,7 +106,8 @@ def launch(
     if print_plan:
         console.print(PlanView(plan))
         return
-    ctx.exit(_run(plan, log_dir=log_dir, no_color=no_color, no_router=no_router))
+    # SystemExit, not ctx.exit: the entry point runs click with standalone_mode=False, which drops exit codes.
+    raise SystemExit(_run(plan, log_dir=log_dir, no_color=no_color, no_router=no_router))
 
 
 def _run(plan: Any, *, log_dir: Path | None, no_color: bool, no_router: bool) -> int:

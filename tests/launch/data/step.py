@@ -26,5 +26,8 @@ if args.record != "-":
         f.write(args.name + "\n")
 if args.text:
     print(args.text, flush=True)
-time.sleep(args.sleep)
+try:
+    time.sleep(args.sleep)
+except KeyboardInterrupt:
+    sys.exit(130)  # stopped by the launcher, like a ROS node on Ctrl-C
 sys.exit(args.exit)

@@ -1,0 +1,184 @@
+"""The launcher with real processes: ordering, readiness, respawn, required processes, and faults.
+
+Each launcher runs `python -m diffctl launch … --no-router`; the fixture finds every descendant by an
+environment tag, so "nothing left behind" is checked against the whole system, orphans included.
+"""
+
+from __future__ import annotations
+
+import signal
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+DATA = Path(__file__).parent / "data"
+PY = f"python:={sys.executable}"
+
+
+def assert_nothing_left(run, within_s: float = 1.0) -> None:
+    deadline = time.monotonic() + within_s
+    while run.leftovers() and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert [p.cmdline() for p in run.leftovers()] == []
+
+
+def test_start_order_follows_readiness_and_exit_handlers_and_the_launch_ends_by_itself(launch_run, tmp_path) -> None:
+    record = tmp_path / "record"
+    run = launch_run(str(DATA / "chain.yaml"), PY, f"record:={record}", "--no-router")
+    assert run.wait(20) == 0, run.text()
+    assert record.read_text().split() == ["sim", "spawn_entity", "base_spawner", "jsb_spawner", "viz"]
+    text = run.text()
+    # spawn_entity waited for sim's line, viz for jsb_spawner's clean exit
+    assert text.index("[sim] world ready") < text.index("[spawn_entity] started")
+    assert text.index("[jsb_spawner] finished cleanly") < text.index("[viz] started") < text.index("viz is up")
+    assert "shutting down: all processes have exited" in text
+    assert_nothing_left(run)
+
+
+def test_ctrl_c_stops_every_group_escalating_for_a_stubborn_child(launch_run) -> None:
+    run = launch_run(str(DATA / "supervise.yaml"), PY, "--no-router")
+    run.wait_for(r"all 4 processes started")
+    run.wait_for(r"\[stubborn\] ignoring SIGINT and SIGTERM")
+    time.sleep(0.3)  # let talker print into its log
+    t0 = time.monotonic()
+    run.signal(signal.SIGINT)
+    assert run.wait(10) == 0
+    took = time.monotonic() - t0
+    text = run.text()
+    assert "sending SIGINT to talker, stubborn, shelly, sleeper" in text
+    assert "[stubborn] still running 0.3 s after SIGINT: sending SIGTERM" in text
+    assert "[stubborn] still running 0.3 s after SIGTERM: sending SIGKILL" in text
+    assert "[stubborn] stopped (killed by SIGKILL" in text
+    assert took < 0.3 + 0.3 + 1.5, took
+    assert "[talker] hello" not in text  # output: log keeps stdout off the screen…
+    assert (run.log_dir / "talker.log").read_text() == "hello\n"  # …and in its file
+    assert "shutting down: ctrl-c (SIGINT)" in (run.log_dir / "launch.log").read_text()
+    assert f"logs: {run.log_dir}" in text
+    assert_nothing_left(run)
+
+
+def test_sigkill_of_the_launcher_takes_every_descendant_with_it(launch_run) -> None:
+    run = launch_run(str(DATA / "supervise.yaml"), PY, "--no-router")
+    run.wait_for(r"all 4 processes started")
+    names = {" ".join(p.cmdline()) for p in run.leftovers()}
+    assert any(n == "sleep 61" for n in names), names  # the grandchild of the shell exists
+    run.signal(signal.SIGKILL)
+    run.wait(5)
+    time.sleep(1.0)
+    assert [p.cmdline() for p in run.leftovers()] == []
+
+
+def test_ctrl_c_during_start_up_leaves_nothing_behind(launch_run, tmp_path) -> None:
+    lines = ["launch:"]
+    lines += [f"- executable: {{name: p{i}, cmd: 'sleep 60'}}" for i in range(40)]
+    lines += ["- executable: {name: gated, cmd: 'sleep 60', wait_for: [{started: p39}]}"]
+    lines += ["- timer: {period: 0.5, children: [{executable: {name: late, cmd: 'sleep 60'}}]}"]
+    path = tmp_path / "many.yaml"
+    path.write_text("\n".join(lines) + "\n")
+    run = launch_run(str(path), "--no-router")
+    run.wait_for(r"\[p0\] started")
+    run.signal(signal.SIGINT)
+    assert run.wait(10) == 0
+    assert "[late] started" not in run.text()
+    assert_nothing_left(run)
+
+
+def test_respawn_retries_then_the_launch_reports_the_failure(launch_run, tmp_path) -> None:
+    record = tmp_path / "record"
+    path = tmp_path / "respawn.yaml"
+    path.write_text(f"""
+launch:
+- executable:
+    name: flaky
+    cmd: "{sys.executable} {DATA / "step.py"} {record} flaky --exit 3"
+    respawn: true
+    respawn_delay: 0.2
+    respawn_max_retries: 2
+""")
+    t0 = time.monotonic()
+    run = launch_run(str(path), "--no-router")
+    assert run.wait(15) == 1
+    assert record.read_text().split() == ["flaky"] * 3
+    assert time.monotonic() - t0 > 0.4  # two respawn delays
+    text = run.text()
+    assert "[flaky] respawning in 0.2 s (restart 2 of 2)" in text
+    assert "launch failed: failed: flaky (exit code 3)" in text
+
+
+def test_a_required_process_that_dies_brings_everything_down(launch_run, tmp_path) -> None:
+    path = tmp_path / "required.yaml"
+    path.write_text(f"""
+launch:
+- executable: {{name: worker, cmd: "sleep 60"}}
+- executable:
+    name: sim
+    cmd: "{sys.executable} {DATA / "step.py"} - sim --print 'physics diverged' --sleep 0.3 --exit 4"
+    on_exit: shutdown
+""")
+    run = launch_run(str(path), "--no-router")
+    assert run.wait(10) == 1
+    text = run.text()
+    assert "required process 'sim' died with exit code 4 (last output: 'physics diverged')" in text
+    assert "[worker] stopped (killed by SIGINT" in text
+    assert_nothing_left(run)
+
+
+def test_bad_input_exits_2_with_one_line_and_starts_nothing(launch_run, tmp_path) -> None:
+    path = tmp_path / "bad.yaml"
+    path.write_text("launch:\n- executable: {cmd: 'sleep 60', name: ok}\n- node: {pkg: rviz2, exec: rviz}\n")
+    run = launch_run(str(path))
+    assert run.wait(10) == 2
+    lines = run.text().strip().splitlines()
+    assert len(lines) == 1 and "bad.yaml:3:3: node rviz2/rviz: package 'rviz2' has no executable 'rviz'" in lines[0]
+    assert not run.log_dir.exists()
+    assert run.leftovers() == []
+
+
+def test_yaml_and_python_forms_print_the_same_tree(tmp_path) -> None:
+    import subprocess
+
+    def printed(name: str) -> list[str]:
+        done = subprocess.run(
+            [sys.executable, "-m", "diffctl", "launch", str(DATA / name), "--print", "--no-color", "gui:=true"],
+            capture_output=True,
+            text=True,
+            timeout=30,
+        )
+        assert done.returncode == 0, done.stderr
+        return done.stdout.splitlines()[1:]  # the first line names the file
+
+    yaml_tree = printed("tutorial.yaml")
+    assert yaml_tree == printed("tutorial.launch.py")
+    assert any("process rviz2" in line for line in yaml_tree)
+    assert any("param robot_description = '<?xml" in line for line in yaml_tree)
+
+
+@pytest.mark.slow
+def test_readiness_on_a_topic_through_the_embedded_router(launch_run, tmp_path, monkeypatch) -> None:
+    from tests.conftest import free_port
+
+    monkeypatch.setenv("DIFFCTL_ROUTER", f"tcp/127.0.0.1:{free_port()}")
+    path = tmp_path / "topic.yaml"
+    path.write_text(f"""
+launch:
+- executable:
+    name: waiter
+    cmd: "{sys.executable} {DATA / "step.py"} - waiter --print 'topic is up' --sleep 60"
+    wait_for: [{{topic: /launch_test_ready}}]
+    wait_timeout: 30
+- timer:
+    period: 1.0
+    children:
+    - executable:
+        name: talker
+        cmd: "{sys.executable} -m diffctl topic pub /launch_test_ready std_msgs/msg/String '{{data: hi}}' --rate 5"
+""")
+    run = launch_run(str(path))
+    run.wait_for(r"\[waiter\] topic is up", timeout_s=30)
+    text = run.text()
+    assert text.index("[talker] started") < text.index("[waiter] started")
+    run.signal(signal.SIGINT)
+    assert run.wait(10) == 0
+    assert_nothing_left(run)
