@@ -7,6 +7,7 @@ whatever dies: a crashed process's tokens vanish when its session drops.
 from __future__ import annotations
 
 import threading
+import time
 from collections import defaultdict
 from collections.abc import Callable
 
@@ -26,6 +27,7 @@ class Graph:
         self._entities: dict[str, wire.Entity] = {}
         self._listeners: list[Listener] = []
         self._ready = threading.Event()
+        self._last_event = time.monotonic()
         self._sub = session.liveliness().declare_subscriber(
             f"{wire.LV_PREFIX}/{self._domain}/**", self._on_token, history=True
         )
@@ -33,6 +35,7 @@ class Graph:
         self.refresh()
 
     def _on_token(self, sample: zenoh.Sample) -> None:
+        self._last_event = time.monotonic()
         key = str(sample.key_expr)
         ent = wire.parse_token(key)
         if ent is None:
@@ -67,6 +70,15 @@ class Graph:
         except zenoh.ZError:
             pass
         self._ready.set()
+
+    def settle(self, quiet_s: float = 0.05, max_s: float = 0.4) -> None:
+        """Wait until tokens stop arriving for `quiet_s` (at most `max_s`): a one-shot tool's full picture."""
+        start = time.monotonic()
+        while time.monotonic() - start < max_s:
+            if time.monotonic() - self._last_event >= quiet_s and time.monotonic() - start >= quiet_s:
+                break
+            time.sleep(0.01)
+        self.refresh()
 
     def add_listener(self, cb: Listener) -> None:
         with self._lock:

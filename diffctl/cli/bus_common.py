@@ -35,7 +35,9 @@ def parse_values(text: str | None, what: str = "VALUES") -> dict[str, Any]:
 
 def graph() -> Graph:
     use_client_mode()
-    return Graph(open_session())
+    g = Graph(open_session())
+    g.settle()
+    return g
 
 
 def resolve_name(g: Graph, name: str, names: list[str], what: str = "topic") -> str:
