@@ -1,0 +1,168 @@
+"""The simulator's side of the bus: gz topics, services and tokens on a Zenoh session, handed to the sim thread.
+
+Publishers know whether anyone listens (a Zenoh matching listener), so the sim skips encoding what nobody
+reads and renders cameras only while someone subscribes. Subscription callbacks decode on the Zenoh thread
+and pass the message to the sim thread through `Stepper.call_soon`. Services are queryables whose handler
+runs on the sim thread and whose reply is JSON; a handler may also answer later (`Reply.defer`).
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Callable
+from typing import Any
+
+import zenoh
+
+from diffctl.bus import gz
+from diffctl.bus.log import Logger
+from diffctl.errors import DiffctlError, MessageError
+
+
+class GzPublisher:
+    def __init__(self, session: zenoh.Session, topic: str, gz_type: str) -> None:
+        self.topic = topic
+        self.gz_type = gz_type
+        self.key = gz.key(topic)
+        self._pub = session.declare_publisher(self.key)
+        self.matched = bool(self._pub.matching_status.matching)
+        self._listener = self._pub.declare_matching_listener(self._on_matching)
+
+    def _on_matching(self, status: Any) -> None:
+        self.matched = bool(status.matching)
+
+    def publish(self, msg: dict[str, Any]) -> None:
+        self._pub.put(gz.encode(self.gz_type, msg))
+
+    def put_raw(self, payload: bytes) -> None:
+        self._pub.put(payload)
+
+    def close(self) -> None:
+        for obj in (self._listener, self._pub):
+            try:
+                obj.undeclare()
+            except Exception:
+                pass
+
+
+class Reply:
+    """A pending query answer; `send` it now, or `defer()` and send it later from the sim thread."""
+
+    def __init__(self, query: zenoh.Query) -> None:
+        self._query = query
+        self.deferred = False
+
+    def defer(self) -> Reply:
+        self.deferred = True
+        return self
+
+    def send(self, body: dict[str, Any]) -> None:
+        try:
+            self._query.reply(self._query.key_expr, json.dumps(body, separators=(",", ":")).encode())
+        except Exception:
+            pass
+        finally:
+            try:
+                self._query.drop()
+            except Exception:
+                pass
+
+
+class SimTransport:
+    """Everything the sim declares on the bus, closed together."""
+
+    def __init__(self, session: zenoh.Session, call_soon: Callable[[Callable[[], None]], None], log: Logger) -> None:
+        self.session = session
+        self.call_soon = call_soon
+        self.log = log
+        self._owned: list[Any] = []
+
+    def publisher(self, topic: str, gz_type: str) -> GzPublisher:
+        p = GzPublisher(self.session, topic, gz_type)
+        self._owned.append(p)
+        return p
+
+    def raw_publisher(self, key: str) -> Any:
+        p = self.session.declare_publisher(key)
+        self._owned.append(p)
+        return p
+
+    def subscribe(self, topic: str, gz_type: str, handler: Callable[[dict[str, Any]], None]) -> Any:
+        """`handler(fields)` runs on the sim thread for each well-formed sample of `gz_type`."""
+
+        def on_sample(sample: Any) -> None:
+            try:
+                _, fields = gz.decode(sample.payload.to_bytes(), gz_type)
+            except MessageError as e:
+                self.log.throttled(f"bad:{topic}", f"dropped a malformed message on gz topic {topic}: {e}")
+                return
+            self.call_soon(lambda: handler(fields))
+
+        sub = self.session.declare_subscriber(gz.key(topic), on_sample)
+        self._owned.append(sub)
+        return sub
+
+    def raw_subscribe(self, key: str, callback: Callable[[Any], None]) -> Any:
+        """A subscriber whose callback runs on the Zenoh thread (for the lockstep path: no hand-over)."""
+        sub = self.session.declare_subscriber(key, callback)
+        self._owned.append(sub)
+        return sub
+
+    def service(self, key: str, handler: Callable[[dict[str, Any], Reply], dict[str, Any] | None]) -> Any:
+        """A JSON queryable; `handler(request, reply)` runs on the sim thread and returns the answer (or
+        defers `reply` and sends it later). Errors become {"ok": false, "error": "..."}."""
+
+        def on_query(query: zenoh.Query) -> None:
+            raw = query.payload.to_bytes() if query.payload is not None else b""
+            try:
+                req = json.loads(raw) if raw.strip() else {}
+                if not isinstance(req, dict):
+                    raise ValueError("the request must be a JSON object")
+            except ValueError as e:
+                Reply(query).send({"ok": False, "error": f"malformed request: {e}"})
+                return
+            self.call_soon(lambda: self._serve(handler, req, Reply(query)))
+
+        q = self.session.declare_queryable(key, on_query, complete=True)
+        self._owned.append(q)
+        return q
+
+    def _serve(self, handler: Callable[..., dict[str, Any] | None], req: dict[str, Any], reply: Reply) -> None:
+        try:
+            body = handler(req, reply)
+        except DiffctlError as e:
+            body = {"ok": False, "error": str(e)}
+        except Exception as e:  # a bug must not kill the sim thread; the caller gets the reason
+            self.log.error(f"service failed: {type(e).__name__}: {e}")
+            body = {"ok": False, "error": f"{type(e).__name__}: {e}"}
+        if not reply.deferred:
+            reply.send(body if body is not None else {"ok": True})
+
+    def token(self, key: str) -> Any:
+        tok = self.session.liveliness().declare_token(key)
+        self._owned.append(tok)
+        return tok
+
+    def liveliness_subscriber(self, key: str, callback: Callable[[Any], None]) -> Any:
+        sub = self.session.liveliness().declare_subscriber(key, callback, history=True)
+        self._owned.append(sub)
+        return sub
+
+    def release(self, obj: Any) -> None:
+        if obj in self._owned:
+            self._owned.remove(obj)
+        _undeclare(obj)
+
+    def close(self) -> None:
+        while self._owned:
+            _undeclare(self._owned.pop())
+
+
+def _undeclare(obj: Any) -> None:
+    try:
+        if hasattr(obj, "close") and not hasattr(obj, "undeclare"):
+            obj.close()
+        else:
+            obj.undeclare()
+    except Exception:
+        pass
