@@ -1,0 +1,146 @@
+"""Bus benchmark: TwistStamped round trip between two processes through the router, and decoded throughput.
+
+Metrics (budget): `bus_rtt_p50_us` (≤ 300), `bus_rtt_p99_us` (≤ 1000), `bus_throughput_msgs_s` (≥ 50,000,
+one-way, every message deserialized by the receiver).
+"""
+
+from __future__ import annotations
+
+import os
+import statistics
+import subprocess
+import sys
+import textwrap
+import threading
+import time
+
+BUDGET = {"bus_rtt_p50_us": ("<=", 300.0), "bus_rtt_p99_us": ("<=", 1000.0),
+          "bus_throughput_msgs_s": (">=", 50_000.0)}
+SAMPLES = 5000
+TYPE = "geometry_msgs/msg/TwistStamped"
+
+PONG = textwrap.dedent(f"""
+    from diffctl.bus import Node
+    n = Node("bench_pong")
+    pub = n.create_publisher("/bench/pong", "{TYPE}")
+    n.create_subscription("/bench/ping", "{TYPE}", pub.publish_raw, raw=True)
+    print("ready", flush=True)
+    n.spin()
+""")
+
+FLOOD = textwrap.dedent(f"""
+    import sys, time
+    from diffctl.bus import Node, types
+    n = Node("bench_flood")
+    pub = n.create_publisher("/bench/flood", "{TYPE}")
+    raw = types.serialize(types.new("{TYPE}", {{"twist": {{"linear": {{"x": 0.5}}}}}}), "{TYPE}")
+    while pub.subscription_count == 0:
+        time.sleep(0.01)
+    time.sleep(0.2)
+    print("go", flush=True)
+    end = time.monotonic() + float(sys.argv[1])
+    while time.monotonic() < end:
+        for _ in range(100):
+            pub.publish_raw(raw)
+""")
+
+
+def _percentile(values: list[float], q: float) -> float:
+    s = sorted(values)
+    return s[min(len(s) - 1, int(q * len(s)))]
+
+
+def run() -> dict:
+    from diffctl.bus import Node, types
+    from diffctl.bus.session import close_session
+
+    port = _free_port()
+    os.environ["DIFFCTL_ROUTER"] = f"tcp/127.0.0.1:{port}"
+    router = subprocess.Popen([sys.executable, "-m", "diffctl", "router"], stdout=subprocess.DEVNULL,
+                              stderr=subprocess.DEVNULL, start_new_session=True)
+    procs = [router]
+    try:
+        _wait_port(port)
+        pong = subprocess.Popen([sys.executable, "-c", PONG], stdout=subprocess.PIPE, text=True,
+                                start_new_session=True)
+        procs.append(pong)
+        assert pong.stdout.readline().strip() == "ready"
+        node = Node("bench_ping")
+        got = threading.Event()
+        node.create_subscription("/bench/pong", TYPE, lambda _m: got.set(), raw=True)
+        pub = node.create_publisher("/bench/ping", TYPE)
+        msg = types.new(TYPE, {"twist": {"linear": {"x": 0.5}}})
+        while pub.subscription_count == 0:
+            time.sleep(0.01)
+        time.sleep(0.3)
+        rtts: list[float] = []
+        for i in range(SAMPLES + 500):
+            got.clear()
+            t0 = time.perf_counter()
+            pub.publish(msg)  # serialize + put, as a real publisher does
+            if not got.wait(1.0):
+                continue
+            if i >= 500:  # warm-up
+                rtts.append((time.perf_counter() - t0) * 1e6)
+
+        count = [0]
+        lock = threading.Lock()
+
+        def on_flood(m) -> None:
+            with lock:
+                count[0] += 1
+
+        node.create_subscription("/bench/flood", TYPE, on_flood)  # decoded into a message every time
+        duration = 3.0
+        flood = subprocess.Popen([sys.executable, "-c", FLOOD, str(duration)], stdout=subprocess.PIPE, text=True,
+                                 start_new_session=True)
+        procs.append(flood)
+        assert flood.stdout.readline().strip() == "go"
+        with lock:
+            start_count = count[0]
+        t0 = time.monotonic()
+        flood.wait(duration + 10)
+        elapsed = time.monotonic() - t0
+        time.sleep(0.2)
+        with lock:
+            received = count[0] - start_count
+        node.close()
+        return {
+            "bus_rtt_p50_us": round(statistics.median(rtts), 1),
+            "bus_rtt_p99_us": round(_percentile(rtts, 0.99), 1),
+            "bus_rtt_samples": len(rtts),
+            "bus_throughput_msgs_s": round(received / elapsed),
+        }
+    finally:
+        close_session()
+        for p in reversed(procs):
+            try:
+                os.killpg(p.pid, 9)
+            except ProcessLookupError:
+                pass
+            p.wait()
+
+
+
+def _free_port() -> int:
+    import socket
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def _wait_port(port: int) -> None:
+    import socket
+
+    for _ in range(500):
+        try:
+            with socket.create_connection(("127.0.0.1", port), timeout=0.2):
+                return
+        except OSError:
+            time.sleep(0.01)
+    raise TimeoutError(f"router did not listen on {port}")
+
+
+if __name__ == "__main__":
+    print(run())
