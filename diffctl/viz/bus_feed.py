@@ -1,0 +1,163 @@
+"""The visualizer's bus side: subscriptions that feed the scene, graph and controller polling, publishers.
+
+Subscriptions are a short callback set into `Scene`. Topic rates for the topics panel come from plain
+Zenoh subscribers on the topics' keys (no ROS subscriber appears in the graph, so lazy bridges stay lazy);
+image topics are left out unless the camera panel is open, because counting them means receiving them.
+"""
+
+from __future__ import annotations
+
+import threading
+from typing import Any
+
+from diffctl.bus import Node, gz, types, wire
+from diffctl.errors import DiffctlError, MessageError
+from diffctl.viz.commands import PublishJob, TeleopCommand
+from diffctl.viz.rviz_config import RvizConfig
+from diffctl.viz.scene import Scene
+from diffctl.viz.settings import VizSettings
+
+HEAVY_TYPES = ("sensor_msgs/msg/Image", "sensor_msgs/msg/CompressedImage", "sensor_msgs/msg/PointCloud2")
+LIST_CONTROLLERS = "/controller_manager/list_controllers"
+LIST_CONTROLLERS_TYPE = "controller_manager_msgs/srv/ListControllers"
+
+
+class BusFeed:
+    def __init__(self, node: Node, scene: Scene, config: RvizConfig, settings: VizSettings) -> None:
+        self.node = node
+        self.scene = scene
+        self.settings = settings
+        self._lock = threading.Lock()
+        self._rate_subs: dict[tuple[str, str], Any] = {}
+        self._image_subs: dict[str, Any] = {}
+        self._publishers: dict[tuple[str, str], Any] = {}
+        self._controllers_client: Any = None
+
+        sub = node.create_subscription
+        sub("/tf", "tf2_msgs/msg/TFMessage", scene.on_tf)
+        sub("/tf_static", "tf2_msgs/msg/TFMessage", lambda m: scene.on_tf(m, static=True), latched=True)
+        for topic in config.topics("robot_model"):
+            sub(topic, "std_msgs/msg/String", lambda m: scene.set_robot_description(m.data), latched=True)
+        for topic in dict.fromkeys(config.topics("odometry")):
+            sub(topic, "nav_msgs/msg/Odometry", lambda m, t=topic: scene.on_odometry(t, m))
+        for topic in dict.fromkeys(config.topics("laser_scan")):
+            sub(topic, "sensor_msgs/msg/LaserScan", lambda m, t=topic: scene.on_scan(t, m))
+        sub("/joint_states", "sensor_msgs/msg/JointState", scene.on_joint_states)
+        sub("/clock", "rosgraph_msgs/msg/Clock", lambda m: scene.on_clock(m.clock.sec + m.clock.nanosec * 1e-9))
+        # The simulator side, as Gazebo's own GUI reads it: ground truth and world statistics.
+        zs = node.session
+        self._gz_subs = [
+            zs.declare_subscriber(gz.key(f"/model/{settings.ground_truth_model}/pose"), self._on_gz_pose),
+            zs.declare_subscriber(gz.key("/world/*/stats"), self._on_gz_stats),
+        ]
+
+    # ---- gz side ---------------------------------------------------------------------------------------
+
+    def _on_gz_pose(self, sample: Any) -> None:
+        try:
+            _, fields = gz.decode(sample.payload.to_bytes(), "gz.msgs.Pose_V")
+            self.scene.on_ground_truth(fields)
+        except (MessageError, ValueError, TypeError):
+            pass
+
+    def _on_gz_stats(self, sample: Any) -> None:
+        try:
+            _, fields = gz.decode(sample.payload.to_bytes())
+            self.scene.on_stats(fields)
+        except MessageError:
+            pass
+
+    # ---- polled (from the server's worker thread, about once a second) --------------------------------
+
+    def poll_graph(self) -> None:
+        graph = self.node.graph
+        topics = []
+        wanted: set[tuple[str, str]] = set()
+        for name, type_names in graph.topics().items():
+            pubs, subs = graph.publishers(name), graph.subscribers(name)
+            topics.append({
+                "name": name,
+                "types": type_names,
+                "publishers": len([p for p in pubs if p.node_fqn != self.node.fqn]),
+                "subscribers": len([s for s in subs if s.node_fqn != self.node.fqn]),
+            })
+            for t in type_names:
+                if any(p.type == t for p in pubs) and (t not in HEAVY_TYPES or name in self._image_subs):
+                    wanted.add((name, t))
+        with self._lock:
+            for key in [k for k in self._rate_subs if k not in wanted]:
+                self._rate_subs.pop(key).undeclare()
+            for name, t in wanted - set(self._rate_subs):
+                try:
+                    k = wire.topic_key(self.node.domain, name, t)
+                except Exception:  # a type our store lacks: listed, but not counted
+                    continue
+                self._rate_subs[(name, t)] = self.node.session.declare_subscriber(
+                    k, lambda _s, n=name: self.scene.count(n))
+        self.scene.set_topics(topics)
+
+    def poll_controllers(self) -> None:
+        """controller_manager's list, while one is running; None (panel hidden) otherwise."""
+        if not self.node.graph.servers(LIST_CONTROLLERS):
+            self.scene.set_controllers(None)
+            return
+        if self._controllers_client is None:
+            self._controllers_client = self.node.create_client(LIST_CONTROLLERS, LIST_CONTROLLERS_TYPE)
+        try:
+            resp = self._controllers_client.call({}, timeout=1.0)
+        except DiffctlError:
+            return
+        self.scene.set_controllers([
+            {"name": c.name, "state": c.state, "type": c.type, "claimed": list(c.claimed_interfaces)}
+            for c in resp.controller
+        ])
+
+    # ---- camera panel ------------------------------------------------------------------------------------
+
+    def watch_image(self, topic: str, on: bool) -> None:
+        """Subscribe to an image topic only while some page has its camera panel open (cameras are lazy)."""
+        with self._lock:
+            if on and topic not in self._image_subs:
+                self._image_subs[topic] = self.node.create_subscription(
+                    topic, "sensor_msgs/msg/Image", lambda m, t=topic: self._on_image(t, m), depth=1)
+            elif not on and topic in self._image_subs:
+                self._image_subs.pop(topic).close()
+
+    def _on_image(self, topic: str, msg: Any) -> None:
+        self.scene.count(topic)
+        self.scene.on_image(topic, msg)
+
+    # ---- commands from the page ------------------------------------------------------------------------
+
+    def _publisher(self, topic: str, type_name: str) -> Any:
+        with self._lock:
+            pub = self._publishers.get((topic, type_name))
+            if pub is None:
+                pub = self._publishers[(topic, type_name)] = self.node.create_publisher(topic, type_name)
+            return pub
+
+    def other_types(self, topic: str, type_name: str) -> list[str]:
+        """Types other endpoints use on `topic` (a TwistStamped controller fed Twist is the classic)."""
+        return [t for t in self.node.graph.topics().get(topic, []) if t != type_name]
+
+    def publish_teleop(self, cmd: TeleopCommand) -> None:
+        stamp = types.time_msg(self.node.now_ns())
+        fields = cmd.fields({"sec": stamp.sec, "nanosec": stamp.nanosec}, self.settings.teleop_frame_id)
+        self._publisher(cmd.topic, cmd.type_name).publish(types.new(cmd.type_name, fields))
+
+    def publish_job(self, job: PublishJob) -> None:
+        self._publisher(job.topic, job.type_name).publish(types.new(job.type_name, job.fields))
+
+    def close(self) -> None:
+        for s in self._gz_subs:
+            try:
+                s.undeclare()
+            except Exception:
+                pass
+        with self._lock:
+            for s in self._rate_subs.values():
+                try:
+                    s.undeclare()
+                except Exception:
+                    pass
+            self._rate_subs.clear()
