@@ -38,6 +38,7 @@ class Publisher:
         self._token = node.session.liveliness().declare_token(token)
         self._seq = itertools.count(1)
         node.context.add_local(self.topic, self.type, wire.KIND_PUB, node)
+        node.context.local_gids.add(self.gid)
 
     def publish(self, msg: Any) -> None:
         if isinstance(msg, dict):
@@ -74,12 +75,15 @@ class Publisher:
 
 class Subscription:
     def __init__(self, node: Node, topic: str, typename: str, callback: Callable[[Any], None], *,
-                 latched: bool = False, depth: int = 10, raw: bool = False) -> None:
+                 latched: bool = False, depth: int = 10, raw: bool = False, ignore_local: bool = False) -> None:
         self.node = node
         self.topic = node.resolve(topic)
         self.type = types.check(typename)
         self.callback = callback
         self.raw = raw
+        # rclcpp's ignore_local_publications: drop samples from publishers of this process (a bridge must
+        # not hear its own output on a bidirectional topic).
+        self._ignore_gids = node.context.local_gids if ignore_local else None
         key = wire.topic_key(node.domain, self.topic, self.type)
         qos = wire.qos_string(transient_local=latched, depth=1 if latched else depth)
         token = node.context.entity_token(node, wire.KIND_SUB, self.topic, self.type, qos)
@@ -100,6 +104,10 @@ class Subscription:
             # rmw_zenoh drops samples without the attachment too; say so instead of staying silent.
             log.throttled(f"noatt{self.topic}", f"dropped a sample on {self.topic} without rmw_zenoh attachment")
             return
+        if self._ignore_gids is not None:
+            att = sample.attachment.to_bytes()
+            if att[17:] in self._ignore_gids:
+                return
         data = sample.payload.to_bytes()
         if self.raw:
             msg: Any = data

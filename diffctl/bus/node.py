@@ -41,6 +41,7 @@ class _Context:
         self._executor: ThreadPoolExecutor | None = None
         self._locals: dict[tuple[str, str, str], Node] = {}  # (topic, type, kind) → a node owning it
         self._warned: set[tuple[str, str, str]] = set()
+        self.local_gids: set[bytes] = set()
 
     def next_id(self) -> int:
         return next(self._ids)
@@ -175,8 +176,10 @@ class Node:
         return self._keep(Publisher(self, topic, typename, latched=latched, depth=depth, reliable=reliable))
 
     def create_subscription(self, topic: str, typename: str, callback: Callable[[Any], None], *,
-                            latched: bool = False, depth: int = 10, raw: bool = False) -> Subscription:
-        return self._keep(Subscription(self, topic, typename, callback, latched=latched, depth=depth, raw=raw))
+                            latched: bool = False, depth: int = 10, raw: bool = False,
+                            ignore_local: bool = False) -> Subscription:
+        return self._keep(Subscription(self, topic, typename, callback, latched=latched, depth=depth, raw=raw,
+                                       ignore_local=ignore_local))
 
     def create_service(self, name: str, srv_type: str, handler: Callable[[Any], Any]) -> Service:
         return self._keep(Service(self, name, srv_type, handler))

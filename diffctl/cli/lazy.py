@@ -31,7 +31,10 @@ class LazyGroup(click.Group):
     def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
         if cmd_name in self.lazy_commands:
             module_name, attr = self.lazy_commands[cmd_name].split(":")
-            return getattr(importlib.import_module(module_name), attr)
+            try:
+                return getattr(importlib.import_module(module_name), attr)
+            except ImportError as e:  # a broken install must not show up as a traceback
+                raise click.ClickException(f"command {cmd_name!r} is unavailable: {e}") from None
         return super().get_command(ctx, cmd_name)
 
     def resolve_command(self, ctx: click.Context, args: list[str]):

@@ -259,3 +259,19 @@ def test_clock_follows_clock_topic_with_use_sim_time(router: str) -> None:
         clock_pub.publish({"clock": {"sec": 12, "nanosec": 500 + i * 50_000_000}})
         time.sleep(0.02)
     assert wait_for(lambda: len(ticks) >= 2), "a 0.1 s sim-time timer fires twice over 0.25 s of sim time"
+
+
+def test_ignore_local_drops_this_process_publications(router: str, procs) -> None:
+    n = Node("bridge_like")
+    heard_all: list = []
+    heard_remote: list = []
+    n.create_subscription("/both", "std_msgs/msg/String", heard_all.append)
+    n.create_subscription("/both", "std_msgs/msg/String", heard_remote.append, ignore_local=True)
+    pub = n.create_publisher("/both", "std_msgs/msg/String")
+    time.sleep(0.2)
+    pub.publish({"data": "mine"})
+    r = subprocess.run([sys.executable, "-m", "diffctl", "topic", "pub", "/both", "std_msgs/msg/String",
+                        "{data: theirs}", "--once"], capture_output=True, text=True, timeout=20)
+    assert r.returncode == 0, r.stderr
+    assert wait_for(lambda: len(heard_all) == 2)
+    assert [m.data for m in heard_remote] == ["theirs"]
