@@ -339,6 +339,9 @@ class LogInfo(Action):
         super().__init__(**kw)
         self.msg = normalize(msg)
 
+    def label(self) -> str:
+        return f"log {describe(self.msg)!r}"
+
     def visit(self, r: Resolver, scope: Scope) -> list[Step]:
         return [LogMessage(message=perform(self.msg, scope))]
 

@@ -124,6 +124,10 @@ class EventLoop:
                 self._reap(orphans=chld)
                 supervisor.tick()
             return supervisor.exit_code
+        except BaseException:
+            # The launcher itself failed (a bug, a broken pipe): no child may outlive it.
+            self.spawner.kill_all()
+            raise
         finally:
             signal.set_wakeup_fd(old_wakeup)
             for sig, handler in previous.items():

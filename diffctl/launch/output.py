@@ -18,6 +18,9 @@ from typing import IO, Any
 from diffctl.console import PREFIX_COLOURS, Text, make_console
 from diffctl.launch.commandline import file_stem
 
+# rich answers a broken pipe with SystemExit(1); for the launcher a closed screen is no reason to stop.
+_BROKEN_PIPE = (OSError, SystemExit)
+
 LEVEL_STYLES = {"INFO": "", "WARN": "yellow", "ERROR": "bold red"}
 
 
@@ -40,6 +43,7 @@ class Output:
         self.stream = target
         self.live_enabled = live if live is not None else bool(getattr(target, "isatty", lambda: False)())
         self._live: str | None = None
+        self._screen_gone = False
         self.log_dir = log_dir
         self._files: dict[str, IO[str]] = {}
         self._launch_log: IO[str] | None = None
@@ -63,18 +67,26 @@ class Output:
         self._print(Text(f"[{level}] [launch]: {message}", style=LEVEL_STYLES.get(level, "")))
 
     def show(self, renderable: Any) -> None:
-        self._clear_live()
-        self.console.print(renderable)
-        self._draw_live()
+        if self._screen_gone:
+            return
+        try:
+            self._clear_live()
+            self.console.print(renderable)
+            self._draw_live()
+        except _BROKEN_PIPE:
+            self._screen_gone = True
 
     # ---- the live start-up line ------------------------------------------------------------------------------
 
     def live(self, text: str | None) -> None:
-        if not self.live_enabled or text == self._live:
+        if not self.live_enabled or text == self._live or self._screen_gone:
             return
-        self._clear_live()
-        self._live = text
-        self._draw_live()
+        try:
+            self._clear_live()
+            self._live = text
+            self._draw_live()
+        except _BROKEN_PIPE:
+            self._screen_gone = True
 
     def _clear_live(self) -> None:
         if self._live is not None:
@@ -89,9 +101,15 @@ class Output:
             self.stream.flush()
 
     def _print(self, text: Text) -> None:
-        self._clear_live()
-        self.console.print(text)
-        self._draw_live()
+        if self._screen_gone:
+            return
+        try:
+            self._clear_live()
+            self.console.print(text)
+            self._draw_live()
+        except _BROKEN_PIPE:
+            # `diffctl launch … | head` closed our stdout: keep supervising, logging to files only.
+            self._screen_gone = True
 
     # ---- files -----------------------------------------------------------------------------------------------
 

@@ -43,9 +43,16 @@ def project_root() -> Path:
     return package_dir / "share"
 
 
+# Share directories of component packages (launch files written for ROS include them, e.g. gz_sim.launch.py).
+COMPONENT_SHARES = Path(__file__).resolve().parent / "share"
+
+
 def project_packages() -> dict[str, Path]:
     root = project_root()
-    return {"diff_sim": root, "robot_description": root / "description"}
+    packages = {"diff_sim": root, "robot_description": root / "description"}
+    if COMPONENT_SHARES.is_dir():
+        packages.update({p.name: p for p in COMPONENT_SHARES.iterdir() if p.is_dir()})
+    return packages
 
 
 def _ament_prefixes() -> list[Path]:

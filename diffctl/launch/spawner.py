@@ -16,6 +16,7 @@ import os
 import signal
 import subprocess
 import sys
+import time
 from collections.abc import Callable
 from pathlib import Path
 from typing import IO
@@ -144,6 +145,20 @@ class PosixSpawner:
                         os.waitpid(pid, os.WNOHANG)
                 except (ProcessLookupError, ChildProcessError):
                     pass
+
+    def kill_all(self, wait_s: float = 1.0) -> None:
+        """Last resort when the launcher itself fails: SIGKILL every group and reap what we can."""
+        for pgid in list(self._groups):
+            try:
+                os.killpg(pgid, signal.SIGKILL)
+            except OSError:
+                pass
+        deadline = time.monotonic() + wait_s
+        while self._children and time.monotonic() < deadline:
+            self.reap()
+            time.sleep(0.01)
+        for child_pid in list(self._groups):
+            self.forget(Child(child_pid, child_pid))
 
     def close(self) -> None:
         """The launcher ends normally: release the guard without it killing anything."""

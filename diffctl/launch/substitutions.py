@@ -55,6 +55,11 @@ def normalize(value: Any) -> tuple[Substitution, ...]:
     raise LaunchError(f"cannot use {value!r} ({type(value).__name__}) as text or a substitution")
 
 
+def describe(parts: tuple[Substitution, ...]) -> str:
+    """Substitutions as a YAML launch file would write them."""
+    return "".join(p.describe() for p in parts)
+
+
 def perform(value: Any, scope: Scope) -> str:
     """Evaluate a str, a Substitution or a list of them to one string."""
     return "".join(s.perform(scope) for s in normalize(value))
@@ -105,6 +110,11 @@ class EnvironmentVariable(Substitution):
         self.name = normalize(name)
         self.default_value = None if default_value is None else normalize(default_value)
 
+    def describe(self) -> str:
+        if self.default_value is None:
+            return f"$(env {describe(self.name)})"
+        return f"$(optenv {describe(self.name)} '{describe(self.default_value)}')"
+
     def perform(self, scope: Scope) -> str:
         name = perform(self.name, scope)
         if name in scope.env:
@@ -120,6 +130,9 @@ class FindPackageShare(Substitution):
     def __init__(self, package: SomeSubstitutions) -> None:
         self.package = normalize(package)
 
+    def describe(self) -> str:
+        return f"$(find-pkg-share {describe(self.package)})"
+
     def perform(self, scope: Scope) -> str:
         from diffctl.launch import package_index
 
@@ -132,6 +145,9 @@ class PathJoinSubstitution(Substitution):
     def __init__(self, substitutions: Sequence[SomeSubstitutions]) -> None:
         self.parts = [normalize(p) for p in substitutions]
 
+    def describe(self) -> str:
+        return "/".join(describe(p) for p in self.parts)
+
     def perform(self, scope: Scope) -> str:
         return os.path.join(*[perform(p, scope) for p in self.parts]) if self.parts else ""
 
@@ -139,12 +155,18 @@ class PathJoinSubstitution(Substitution):
 class ThisLaunchFileDir(Substitution):
     """`$(dirname)`: the directory of the launch file being read."""
 
+    def describe(self) -> str:
+        return "$(dirname)"
+
     def perform(self, scope: Scope) -> str:
         return str(Path(scope.launch_file).parent) if scope.launch_file else os.getcwd()
 
 
 class ThisLaunchFile(Substitution):
     """`$(filename)`: the path of the launch file being read."""
+
+    def describe(self) -> str:
+        return "$(filename)"
 
     def perform(self, scope: Scope) -> str:
         return scope.launch_file or ""
@@ -162,6 +184,9 @@ class PythonExpression(Substitution):
     def __init__(self, expression: SomeSubstitutions) -> None:
         self.expression = normalize(expression)
 
+    def describe(self) -> str:
+        return f"$(eval '{describe(self.expression)}')"
+
     def perform(self, scope: Scope) -> str:
         text = perform(self.expression, scope)
         namespace = {"__builtins__": _EVAL_BUILTINS, "math": math}
@@ -178,6 +203,9 @@ class AnonName(Substitution):
     def __init__(self, name: SomeSubstitutions) -> None:
         self.name = normalize(name)
 
+    def describe(self) -> str:
+        return f"$(anon {describe(self.name)})"
+
     def perform(self, scope: Scope) -> str:
         return scope.anon_name(perform(self.name, scope))
 
@@ -188,6 +216,9 @@ class Command(Substitution):
     def __init__(self, command: SomeSubstitutions, on_stderr: SomeSubstitutions = "fail") -> None:
         self.command = normalize(command)
         self.on_stderr = normalize(on_stderr)
+
+    def describe(self) -> str:
+        return f"$(command '{describe(self.command)}')"
 
     def perform(self, scope: Scope) -> str:
         text = perform(self.command, scope)
@@ -219,6 +250,9 @@ class FileContent(Substitution):
     def __init__(self, path: SomeSubstitutions, replacements: Mapping[str, SomeSubstitutions] | None = None) -> None:
         self.path = normalize(path)
         self.replacements = {k: normalize(v) for k, v in (replacements or {}).items()}
+
+    def describe(self) -> str:
+        return f"$(file-content {describe(self.path)})"
 
     def perform(self, scope: Scope) -> str:
         path = perform(self.path, scope)
