@@ -81,6 +81,7 @@ class HardwareComponent:
         self.commands: dict[str, CommandInterface] = {}
         self.log = None  # set by the resource manager: a Logger (info/warn/error)
         self.update_rate: int = 0  # the controller manager's update_rate, set before on_init
+        self.cancel = None  # a threading.Event set when the manager stops (to end waits in on_init/on_activate)
 
     # --- lifecycle hooks ----------------------------------------------------------------------------------
     def on_init(self, info: HardwareInfo) -> None:

@@ -49,11 +49,13 @@ class ControllerManager:
         log: Logger,
         node_factory: NodeFactory,
         robot_description: str = "",
+        cancel: threading.Event | None = None,
     ) -> None:
         self.params = params
         self.log = log
         self.node_factory = node_factory
         self.robot_description = robot_description
+        self.cancel = cancel
         self.rm = ResourceManager(log.warn)
         self.controllers: dict[str, ManagedController] = {}
         self.loop_running = False
@@ -72,7 +74,7 @@ class ControllerManager:
         """Load every component, then bring it to its initial state (active unless the parameters say not)."""
         with self._admin, self._lock:
             for info in infos:
-                self.rm.load(info, self.log, self.update_rate)
+                self.rm.load(info, self.log, self.update_rate, self.cancel)
             for info in infos:
                 if info.name in self.params.hardware_unconfigured:
                     continue

@@ -16,7 +16,7 @@ from diffctl.control.controller_interface import CommandInterface, ReturnType, S
 from diffctl.control.hardware_interface import HardwareComponent, HardwareInfo
 from diffctl.control.lifecycle import State, TransitionError, hook_message
 from diffctl.control.plugin_registry import hardware_class
-from diffctl.errors import ConfigError
+from diffctl.errors import ConfigError, DiffctlError
 
 
 @dataclass(eq=False)
@@ -51,18 +51,20 @@ class ResourceManager:
         self._readable: tuple[HardwareHandle, ...] = ()
 
     # --- loading ---------------------------------------------------------------------------------------
-    def load(self, info: HardwareInfo, logger: object | None = None, update_rate: int = 0) -> HardwareHandle:
+    def load(self, info: HardwareInfo, logger: object | None = None, update_rate: int = 0,
+             cancel: object | None = None) -> HardwareHandle:
         if info.name in self.components:
             raise ConfigError(f"two <ros2_control> blocks are named {info.name!r}", source=info.source)
         cls = hardware_class(info.plugin_name)
         comp = cls()
         comp.log = logger
         comp.update_rate = update_rate
+        comp.cancel = cancel
         try:
             comp.on_init(info)
             states = list(comp.export_state_interfaces())
             commands = list(comp.export_command_interfaces())
-        except ConfigError:
+        except DiffctlError:
             raise
         except Exception as e:
             raise ConfigError(f"hardware {info.name!r} ({info.plugin_name}) failed to initialise: {hook_message(e)}",

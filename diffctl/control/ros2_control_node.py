@@ -112,7 +112,7 @@ class ControlNode:
             return BusControllerNode(name, self.node.namespace, p, self.now_ns)
 
         self.cm = ControllerManager(params, log=self.log, node_factory=factory,
-                                    robot_description=self.description)
+                                    robot_description=self.description, cancel=self.stop)
         self.cm.load_hardware(self.infos)
         self.services = ManagerServices(self.node, self.cm, self.node.params)
         self.ticker = self._make_ticker()
@@ -173,8 +173,12 @@ class ControlNode:
         import signal
 
         self.failed: ConfigError | None = None
+        def on_signal(*_: object) -> None:
+            self.stop.set()
+            self.node.request_shutdown()
+
         for sig in (signal.SIGINT, signal.SIGTERM):
-            signal.signal(sig, lambda *_: self.node.request_shutdown())
+            signal.signal(sig, on_signal)
         try:
             if self.description is None:
                 self.node.create_subscription("robot_description", "std_msgs/msg/String", self._on_description,
