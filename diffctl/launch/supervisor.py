@@ -414,10 +414,10 @@ class Supervisor:
         if self.shutting_down:
             return
         self.shutting_down = True  # from here on only log actions run, nothing new starts
-        self._fire("shutdown", "", None)
         self._shutdown_at = self.now()
         self.output.live(None)
         self.output.launcher("WARN" if self.failures else "INFO", f"shutting down: {reason}")
+        self._fire("shutdown", "", None)
         for _, _, timer in self._timers:
             timer.cancelled = True
         for p in self.pending:

@@ -224,10 +224,10 @@ class FakeRun:
 
 @pytest.fixture
 def fake_run(tmp_path: Path):
-    """fake_run(yaml_text) → a FakeRun of that launch description, started."""
+    """fake_run(text) → a FakeRun of that YAML (or, with suffix=".launch.py", Python) description, started."""
 
-    def make(text: str, arguments: dict[str, str] | None = None, start: bool = True) -> FakeRun:
-        path = tmp_path / f"case{len(list(tmp_path.glob('case*.yaml')))}.yaml"
+    def make(text: str, arguments: dict[str, str] | None = None, start: bool = True, suffix: str = ".yaml") -> FakeRun:
+        path = tmp_path / f"case{len(list(tmp_path.glob('case*')))}{suffix}"
         path.write_text(text)
         run = FakeRun(resolve(load(path), arguments or {}, str(path)), tmp_path)
         if start:

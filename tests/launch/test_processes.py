@@ -42,6 +42,9 @@ def test_ctrl_c_stops_every_group_escalating_for_a_stubborn_child(launch_run) ->
     run.wait_for(r"all 4 processes started")
     run.wait_for(r"\[stubborn\] ignoring SIGINT and SIGTERM")
     time.sleep(0.3)  # let talker print into its log
+    run.signal(signal.SIGUSR1)
+    run.wait_for(r"process +┃ pid +┃ state +┃ restarts +┃ uptime +┃ exit code")
+    run.wait_for(r"│ talker +│ \d+ +│ running +│ 0 +│ \d")
     t0 = time.monotonic()
     run.signal(signal.SIGINT)
     assert run.wait(10) == 0

@@ -167,3 +167,89 @@ launch:
     from diffctl.ros_args import load_params_file
 
     assert load_params_file(params_file, "rsp") == {"use_sim_time": True, "robot_description": "<sdf version='1.9'/>"}
+
+
+def test_the_live_line_names_what_is_awaited_and_clears_once_all_are_up(fake_run) -> None:
+    import io
+
+    from diffctl.launch.output import Output
+
+    run = fake_run(
+        """
+launch:
+- executable: {cmd: "true", name: spawn_entity}
+- executable: {cmd: "sleep 100", name: spawner, wait_for: [{exited: spawn_entity}]}
+- on_exit: {target: spawner, do: [{executable: {cmd: "sleep 100", name: viz}}]}
+""",
+        start=False,
+    )
+    screen = io.StringIO()
+    run.sup.output = Output(stream=screen, live=True, no_color=True)
+    run.sup.start()
+    assert "up: spawn_entity │ waiting: spawner (spawn_entity exited with code 0)" in screen.getvalue()
+    run.spawner.exit("spawn_entity", 0)
+    assert "waiting: viz (on exit of spawner)" in screen.getvalue().rsplit("\r\x1b[2K", 1)[-1]
+    run.spawner.exit("spawner", 0)
+    tail = screen.getvalue().rsplit("\r\x1b[2K", 1)[-1]
+    assert "waiting" not in tail and "all 3 processes started in 0 ms" in tail
+    run.sup.show_status()
+    table = screen.getvalue().rsplit("all 3 processes started", 1)[-1]
+    for header in ("process", "pid", "state", "restarts", "uptime", "exit code"):
+        assert header in table
+    assert "viz" in table and "running" in table and "spawn_entity" in table and "exited" in table
+
+
+def test_python_descriptions_emit_shutdown_run_timers_and_on_shutdown_handlers(fake_run) -> None:
+    run = fake_run(
+        """
+from diffctl.launch import (EmitEvent, ExecuteProcess, GroupAction, IfCondition, LaunchConfiguration,
+    LaunchDescription, LogInfo, OnShutdown, RegisterEventHandler, TimerAction, UnlessCondition)
+from diffctl.launch import events
+
+def generate_launch_description():
+    return LaunchDescription([
+        ExecuteProcess(cmd=["sleep", "100"], name="worker"),
+        GroupAction([ExecuteProcess(cmd=["sleep", "100"], name="viz")],
+                    condition=UnlessCondition(LaunchConfiguration("headless", default="true"))),
+        RegisterEventHandler(OnShutdown(on_shutdown=[LogInfo(msg="saving the map")])),
+        TimerAction(period=2.0, actions=[EmitEvent(event=events.Shutdown(reason="demo over"))]),
+    ])
+""",
+        suffix=".launch.py",
+    )
+    assert [n for _, n, _ in run.spawner.spawned] == ["worker"]
+    run.advance(1.9)
+    assert not run.sup.shutting_down
+    run.advance(0.2)
+    run.advance(0.1)
+    assert run.sup.done and run.sup.exit_code == 0
+    text = run.text()
+    assert text.index("shutting down: demo over") < text.index("saving the map") < text.index("[worker] stopped")
+
+
+def test_the_tutorials_gz_sim_include_starts_the_simulator_and_not_the_gui_client(tmp_path) -> None:
+    from diffctl.launch.loader import load
+    from diffctl.launch.resolver import resolve
+
+    path = tmp_path / "tutorial_include.launch.py"
+    path.write_text("""
+import os
+from ament_index_python.packages import get_package_share_directory
+from launch import LaunchDescription
+from launch.actions import IncludeLaunchDescription
+from launch.launch_description_sources import PythonLaunchDescriptionSource
+
+def generate_launch_description():
+    gazebo_launch_file = os.path.join(get_package_share_directory("ros_gz_sim"), "launch", "gz_sim.launch.py")
+    world_file = os.path.join(get_package_share_directory("diff_sim"), "worlds", "empty.world")
+    return LaunchDescription([
+        IncludeLaunchDescription(PythonLaunchDescriptionSource(gazebo_launch_file),
+            launch_arguments={"gz_args": [" -r -s -v4 ", world_file], "on_exit_shutdown": "true"}.items()),
+        IncludeLaunchDescription(PythonLaunchDescriptionSource(os.path.join(gazebo_launch_file)),
+            launch_arguments={"gz_args": "-g -v4 "}.items()),
+    ])
+""")
+    plan = resolve(load(path), {}, str(path))
+    (sim,) = plan.processes.values()
+    assert sim.argv[-5:] == ("run", "-r", "-s", "-v4", sim.argv[-1]) and sim.argv[-1].endswith("worlds/empty.world")
+    assert sim.required
