@@ -119,7 +119,12 @@ def _run(plan: Any, *, log_dir: Path | None, no_color: bool, no_router: bool) ->
     kinds = plan.uses_bus()
     probes = _bus_probes(kinds) if kinds else None
     run_dir = log_dir or default_log_dir()
-    output = Output(log_dir=run_dir, no_color=no_color)
+    try:
+        output = Output(log_dir=run_dir, no_color=no_color)
+    except OSError as e:
+        raise LaunchError(
+            f"cannot create the log directory {run_dir}: {e.strerror}", hint="pass --log-dir DIR"
+        ) from None
     if log_dir is None:
         link_latest(run_dir)
     router = None

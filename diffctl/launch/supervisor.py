@@ -206,7 +206,7 @@ class Supervisor:
         elif sig in STOP_SIGNALS:
             name = signal.Signals(sig).name
             if not self.shutting_down:
-                self.shutdown(f"{'ctrl-c ' if sig == signal.SIGINT else ''}({name})")
+                self.shutdown("ctrl-c (SIGINT)" if sig == signal.SIGINT else f"{name} received")
             else:
                 self._kill_all(f"{name} again")
             self._after_event()
@@ -364,6 +364,8 @@ class Supervisor:
         if st is None:
             return f"{w.target} is not a process of this launch"
         if w.kind == "started":
+            if st.starts == 0 and st.state == "failed":
+                return f"{w.target} could not start"
             return st.starts > 0
         finished = not st.alive and st.state in ("exited", "failed")
         if w.kind == "exited":

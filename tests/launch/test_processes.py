@@ -182,6 +182,7 @@ launch:
     run.wait_for(r"\[waiter\] topic is up", timeout_s=30)
     text = run.text()
     assert text.index("[talker] started") < text.index("[waiter] started")
-    run.signal(signal.SIGINT)
+    run.signal(signal.SIGTERM)  # a service manager's stop: as graceful as Ctrl-C
     assert run.wait(10) == 0
+    assert "shutting down: SIGTERM received" in run.text()
     assert_nothing_left(run)
