@@ -1,0 +1,148 @@
+"""End to end on mock hardware: manager + both spawners as real processes over a real router, driven by
+TwistStamped like a teleop node would; odometry, wheel states, timeout braking, stale and NaN commands."""
+
+from __future__ import annotations
+
+import math
+import subprocess
+import threading
+import time
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[2]
+SDF = REPO / "description" / "my_diff_car_control.sdf"
+CONFIG = REPO / "config" / "diff_drive_controller.yaml"
+CTRL = "/diffbot_base_controller"
+WHEEL_RADIUS_M = 0.04
+
+
+def start_manager(procs, log_path: Path, *extra: str) -> subprocess.Popen:
+    return procs.diffctl(
+        "control", "manager", "--description", str(SDF), "--param-file", str(CONFIG),
+        "--hardware-plugin", "mock_components/GenericSystem", "--hardware-param", "calculate_dynamics=true",
+        *extra, "--ros-args", "-p", "use_sim_time:=false",
+        stdout=log_path.open("w"), stderr=subprocess.STDOUT,
+    )
+
+
+def spawn(procs, *args: str, timeout_s: float = 20.0) -> tuple[int, str]:
+    p = procs.diffctl("spawn", "controller", *args)
+    out, _ = p.communicate(timeout=timeout_s)
+    return p.returncode, out
+
+
+class Recorder:
+    def __init__(self) -> None:
+        self.lock = threading.Lock()
+        self.odom: list[tuple[float, float, float]] = []  # (stamp s, x m, vx m/s)
+        self.joints: list[tuple[float, float]] = []  # (stamp s, left wheel position rad)
+
+    def on_odom(self, msg) -> None:
+        t = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+        with self.lock:
+            self.odom.append((t, msg.pose.pose.position.x, msg.twist.twist.linear.x))
+
+    def on_joints(self, msg) -> None:
+        t = msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9
+        if "base_link_to_left_wheel" in msg.name:
+            with self.lock:
+                self.joints.append((t, float(msg.position[list(msg.name).index("base_link_to_left_wheel")])))
+
+    def last_odom(self) -> tuple[float, float, float]:
+        with self.lock:
+            return self.odom[-1]
+
+    def at(self, series: list, t: float) -> tuple:
+        with self.lock:
+            return min(series, key=lambda s: abs(s[0] - t))
+
+
+def publish_for(pub, node, duration_s: float, x: float, *, stamp_offset_s: float = 0.0, rate_hz: float = 50.0) -> float:
+    """Publish TwistStamped(linear.x=x) at rate_hz for duration_s; returns the last stamp (s)."""
+    from diffctl.bus import types
+
+    end = time.monotonic() + duration_s
+    last = 0.0
+    while time.monotonic() < end:
+        now_ns = time.time_ns() + int(stamp_offset_s * 1e9)
+        msg = types.new("geometry_msgs/msg/TwistStamped",
+                        {"header": {"stamp": {"sec": now_ns // 10**9, "nanosec": now_ns % 10**9}},
+                         "twist": {"linear": {"x": x}}})
+        pub.publish(msg)
+        last = now_ns / 1e9
+        time.sleep(1.0 / rate_hz)
+    return last
+
+
+@pytest.mark.slow
+def test_mock_control_drives_brakes_and_rejects_bad_commands(router, procs, tmp_path, output_dir, monkeypatch) -> None:
+    from diffctl.bus import Node
+
+    monkeypatch.setenv("ROS_HOME", str(tmp_path))
+    log_path = output_dir / "manager.log"
+    t0 = time.monotonic()
+    cm = start_manager(procs, log_path)
+    rc, out = spawn(procs, "diffbot_base_controller", "--param-file", str(CONFIG))
+    assert rc == 0, out
+    rc, out = spawn(procs, "joint_state_broadcaster")
+    assert rc == 0, out
+    startup_s = time.monotonic() - t0
+    assert "Configured and activated joint_state_broadcaster" in out
+
+    node = Node("test_teleop")
+    rec = Recorder()
+    node.create_subscription(f"{CTRL}/odom", "nav_msgs/msg/Odometry", rec.on_odom)
+    node.create_subscription("/joint_states", "sensor_msgs/msg/JointState", rec.on_joints)
+    pub = node.create_publisher(f"{CTRL}/cmd_vel", "geometry_msgs/msg/TwistStamped")
+    deadline = time.monotonic() + 5
+    while (not rec.odom or not rec.joints or pub.subscription_count == 0) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert rec.odom and rec.joints, "no /odom or /joint_states from the controllers"
+    x_rest = rec.last_odom()[1]
+
+    # A stale command (stamped 2 s ago, older than cmd_vel_timeout 0.5 s) and NaN / inf commands: no motion.
+    publish_for(pub, node, 0.3, 0.5, stamp_offset_s=-2.0)
+    publish_for(pub, node, 0.3, math.nan)
+    publish_for(pub, node, 0.3, math.inf)
+    time.sleep(0.3)
+    _, x, vx = rec.last_odom()
+    assert x == pytest.approx(x_rest, abs=1e-9) and vx == 0.0
+    assert "Ignoring the received message" in log_path.read_text()
+
+    # Drive: 0.2 m/s; the limiter (max_acceleration 1 m/s²) reaches it within 0.2 s.
+    t_start = time.time()
+    last_stamp = publish_for(pub, node, 1.6, 0.2)
+    steady = [s for s in rec.odom if s[0] > t_start + 0.35 and abs(s[2] - 0.2) < 1e-9]
+    assert steady, "odometry never reached 0.2 m/s"
+    t_a = steady[0][0]
+    t_b, x_b, _ = rec.at(rec.odom, t_a + 1.0)
+    assert t_b == pytest.approx(t_a + 1.0, abs=1e-3) and t_b < last_stamp
+    advance_m = x_b - steady[0][1]
+    assert advance_m == pytest.approx(0.2, rel=0.02)
+    # The same window on the (mock) wheels: 0.2 m/s ÷ 0.04 m = 5 rad/s.
+    (ja, qa), (jb, qb) = rec.at(rec.joints, t_a), rec.at(rec.joints, t_a + 1.0)
+    assert (qb - qa) / (jb - ja) == pytest.approx(0.2 / WHEEL_RADIUS_M, rel=0.02)
+
+    # Stop publishing: the last command holds until cmd_vel_timeout (0.5 s) after its stamp, then brakes
+    # through the limiter (1 m/s²: 0.2 s to zero), and the robot stays put.
+    time.sleep(1.2)
+    after = [s for s in rec.odom if s[0] > last_stamp]
+    moving = [s for s in after if s[2] > 0.199]
+    assert moving and moving[-1][0] >= last_stamp + 0.5 - 0.051, "braked before cmd_vel_timeout"
+    stopped = [s for s in after if s[2] == 0.0]
+    assert stopped and stopped[0][0] <= last_stamp + 0.5 + 0.2 + 0.11, "did not brake after cmd_vel_timeout"
+    decel = [s for s in after if 0.0 < s[2] < 0.199]
+    assert decel, "braking skipped the limiter"
+    x_final = rec.last_odom()[1]
+    time.sleep(0.3)
+    assert rec.last_odom()[1] == x_final
+    assert "Velocity command timed out" in log_path.read_text() or "timed out" in log_path.read_text()
+    node.close()
+
+    # Ctrl-C: every controller deactivated and unloaded, the process gone promptly.
+    t_stop = time.monotonic()
+    rc = procs.stop(cm)
+    assert rc == 0 and time.monotonic() - t_stop < 3.0
+    print(f"startup to both controllers active: {startup_s:.2f} s; steady 1 s advance {advance_m:.5f} m")
