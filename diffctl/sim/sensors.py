@@ -148,8 +148,10 @@ def specific_force(accel_world: Vec3, gravity: Vec3) -> Vec3:
 
 
 class Imu:
-    """Orientation, angular velocity and linear acceleration (finite difference of the sensor point's velocity
-    between samples) of the sensor frame, with SDF noise."""
+    """Orientation, angular velocity and linear acceleration of the sensor frame, with SDF noise.
+
+    Acceleration is the finite difference of the sensor point's velocity since `remember` (called one physics
+    step before each sample) or the previous sample; the first sample of a run reads gravity alone."""
 
     def __init__(self, entity: Entity, sensor: Sensor, gravity: Vec3, rng: np.random.Generator) -> None:
         spec = sensor.imu
@@ -162,6 +164,11 @@ class Imu:
 
     def reset(self) -> None:
         self._prev = None
+
+    def remember(self, sim_time_ns: int) -> None:
+        """Record the sensor point's velocity now, for the acceleration of the next sample (one step later)."""
+        pose = self.entity.link_pose(self.sensor.link).compose(self.sensor.pose_link)
+        self._prev = (sim_time_ns, self.entity.link_velocity(self.sensor.link, pose.xyz)[0])
 
     def sample(self, sim_time_ns: int) -> dict:
         pose = self.entity.link_pose(self.sensor.link).compose(self.sensor.pose_link)

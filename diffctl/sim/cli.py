@@ -1,0 +1,186 @@
+"""`diffctl sim run WORLD`: the `gz sim` counterpart (package ros_gz_sim, executable gz_sim).
+
+Accepts Gazebo's flags, also packed in one string as ros_gz_sim's `gz_args` passes them
+("-r -s -v4 empty.world"): -r run at start (else paused), -s server only (headless: the default), -g GUI
+only (there is no separate GUI client: use --gui on the server or `diffctl viz`), -v N verbosity 0-4,
+--iterations N, --seed N; plus --gui (the PyBullet window) and --rtf X (0 = as fast as possible; default
+the world's <real_time_factor>).
+"""
+
+from __future__ import annotations
+
+import os
+import shlex
+import signal
+import threading
+from dataclasses import dataclass
+from pathlib import Path
+
+import click
+
+from diffctl.errors import ConfigError
+
+LEVELS = {0: "ERROR", 1: "WARN", 2: "WARN", 3: "INFO", 4: "DEBUG"}
+
+
+@dataclass
+class GzArgs:
+    world: str | None = None
+    run: bool = False
+    server_only: bool = False
+    gui_only: bool = False
+    verbosity: int | None = None
+    iterations: int | None = None
+    seed: int | None = None
+    rtf: float | None = None
+
+
+def parse_gz_args(tokens: list[str]) -> GzArgs:
+    """Gazebo's `gz sim` flags from loose tokens (each may hold several, as a gz_args string does)."""
+    words: list[str] = []
+    for t in tokens:
+        words.extend(shlex.split(t))
+    out = GzArgs()
+    i = 0
+
+    def value(flag: str) -> str:
+        if i + 1 >= len(words):
+            raise ConfigError(f"sim run: {flag} needs a value")
+        return words[i + 1]
+
+    while i < len(words):
+        w = words[i]
+        if w == "-r":
+            out.run = True
+        elif w == "-s":
+            out.server_only = True
+        elif w == "-g":
+            out.gui_only = True
+        elif w.startswith("-v") and w[2:].isdigit():
+            out.verbosity = int(w[2:])
+        elif w in ("-v", "--verbose"):
+            out.verbosity = _int(value(w), w)
+            i += 1
+        elif w == "--iterations":
+            out.iterations = _int(value(w), w)
+            i += 1
+        elif w == "--seed":
+            out.seed = _int(value(w), w)
+            i += 1
+        elif w in ("-z", "--render-engine", "--physics-engine", "--render-engine-server", "--render-engine-gui",
+                   "--initial-sim-time", "--record-path"):
+            i += 1  # Gazebo options with a value that have no meaning here
+        elif w.startswith("-"):
+            if w not in ("--headless-rendering", "--record", "--levels", "--network-role"):
+                raise ConfigError(
+                    f"sim run: unknown option {w!r}",
+                    hint="valid: -r, -s, -g, -v N, --iterations N, --seed N, --gui, --rtf X",
+                )
+        elif out.world is None:
+            out.world = w
+        else:
+            raise ConfigError(f"sim run: more than one world file ({out.world!r} and {w!r})")
+        i += 1
+    if out.verbosity is not None and not 0 <= out.verbosity <= 4:
+        raise ConfigError(f"sim run: verbosity {out.verbosity} is out of range", hint="valid: 0..4")
+    if out.iterations is not None and out.iterations < 0:
+        raise ConfigError(f"sim run: --iterations {out.iterations} must be >= 0")
+    return out
+
+
+def _int(text: str, flag: str) -> int:
+    try:
+        return int(text)
+    except ValueError:
+        raise ConfigError(f"sim run: {flag} {text!r} is not an integer") from None
+
+
+def find_world(name: str) -> Path:
+    """The world file: a path, or a name looked up on GZ_SIM_RESOURCE_PATH and the project's worlds."""
+    p = Path(name).expanduser()
+    if p.is_file():
+        return p
+    from diffctl.description.resources import env_search_path
+
+    here = Path(__file__).resolve().parent.parent
+    candidates = [*env_search_path(), here.parent / "config" / "worlds", here / "share" / "config" / "worlds"]
+    for d in candidates:
+        for cand in (d / name, d / f"{name}.sdf", d / f"{name}.world"):
+            if cand.is_file():
+                return cand
+    raise ConfigError(
+        f"world file {name!r} not found",
+        hint="give a path to an SDF world, or a name found on GZ_SIM_RESOURCE_PATH (e.g. empty.world)",
+    )
+
+
+@click.group()
+def sim() -> None:
+    """The PyBullet simulator: runs SDF worlds as Gazebo does (gz sim).
+
+    \b
+    Example:
+      diffctl sim run -r config/worlds/empty.world
+      diffctl sim run "-r -s -v4 config/worlds/empty.world"
+    """
+
+
+@sim.command("run", context_settings={"ignore_unknown_options": True})
+@click.argument("args", nargs=-1, type=click.UNPROCESSED)
+@click.option("--gui", is_flag=True, help="Open the PyBullet window (Gazebo's GUI counterpart).")
+@click.option("--rtf", type=float, default=None, help="Target real-time factor; 0 = as fast as possible.")
+def run(args: tuple[str, ...], gui: bool, rtf: float | None) -> None:
+    """Simulate WORLD (an SDF file): physics, sensors, Gazebo systems, ros2_control endpoints.
+
+    ARGS are Gazebo's: WORLD, -r (run at start, else paused), -s (server only), -g, -v N (0-4),
+    --iterations N (stop after N steps), --seed N (noise seed). The world services live under
+    gz/world/<name>/ (control, create, remove, state) and statistics on /world/<name>/stats.
+
+    \b
+    Example:
+      diffctl sim run -r -v 3 config/worlds/empty.world
+      diffctl sim run --gui --rtf 1 -r config/worlds/empty.world
+    """
+    from diffctl.bus.log import Logger
+
+    g = parse_gz_args(list(args))
+    if rtf is not None and (rtf != rtf or rtf < 0 or rtf == float("inf")):
+        raise ConfigError(f"--rtf {rtf} must be a finite number >= 0 (0 = as fast as possible)")
+    g.rtf = rtf
+    log = Logger("sim", LEVELS[g.verbosity if g.verbosity is not None else 1])
+    if g.gui_only and g.world is None:
+        log.warn("`-g` starts only Gazebo's GUI client; diffctl's sim draws its own window with --gui, "
+                 "and `diffctl viz` shows the world in a browser. Nothing to do.")
+        return
+    if g.world is None:
+        raise click.UsageError("give a world file, e.g. `diffctl sim run -r config/worlds/empty.world`")
+    serve(find_world(g.world), g, gui=gui and not g.server_only, log=log)
+
+
+def serve(world_path: Path, g: GzArgs, *, gui: bool, log: object) -> None:
+    """Load the world (errors exit 2 before anything starts), open the bus, run until SIGINT/SIGTERM."""
+    from diffctl.bus import open_session
+    from diffctl.description.sdf_loader import load_world
+    from diffctl.sim.runner import Simulation
+    from diffctl.sim.services import WorldServices
+
+    world = load_world(world_path)
+    session = open_session()
+    seed = g.seed if g.seed is not None else int(os.environ.get("DIFFCTL_SIM_SEED", "0") or 0)
+    sim_ = Simulation(world, gui=gui, rtf=g.rtf, paused=not g.run, seed=seed, log=log, session=session)
+    stop = threading.Event()
+    try:
+        WorldServices(sim_)
+        for sig in (signal.SIGINT, signal.SIGTERM):
+            signal.signal(sig, lambda *_: stop.set())
+        if g.iterations:
+            sim_.stepper.add_task("iterations", g.iterations * sim_.stepper.step_ns, lambda _t: stop.set(),
+                                  first_ns=g.iterations * sim_.stepper.step_ns)
+        state = "running" if g.run else "paused (resume: gz/world/<w>/control {\"pause\": false})"
+        log.info(
+            f"world {world.name!r} from {world_path}: {len(world.models)} model(s), step "
+            f"{sim_.physics.step_s * 1e3:g} ms, rtf {sim_.stepper.rtf:g}, {state}"
+        )
+        sim_.run(stop)
+    finally:
+        sim_.close()

@@ -1,0 +1,292 @@
+"""A running simulation: the physics world, its models with their sensors and systems, sim-side topics.
+
+`Simulation` wires the parts together; the loop itself is `stepper.Stepper`, the world services are in
+`services.py`. Sim-side gz topics: `/clock` (gz.msgs.Clock every 10 ms of sim time), `/model/<m>/pose`
+(gz.msgs.Pose_V ground truth, 50 Hz), sensors on their SDF topics, and what the systems publish. Nothing is
+encoded for a topic nobody subscribes to, and cameras render only while someone does.
+"""
+
+from __future__ import annotations
+
+import re
+import threading
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from diffctl.bus import gz
+from diffctl.bus.log import Logger
+from diffctl.description.model import Model, World
+from diffctl.errors import DescriptionError, RuntimeFailure
+from diffctl.sim.entity import Entity
+from diffctl.sim.plugins.base import PluginContext, SystemPlugin, rate_period_ns
+from diffctl.sim.plugins.diff_drive import DiffDrive, DiffDriveParams
+from diffctl.sim.plugins.joint_state_publisher import JointStatePublisher
+from diffctl.sim.plugins.ros2_control import Ros2ControlEndpoint, gazebo_block
+from diffctl.sim.sensors import Camera, Imu, Lidar
+from diffctl.sim.stepper import Stepper, Task
+from diffctl.sim.transport import GzPublisher, SimTransport
+from diffctl.sim.world import PhysicsWorld
+
+CLOCK_PERIOD_NS = 10_000_000
+POSE_RATE_HZ = 50.0
+DEFAULT_LIGHT_DIRECTION = (-0.5, 0.1, -0.9)
+# Model names become Zenoh key chunks.
+_NAME_RE = re.compile(r"^[A-Za-z0-9_.\-]+$")
+
+# Gazebo systems whose job the simulator does natively: accepted without a word.
+NATIVE_SYSTEMS = {
+    "physics", "user-commands", "scene-broadcaster", "sensors", "imu", "contact", "pose-publisher",
+}
+MODEL_SYSTEMS = {"diff-drive", "joint-state-publisher", "gz_ros2_control", "ign_ros2_control"}
+
+
+def system_name(filename: str) -> str:
+    """`libgz-sim-diff-drive-system.so` → `diff-drive`; `gz_ros2_control-system` → `gz_ros2_control`."""
+    n = filename.rsplit("/", 1)[-1]
+    n = n.removeprefix("lib").removesuffix(".so")
+    for prefix in ("gz-sim8-", "gz-sim7-", "gz-sim-", "ignition-gazebo-", "ignition-gazebo6-"):
+        n = n.removeprefix(prefix)
+    return n.removesuffix("-system")
+
+
+@dataclass
+class ModelRuntime:
+    entity: Entity
+    plugins: list[SystemPlugin] = field(default_factory=list)
+    tasks: list[Task] = field(default_factory=list)
+    publishers: list[GzPublisher] = field(default_factory=list)
+    imus: list[Imu] = field(default_factory=list)
+    endpoint: Ros2ControlEndpoint | None = None
+
+
+class Simulation:
+    def __init__(
+        self,
+        world: World,
+        *,
+        gui: bool = False,
+        rtf: float | None = None,
+        paused: bool = True,
+        seed: int = 0,
+        log: Logger | None = None,
+        session: Any = None,
+    ) -> None:
+        self.world_model = world
+        self.name = world.name
+        self.log = log or Logger("sim", "WARN")
+        self.physics = PhysicsWorld(world.physics, gui=gui)
+        target_rtf = world.physics.real_time_factor if rtf is None else rtf
+        self.stepper = Stepper(self.physics.step, self.physics.step_ns, rtf=target_rtf, paused=paused)
+        self.transport = SimTransport(session, self.stepper.call_soon, self.log) if session is not None else None
+        self.ctx = PluginContext(self.stepper, self.transport, self.log, world.name)
+        self.seed = seed
+        self.rng = np.random.default_rng(seed)
+        self.models: dict[str, ModelRuntime] = {}
+        lights = [lt for lt in world.lights if lt.type == "directional"]
+        self.light_direction = lights[0].direction if lights else DEFAULT_LIGHT_DIRECTION
+        self.wall_start_s = time.time()
+        self._clock_pub = self.transport.publisher("/clock", "gz.msgs.Clock") if self.transport else None
+        self.stepper.add_task("clock", CLOCK_PERIOD_NS, self._publish_clock)
+        try:
+            for m in world.models:
+                self.spawn(m)
+        except Exception:
+            self.close()
+            raise
+        self._report_ignored(world)
+
+    # --- models ----------------------------------------------------------------------------------------
+
+    def spawn(self, model: Model) -> Entity:
+        """Add `model` (already at its spawn pose) with its sensors and systems; sim thread only."""
+        if not _NAME_RE.match(model.name):
+            raise DescriptionError(
+                f"model name {model.name!r} may hold only letters, digits, '_', '-' and '.'", field="name"
+            )
+        if model.name in self.models:
+            raise RuntimeFailure(f"an entity named {model.name!r} already exists", hint="choose another name")
+        entity = self.physics.add_model(model)
+        rt = ModelRuntime(entity)
+        self.models[model.name] = rt
+        try:
+            self._add_systems(rt)
+            self._add_sensors(rt)
+            if not model.static and self.transport is not None:
+                pub = self.transport.publisher(f"/model/{model.name}/pose", "gz.msgs.Pose_V")
+                rt.publishers.append(pub)
+                period = rate_period_ns(POSE_RATE_HZ, self.stepper.step_ns)
+                rt.tasks.append(self.stepper.add_task(f"pose:{model.name}", period, self._pose_task(entity, pub)))
+        except Exception:
+            self.remove(model.name)
+            raise
+        if self.physics.gui and not model.static:
+            self._look_at(entity)
+        return entity
+
+    def remove(self, name: str) -> None:
+        rt = self.models.pop(name, None)
+        if rt is None:
+            raise RuntimeFailure(f"no entity named {name!r}", hint=f"entities: {', '.join(self.models) or 'none'}")
+        for p in rt.plugins:
+            p.close()
+        for t in rt.tasks:
+            self.stepper.remove_task(t)
+        if self.transport is not None:
+            for pub in rt.publishers:
+                self.transport.release(pub)
+        self.physics.remove(name)
+        self.stepper.reschedule()
+
+    def _add_systems(self, rt: ModelRuntime) -> None:
+        model = rt.entity.model
+        for plugin in model.plugins:
+            kind = system_name(plugin.filename)
+            if kind == "diff-drive":
+                canonical = model.canonical_link or model.root_link()
+                params = DiffDriveParams.from_plugin(plugin, model.name, canonical, model.source)
+                rt.plugins.append(DiffDrive(self.ctx, rt.entity, params))
+            elif kind == "joint-state-publisher":
+                rt.plugins.append(JointStatePublisher(self.ctx, rt.entity, plugin))
+            elif kind in ("gz_ros2_control", "ign_ros2_control"):
+                block = gazebo_block(rt.entity)
+                if block is None:
+                    raise DescriptionError(
+                        f"model {model.name!r} has the {plugin.filename} plugin but no <ros2_control> block "
+                        "with gz_ros2_control/GazeboSimSystem hardware",
+                        source=model.source or None,
+                        field=f"plugin {plugin.filename}",
+                    )
+                rt.endpoint = Ros2ControlEndpoint(self.ctx, rt.entity, plugin, block)
+                rt.plugins.append(rt.endpoint)
+
+    def _add_sensors(self, rt: ModelRuntime) -> None:
+        entity = rt.entity
+        step_ns = self.stepper.step_ns
+        for s in entity.model.sensors():
+            # update_rate 0 means "every step" in Gazebo.
+            period = rate_period_ns(s.update_rate_hz, step_ns) if s.update_rate_hz > 0 else step_ns
+            if s.type == "lidar":
+                sensor: Any = Lidar(entity, s, self.rng)
+                gz_type = "gz.msgs.LaserScan"
+            elif s.type == "imu":
+                sensor = Imu(entity, s, self.physics.physics.gravity, self.rng)
+                gz_type = "gz.msgs.IMU"
+                rt.imus.append(sensor)
+            elif s.type == "camera":
+                sensor = Camera(entity, s, self.rng, self.light_direction)
+                gz_type = "gz.msgs.Image"
+            else:
+                continue
+            if self.transport is None:
+                continue
+            pub = self.transport.publisher(s.topic, gz_type)
+            rt.publishers.append(pub)
+            name = f"{s.type}:{entity.name}:{s.name}"
+            if isinstance(sensor, Imu) and period > step_ns:
+                # Acceleration is the velocity difference over the last step: remember it one step earlier.
+                first = self.stepper.sim_time_ns + period - step_ns
+                pre = self._imu_pre(sensor, pub)
+                rt.tasks.append(self.stepper.add_task(name + ":pre", period, pre, first_ns=first))
+            rt.tasks.append(self.stepper.add_task(name, period, self._sensor_task(sensor, pub)))
+
+    @staticmethod
+    def _sensor_task(sensor: Any, pub: GzPublisher) -> Any:
+        def task(sim_time_ns: int) -> None:
+            if pub.matched:
+                pub.publish(sensor.sample(sim_time_ns))
+
+        return task
+
+    @staticmethod
+    def _imu_pre(imu: Imu, pub: GzPublisher) -> Any:
+        def task(sim_time_ns: int) -> None:
+            if pub.matched:
+                imu.remember(sim_time_ns)
+
+        return task
+
+    def _pose_task(self, entity: Entity, pub: GzPublisher) -> Any:
+        def task(sim_time_ns: int) -> None:
+            if not pub.matched:
+                return
+            p = entity.pose()
+            pub.publish({
+                "header": gz.header(sim_time_ns),
+                "pose": [{
+                    "name": entity.name,
+                    "header": gz.header(sim_time_ns, "world", entity.name),
+                    "position": {"x": p.xyz[0], "y": p.xyz[1], "z": p.xyz[2]},
+                    "orientation": {"x": p.quat[0], "y": p.quat[1], "z": p.quat[2], "w": p.quat[3]},
+                }],
+            })
+
+        return task
+
+    def _look_at(self, entity: Entity) -> None:
+        import pybullet as pb
+
+        p = entity.pose().xyz
+        pb.resetDebugVisualizerCamera(0.9, 50.0, -30.0, p, physicsClientId=self.physics.client)
+
+    # --- world ---------------------------------------------------------------------------------------
+
+    def reset(self) -> None:
+        """Gazebo's world reset: sim time 0, every model back at its spawn pose, systems reset."""
+        self.stepper.reset_time()
+        self.physics.reset()
+        for rt in self.models.values():
+            for p in rt.plugins:
+                p.reset()
+            for imu in rt.imus:
+                imu.reset()
+        self.stepper.run_due()
+
+    def _publish_clock(self, sim_time_ns: int) -> None:
+        pub = self._clock_pub
+        if pub is not None and pub.matched:
+            wall_ns = time.time_ns()
+            real_ns = max(0, wall_ns - int(self.wall_start_s * 1e9))
+            pub.publish({
+                "header": gz.header(sim_time_ns),
+                "sim": gz.stamp(sim_time_ns),
+                "real": gz.stamp(real_ns),
+                "system": gz.stamp(wall_ns),
+            })
+
+    def _report_ignored(self, world: World) -> None:
+        lines = []
+        for model_name, plugin in world.all_plugins():
+            kind = system_name(plugin.filename)
+            if (model_name is None and kind not in NATIVE_SYSTEMS) or (
+                model_name is not None and kind not in MODEL_SYSTEMS | NATIVE_SYSTEMS
+            ):
+                where = f"model {model_name!r}" if model_name else f"world {world.name!r}"
+                lines.append(f"plugin {plugin.filename} ({plugin.name}) on {where}")
+        for m in world.models:
+            lines.extend(f"model {m.name!r}: {text}" for text in m.ignored)
+        if lines:
+            self.log.warn("ignored (not simulated): " + "; ".join(lines))
+
+    def model_ignored(self, model: Model) -> list[str]:
+        out = [
+            f"plugin {p.filename} ({p.name})"
+            for p in model.plugins
+            if system_name(p.filename) not in MODEL_SYSTEMS | NATIVE_SYSTEMS
+        ]
+        return out + list(model.ignored)
+
+    def run(self, stop: threading.Event) -> None:
+        self.stepper.run(stop)
+
+    def close(self) -> None:
+        for name in list(self.models):
+            try:
+                self.remove(name)
+            except Exception:
+                pass
+        if self.transport is not None:
+            self.transport.close()
+        self.physics.close()

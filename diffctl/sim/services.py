@@ -1,0 +1,194 @@
+"""World services and statistics, as Gazebo's UserCommands and WorldStatistics offer them, on Zenoh.
+
+Queryables under `gz/world/<world>/`, JSON in and out; every answer has "ok" (and "error" when false):
+  control  {"pause": true|false} | {"multi_step": N} | {"step": true} | {"reset": {"all": true}} | {"rtf": X}
+           → {"ok", "paused", "sim_time_ns", "iterations"}; a step request answers once the steps are done
+             (it pauses first, as Gazebo's step button does)
+  create   {"name", "sdf": "<sdf…>" | "sdf_filename": "/abs/path.sdf", "pose": {"x","y","z","roll","pitch","yaw"},
+            "allow_renaming": false, "base_dir": "/dir for relative URIs"} → {"ok", "name", "ignored": [...]}
+  remove   {"name"} → {"ok"}
+  state    {} → {"ok", "world", "paused", "sim_time_ns", "iterations", "rtf_target", "models": [{"name",
+            "static", "pose": {"x","y","z","roll","pitch","yaw"}, "ros2_control": bool}]}
+Liveliness token `gz/world/<world>/sim` while the simulator runs (spawners wait for it).
+Topic `/world/<world>/stats` (gz.msgs.WorldStatistics, 5 Hz of wall time, also while paused), with extras:
+  {"sim_time", "real_time", "pause_time", "iterations", "paused", "real_time_factor", "step_size",
+   "step_time_us" (mean wall time of one step and its bookkeeping), "lockstep_overruns", "model_count"}.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from pathlib import Path
+from typing import Any
+
+from diffctl.bus import gz
+from diffctl.description.pose import Pose
+from diffctl.description.sdf_loader import load_model, parse_model
+from diffctl.errors import RuntimeFailure
+from diffctl.sim.runner import Simulation
+from diffctl.sim.transport import Reply
+
+STATS_PERIOD_S = 0.2
+MAX_MULTI_STEP = 10_000_000
+
+
+def world_key(world: str, leaf: str) -> str:
+    return f"gz/world/{world}/{leaf}"
+
+
+def sim_token_key(world: str) -> str:
+    return world_key(world, "sim")
+
+
+SIM_TOKEN_PATTERN = "gz/world/*/sim"
+
+
+class WorldServices:
+    def __init__(self, sim: Simulation) -> None:
+        self.sim = sim
+        t = sim.transport
+        assert t is not None
+        w = sim.name
+        self._stats_pub = t.publisher(f"/world/{w}/stats", "gz.msgs.WorldStatistics")
+        t.service(world_key(w, "control"), self.control)
+        t.service(world_key(w, "create"), self.create)
+        t.service(world_key(w, "remove"), self.remove)
+        t.service(world_key(w, "state"), lambda req, reply: self.state())
+        t.token(sim_token_key(w))
+        self._window = (time.perf_counter(), sim.stepper.sim_time_ns, 0, 0.0)
+        self._rtf = 0.0
+        self._step_us = 0.0
+        sim.stepper.add_task("stats", 10_000_000, lambda _t: self._maybe_publish())
+        sim.stepper.idle_hooks.append(self._maybe_publish)
+
+    # --- services (sim thread) -----------------------------------------------------------------------
+
+    def control(self, req: dict[str, Any], reply: Reply) -> dict[str, Any] | None:
+        st = self.sim.stepper
+        if "rtf" in req:
+            rtf = req["rtf"]
+            if not isinstance(rtf, int | float) or isinstance(rtf, bool) or not math.isfinite(rtf) or rtf < 0:
+                return {"ok": False, "error": f"rtf {rtf!r} must be a number >= 0 (0 = as fast as possible)"}
+            st.set_rtf(float(rtf))
+        reset = req.get("reset")
+        if reset:
+            self.sim.reset()
+        if "pause" in req:
+            st.set_paused(bool(req["pause"]))
+        steps = req.get("multi_step", 1 if req.get("step") else 0)
+        if steps:
+            if not isinstance(steps, int) or isinstance(steps, bool) or not 0 < steps <= MAX_MULTI_STEP:
+                return {"ok": False, "error": f"multi_step {steps!r} must be an integer in 1..{MAX_MULTI_STEP}"}
+            st.set_paused(True)
+            reply.defer()
+            st.step_n(steps, lambda: reply.send(self._status()))
+            return None
+        return self._status()
+
+    def create(self, req: dict[str, Any], reply: Reply) -> dict[str, Any]:
+        name = req.get("name")
+        if name is not None and (not isinstance(name, str) or not name):
+            return {"ok": False, "error": f"name {name!r} must be a non-empty string"}
+        pose = _pose_from(req.get("pose"))
+        base_dir = req.get("base_dir")
+        if req.get("sdf_filename"):
+            path = Path(str(req["sdf_filename"]))
+            if not path.is_file():
+                return {"ok": False, "error": f"{path}: no such file"}
+            model = load_model(path, name=name, pose=pose)
+        elif req.get("sdf"):
+            model = parse_model(str(req["sdf"]), source="robot_description", name=name, pose=pose, base_dir=base_dir)
+        else:
+            return {"ok": False, "error": "give the model as 'sdf' (text) or 'sdf_filename' (a path)"}
+        if model.name in self.sim.models:
+            if not req.get("allow_renaming"):
+                raise RuntimeFailure(f"an entity named {model.name!r} already exists in world {self.sim.name!r}",
+                                     hint="choose another --name, or remove it first")
+            model = _renamed(model, self.sim.models)
+        self.sim.spawn(model)
+        ignored = self.sim.model_ignored(model)
+        self.sim.log.info(f"spawned {model.name!r}" + (f" (ignored: {'; '.join(ignored)})" if ignored else ""))
+        return {"ok": True, "name": model.name, "ignored": ignored}
+
+    def remove(self, req: dict[str, Any], reply: Reply) -> dict[str, Any]:
+        name = req.get("name")
+        if not isinstance(name, str) or not name:
+            return {"ok": False, "error": f"name {name!r} must be a non-empty string"}
+        self.sim.remove(name)
+        self.sim.log.info(f"removed {name!r}")
+        return {"ok": True}
+
+    def state(self) -> dict[str, Any]:
+        models = []
+        for name, rt in self.sim.models.items():
+            p = rt.entity.pose()
+            r = p.rpy
+            models.append({
+                "name": name,
+                "static": rt.entity.model.static,
+                "pose": {"x": p.xyz[0], "y": p.xyz[1], "z": p.xyz[2], "roll": r[0], "pitch": r[1], "yaw": r[2]},
+                "ros2_control": rt.endpoint is not None,
+            })
+        return {**self._status(), "world": self.sim.name, "rtf_target": self.sim.stepper.rtf, "models": models}
+
+    def _status(self) -> dict[str, Any]:
+        st = self.sim.stepper
+        return {"ok": True, "paused": st.paused, "sim_time_ns": st.sim_time_ns, "iterations": st.stats.iterations}
+
+    # --- statistics ----------------------------------------------------------------------------------
+
+    def _maybe_publish(self) -> None:
+        now = time.perf_counter()
+        wall0, sim0, it0, idle0 = self._window
+        dt = now - wall0
+        if dt < STATS_PERIOD_S:
+            return
+        st = self.sim.stepper
+        steps = st.stats.iterations - it0
+        busy = max(0.0, dt - (st.stats.idle_s - idle0))
+        self._rtf = (st.sim_time_ns - sim0) * 1e-9 / dt if st.sim_time_ns >= sim0 else 0.0
+        self._step_us = busy / steps * 1e6 if steps else 0.0
+        self._window = (now, st.sim_time_ns, st.stats.iterations, st.stats.idle_s)
+        if self._stats_pub.matched:
+            self._stats_pub.publish(self.message())
+
+    def message(self) -> dict[str, Any]:
+        st = self.sim.stepper
+        real_ns = int((time.perf_counter() - st.stats.wall_start_s) * 1e9)
+        return {
+            "header": gz.header(st.sim_time_ns),
+            "sim_time": gz.stamp(st.sim_time_ns),
+            "real_time": gz.stamp(real_ns),
+            "pause_time": gz.stamp(0),
+            "iterations": st.stats.iterations,
+            "paused": st.paused,
+            "real_time_factor": round(self._rtf, 4),
+            "step_size": gz.stamp(st.step_ns),
+            "step_time_us": round(self._step_us, 3),
+            "lockstep_overruns": st.stats.lockstep_overruns,
+            "model_count": len(self.sim.models),
+        }
+
+
+def _pose_from(d: Any) -> Pose | None:
+    if d is None:
+        return None
+    if not isinstance(d, dict):
+        raise RuntimeFailure(f"pose {d!r} must be an object with x, y, z, roll, pitch, yaw")
+    vals = []
+    for k in ("x", "y", "z", "roll", "pitch", "yaw"):
+        v = d.get(k, 0.0)
+        if not isinstance(v, int | float) or isinstance(v, bool) or not math.isfinite(v) or abs(v) > 1e6:
+            raise RuntimeFailure(f"pose {k} {v!r} must be a finite number (|value| <= 1e6)")
+        vals.append(float(v))
+    return Pose.from_xyz_rpy(vals[:3], vals[3:])
+
+
+def _renamed(model: Any, taken: dict[str, Any]) -> Any:
+    import dataclasses
+
+    i = 1
+    while f"{model.name}_{i}" in taken:
+        i += 1
+    return dataclasses.replace(model, name=f"{model.name}_{i}")
