@@ -159,12 +159,13 @@ def find_launch_file(target: str, file: str | None = None, cwd: Path | None = No
     here = (cwd or Path.cwd()).resolve()
     if here not in roots:
         roots.append(here)
-    if not looks_like_path:
-        for root in roots:
-            for suffix in LAUNCH_SUFFIXES:
-                candidate = root / "launch" / f"{target}{suffix}"
-                if candidate.is_file():
-                    return candidate
+    for root in roots:
+        # NAME → launch/NAME.yaml, launch/NAME.launch.py; a bare file name → launch/FILE
+        names = [target] if looks_like_path else [f"{target}{suffix}" for suffix in LAUNCH_SUFFIXES]
+        for name in names if "/" not in target else []:
+            candidate = root / "launch" / name
+            if candidate.is_file():
+                return candidate
     available = sorted({name.split(".")[0] for root in roots for name in launch_files(root)})
     if looks_like_path:
         raise LaunchError(f"launch file {target} does not exist")

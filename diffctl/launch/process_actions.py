@@ -341,11 +341,23 @@ class ExecuteProcess(Action):
 
     @classmethod
     def from_yaml(cls, e: Entity) -> Action:
-        cmd: list[Any] = [SplitArgs(e.text("cmd", required=True))]
-        if e.has("args"):
-            cmd.append(SplitArgs(e.text("args")))
+        if not e.has("cmd"):
+            raise e.error("`executable` needs `cmd`")
+        cmd = yaml_words(e, "cmd") + yaml_words(e, "args")
         kw = {k: v for k, v in cls.yaml_process_options(e).items() if v is not None}
         return cls(cmd=cmd, shell=e.boolean("shell", False), **kw)
+
+
+def yaml_words(e: Entity, key: str) -> list[Any]:
+    """`args: "a b 'c d'"` is split like a shell would; `args: [a, b, c d]` is taken item by item."""
+    raw = e.raw(key)
+    if raw is None:
+        return []
+    if isinstance(raw, list):
+        if any(isinstance(item, (list, dict)) for item in raw):
+            raise e.error(f"`{key}` items must be text", key=key)
+        return [e.parse(str(item).lower() if isinstance(item, bool) else str(item), key) for item in raw]
+    return [SplitArgs(e.text(key))]
 
 
 def _check_executable(program: str, path: str, cwd: str | None) -> None:
@@ -438,8 +450,8 @@ class Node(ExecuteProcess):
             package=e.text("pkg", required=True),
             executable=e.text("exec", required=True),
             namespace=e.text("namespace") if e.has("namespace") else e.text("ns"),
-            arguments=[SplitArgs(e.text("args"))] if e.has("args") else None,
-            ros_arguments=[SplitArgs(e.text("ros_args"))] if e.has("ros_args") else None,
+            arguments=yaml_words(e, "args"),
+            ros_arguments=yaml_words(e, "ros_args"),
             parameters=_yaml_params(e),
             remappings=[
                 (r.text("from", required=True), r.text("to", required=True)) for r in e.items("remap", ("from", "to"))

@@ -276,3 +276,18 @@ def test_override_launch_process_output(tmp_path: Path, monkeypatch) -> None:
     monkeypatch.setitem(os.environ, "OVERRIDE_LAUNCH_PROCESS_OUTPUT", "log")
     plan = plan_of(tmp_path, "launch:\n- executable: {cmd: sleep 1, output: screen}\n")
     assert plan.processes["sleep"].output == "log"
+
+
+def test_yaml_arguments_split_like_a_shell_or_item_by_item(tmp_path: Path) -> None:
+    plan = plan_of(
+        tmp_path,
+        """
+launch:
+- executable: {cmd: "echo 'two words' $(var x)", name: split}
+- executable: {cmd: [echo, two words, "$(var x)"], name: items}
+- node: {pkg: rviz2, exec: rviz2, args: [-d, /path with space/x.rviz]}
+""",
+        {"x": "three"},
+    )
+    assert plan.processes["split"].argv == plan.processes["items"].argv == ("echo", "two words", "three")
+    assert plan.processes["rviz2"].argv[-2:] == ("-d", "/path with space/x.rviz")
