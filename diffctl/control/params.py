@@ -69,6 +69,9 @@ class ManagerParams:
 def _bool(value: Any, key: str, source: str) -> bool:
     if isinstance(value, bool):
         return value
+    # A launch substitution ($(var use_sim_time)) arrives as text; ROS launch types it as YAML does.
+    if isinstance(value, str) and value.strip().lower() in ("true", "false"):
+        return value.strip().lower() == "true"
     raise ParameterError(f"{value!r} is not a bool (true or false)", source=source, field=key)
 
 
