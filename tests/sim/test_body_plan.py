@@ -1,0 +1,130 @@
+"""Planning PyBullet bodies from SDF: merged links, mass properties, joint frames, and the errors."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pybullet as pb
+import pytest
+from sim_helpers import build, ground, sdf_world
+
+from diffctl.description.model import Inertial
+from diffctl.description.pose import Pose
+from diffctl.description.sdf_loader import parse_model
+from diffctl.errors import DescriptionError
+from diffctl.sim.body_plan import plan_model
+from diffctl.sim.inertia import combine, from_inertial, principal
+
+
+def test_parallel_axis_combination_of_two_point_like_masses() -> None:
+    tiny = Inertial(1.0, Pose(), 1e-6, 0, 0, 1e-6, 0, 1e-6)
+    a = from_inertial(tiny, Pose((1.0, 0, 0)))
+    b = from_inertial(tiny, Pose((-1.0, 0, 0)))
+    mp = combine([a, b])
+    assert mp.mass_kg == 2.0 and mp.com_m == (0.0, 0.0, 0.0)
+    t = np.array(mp.tensor_kg_m2)
+    assert np.diag(t) == pytest.approx([2e-6, 2.0 + 2e-6, 2.0 + 2e-6])
+
+
+def test_principal_axes_of_a_rotated_rod() -> None:
+    rod = Inertial(1.0, Pose(), 0.5, 0, 0, 0.01, 0, 0.5)  # long along y
+    mp = from_inertial(rod, Pose.from_xyz_rpy((0, 0, 0), (0, 0, math.pi / 4)))
+    frame, diag = principal(mp)
+    assert sorted(diag) == pytest.approx([0.01, 0.5, 0.5])
+    axis = frame.rotate((1.0, 0.0, 0.0) if diag[0] == pytest.approx(0.01) else (0.0, 1.0, 0.0))
+    # The rod's axis, rotated 45° about z, whichever principal axis carries the small moment.
+    r = np.array(frame.to_matrix())[:3, :3]
+    small = r[:, int(np.argmin(diag))]
+    assert abs(abs(small @ np.array([-math.sqrt(0.5), math.sqrt(0.5), 0.0])) - 1) < 1e-9
+    assert axis is not None
+
+
+ARM = """<?xml version="1.0"?><sdf version="1.8"><model name="arm"><pose>1 2 0.5 0 0 0.3</pose>
+  <link name="base"><inertial><mass>2</mass><inertia><ixx>0.1</ixx><iyy>0.1</iyy><izz>0.1</izz></inertia></inertial>
+    <collision name="c"><geometry><box><size>0.2 0.2 0.2</size></box></geometry></collision></link>
+  <link name="marker"><pose relative_to="base">0 0 0.2 0 0 0</pose></link>
+  <joint name="m" type="fixed"><parent>base</parent><child>marker</child></joint>
+  <link name="upper"><pose relative_to="base">0.3 0 0 0 0 0</pose>
+    <inertial><pose>0.1 0 0 0 0 0</pose><mass>0.5</mass>
+      <inertia><ixx>0.001</ixx><iyy>0.002</iyy><izz>0.002</izz></inertia></inertial>
+    <collision name="c"><pose>0.1 0 0 0 0 0</pose><geometry><box><size>0.2 0.05 0.05</size></box></geometry></collision>
+  </link>
+  <joint name="shoulder" type="revolute"><parent>base</parent><child>upper</child>
+    <pose>0.05 0 0 0 0 0</pose>
+    <axis><xyz>0 0 1</xyz><limit><lower>-0.5</lower><upper>0.5</upper></limit></axis></joint>
+</model></sdf>"""
+
+
+def test_joint_frame_becomes_the_link_frame_and_links_keep_their_sdf_poses() -> None:
+    model = parse_model(ARM)
+    plan = plan_model(model)
+    (body,) = plan.bodies
+    assert [lp.members for lp in body.links] == [("base", "marker"), ("upper",)]
+    upper = body.links[1]
+    # The joint is at 0.05 m along the child link: PyBullet's link frame is there.
+    assert upper.frame_world.is_close(model.joint("shoulder").pose_world, 1e-12)
+    assert plan.links["upper"].offset.is_close(Pose((-0.05, 0, 0)), 1e-12)
+    assert plan.joints == {"shoulder": (0, 0)}
+    world = sdf_world(ground())
+    from diffctl.sim.world import PhysicsWorld
+
+    pw = PhysicsWorld(world.physics)
+    try:
+        e = pw.add_model(model)
+        for link in model.links:
+            assert e.link_pose(link.name).is_close(link.pose_world, 1e-6)  # PyBullet keeps ~1e-7
+        # Joint limits from the SDF hold.
+        h = e.joint("shoulder")
+        pb.setJointMotorControl2(h.body, h.index, pb.VELOCITY_CONTROL, targetVelocity=5, force=50,
+                                 physicsClientId=pw.client)
+        pb.setGravity(0, 0, 0, physicsClientId=pw.client)
+        for _ in range(500):
+            pw.step()
+        assert e.joint_states([h])[0][0] == pytest.approx(0.5, abs=0.02)
+    finally:
+        pw.close()
+
+
+def test_a_moving_link_without_inertial_is_an_error_naming_it() -> None:
+    text = ARM.replace(
+        "<inertial><pose>0.1 0 0 0 0 0</pose><mass>0.5</mass>\n"
+        "      <inertia><ixx>0.001</ixx><iyy>0.002</iyy><izz>0.002</izz></inertia></inertial>",
+        "",
+    )
+    # The loader already refuses it; the planner refuses it too for models built in code.
+    with pytest.raises(DescriptionError, match=r"'upper'.*inertial"):
+        plan_model(parse_model(text))
+    import dataclasses
+
+    model = parse_model(ARM)
+    massless = dataclasses.replace(
+        model, links=tuple(dataclasses.replace(lk, inertial=None) if lk.name == "upper" else lk for lk in model.links)
+    )
+    with pytest.raises(DescriptionError, match=r"'upper'.*no mass.*inertial"):
+        plan_model(massless)
+
+
+def test_static_models_and_world_anchored_trees_do_not_move() -> None:
+    pendulum = """<model name="pendulum"><pose>0 0 2 0 0 0</pose>
+      <link name="bob"><pose>0.5 0 0 0 0 0</pose>
+        <inertial><mass>1</mass><inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia></inertial>
+        <collision name="c"><geometry><sphere><radius>0.05</radius></sphere></geometry></collision></link>
+      <joint name="pivot" type="revolute"><parent>world</parent><child>bob</child><pose>-0.5 0 0 0 0 0</pose>
+        <axis><xyz>0 1 0</xyz></axis></joint></model>"""
+    statue = """<model name="statue"><static>true</static><pose>3 0 0.5 0 0 0</pose>
+      <link name="a"><collision name="c"><geometry><box><size>1 1 1</size></box></geometry></collision></link>
+      <link name="b"><pose>0 0 1 0 0 0</pose><collision name="c"><geometry><sphere><radius>0.2</radius></sphere>
+      </geometry></collision></link></model>"""
+    pw, ents = build(sdf_world(ground() + pendulum + statue))
+    try:
+        for _ in range(600):
+            pw.step()
+        # The bob swings about the pivot at (0, 0, 2): always 0.5 m from it, and it fell below the pivot height.
+        bob = ents["pendulum"].link_pose("bob").xyz
+        assert math.dist(bob, (0, 0, 2)) == pytest.approx(0.5, abs=1e-3)
+        assert bob[2] < 1.9
+        assert ents["statue"].link_pose("b").is_close(Pose((3, 0, 1.5)), 1e-9)
+        assert ents["statue"].plan.bodies[0].static_base
+    finally:
+        pw.close()
