@@ -54,7 +54,7 @@ def test_ctrl_c_stops_every_group_escalating_for_a_stubborn_child(launch_run) ->
     assert "[stubborn] still running 0.3 s after SIGINT: sending SIGTERM" in text
     assert "[stubborn] still running 0.3 s after SIGTERM: sending SIGKILL" in text
     assert "[stubborn] stopped (killed by SIGKILL" in text
-    assert took < 0.3 + 0.3 + 1.5, took
+    assert took < 0.3 + 0.3 + 2.5, took  # generous: the machine is shared
     assert "[talker] hello" not in text  # output: log keeps stdout off the screen…
     assert (run.log_dir / "talker.log").read_text() == "hello\n"  # …and in its file
     assert "shutting down: ctrl-c (SIGINT)" in (run.log_dir / "launch.log").read_text()
