@@ -54,6 +54,8 @@ class Display:
     cell_size_m: float = 1.0  # Grid
     cell_count: int = 10  # Grid
     point_size_m: float = 0.05  # LaserScan
+    marker_scale: float = 1.0  # TF: axes are 0.1 m times this, as in RViz
+    show_names: bool = True  # TF
 
     def to_json(self) -> dict[str, Any]:
         return {
@@ -67,6 +69,8 @@ class Display:
             "cell_size": self.cell_size_m,
             "cell_count": self.cell_count,
             "point_size": self.point_size_m,
+            "marker_scale": self.marker_scale,
+            "show_names": self.show_names,
         }
 
 
@@ -205,6 +209,11 @@ def _display(r: _Reader, item: Any, path: str, ignored: list[str]) -> list[Displ
             kw["cell_size_m"] = r.number(d["Cell Size"], path + ".Cell Size", low=1e-3, high=1e3)
         if "Plane Cell Count" in d:
             kw["cell_count"] = int(r.number(d["Plane Cell Count"], path + ".Plane Cell Count", low=1, high=1000))
+    if kind == "tf":
+        if "Marker Scale" in d:
+            kw["marker_scale"] = r.number(d["Marker Scale"], path + ".Marker Scale", low=1e-3, high=100)
+        if "Show Names" in d:
+            kw["show_names"] = r.boolean(d["Show Names"], path + ".Show Names")
     if kind == "laser_scan" and "Size (m)" in d:
         kw["point_size_m"] = r.number(d["Size (m)"], path + ".Size (m)", low=1e-4, high=10)
     return [Display(kind, name, enabled, topic, color, cls, **kw)]

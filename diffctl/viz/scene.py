@@ -28,8 +28,20 @@ POSITION_TOLERANCE_M = 0.05  # RViz Odometry's defaults for when a new arrow joi
 ANGLE_TOLERANCE_RAD = 0.1
 
 
-def _r(v: float, nd: int = 4) -> float:
-    return round(float(v), nd)
+def _r(v: float | None, nd: int = 4) -> float | None:
+    """Rounded for a compact JSON; None (JSON null, shown as "—") for missing or non-finite values."""
+    return round(float(v), nd) if v is not None and math.isfinite(v) else None
+
+
+def _number(v: Any) -> float | None:
+    return float(v) if isinstance(v, int | float) and not isinstance(v, bool) else None
+
+
+def _seconds(t: Any) -> float | None:
+    """A gz.msgs.Time {"sec", "nsec"} (or plain seconds) in seconds."""
+    if isinstance(t, dict):
+        return int(t.get("sec", 0)) + int(t.get("nsec", 0)) * 1e-9
+    return _number(t)
 
 
 def _tf_of(translation: Any, rotation: Any) -> Transform:
@@ -277,26 +289,29 @@ class Scene:
         now = time.monotonic()
         with self._lock:
             rtf, source = self._rtf.rtf(now), "clock"
-            stats_fresh = self._stats and now - self._stats_wall_s < 3.0
-            if stats_fresh:
-                for key in ("real_time_factor", "rtf"):
-                    if isinstance(self._stats.get(key), int | float):
-                        rtf, source = float(self._stats[key]), "sim stats"
-                        break
+            stats = self._stats if self._stats and now - self._stats_wall_s < 3.0 else None
             sim_s = self._rtf.sim_s
-            if sim_s is None and stats_fresh and isinstance(self._stats.get("sim_time"), int | float):
-                sim_s = float(self._stats["sim_time"])
+            if stats is not None:
+                # The simulator's own figure beats one derived from /clock (which the bridge may throttle).
+                if _number(stats.get("real_time_factor")) is not None:
+                    rtf, source = _number(stats["real_time_factor"]), "sim stats"
+                if sim_s is None:
+                    sim_s = _seconds(stats.get("sim_time"))
             joints = [
-                {"name": n, "position": p, "velocity": v, "effort": e}
+                {"name": n, "position": _r(p), "velocity": _r(v), "effort": _r(e)}
                 for n, (p, v, e) in sorted(self._joints.items())
             ]
+            sim_info = None
+            if stats is not None:
+                sim_info = {k: stats.get(k) for k in ("paused", "iterations", "step_time_us", "lockstep_overruns",
+                                                       "model_count") if k in stats}
             return {
                 "type": "status",
-                "sim_time": None if sim_s is None else _r(sim_s, 3),
-                "rtf": None if rtf is None else _r(rtf, 3),
+                "sim_time": _r(sim_s, 3),
+                "rtf": _r(rtf, 3),
                 "rtf_source": source if rtf is not None else None,
-                "stats": self._stats if stats_fresh else None,
-                "joints": [{k: (_r(v) if isinstance(v, float) else v) for k, v in j.items()} for j in joints],
+                "sim": sim_info,
+                "joints": joints,
                 "time_jumps": self.time_jumps,
             }
 

@@ -60,11 +60,12 @@ def wait_line(lines: list[str], pattern: re.Pattern[str] | str, proc: subprocess
     raise AssertionError(f"no {rx.pattern!r} within {timeout_s} s:\n{''.join(lines)}")
 
 
-def _start_viz(procs, *args: str) -> VizProcess:
-    p = procs.diffctl("viz", "--port", "0", *args)
+def _start_with_url(procs, *args: str, timeout_s: float = 15.0) -> VizProcess:
+    """`diffctl ARGS…`, once it has printed the visualizer's URL."""
+    p = procs.diffctl(*args)
     lines: list[str] = []
     threading.Thread(target=_pump, args=(p, lines), daemon=True).start()
-    m = wait_line(lines, URL_RE, p)
+    m = wait_line(lines, URL_RE, p, timeout_s)
     return VizProcess(p, m.group(1), m.group(2), lines)
 
 
@@ -79,10 +80,17 @@ def fake_robot(router, procs) -> Iterator[subprocess.Popen]:
 
 @pytest.fixture
 def viz(router, procs) -> VizProcess:
-    return _start_viz(procs)
+    return _start_with_url(procs, "viz", "--port", "0")
 
 
 @pytest.fixture
 def start_viz(router, procs):
     """`start_viz(*args)` → a VizProcess with those extra command-line arguments."""
-    return lambda *args: _start_viz(procs, *args)
+    return lambda *args: _start_with_url(procs, "viz", "--port", "0", *args)
+
+
+@pytest.fixture
+def launch_sim_control(router, procs, tmp_path: Path):
+    """`launch_sim_control()` → the whole tutorial graph, its visualizer on a free port."""
+    return lambda: _start_with_url(procs, "launch", "sim_control", "viz_port:=0", "--log-dir", str(tmp_path / "log"),
+                                   timeout_s=60)

@@ -19,6 +19,7 @@
     notice(text, level = "info", sticky = false) {
       this.notices.push({ text, level });
       const box = document.getElementById("notices");
+      if (Array.from(box.children).some(c => c.textContent === text)) return;  // once on screen is enough
       const el = document.createElement("div");
       el.className = "notice " + level;
       el.textContent = text;
@@ -86,7 +87,16 @@
       V.status = m;
       document.getElementById("sim-time").textContent = m.sim_time == null ? "—" : m.sim_time.toFixed(2) + " s";
       document.getElementById("rtf").textContent = m.rtf == null ? "—" : m.rtf.toFixed(2) + "×";
-      document.getElementById("rtf").title = m.rtf_source ? `from ${m.rtf_source}` : "";
+      const sim = m.sim || {};
+      document.getElementById("rtf").title = (m.rtf_source ? `from ${m.rtf_source}` : "")
+        + (sim.step_time_us != null ? `, ${sim.step_time_us.toFixed(1)} µs/step` : "")
+        + (sim.iterations != null ? `, ${sim.iterations} iterations` : "");
+      const state = document.getElementById("sim-state");
+      const parts = [];
+      if (sim.paused) parts.push("paused");
+      if (sim.lockstep_overruns) parts.push(`${sim.lockstep_overruns} lockstep overruns`);
+      state.hidden = !parts.length;
+      state.textContent = parts.join(", ");
     },
     graph(m) { V.graph = m; setFixedOptions(m.frames || []); },
     refused(m) { V.refused.push(m.text); V.notice(m.text, "refused", true); },
@@ -149,7 +159,7 @@
     view.cy = wy + (py - H() / 2) / view.scale;
     V.dirty = true;
   }, { passive: false });
-  const resetView = () => { view.cx = 0; view.cy = 0; view.scale = Math.min(W(), H()) / 6; V.dirty = true; };
+  const resetView = () => { view.cx = 0; view.cy = 0; view.scale = Math.min(W(), H()) / 5; V.dirty = true; };
   canvas.addEventListener("dblclick", resetView);
   document.getElementById("reset-view").addEventListener("click", resetView);
 
@@ -247,8 +257,14 @@
     }
     const tfd = V.displays("tf")[0];
     if (f && tfd && V.shown(tfd)) {
-      const entries = Object.entries(f.frames);
-      for (const [name, t] of entries) drawAxes(t[0], t[1], t[3], 0.15, entries.length <= 24 ? name : "");
+      const len = Math.max(0.1 * tfd.marker_scale, 14 * dpr / view.scale);
+      const labels = [];
+      for (const [name, t] of Object.entries(f.frames)) {
+        // A name is written only where it does not overprint another one (frames of a small robot crowd).
+        const free = tfd.show_names && labels.every(([lx, ly]) => Math.abs(lx - sx(t[0])) > 70 * dpr || Math.abs(ly - sy(t[1])) > 14 * dpr);
+        if (free) labels.push([sx(t[0]), sy(t[1])]);
+        drawAxes(t[0], t[1], t[3], len, free ? name : "");
+      }
     }
     for (const d of V.displays("odometry")) {
       const o = f && f.odom.find(e => e.topic === d.topic);
