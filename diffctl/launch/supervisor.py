@@ -306,6 +306,8 @@ class Supervisor:
         self.pid_names[child.pid] = spec.name
         if spec.name not in self.start_order:
             self.start_order.append(spec.name)
+        if self.started_all_at is None:
+            self.output.live(self._live_text())  # this one is no longer awaited
         self.output.launcher("INFO", f"[{spec.name}] started (pid {child.pid})")
         self._fire("start", spec.name, None)
 
@@ -517,21 +519,23 @@ class Supervisor:
                     waiting.append(f"{', '.join(started)} (on {handler.event} of {', '.join(names)})")
         return waiting
 
+    def _live_text(self) -> str | None:
+        waiting = self._awaited()
+        if not waiting:
+            return None
+        up = [n for n in self.start_order if self.states[n].child is not None]
+        return f"up: {', '.join(up) or '-'} │ waiting: {'; '.join(waiting)}"
+
     def _update_live(self) -> None:
         if self.shutting_down:
             return
-        waiting = self._awaited()
-        if waiting:
-            up = [n for n in self.start_order if self.states[n].child is not None]
-            self.output.live(f"up: {', '.join(up) or '-'} │ waiting: {'; '.join(waiting)}")
-        else:
-            self.output.live(None)
-            if self.started_all_at is None and self.start_order:
-                self.started_all_at = self.now()
-                running = sum(1 for st in self.states.values() if st.starts)
-                self.output.launcher(
-                    "INFO", f"all {running} processes started in {(self.started_all_at - self._t0) * 1000:.0f} ms"
-                )
+        text = self._live_text()
+        self.output.live(text)
+        if text is None and self.started_all_at is None and self.start_order:
+            self.started_all_at = self.now()
+            running = sum(1 for st in self.states.values() if st.starts)
+            took_ms = (self.started_all_at - self._t0) * 1000
+            self.output.launcher("INFO", f"all {running} processes started in {took_ms:.0f} ms")
 
     def rows(self) -> list[ProcessRow]:
         now = self.now()
