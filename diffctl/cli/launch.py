@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 from typing import Any
 
@@ -92,7 +93,8 @@ def launch(
     positional, arguments = _split_targets(target)
     path = package_index.find_launch_file(*positional)
     description = load(path)
-    console = make_console(no_color=no_color)
+    # Piped output is not cut to 80 columns: paths and commands must stay whole.
+    console = make_console(no_color=no_color, width=None if sys.stdout.isatty() else 200)
     if show_args:
         console.print(ArgumentsView(declared_arguments(description, str(path))))
         return

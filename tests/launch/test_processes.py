@@ -186,3 +186,18 @@ launch:
     assert run.wait(10) == 0
     assert "shutting down: SIGTERM received" in run.text()
     assert_nothing_left(run)
+
+
+def test_show_args_lists_declared_arguments_with_defaults_and_descriptions() -> None:
+    import subprocess
+
+    done = subprocess.run(
+        [sys.executable, "-m", "diffctl", "launch", str(DATA / "chain.yaml"), "--show-args", "--no-color"],
+        capture_output=True,
+        text=True,
+        timeout=30,
+    )
+    assert done.returncode == 0, done.stderr
+    rows = [line for line in done.stdout.splitlines() if line.startswith("│")]
+    assert "python" in rows[0] and "'python3'" in rows[0] and "interpreter for step.py" in rows[0]
+    assert "record" in rows[1] and "(required)" in rows[1]
