@@ -57,6 +57,7 @@ class ManagerParams:
     default_strictness: int = STRICTNESS["best_effort"]
     hardware_unconfigured: tuple[str, ...] = ()
     hardware_inactive: tuple[str, ...] = ()
+    thread_priority: int = 50
     controllers: Mapping[str, ControllerSpec] = field(default_factory=dict)
     params_files: tuple[str, ...] = ()  # the manager's own files; controllers inherit them
     source: str = "controller_manager parameters"
@@ -113,6 +114,11 @@ def manager_params(flat: Mapping[str, Any], *, source: str = "controller_manager
                 raise ParameterError(f"{value!r} is not a strictness{suggest(str(value), STRICTNESS)}",
                                      source=source, field=key, hint="valid: " + ", ".join(STRICTNESS))
             kw["default_strictness"] = STRICTNESS[value]
+        elif key == "thread_priority":
+            if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value <= 99:
+                raise ParameterError(f"{value!r} is not a priority (an integer 0..99; 0 disables SCHED_FIFO)",
+                                     source=source, field=key)
+            kw["thread_priority"] = value
         elif key == "hardware_components_initial_state.unconfigured":
             kw["hardware_unconfigured"] = _str_list(value, key, source)
         elif key == "hardware_components_initial_state.inactive":

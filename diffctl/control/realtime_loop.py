@@ -10,6 +10,7 @@ A tick comes from one of three sources, as in ros2_control_node and gz_ros2_cont
 
 from __future__ import annotations
 
+import os
 import threading
 import time
 from collections.abc import Callable
@@ -28,6 +29,18 @@ class Ticker(Protocol):
         ...
 
     def cycle_done(self) -> None: ...
+
+
+def configure_sched_fifo(priority: int) -> str | None:
+    """Give the calling thread SCHED_FIFO at `priority`, as ros2_control_node does (thread_priority, default 50);
+    None on success, else why not (no permission: the loop then runs at normal priority)."""
+    if priority <= 0:
+        return "thread_priority ≤ 0: real-time scheduling disabled"
+    try:
+        os.sched_setscheduler(threading.get_native_id(), os.SCHED_FIFO, os.sched_param(min(priority, 99)))
+        return None
+    except (OSError, AttributeError) as e:
+        return f"Could not enable FIFO RT scheduling policy: {e}"
 
 
 def sleep_until_ns(deadline_ns: int, stop: threading.Event | None = None) -> None:
@@ -53,6 +66,15 @@ class LoopStats:
     costs_ns: list[int] = field(default_factory=list)
     overruns: int = 0
     cycles: int = 0
+
+    def reset(self, capacity: int | None = None) -> None:
+        """Start a new measurement window (the loop keeps recording into the same object)."""
+        if capacity is not None:
+            self.capacity = capacity
+        self.wakes_ns.clear()
+        self.costs_ns.clear()
+        self.overruns = 0
+        self.cycles = 0
 
     def record(self, wake_ns: int, cost_ns: int) -> None:
         self.cycles += 1
