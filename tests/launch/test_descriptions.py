@@ -7,6 +7,8 @@ import sys
 from pathlib import Path
 
 import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 from diffctl.errors import LaunchError
 from diffctl.launch import package_index
@@ -291,3 +293,17 @@ launch:
     )
     assert plan.processes["split"].argv == plan.processes["items"].argv == ("echo", "two words", "three")
     assert plan.processes["rviz2"].argv[-2:] == ("-d", "/path with space/x.rviz")
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.text(alphabet=st.sampled_from(list("$()'\" \\abvr-x")) | st.characters(), max_size=40))
+def test_the_substitution_parser_never_fails_but_with_a_launch_error(text: str) -> None:
+    assume("command" not in text and "eval" not in text)  # no running of random programs or expressions
+    scope = Scope.initial({"a": "1", "x": "2", "var": "3"}, "/d/f.yaml", env={})
+    try:
+        value = perform(parse(text), scope)
+    except LaunchError as e:
+        assert "\n" not in str(e)
+        return
+    if "$(" not in text:
+        assert value == text
