@@ -1,0 +1,162 @@
+"""Manager parameters, controller parameter merging, the <ros2_control> block, mock hardware and the loop timer."""
+
+from __future__ import annotations
+
+import itertools
+import math
+import threading
+import time
+from pathlib import Path
+
+import pytest
+from control_fakes import RecordingLog, wheel_info
+
+from diffctl.control.controller_interface import ReturnType
+from diffctl.control.hardware.generic_system import GenericSystem
+from diffctl.control.params import (
+    controller_node_params,
+    load_manager_files,
+    manager_params,
+    section_type,
+    with_controller_param,
+)
+from diffctl.control.realtime_loop import LoopStats, WallTicker, run
+from diffctl.control.robot_hardware import PLACEHOLDER, hardware_infos, parameter_files
+from diffctl.errors import DescriptionError, ParameterError
+
+REPO = Path(__file__).resolve().parents[2]
+CONFIG = REPO / "config" / "diff_drive_controller.yaml"
+SDF = REPO / "description" / "my_diff_car_control.sdf"
+
+
+def test_the_tutorial_yaml_configures_the_manager_and_its_controllers() -> None:
+    p = manager_params(load_manager_files([str(CONFIG)]), params_files=(str(CONFIG),))
+    assert (p.update_rate, p.use_sim_time) == (20, True)
+    assert p.controllers["joint_state_broadcaster"].type == "joint_state_broadcaster/JointStateBroadcaster"
+    assert "diffbot_base_controller" not in p.controllers  # its type comes through the spawner's --param-file
+    assert section_type(str(CONFIG), "diffbot_base_controller") == "diff_drive_controller/DiffDriveController"
+    p = with_controller_param(p, "diffbot_base_controller", "type", "diff_drive_controller/DiffDriveController")
+    p = with_controller_param(p, "diffbot_base_controller", "params_file", [str(CONFIG)])
+    ctrl = controller_node_params("diffbot_base_controller", p)
+    assert ctrl["wheel_separation"] == 0.3 and ctrl["left_wheel_names"] == ["base_link_to_left_wheel"]
+    assert math.isnan(ctrl["linear.x.max_jerk"])  # .NAN in the YAML
+    assert ctrl["use_sim_time"] is True  # inherited from the manager
+    assert "update_rate" not in ctrl
+
+
+@pytest.mark.parametrize(("flat", "field", "quoted"), [
+    ({"update_rate": 0}, "update_rate", "0"),
+    ({"update_rate": "fast"}, "update_rate", "'fast'"),
+    ({"update_rate": 2.5}, "update_rate", "2.5"),
+    ({"use_sim_time": "yes"}, "use_sim_time", "'yes'"),
+    ({"defaults.switch_controller.strictness": "strikt"}, "defaults.switch_controller.strictness", "'strict'"),
+    ({"thread_priority": 120}, "thread_priority", "120"),
+    ({"x.type": "nonsense"}, "x.type", "'nonsense'"),
+    ({"x.update_rate": -5}, "x.update_rate", "-5"),
+    ({"x.params_file": 3}, "x.params_file", "3"),
+])
+def test_bad_manager_parameters_are_refused_with_the_value(flat, field, quoted) -> None:
+    with pytest.raises(ParameterError) as e:
+        manager_params(flat, source="cm.yaml")
+    assert e.value.field == field and quoted in str(e.value) and "cm.yaml" in str(e.value)
+
+
+def test_launch_text_booleans_and_missing_controller_files(tmp_path) -> None:
+    assert manager_params({"use_sim_time": "false"}).use_sim_time is False
+    p = manager_params({"a.params_file": str(tmp_path / "nope.yaml")})
+    with pytest.raises(ParameterError, match="parameter file not found"):
+        controller_node_params("a", p)
+
+
+def test_the_control_sdf_gives_one_hardware_block() -> None:
+    (info,) = hardware_infos(SDF.read_text(), str(SDF))
+    assert (info.name, info.type, info.plugin_name) == ("robot", "system", "gz_ros2_control/GazeboSimSystem")
+    assert {j.name for j in info.joints} == {"base_link_to_left_wheel", "base_link_to_right_wheel"}
+    for j in info.joints:
+        assert [c.name for c in j.command_interfaces] == ["velocity"]
+        assert [s.name for s in j.state_interfaces] == ["position", "velocity"]
+    (mock,) = hardware_infos(SDF.read_text(), plugin_override="mock_components/GenericSystem",
+                             extra_params={"calculate_dynamics": "true"})
+    assert mock.plugin_name == "mock_components/GenericSystem"
+    assert mock.hardware_parameters["calculate_dynamics"] == "true"
+    files, problems = parameter_files(SDF.read_text())
+    assert files == [] and PLACEHOLDER in problems[0]
+    files, problems = parameter_files(SDF.read_text().replace(PLACEHOLDER, str(CONFIG)))
+    assert files == [str(CONFIG)] and problems == []
+    with pytest.raises(DescriptionError, match="no <ros2_control> block"):
+        hardware_infos("<sdf version='1.9'><model name='m'/></sdf>", "m.sdf")
+
+
+def _mock(**params: str) -> GenericSystem:
+    hw = GenericSystem()
+    hw.log = RecordingLog()
+    hw.on_init(wheel_info(hw_params=params, commands=("velocity", "position"), initial_position=1.5))
+    hw.export_state_interfaces()
+    hw.export_command_interfaces()
+    hw.on_configure()
+    return hw
+
+
+def test_generic_system_mirrors_commands() -> None:
+    hw = _mock(position_state_following_offset="0.25")
+    assert hw.states["left_wheel/position"].value == 1.5 and hw.states["left_wheel/velocity"].value == 0.0
+    hw.commands["left_wheel/velocity"].set_value(2.0)
+    assert hw.read(0, 0.01) is ReturnType.OK
+    assert hw.states["left_wheel/velocity"].value == 2.0
+    assert hw.states["left_wheel/position"].value == 1.5  # velocity mirrored, position untouched (as upstream)
+    hw.commands["right_wheel/position"].set_value(3.0)
+    hw.read(0, 0.01)
+    assert hw.states["right_wheel/position"].value == 3.25
+    hw.commands["left_wheel/velocity"].set_value(math.nan)
+    hw.read(0, 0.01)
+    assert hw.states["left_wheel/velocity"].value == 2.0  # NaN = no command
+    hw.commands["left_wheel/velocity"].set_value(math.inf)
+    assert hw.read(0, 0.01) is ReturnType.ERROR
+
+
+def test_generic_system_integrates_with_calculate_dynamics() -> None:
+    hw = _mock(calculate_dynamics="true")
+    assert not hw.prepare_command_mode_switch(["left_wheel/velocity", "left_wheel/position"], [])
+    assert hw.prepare_command_mode_switch(["left_wheel/velocity", "right_wheel/position"], [])
+    hw.perform_command_mode_switch(["left_wheel/velocity", "right_wheel/position"], [])
+    hw.commands["left_wheel/velocity"].set_value(2.0)
+    hw.commands["right_wheel/position"].set_value(2.0)
+    for _ in range(10):
+        hw.read(0, 0.01)
+    assert hw.states["left_wheel/position"].value == pytest.approx(1.5 + 10 * 0.01 * 2.0)
+    assert hw.states["left_wheel/velocity"].value == 2.0
+    assert hw.states["right_wheel/position"].value == 2.0
+    hw.perform_command_mode_switch([], ["left_wheel/velocity"])
+    hw.read(0, 0.01)
+    assert hw.states["left_wheel/position"].value == pytest.approx(1.7)  # no mode: no motion
+
+
+def test_generic_system_refuses_bad_params() -> None:
+    with pytest.raises(ParameterError, match=r"'maybe' is not a bool") as e:
+        _mock(calculate_dynamics="maybe")
+    assert "calculate_dynamics" in str(e.value)
+    with pytest.raises(ParameterError, match="'abc' is not a finite number"):
+        _mock(position_state_following_offset="abc")
+
+
+def test_wall_ticker_counts_overruns_and_skips_missed_periods() -> None:
+    stats = LoopStats()
+    warnings: list[str] = []
+    ticker = WallTicker(100, stats, warnings.append)
+    stop = threading.Event()
+    times: list[int] = []
+
+    def cycle(t_ns: int, period_s: float) -> None:
+        times.append(time.monotonic_ns())
+        if len(times) == 5:
+            time.sleep(0.035)  # three and a half periods late
+        if len(times) == 15:
+            stop.set()
+
+    run(cycle, ticker, stop, stats)
+    assert stats.overruns == 1 and "Overrun detected!" in warnings[0]
+    gaps_ms = [(b - a) / 1e6 for a, b in itertools.pairwise(times)]
+    assert gaps_ms[4] == pytest.approx(40.0, abs=3.0)  # back on the 10 ms grid, not a burst of catch-up cycles
+    assert all(g == pytest.approx(10.0, abs=3.0) for g in gaps_ms[5:])
+    s = stats.summary(0.01)
+    assert s["cycles"] == 15 and s["jitter_p50_us"] < 2000
