@@ -75,12 +75,14 @@ class BusFeed:
         wanted: set[tuple[str, str]] = set()
         for name, type_names in graph.topics().items():
             pubs, subs = graph.publishers(name), graph.subscribers(name)
-            topics.append({
-                "name": name,
-                "types": type_names,
-                "publishers": len([p for p in pubs if p.node_fqn != self.node.fqn]),
-                "subscribers": len([s for s in subs if s.node_fqn != self.node.fqn]),
-            })
+            topics.append(
+                {
+                    "name": name,
+                    "types": type_names,
+                    "publishers": len([p for p in pubs if p.node_fqn != self.node.fqn]),
+                    "subscribers": len([s for s in subs if s.node_fqn != self.node.fqn]),
+                }
+            )
             for t in type_names:
                 if any(p.type == t for p in pubs) and (t not in HEAVY_TYPES or name in self._image_subs):
                     wanted.add((name, t))
@@ -93,7 +95,8 @@ class BusFeed:
                 except Exception:  # a type our store lacks: listed, but not counted
                     continue
                 self._rate_subs[(name, t)] = self.node.session.declare_subscriber(
-                    k, lambda _s, n=name: self.scene.count(n))
+                    k, lambda _s, n=name: self.scene.count(n)
+                )
         self.scene.set_topics(topics)
 
     def poll_controllers(self) -> None:
@@ -107,10 +110,12 @@ class BusFeed:
             resp = self._controllers_client.call({}, timeout=1.0)
         except DiffctlError:
             return
-        self.scene.set_controllers([
-            {"name": c.name, "state": c.state, "type": c.type, "claimed": list(c.claimed_interfaces)}
-            for c in resp.controller
-        ])
+        self.scene.set_controllers(
+            [
+                {"name": c.name, "state": c.state, "type": c.type, "claimed": list(c.claimed_interfaces)}
+                for c in resp.controller
+            ]
+        )
 
     # ---- camera panel ------------------------------------------------------------------------------------
 
@@ -119,7 +124,8 @@ class BusFeed:
         with self._lock:
             if on and topic not in self._image_subs:
                 self._image_subs[topic] = self.node.create_subscription(
-                    topic, "sensor_msgs/msg/Image", lambda m, t=topic: self._on_image(t, m), depth=1)
+                    topic, "sensor_msgs/msg/Image", lambda m, t=topic: self._on_image(t, m), depth=1
+                )
             elif not on and topic in self._image_subs:
                 self._image_subs.pop(topic).close()
 

@@ -16,17 +16,32 @@ DEFAULT_NODE_NAME = "rviz2"
 
 
 @click.command("viz", context_settings={"help_option_names": ["-h", "--help"]})
-@click.option("-d", "--display-config", type=click.Path(dir_okay=False), default=None,
-              help="RViz2 .rviz file: fixed frame and displays with their topics.")
+@click.option(
+    "-d",
+    "--display-config",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="RViz2 .rviz file: fixed frame and displays with their topics.",
+)
 @click.option("-f", "--fixed-frame", default=None, help="Fixed frame (overrides the .rviz file's).")
 @click.option("--host", default=None, help="Address to serve on [default: 127.0.0.1, loopback only].")
 @click.option("--port", type=int, default=None, help="TCP port [default: 8080; 0 picks a free one].")
-@click.option("--teleop-topic", default=None,
-              help="Default topic of the teleop panel [default: /diffbot_base_controller/cmd_vel].")
+@click.option(
+    "--teleop-topic",
+    default=None,
+    help="Default topic of the teleop panel [default: /diffbot_base_controller/cmd_vel].",
+)
 @click.option("--max-linear", type=float, default=None, help="Teleop speed limit in m/s [default: 1.0].")
 @click.option("--max-angular", type=float, default=None, help="Teleop turn-rate limit in rad/s [default: 2.0].")
-def viz(display_config: str | None, fixed_frame: str | None, host: str | None, port: int | None,
-        teleop_topic: str | None, max_linear: float | None, max_angular: float | None) -> None:
+def viz(
+    display_config: str | None,
+    fixed_frame: str | None,
+    host: str | None,
+    port: int | None,
+    teleop_topic: str | None,
+    max_linear: float | None,
+    max_angular: float | None,
+) -> None:
     """Serve the browser visualizer (rviz2): robot model, TF, odometry, laser scan, camera, joint states,
     controllers, topics, sim time, plus teleop and message publisher panels.
 
@@ -44,8 +59,13 @@ def viz(display_config: str | None, fixed_frame: str | None, host: str | None, p
     config = load_rviz(display_config) if display_config else default_config()
     ra = ros_args.current(DEFAULT_NODE_NAME)
     settings = VizSettings.from_params(
-        ra.params, host=host, port=port, fixed_frame=fixed_frame, teleop_topic=teleop_topic,
-        max_linear_mps=max_linear, max_angular_radps=max_angular,
+        ra.params,
+        host=host,
+        port=port,
+        fixed_frame=fixed_frame,
+        teleop_topic=teleop_topic,
+        max_linear_mps=max_linear,
+        max_angular_radps=max_angular,
     )
     if config.ignored:
         warn(f"{config.source}: display classes not shown: {', '.join(config.ignored)}")
@@ -62,8 +82,12 @@ async def _serve(config, settings: VizSettings, ra: ros_args.RosArgs) -> None:
     from diffctl.viz.security import new_token
     from diffctl.viz.server import VizServer
 
-    node = Node(ra.node_name or DEFAULT_NODE_NAME, ra.namespace or "/", remaps=ra.remaps,
-                params={**ra.params, "use_sim_time": settings.use_sim_time})
+    node = Node(
+        ra.node_name or DEFAULT_NODE_NAME,
+        ra.namespace or "/",
+        remaps=ra.remaps,
+        params={**ra.params, "use_sim_time": settings.use_sim_time},
+    )
     feed = None
     try:
         scene = Scene(config, settings)

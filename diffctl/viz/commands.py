@@ -130,8 +130,11 @@ def parse_publish(obj: dict[str, Any], settings: VizSettings) -> PublishJob:
             rate = float(rate) if rate.strip() else 0.0
         except ValueError:
             raise MessageError(f"rate must be a number of hertz, got {rate!r}") from None
-    if isinstance(rate, bool) or not isinstance(rate, int | float) or not math.isfinite(rate) or not (
-        0 <= rate <= settings.publisher_max_rate_hz
+    if (
+        isinstance(rate, bool)
+        or not isinstance(rate, int | float)
+        or not math.isfinite(rate)
+        or not (0 <= rate <= settings.publisher_max_rate_hz)
     ):
         raise MessageError(f"rate must be between 0 (once) and {settings.publisher_max_rate_hz:g} Hz, got {rate!r}")
     cls = types.get_class(type_name.strip())

@@ -32,12 +32,14 @@ def encode_png(pixels: np.ndarray, level: int = 1) -> bytes:
     # Filter type 0 (None) on every row: fast, and zlib level 1 keeps a 320x240 frame in a few milliseconds.
     raw = np.hstack([np.zeros((h, 1), np.uint8), rows]).tobytes()
     ihdr = struct.pack(">IIBBBBB", w, h, 8, colour_type, 0, 0, 0)
-    return b"\x89PNG\r\n\x1a\n" + _chunk(b"IHDR", ihdr) + _chunk(b"IDAT", zlib.compress(raw, level)) + _chunk(
-        b"IEND", b"")
+    return (
+        b"\x89PNG\r\n\x1a\n" + _chunk(b"IHDR", ihdr) + _chunk(b"IDAT", zlib.compress(raw, level)) + _chunk(b"IEND", b"")
+    )
 
 
-def image_pixels(width: int, height: int, encoding: str, step: int, data: bytes | np.ndarray,
-                 is_bigendian: bool = False) -> np.ndarray:
+def image_pixels(
+    width: int, height: int, encoding: str, step: int, data: bytes | np.ndarray, is_bigendian: bool = False
+) -> np.ndarray:
     """The image as uint8 grey or RGB, decimated to at most MAX_WIDTH_PX wide."""
     enc = encoding.lower() if encoding.lower() in ("rgb8", "bgr8", "rgba8", "bgra8", "mono8", "mono16") else encoding
     channels = {"rgb8": 3, "bgr8": 3, "8UC3": 3, "rgba8": 4, "bgra8": 4, "mono8": 1, "8UC1": 1}.get(enc)
@@ -75,6 +77,12 @@ def image_pixels(width: int, height: int, encoding: str, step: int, data: bytes 
 
 def image_data_url(msg: object) -> tuple[str, int, int]:
     """(data URL, width, height) of a sensor_msgs/Image message."""
-    px = image_pixels(int(msg.width), int(msg.height), str(msg.encoding), int(msg.step), msg.data,  # type: ignore[attr-defined]
-                      bool(msg.is_bigendian))  # type: ignore[attr-defined]
+    px = image_pixels(
+        int(msg.width),
+        int(msg.height),
+        str(msg.encoding),
+        int(msg.step),
+        msg.data,  # type: ignore[attr-defined]
+        bool(msg.is_bigendian),
+    )  # type: ignore[attr-defined]
     return "data:image/png;base64," + base64.b64encode(encode_png(px)).decode(), px.shape[1], px.shape[0]

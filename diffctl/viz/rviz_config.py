@@ -102,13 +102,27 @@ def default_config() -> RvizConfig:
         fixed_frame="odom",
         displays=(
             Display("grid", "Grid", color_rgb=DEFAULT_COLORS["grid"], rviz_class="rviz_default_plugins/Grid"),
-            Display("robot_model", "RobotModel", topic=DEFAULT_TOPICS["robot_model"],
-                    rviz_class="rviz_default_plugins/RobotModel"),
+            Display(
+                "robot_model",
+                "RobotModel",
+                topic=DEFAULT_TOPICS["robot_model"],
+                rviz_class="rviz_default_plugins/RobotModel",
+            ),
             Display("tf", "TF", rviz_class="rviz_default_plugins/TF"),
-            Display("odometry", "Odometry", topic=DEFAULT_TOPICS["odometry"], color_rgb=DEFAULT_COLORS["odometry"],
-                    rviz_class="rviz_default_plugins/Odometry"),
-            Display("laser_scan", "LaserScan", topic=DEFAULT_TOPICS["laser_scan"],
-                    color_rgb=DEFAULT_COLORS["laser_scan"], rviz_class="rviz_default_plugins/LaserScan"),
+            Display(
+                "odometry",
+                "Odometry",
+                topic=DEFAULT_TOPICS["odometry"],
+                color_rgb=DEFAULT_COLORS["odometry"],
+                rviz_class="rviz_default_plugins/Odometry",
+            ),
+            Display(
+                "laser_scan",
+                "LaserScan",
+                topic=DEFAULT_TOPICS["laser_scan"],
+                color_rgb=DEFAULT_COLORS["laser_scan"],
+                rviz_class="rviz_default_plugins/LaserScan",
+            ),
             Display("image", "Image", topic=DEFAULT_TOPICS["image"], rviz_class="rviz_default_plugins/Image"),
         ),
     )
@@ -240,8 +254,9 @@ def parse_rviz(text: str, source: str = "<rviz>") -> RvizConfig:
     fixed = r.text(glob.get("Fixed Frame", "odom"), gpath + ".Fixed Frame").strip().lstrip("/")
     if not fixed or any(c.isspace() for c in fixed):
         raise r.fail(gpath + ".Fixed Frame", f"must be a frame name, got {glob.get('Fixed Frame')!r}")
-    background = r.color(glob["Background Color"], gpath + ".Background Color") if "Background Color" in glob else (
-        48, 48, 48)
+    background = (
+        r.color(glob["Background Color"], gpath + ".Background Color") if "Background Color" in glob else (48, 48, 48)
+    )
     rate = r.number(glob.get("Frame Rate", 30), gpath + ".Frame Rate", low=1, high=60)
     items = vm.get("Displays") or []
     if not isinstance(items, list):

@@ -139,9 +139,11 @@ class Scene:
             od.linear_mps = float(msg.twist.twist.linear.x)
             od.angular_radps = float(msg.twist.twist.angular.z)
             x, y, yaw = pose.translation_m[0], pose.translation_m[1], pose.yaw_rad
-            if not od.trail or math.hypot(x - od.trail[-1][0], y - od.trail[-1][1]) >= POSITION_TOLERANCE_M or abs(
-                math.remainder(yaw - od.trail[-1][2], 2 * math.pi)
-            ) >= ANGLE_TOLERANCE_RAD:
+            if (
+                not od.trail
+                or math.hypot(x - od.trail[-1][0], y - od.trail[-1][1]) >= POSITION_TOLERANCE_M
+                or abs(math.remainder(yaw - od.trail[-1][2], 2 * math.pi)) >= ANGLE_TOLERANCE_RAD
+            ):
                 od.trail.append((x, y, yaw))
                 self._bump("paths")
             self._bump("frame", "status")
@@ -242,8 +244,14 @@ class Scene:
                     robot.append({"link": shape.link, "pts": pts, "color": _rgba_css(shape.rgba)})
             odom = []
             for topic, od in self._odom.items():
-                entry: dict[str, Any] = {"topic": topic, "frame": od.frame_id, "child": od.child_frame_id,
-                                         "v": _r(od.linear_mps), "w": _r(od.angular_radps), "pose": None}
+                entry: dict[str, Any] = {
+                    "topic": topic,
+                    "frame": od.frame_id,
+                    "child": od.child_frame_id,
+                    "v": _r(od.linear_mps),
+                    "w": _r(od.angular_radps),
+                    "pose": None,
+                }
                 to_fixed = self.tf.lookup(fixed, od.frame_id) if od.frame_id else None
                 if od.pose is not None and to_fixed is not None:
                     p = to_fixed.compose(od.pose)
@@ -252,8 +260,15 @@ class Scene:
             gt = None
             if self._gt is not None:
                 gt = [_r(self._gt.translation_m[0]), _r(self._gt.translation_m[1]), _r(self._gt.yaw_rad)]
-            return {"type": "frame", "fixed": fixed, "frames": frames, "robot": robot, "odom": odom, "gt": gt,
-                    "parents": self.tf.parents()}
+            return {
+                "type": "frame",
+                "fixed": fixed,
+                "frames": frames,
+                "robot": robot,
+                "odom": odom,
+                "gt": gt,
+                "parents": self.tf.parents(),
+            }
 
     def paths_view(self, fixed: str) -> dict[str, Any]:
         with self._lock:
@@ -303,8 +318,11 @@ class Scene:
             ]
             sim_info = None
             if stats is not None:
-                sim_info = {k: stats.get(k) for k in ("paused", "iterations", "step_time_us", "lockstep_overruns",
-                                                       "model_count") if k in stats}
+                sim_info = {
+                    k: stats.get(k)
+                    for k in ("paused", "iterations", "step_time_us", "lockstep_overruns", "model_count")
+                    if k in stats
+                }
             return {
                 "type": "status",
                 "sim_time": _r(sim_s, 3),

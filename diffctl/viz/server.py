@@ -42,8 +42,10 @@ STATIC_FILES = {
     "/viz.css": ("viz.css", "text/css; charset=utf-8"),
 }
 # The page may load nothing from anywhere else: no CDN, no fonts, works offline.
-CSP = ("default-src 'none'; script-src 'self'; style-src 'self'; img-src 'self' data:; connect-src 'self'; "
-       "base-uri 'none'; form-action 'none'; frame-ancestors 'none'")
+CSP = (
+    "default-src 'none'; script-src 'self'; style-src 'self'; img-src 'self' data:; connect-src 'self'; "
+    "base-uri 'none'; form-action 'none'; frame-ancestors 'none'"
+)
 MAX_JOBS_PER_PAGE = 16
 TELEOP_MIN_INTERVAL_S = 0.02
 
@@ -90,8 +92,7 @@ class VizServer:
         self.pages: set[_Page] = set()
         self.policy = HostPolicy(self.settings.host, self.settings.port)
         self._server: Server | None = None
-        self._static = {path: ((STATIC_DIR / name).read_bytes(), ctype) for path, (name, ctype) in
-                        STATIC_FILES.items()}
+        self._static = {path: ((STATIC_DIR / name).read_bytes(), ctype) for path, (name, ctype) in STATIC_FILES.items()}
         rate = min(self.settings.frame_rate_hz, config.frame_rate_hz)
         self.periods = {
             "robot": 0.0,
@@ -111,8 +112,13 @@ class VizServer:
         """Bind and return the port (the chosen one when asked for port 0)."""
         try:
             self._server = await serve(
-                self._handle, self.settings.host, self.settings.port, process_request=self._process_request,
-                max_size=256 * 1024, server_header=f"diffctl-viz/{__version__}", compression=None,
+                self._handle,
+                self.settings.host,
+                self.settings.port,
+                process_request=self._process_request,
+                max_size=256 * 1024,
+                server_header=f"diffctl-viz/{__version__}",
+                compression=None,
             )
         except OSError as e:
             raise ConfigError(
@@ -158,8 +164,9 @@ class VizServer:
         if path == "/ws":
             if not self.policy.origin_ok(request.headers.get("Origin"), host):
                 self.log.warn(f"refused a WebSocket from Origin {request.headers.get('Origin')!r}")
-                return self._response(HTTPStatus.FORBIDDEN, b"cross-origin WebSocket refused\n",
-                                      "text/plain; charset=utf-8")
+                return self._response(
+                    HTTPStatus.FORBIDDEN, b"cross-origin WebSocket refused\n", "text/plain; charset=utf-8"
+                )
             return None  # continue with the WebSocket handshake
         if path in self._static:
             body, ctype = self._static[path]
@@ -217,8 +224,14 @@ class VizServer:
         try:
             if op == "auth":
                 page.authorized = token_matches(str(msg.get("token", "")), self.token)
-                await self._reply(page, {"type": "auth", "authorized": page.authorized,
-                                         "text": None if page.authorized else "wrong token: commands refused"})
+                await self._reply(
+                    page,
+                    {
+                        "type": "auth",
+                        "authorized": page.authorized,
+                        "text": None if page.authorized else "wrong token: commands refused",
+                    },
+                )
             elif op == "fixed_frame":
                 frame = msg.get("frame")
                 if isinstance(frame, str) and 0 < len(frame) <= 256:
@@ -234,9 +247,15 @@ class VizServer:
             elif op in ("teleop", "publish", "publish_stop"):
                 if not page.authorized:
                     self.log.throttled(f"refused{id(page)}", f"refused '{op}' from a page without the token")
-                    await self._reply(page, {"type": "refused", "op": op, "text":
-                                             "refused: commands that move the robot need the token printed "
-                                             "at start (open the URL with ?token=…)"})
+                    await self._reply(
+                        page,
+                        {
+                            "type": "refused",
+                            "op": op,
+                            "text": "refused: commands that move the robot need the token printed "
+                            "at start (open the URL with ?token=…)",
+                        },
+                    )
                 elif op == "teleop":
                     await self._teleop(page, msg)
                 elif op == "publish":
@@ -245,8 +264,7 @@ class VizServer:
                     task = page.jobs.pop(str(msg.get("id", "")), None)
                     if task:
                         task.cancel()
-                    await self._reply(page, {"type": "publish_state", "id": str(msg.get("id", "")),
-                                             "running": False})
+                    await self._reply(page, {"type": "publish_state", "id": str(msg.get("id", "")), "running": False})
             else:
                 await self._reply(page, {"type": "error", "text": f"unknown op {op!r}"})
         except DiffctlError as e:
@@ -280,9 +298,15 @@ class VizServer:
         if first and not cmd.is_zero:
             others = self.feed.other_types(cmd.topic, cmd.type_name)
             if others:
-                await self._reply(page, {"type": "notice", "level": "warn", "text":
-                                         f"{cmd.topic} is used with {', '.join(others)}, not {cmd.type_name}: "
-                                         "the controller will not see these commands (toggle 'stamped')"})
+                await self._reply(
+                    page,
+                    {
+                        "type": "notice",
+                        "level": "warn",
+                        "text": f"{cmd.topic} is used with {', '.join(others)}, not {cmd.type_name}: "
+                        "the controller will not see these commands (toggle 'stamped')",
+                    },
+                )
 
     async def _publish(self, page: _Page, msg: dict[str, Any]) -> None:
         job = parse_publish(msg, self.settings)
@@ -294,9 +318,16 @@ class VizServer:
         self.feed.publish_job(job)
         if job.rate_hz > 0:
             page.jobs[job.id] = asyncio.create_task(self._repeat(page, job))
-        await self._reply(page, {"type": "publish_state", "id": job.id, "running": job.rate_hz > 0,
-                                 "text": f"published {job.type_name} on {job.topic}"
-                                 + (f" at {job.rate_hz:g} Hz" if job.rate_hz > 0 else " once")})
+        await self._reply(
+            page,
+            {
+                "type": "publish_state",
+                "id": job.id,
+                "running": job.rate_hz > 0,
+                "text": f"published {job.type_name} on {job.topic}"
+                + (f" at {job.rate_hz:g} Hz" if job.rate_hz > 0 else " once"),
+            },
+        )
 
     async def _repeat(self, page: _Page, job: PublishJob) -> None:
         period = 1.0 / job.rate_hz
@@ -350,8 +381,10 @@ class VizServer:
         for page in list(self.pages):
             if page.teleop is not None and now - page.teleop_at > self.settings.teleop_timeout_s:
                 self._release(page, f"no command for {self.settings.teleop_timeout_s:g} s")
-                await self._reply(page, {"type": "notice", "level": "warn",
-                                         "text": "teleop: no command received in time, robot stopped"})
+                await self._reply(
+                    page,
+                    {"type": "notice", "level": "warn", "text": "teleop: no command received in time, robot stopped"},
+                )
         cache: dict[tuple[str, str], str] = {}
         versions = dict(self.scene.versions)
         for page in list(self.pages):
@@ -395,8 +428,14 @@ class VizServer:
             url, w, h = await asyncio.to_thread(image_data_url, msg)
         except DiffctlError as e:
             return {"type": "image", "topic": page.image_topic, "error": str(e)}
-        return {"type": "image", "topic": page.image_topic, "url": url, "width": w, "height": h,
-                "encoding": str(msg.encoding)}
+        return {
+            "type": "image",
+            "topic": page.image_topic,
+            "url": url,
+            "width": w,
+            "height": h,
+            "encoding": str(msg.encoding),
+        }
 
     async def _send_all(self, page: _Page, texts: list[str]) -> None:
         with contextlib.suppress(ConnectionClosed):

@@ -92,5 +92,6 @@ def start_viz(router, procs):
 @pytest.fixture
 def launch_sim_control(router, procs, tmp_path: Path):
     """`launch_sim_control()` → the whole tutorial graph, its visualizer on a free port."""
-    return lambda: _start_with_url(procs, "launch", "sim_control", "viz_port:=0", "--log-dir", str(tmp_path / "log"),
-                                   timeout_s=60)
+    return lambda: _start_with_url(
+        procs, "launch", "sim_control", "viz_port:=0", "--log-dir", str(tmp_path / "log"), timeout_s=60
+    )

@@ -17,8 +17,13 @@ REPO = Path(__file__).resolve().parents[2]
 SHOTS = REPO / "test-output" / "viz"
 CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
 CHROMIUM_FLAGS = [
-    "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run", "--disable-background-networking",
-    "--disable-component-update", "--disable-sync",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
 ]
 CMD_TOPIC = "/diffbot_base_controller/cmd_vel"
 
@@ -34,7 +39,10 @@ def browser(tmp_path: Path) -> Iterator[object]:
 
     with sync_playwright() as pw:
         ctx = pw.chromium.launch_persistent_context(
-            str(tmp_path / "profile"), executable_path=CHROMIUM, headless=True, args=CHROMIUM_FLAGS,
+            str(tmp_path / "profile"),
+            executable_path=CHROMIUM,
+            headless=True,
+            args=CHROMIUM_FLAGS,
             viewport={"width": 1280, "height": 800},
         )
         try:
@@ -77,8 +85,9 @@ def test_page_offline_draws_robot_and_arrow_up_drives_it(fake_robot, start_viz, 
     page.on("pageerror", lambda e: errors.append(str(e)))
 
     # The robot model, the scan and the odometry arrive and are drawn.
-    page.wait_for_function("() => diffviz.stats.robotPolygonsDrawn >= 7 && diffviz.stats.scanPointsDrawn >= 300",
-                           timeout=15000)
+    page.wait_for_function(
+        "() => diffviz.stats.robotPolygonsDrawn >= 7 && diffviz.stats.scanPointsDrawn >= 300", timeout=15000
+    )
     assert page.evaluate("diffviz.authorized") is True
     # Pixels, not only JS state: the chassis' colour (SDF diffuse 0.1 0.3 0.8) is on the canvas where the
     # chassis box is (base_link + (-0.21, -0.06) m: inside the box, clear of the other links and TF axes).
@@ -151,7 +160,6 @@ def test_wrong_token_is_refused_with_a_visible_message(viz, browser) -> None:
     node.close()
 
 
-
 def test_full_sim_control_stack_driven_from_the_page(launch_sim_control, browser) -> None:
     """`diffctl launch sim_control` as the tutorial runs it: the page it starts drives the simulated car."""
     viz = launch_sim_control()
@@ -159,12 +167,17 @@ def test_full_sim_control_stack_driven_from_the_page(launch_sim_control, browser
     odom = Recorder(node, "/diffbot_base_controller/odom", "nav_msgs/msg/Odometry")
     page = open_page(browser, viz.url, [])
     # The empty world gives the lidar nothing to hit: the scan arrives, with no points to draw.
-    page.wait_for_function("() => diffviz.stats.robotPolygonsDrawn >= 7 && diffviz.scans['/scan'] "
-                           "&& diffviz.frame && diffviz.frame.gt && diffviz.status && diffviz.status.rtf",
-                           timeout=20000)
+    page.wait_for_function(
+        "() => diffviz.stats.robotPolygonsDrawn >= 7 && diffviz.scans['/scan'] "
+        "&& diffviz.frame && diffviz.frame.gt && diffviz.status && diffviz.status.rtf",
+        timeout=20000,
+    )
     assert page.evaluate("diffviz.status.rtf_source") == "sim stats"
-    page.wait_for_function("() => diffviz.graph && diffviz.graph.controllers && diffviz.graph.controllers.length === 2"
-                           " && diffviz.graph.controllers.every(c => c.state === 'active')", timeout=10000)
+    page.wait_for_function(
+        "() => diffviz.graph && diffviz.graph.controllers && diffviz.graph.controllers.length === 2"
+        " && diffviz.graph.controllers.every(c => c.state === 'active')",
+        timeout=10000,
+    )
     x0 = odom.snapshot()[-1].pose.pose.position.x
     page.locator("#canvas").click()
     page.keyboard.down("ArrowUp")

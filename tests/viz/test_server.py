@@ -82,8 +82,9 @@ def test_streams_follow_the_robot_and_teleop_drives_it(fake_robot, viz) -> None:
             assert hello["teleop"]["topic"] == CMD_TOPIC
             robot = await recv_until(ws, lambda m: m["type"] == "robot" and m["name"])
             assert {"base_link", "left_wheel", "right_wheel", "lidar_link"} <= set(robot["links"])
-            frame = await recv_until(ws, lambda m: m["type"] == "frame" and m["robot"] and m["odom"]
-                                     and m["odom"][0]["pose"])
+            frame = await recv_until(
+                ws, lambda m: m["type"] == "frame" and m["robot"] and m["odom"] and m["odom"][0]["pose"]
+            )
             assert {"odom", "base_footprint", "base_link"} <= set(frame["frames"])
             chassis = [p for p in frame["robot"] if p["link"] == "base_link"]
             assert chassis and len(chassis[0]["pts"]) >= 8
@@ -94,8 +95,9 @@ def test_streams_follow_the_robot_and_teleop_drives_it(fake_robot, viz) -> None:
             assert all(abs(max(abs(pts[i]), abs(pts[i + 1])) - 3.0) < 0.01 for i in range(0, len(pts), 2))
             status = await recv_until(ws, lambda m: m["type"] == "status" and m["sim_time"] and m["joints"])
             assert status["joints"][0]["effort"] is None  # NaN effort arrives as null, not as invalid JSON
-            graph = await recv_until(ws, lambda m: m["type"] == "graph" and any(
-                t["name"] == "/scan" and t["hz"] for t in m["topics"]))
+            graph = await recv_until(
+                ws, lambda m: m["type"] == "graph" and any(t["name"] == "/scan" and t["hz"] for t in m["topics"])
+            )
             scan_hz = next(t["hz"] for t in graph["topics"] if t["name"] == "/scan")
             assert 7.0 <= scan_hz <= 13.0
 
@@ -144,8 +146,17 @@ def test_wrong_token_foreign_origin_and_publisher_panel(viz) -> None:
             await ws.send(json.dumps({"op": "teleop", "linear": 0.5}))
             refused = await recv_until(ws, lambda m: m["type"] == "refused")
             assert "token" in refused["text"]
-            await ws.send(json.dumps({"op": "publish", "topic": "/viz_test/cmd", "type": "geometry_msgs/msg/Twist",
-                                      "body": "linear: {x: 1.0}", "rate": 0}))
+            await ws.send(
+                json.dumps(
+                    {
+                        "op": "publish",
+                        "topic": "/viz_test/cmd",
+                        "type": "geometry_msgs/msg/Twist",
+                        "body": "linear: {x: 1.0}",
+                        "rate": 0,
+                    }
+                )
+            )
             await recv_until(ws, lambda m: m["type"] == "refused")
             await ws.send(json.dumps({"op": "auth", "token": "still-wrong"}))
             assert (await recv_until(ws, lambda m: m["type"] == "auth"))["authorized"] is False
@@ -156,8 +167,14 @@ def test_wrong_token_foreign_origin_and_publisher_panel(viz) -> None:
             await ws.send(json.dumps(tpl))
             t = await recv_until(ws, lambda m: m["type"] == "template")
             assert t["type_name"] == "geometry_msgs/msg/Twist" and "linear:" in t["yaml"]
-            bad = {"op": "publish", "id": "a", "topic": "/viz_test/cmd", "type": "geometry_msgs/msg/Twist",
-                   "body": "linear: {q: 1.0}", "rate": 0}
+            bad = {
+                "op": "publish",
+                "id": "a",
+                "topic": "/viz_test/cmd",
+                "type": "geometry_msgs/msg/Twist",
+                "body": "linear: {q: 1.0}",
+                "rate": 0,
+            }
             await ws.send(json.dumps(bad))
             err = await recv_until(ws, lambda m: m["type"] == "error")
             assert "linear.q" in err["text"] and err["id"] == "a"
@@ -191,8 +208,9 @@ def test_bad_rviz_file_exits_2_naming_it(tmp_path: Path, router, procs) -> None:
         assert p.returncode == 2, out
         assert re.search(detail, out) and str(path) in out and "Traceback" not in out
     colour = tmp_path / "colour.rviz"
-    colour.write_text("Visualization Manager:\n  Displays:\n    - Class: rviz_default_plugins/LaserScan\n"
-                      "      Color: 300; 0; 0\n")
+    colour.write_text(
+        "Visualization Manager:\n  Displays:\n    - Class: rviz_default_plugins/LaserScan\n      Color: 300; 0; 0\n"
+    )
     p = procs.diffctl("viz", "-d", str(colour), "--port", "0")
     out, _ = p.communicate(timeout=30)
     assert p.returncode == 2 and "Displays[0].Color" in out and "300; 0; 0" in out
@@ -213,10 +231,15 @@ def test_busy_port_and_bad_options_exit_2(router, procs) -> None:
 
 def test_ignored_displays_listed_once_and_help(tmp_path: Path, router, procs, start_viz) -> None:
     f = tmp_path / "extra.rviz"
-    f.write_text((REPO / "config" / "diffbot.rviz").read_text().replace(
-        "  Enabled: true\n  Global Options:",
-        "    - Class: rviz_default_plugins/MarkerArray\n      Name: M1\n"
-        "    - Class: rviz_default_plugins/MarkerArray\n      Name: M2\n  Enabled: true\n  Global Options:"))
+    f.write_text(
+        (REPO / "config" / "diffbot.rviz")
+        .read_text()
+        .replace(
+            "  Enabled: true\n  Global Options:",
+            "    - Class: rviz_default_plugins/MarkerArray\n      Name: M1\n"
+            "    - Class: rviz_default_plugins/MarkerArray\n      Name: M2\n  Enabled: true\n  Global Options:",
+        )
+    )
     v = start_viz("-d", str(f))
     v.proc.terminate()
     v.proc.wait(10)
