@@ -9,6 +9,7 @@ from launch.actions import (
     LogInfo,
     RegisterEventHandler,
     SetEnvironmentVariable,
+    Shutdown,
     TimerAction,
 )
 from launch.conditions import IfCondition
@@ -112,6 +113,3 @@ def generate_launch_description():
             ),
         ]
     )
-
-
-from launch.actions import Shutdown  # noqa: E402  (imported late on purpose: order does not matter)
