@@ -28,20 +28,10 @@ from diffctl.description.sdf_loader import load_model, parse_model
 from diffctl.errors import RuntimeFailure
 from diffctl.sim.runner import Simulation
 from diffctl.sim.transport import Reply
+from diffctl.sim.world_keys import sim_token_key, world_key
 
 STATS_PERIOD_S = 0.2
 MAX_MULTI_STEP = 10_000_000
-
-
-def world_key(world: str, leaf: str) -> str:
-    return f"gz/world/{world}/{leaf}"
-
-
-def sim_token_key(world: str) -> str:
-    return world_key(world, "sim")
-
-
-SIM_TOKEN_PATTERN = "gz/world/*/sim"
 
 
 class WorldServices:

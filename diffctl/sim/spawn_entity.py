@@ -94,7 +94,7 @@ def spawn_entity(
 
 
 def _wait_for_world(session: Any, world: str | None, deadline: float) -> str:
-    from diffctl.sim.services import SIM_TOKEN_PATTERN, sim_token_key
+    from diffctl.sim.world_keys import SIM_TOKEN_PATTERN, sim_token_key
 
     pattern = sim_token_key(world) if world else SIM_TOKEN_PATTERN
     while True:
@@ -134,7 +134,7 @@ def _wait_for_description(topic: str, deadline: float) -> str:
 
 
 def _call(session: Any, world: str, service: str, req: dict[str, Any], deadline: float) -> dict[str, Any]:
-    from diffctl.sim.services import world_key
+    from diffctl.sim.world_keys import world_key
 
     key = world_key(world, service)
     payload = json.dumps(req).encode()

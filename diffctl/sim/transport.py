@@ -108,9 +108,16 @@ class SimTransport:
         self._owned.append(sub)
         return sub
 
-    def service(self, key: str, handler: Callable[[dict[str, Any], Reply], dict[str, Any] | None]) -> Any:
+    def service(
+        self,
+        key: str,
+        handler: Callable[[dict[str, Any], Reply], dict[str, Any] | None],
+        fast: Callable[[dict[str, Any]], dict[str, Any] | None] | None = None,
+    ) -> Any:
         """A JSON queryable; `handler(request, reply)` runs on the sim thread and returns the answer (or
-        defers `reply` and sends it later). Errors become {"ok": false, "error": "..."}."""
+        defers `reply` and sends it later). Errors become {"ok": false, "error": "..."}. `fast(request)`, when
+        given, runs first on the Zenoh thread and may answer at once (e.g. a refusal), without waiting for
+        the sim thread, which can be busy in a lockstep wait."""
 
         def on_query(query: zenoh.Query) -> None:
             raw = query.payload.to_bytes() if query.payload is not None else b""
@@ -121,7 +128,26 @@ class SimTransport:
             except ValueError as e:
                 Reply(query).send({"ok": False, "error": f"malformed request: {e}"})
                 return
+            if fast is not None:
+                early = fast(req)
+                if early is not None:
+                    Reply(query).send(early)
+                    return
             self.call_soon(lambda: self._serve(handler, req, Reply(query)))
+
+        q = self.session.declare_queryable(key, on_query, complete=True)
+        self._owned.append(q)
+        return q
+
+    def direct_service(self, key: str, handler: Callable[[], dict[str, Any]]) -> Any:
+        """A JSON queryable answered on the Zenoh thread (for read-only snapshots)."""
+
+        def on_query(query: zenoh.Query) -> None:
+            try:
+                body = handler()
+            except Exception as e:
+                body = {"ok": False, "error": f"{type(e).__name__}: {e}"}
+            Reply(query).send(body)
 
         q = self.session.declare_queryable(key, on_query, complete=True)
         self._owned.append(q)

@@ -27,7 +27,6 @@ from diffctl.description.model import Plugin, Ros2Control
 from diffctl.errors import DescriptionError
 from diffctl.sim.entity import Entity, JointHandle
 from diffctl.sim.plugins.base import PluginContext, SystemPlugin, float_param
-from diffctl.sim.transport import Reply
 
 DEADLINE_S = 1.0
 HARDWARE = "gz_ros2_control/GazeboSimSystem"
@@ -79,8 +78,9 @@ class Ros2ControlEndpoint(SystemPlugin):
                 self._state_pub,
                 t.raw_subscribe(hw.command_key(self.model), self._on_command),
                 t.liveliness_subscriber(hw.manager_key(self.model), self._on_manager_token),
-                t.service(hw.info_key(self.model), lambda req, reply: self.info()),
-                t.service(hw.attach_key(self.model), self._on_attach),
+                # Answered on the Zenoh thread: read-only, and it must answer while the sim waits in lockstep.
+                t.direct_service(hw.info_key(self.model), self.info),
+                t.service(hw.attach_key(self.model), lambda req, reply: self._on_attach(req), fast=self._refuse),
                 # Last: a manager that sees the token finds everything above already in place.
                 t.token(hw.endpoint_key(self.model)),
             ]
@@ -120,14 +120,20 @@ class Ros2ControlEndpoint(SystemPlugin):
             "lockstep_overruns": self.overruns,
         }
 
-    def _on_attach(self, req: dict[str, Any], reply: Reply) -> dict[str, Any]:
+    def _refuse(self, req: dict[str, Any]) -> dict[str, Any] | None:
+        """The reasons to refuse an attach request, checked at once on the Zenoh thread."""
         rate = req.get("update_rate")
         manager = str(req.get("manager") or "")
         if not isinstance(rate, int | float) or isinstance(rate, bool) or not math.isfinite(rate) or rate <= 0:
             return {"ok": False, "error": f"update_rate {rate!r} must be a positive number of Hz"}
-        if self.manager is not None and manager != self.manager:
-            return {"ok": False, "error": f"model {self.model!r} is already controlled by manager {self.manager!r}"}
-        return self.attach(float(rate), manager)
+        current = self.manager
+        if current is not None and manager != current:
+            return {"ok": False, "error": f"model {self.model!r} is already controlled by manager {current!r}"}
+        return None
+
+    def _on_attach(self, req: dict[str, Any]) -> dict[str, Any]:
+        refused = self._refuse(req)
+        return refused or self.attach(float(req["update_rate"]), str(req.get("manager") or ""))
 
     def attach(self, update_rate: float, manager: str) -> dict[str, Any]:
         """Start lockstep with a manager at `update_rate` Hz (sim thread)."""
