@@ -53,6 +53,9 @@ def _styled(state: str) -> Any:
 def _print(renderable: Any) -> None:
     from diffctl.console import console
 
+    # Interface names are long: fold them in a narrow terminal rather than cutting them with an ellipsis.
+    for col in getattr(renderable, "columns", []):
+        col.overflow = "fold"
     console.print(renderable)
 
 
