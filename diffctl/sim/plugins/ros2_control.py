@@ -193,6 +193,8 @@ class Ros2ControlEndpoint(SystemPlugin):
                 self.hold_all()
                 break
             if item is _GONE:
+                if self._manager_alive():
+                    continue  # a re-attaching manager replaced its token
                 self.detach("its liveliness token disappeared")
                 break
             if item.tick == tick:
@@ -239,8 +241,18 @@ class Ros2ControlEndpoint(SystemPlugin):
                 items.append(item)
         for it in items:
             self._inbox.put(it)
-        if gone:
+        if gone and not self._manager_alive():
             self.detach("its liveliness token disappeared")
+
+    def _manager_alive(self) -> bool:
+        """Whether some manager token for this model exists (a manager re-attaching swaps its token)."""
+        t = self.ctx.transport
+        if t is None:
+            return False
+        try:
+            return any(r.ok is not None for r in t.session.liveliness().get(hw.manager_key(self.model), timeout=0.3))
+        except Exception:
+            return False
 
     def _drain(self) -> None:
         while True:
