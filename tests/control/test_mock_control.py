@@ -146,3 +146,35 @@ def test_mock_control_drives_brakes_and_rejects_bad_commands(router, procs, tmp_
     rc = procs.stop(cm)
     assert rc == 0 and time.monotonic() - t_stop < 3.0
     print(f"startup to both controllers active: {startup_s:.2f} s; steady 1 s advance {advance_m:.5f} m")
+
+
+@pytest.mark.slow
+def test_launch_mock_control_activates_both_controllers_and_drives(router, procs, tmp_path, monkeypatch) -> None:
+    """The same graph through the launch engine: `diffctl launch mock_control`, then Ctrl-C reaps everything."""
+    from diffctl.bus import Node
+
+    monkeypatch.setenv("ROS_HOME", str(tmp_path))
+    log_path = tmp_path / "launch.log"
+    launch = procs.diffctl("launch", "mock_control", "--no-color", stdout=log_path.open("w"),
+                           stderr=subprocess.STDOUT)
+    deadline = time.monotonic() + 30
+    while "controllers active on mock hardware" not in log_path.read_text():
+        assert launch.poll() is None, log_path.read_text()
+        assert time.monotonic() < deadline, log_path.read_text()
+        time.sleep(0.1)
+    node = Node("test_launch_teleop")
+    rec = Recorder()
+    node.create_subscription(f"{CTRL}/odom", "nav_msgs/msg/Odometry", rec.on_odom)
+    node.create_subscription("/joint_states", "sensor_msgs/msg/JointState", rec.on_joints)
+    pub = node.create_publisher(f"{CTRL}/cmd_vel", "geometry_msgs/msg/TwistStamped")
+    while (not rec.odom or pub.subscription_count == 0) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    x0 = rec.last_odom()[1]
+    publish_for(pub, node, 1.0, 0.2)
+    assert rec.last_odom()[1] - x0 > 0.1
+    assert rec.joints and rec.joints[-1][1] - rec.joints[0][1] > 2.0  # the mock wheels turned
+    node.close()
+    assert procs.stop(launch, timeout_s=10) == 0, log_path.read_text()
+    text = log_path.read_text()
+    assert "[spawner_diffbot_base_controller] finished cleanly" in text
+    assert "[controller_manager] stopped (exit code 0" in text
