@@ -3,6 +3,7 @@ sim time, drives the wheels; when it leaves, the simulator runs on."""
 
 from __future__ import annotations
 
+import itertools
 import json
 import subprocess
 import time
@@ -84,7 +85,7 @@ def test_manager_attaches_to_the_simulator_and_drives_in_lockstep(router, procs,
         time.sleep(0.05)
     # JointStateBroadcaster stamps are sim time, one per 50 ms control period (lockstep: no gaps, no repeats).
     stamps = [t for t, _ in joints]
-    steps = {round((b - a) * 1000) for a, b in zip(stamps, stamps[1:], strict=False)}
+    steps = {round((b - a) * 1000) for a, b in itertools.pairwise(stamps)}
     assert steps == {50}, steps
     # The simulated wheel follows the command: 0.2 m/s / 0.04 m = 5 rad/s.
     assert joints[-1][1] == pytest.approx(5.0, rel=0.05)
