@@ -54,8 +54,12 @@ def run(duration_s: float = 10.0, rate_hz: int = 100) -> dict:
     children: list[subprocess.Popen] = []
 
     def child(*args: str) -> subprocess.Popen:
-        p = subprocess.Popen([sys.executable, "-m", "diffctl", *args], start_new_session=True,
-                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        p = subprocess.Popen(
+            [sys.executable, "-m", "diffctl", *args],
+            start_new_session=True,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+        )
         children.append(p)
         return p
 
@@ -63,8 +67,9 @@ def run(duration_s: float = 10.0, rate_hz: int = 100) -> dict:
     try:
         child("router", "--listen", endpoint)
         _wait_port(port)
-        opts = ManagerOptions(str(SDF), [str(CONFIG)], None, "mock_components/GenericSystem",
-                              {"calculate_dynamics": "true"})
+        opts = ManagerOptions(
+            str(SDF), [str(CONFIG)], None, "mock_components/GenericSystem", {"calculate_dynamics": "true"}
+        )
         ra = ros_args.parse(["-p", "use_sim_time:=false", "-p", f"update_rate:={rate_hz}"], "controller_manager")
         node = ControlNode(opts, ra)
         node.start()
@@ -74,12 +79,18 @@ def run(duration_s: float = 10.0, rate_hz: int = 100) -> dict:
         for name in ("diffbot_base_controller", "joint_state_broadcaster"):
             cm.load_controller(name)
             cm.configure_controller(name)
-        ok, msg = cm.switch_controller(["diffbot_base_controller", "joint_state_broadcaster"], [], STRICT,
-                                       True, 2.0)
+        ok, msg = cm.switch_controller(["diffbot_base_controller", "joint_state_broadcaster"], [], STRICT, True, 2.0)
         if not ok:
             raise RuntimeError(f"could not activate the controllers: {msg}")
-        child("topic", "pub", "/diffbot_base_controller/cmd_vel", "geometry_msgs/msg/TwistStamped",
-              "{twist: {linear: {x: 0.2}, angular: {z: 0.1}}}", "--rate", "20")
+        child(
+            "topic",
+            "pub",
+            "/diffbot_base_controller/cmd_vel",
+            "geometry_msgs/msg/TwistStamped",
+            "{twist: {linear: {x: 0.2}, angular: {z: 0.1}}}",
+            "--rate",
+            "20",
+        )
         time.sleep(1.0)  # warm-up: imports, first messages, the teleop's discovery
         node.stats.reset(capacity=int(duration_s * rate_hz * 2))
         time.sleep(duration_s)

@@ -21,13 +21,25 @@ _STATE_STYLE = {"active": "green", "inactive": "yellow", "unconfigured": "dim", 
 
 
 def _cm_option(f: Any) -> Any:
-    return click.option("-c", "--controller-manager", "manager", default="controller_manager", show_default=True,
-                        help="Name of the controller manager node.")(f)
+    return click.option(
+        "-c",
+        "--controller-manager",
+        "manager",
+        default="controller_manager",
+        show_default=True,
+        help="Name of the controller manager node.",
+    )(f)
 
 
 def _timeout_option(f: Any) -> Any:
-    return click.option("--controller-manager-timeout", "wait_s", type=float, default=5.0, show_default=True,
-                        help="Seconds to wait for the manager's services.")(f)
+    return click.option(
+        "--controller-manager-timeout",
+        "wait_s",
+        type=float,
+        default=5.0,
+        show_default=True,
+        help="Seconds to wait for the manager's services.",
+    )(f)
 
 
 @contextmanager
@@ -73,19 +85,47 @@ def control() -> None:
 
 
 @control.command("manager")
-@click.option("--description", "description_file", type=click.Path(dir_okay=False), default=None,
-              help="Robot description (SDF/URDF with a <ros2_control> block); default: the /robot_description topic.")
-@click.option("--param-file", "param_files", multiple=True, type=click.Path(dir_okay=False), metavar="FILE",
-              help="Controller manager parameter file (repeatable), added to the gz_ros2_control <parameters>.")
-@click.option("--model", default=None, help="Simulator model whose ros2_control endpoint to attach to "
-              "(default: the only one whose joints match).")
-@click.option("--hardware-plugin", default=None, metavar="PLUGIN",
-              help="Use this hardware plugin for every <ros2_control> block, e.g. mock_components/GenericSystem "
-              "to run without a simulator.")
-@click.option("--hardware-param", "hardware_params", multiple=True, metavar="NAME=VALUE",
-              help="Extra hardware <param> (repeatable), e.g. calculate_dynamics=true.")
-def manager(description_file: str | None, param_files: tuple[str, ...], model: str | None,
-            hardware_plugin: str | None, hardware_params: tuple[str, ...]) -> None:
+@click.option(
+    "--description",
+    "description_file",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="Robot description (SDF/URDF with a <ros2_control> block); default: the /robot_description topic.",
+)
+@click.option(
+    "--param-file",
+    "param_files",
+    multiple=True,
+    type=click.Path(dir_okay=False),
+    metavar="FILE",
+    help="Controller manager parameter file (repeatable), added to the gz_ros2_control <parameters>.",
+)
+@click.option(
+    "--model",
+    default=None,
+    help="Simulator model whose ros2_control endpoint to attach to (default: the only one whose joints match).",
+)
+@click.option(
+    "--hardware-plugin",
+    default=None,
+    metavar="PLUGIN",
+    help="Use this hardware plugin for every <ros2_control> block, e.g. mock_components/GenericSystem "
+    "to run without a simulator.",
+)
+@click.option(
+    "--hardware-param",
+    "hardware_params",
+    multiple=True,
+    metavar="NAME=VALUE",
+    help="Extra hardware <param> (repeatable), e.g. calculate_dynamics=true.",
+)
+def manager(
+    description_file: str | None,
+    param_files: tuple[str, ...],
+    model: str | None,
+    hardware_plugin: str | None,
+    hardware_params: tuple[str, ...],
+) -> None:
     """The controller manager (ros2_control_node): hardware from <ros2_control>, controllers, services.
 
     Accepts --ros-args (-p update_rate:=50, --params-file F, -r __ns:=/robot).
@@ -116,8 +156,14 @@ def manager(description_file: str | None, param_files: tuple[str, ...], model: s
 @click.option("--claimed-interfaces", is_flag=True, help="Show claimed interfaces.")
 @click.option("--required-state-interfaces", is_flag=True, help="Show required state interfaces.")
 @click.option("--required-command-interfaces", is_flag=True, help="Show required command interfaces.")
-def list_controllers(manager: str, wait_s: float, verbose: bool, claimed_interfaces: bool,
-                     required_state_interfaces: bool, required_command_interfaces: bool) -> None:
+def list_controllers(
+    manager: str,
+    wait_s: float,
+    verbose: bool,
+    claimed_interfaces: bool,
+    required_state_interfaces: bool,
+    required_command_interfaces: bool,
+) -> None:
     """List loaded controllers: name, type, state (and interfaces with -v).
 
     \b
@@ -129,12 +175,22 @@ def list_controllers(manager: str, wait_s: float, verbose: bool, claimed_interfa
     with _client(manager, wait_s, "list_controllers") as cm:
         ctrls = cm.list_controllers()
     cols = ["name", "type", "state", "update rate"]
-    extra = [("claimed interfaces", "claimed_interfaces", claimed_interfaces),
-             ("required command interfaces", "required_command_interfaces", required_command_interfaces),
-             ("required state interfaces", "required_state_interfaces", required_state_interfaces)]
+    extra = [
+        ("claimed interfaces", "claimed_interfaces", claimed_interfaces),
+        ("required command interfaces", "required_command_interfaces", required_command_interfaces),
+        ("required state interfaces", "required_state_interfaces", required_state_interfaces),
+    ]
     shown = [(title, attr) for title, attr, flag in extra if flag or verbose]
-    rows = [[c.name, c.type, _styled(c.state), f"{c.update_rate} Hz",
-             *["\n".join(getattr(c, attr)) or "-" for _, attr in shown]] for c in ctrls]
+    rows = [
+        [
+            c.name,
+            c.type,
+            _styled(c.state),
+            f"{c.update_rate} Hz",
+            *["\n".join(getattr(c, attr)) or "-" for _, attr in shown],
+        ]
+        for c in ctrls
+    ]
     _print(table(None, cols + [t for t, _ in shown], rows))
 
 
@@ -177,14 +233,17 @@ def list_hardware_components(manager: str, wait_s: float, verbose: bool) -> None
 
     with _client(manager, wait_s, "list_hardware_components") as cm:
         comps = cm.call("list_hardware_components").component
-    cols = ["name", "type", "plugin", "state", "rw rate"] + (["command interfaces", "state interfaces"]
-                                                              if verbose else [])
+    cols = ["name", "type", "plugin", "state", "rw rate"] + (
+        ["command interfaces", "state interfaces"] if verbose else []
+    )
     rows = []
     for c in comps:
         row = [c.name, c.type, c.plugin_name, _styled(c.state.label), f"{c.rw_rate} Hz"]
         if verbose:
-            row += ["\n".join(f"{i.name} [{_flags(i, True)}]" for i in c.command_interfaces) or "-",
-                    "\n".join(f"{i.name} [{_flags(i, False)}]" for i in c.state_interfaces) or "-"]
+            row += [
+                "\n".join(f"{i.name} [{_flags(i, True)}]" for i in c.command_interfaces) or "-",
+                "\n".join(f"{i.name} [{_flags(i, False)}]" for i in c.state_interfaces) or "-",
+            ]
         rows.append(row)
     _print(table(None, cols, rows))
 
@@ -207,16 +266,24 @@ def list_hardware_interfaces(manager: str, wait_s: float, verbose: bool) -> None
     rows = []
     for kind, items in (("command", resp.command_interfaces), ("state", resp.state_interfaces)):
         for i in items:
-            rows.append([i.name, kind, "yes" if i.is_available else "no",
-                         ("yes" if i.is_claimed else "no") if kind == "command" else "-",
-                         *([i.data_type] if verbose else [])])
+            rows.append(
+                [
+                    i.name,
+                    kind,
+                    "yes" if i.is_available else "no",
+                    ("yes" if i.is_claimed else "no") if kind == "command" else "-",
+                    *([i.data_type] if verbose else []),
+                ]
+            )
     _print(table(None, ["interface", "kind", "available", "claimed", *(["data type"] if verbose else [])], rows))
 
 
 def _check(ok: bool, what: str, reason: str = "") -> None:
     if not ok:
-        raise RuntimeFailure(f"{what} failed" + (f": {reason}" if reason else ""),
-                             hint=None if reason else "the controller manager's log says why")
+        raise RuntimeFailure(
+            f"{what} failed" + (f": {reason}" if reason else ""),
+            hint=None if reason else "the controller manager's log says why",
+        )
 
 
 def _set_state(cm: Any, name: str, target: str, timeout_s: float = 5.0) -> None:
@@ -248,8 +315,12 @@ def _set_state(cm: Any, name: str, target: str, timeout_s: float = 5.0) -> None:
 @control.command("load_controller")
 @click.argument("name")
 @click.argument("param_file", required=False, type=click.Path(exists=True, dir_okay=False))
-@click.option("--set-state", type=click.Choice(["inactive", "active"]), default=None,
-              help="Configure (inactive) or also activate (active) after loading.")
+@click.option(
+    "--set-state",
+    type=click.Choice(["inactive", "active"]),
+    default=None,
+    help="Configure (inactive) or also activate (active) after loading.",
+)
 @_cm_option
 @_timeout_option
 def load_controller(name: str, param_file: str | None, set_state: str | None, manager: str, wait_s: float) -> None:
@@ -299,8 +370,15 @@ def set_controller_state(name: str, state: str, manager: str, wait_s: float) -> 
 @click.option("--switch-timeout", type=float, default=5.0, show_default=True, help="Seconds to wait for the switch.")
 @_cm_option
 @_timeout_option
-def switch_controllers(activate: tuple[str, ...], deactivate: tuple[str, ...], strictness: int | None,
-                       activate_asap: bool, switch_timeout: float, manager: str, wait_s: float) -> None:
+def switch_controllers(
+    activate: tuple[str, ...],
+    deactivate: tuple[str, ...],
+    strictness: int | None,
+    activate_asap: bool,
+    switch_timeout: float,
+    manager: str,
+    wait_s: float,
+) -> None:
     """Activate and deactivate controllers in one cycle; with neither flag the manager's default strictness.
 
     \b
@@ -330,10 +408,24 @@ def _simple_verb(verb: str, service: str, what: str, done: str, example: str) ->
     return cmd
 
 
-control.add_command(_simple_verb("unload_controller", "unload_controller", "unload", "unloaded",
-                                 "diffctl control unload_controller diffbot_base_controller"))
-control.add_command(_simple_verb("cleanup_controller", "cleanup_controller", "cleanup", "cleaned up",
-                                 "diffctl control cleanup_controller diffbot_base_controller"))
+control.add_command(
+    _simple_verb(
+        "unload_controller",
+        "unload_controller",
+        "unload",
+        "unloaded",
+        "diffctl control unload_controller diffbot_base_controller",
+    )
+)
+control.add_command(
+    _simple_verb(
+        "cleanup_controller",
+        "cleanup_controller",
+        "cleanup",
+        "cleaned up",
+        "diffctl control cleanup_controller diffbot_base_controller",
+    )
+)
 
 
 @control.command("set_hardware_component_state")

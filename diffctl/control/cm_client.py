@@ -42,8 +42,9 @@ def manager_fqn(name: str, namespace: str = "/") -> str:
 
 
 class ManagerClient:
-    def __init__(self, node: Any, manager: str = "controller_manager", call_timeout_s: float = 10.0,
-                 attempts: int = 3) -> None:
+    def __init__(
+        self, node: Any, manager: str = "controller_manager", call_timeout_s: float = 10.0, attempts: int = 3
+    ) -> None:
         self.node = node
         self.manager = manager_fqn(manager, node.namespace)
         self.call_timeout_s = call_timeout_s
@@ -55,8 +56,13 @@ class ManagerClient:
             self._clients[service] = self.node.create_client(f"{self.manager}/{service}", SRV_TYPES[service])
         return self._clients[service]
 
-    def wait(self, service: str, timeout_s: float, say: Callable[[str], None] | None = None,
-             warn: Callable[[str], None] | None = None) -> None:
+    def wait(
+        self,
+        service: str,
+        timeout_s: float,
+        say: Callable[[str], None] | None = None,
+        warn: Callable[[str], None] | None = None,
+    ) -> None:
         """Wait for `service`: forever when timeout_s == 0 (saying so, warning every 10 s), else up to timeout_s."""
         cli = self.client(service)
         name = f"{self.manager}/{service}"
@@ -70,8 +76,10 @@ class ManagerClient:
             if cli.wait_for_service(timeout=step):
                 return
             if timeout_s and time.monotonic() - start >= timeout_s:
-                raise RuntimeFailure(f"Could not contact service {name} within {timeout_s:g} s",
-                                     hint="is the controller manager running and has it got a robot_description?")
+                raise RuntimeFailure(
+                    f"Could not contact service {name} within {timeout_s:g} s",
+                    hint="is the controller manager running and has it got a robot_description?",
+                )
             if warn:
                 warn(f"Could not contact service {name}")
 
@@ -84,13 +92,18 @@ class ManagerClient:
                 return cli.call(request or {}, timeout=timeout)
             except ServiceTimeout as e:
                 last = e
-                self.node.log.warn(f"Failed getting a result from calling {self.manager}/{service} in "
-                                   f"{timeout:g} s. (Attempt {k} of {self.attempts}.)")
+                self.node.log.warn(
+                    f"Failed getting a result from calling {self.manager}/{service} in "
+                    f"{timeout:g} s. (Attempt {k} of {self.attempts}.)"
+                )
             except BusError as e:
-                raise RuntimeFailure(f"{self.manager}/{service}: {e.message}",
-                                     hint="is the controller manager running? `diffctl service list` shows it") from e
-        raise RuntimeFailure(f"could not get a result from {self.manager}/{service} after {self.attempts} attempts: "
-                             f"{last}")
+                raise RuntimeFailure(
+                    f"{self.manager}/{service}: {e.message}",
+                    hint="is the controller manager running? `diffctl service list` shows it",
+                ) from e
+        raise RuntimeFailure(
+            f"could not get a result from {self.manager}/{service} after {self.attempts} attempts: {last}"
+        )
 
     # --- typed helpers -----------------------------------------------------------------------------------
     def list_controllers(self) -> list[Any]:
@@ -105,19 +118,25 @@ class ManagerClient:
     def ok(self, service: str, name: str) -> bool:
         return bool(self.call(service, {"name": name}).ok)
 
-    def switch(self, activate: list[str], deactivate: list[str], strictness: int, activate_asap: bool,
-               timeout_s: float) -> tuple[bool, str]:
+    def switch(
+        self, activate: list[str], deactivate: list[str], strictness: int, activate_asap: bool, timeout_s: float
+    ) -> tuple[bool, str]:
         sec = int(timeout_s)
-        req = {"activate_controllers": activate, "deactivate_controllers": deactivate, "strictness": strictness,
-               "activate_asap": activate_asap,
-               "timeout": {"sec": sec, "nanosec": round((timeout_s - sec) * 1e9)}}
+        req = {
+            "activate_controllers": activate,
+            "deactivate_controllers": deactivate,
+            "strictness": strictness,
+            "activate_asap": activate_asap,
+            "timeout": {"sec": sec, "nanosec": round((timeout_s - sec) * 1e9)},
+        }
         # The manager waits up to timeout_s for its loop; give the call itself that much more.
         resp = self.call("switch_controller", req, timeout_s=max(self.call_timeout_s, timeout_s + 2.0))
         return bool(resp.ok), str(resp.message)
 
     def set_controller_params(self, name: str, type_name: str | None, params_files: list[str]) -> None:
-        params = [{"name": f"{name}.params_file",
-                   "value": {"type": P_STRING_ARRAY, "string_array_value": list(params_files)}}]
+        params = [
+            {"name": f"{name}.params_file", "value": {"type": P_STRING_ARRAY, "string_array_value": list(params_files)}}
+        ]
         if type_name:
             params.append({"name": f"{name}.type", "value": {"type": P_STRING, "string_value": type_name}})
         resp = self.call("set_parameters", {"parameters": params})
@@ -126,6 +145,7 @@ class ManagerClient:
                 raise RuntimeFailure(f"could not set {p['name']} on {self.manager}: {r.reason}")
 
     def set_hardware_state(self, name: str, state: State) -> tuple[bool, str]:
-        resp = self.call("set_hardware_component_state",
-                         {"name": name, "target_state": {"id": state.id, "label": state.value}})
+        resp = self.call(
+            "set_hardware_component_state", {"name": name, "target_state": {"id": state.id, "label": state.value}}
+        )
         return bool(resp.ok), str(resp.state.label)

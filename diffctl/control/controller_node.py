@@ -14,8 +14,14 @@ from diffctl.bus import Node
 
 
 class BusControllerNode:
-    def __init__(self, name: str, namespace: str, params: dict[str, Any], now_ns: Callable[[], int],
-                 remaps: dict[str, str] | None = None) -> None:
+    def __init__(
+        self,
+        name: str,
+        namespace: str,
+        params: dict[str, Any],
+        now_ns: Callable[[], int],
+        remaps: dict[str, str] | None = None,
+    ) -> None:
         # The node's own /clock subscription is not needed: time comes from the manager.
         self._node = Node(name, namespace, params=params, use_sim_time=False, remaps=remaps)
         self.name = name
@@ -30,8 +36,9 @@ class BusControllerNode:
     def create_publisher(self, topic: str, type_name: str, latched: bool = False, depth: int = 10) -> Any:
         return self._node.create_publisher(topic, type_name, latched=latched, depth=depth)
 
-    def create_subscription(self, topic: str, type_name: str, callback: Callable[[Any], None],
-                            latched: bool = False, depth: int = 10) -> Any:
+    def create_subscription(
+        self, topic: str, type_name: str, callback: Callable[[Any], None], latched: bool = False, depth: int = 10
+    ) -> Any:
         return self._node.create_subscription(topic, type_name, callback, latched=latched, depth=depth)
 
     def now_ns(self) -> int:

@@ -114,8 +114,10 @@ class ControllerManager:
             spec = self.params.controllers.get(name)
             ctype = type_name or (spec.type if spec else None)
             if not ctype:
-                raise TransitionError(f"the 'type' param was not defined for '{name}' (set '{name}.type' in the "
-                                      "controller manager's parameters or pass the controller's --param-file)")
+                raise TransitionError(
+                    f"the 'type' param was not defined for '{name}' (set '{name}.type' in the "
+                    "controller manager's parameters or pass the controller's --param-file)"
+                )
             try:
                 cls = controller_class(ctype)
                 params = controller_node_params(name, self.params)
@@ -230,8 +232,15 @@ class ControllerManager:
                 mc.required_command = self._resolve(mc.instance.command_interface_configuration(), command=True)
                 mc.required_state = self._resolve(mc.instance.state_interface_configuration(), command=False)
             views[n] = ControllerView(mc.state, mc.required_command, mc.required_state)
-        return plan_switch(views, list(activate), list(deactivate), strictness, claimed=self.rm.claimed,
-                           command_available=self.rm.command_available, state_available=self.rm.state_available)
+        return plan_switch(
+            views,
+            list(activate),
+            list(deactivate),
+            strictness,
+            claimed=self.rm.claimed,
+            command_available=self.rm.command_available,
+            state_available=self.rm.state_available,
+        )
 
     def _execute(self, pending: _PendingSwitch) -> None:
         """Carry out a checked switch (real-time thread, `_lock` held): mode switch → deactivate → activate."""
@@ -312,8 +321,10 @@ class ControllerManager:
             h = self.rm.components[comp]
             names = {i.name for i in h.commands} | {i.name for i in h.states}
             users = [mc for mc in self._active if names & set(mc.claimed + mc.required_state)]
-            self.log.error(f"hardware '{comp}' {reason}: deactivating controllers "
-                           f"[{', '.join(mc.name for mc in users)}]; the component goes to unconfigured")
+            self.log.error(
+                f"hardware '{comp}' {reason}: deactivating controllers "
+                f"[{', '.join(mc.name for mc in users)}]; the component goes to unconfigured"
+            )
             for mc in users:
                 mc.last_error = f"hardware '{comp}' {reason}"
                 self._deactivate(mc)
@@ -408,17 +419,22 @@ class ControllerManager:
 def _controller_rate(name: str, params: dict[str, Any], cm_rate: int, log: Logger) -> int:
     raw = params.get("update_rate", 0)
     if isinstance(raw, bool) or not isinstance(raw, int) or raw < 0:
-        raise ParameterError(f"{raw!r} is not a valid rate (an integer ≥ 0 in Hz; 0 = the manager's rate)",
-                             field=f"{name}.update_rate")
+        raise ParameterError(
+            f"{raw!r} is not a valid rate (an integer ≥ 0 in Hz; 0 = the manager's rate)", field=f"{name}.update_rate"
+        )
     if raw == 0 or raw == cm_rate:
         return cm_rate
     if raw > cm_rate:
-        log.warn(f"controller '{name}': update_rate {raw} Hz is above the manager's {cm_rate} Hz; "
-                 f"it will run at {cm_rate} Hz")
+        log.warn(
+            f"controller '{name}': update_rate {raw} Hz is above the manager's {cm_rate} Hz; "
+            f"it will run at {cm_rate} Hz"
+        )
         return cm_rate
     if cm_rate % raw:
-        log.warn(f"controller '{name}': update_rate {raw} Hz does not divide the manager's {cm_rate} Hz; "
-                 "its period will vary")
+        log.warn(
+            f"controller '{name}': update_rate {raw} Hz does not divide the manager's {cm_rate} Hz; "
+            "its period will vary"
+        )
     return raw
 
 

@@ -90,13 +90,15 @@ def _rate(value: Any, key: str, source: str, *, allow_zero: bool = False) -> int
         value, ok = int(value), True
     if not ok or value < 0 or (value == 0 and not allow_zero) or value > 100_000:
         lo = "≥ 0" if allow_zero else "> 0"
-        raise ParameterError(f"{value!r} is not a valid rate: an integer in Hz, {lo} and ≤ 100000", source=source,
-                             field=key)
+        raise ParameterError(
+            f"{value!r} is not a valid rate: an integer in Hz, {lo} and ≤ 100000", source=source, field=key
+        )
     return int(value)
 
 
-def manager_params(flat: Mapping[str, Any], *, source: str = "controller_manager parameters",
-                   params_files: tuple[str, ...] = ()) -> ManagerParams:
+def manager_params(
+    flat: Mapping[str, Any], *, source: str = "controller_manager parameters", params_files: tuple[str, ...] = ()
+) -> ManagerParams:
     """Validate the manager node's flattened parameters into a `ManagerParams` (raises ParameterError)."""
     kw: dict[str, Any] = {}
     specs: dict[str, dict[str, Any]] = {}
@@ -111,13 +113,18 @@ def manager_params(flat: Mapping[str, Any], *, source: str = "controller_manager
             kw["manage_overruns"] = _bool(value, key, source)
         elif key == "defaults.switch_controller.strictness":
             if value not in STRICTNESS:
-                raise ParameterError(f"{value!r} is not a strictness{suggest(str(value), STRICTNESS)}",
-                                     source=source, field=key, hint="valid: " + ", ".join(STRICTNESS))
+                raise ParameterError(
+                    f"{value!r} is not a strictness{suggest(str(value), STRICTNESS)}",
+                    source=source,
+                    field=key,
+                    hint="valid: " + ", ".join(STRICTNESS),
+                )
             kw["default_strictness"] = STRICTNESS[value]
         elif key == "thread_priority":
             if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value <= 99:
-                raise ParameterError(f"{value!r} is not a priority (an integer 0..99; 0 disables SCHED_FIFO)",
-                                     source=source, field=key)
+                raise ParameterError(
+                    f"{value!r} is not a priority (an integer 0..99; 0 disables SCHED_FIFO)", source=source, field=key
+                )
             kw["thread_priority"] = value
         elif key == "hardware_components_initial_state.unconfigured":
             kw["hardware_unconfigured"] = _str_list(value, key, source)
@@ -137,20 +144,30 @@ def manager_params(flat: Mapping[str, Any], *, source: str = "controller_manager
 def controller_spec(name: str, d: Mapping[str, Any], source: str) -> ControllerSpec:
     ctype = d.get("type")
     if ctype is not None and (not isinstance(ctype, str) or "/" not in ctype):
-        raise ParameterError(f"{ctype!r} is not a controller type like 'diff_drive_controller/DiffDriveController'",
-                             source=source, field=f"{name}.type")
+        raise ParameterError(
+            f"{ctype!r} is not a controller type like 'diff_drive_controller/DiffDriveController'",
+            source=source,
+            field=f"{name}.type",
+        )
     files = _str_list(d["params_file"], f"{name}.params_file", source) if "params_file" in d else ()
     rate = _rate(d["update_rate"], f"{name}.update_rate", source, allow_zero=True) if "update_rate" in d else None
-    fallbacks = (_str_list(d["fallback_controllers"], f"{name}.fallback_controllers", source)
-                 if "fallback_controllers" in d else ())
+    fallbacks = (
+        _str_list(d["fallback_controllers"], f"{name}.fallback_controllers", source)
+        if "fallback_controllers" in d
+        else ()
+    )
     return ControllerSpec(name, ctype, files, rate, fallbacks)
 
 
 def with_controller_param(params: ManagerParams, name: str, key: str, value: Any) -> ManagerParams:
     """A copy of `params` with `<name>.<key>` set (the spawner's set_parameters on the manager node)."""
     old = params.controllers.get(name, ControllerSpec(name))
-    d: dict[str, Any] = {"type": old.type, "params_file": list(old.params_files), "update_rate": old.update_rate,
-                         "fallback_controllers": list(old.fallback_controllers)}
+    d: dict[str, Any] = {
+        "type": old.type,
+        "params_file": list(old.params_files),
+        "update_rate": old.update_rate,
+        "fallback_controllers": list(old.fallback_controllers),
+    }
     d = {k: v for k, v in d.items() if v not in (None, [])}
     d[key] = value
     controllers = dict(params.controllers)
@@ -166,8 +183,9 @@ def load_manager_files(files: list[str] | tuple[str, ...], node_name: str = "con
     return out
 
 
-def controller_node_params(name: str, params: ManagerParams, extra_files: tuple[str, ...] = (),
-                           inherited: Mapping[str, Any] | None = None) -> dict[str, Any]:
+def controller_node_params(
+    name: str, params: ManagerParams, extra_files: tuple[str, ...] = (), inherited: Mapping[str, Any] | None = None
+) -> dict[str, Any]:
     """A controller node's parameters: sections for `name` in the manager's files, then its params_files."""
     out: dict[str, Any] = dict(inherited or {})
     spec = params.controllers.get(name, ControllerSpec(name))

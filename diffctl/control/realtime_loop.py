@@ -122,9 +122,11 @@ class WallTicker:
                 missed = (now - self._next_ns) // self.period_ns + 1
                 self.stats.overruns += 1
                 late_ms = (now - self._next_ns) / 1e6
-                self.warn(f"Overrun detected! The controller manager missed its desired rate of "
-                          f"{1e9 / self.period_ns:g} Hz: the cycle ended {late_ms:.2f} ms after the next deadline "
-                          f"(overruns so far: {self.stats.overruns})")
+                self.warn(
+                    f"Overrun detected! The controller manager missed its desired rate of "
+                    f"{1e9 / self.period_ns:g} Hz: the cycle ended {late_ms:.2f} ms after the next deadline "
+                    f"(overruns so far: {self.stats.overruns})"
+                )
                 self._next_ns += missed * self.period_ns
         sleep_until_ns(self._next_ns, stop)
         if stop.is_set():

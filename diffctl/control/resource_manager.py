@@ -51,8 +51,9 @@ class ResourceManager:
         self._readable: tuple[HardwareHandle, ...] = ()
 
     # --- loading ---------------------------------------------------------------------------------------
-    def load(self, info: HardwareInfo, logger: object | None = None, update_rate: int = 0,
-             cancel: object | None = None) -> HardwareHandle:
+    def load(
+        self, info: HardwareInfo, logger: object | None = None, update_rate: int = 0, cancel: object | None = None
+    ) -> HardwareHandle:
         if info.name in self.components:
             raise ConfigError(f"two <ros2_control> blocks are named {info.name!r}", source=info.source)
         cls = hardware_class(info.plugin_name)
@@ -67,14 +68,18 @@ class ResourceManager:
         except DiffctlError:
             raise
         except Exception as e:
-            raise ConfigError(f"hardware {info.name!r} ({info.plugin_name}) failed to initialise: {hook_message(e)}",
-                              source=info.source) from e
+            raise ConfigError(
+                f"hardware {info.name!r} ({info.plugin_name}) failed to initialise: {hook_message(e)}",
+                source=info.source,
+            ) from e
         h = HardwareHandle(info.name, info, comp, State.UNCONFIGURED, states, commands, info.rw_rate)
         for it in states + commands:
             table = self.state_interfaces if isinstance(it, StateInterface) else self.command_interfaces
             if it.name in table:
-                raise ConfigError(f"interface {it.name!r} is exported twice (by {self.owner[it.name]!r} and "
-                                  f"{info.name!r})", source=info.source)
+                raise ConfigError(
+                    f"interface {it.name!r} is exported twice (by {self.owner[it.name]!r} and {info.name!r})",
+                    source=info.source,
+                )
             table[it.name] = it
             self.owner[it.name] = info.name
         self.components[info.name] = h
@@ -100,10 +105,14 @@ class ResourceManager:
             if h.state is State.FINALIZED:
                 raise TransitionError(f"hardware {name!r} is finalized and can not change state")
             cur, want = order.index(h.state), order.index(target)
-            up = {1: (State.INACTIVE, comp.on_configure, "on_configure"),
-                  2: (State.ACTIVE, comp.on_activate, "on_activate")}
-            down = {1: (State.UNCONFIGURED, comp.on_cleanup, "on_cleanup"),
-                    2: (State.INACTIVE, comp.on_deactivate, "on_deactivate")}
+            up = {
+                1: (State.INACTIVE, comp.on_configure, "on_configure"),
+                2: (State.ACTIVE, comp.on_activate, "on_activate"),
+            }
+            down = {
+                1: (State.UNCONFIGURED, comp.on_cleanup, "on_cleanup"),
+                2: (State.INACTIVE, comp.on_deactivate, "on_deactivate"),
+            }
             steps = [up[i] for i in range(cur + 1, want + 1)] if want > cur else [down[i] for i in range(cur, want, -1)]
         else:
             raise TransitionError(f"hardware can not be set to {target.value!r}")
@@ -125,8 +134,11 @@ class ResourceManager:
     # --- availability and claims -------------------------------------------------------------------------
     def state_available(self, name: str) -> bool:
         o = self.owner.get(name)
-        return (name in self.state_interfaces and o is not None
-                and self.components[o].state in (State.ACTIVE, State.INACTIVE))
+        return (
+            name in self.state_interfaces
+            and o is not None
+            and self.components[o].state in (State.ACTIVE, State.INACTIVE)
+        )
 
     def command_available(self, name: str) -> bool:
         o = self.owner.get(name)
@@ -143,8 +155,10 @@ class ResourceManager:
         for n in names:
             holder = self.claimed.get(n)
             if holder is not None and holder != controller:
-                raise TransitionError(f"Resource conflict for controller '{controller}': command interface '{n}' "
-                                      f"is already claimed by '{holder}'")
+                raise TransitionError(
+                    f"Resource conflict for controller '{controller}': command interface '{n}' "
+                    f"is already claimed by '{holder}'"
+                )
         for n in names:
             self.claimed[n] = controller
         return [self.command_interfaces[n] for n in names]
@@ -174,8 +188,10 @@ class ResourceManager:
             except Exception as e:
                 return f"hardware {comp!r} rejected the command mode switch: {hook_message(e)}"
             if not ok:
-                return f"hardware {comp!r} rejected the command mode switch (start {s.get(comp, [])}, " \
-                       f"stop {t.get(comp, [])})"
+                return (
+                    f"hardware {comp!r} rejected the command mode switch (start {s.get(comp, [])}, "
+                    f"stop {t.get(comp, [])})"
+                )
         return None
 
     def perform_switch(self, start: list[str], stop: list[str]) -> str | None:
@@ -191,8 +207,9 @@ class ResourceManager:
         return None
 
     # --- real-time loop ----------------------------------------------------------------------------------
-    def _rw(self, handles: tuple[HardwareHandle, ...], write: bool, time_ns: int, period_s: float,
-            cm_rate: int) -> list[tuple[str, str]]:
+    def _rw(
+        self, handles: tuple[HardwareHandle, ...], write: bool, time_ns: int, period_s: float, cm_rate: int
+    ) -> list[tuple[str, str]]:
         failed: list[tuple[str, str]] = []
         for h in handles:
             period = period_s

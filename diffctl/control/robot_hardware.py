@@ -50,7 +50,7 @@ def hardware_infos(
         raise DescriptionError(
             "the robot description has no <ros2_control> block",
             source=source,
-            hint="add <ros2_control name=… type=\"system\"> with <hardware><plugin>…</plugin></hardware> and joints",
+            hint='add <ros2_control name=… type="system"> with <hardware><plugin>…</plugin></hardware> and joints',
         )
     out = []
     for b in blocks:

@@ -122,8 +122,9 @@ class ControlNode:
         def factory(name: str, p: dict[str, Any]) -> BusControllerNode:
             return BusControllerNode(name, self.node.namespace, p, self.now_ns)
 
-        self.cm = ControllerManager(params, log=self.log, node_factory=factory,
-                                    robot_description=self.description, cancel=self.stop)
+        self.cm = ControllerManager(
+            params, log=self.log, node_factory=factory, robot_description=self.description, cancel=self.stop
+        )
         self.cm.load_hardware(self.infos)
         self.services = ManagerServices(self.node, self.cm, self.node.params)
         self.ticker = self._make_ticker()
@@ -135,16 +136,20 @@ class ControlNode:
         self.cm.loop_running = True
         self._loop_thread = threading.Thread(target=self._loop, name="controller_manager_rt", daemon=True)
         self._loop_thread.start()
-        self.log.info(f"controller manager ready: {params.update_rate} Hz, "
-                      f"{'sim' if params.use_sim_time else 'wall'} time, hardware "
-                      f"[{', '.join(f'{i.name} ({i.plugin_name})' for i in self.infos)}]")
+        self.log.info(
+            f"controller manager ready: {params.update_rate} Hz, "
+            f"{'sim' if params.use_sim_time else 'wall'} time, hardware "
+            f"[{', '.join(f'{i.name} ({i.plugin_name})' for i in self.infos)}]"
+        )
 
     def _make_ticker(self) -> Ticker:
         assert self.cm is not None
         sources = [h.component for h in self.cm.rm.components.values() if hasattr(h.component, "ticker")]
         if len(sources) > 1:
-            raise ConfigError("more than one hardware component drives the control loop (simulator lockstep); "
-                              "only one gz_ros2_control/GazeboSimSystem block per manager is supported")
+            raise ConfigError(
+                "more than one hardware component drives the control loop (simulator lockstep); "
+                "only one gz_ros2_control/GazeboSimSystem block per manager is supported"
+            )
         if sources:
             return sources[0].ticker()
         if self.cm.params.use_sim_time:
@@ -194,6 +199,7 @@ class ControlNode:
         import signal
 
         self.failed: ConfigError | None = None
+
         def on_signal(*_: object) -> None:
             self.stop.set()
             self.node.request_shutdown()
@@ -202,8 +208,9 @@ class ControlNode:
             signal.signal(sig, on_signal)
         try:
             if self.description is None:
-                self.node.create_subscription("robot_description", "std_msgs/msg/String", self._on_description,
-                                              latched=True)
+                self.node.create_subscription(
+                    "robot_description", "std_msgs/msg/String", self._on_description, latched=True
+                )
                 ticks = 0
                 while not self._got_description.wait(0.1) and not self.node.shutting_down:
                     if ticks % 50 == 0:

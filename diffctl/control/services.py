@@ -107,18 +107,20 @@ class ManagerServices:
         out = []
         with self.cm._lock:
             for mc in self.cm.controllers.values():
-                out.append({
-                    "name": mc.name,
-                    "state": mc.state.value,
-                    "type": mc.type_name,
-                    "is_async": False,
-                    "update_rate": mc.update_rate,
-                    "claimed_interfaces": list(mc.claimed),
-                    "required_command_interfaces": list(mc.required_command),
-                    "required_state_interfaces": list(mc.required_state),
-                    "is_chainable": bool(getattr(mc.instance, "is_chainable", False)),
-                    "is_chained": False,
-                })
+                out.append(
+                    {
+                        "name": mc.name,
+                        "state": mc.state.value,
+                        "type": mc.type_name,
+                        "is_async": False,
+                        "update_rate": mc.update_rate,
+                        "claimed_interfaces": list(mc.claimed),
+                        "required_command_interfaces": list(mc.required_command),
+                        "required_state_interfaces": list(mc.required_state),
+                        "is_chainable": bool(getattr(mc.instance, "is_chainable", False)),
+                        "is_chained": False,
+                    }
+                )
         return {"controller": out}
 
     def list_controller_types(self, _req: Any) -> dict[str, Any]:
@@ -131,36 +133,51 @@ class ManagerServices:
         for n in names:
             avail = rm.command_available(n) if command else rm.state_available(n)
             table = rm.command_interfaces if command else rm.state_interfaces
-            out.append({"name": n, "data_type": table[n].data_type, "is_available": avail,
-                        "is_claimed": command and n in rm.claimed})
+            out.append(
+                {
+                    "name": n,
+                    "data_type": table[n].data_type,
+                    "is_available": avail,
+                    "is_claimed": command and n in rm.claimed,
+                }
+            )
         return out
 
     def list_hardware_components(self, _req: Any) -> dict[str, Any]:
         out = []
         with self.cm._lock:
             for h in self.cm.rm.components.values():
-                out.append({
-                    "name": h.name,
-                    "type": h.info.type,
-                    "is_async": False,
-                    "rw_rate": h.rw_rate or self.cm.update_rate,
-                    "plugin_name": h.plugin_name,
-                    "state": {"id": h.state.id, "label": h.state.value},
-                    "command_interfaces": self._interfaces([c.name for c in h.commands], True),
-                    "state_interfaces": self._interfaces([s.name for s in h.states], False),
-                })
+                out.append(
+                    {
+                        "name": h.name,
+                        "type": h.info.type,
+                        "is_async": False,
+                        "rw_rate": h.rw_rate or self.cm.update_rate,
+                        "plugin_name": h.plugin_name,
+                        "state": {"id": h.state.id, "label": h.state.value},
+                        "command_interfaces": self._interfaces([c.name for c in h.commands], True),
+                        "state_interfaces": self._interfaces([s.name for s in h.states], False),
+                    }
+                )
         return {"component": out}
 
     def list_hardware_interfaces(self, _req: Any) -> dict[str, Any]:
         rm = self.cm.rm
         with self.cm._lock:
-            return {"command_interfaces": self._interfaces(sorted(rm.command_interfaces), True),
-                    "state_interfaces": self._interfaces(sorted(rm.state_interfaces), False)}
+            return {
+                "command_interfaces": self._interfaces(sorted(rm.command_interfaces), True),
+                "state_interfaces": self._interfaces(sorted(rm.state_interfaces), False),
+            }
 
     def switch_controller(self, req: Any) -> dict[str, Any]:
         timeout_s = int(req.timeout.sec) + int(req.timeout.nanosec) * 1e-9
-        ok, msg = self.cm.switch_controller(list(req.activate_controllers), list(req.deactivate_controllers),
-                                            int(req.strictness), bool(req.activate_asap), timeout_s)
+        ok, msg = self.cm.switch_controller(
+            list(req.activate_controllers),
+            list(req.deactivate_controllers),
+            int(req.strictness),
+            bool(req.activate_asap),
+            timeout_s,
+        )
         return {"ok": ok, "message": msg}
 
     def set_hardware_component_state(self, req: Any) -> dict[str, Any]:
@@ -168,8 +185,7 @@ class ManagerServices:
         try:
             state = State.parse(target.label) if target.label else State.from_id(int(target.id))
         except (TransitionError, ValueError):
-            self.log.error(f"set_hardware_component_state: unknown target state id={target.id} "
-                           f"label={target.label!r}")
+            self.log.error(f"set_hardware_component_state: unknown target state id={target.id} label={target.label!r}")
             h = self.cm.rm.components.get(req.name)
             cur = h.state if h else State.UNKNOWN
             return {"ok": False, "state": {"id": cur.id, "label": cur.value}}
@@ -218,4 +234,3 @@ class ManagerServices:
         prefixes = [str(p) for p in req.prefixes]
         names = sorted(n for n in self.params if not prefixes or any(n.startswith(p) for p in prefixes))
         return {"result": {"names": names, "prefixes": sorted({n.rpartition(".")[0] for n in names} - {""})}}
-

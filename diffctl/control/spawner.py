@@ -63,9 +63,20 @@ def spawner_lock(log, attempts: int = 5, wait_s: float = 20.0) -> Iterator[None]
             fcntl.flock(fh, fcntl.LOCK_UN)
 
 
-def spawn(names: list[str], *, param_files: list[str], inactive: bool, load_only: bool, manager: str,
-          manager_timeout_s: float, switch_timeout_s: float, activate_as_group: bool, unload_on_kill: bool,
-          switch_asap: bool = True, call_timeout_s: float = 10.0) -> None:
+def spawn(
+    names: list[str],
+    *,
+    param_files: list[str],
+    inactive: bool,
+    load_only: bool,
+    manager: str,
+    manager_timeout_s: float,
+    switch_timeout_s: float,
+    activate_as_group: bool,
+    unload_on_kill: bool,
+    switch_asap: bool = True,
+    call_timeout_s: float = 10.0,
+) -> None:
     """The spawner; raises RuntimeFailure (exit 1) with the reason when anything fails."""
     from diffctl import ros_args
     from diffctl.bus import Node
@@ -119,8 +130,9 @@ def spawn(names: list[str], *, param_files: list[str], inactive: bool, load_only
         node.close()
 
 
-def _load_and_configure(cm: ManagerClient, log, name: str, type_name: str | None, param_files: list[str],
-                        load_only: bool) -> None:
+def _load_and_configure(
+    cm: ManagerClient, log, name: str, type_name: str | None, param_files: list[str], load_only: bool
+) -> None:
     state = cm.controller_state(name)
     if state is not None:
         log.warn(f"Controller already loaded, skipping load_controller ({name} is {state})")
@@ -128,16 +140,17 @@ def _load_and_configure(cm: ManagerClient, log, name: str, type_name: str | None
         if param_files:
             cm.set_controller_params(name, type_name, param_files)
         if not cm.ok("load_controller", name):
-            raise RuntimeFailure(f"Failed loading controller {name}",
-                                 hint="the controller manager's log says why (e.g. no '<name>.type' parameter)")
+            raise RuntimeFailure(
+                f"Failed loading controller {name}",
+                hint="the controller manager's log says why (e.g. no '<name>.type' parameter)",
+            )
         log.info(f"Loaded {name}")
         state = "unconfigured"
     if load_only:
         return
     if state == "unconfigured":
         if not cm.ok("configure_controller", name):
-            raise RuntimeFailure(f"Failed to configure controller {name}",
-                                 hint="the controller manager's log says why")
+            raise RuntimeFailure(f"Failed to configure controller {name}", hint="the controller manager's log says why")
         log.info(f"Configured {name}")
 
 
@@ -149,8 +162,10 @@ def _activate(cm: ManagerClient, log, names: list[str], timeout_s: float, asap: 
         return
     ok, msg = cm.switch(todo, [], STRICT, asap, timeout_s)
     if not ok:
-        raise RuntimeFailure(f"Failed to activate controller{'s' if len(todo) > 1 else ''} {', '.join(todo)}"
-                             + (f": {msg}" if msg else ""))
+        raise RuntimeFailure(
+            f"Failed to activate controller{'s' if len(todo) > 1 else ''} {', '.join(todo)}"
+            + (f": {msg}" if msg else "")
+        )
     log.info(f"Configured and activated {', '.join(todo)}")
 
 
@@ -173,26 +188,66 @@ def _unload(cm: ManagerClient, log, names: list[str], *, deactivate: bool, switc
 
 @click.command("controller", context_settings={"help_option_names": ["-h", "--help"]})
 @click.argument("names", nargs=-1, required=True)
-@click.option("-p", "--param-file", "param_files", multiple=True, metavar="FILE",
-              help="Controller parameter file (repeatable); sets <name>.params_file and <name>.type on the manager.")
+@click.option(
+    "-p",
+    "--param-file",
+    "param_files",
+    multiple=True,
+    metavar="FILE",
+    help="Controller parameter file (repeatable); sets <name>.params_file and <name>.type on the manager.",
+)
 @click.option("--inactive", is_flag=True, help="Load and configure, but do not activate.")
 @click.option("--load-only", is_flag=True, help="Only load the controller.")
-@click.option("-c", "--controller-manager", "manager", default="controller_manager", show_default=True,
-              help="Name of the controller manager node.")
-@click.option("--controller-manager-timeout", "manager_timeout", type=float, default=0.0, show_default=True,
-              help="Seconds to wait for the manager's services; 0 waits forever (saying so every 10 s).")
-@click.option("--switch-timeout", type=float, default=5.0, show_default=True,
-              help="Seconds the manager may take to carry out the activation.")
-@click.option("--service-call-timeout", type=float, default=10.0, show_default=True,
-              help="Seconds to wait for each service answer (3 attempts).")
+@click.option(
+    "-c",
+    "--controller-manager",
+    "manager",
+    default="controller_manager",
+    show_default=True,
+    help="Name of the controller manager node.",
+)
+@click.option(
+    "--controller-manager-timeout",
+    "manager_timeout",
+    type=float,
+    default=0.0,
+    show_default=True,
+    help="Seconds to wait for the manager's services; 0 waits forever (saying so every 10 s).",
+)
+@click.option(
+    "--switch-timeout",
+    type=float,
+    default=5.0,
+    show_default=True,
+    help="Seconds the manager may take to carry out the activation.",
+)
+@click.option(
+    "--service-call-timeout",
+    type=float,
+    default=10.0,
+    show_default=True,
+    help="Seconds to wait for each service answer (3 attempts).",
+)
 @click.option("--activate-as-group", is_flag=True, help="Activate all named controllers in one switch.")
-@click.option("--switch-asap/--no-switch-asap", default=True, show_default=True,
-              help="Switch in the next control cycle.")
-@click.option("-u", "--unload-on-kill", is_flag=True,
-              help="Stay up; on Ctrl-C/SIGTERM deactivate and unload the controllers.")
-def spawn_controller(names: tuple[str, ...], param_files: tuple[str, ...], inactive: bool, load_only: bool,
-                     manager: str, manager_timeout: float, switch_timeout: float, service_call_timeout: float,
-                     activate_as_group: bool, switch_asap: bool, unload_on_kill: bool) -> None:
+@click.option(
+    "--switch-asap/--no-switch-asap", default=True, show_default=True, help="Switch in the next control cycle."
+)
+@click.option(
+    "-u", "--unload-on-kill", is_flag=True, help="Stay up; on Ctrl-C/SIGTERM deactivate and unload the controllers."
+)
+def spawn_controller(
+    names: tuple[str, ...],
+    param_files: tuple[str, ...],
+    inactive: bool,
+    load_only: bool,
+    manager: str,
+    manager_timeout: float,
+    switch_timeout: float,
+    service_call_timeout: float,
+    activate_as_group: bool,
+    switch_asap: bool,
+    unload_on_kill: bool,
+) -> None:
     """Load, configure and activate controllers in a running controller manager (controller_manager spawner).
 
     Exits 0 when every controller reached the requested state, 1 with the reason otherwise.
@@ -205,6 +260,16 @@ def spawn_controller(names: tuple[str, ...], param_files: tuple[str, ...], inact
     """
     if manager_timeout < 0 or switch_timeout < 0 or service_call_timeout <= 0:
         raise click.BadParameter("timeouts must be ≥ 0 (the service call timeout > 0)")
-    spawn(list(names), param_files=list(param_files), inactive=inactive, load_only=load_only, manager=manager,
-          manager_timeout_s=manager_timeout, switch_timeout_s=switch_timeout, activate_as_group=activate_as_group,
-          unload_on_kill=unload_on_kill, switch_asap=switch_asap, call_timeout_s=service_call_timeout)
+    spawn(
+        list(names),
+        param_files=list(param_files),
+        inactive=inactive,
+        load_only=load_only,
+        manager=manager,
+        manager_timeout_s=manager_timeout,
+        switch_timeout_s=switch_timeout,
+        activate_as_group=activate_as_group,
+        unload_on_kill=unload_on_kill,
+        switch_asap=switch_asap,
+        call_timeout_s=service_call_timeout,
+    )

@@ -53,8 +53,7 @@ def plan_switch(
     """Check a switch request; `claimed` maps command interface → controller currently holding it."""
     warnings: list[str] = []
     if strictness in (AUTO, FORCE_AUTO):
-        warnings.append(f"{STRICTNESS_NAMES[strictness]} strictness is not currently implemented; "
-                        "using BEST_EFFORT")
+        warnings.append(f"{STRICTNESS_NAMES[strictness]} strictness is not currently implemented; using BEST_EFFORT")
         strictness = BEST_EFFORT
     if strictness not in (BEST_EFFORT, STRICT):
         return SwitchPlan(False, f"unknown strictness {strictness} (1 BEST_EFFORT, 2 STRICT, 3 AUTO, 4 FORCE_AUTO)")
@@ -86,8 +85,9 @@ def plan_switch(
             act.append(name)
     if problems:
         if strict:
-            return SwitchPlan(False, "; ".join(problems) + ". Aborting, no controller is switched! (STRICT)",
-                              warnings=warnings)
+            return SwitchPlan(
+                False, "; ".join(problems) + ". Aborting, no controller is switched! (STRICT)", warnings=warnings
+            )
         warnings.extend(problems)
         if not any(n in controllers for n in requested):
             return SwitchPlan(False, "; ".join(problems), warnings=warnings)
@@ -101,19 +101,33 @@ def plan_switch(
         view = controllers[name]
         for iface in view.command_interfaces:
             if not command_available(iface):
-                return SwitchPlan(False, f"could not activate controller '{name}': command interface '{iface}' "
-                                  "is not available", warnings=warnings)
+                return SwitchPlan(
+                    False,
+                    f"could not activate controller '{name}': command interface '{iface}' is not available",
+                    warnings=warnings,
+                )
             holder = claimed.get(iface)
             if holder is not None and holder != name and holder not in leaving:
-                return SwitchPlan(False, f"could not activate controller '{name}': command interface '{iface}' is "
-                                  f"currently claimed by another controller '{holder}'", warnings=warnings)
+                return SwitchPlan(
+                    False,
+                    f"could not activate controller '{name}': command interface '{iface}' is "
+                    f"currently claimed by another controller '{holder}'",
+                    warnings=warnings,
+                )
             if iface in taken_by_new:
-                return SwitchPlan(False, f"could not activate controller '{name}': command interface '{iface}' "
-                                  f"will be used by another controller that is being activated "
-                                  f"('{taken_by_new[iface]}')", warnings=warnings)
+                return SwitchPlan(
+                    False,
+                    f"could not activate controller '{name}': command interface '{iface}' "
+                    f"will be used by another controller that is being activated "
+                    f"('{taken_by_new[iface]}')",
+                    warnings=warnings,
+                )
             taken_by_new[iface] = name
         for iface in view.state_interfaces:
             if not state_available(iface):
-                return SwitchPlan(False, f"could not activate controller '{name}': state interface '{iface}' is "
-                                  "not available", warnings=warnings)
+                return SwitchPlan(
+                    False,
+                    f"could not activate controller '{name}': state interface '{iface}' is not available",
+                    warnings=warnings,
+                )
     return SwitchPlan(True, "", act, deact, warnings)

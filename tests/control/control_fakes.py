@@ -112,9 +112,14 @@ register_controller("test_controllers/Fake", FakeController)
 WHEELS = ("left_wheel", "right_wheel")
 
 
-def wheel_info(name: str = "robot", plugin: str = "mock_components/GenericSystem",
-               joints: tuple[str, ...] = WHEELS, commands: tuple[str, ...] = ("velocity",),
-               hw_params: dict[str, str] | None = None, initial_position: float | None = None) -> HardwareInfo:
+def wheel_info(
+    name: str = "robot",
+    plugin: str = "mock_components/GenericSystem",
+    joints: tuple[str, ...] = WHEELS,
+    commands: tuple[str, ...] = ("velocity",),
+    hw_params: dict[str, str] | None = None,
+    initial_position: float | None = None,
+) -> HardwareInfo:
     return HardwareInfo(
         name=name,
         plugin_name=plugin,
@@ -130,8 +135,13 @@ def wheel_info(name: str = "robot", plugin: str = "mock_components/GenericSystem
     )
 
 
-def make_manager(controllers: dict[str, dict[str, Any]] | None = None, *, update_rate: int = 100,
-                 hardware: list[HardwareInfo] | None = None, **flat: Any) -> tuple[ControllerManager, RecordingLog]:
+def make_manager(
+    controllers: dict[str, dict[str, Any]] | None = None,
+    *,
+    update_rate: int = 100,
+    hardware: list[HardwareInfo] | None = None,
+    **flat: Any,
+) -> tuple[ControllerManager, RecordingLog]:
     """A manager with mock hardware and fake controllers `{name: params}` registered as test_controllers/Fake."""
     params: dict[str, Any] = {"update_rate": update_rate, **flat}
     ctrl_params = controllers or {}

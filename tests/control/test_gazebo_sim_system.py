@@ -41,15 +41,17 @@ def test_manager_attaches_to_the_simulator_and_drives_in_lockstep(router, procs,
     sdf.write_text(SDF.read_text().replace("PARAMETERS_CONFIG_FILE_PLACEHOLDER", str(CONFIG)))
     cm_log = tmp_path / "manager.log"
     # The manager first: it must wait for the simulator's endpoint, saying so.
-    cm = procs.diffctl("control", "manager", "--description", str(sdf), stdout=cm_log.open("w"),
-                       stderr=subprocess.STDOUT)
+    cm = procs.diffctl(
+        "control", "manager", "--description", str(sdf), stdout=cm_log.open("w"), stderr=subprocess.STDOUT
+    )
     deadline = time.monotonic() + 20
     while "waiting for the simulator's ros2_control endpoint" not in cm_log.read_text():
         assert cm.poll() is None and time.monotonic() < deadline, cm_log.read_text()
         time.sleep(0.1)
     sim_log = tmp_path / "sim.log"
-    procs.diffctl("sim", "run", "-r", "-s", "--rtf", "1", str(WORLD), stdout=sim_log.open("w"),
-                  stderr=subprocess.STDOUT)
+    procs.diffctl(
+        "sim", "run", "-r", "-s", "--rtf", "1", str(WORLD), stdout=sim_log.open("w"), stderr=subprocess.STDOUT
+    )
     rc, out = run(procs, "spawn", "entity", "--file", str(sdf), "--name", "robot")
     assert rc == 0, out
     rc, out = run(procs, "spawn", "controller", "diffbot_base_controller", "-p", str(CONFIG))
@@ -67,13 +69,19 @@ def test_manager_attaches_to_the_simulator_and_drives_in_lockstep(router, procs,
     def on_joints(msg) -> None:
         names = list(msg.name)
         if "base_link_to_left_wheel" in names:
-            joints.append((msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9,
-                           float(msg.velocity[names.index("base_link_to_left_wheel")])))
+            joints.append(
+                (
+                    msg.header.stamp.sec + msg.header.stamp.nanosec * 1e-9,
+                    float(msg.velocity[names.index("base_link_to_left_wheel")]),
+                )
+            )
 
     node.create_subscription("/joint_states", "sensor_msgs/msg/JointState", on_joints)
-    node.create_subscription("/diffbot_base_controller/odom", "nav_msgs/msg/Odometry",
-                             lambda m: odom.append((m.header.stamp.sec + m.header.stamp.nanosec * 1e-9,
-                                                    m.pose.pose.position.x)))
+    node.create_subscription(
+        "/diffbot_base_controller/odom",
+        "nav_msgs/msg/Odometry",
+        lambda m: odom.append((m.header.stamp.sec + m.header.stamp.nanosec * 1e-9, m.pose.pose.position.x)),
+    )
     pub = node.create_publisher("/diffbot_base_controller/cmd_vel", "geometry_msgs/msg/TwistStamped")
     while (not joints or pub.subscription_count == 0) and time.monotonic() < deadline + 20:
         time.sleep(0.05)

@@ -81,9 +81,11 @@ def test_strict_aborts_on_any_bad_entry() -> None:
     cm, _ = make_manager({"a": {"commands": [L_VEL]}, "u": {}})
     loaded(cm, "a")
     cm.load_controller("u")  # unconfigured
-    for act, deact, why in ((["a", "ghost"], [], "'ghost': it is not loaded"),
-                            (["a", "u"], [], "'u': it is not configured"),
-                            (["a"], ["a"], "deactivate controller 'a': it is not active")):
+    for act, deact, why in (
+        (["a", "ghost"], [], "'ghost': it is not loaded"),
+        (["a", "u"], [], "'u': it is not configured"),
+        (["a"], ["a"], "deactivate controller 'a': it is not active"),
+    ):
         ok, msg = cm.switch_controller(act, deact, STRICT)
         assert not ok and why in msg and "Aborting, no controller is switched!" in msg
         assert cm.controllers["a"].state is State.INACTIVE
@@ -111,12 +113,14 @@ def test_best_effort_drops_bad_entries() -> None:
 
 
 def test_command_interfaces_are_exclusive_and_state_interfaces_shared() -> None:
-    cm, _ = make_manager({
-        "a": {"commands": [L_VEL, R_VEL], "states": [L_POS]},
-        "b": {"commands": [L_VEL], "states": [L_POS]},
-        "c": {"states": [L_POS, "right_wheel/velocity"]},
-        "bad": {"commands": ["left_wheel/effort"]},
-    })
+    cm, _ = make_manager(
+        {
+            "a": {"commands": [L_VEL, R_VEL], "states": [L_POS]},
+            "b": {"commands": [L_VEL], "states": [L_POS]},
+            "c": {"states": [L_POS, "right_wheel/velocity"]},
+            "bad": {"commands": ["left_wheel/effort"]},
+        }
+    )
     loaded(cm, "a", "b", "c", "bad")
     ok, msg = cm.switch_controller(["a", "b"], [], BEST_EFFORT)
     assert not ok and "will be used by another controller that is being activated ('a')" in msg
@@ -157,8 +161,14 @@ def test_interfaces_are_loaned_in_configuration_order_and_written_by_update() ->
 
 
 def test_update_error_or_exception_deactivates_with_the_reason() -> None:
-    cm, log = make_manager({"a": {"commands": [L_VEL]}, "b": {"commands": [R_VEL], "raise_in": ["update"]},
-                            "spare": {"commands": [L_VEL]}}, **{"a.fallback_controllers": ["spare"]})
+    cm, log = make_manager(
+        {
+            "a": {"commands": [L_VEL]},
+            "b": {"commands": [R_VEL], "raise_in": ["update"]},
+            "spare": {"commands": [L_VEL]},
+        },
+        **{"a.fallback_controllers": ["spare"]},
+    )
     loaded(cm, "a", "b", "spare")
     assert cm.switch_controller(["a", "b"], [], STRICT)[0]
     cm.controllers["a"].instance.result = ReturnType.ERROR
@@ -173,8 +183,10 @@ def test_update_error_or_exception_deactivates_with_the_reason() -> None:
 
 
 def test_hardware_read_error_deactivates_its_controllers() -> None:
-    cm, log = make_manager({"a": {"commands": [L_VEL]}, "other": {"commands": ["j/velocity"]}},
-                           hardware=[wheel_info(), wheel_info("arm", joints=("j",))])
+    cm, log = make_manager(
+        {"a": {"commands": [L_VEL]}, "other": {"commands": ["j/velocity"]}},
+        hardware=[wheel_info(), wheel_info("arm", joints=("j",))],
+    )
     loaded(cm, "a", "other")
     assert cm.switch_controller(["a", "other"], [], STRICT)[0]
     cm.rm.command_interfaces[L_VEL].value = float("inf")  # GenericSystem's read() fails on an infinite command
@@ -204,9 +216,13 @@ def test_hardware_component_states_gate_interfaces() -> None:
 
 
 def test_initial_hardware_states_from_parameters() -> None:
-    cm, _ = make_manager(hardware=[wheel_info("a", joints=("x",)), wheel_info("b", joints=("y",)), wheel_info()],
-                         **{"hardware_components_initial_state.unconfigured": ["a"],
-                            "hardware_components_initial_state.inactive": ["b"]})
+    cm, _ = make_manager(
+        hardware=[wheel_info("a", joints=("x",)), wheel_info("b", joints=("y",)), wheel_info()],
+        **{
+            "hardware_components_initial_state.unconfigured": ["a"],
+            "hardware_components_initial_state.inactive": ["b"],
+        },
+    )
     states = {n: h.state for n, h in cm.rm.components.items()}
     assert states == {"a": State.UNCONFIGURED, "b": State.INACTIVE, "robot": State.ACTIVE}
 
@@ -229,8 +245,10 @@ def test_switch_waits_for_the_realtime_loop_and_times_out_without_it() -> None:
     loaded(cm, "a")
     cm.loop_running = True  # nobody calls update(): the switch can never happen
     t0 = time.monotonic()
-    assert cm.switch_controller(["a"], [], STRICT, timeout_s=0.2) == (False, "Switch controller timed out after 0.2 "
-                                                                                "seconds!")
+    assert cm.switch_controller(["a"], [], STRICT, timeout_s=0.2) == (
+        False,
+        "Switch controller timed out after 0.2 seconds!",
+    )
     assert 0.2 <= time.monotonic() - t0 < 1.0 and cm.controllers["a"].state is State.INACTIVE
     stop = threading.Event()
 

@@ -20,10 +20,22 @@ WHEEL_RADIUS_M = 0.04
 
 def start_manager(procs, log_path: Path, *extra: str) -> subprocess.Popen:
     return procs.diffctl(
-        "control", "manager", "--description", str(SDF), "--param-file", str(CONFIG),
-        "--hardware-plugin", "mock_components/GenericSystem", "--hardware-param", "calculate_dynamics=true",
-        *extra, "--ros-args", "-p", "use_sim_time:=false",
-        stdout=log_path.open("w"), stderr=subprocess.STDOUT,
+        "control",
+        "manager",
+        "--description",
+        str(SDF),
+        "--param-file",
+        str(CONFIG),
+        "--hardware-plugin",
+        "mock_components/GenericSystem",
+        "--hardware-param",
+        "calculate_dynamics=true",
+        *extra,
+        "--ros-args",
+        "-p",
+        "use_sim_time:=false",
+        stdout=log_path.open("w"),
+        stderr=subprocess.STDOUT,
     )
 
 
@@ -67,9 +79,10 @@ def publish_for(pub, node, duration_s: float, x: float, *, stamp_offset_s: float
     last = 0.0
     while time.monotonic() < end:
         now_ns = time.time_ns() + int(stamp_offset_s * 1e9)
-        msg = types.new("geometry_msgs/msg/TwistStamped",
-                        {"header": {"stamp": {"sec": now_ns // 10**9, "nanosec": now_ns % 10**9}},
-                         "twist": {"linear": {"x": x}}})
+        msg = types.new(
+            "geometry_msgs/msg/TwistStamped",
+            {"header": {"stamp": {"sec": now_ns // 10**9, "nanosec": now_ns % 10**9}}, "twist": {"linear": {"x": x}}},
+        )
         pub.publish(msg)
         last = now_ns / 1e9
         time.sleep(1.0 / rate_hz)
@@ -155,8 +168,7 @@ def test_launch_mock_control_activates_both_controllers_and_drives(router, procs
 
     monkeypatch.setenv("ROS_HOME", str(tmp_path))
     log_path = tmp_path / "launch.log"
-    launch = procs.diffctl("launch", "mock_control", "--no-color", stdout=log_path.open("w"),
-                           stderr=subprocess.STDOUT)
+    launch = procs.diffctl("launch", "mock_control", "--no-color", stdout=log_path.open("w"), stderr=subprocess.STDOUT)
     deadline = time.monotonic() + 30
     while "controllers active on mock hardware" not in log_path.read_text():
         assert launch.poll() is None, log_path.read_text()

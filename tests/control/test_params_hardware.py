@@ -44,17 +44,20 @@ def test_the_tutorial_yaml_configures_the_manager_and_its_controllers() -> None:
     assert "update_rate" not in ctrl
 
 
-@pytest.mark.parametrize(("flat", "field", "quoted"), [
-    ({"update_rate": 0}, "update_rate", "0"),
-    ({"update_rate": "fast"}, "update_rate", "'fast'"),
-    ({"update_rate": 2.5}, "update_rate", "2.5"),
-    ({"use_sim_time": "yes"}, "use_sim_time", "'yes'"),
-    ({"defaults.switch_controller.strictness": "strikt"}, "defaults.switch_controller.strictness", "'strict'"),
-    ({"thread_priority": 120}, "thread_priority", "120"),
-    ({"x.type": "nonsense"}, "x.type", "'nonsense'"),
-    ({"x.update_rate": -5}, "x.update_rate", "-5"),
-    ({"x.params_file": 3}, "x.params_file", "3"),
-])
+@pytest.mark.parametrize(
+    ("flat", "field", "quoted"),
+    [
+        ({"update_rate": 0}, "update_rate", "0"),
+        ({"update_rate": "fast"}, "update_rate", "'fast'"),
+        ({"update_rate": 2.5}, "update_rate", "2.5"),
+        ({"use_sim_time": "yes"}, "use_sim_time", "'yes'"),
+        ({"defaults.switch_controller.strictness": "strikt"}, "defaults.switch_controller.strictness", "'strict'"),
+        ({"thread_priority": 120}, "thread_priority", "120"),
+        ({"x.type": "nonsense"}, "x.type", "'nonsense'"),
+        ({"x.update_rate": -5}, "x.update_rate", "-5"),
+        ({"x.params_file": 3}, "x.params_file", "3"),
+    ],
+)
 def test_bad_manager_parameters_are_refused_with_the_value(flat, field, quoted) -> None:
     with pytest.raises(ParameterError) as e:
         manager_params(flat, source="cm.yaml")
@@ -75,8 +78,9 @@ def test_the_control_sdf_gives_one_hardware_block() -> None:
     for j in info.joints:
         assert [c.name for c in j.command_interfaces] == ["velocity"]
         assert [s.name for s in j.state_interfaces] == ["position", "velocity"]
-    (mock,) = hardware_infos(SDF.read_text(), plugin_override="mock_components/GenericSystem",
-                             extra_params={"calculate_dynamics": "true"})
+    (mock,) = hardware_infos(
+        SDF.read_text(), plugin_override="mock_components/GenericSystem", extra_params={"calculate_dynamics": "true"}
+    )
     assert mock.plugin_name == "mock_components/GenericSystem"
     assert mock.hardware_parameters["calculate_dynamics"] == "true"
     files, problems = parameter_files(SDF.read_text())

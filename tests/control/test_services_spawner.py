@@ -41,10 +41,21 @@ def test_services_appear_with_the_description_and_serve_every_verb(router, procs
 
     monkeypatch.setenv("ROS_HOME", str(tmp_path))
     log = tmp_path / "manager.log"
-    cm_proc = procs.diffctl("control", "manager", "--param-file", str(CONFIG),
-                            "--hardware-plugin", "mock_components/GenericSystem",
-                            "--ros-args", "-p", "use_sim_time:=false", "-p", "update_rate:=50",
-                            stdout=log.open("w"), stderr=subprocess.STDOUT)
+    cm_proc = procs.diffctl(
+        "control",
+        "manager",
+        "--param-file",
+        str(CONFIG),
+        "--hardware-plugin",
+        "mock_components/GenericSystem",
+        "--ros-args",
+        "-p",
+        "use_sim_time:=false",
+        "-p",
+        "update_rate:=50",
+        stdout=log.open("w"),
+        stderr=subprocess.STDOUT,
+    )
     node = Node("test_cm_client")
     cm = ManagerClient(node)
     # Jazzy: no services until a robot_description arrives; the manager says it is waiting.
@@ -58,10 +69,13 @@ def test_services_appear_with_the_description_and_serve_every_verb(router, procs
     assert "diff_drive_controller/DiffDriveController" in types_.types
     comps = cm.call("list_hardware_components").component
     assert [(c.name, c.plugin_name, c.state.label, c.rw_rate) for c in comps] == [
-        ("robot", "mock_components/GenericSystem", "active", 50)]
+        ("robot", "mock_components/GenericSystem", "active", 50)
+    ]
     ifaces = cm.call("list_hardware_interfaces")
     assert sorted(i.name for i in ifaces.command_interfaces) == [
-        "base_link_to_left_wheel/velocity", "base_link_to_right_wheel/velocity"]
+        "base_link_to_left_wheel/velocity",
+        "base_link_to_right_wheel/velocity",
+    ]
     assert len(ifaces.state_interfaces) == 4 and all(i.is_available for i in ifaces.state_interfaces)
 
     # Spawner: type and params_file come from --param-file; exit 0; a second run skips the load and still exits 0.
@@ -90,11 +104,21 @@ def test_services_appear_with_the_description_and_serve_every_verb(router, procs
     # The verbs: tables and state changes through the same services.
     rc, out = run(procs, "control", "list_controllers")
     assert rc == 0 and "diffbot_base_controller" in out and "wheels_forward" in out and "inactive" in out
-    rc, out = run(procs, "control", "switch_controllers", "--deactivate", "diffbot_base_controller",
-                  "--activate", "wheels_forward", "--strict")
+    rc, out = run(
+        procs,
+        "control",
+        "switch_controllers",
+        "--deactivate",
+        "diffbot_base_controller",
+        "--activate",
+        "wheels_forward",
+        "--strict",
+    )
     assert rc == 0, out
-    assert {c.name: c.state for c in cm.list_controllers()} == {"diffbot_base_controller": "inactive",
-                                                                "wheels_forward": "active"}
+    assert {c.name: c.state for c in cm.list_controllers()} == {
+        "diffbot_base_controller": "inactive",
+        "wheels_forward": "active",
+    }
     rc, out = run(procs, "control", "switch_controllers", "--activate", "ghost", "--strict")
     assert rc == 1 and "Aborting, no controller is switched!" in out
     rc, out = run(procs, "control", "unload_controller", "wheels_forward")

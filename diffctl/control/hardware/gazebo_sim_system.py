@@ -52,8 +52,10 @@ class GazeboSimSystem(HardwareComponent):
         ep_joints = {j["name"]: j for j in ep.get("joints", [])}
         missing = [j for j in self.joints if j not in ep_joints]
         if missing:
-            raise ConfigError(f"model {self.model!r} has no ros2_control joints {missing} (it has "
-                              f"{sorted(ep_joints)})", source=info.source)
+            raise ConfigError(
+                f"model {self.model!r} has no ros2_control joints {missing} (it has {sorted(ep_joints)})",
+                source=info.source,
+            )
         self.order = [j["name"] for j in ep["joints"]]
         self.index = {name: self.order.index(name) for name in self.joints}
         self.initial = {name: ep_joints[name].get("initial", {}) for name in self.joints}
@@ -86,14 +88,19 @@ class GazeboSimSystem(HardwareComponent):
                 if len(matching) == 1:
                     return matching[0]
                 if len(matching) > 1:
-                    raise ConfigError(f"several simulator models have the joints of <ros2_control name="
-                                      f"{self.name!r}>: {', '.join(matching)}", hint="pick one with --model NAME")
+                    raise ConfigError(
+                        f"several simulator models have the joints of <ros2_control name="
+                        f"{self.name!r}>: {', '.join(matching)}",
+                        hint="pick one with --model NAME",
+                    )
             if not said or time.monotonic() - last_log > _WAIT_LOG_S:
                 what = f"model {wanted!r}" if wanted else f"a model with joints {self.joints}"
                 seen = f" (endpoints now: {', '.join(models)})" if models else ""
-                self._log("info" if not said else "warn",
-                          f"waiting for the simulator's ros2_control endpoint of {what}{seen}… "
-                          f"{time.monotonic() - start:.0f} s")
+                self._log(
+                    "info" if not said else "warn",
+                    f"waiting for the simulator's ros2_control endpoint of {what}{seen}… "
+                    f"{time.monotonic() - start:.0f} s",
+                )
                 said, last_log = True, time.monotonic()
             if self._cancelled():
                 raise RuntimeFailure("stopped while waiting for the simulator")
@@ -151,15 +158,17 @@ class GazeboSimSystem(HardwareComponent):
         self._pub = self.session.declare_publisher(hw.command_key(self.model))
         self._declared.append(self._pub)
         self._declared.append(self.session.liveliness().declare_token(hw.manager_key(self.model)))
-        reply = _query_json(self.session, hw.attach_key(self.model),
-                            {"update_rate": rate, "manager": f"{self.name}@{id(self):x}"})
+        reply = _query_json(
+            self.session, hw.attach_key(self.model), {"update_rate": rate, "manager": f"{self.name}@{id(self):x}"}
+        )
         if not reply.get("ok"):
             self._detach()
             raise RuntimeFailure(f"the simulator refused to attach model {self.model!r}: {reply.get('error')}")
         self.control_period_ns = int(reply.get("control_period_ns") or 1e9 / rate)
         self._attached = True
-        self._log("info", f"attached to model {self.model!r}: lockstep every {self.control_period_ns / 1e6:g} ms "
-                          "of sim time")
+        self._log(
+            "info", f"attached to model {self.model!r}: lockstep every {self.control_period_ns / 1e6:g} ms of sim time"
+        )
 
     def _detach(self) -> None:
         for obj in reversed(self._declared):
@@ -205,8 +214,7 @@ class GazeboSimSystem(HardwareComponent):
                     if self.model not in models:
                         self._log("warn", f"the simulator's endpoint for {self.model!r} is gone; waiting for it")
                     else:
-                        self._log("warn", f"no state from the simulator for {_WAIT_LOG_S:g} s (paused?); "
-                                          "re-attaching")
+                        self._log("warn", f"no state from the simulator for {_WAIT_LOG_S:g} s (paused?); re-attaching")
                         try:
                             self._attach()
                         except Exception as e:

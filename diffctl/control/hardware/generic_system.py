@@ -29,8 +29,11 @@ def _bool_param(info: HardwareInfo, key: str) -> bool:
     raw = info.hardware_parameters.get(key, "false")
     val = _BOOL.get(str(raw).strip().lower())
     if val is None:
-        raise ParameterError(f"{raw!r} is not a bool (true or false)", source=info.source,
-                             field=f"<ros2_control name={info.name!r}>/hardware/param[{key}]")
+        raise ParameterError(
+            f"{raw!r} is not a bool (true or false)",
+            source=info.source,
+            field=f"<ros2_control name={info.name!r}>/hardware/param[{key}]",
+        )
     return val
 
 
@@ -41,8 +44,11 @@ def _float_param(info: HardwareInfo, key: str) -> float:
     except ValueError:
         val = math.nan
     if not math.isfinite(val):
-        raise ParameterError(f"{raw!r} is not a finite number", source=info.source,
-                             field=f"<ros2_control name={info.name!r}>/hardware/param[{key}]")
+        raise ParameterError(
+            f"{raw!r} is not a finite number",
+            source=info.source,
+            field=f"<ros2_control name={info.name!r}>/hardware/param[{key}]",
+        )
     return val
 
 
@@ -61,8 +67,10 @@ class GenericSystem(HardwareComponent):
             names = [c.name for c in j.command_interfaces]
             if self.calculate_dynamics and any(n not in _MODES for n in names):
                 bad = [n for n in names if n not in _MODES]
-                raise ParameterError(f"with calculate_dynamics, command interfaces must be among {_MODES}; "
-                                     f"joint {j.name!r} has {bad}", source=info.source)
+                raise ParameterError(
+                    f"with calculate_dynamics, command interfaces must be among {_MODES}; joint {j.name!r} has {bad}",
+                    source=info.source,
+                )
         self._initial: dict[str, float] = {}
         for comp in info.components:
             for it in comp.state_interfaces:
