@@ -36,11 +36,12 @@ class BusFeed:
         sub = node.create_subscription
         sub("/tf", "tf2_msgs/msg/TFMessage", scene.on_tf)
         sub("/tf_static", "tf2_msgs/msg/TFMessage", lambda m: scene.on_tf(m, static=True), latched=True)
-        for topic in config.topics("robot_model"):
+        # Every display's topic, enabled or not: the page can switch a display on at any time.
+        for topic in config.topics("robot_model", enabled_only=False):
             sub(topic, "std_msgs/msg/String", lambda m: scene.set_robot_description(m.data), latched=True)
-        for topic in dict.fromkeys(config.topics("odometry")):
+        for topic in config.topics("odometry", enabled_only=False):
             sub(topic, "nav_msgs/msg/Odometry", lambda m, t=topic: scene.on_odometry(t, m))
-        for topic in dict.fromkeys(config.topics("laser_scan")):
+        for topic in config.topics("laser_scan", enabled_only=False):
             sub(topic, "sensor_msgs/msg/LaserScan", lambda m, t=topic: scene.on_scan(t, m))
         sub("/joint_states", "sensor_msgs/msg/JointState", scene.on_joint_states)
         sub("/clock", "rosgraph_msgs/msg/Clock", lambda m: scene.on_clock(m.clock.sec + m.clock.nanosec * 1e-9))

@@ -83,8 +83,13 @@ class RvizConfig:
     ignored: tuple[str, ...] = ()  # display classes we do not draw, each listed once
     source: str | None = None
 
-    def topics(self, kind: str) -> list[str]:
-        return [d.topic for d in self.displays if d.kind == kind and d.enabled and d.topic]
+    def topics(self, kind: str, *, enabled_only: bool = True) -> list[str]:
+        """Topics of the displays of one kind, each once, in file order."""
+        return list(
+            dict.fromkeys(
+                d.topic for d in self.displays if d.kind == kind and d.topic and (d.enabled or not enabled_only)
+            )
+        )
 
     def to_json(self) -> dict[str, Any]:
         return {

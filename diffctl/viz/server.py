@@ -354,9 +354,10 @@ class VizServer:
 
     def _update_image_watch(self) -> None:
         wanted = {p.image_topic for p in self.pages if p.image_topic}
-        for topic in self.config.topics("image"):
+        known = self.config.topics("image", enabled_only=False)
+        for topic in known:
             self.feed.watch_image(topic, topic in wanted)
-        for topic in wanted - set(self.config.topics("image")):
+        for topic in wanted - set(known):
             self.feed.watch_image(topic, True)
 
     # ---- periodic work -----------------------------------------------------------------------------------

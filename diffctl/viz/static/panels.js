@@ -68,6 +68,7 @@
       fillTable("topics", m.topics.map(t => [t.name, { text: t.types.join(", "), cls: t.types.length > 1 ? "err" : "" },
         t.publishers, t.subscribers, t.hz == null ? "—" : t.hz.toFixed(1)]));
     }
+    teleopTopicInfo(m.topics);
     const ctl = m.controllers;
     $("controllers-none").hidden = !!ctl;
     fillTable("controllers", (ctl || []).map(c => [c.name, c.type, { text: c.state, cls: "state-" + c.state }]));
@@ -94,6 +95,37 @@
   const T = V.teleop = { linear: 0, angular: 0, keys: new Set(), joy: null, pad: null, sent: 0, zeroSent: true, timer: null };
   const KEYS = { ArrowUp: [1, 0], KeyW: [1, 0], ArrowDown: [-1, 0], KeyS: [-1, 0],
                  ArrowLeft: [0, 1], KeyA: [0, 1], ArrowRight: [0, -1], KeyD: [0, -1] };
+
+  // Who listens on the teleop topic, and with which type; with nobody there, offer a topic that has a
+  // velocity subscriber (the earlier tutorial variant drives /cmd_vel with an unstamped Twist).
+  const TWIST = "geometry_msgs/msg/Twist", STAMPED = "geometry_msgs/msg/TwistStamped";
+  function teleopTopicInfo(topics) {
+    const box = $("teleop-topic-info");
+    const name = $("teleop-topic").value.trim();
+    const info = topics.find(t => t.name === name);
+    box.replaceChildren();
+    if (info && info.subscribers > 0) {
+      const want = $("teleop-stamped").checked ? STAMPED : TWIST;
+      const ok = info.types.includes(want);
+      box.textContent = `${info.subscribers} subscriber(s), ${info.types.join(", ")}` + (ok ? "" : ` — not ${want}!`);
+      box.className = "row " + (ok ? "dim" : "err");
+      return;
+    }
+    box.className = "row err";
+    box.textContent = `nobody subscribes to ${name || "(no topic)"}`;
+    const alt = topics.find(t => t.subscribers > 0 && t.name !== name && t.types.some(ty => ty === TWIST || ty === STAMPED));
+    if (alt) {
+      const b = document.createElement("button");
+      b.textContent = `use ${alt.name}`;
+      b.onclick = () => {
+        stopAll();
+        $("teleop-topic").value = alt.name;
+        $("teleop-stamped").checked = alt.types.includes(STAMPED);
+        teleopTopicInfo(topics);
+      };
+      box.append(" ", b);
+    }
+  }
 
   function setupTeleop(t) {
     $("teleop-topic").value = t.topic;
