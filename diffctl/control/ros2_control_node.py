@@ -20,6 +20,7 @@ from diffctl import ros_args
 from diffctl.control.controller_node import BusControllerNode
 from diffctl.control.manager import ControllerManager
 from diffctl.control.params import load_manager_files, manager_params
+from diffctl.control.plugin_registry import hardware_class
 from diffctl.control.realtime_loop import (
     LoopStats,
     SimClockTicker,
@@ -85,6 +86,8 @@ class ControlNode:
         if self.opts.model:
             extra["model"] = self.opts.model
         self.infos = hardware_infos(text, source, plugin_override=self.opts.hardware_plugin, extra_params=extra)
+        for info in self.infos:
+            hardware_class(info.plugin_name)  # an unknown plugin is bad input: refuse it before starting anything
         files, problems = parameter_files(text, source)
         self.gz_files = files
         self.problems = problems

@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import itertools
 import math
+import os
+import subprocess
+import sys
 import threading
 import time
 from pathlib import Path
@@ -164,3 +167,24 @@ def test_wall_ticker_counts_overruns_and_skips_missed_periods() -> None:
     assert all(g == pytest.approx(10.0, abs=3.0) for g in gaps_ms[5:])
     s = stats.summary(0.01)
     assert s["cycles"] == 15 and s["jitter_p50_us"] < 2000
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["--description", "nope.sdf"], "robot description file not found"),
+        (["--description", str(SDF), "--hardware-plugin", "mock_components/GenericSystm"], "did you mean"),
+        (["--description", str(SDF), "--param-file", "missing.yaml"], "parameter file not found"),
+        (["--description", str(SDF), "--ros-args", "-p", "update_rate:=0"], "update_rate: 0 is not a valid rate"),
+    ],
+)
+def test_manager_refuses_bad_input_before_starting(args: list[str], message: str, tmp_path) -> None:
+    p = subprocess.run(
+        [sys.executable, "-m", "diffctl", "control", "manager", *args],
+        capture_output=True,
+        text=True,
+        timeout=30,
+        cwd=tmp_path,
+        env={**os.environ, "DIFFCTL_ROUTER": "tcp/127.0.0.1:9"},  # no router: nothing may start
+    )
+    assert p.returncode == 2 and message in p.stderr, p.stderr
