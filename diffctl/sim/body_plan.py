@@ -75,16 +75,21 @@ class ModelPlan:
     joints: dict[str, tuple[int, int]]  # moving SDF joint → (body number, PyBullet joint index)
 
 
-def plan_model(model: Model) -> ModelPlan:
-    """The PyBullet bodies for `model` at the poses it was loaded (or spawned) with."""
+def plan_model(model: Model, *, split_colours: bool = False) -> ModelPlan:
+    """The PyBullet bodies for `model` at the poses it was loaded (or spawned) with.
+
+    `split_colours`: keep fixed links whose visuals differ in colour apart. PyBullet's OpenGL window draws a
+    link in one colour (TinyRenderer honours each shape's), so the GUI trades a little speed for colours.
+    """
     if not model.links:
         raise DescriptionError(f"model {model.name!r} has no <link>", source=model.source or None)
-    return _Planner(model).plan()
+    return _Planner(model, split_colours).plan()
 
 
 class _Planner:
-    def __init__(self, model: Model) -> None:
+    def __init__(self, model: Model, split_colours: bool = False) -> None:
         self.m = model
+        self.split_colours = split_colours
         self.by_name = {link.name: link for link in model.links}
         self.children: dict[str, list[Joint]] = {link.name: [] for link in model.links}
         self.world_joint: dict[str, Joint] = {}
@@ -136,7 +141,7 @@ class _Planner:
     def _grow(self, groups: list[dict], gi: int, link_name: str) -> None:
         for j in self.children[link_name]:
             child = j.child
-            if j.type == "fixed" and self._same_surface(groups[gi], child):
+            if j.type == "fixed" and self._same_surface(groups[gi], child) and self._same_colour(groups[gi], child):
                 groups[gi]["members"].append(child)
                 self._grow(groups, gi, child)
             else:
@@ -150,6 +155,13 @@ class _Planner:
 
     def _same_surface(self, group: dict, child: str) -> bool:
         mine, theirs = self._surfaces(group["members"]), self._surfaces([child])
+        return not mine or not theirs or mine == theirs
+
+    def _same_colour(self, group: dict, child: str) -> bool:
+        if not self.split_colours:
+            return True
+        mine = {v.rgba for n in group["members"] for v in self.by_name[n].visuals}
+        theirs = {v.rgba for v in self.by_name[child].visuals}
         return not mine or not theirs or mine == theirs
 
     def _finish(self, g: dict) -> LinkPlan:

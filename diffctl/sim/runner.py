@@ -229,7 +229,7 @@ class Simulation:
         import pybullet as pb
 
         p = entity.pose().xyz
-        pb.resetDebugVisualizerCamera(0.9, 50.0, -30.0, p, physicsClientId=self.physics.client)
+        pb.resetDebugVisualizerCamera(0.7, 50.0, -30.0, p, physicsClientId=self.physics.client)
 
     # --- world ---------------------------------------------------------------------------------------
 

@@ -69,7 +69,7 @@ class PhysicsWorld:
         """Build `model` (poses as loaded, i.e. already at its spawn pose) and return its entity."""
         if model.name in self.entities:
             raise RuntimeFailure(f"an entity named {model.name!r} already exists", hint="choose another --name")
-        plan = plan_model(model)
+        plan = plan_model(model, split_colours=self.gui)
         bodies: list[int] = []
         try:
             for body_plan in plan.bodies:
