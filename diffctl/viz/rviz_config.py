@@ -121,6 +121,14 @@ def default_config() -> RvizConfig:
                 color_rgb=DEFAULT_COLORS["odometry"],
                 rviz_class="rviz_default_plugins/Odometry",
             ),
+            # The earlier tutorial variant: Gazebo's DiffDrive odometry bridged to /odom.
+            Display(
+                "odometry",
+                "Odometry (bridged)",
+                topic="/odom",
+                color_rgb=(255, 170, 0),
+                rviz_class="rviz_default_plugins/Odometry",
+            ),
             Display(
                 "laser_scan",
                 "LaserScan",

@@ -16,10 +16,11 @@ REPO = Path(__file__).resolve().parents[2]
 def test_shipped_diffbot_rviz() -> None:
     c = load_rviz(REPO / "config" / "diffbot.rviz")
     assert c.fixed_frame == "odom" and c.ignored == ()
-    kinds = {d.kind: d for d in c.displays}
+    kinds = {d.kind: d for d in reversed(c.displays)}  # the first display of each kind
     assert set(kinds) == {"grid", "robot_model", "tf", "odometry", "laser_scan", "image"}
     assert kinds["robot_model"].topic == "/robot_description"
     assert kinds["odometry"].topic == "/diffbot_base_controller/odom" and kinds["odometry"].color_rgb == (255, 25, 0)
+    assert c.topics("odometry") == ["/diffbot_base_controller/odom", "/odom"]  # /odom: the earlier variant
     assert kinds["laser_scan"].topic == "/scan" and kinds["image"].topic == "/camera/image_raw"
     assert c.to_json()["displays"][0]["color"] == "#a0a0a4"
     assert [d.kind for d in default_config().displays] == [d.kind for d in c.displays]

@@ -61,6 +61,11 @@ async def recv_until(ws, pred, timeout_s: float = 10.0) -> dict:
             return m
 
 
+def odom_pose(frame: dict) -> list[float] | None:
+    """[x, y, yaw] of the controller's odometry in the fixed frame, from a frame view."""
+    return next(o["pose"] for o in frame["odom"] if o["topic"] == "/diffbot_base_controller/odom")
+
+
 @pytest.mark.slow
 def test_streams_follow_the_robot_and_teleop_drives_it(fake_robot, viz) -> None:
     # Static files: self-contained, with a CSP that forbids loading anything from elsewhere.
@@ -82,9 +87,7 @@ def test_streams_follow_the_robot_and_teleop_drives_it(fake_robot, viz) -> None:
             assert hello["teleop"]["topic"] == CMD_TOPIC
             robot = await recv_until(ws, lambda m: m["type"] == "robot" and m["name"])
             assert {"base_link", "left_wheel", "right_wheel", "lidar_link"} <= set(robot["links"])
-            frame = await recv_until(
-                ws, lambda m: m["type"] == "frame" and m["robot"] and m["odom"] and m["odom"][0]["pose"]
-            )
+            frame = await recv_until(ws, lambda m: m["type"] == "frame" and m["robot"] and (odom_pose(m) or []))
             assert {"odom", "base_footprint", "base_link"} <= set(frame["frames"])
             chassis = [p for p in frame["robot"] if p["link"] == "base_link"]
             assert chassis and len(chassis[0]["pts"]) >= 8
@@ -101,11 +104,11 @@ def test_streams_follow_the_robot_and_teleop_drives_it(fake_robot, viz) -> None:
             scan_hz = next(t["hz"] for t in graph["topics"] if t["name"] == "/scan")
             assert 7.0 <= scan_hz <= 13.0
 
-            x0 = frame["odom"][0]["pose"][0]
+            x0 = odom_pose(frame)[0]
             for _ in range(10):  # hold "forward" for one second at 10 Hz, as the page does
                 await ws.send(json.dumps({"op": "teleop", "linear": 0.5, "angular": 0.0}))
                 await asyncio.sleep(0.1)
-            moved = await recv_until(ws, lambda m: m["type"] == "frame" and m["odom"][0]["pose"][0] > x0 + 0.3)
+            moved = await recv_until(ws, lambda m: m["type"] == "frame" and odom_pose(m)[0] > x0 + 0.3)
             assert moved["robot"]
             # Absurd and non-finite commands: clamped or refused, never published as such.
             await ws.send(json.dumps({"op": "teleop", "linear": 1e9, "angular": -1e9}))
