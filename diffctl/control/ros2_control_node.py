@@ -12,6 +12,7 @@ from __future__ import annotations
 import gc
 import sys
 import threading
+import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -99,8 +100,6 @@ class ControlNode:
     def now_ns(self) -> int:
         if self.cm is not None and self.cm.params.use_sim_time:
             return max(self._last_cycle_ns, self.node.clock.now_ns())
-        import time
-
         return time.time_ns()
 
     def _on_cycle_time(self, t_ns: int) -> None:
