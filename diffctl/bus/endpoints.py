@@ -6,6 +6,7 @@ import itertools
 import threading
 import time
 from collections.abc import Callable
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import zenoh
@@ -73,14 +74,25 @@ class Publisher:
                 pass
 
 
+@dataclass(frozen=True)
+class MessageInfo:
+    """rclpy's MessageInfo: what the rmw_zenoh attachment says about a sample."""
+
+    sequence_number: int
+    source_timestamp_ns: int
+    publisher_gid: bytes
+
+
 class Subscription:
-    def __init__(self, node: Node, topic: str, typename: str, callback: Callable[[Any], None], *,
-                 latched: bool = False, depth: int = 10, raw: bool = False, ignore_local: bool = False) -> None:
+    def __init__(self, node: Node, topic: str, typename: str, callback: Callable[..., None], *,
+                 latched: bool = False, depth: int = 10, raw: bool = False, ignore_local: bool = False,
+                 with_info: bool = False) -> None:
         self.node = node
         self.topic = node.resolve(topic)
         self.type = types.check(typename)
         self.callback = callback
         self.raw = raw
+        self.with_info = with_info  # callback(msg, MessageInfo)
         # rclcpp's ignore_local_publications: drop samples from publishers of this process (a bridge must
         # not hear its own output on a bidirectional topic).
         self._ignore_gids = node.context.local_gids if ignore_local else None
@@ -104,10 +116,9 @@ class Subscription:
             # rmw_zenoh drops samples without the attachment too; say so instead of staying silent.
             log.throttled(f"noatt{self.topic}", f"dropped a sample on {self.topic} without rmw_zenoh attachment")
             return
-        if self._ignore_gids is not None:
-            att = sample.attachment.to_bytes()
-            if att[17:] in self._ignore_gids:
-                return
+        att = sample.attachment.to_bytes()
+        if self._ignore_gids is not None and att[17:] in self._ignore_gids:
+            return
         data = sample.payload.to_bytes()
         if self.raw:
             msg: Any = data
@@ -118,7 +129,14 @@ class Subscription:
                 log.throttled(f"bad{self.topic}", f"dropped a malformed sample on {self.topic}: {e}")
                 return
         try:
-            self.callback(msg)
+            if self.with_info:
+                try:
+                    seq, ts, gid = wire.unpack_attachment(att)
+                except MessageError:
+                    seq, ts, gid = 0, 0, b""
+                self.callback(msg, MessageInfo(seq, ts, gid))
+            else:
+                self.callback(msg)
         except Exception as e:  # a user callback must not kill the transport thread
             log.throttled(f"cb{self.topic}", f"callback for {self.topic} raised {type(e).__name__}: {e}",
                           level="ERROR")

@@ -177,9 +177,9 @@ class Node:
 
     def create_subscription(self, topic: str, typename: str, callback: Callable[[Any], None], *,
                             latched: bool = False, depth: int = 10, raw: bool = False,
-                            ignore_local: bool = False) -> Subscription:
+                            ignore_local: bool = False, with_info: bool = False) -> Subscription:
         return self._keep(Subscription(self, topic, typename, callback, latched=latched, depth=depth, raw=raw,
-                                       ignore_local=ignore_local))
+                                       ignore_local=ignore_local, with_info=with_info))
 
     def create_service(self, name: str, srv_type: str, handler: Callable[[Any], Any]) -> Service:
         return self._keep(Service(self, name, srv_type, handler))
