@@ -119,6 +119,36 @@ def test_page_offline_draws_robot_and_arrow_up_drives_it(fake_robot, start_viz, 
     x_after = odom.snapshot()[-1].pose.pose.position.x
     assert x_after - x_before > 0.5, (x_before, x_after)  # ~0.75 m at 0.5 m/s for 1.5 s
 
+    # The on-screen joystick: dragged up and to the left → forward and turning left; let go → zero.
+    n0 = len(cmds.snapshot())
+    box = page.locator("#joystick").bounding_box()
+    cx, cy = box["x"] + box["width"] / 2, box["y"] + box["height"] / 2
+    page.mouse.move(cx, cy)
+    page.mouse.down()
+    page.mouse.move(cx - 20, cy - 40, steps=5)  # full deflection is 50 px (radius 70 minus the knob's margin)
+    time.sleep(0.5)
+    page.mouse.up()
+    time.sleep(0.3)
+    joy = cmds.snapshot()[n0:]
+    held = [m for m in joy if m.twist.linear.x > 0]
+    # 40 px up of 50 → 0.8 of the 0.5 m/s slider; 20 px left of 50 → 0.4 of the 1 rad/s slider.
+    assert len(held) >= 4
+    assert all(abs(m.twist.linear.x - 0.4) < 1e-9 and abs(m.twist.angular.z - 0.4) < 1e-9 for m in held[-3:])
+    assert joy[-1].twist.linear.x == 0 and joy[-1].twist.angular.z == 0
+
+    # A game pad through the browser's Gamepad API: left stick forward, then back inside the dead zone.
+    n0 = len(cmds.snapshot())
+    page.evaluate("""() => {
+        window.fakePad = {id: 'test pad', connected: true, axes: [0, -1, 0, 0], buttons: []};
+        Object.defineProperty(navigator, 'getGamepads', {value: () => [window.fakePad], configurable: true});
+    }""")
+    time.sleep(0.6)
+    page.evaluate("window.fakePad.axes = [0.1, -0.1, 0, 0]")  # within the 0.15 dead zone
+    time.sleep(0.3)
+    pad = cmds.snapshot()[n0:]
+    assert [m.twist.linear.x for m in pad].count(0.5) >= 4 and pad[-1].twist.linear.x == 0
+    assert page.inner_text("#gamepad") == "game pad: test pad"
+
     # Open the other panels for the screenshot; the camera subscribes only now and shows the fake image.
     for panel in ("panel-camera", "panel-joints", "panel-topics", "panel-controllers"):
         page.evaluate(f"document.getElementById('{panel}').open = true")
