@@ -52,7 +52,10 @@ def main(argv: list[str] | None = None) -> None:
     argv, ros = ros_args.split_argv(sys.argv[1:] if argv is None else list(argv))
     ros_args.set_current(ros)
     try:
-        cli.main(args=argv, prog_name="diffctl", standalone_mode=False)
+        rv = cli.main(args=argv, prog_name="diffctl", standalone_mode=False)
+        if isinstance(rv, int) and not isinstance(rv, bool):
+            _close_bus()
+            sys.exit(rv)
     except click.exceptions.Abort:
         sys.exit(130)
     except click.exceptions.Exit as e:
