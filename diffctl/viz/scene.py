@@ -68,10 +68,13 @@ class _Odom:
 
 @dataclass
 class _Scan:
-    frame_id: str
-    xs_m: np.ndarray
-    ys_m: np.ndarray
-    range_max_m: float
+    frame_id: str  # as the message says
+    anchor: str  # the frame `points_m` are expressed in: the TF root when the scan arrived
+    points_m: np.ndarray  # (3, n)
+
+
+def _apply(tf: Transform, points_m: np.ndarray) -> np.ndarray:
+    return np.array(tf.rotation_matrix()) @ points_m + np.array(tf.translation_m)[:, None]
 
 
 class Scene:
@@ -171,9 +174,13 @@ class Scene:
         angles = float(msg.angle_min) + float(msg.angle_increment) * np.arange(len(ranges))
         ok = np.isfinite(ranges) & (ranges >= float(msg.range_min)) & (ranges <= float(msg.range_max))
         r, a = ranges[ok], angles[ok]
-        scan = _Scan(strip_frame(msg.header.frame_id), r * np.cos(a), r * np.sin(a), float(msg.range_max))
+        pts = np.stack([r * np.cos(a), r * np.sin(a), np.zeros_like(r)])
+        frame = strip_frame(msg.header.frame_id)
         with self._lock:
-            self._scans[topic] = scan
+            # Placed with the TF of its arrival, as RViz does: walls stay put while the robot moves between
+            # scans, instead of riding along with the newest transform.
+            root, pose = self.tf.root_pose(frame)
+            self._scans[topic] = _Scan(frame, root, _apply(pose, pts))
             self._bump("scan")
 
     def on_joint_states(self, msg: Any) -> None:
@@ -288,15 +295,12 @@ class Scene:
         with self._lock:
             scans = {}
             for topic, s in self._scans.items():
-                to_fixed = self.tf.lookup(fixed, s.frame_id)
+                to_fixed = self.tf.lookup(fixed, s.anchor)
                 if to_fixed is None:
                     scans[topic] = {"frame": s.frame_id, "pts": [], "ok": False}
                     continue
-                m = np.array(to_fixed.rotation_matrix())
-                t = to_fixed.translation_m
-                xs = m[0, 0] * s.xs_m + m[0, 1] * s.ys_m + t[0]
-                ys = m[1, 0] * s.xs_m + m[1, 1] * s.ys_m + t[1]
-                pts = np.round(np.stack([xs, ys], 1).ravel(), 3).tolist()
+                xyz = _apply(to_fixed, s.points_m)
+                pts = np.round(xyz[:2].T.ravel(), 3).tolist()
                 scans[topic] = {"frame": s.frame_id, "pts": pts, "ok": True}
             return {"type": "scan", "fixed": fixed, "scans": scans}
 

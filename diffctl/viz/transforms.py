@@ -167,6 +167,10 @@ class TfBuffer:
     def parents(self) -> dict[str, str]:
         return dict(self._parent)
 
+    def root_pose(self, frame: str) -> tuple[str, Transform]:
+        """(root of `frame`'s tree, pose of `frame` in it); an unknown frame is its own root."""
+        return self._to_root(strip_frame(frame))
+
     def _to_root(self, frame: str) -> tuple[str, Transform]:
         """(root frame, pose of `frame` in that root)."""
         pose = IDENTITY

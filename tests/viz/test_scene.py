@@ -83,6 +83,10 @@ def test_scene_views_in_the_fixed_frame() -> None:
     # Beams: 2 m ahead of a lidar turned 90° left (→ +y), 3 m to its left (→ −x); inf and < range_min dropped.
     assert scene.scan_view("map")["scans"]["/scan"]["pts"] == [11.0, 2.0, 8.0, 0.0]
     assert scene.scan_view("nowhere")["scans"]["/scan"]["ok"] is False
+    # The robot moves on before the next scan: the points stay where they were seen.
+    scene.on_tf(types.new("tf2_msgs/msg/TFMessage", {"transforms": [tfm("odom", "base_footprint", 2.0, 0.0, 0.0)]}))
+    assert scene.scan_view("map")["scans"]["/scan"]["pts"] == [11.0, 2.0, 8.0, 0.0]
+    assert scene.scan_view("base_footprint")["scans"]["/scan"]["pts"] == [-1.0, 2.0, -4.0, 0.0]
     assert scene.robot_view()["name"] == "my_diff_car"
     json.loads(to_json(frame))
 
