@@ -176,7 +176,7 @@ class Simulation:
                 gz_type = "gz.msgs.IMU"
                 rt.imus.append(sensor)
             elif s.type == "camera":
-                sensor = Camera(entity, s, self.rng, self.light_direction)
+                sensor = Camera(entity, s, self.rng, self.light_direction, self.physics.all_flat_planes)
                 gz_type = "gz.msgs.Image"
             else:
                 continue

@@ -10,14 +10,17 @@ from __future__ import annotations
 
 import base64
 import math
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 import pybullet as pb
 
 from diffctl.bus import gz
 from diffctl.description.model import Noise, Sensor
-from diffctl.description.pose import Pose, Vec3
+from diffctl.description.pose import Pose, Vec3, quat_from_matrix
 from diffctl.sim.entity import Entity
+from diffctl.sim.flat_planes import FlatPlane, camera_rays, composite, linear_depth_m
 
 # PyBullet caps one rayTestBatch at this many rays (SharedMemoryPublic.h).
 MAX_RAYS = 16384
@@ -195,12 +198,27 @@ class Imu:
 
 
 class Camera:
-    """An RGB camera looking along the sensor's +x with +z up (Gazebo's convention), rendered on the CPU."""
+    """An RGB camera looking along the sensor's +x with +z up (Gazebo's convention), rendered on the CPU.
 
-    def __init__(self, entity: Entity, sensor: Sensor, rng: np.random.Generator, light_direction: Vec3) -> None:
+    `planes()` lists the flat planes PyBullet was not given (headless worlds): they are ray cast into each
+    frame (flat_planes.py), in the colour TinyRenderer gives them, sampled once per colour and normal.
+    """
+
+    def __init__(
+        self,
+        entity: Entity,
+        sensor: Sensor,
+        rng: np.random.Generator,
+        light_direction: Vec3,
+        planes: Callable[[], list[FlatPlane]] | None = None,
+    ) -> None:
         spec = sensor.camera
         assert spec is not None
         self.entity, self.sensor, self.spec = entity, sensor, spec
+        self.planes = planes or (lambda: [])
+        self.frames = 0
+        self._rays = camera_rays(spec.width_px, spec.height_px, spec.vertical_fov_rad)
+        self._plane_rgb: dict[tuple, np.ndarray] = {}
         self.frame_id = _frame_id(entity, sensor)
         self.width, self.height = spec.width_px, spec.height_px
         self._proj = pb.computeProjectionMatrixFOV(
@@ -215,20 +233,55 @@ class Camera:
             self._noise = np.round(table).astype(np.int16)
         self.rng = rng
 
+    def _tiny(self, eye: Vec3, fwd: Vec3, up: Vec3, width: int, height: int, proj: Any) -> tuple[Any, Any]:
+        view = pb.computeViewMatrix(eye, (eye[0] + fwd[0], eye[1] + fwd[1], eye[2] + fwd[2]), up)
+        _, _, rgba, depth, _ = pb.getCameraImage(
+            width, height, view, proj, lightDirection=self._light, shadow=0,
+            renderer=pb.ER_TINY_RENDERER, flags=pb.ER_NO_SEGMENTATION_MASK, physicsClientId=self.entity.client,
+        )
+        return rgba, depth
+
+    def plane_colour(self, plane: FlatPlane) -> np.ndarray:
+        """The RGB TinyRenderer shades `plane` with, rendered once on a sample quad far above the world."""
+        key = (plane.rgba, plane.normal)
+        if key not in self._plane_rgb:
+            cid = self.entity.client
+            n, u = plane.normal, plane.u
+            centre = (0.0, 0.0, 10_000.0)
+            quad = pb.createVisualShape(
+                pb.GEOM_MESH, vertices=[[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], indices=[0, 1, 2, 0, 2, 3],
+                normals=[[0, 0, 1]] * 4, rgbaColor=plane.rgba, physicsClientId=cid,
+            )
+            frame = Pose(centre, quat_from_matrix(np.array([u, np.cross(n, u), n]).T.tolist()))
+            body = pb.createMultiBody(0, -1, quad, basePosition=frame.xyz, baseOrientation=frame.quat,
+                                      physicsClientId=cid)
+            try:
+                # Seen at 45°, as a ground is from a car: TinyRenderer's specular term is small there.
+                d = np.array(n) + np.array(u)
+                eye = tuple(np.array(centre) + d / np.linalg.norm(d))
+                fwd = tuple(-d / np.linalg.norm(d))
+                proj = pb.computeProjectionMatrixFOV(fov=10, aspect=1, nearVal=0.1, farVal=10)
+                rgba, _ = self._tiny(eye, fwd, tuple(np.array(n) - np.array(u)), 5, 5, proj)
+                self._plane_rgb[key] = np.asarray(rgba, dtype=np.uint8).reshape(5, 5, 4)[2, 2, :3].copy()
+            finally:
+                pb.removeBody(body, physicsClientId=cid)
+        return self._plane_rgb[key]
+
     def render(self) -> np.ndarray:
         """The current image, (height, width, 3) uint8."""
         pose = self.entity.link_pose(self.sensor.link).compose(self.sensor.pose_link)
-        eye = pose.xyz
         fwd = pose.rotate((1.0, 0.0, 0.0))
         up = pose.rotate((0.0, 0.0, 1.0))
-        view = pb.computeViewMatrix(eye, (eye[0] + fwd[0], eye[1] + fwd[1], eye[2] + fwd[2]), up)
-        _, _, rgba, _, _ = pb.getCameraImage(
-            self.width, self.height, view, self._proj, lightDirection=self._light,
-            renderer=pb.ER_TINY_RENDERER, flags=pb.ER_NO_SEGMENTATION_MASK, physicsClientId=self.entity.client,
-        )
-        rgb = np.asarray(rgba, dtype=np.uint8).reshape(self.height, self.width, 4)[:, :, :3]
+        rgba, depth = self._tiny(pose.xyz, fwd, up, self.width, self.height, self._proj)
+        self.frames += 1
+        rgb = np.array(rgba, dtype=np.uint8).reshape(self.height, self.width, 4)[:, :, :3].copy()
+        planes = self.planes()
+        if planes:
+            near, far = self.spec.clip_near_m, self.spec.clip_far_m
+            depth_m = linear_depth_m(np.asarray(depth, dtype=np.float64).reshape(self.height, self.width), near, far)
+            composite(rgb, depth_m, self._rays, pose, [(p, self.plane_colour(p)) for p in planes], near, far)
         if self._noise is None:
-            return np.ascontiguousarray(rgb)
+            return rgb
         n = rgb.size
         start = int(self.rng.integers(0, NOISE_TABLE_SIZE - n)) if n < NOISE_TABLE_SIZE else 0
         noise = np.resize(self._noise[start : start + n], n).reshape(rgb.shape)

@@ -17,6 +17,7 @@ from diffctl.description.pose import Pose, Vec3
 from diffctl.errors import DescriptionError, RuntimeFailure
 from diffctl.sim.body_plan import BodyPlan, LinkPlan, ShapeSpec, plan_model
 from diffctl.sim.entity import Entity
+from diffctl.sim.flat_planes import FlatPlane
 
 # PyBullet defaults to 50; at 1 ms steps 10 give the same drive trajectories (to 0.1 mm over 6 s, measured)
 # for a third of the cost, which is most of the step budget.
@@ -62,6 +63,10 @@ class PhysicsWorld:
         )
         pb.setGravity(*physics.gravity, physicsClientId=cid)
         self.entities: dict[str, Entity] = {}
+        # Headless: static plane visuals are drawn by the cameras themselves (see flat_planes.py).
+        self.flat_planes: dict[str, list[FlatPlane]] = {}
+        self._planes: list[FlatPlane] = []
+        self._no_visual = -1
 
     # --- entities ------------------------------------------------------------------------------------
 
@@ -71,6 +76,7 @@ class PhysicsWorld:
             raise RuntimeFailure(f"an entity named {model.name!r} already exists", hint="choose another --name")
         plan = plan_model(model, split_colours=self.gui)
         bodies: list[int] = []
+        self._planes = []
         try:
             for body_plan in plan.bodies:
                 bodies.append(self._build_body(body_plan, static=model.static))
@@ -80,7 +86,12 @@ class PhysicsWorld:
             raise
         entity = Entity(self.client, model, plan, tuple(bodies))
         self.entities[model.name] = entity
+        if self._planes:
+            self.flat_planes[model.name] = self._planes
         return entity
+
+    def all_flat_planes(self) -> list[FlatPlane]:
+        return [p for planes in self.flat_planes.values() for p in planes]
 
     def remove(self, name: str) -> None:
         entity = self.entities.pop(name, None)
@@ -88,6 +99,7 @@ class PhysicsWorld:
             raise RuntimeFailure(f"no entity named {name!r}", hint=f"entities: {', '.join(self.entities) or 'none'}")
         for b in entity.bodies:
             pb.removeBody(b, physicsClientId=self.client)
+        self.flat_planes.pop(name, None)
 
     def reset(self) -> None:
         for e in self.entities.values():
@@ -110,7 +122,15 @@ class PhysicsWorld:
         cid = self.client
         base, links = plan.links[0], plan.links[1:]
         base_col = self._collision_shape(base.collisions, static or plan.static_base)
-        base_vis = self._visual_shape(base.visuals)
+        base_visuals = base.visuals
+        if not self.gui and plan.static_base:
+            planes = [v for v in base_visuals if isinstance(v.geometry, Plane)]
+            base_visuals = tuple(v for v in base_visuals if not isinstance(v.geometry, Plane))
+            for v in planes:
+                g = v.geometry
+                pose = base.frame_world.compose(v.pose).compose(Pose((0.0, 0.0, 0.0), _quat_z_to(g.normal)))
+                self._planes.append(FlatPlane.from_pose(pose, g.size_m, v.rgba))
+        base_vis = self._visual_shape(base_visuals)
         kw: dict = {}
         if links:
             kw = {
@@ -193,9 +213,15 @@ class PhysicsWorld:
         return pb.createCollisionShapeArray(physicsClientId=cid, **arrays)
 
     def _visual_shape(self, shapes: tuple[ShapeSpec, ...]) -> int:
-        if not shapes:
-            return -1
         cid = self.client
+        if not shapes:
+            # With no visual, PyBullet draws the collision shapes (a checkered ground, say); Gazebo draws
+            # nothing. A speck no renderer resolves stands in.
+            if self._no_visual < 0:
+                self._no_visual = pb.createVisualShape(
+                    pb.GEOM_SPHERE, radius=1e-5, rgbaColor=[0, 0, 0, 0], physicsClientId=cid
+                )
+            return self._no_visual
         if len(shapes) == 1:
             return pb.createVisualShape(physicsClientId=cid, **_shape_kwargs(shapes[0], collision=False))
         return pb.createVisualShapeArray(physicsClientId=cid, **_shape_arrays(shapes, collision=False))
