@@ -59,6 +59,7 @@ class ModelRuntime:
     tasks: list[Task] = field(default_factory=list)
     publishers: list[GzPublisher] = field(default_factory=list)
     imus: list[Imu] = field(default_factory=list)
+    sensors: list[Lidar | Imu | Camera] = field(default_factory=list)
     endpoint: Ros2ControlEndpoint | None = None
 
 
@@ -180,6 +181,7 @@ class Simulation:
                 gz_type = "gz.msgs.Image"
             else:
                 continue
+            rt.sensors.append(sensor)
             if self.transport is None:
                 continue
             pub = self.transport.publisher(s.topic, gz_type)
