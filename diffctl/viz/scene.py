@@ -265,8 +265,9 @@ class Scene:
                     entry["pose"] = [_r(p.translation_m[0]), _r(p.translation_m[1]), _r(p.yaw_rad)]
                 odom.append(entry)
             gt = None
-            if self._gt is not None:
-                gt = [_r(self._gt.translation_m[0]), _r(self._gt.translation_m[1]), _r(self._gt.yaw_rad)]
+            gt_in_fixed = self._ground_truth_in(fixed)
+            if gt_in_fixed is not None:
+                gt = [_r(gt_in_fixed.translation_m[0]), _r(gt_in_fixed.translation_m[1]), _r(gt_in_fixed.yaw_rad)]
             return {
                 "type": "frame",
                 "fixed": fixed,
@@ -276,6 +277,16 @@ class Scene:
                 "gt": gt,
                 "parents": self.tf.parents(),
             }
+
+    def _ground_truth_in(self, fixed: str) -> Transform | None:
+        """The simulator's world pose of the robot in `fixed`: through a TF frame named 'world' when there is
+        one, else only in a root frame (odom, map), whose origin is the world's for a robot spawned there."""
+        if self._gt is None:
+            return None
+        world = self.tf.lookup(fixed, "world") if "world" in self.tf.frames() else None
+        if world is not None:
+            return world.compose(self._gt)
+        return self._gt if fixed not in self.tf.parents() else None
 
     def paths_view(self, fixed: str) -> dict[str, Any]:
         with self._lock:

@@ -90,6 +90,11 @@ def test_scene_views_in_the_fixed_frame() -> None:
     assert scene.robot_view()["name"] == "my_diff_car"
     json.loads(to_json(frame))
 
+    # Ground truth from the simulator (world frame): shown in root frames, not in a frame that moves.
+    scene.on_ground_truth({"pose": [{"name": "robot", "position": {"x": 1.0, "y": 2.0}, "orientation": {"w": 1.0}}]})
+    assert scene.frame_view("map")["gt"] == [1.0, 2.0, 0.0] and scene.frame_view("odom")["gt"] is None
+    scene.on_tf(types.new("tf2_msgs/msg/TFMessage", {"transforms": [tfm("world", "map", -1.0, 0.0, 0.0)]}))
+    assert scene.frame_view("odom")["gt"] == [-8.0, 2.0, 0.0]  # via TF: odom sits at x = 9 m in world
     scene.set_robot_description("<sdf version='1.8'><model name='m'><link name='a'><pose/></link></model></sdf>")
     assert scene.robot_view()["error"] and "pose" in scene.robot_view()["error"]
     # A jump back in sim time drops /tf and the trails (RViz's "Detected jump back in time").
