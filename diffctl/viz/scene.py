@@ -271,6 +271,8 @@ class Scene:
             return {
                 "type": "frame",
                 "fixed": fixed,
+                # RViz's "Fixed Frame [map] does not exist" once TF has frames, none of them this one.
+                "fixed_known": fixed in self.tf.frames() or not self.tf.frames(),
                 "frames": frames,
                 "robot": robot,
                 "odom": odom,

@@ -149,6 +149,14 @@ def test_page_offline_draws_robot_and_arrow_up_drives_it(fake_robot, start_viz, 
     assert [m.twist.linear.x for m in pad].count(0.5) >= 4 and pad[-1].twist.linear.x == 0
     assert page.inner_text("#gamepad") == "game pad: test pad"
 
+    # Fixed frame chosen in the page: in base_footprint the robot sits at the origin and odom lies behind it.
+    page.select_option("#fixed-frame", "base_footprint")
+    page.wait_for_function("() => diffviz.frame && diffviz.frame.fixed === 'base_footprint'")
+    fp = page.evaluate("[diffviz.frame.frames.base_footprint, diffviz.frame.frames.odom]")
+    assert fp[0][:2] == [0, 0] and fp[1][0] < -0.5
+    page.select_option("#fixed-frame", "odom")
+    page.wait_for_function("() => diffviz.frame && diffviz.frame.fixed === 'odom'")
+
     # Open the other panels for the screenshot; the camera subscribes only now and shows the fake image.
     for panel in ("panel-camera", "panel-joints", "panel-topics", "panel-controllers"):
         page.evaluate(f"document.getElementById('{panel}').open = true")

@@ -76,7 +76,8 @@ def test_scene_views_in_the_fixed_frame() -> None:
     scene.on_scan("/scan", scan)
 
     frame = scene.frame_view("map")
-    assert frame["frames"]["base_footprint"][:2] == [11.0, 0.0]
+    assert frame["frames"]["base_footprint"][:2] == [11.0, 0.0] and frame["fixed_known"] is True
+    assert scene.frame_view("earth")["fixed_known"] is False
     assert {p["link"] for p in frame["robot"]} >= {"base_link", "left_wheel", "right_wheel"}
     assert frame["odom"][0]["pose"] == [10.12, 0.0, 0.0]  # odometry is in odom, shown in map
     assert scene.paths_view("map")["paths"][ODOM] == [10.0, 0.0, 0.0, 10.06, 0.0, 0.0, 10.12, 0.0, 0.0]

@@ -77,10 +77,17 @@
     auth(m) { V.authorized = m.authorized; setAuth(); if (m.text) { V.refused.push(m.text); V.notice(m.text, "refused", true); } },
     robot(m) {
       V.robot = m;
-      document.getElementById("robot-name").textContent = m.name ? `robot ${m.name}` : "";
+      const name = document.getElementById("robot-name");
+      name.textContent = m.name ? `robot ${m.name}` : "";
+      name.title = m.skipped.length ? "not drawn (no outline): " + m.skipped.join(", ") : "";
       if (m.error) V.notice(m.error, "error", true);
     },
-    frame(m) { V.frame = m; V.stats.frames++; },
+    frame(m) {
+      V.frame = m; V.stats.frames++;
+      const el = document.getElementById("fixed-missing");
+      el.hidden = m.fixed_known;
+      el.textContent = `Fixed Frame [${m.fixed}] does not exist`;
+    },
     scan(m) { V.scans = m.scans; },
     paths(m) { V.paths = m.paths; },
     status(m) {
