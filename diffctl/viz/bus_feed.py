@@ -12,7 +12,7 @@ from typing import Any
 
 from diffctl.bus import Node, gz, types, wire
 from diffctl.errors import DiffctlError, MessageError
-from diffctl.viz.commands import PublishJob, TeleopCommand
+from diffctl.viz.commands import PublishJob, TeleopCommand, fill_now
 from diffctl.viz.rviz_config import RvizConfig
 from diffctl.viz.scene import Scene
 from diffctl.viz.settings import VizSettings
@@ -153,7 +153,9 @@ class BusFeed:
         self._publisher(cmd.topic, cmd.type_name).publish(types.new(cmd.type_name, fields))
 
     def publish_job(self, job: PublishJob) -> None:
-        self._publisher(job.topic, job.type_name).publish(types.new(job.type_name, job.fields))
+        now = types.time_msg(self.node.now_ns())
+        fields = fill_now(job.fields, {"sec": now.sec, "nanosec": now.nanosec})
+        self._publisher(job.topic, job.type_name).publish(types.new(job.type_name, fields))
 
     def close(self) -> None:
         for s in self._gz_subs:

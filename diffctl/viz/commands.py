@@ -73,7 +73,8 @@ def parse_teleop(obj: dict[str, Any], settings: VizSettings) -> TeleopCommand:
 
 @dataclass(frozen=True)
 class PublishJob:
-    """One row of the message publisher: `fields` go through types.new each time (stamps stay as given)."""
+    """One row of the message publisher: `fields` go through types.new at each publish, so `now` and
+    `auto` stamps are fresh every time."""
 
     id: str
     topic: str
@@ -113,6 +114,19 @@ def parse_body(text: Any) -> dict[str, Any]:
     return data
 
 
+def fill_now(value: Any, stamp: dict[str, int]) -> Any:
+    """`ros2 topic pub`'s keywords: a time written `now` takes the current time, a header written `auto`
+    takes the current time and an empty frame_id."""
+    if isinstance(value, dict):
+        return {
+            k: {"stamp": dict(stamp), "frame_id": ""} if k == "header" and v == "auto" else fill_now(v, stamp)
+            for k, v in value.items()
+        }
+    if isinstance(value, list):
+        return [fill_now(v, stamp) for v in value]
+    return dict(stamp) if value == "now" else value
+
+
 def parse_publish(obj: dict[str, Any], settings: VizSettings) -> PublishJob:
     """A message publisher job; the body is converted once here so a bad field is reported before anything
     is published."""
@@ -139,5 +153,5 @@ def parse_publish(obj: dict[str, Any], settings: VizSettings) -> PublishJob:
         raise MessageError(f"rate must be between 0 (once) and {settings.publisher_max_rate_hz:g} Hz, got {rate!r}")
     cls = types.get_class(type_name.strip())
     full_name = getattr(cls, "__msgtype__", type_name.strip())
-    types.new(full_name, fields)  # raises MessageError naming the bad field
+    types.new(full_name, fill_now(fields, {"sec": 0, "nanosec": 0}))  # raises MessageError naming the bad field
     return PublishJob(job_id, topic, full_name, fields, float(rate))

@@ -13,7 +13,7 @@ import pytest
 
 from diffctl.bus import types
 from diffctl.errors import MessageError
-from diffctl.viz.commands import parse_body, parse_publish, parse_teleop
+from diffctl.viz.commands import fill_now, parse_body, parse_publish, parse_teleop
 from diffctl.viz.png import encode_png, image_data_url, image_pixels
 from diffctl.viz.rates import RateMeter, RtfMeter
 from diffctl.viz.rviz_config import default_config
@@ -158,6 +158,14 @@ def test_teleop_and_publisher_commands_are_checked() -> None:
             parse_teleop(bad, s)
     job = parse_publish({"id": "j", "topic": "/chatter", "type": "std_msgs/String", "body": "data: hi", "rate": "5"}, s)
     assert (job.type_name, job.fields, job.rate_hz) == ("std_msgs/msg/String", {"data": "hi"}, 5.0)
+    stamped = parse_publish({"topic": "/c", "type": "geometry_msgs/msg/TwistStamped", "body": "header: auto"}, s)
+    assert fill_now(stamped.fields, {"sec": 5, "nanosec": 1}) == {
+        "header": {"stamp": {"sec": 5, "nanosec": 1}, "frame_id": ""}
+    }
+    assert fill_now({"header": {"stamp": "now", "frame_id": "x"}}, {"sec": 1, "nanosec": 0})["header"]["stamp"] == {
+        "sec": 1,
+        "nanosec": 0,
+    }
     assert parse_body('{"twist": {"linear": {"x": 0.5}}}') == {"twist": {"linear": {"x": 0.5}}}  # JSON works too
     cases = [
         ({"body": "data: [1, 2"}, "not valid YAML at line"),

@@ -135,6 +135,7 @@ def test_wrong_token_foreign_origin_and_publisher_panel(viz) -> None:
     node = Node("viz_test_listener")
     cmds = Recorder(node, CMD_TOPIC, "geometry_msgs/msg/TwistStamped")
     twists = Recorder(node, "/viz_test/cmd", "geometry_msgs/msg/Twist")
+    stamped = Recorder(node, "/viz_test/stamped", "geometry_msgs/msg/TwistStamped")
 
     async def session() -> None:
         # Another web site in the same browser: refused at the handshake.
@@ -184,6 +185,15 @@ def test_wrong_token_foreign_origin_and_publisher_panel(viz) -> None:
             await ws.send(json.dumps({**bad, "body": "linear: {x: .nan}"}))
             err = await recv_until(ws, lambda m: m["type"] == "error")
             assert "linear.x" in err["text"] and "NaN" in err["text"]
+            once = {
+                "op": "publish",
+                "id": "b",
+                "topic": "/viz_test/stamped",
+                "type": "geometry_msgs/msg/TwistStamped",
+                "body": "header: auto\ntwist: {linear: {x: 0.1}}",
+            }
+            await ws.send(json.dumps(once))
+            assert (await recv_until(ws, lambda m: m["type"] == "publish_state"))["running"] is False
             await ws.send(json.dumps({**bad, "body": "linear: {x: 0.25}\nangular: {z: -0.5}", "rate": 20}))
             state = await recv_until(ws, lambda m: m["type"] == "publish_state")
             assert state["running"] is True and "20 Hz" in state["text"]
@@ -199,6 +209,8 @@ def test_wrong_token_foreign_origin_and_publisher_panel(viz) -> None:
     assert len(got) == n_at_stop  # stopped means stopped
     assert all(m.linear.x == 0.25 and m.angular.z == -0.5 for m in got)
     assert cmds.snapshot() == []  # nothing from the refused pages
+    (one,) = stamped.snapshot()  # `header: auto` as in ros2 topic pub: stamped now
+    assert one.twist.linear.x == 0.1 and one.header.stamp.sec > 0
     node.close()
 
 
