@@ -153,9 +153,16 @@ def run() -> dict:
                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
     try:
         _wait_port(port)
-        bare = max(run_bare(10.0) for _ in range(2))
-        lidar = max(run_sim(20.0, ["/clock", "/lidar"])[0] for _ in range(2))
-        camera, frames = run_sim(5.0, ["/clock", "/camera"])
+        # The machine is shared: interleave the runs and keep each one's best, so a burst of load elsewhere
+        # does not decide the ratio.
+        bare = lidar = camera = 0.0
+        frames = 0
+        for _ in range(3):
+            bare = max(bare, run_bare(10.0))
+            lidar = max(lidar, run_sim(20.0, ["/clock", "/lidar"])[0])
+            rtf, got = run_sim(5.0, ["/clock", "/camera"])
+            if rtf > camera:
+                camera, frames = rtf, got
         return {
             "sim_rtf_bare_step": round(bare, 1),
             "sim_rtf_lidar": round(lidar, 1),

@@ -22,6 +22,7 @@ from diffctl.description.pose import Pose, Vec3, quat_from_matrix
 from diffctl.sim.entity import Entity
 from diffctl.sim.flat_planes import FlatPlane, camera_rays, composite, linear_depth_m
 
+RANGE_DECIMALS = 4
 # PyBullet caps one rayTestBatch at this many rays (SharedMemoryPublic.h).
 MAX_RAYS = 16384
 # Camera noise is drawn from a pre-computed table (a fresh normal() per 230k pixels costs more than the render).
@@ -97,9 +98,9 @@ class Lidar:
             self._from, self._to, parentObjectUniqueId=self.body, parentLinkIndex=self.link,
             physicsClientId=self.entity.client,
         )
-        hit = np.fromiter((r[0] >= 0 for r in res), dtype=bool, count=self.count)
-        frac = np.fromiter((r[2] for r in res), dtype=np.float64, count=self.count)
-        ranges = ranges_from_hits(frac, hit, self.spec.range_min_m, self.spec.range_max_m)
+        # One pass over the result tuples: a miss has fraction 1 and object -1; mark it with fraction 2.
+        frac = np.fromiter((r[2] if r[0] >= 0 else 2.0 for r in res), dtype=np.float64, count=self.count)
+        ranges = ranges_from_hits(frac, frac < 1.5, self.spec.range_min_m, self.spec.range_max_m)
         if self._noise is not None:
             n = self._noise
             ranges = ranges + self.rng.normal(n.mean, n.stddev, self.count) if n.stddev > 0 else ranges + n.mean
@@ -124,7 +125,8 @@ class Lidar:
             "vertical_angle_max": s.vertical_max_angle_rad,
             "vertical_angle_step": self._v_step,
             "vertical_count": s.vertical_samples,
-            "ranges": ranges.tolist(),
+            # 0.1 mm is below any lidar's resolution, and short numbers halve the encoding time.
+            "ranges": np.round(ranges, RANGE_DECIMALS).tolist(),
             "intensities": [],
         }
 

@@ -10,6 +10,7 @@ never depends on machine speed. Per-step cost is kept to a counter compare when 
 from __future__ import annotations
 
 import collections
+import heapq
 import threading
 import time
 from collections.abc import Callable
@@ -24,13 +25,15 @@ IDLE_WAIT_S = 0.05
 
 
 class Task:
-    __slots__ = ("fn", "name", "next_ns", "period_ns")
+    __slots__ = ("fn", "live", "name", "next_ns", "period_ns", "seq")
 
-    def __init__(self, name: str, period_ns: int, fn: Callable[[int], None], next_ns: int) -> None:
+    def __init__(self, name: str, period_ns: int, fn: Callable[[int], None], next_ns: int, seq: int) -> None:
         self.name = name
         self.period_ns = max(1, int(period_ns))
         self.fn = fn
         self.next_ns = next_ns
+        self.seq = seq  # ties run in the order tasks were added
+        self.live = True
 
 
 @dataclass
@@ -58,7 +61,9 @@ class Stepper:
         self._wake = threading.Event()
         self._pending_steps = 0
         self._step_waiters: list[Callable[[], None]] = []
-        self._next_due = 0
+        self._next_due = 1 << 62
+        self._heap: list[tuple[int, int, Task]] = []
+        self._seq = 0
         self._anchor: tuple[float, int] | None = None
 
     # --- from any thread -----------------------------------------------------------------------------
@@ -71,14 +76,17 @@ class Stepper:
     # --- sim thread ----------------------------------------------------------------------------------
 
     def add_task(self, name: str, period_ns: int, fn: Callable[[int], None], *, first_ns: int | None = None) -> Task:
-        task = Task(name, period_ns, fn, self.sim_time_ns if first_ns is None else first_ns)
+        self._seq += 1
+        task = Task(name, period_ns, fn, self.sim_time_ns if first_ns is None else first_ns, self._seq)
         self.tasks.append(task)
-        self._next_due = min(self._next_due, task.next_ns)
+        heapq.heappush(self._heap, (task.next_ns, task.seq, task))
+        self._next_due = self._heap[0][0]
         return task
 
     def remove_task(self, task: Task) -> None:
         if task in self.tasks:
             self.tasks.remove(task)
+            task.live = False  # its heap entry is dropped when it comes up
 
     def set_paused(self, paused: bool) -> None:
         self.paused = paused
@@ -100,26 +108,36 @@ class Stepper:
         self.sim_time_ns = 0
         for t in self.tasks:
             t.next_ns = 0
-        self._next_due = 0
+        self.reschedule()
         self._anchor = None
 
     def run_due(self) -> None:
-        """Run every task due at the current sim time (rescheduled on its period grid)."""
+        """Run every task due at the current sim time, each rescheduled on its period grid."""
         now = self.sim_time_ns
-        nxt = None
-        for task in list(self.tasks):
+        heap = self._heap
+        due = []
+        while heap and heap[0][0] <= now:
+            due.append(heapq.heappop(heap)[2])
+        for task in due:
+            if not task.live:
+                continue
+            task.fn(now)
+            if not task.live:  # removed by its own run
+                continue
+            # Stay on the period grid; after a long pause or a reset skip what was missed.
+            task.next_ns += task.period_ns
             if task.next_ns <= now:
-                task.fn(now)
-                # Stay on the period grid; after a long pause or a reset skip what was missed.
-                task.next_ns += task.period_ns
-                if task.next_ns <= now:
-                    task.next_ns = now + task.period_ns
-            if task in self.tasks and (nxt is None or task.next_ns < nxt):
-                nxt = task.next_ns
-        self._next_due = nxt if nxt is not None else 1 << 62
+                task.next_ns = now + task.period_ns
+            heapq.heappush(heap, (task.next_ns, task.seq, task))
+        while heap and not heap[0][2].live:
+            heapq.heappop(heap)
+        self._next_due = heap[0][0] if heap else 1 << 62
 
     def reschedule(self) -> None:
-        self._next_due = min((t.next_ns for t in self.tasks), default=1 << 62)
+        """Rebuild the schedule from the tasks' due times (after they were changed wholesale)."""
+        self._heap = [(t.next_ns, t.seq, t) for t in self.tasks]
+        heapq.heapify(self._heap)
+        self._next_due = self._heap[0][0] if self._heap else 1 << 62
 
     def drain(self) -> None:
         while self._inbox:
