@@ -92,6 +92,9 @@ def peer_config(endpoint: str | None = None) -> zenoh.Config:
         cfg.insert_json5("listen/endpoints", '["tcp/127.0.0.1:0"]' if _mode == "peer" else "[]")
         cfg.insert_json5("scouting/multicast/enabled", "false")
         cfg.insert_json5("scouting/gossip/enabled", "true")
+    # Zenoh maps a 16 MB shared-memory pool into every process that publishes a large sample; over loopback
+    # TCP the copies are cheap, and seven such pools would blow the stack's memory budget.
+    cfg.insert_json5("transport/shared_memory/enabled", "false")
     cfg.insert_json5("connect/timeout_ms", str(CONNECT_TIMEOUT_MS))
     cfg.insert_json5("connect/exit_on_failure", "true")
     # Advanced (latched) publishers need timestamps, as rmw_zenoh enables them.
@@ -115,6 +118,7 @@ def router_config(listen: list[str] | None = None, config_file: str | None = Non
     if listen and config_file:
         cfg.insert_json5("listen/endpoints", json.dumps(listen))
     cfg.insert_json5("mode", '"router"')
+    cfg.insert_json5("transport/shared_memory/enabled", "false")
     # A router otherwise waits 500 ms for scouting before it returns.
     cfg.insert_json5("scouting/delay", "0")
     cfg.insert_json5("timestamping/enabled", "true")

@@ -1,0 +1,151 @@
+"""Full-stack benchmark: `diffctl launch sim_control` as a user runs it, measured from the outside.
+
+Metrics (budget): `stack_launch_to_ready_s` (≤ 1.5 s: exec of `diffctl launch` → both controllers active and
+the first /diffbot_base_controller/odom received), `stack_ctrl_c_to_reaped_s` (≤ 0.5 s: SIGINT → the
+launcher has exited with every descendant reaped), `stack_rtf` (≥ 30: the simulator's real-time factor at
+rtf:=0 with ros2_control lockstep at 20 Hz while driving), `stack_cmd_vel_to_wheel_ms` (TwistStamped
+published → the manager's wheel command for it leaves towards the sim, wall time, p50), `stack_rss_mb`
+(≤ 400 MB: resident memory of the launcher and every descendant together, visualizer included, as the sum of
+PSS — shared pages counted once; `stack_rss_sum_mb` is the naive per-process RSS sum, for reference).
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import statistics
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+import numpy as np
+import psutil
+
+READY = ("diffbot_base_controller", "joint_state_broadcaster")
+
+
+def _free_port() -> int:
+    import socket
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def _tree_memory_mb(pid: int) -> tuple[float, float]:
+    """(PSS, RSS) of a process tree in MB. PSS counts each shared page once across the processes, so its sum
+    is the tree's real resident memory; the RSS sum counts libpython, numpy and Zenoh once per process."""
+    try:
+        root = psutil.Process(pid)
+        procs = [root, *root.children(recursive=True)]
+    except psutil.NoSuchProcess:
+        return 0.0, 0.0
+    pss = rss = 0
+    for p in procs:
+        try:
+            full = p.memory_full_info()
+            pss += full.pss
+            rss += full.rss
+        except psutil.NoSuchProcess:
+            pass
+    return pss / 2**20, rss / 2**20
+
+
+def run() -> dict:
+    from diffctl.bus import Node, gz, hw_endpoint
+    from diffctl.bus.session import close_session
+
+    os.environ["DIFFCTL_ROUTER"] = f"tcp/127.0.0.1:{_free_port()}"
+    with tempfile.TemporaryDirectory(prefix="diffctl-bench-stack-") as tmp:
+        t_start = time.monotonic()
+        proc = subprocess.Popen(
+            [sys.executable, "-m", "diffctl", "launch", "sim_control", "rtf:=0", "viz_port:=0", "--log-dir", tmp],
+            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True,
+        )
+        try:
+            node = None
+            while node is None:
+                try:
+                    node = Node("bench_stack")
+                except Exception:
+                    time.sleep(0.01)
+            odom = threading.Event()
+            node.create_subscription("/diffbot_base_controller/odom", "nav_msgs/msg/Odometry",
+                                     lambda _m: odom.set(), raw=True)
+            cli = node.create_client("/controller_manager/list_controllers",
+                                     "controller_manager_msgs/srv/ListControllers")
+            while True:
+                if cli.service_is_ready():
+                    try:
+                        states = {c.name: c.state for c in cli.call({}, timeout=1.0).controller}
+                    except Exception:
+                        states = {}
+                    if all(states.get(n) == "active" for n in READY):
+                        break
+                if proc.poll() is not None:
+                    raise RuntimeError(f"the launch exited with {proc.returncode}")
+                time.sleep(0.02)
+            odom.wait(30)
+            ready_s = time.monotonic() - t_start
+
+            # Drive, and time each velocity change from the publish to the manager's wheel command.
+            changed = threading.Event()
+            last_cmd = {"v": None}
+
+            def on_command(sample) -> None:
+                v = float(hw_endpoint.decode_command(sample.payload.to_bytes()).velocity[0])
+                if last_cmd["v"] is not None and abs(v - last_cmd["v"]) > 1e-9:
+                    changed.set()
+                last_cmd["v"] = v
+
+            cmd_sub = node.session.declare_subscriber(hw_endpoint.command_key("robot"), on_command)
+            rtfs: list[float] = []
+            stats_sub = node.session.declare_subscriber(
+                gz.key("/world/empty/stats"),
+                lambda s: rtfs.append(float(gz.decode(s.payload.to_bytes())[1].get("real_time_factor", 0.0))))
+            pub = node.create_publisher("/diffbot_base_controller/cmd_vel", "geometry_msgs/msg/TwistStamped")
+            time.sleep(0.3)
+            latencies: list[float] = []
+            for i in range(40):
+                vx = 0.3 if i % 2 == 0 else 0.1
+                changed.clear()
+                t0 = time.perf_counter()
+                pub.publish({"twist": {"linear": {"x": vx}}})
+                if changed.wait(1.0):
+                    latencies.append((time.perf_counter() - t0) * 1e3)
+                time.sleep(0.05)
+            driving_rtf = [r for r in rtfs if r > 0]
+            pss_mb, rss_mb = _tree_memory_mb(proc.pid)
+            descendants = psutil.Process(proc.pid).children(recursive=True)
+            cmd_sub.undeclare()
+            stats_sub.undeclare()
+            node.close()
+            close_session()
+
+            t0 = time.monotonic()
+            os.kill(proc.pid, signal.SIGINT)
+            proc.wait(30)
+            _, alive = psutil.wait_procs(descendants, timeout=5)
+            reaped_s = time.monotonic() - t0
+            if alive:
+                raise RuntimeError(f"left behind after Ctrl-C: {alive}")
+        finally:
+            if proc.poll() is None:
+                os.killpg(proc.pid, signal.SIGKILL)
+                proc.wait()
+    return {
+        "stack_launch_to_ready_s": round(ready_s, 3),
+        "stack_ctrl_c_to_reaped_s": round(reaped_s, 3),
+        "stack_rtf": round(statistics.median(driving_rtf), 1) if driving_rtf else None,
+        "stack_cmd_vel_to_wheel_ms": round(float(np.median(latencies)), 2) if latencies else None,
+        "stack_cmd_vel_to_wheel_p99_ms": round(float(np.percentile(latencies, 99)), 2) if latencies else None,
+        "stack_rss_mb": round(pss_mb, 1),
+        "stack_rss_sum_mb": round(rss_mb, 1),
+        "stack_processes": len(descendants) + 1,
+    }
+
+
+if __name__ == "__main__":
+    print(run())
