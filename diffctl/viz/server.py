@@ -50,6 +50,13 @@ MAX_JOBS_PER_PAGE = 16
 TELEOP_MIN_INTERVAL_S = 0.02
 
 
+class _TemplateDumper(yaml.SafeDumper):
+    """Mappings one field per line, arrays on one line: a covariance stays readable."""
+
+
+_TemplateDumper.add_representer(list, lambda d, v: d.represent_sequence("tag:yaml.org,2002:seq", v, flow_style=True))
+
+
 def _finite(value: Any) -> Any:
     if isinstance(value, float) and not math.isfinite(value):
         return None
@@ -278,7 +285,7 @@ class VizServer:
         if not isinstance(type_name, str) or not type_name.strip():
             raise MessageError("message type is missing, e.g. geometry_msgs/msg/TwistStamped")
         t = types.check(type_name)
-        text = yaml.safe_dump(types.to_dict(types.new(t, {})), sort_keys=False, default_flow_style=None, width=100)
+        text = yaml.dump(types.to_dict(types.new(t, {})), Dumper=_TemplateDumper, sort_keys=False, width=100)
         return {"type": "template", "type_name": t, "yaml": text}
 
     async def _reply(self, page: _Page, payload: dict[str, Any]) -> None:

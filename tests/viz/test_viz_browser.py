@@ -195,6 +195,23 @@ def test_wrong_token_is_refused_with_a_visible_message(viz, browser) -> None:
     page.wait_for_function("() => diffviz.authorized === true", timeout=5000)
     time.sleep(0.3)
     assert cmds.snapshot() == []
+
+    # Now unlocked: the Message Publisher panel, first with a bad field (shown, nothing sent), then good.
+    strings = Recorder(node, "/viz_test/chatter", "std_msgs/msg/String")
+    page.evaluate("document.getElementById('panel-publisher').open = true")
+    page.fill("#pub-topic", "/viz_test/chatter")
+    page.fill("#pub-type", "std_msgs/msg/String")
+    page.fill("#pub-body", "datum: hello")
+    page.click("#pub-send")
+    page.wait_for_function("() => document.getElementById('pub-status').className === 'err'", timeout=5000)
+    assert "unknown field 'datum'" in page.inner_text("#pub-status")
+    page.click("#pub-template")
+    page.wait_for_function("() => document.getElementById('pub-body').value.startsWith('data:')", timeout=5000)
+    page.fill("#pub-body", "data: hello from the page")
+    page.click("#pub-send")
+    page.wait_for_function("() => document.getElementById('pub-status').textContent.startsWith('published')")
+    time.sleep(0.3)
+    assert [m.data for m in strings.snapshot()] == ["hello from the page"]
     node.close()
 
 

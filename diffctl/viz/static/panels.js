@@ -229,7 +229,8 @@
 
   // ---------------------------------------------------------------- message publisher (rqt's Message Publisher)
   const pubStatus = (text, err = false) => { $("pub-status").textContent = text; $("pub-status").className = err ? "err" : "dim"; };
-  $("pub-topic").addEventListener("change", () => {
+  // Picking a topic the graph knows fills in its type (while the type is still empty), as rqt does.
+  $("pub-topic").addEventListener("input", () => {
     const known = (V.topicTypes || {})[$("pub-topic").value.trim()];
     if (known && known.length && !$("pub-type").value) $("pub-type").value = known[0];
   });
