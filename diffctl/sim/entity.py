@@ -17,6 +17,8 @@ from diffctl.sim.body_plan import ModelPlan
 
 # A joint without an <effort> limit is driven as Gazebo's velocity command would (nearly ideally).
 DEFAULT_MAX_EFFORT = 1000.0
+# Without a <velocity> limit, commands are still capped: absurd values never reach the physics.
+DEFAULT_MAX_SPEED = 1000.0
 
 
 @dataclass(frozen=True)
@@ -42,7 +44,7 @@ class Entity:
                 body_no, index = plan.joints[j.name]
                 lim = j.limits
                 effort = lim.effort if math.isfinite(lim.effort) and lim.effort > 0 else DEFAULT_MAX_EFFORT
-                vmax = lim.velocity if math.isfinite(lim.velocity) and lim.velocity > 0 else math.inf
+                vmax = lim.velocity if math.isfinite(lim.velocity) and lim.velocity > 0 else DEFAULT_MAX_SPEED
                 self.joints[j.name] = JointHandle(j.name, bodies[body_no], index, j, effort, vmax)
         # Spawn state, for world reset: base link frames and (zero) joint positions.
         self._initial = [(b, plan.bodies[i].links[0]) for i, b in enumerate(bodies)]
