@@ -19,8 +19,9 @@ from rosbags.typesys.base import Nodetype
 
 from diffctl.errors import MessageError, suggest
 
-_lock = threading.Lock()
+_lock = threading.RLock()
 _store = None
+_packages_done: set[str] = set()
 
 _NUMPY = {
     "bool": np.bool_, "byte": np.uint8, "char": np.uint8, "int8": np.int8, "uint8": np.uint8,
@@ -35,21 +36,44 @@ _INT_RANGE = {
 
 
 def store():
-    """The process-wide typestore (Jazzy + project types), built once."""
+    """The process-wide typestore (Jazzy), built once; project packages are added by `_ensure`."""
     global _store
     if _store is None:
         with _lock:
             if _store is None:
                 ts = get_typestore(Stores.ROS2_JAZZY)
                 _patch_char_gid(ts)
-                from diffctl.bus.interfaces import MSGS, SRVS
-
-                for name, text in MSGS.items():
-                    ts.register(get_types_from_msg(text, name))
-                for name, (req, resp) in SRVS.items():
-                    ts.register(_srv_typesdict(name, req, resp))
                 _store = ts
     return _store
+
+
+def _ensure(typename: str):
+    """The store, with the project-defined package of `typename` registered (parsing .msg text costs tens of
+    milliseconds, so a process only pays for the packages it uses)."""
+    ts = store()
+    pkg = typename.split("/", 1)[0]
+    if pkg in _packages_done:
+        return ts
+    with _lock:
+        if pkg not in _packages_done:
+            from diffctl.bus.interfaces import MSGS, SRVS
+
+            for name, text in MSGS.items():
+                if name.startswith(pkg + "/"):
+                    ts.register(get_types_from_msg(text, name))
+            for name, (req, resp) in SRVS.items():
+                if name.startswith(pkg + "/"):
+                    ts.register(_srv_typesdict(name, req, resp))
+            _packages_done.add(pkg)
+    return ts
+
+
+def _ensure_all():
+    from diffctl.bus.interfaces import MSGS, SRVS
+
+    for name in (*MSGS, *SRVS):
+        _ensure(name)
+    return store()
 
 
 def _patch_char_gid(ts) -> None:
@@ -98,12 +122,13 @@ def normalize(typename: str) -> str:
 
 
 def known_types() -> list[str]:
-    return sorted(store().types)
+    return sorted(_ensure_all().types)
 
 
 def exists(typename: str) -> bool:
     try:
-        return normalize(typename) in store().types
+        t = normalize(typename)
+        return t in _ensure(t).types
     except MessageError:
         return False
 
@@ -111,8 +136,9 @@ def exists(typename: str) -> bool:
 def check(typename: str) -> str:
     """The normalized name of a known type; MessageError with close matches otherwise."""
     t = normalize(typename)
-    ts = store()
+    ts = _ensure(t)
     if t not in ts.types:
+        ts = _ensure_all()
         raise MessageError(f"unknown message type {typename!r}{suggest(t, ts.types)}")
     return t
 
@@ -121,9 +147,9 @@ def check_service(typename: str) -> str:
     t = normalize(typename.replace("/msg/", "/srv/")) if "/msg/" not in typename else normalize(typename)
     if t.count("/") == 2 and t.split("/")[1] == "msg":
         t = t.replace("/msg/", "/srv/", 1)
-    ts = store()
+    ts = _ensure(t)
     if f"{t}_Request" not in ts.types:
-        services = [k for k in ts.types if k.endswith("_Request")]
+        services = [k for k in _ensure_all().types if k.endswith("_Request")]
         raise MessageError(f"unknown service type {typename!r}{suggest(t + '_Request', services)}")
     return t
 
@@ -135,7 +161,7 @@ def get_class(typename: str):
 @functools.cache
 def type_hash(typename: str) -> str:
     """RIHS01 hash (REP-2016) of a message or service type."""
-    return store().hash_rihs01(typename)
+    return _ensure(typename).hash_rihs01(typename)
 
 
 def dds_name(typename: str) -> str:
@@ -151,12 +177,12 @@ def from_dds_name(dds: str) -> str:
 
 
 def serialize(msg: Any, typename: str) -> bytes:
-    return bytes(store().serialize_cdr(msg, typename))
+    return bytes(_ensure(typename).serialize_cdr(msg, typename))
 
 
 def deserialize(raw: bytes | bytearray | memoryview, typename: str) -> Any:
     try:
-        return store().deserialize_cdr(raw, typename)
+        return _ensure(typename).deserialize_cdr(raw, typename)
     except Exception as e:  # rosbags raises assorted errors on truncated or foreign data
         raise MessageError(f"cannot decode {typename}: {type(e).__name__}: {e}") from None
 
@@ -165,7 +191,7 @@ def deserialize(raw: bytes | bytearray | memoryview, typename: str) -> Any:
 
 
 def _field_defs(typename: str) -> list[tuple[str, tuple]]:
-    return store().fielddefs[typename][1]
+    return _ensure(typename).fielddefs[typename][1]
 
 
 def _default(desc: tuple) -> Any:
@@ -313,7 +339,7 @@ def _field_type_text(desc: tuple) -> str:
 
 
 def _msg_text(typename: str) -> str:
-    consts, flds = store().fielddefs[typename]
+    consts, flds = _ensure(typename).fielddefs[typename]
     lines = [f"{t} {n}={v}" for n, t, v in consts]
     lines += [f"{_field_type_text(d)} {n}" for n, d in flds]
     return "\n".join(lines)
@@ -322,7 +348,7 @@ def _msg_text(typename: str) -> str:
 def definition(typename: str) -> str:
     """The .msg/.srv-like text of a type (for `diffctl interface show`)."""
     t = normalize(typename)
-    if "/srv/" not in t and t in store().types:
+    if "/srv/" not in t and t in _ensure(t).types:
         return _msg_text(t) + "\n"
     s = check_service(t)
     return f"{_msg_text(s + '_Request')}\n---\n{_msg_text(s + '_Response')}\n"
