@@ -15,6 +15,7 @@ import signal
 import threading
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import click
 
@@ -157,7 +158,7 @@ def run(args: tuple[str, ...], gui: bool, rtf: float | None) -> None:
     serve(find_world(g.world), g, gui=gui and not g.server_only, log=log)
 
 
-def serve(world_path: Path, g: GzArgs, *, gui: bool, log: object) -> None:
+def serve(world_path: Path, g: GzArgs, *, gui: bool, log: Any) -> None:
     """Load the world (errors exit 2 before anything starts), open the bus, run until SIGINT/SIGTERM."""
     from diffctl.bus import open_session
     from diffctl.description.sdf_loader import load_world
@@ -169,8 +170,14 @@ def serve(world_path: Path, g: GzArgs, *, gui: bool, log: object) -> None:
     seed = g.seed if g.seed is not None else int(os.environ.get("DIFFCTL_SIM_SEED", "0") or 0)
     sim_ = Simulation(world, gui=gui, rtf=g.rtf, paused=not g.run, seed=seed, log=log, session=session)
     stop = threading.Event()
+    lost: list[bool] = []
+
+    def router_lost() -> None:
+        lost.append(True)
+        stop.set()
+
     try:
-        WorldServices(sim_)
+        WorldServices(sim_, on_router_lost=router_lost)
         for sig in (signal.SIGINT, signal.SIGTERM):
             signal.signal(sig, lambda *_: stop.set())
         if g.iterations:
@@ -181,6 +188,18 @@ def serve(world_path: Path, g: GzArgs, *, gui: bool, log: object) -> None:
             f"world {world.name!r} from {world_path}: {len(world.models)} model(s), step "
             f"{sim_.physics.step_s * 1e3:g} ms, rtf {sim_.stepper.rtf:g}, {state}"
         )
-        sim_.run(stop)
+        try:
+            sim_.run(stop)
+        except Exception as e:
+            import pybullet as pb
+
+            if gui and isinstance(e, pb.error):
+                log.info("the PyBullet window was closed; stopping")
+                return
+            raise
     finally:
         sim_.close()
+    if lost:
+        from diffctl.errors import RuntimeFailure
+
+        raise RuntimeFailure("lost the Zenoh router; the simulator stopped")

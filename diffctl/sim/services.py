@@ -18,7 +18,9 @@ Topic `/world/<world>/stats` (gz.msgs.WorldStatistics, 5 Hz of wall time, also w
 from __future__ import annotations
 
 import math
+import os
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -31,12 +33,15 @@ from diffctl.sim.transport import Reply
 from diffctl.sim.world_keys import sim_token_key, world_key
 
 STATS_PERIOD_S = 0.2
+ROUTER_GRACE_S = 1.0
 MAX_MULTI_STEP = 10_000_000
 
 
 class WorldServices:
-    def __init__(self, sim: Simulation) -> None:
+    def __init__(self, sim: Simulation, on_router_lost: Callable[[], None] | None = None) -> None:
         self.sim = sim
+        self.on_router_lost = on_router_lost
+        self._router_lost_since: float | None = None
         t = sim.transport
         assert t is not None
         w = sim.name
@@ -142,6 +147,21 @@ class WorldServices:
         self._window = (now, st.sim_time_ns, st.stats.iterations, st.stats.idle_s)
         if self._stats_pub.matched:
             self._stats_pub.publish(self.message())
+        self._watch_router(now)
+
+    def _watch_router(self, now: float) -> None:
+        """Stop when the router is gone for a second, as every node does (nothing could reach the sim)."""
+        if self.on_router_lost is None or os.environ.get("ZENOH_SESSION_CONFIG_URI"):
+            return
+        t = self.sim.transport
+        assert t is not None
+        if t.session.info.routers_zid():
+            self._router_lost_since = None
+        elif self._router_lost_since is None:
+            self._router_lost_since = now
+        elif now - self._router_lost_since > ROUTER_GRACE_S:
+            self.on_router_lost()
+            self.on_router_lost = None
 
     def message(self) -> dict[str, Any]:
         st = self.sim.stepper
