@@ -40,6 +40,8 @@ def generate_launch_description():
         executable="robot_state_publisher",
         output="screen",
         parameters=[{"robot_description": robot_description_content, "use_sim_time": use_sim_time}],
+        respawn=True,
+        respawn_delay=1.0,
     )
     gazebo_server = Node(
         package="ros_gz_sim", executable="gz_sim", name="gz_sim",
@@ -82,6 +84,8 @@ def generate_launch_description():
         executable="parameter_bridge",
         arguments=["--ros-args", "-p", f"config_file:={bridge_params}"],
         output="screen",
+        respawn=True,
+        respawn_delay=1.0,
     )
     rviz_node = Node(
         package="rviz2",
@@ -90,6 +94,8 @@ def generate_launch_description():
         output="screen",
         arguments=["-d", rviz_file, "--port", LaunchConfiguration("viz_port")],
         parameters=[{"use_sim_time": use_sim_time}],
+        respawn=True,
+        respawn_delay=1.0,
         condition=IfCondition(LaunchConfiguration("viz")),
     )
     delay_joint_state_broadcaster_after_robot_controller_spawner = RegisterEventHandler(
