@@ -190,6 +190,10 @@ def deserialize(raw: bytes | bytearray | memoryview, typename: str) -> Any:
 # ----------------------------------------------------------------------------- dict ↔ message
 
 
+# Default values written in .msg files (rosbags keeps types, not defaults); ROS fills these when unset.
+_MSG_DEFAULTS: dict[str, dict[str, Any]] = {"geometry_msgs/msg/Quaternion": {"w": 1.0}}
+
+
 def _field_defs(typename: str) -> list[tuple[str, tuple]]:
     return _ensure(typename).fielddefs[typename][1]
 
@@ -290,9 +294,13 @@ def new(typename: str, values: dict[str, Any] | None = None, *, _path: str = "")
                 f"unknown field '{where}' in {t}{suggest(str(k), names)}; valid fields: {', '.join(names) or '(none)'}"
             )
     kwargs = {}
+    msg_defaults = _MSG_DEFAULTS.get(t, {})
     for name, desc in defs:
         p = f"{_path}.{name}" if _path else name
-        kwargs[name] = _convert(values[name], desc, p) if name in values else _default(desc)
+        if name in values:
+            kwargs[name] = _convert(values[name], desc, p)
+        else:
+            kwargs[name] = msg_defaults[name] if name in msg_defaults else _default(desc)
     return store().types[t](**kwargs)
 
 
