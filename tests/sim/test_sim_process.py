@@ -97,8 +97,17 @@ def test_spawn_entity_and_world_control(router: str, procs: Any, tmp_path: Path)
     assert st["ok"] and st["paused"] and st["sim_time_ns"] == 250_000_000 and st["iterations"] == 250
     time.sleep(0.3)
     assert query(session, "gz/world/empty/state")["sim_time_ns"] == 250_000_000  # still paused
+    stats: list[dict] = []
+    from diffctl.bus import gz
+
+    session.declare_subscriber(gz.key("/world/empty/stats"), lambda s: stats.append(gz.decode(s.payload.to_bytes())[1]))
+    wait_for(lambda: stats, what="stats while paused")
+    assert stats[-1]["paused"] is True and stats[-1]["iterations"] == 250
     assert query(session, "gz/world/empty/control", {"pause": False, "rtf": 0})["ok"]
     wait_for(lambda: query(session, "gz/world/empty/state")["sim_time_ns"] > 2_000_000_000, what="sim time")
+    running = wait_for(lambda: [m for m in stats if not m["paused"] and m["real_time_factor"] > 1], what="stats")
+    assert running[-1]["step_time_us"] > 0 and running[-1]["lockstep_overruns"] == 0
+    assert running[-1]["step_size"] == {"sec": 0, "nsec": 1_000_000} and running[-1]["model_count"] == 3
     st = query(session, "gz/world/empty/control", {"reset": {"all": True}, "pause": True})
     assert st["paused"] and st["sim_time_ns"] == 0
     assert query(session, "gz/world/empty/control", {"multi_step": -3})["ok"] is False
