@@ -79,7 +79,10 @@ def run_sim(sim_seconds: float, topics: list[str]) -> tuple[float, int]:
     world, boxes, car = _models()
     consumer = subprocess.Popen(
         [sys.executable, "-c", CONSUMER, *[gz.key(t) for t in topics]],
-        stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, start_new_session=True,
+        stdin=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        text=True,
+        start_new_session=True,
     )
     try:
         assert consumer.stdout is not None and consumer.stdin is not None
@@ -99,8 +102,9 @@ def run_sim(sim_seconds: float, topics: list[str]) -> tuple[float, int]:
                 time.sleep(0.01)
             stop = threading.Event()
             steps = round(sim_seconds / sim.physics.step_s)
-            sim.stepper.add_task("bench_end", steps * sim.stepper.step_ns, lambda _t: stop.set(),
-                                 first_ns=steps * sim.stepper.step_ns)
+            sim.stepper.add_task(
+                "bench_end", steps * sim.stepper.step_ns, lambda _t: stop.set(), first_ns=steps * sim.stepper.step_ns
+            )
             t0 = time.perf_counter()
             sim.run(stop)
             wall = time.perf_counter() - t0
@@ -149,8 +153,12 @@ def run() -> dict:
     endpoint = f"tcp/127.0.0.1:{port}"
     old = os.environ.get("DIFFCTL_ROUTER")
     os.environ["DIFFCTL_ROUTER"] = endpoint
-    router = subprocess.Popen([sys.executable, "-m", "diffctl", "router", "--listen", endpoint],
-                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+    router = subprocess.Popen(
+        [sys.executable, "-m", "diffctl", "router", "--listen", endpoint],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        start_new_session=True,
+    )
     try:
         _wait_port(port)
         # The machine is shared: interleave the runs and keep each one's best, so a burst of load elsewhere

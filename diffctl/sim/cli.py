@@ -68,8 +68,15 @@ def parse_gz_args(tokens: list[str]) -> GzArgs:
         elif w == "--seed":
             out.seed = _int(value(w), w)
             i += 1
-        elif w in ("-z", "--render-engine", "--physics-engine", "--render-engine-server", "--render-engine-gui",
-                   "--initial-sim-time", "--record-path"):
+        elif w in (
+            "-z",
+            "--render-engine",
+            "--physics-engine",
+            "--render-engine-server",
+            "--render-engine-gui",
+            "--initial-sim-time",
+            "--record-path",
+        ):
             i += 1  # Gazebo options with a value that have no meaning here
         elif w.startswith("-"):
             if w not in ("--headless-rendering", "--record", "--levels", "--network-role"):
@@ -150,8 +157,10 @@ def run(args: tuple[str, ...], gui: bool, rtf: float | None) -> None:
     g.rtf = rtf
     log = Logger("sim", LEVELS[g.verbosity if g.verbosity is not None else 1])
     if g.gui_only and g.world is None:
-        log.warn("`-g` starts only Gazebo's GUI client; diffctl's sim draws its own window with --gui, "
-                 "and `diffctl viz` shows the world in a browser. Nothing to do.")
+        log.warn(
+            "`-g` starts only Gazebo's GUI client; diffctl's sim draws its own window with --gui, "
+            "and `diffctl viz` shows the world in a browser. Nothing to do."
+        )
         return
     if g.world is None:
         raise click.UsageError("give a world file, e.g. `diffctl sim run -r config/worlds/empty.world`")
@@ -181,9 +190,13 @@ def serve(world_path: Path, g: GzArgs, *, gui: bool, log: Any) -> None:
         for sig in (signal.SIGINT, signal.SIGTERM):
             signal.signal(sig, lambda *_: stop.set())
         if g.iterations:
-            sim_.stepper.add_task("iterations", g.iterations * sim_.stepper.step_ns, lambda _t: stop.set(),
-                                  first_ns=g.iterations * sim_.stepper.step_ns)
-        state = "running" if g.run else "paused (resume: gz/world/<w>/control {\"pause\": false})"
+            sim_.stepper.add_task(
+                "iterations",
+                g.iterations * sim_.stepper.step_ns,
+                lambda _t: stop.set(),
+                first_ns=g.iterations * sim_.stepper.step_ns,
+            )
+        state = "running" if g.run else 'paused (resume: gz/world/<w>/control {"pause": false})'
         log.info(
             f"world {world.name!r} from {world_path}: {len(world.models)} model(s), step "
             f"{sim_.physics.step_s * 1e3:g} ms, rtf {sim_.stepper.rtf:g}, {state}"

@@ -84,8 +84,9 @@ class Entity:
             com, _ = pb.getBasePositionAndOrientation(body, physicsClientId=self.client)
             frame = None
         else:
-            st = pb.getLinkState(body, index, computeLinkVelocity=1, computeForwardKinematics=1,
-                                 physicsClientId=self.client)
+            st = pb.getLinkState(
+                body, index, computeLinkVelocity=1, computeForwardKinematics=1, physicsClientId=self.client
+            )
             lin, ang, com = st[6], st[7], st[0]
             frame = Pose(tuple(st[4]), tuple(st[5]))
         if point_world is None:
@@ -141,7 +142,11 @@ class Entity:
     def release_joint(self, h: JointHandle) -> None:
         """Back to a free joint with only its SDF friction."""
         pb.setJointMotorControl2(
-            h.body, h.index, pb.VELOCITY_CONTROL, targetVelocity=0.0, force=h.joint.dynamics.friction,
+            h.body,
+            h.index,
+            pb.VELOCITY_CONTROL,
+            targetVelocity=0.0,
+            force=h.joint.dynamics.friction,
             physicsClientId=self.client,
         )
 

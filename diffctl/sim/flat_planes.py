@@ -33,8 +33,15 @@ class FlatPlane:
     @staticmethod
     def from_pose(pose: Pose, size_m: tuple[float, float], rgba: tuple[float, float, float, float]) -> FlatPlane:
         """A plane whose frame is `pose` (its normal along the frame's +z), `size_m` along x and y."""
-        return FlatPlane(pose.xyz, pose.rotate((0, 0, 1)), pose.rotate((1, 0, 0)), pose.rotate((0, 1, 0)),
-                         size_m[0] / 2, size_m[1] / 2, rgba)
+        return FlatPlane(
+            pose.xyz,
+            pose.rotate((0, 0, 1)),
+            pose.rotate((1, 0, 0)),
+            pose.rotate((0, 1, 0)),
+            size_m[0] / 2,
+            size_m[1] / 2,
+            rgba,
+        )
 
 
 def camera_rays(width_px: int, height_px: int, vertical_fov_rad: float) -> np.ndarray:

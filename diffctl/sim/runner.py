@@ -38,7 +38,13 @@ _NAME_RE = re.compile(r"^[A-Za-z0-9_.\-]+$")
 
 # Gazebo systems whose job the simulator does natively: accepted without a word.
 NATIVE_SYSTEMS = {
-    "physics", "user-commands", "scene-broadcaster", "sensors", "imu", "contact", "pose-publisher",
+    "physics",
+    "user-commands",
+    "scene-broadcaster",
+    "sensors",
+    "imu",
+    "contact",
+    "pose-publisher",
 }
 MODEL_SYSTEMS = {"diff-drive", "joint-state-publisher", "gz_ros2_control", "ign_ros2_control"}
 
@@ -227,15 +233,19 @@ class Simulation:
             if not pub.matched:
                 return
             p = entity.pose()
-            pub.publish({
-                "header": gz.header(sim_time_ns),
-                "pose": [{
-                    "name": entity.name,
-                    "header": gz.header(sim_time_ns, "world", entity.name),
-                    "position": {"x": p.xyz[0], "y": p.xyz[1], "z": p.xyz[2]},
-                    "orientation": {"x": p.quat[0], "y": p.quat[1], "z": p.quat[2], "w": p.quat[3]},
-                }],
-            })
+            pub.publish(
+                {
+                    "header": gz.header(sim_time_ns),
+                    "pose": [
+                        {
+                            "name": entity.name,
+                            "header": gz.header(sim_time_ns, "world", entity.name),
+                            "position": {"x": p.xyz[0], "y": p.xyz[1], "z": p.xyz[2]},
+                            "orientation": {"x": p.quat[0], "y": p.quat[1], "z": p.quat[2], "w": p.quat[3]},
+                        }
+                    ],
+                }
+            )
 
         return task
 

@@ -79,8 +79,12 @@ class Lidar:
         inertial = entity.inertial_frame(self.body, self.link)
         in_com = inertial.inverse().compose(offset).compose(sensor.pose_link)
         d = lidar_directions(
-            spec.horizontal_samples, spec.horizontal_min_angle_rad, spec.horizontal_max_angle_rad,
-            spec.vertical_samples, spec.vertical_min_angle_rad, spec.vertical_max_angle_rad,
+            spec.horizontal_samples,
+            spec.horizontal_min_angle_rad,
+            spec.horizontal_max_angle_rad,
+            spec.vertical_samples,
+            spec.vertical_min_angle_rad,
+            spec.vertical_max_angle_rad,
         )
         rot = np.array(_matrix(in_com))
         origin = np.array(in_com.xyz)
@@ -95,7 +99,10 @@ class Lidar:
     def scan(self) -> np.ndarray:
         """Ranges in metres (with noise when the SDF asks for it), +inf where nothing is within range."""
         res = pb.rayTestBatch(
-            self._from, self._to, parentObjectUniqueId=self.body, parentLinkIndex=self.link,
+            self._from,
+            self._to,
+            parentObjectUniqueId=self.body,
+            parentLinkIndex=self.link,
             physicsClientId=self.entity.client,
         )
         # One pass over the result tuples: a miss has fraction 1 and object -1; mark it with fraction 2.
@@ -224,8 +231,10 @@ class Camera:
         self.frame_id = _frame_id(entity, sensor)
         self.width, self.height = spec.width_px, spec.height_px
         self._proj = pb.computeProjectionMatrixFOV(
-            fov=math.degrees(spec.vertical_fov_rad), aspect=self.width / self.height,
-            nearVal=spec.clip_near_m, farVal=spec.clip_far_m,
+            fov=math.degrees(spec.vertical_fov_rad),
+            aspect=self.width / self.height,
+            nearVal=spec.clip_near_m,
+            farVal=spec.clip_far_m,
         )
         # PyBullet wants the position the light comes from; SDF gives the direction the light travels.
         self._light = [-light_direction[0] * 10, -light_direction[1] * 10, -light_direction[2] * 10]
@@ -238,8 +247,15 @@ class Camera:
     def _tiny(self, eye: Vec3, fwd: Vec3, up: Vec3, width: int, height: int, proj: Any) -> tuple[Any, Any]:
         view = pb.computeViewMatrix(eye, (eye[0] + fwd[0], eye[1] + fwd[1], eye[2] + fwd[2]), up)
         _, _, rgba, depth, _ = pb.getCameraImage(
-            width, height, view, proj, lightDirection=self._light, shadow=0,
-            renderer=pb.ER_TINY_RENDERER, flags=pb.ER_NO_SEGMENTATION_MASK, physicsClientId=self.entity.client,
+            width,
+            height,
+            view,
+            proj,
+            lightDirection=self._light,
+            shadow=0,
+            renderer=pb.ER_TINY_RENDERER,
+            flags=pb.ER_NO_SEGMENTATION_MASK,
+            physicsClientId=self.entity.client,
         )
         return rgba, depth
 
@@ -251,12 +267,17 @@ class Camera:
             n, u = plane.normal, plane.u
             centre = (0.0, 0.0, 10_000.0)
             quad = pb.createVisualShape(
-                pb.GEOM_MESH, vertices=[[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], indices=[0, 1, 2, 0, 2, 3],
-                normals=[[0, 0, 1]] * 4, rgbaColor=plane.rgba, physicsClientId=cid,
+                pb.GEOM_MESH,
+                vertices=[[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]],
+                indices=[0, 1, 2, 0, 2, 3],
+                normals=[[0, 0, 1]] * 4,
+                rgbaColor=plane.rgba,
+                physicsClientId=cid,
             )
             frame = Pose(centre, quat_from_matrix(np.array([u, np.cross(n, u), n]).T.tolist()))
-            body = pb.createMultiBody(0, -1, quad, basePosition=frame.xyz, baseOrientation=frame.quat,
-                                      physicsClientId=cid)
+            body = pb.createMultiBody(
+                0, -1, quad, basePosition=frame.xyz, baseOrientation=frame.quat, physicsClientId=cid
+            )
             try:
                 # Seen at 45°, as a ground is from a car: TinyRenderer's specular term is small there.
                 d = np.array(n) + np.array(u)

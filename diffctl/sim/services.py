@@ -98,8 +98,10 @@ class WorldServices:
             return {"ok": False, "error": "give the model as 'sdf' (text) or 'sdf_filename' (a path)"}
         if model.name in self.sim.models:
             if not req.get("allow_renaming"):
-                raise RuntimeFailure(f"an entity named {model.name!r} already exists in world {self.sim.name!r}",
-                                     hint="choose another --name, or remove it first")
+                raise RuntimeFailure(
+                    f"an entity named {model.name!r} already exists in world {self.sim.name!r}",
+                    hint="choose another --name, or remove it first",
+                )
             model = _renamed(model, self.sim.models)
         self.sim.spawn(model)
         ignored = self.sim.model_ignored(model)
@@ -119,12 +121,14 @@ class WorldServices:
         for name, rt in self.sim.models.items():
             p = rt.entity.pose()
             r = p.rpy
-            models.append({
-                "name": name,
-                "static": rt.entity.model.static,
-                "pose": {"x": p.xyz[0], "y": p.xyz[1], "z": p.xyz[2], "roll": r[0], "pitch": r[1], "yaw": r[2]},
-                "ros2_control": rt.endpoint is not None,
-            })
+            models.append(
+                {
+                    "name": name,
+                    "static": rt.entity.model.static,
+                    "pose": {"x": p.xyz[0], "y": p.xyz[1], "z": p.xyz[2], "roll": r[0], "pitch": r[1], "yaw": r[2]},
+                    "ros2_control": rt.endpoint is not None,
+                }
+            )
         return {**self._status(), "world": self.sim.name, "rtf_target": self.sim.stepper.rtf, "models": models}
 
     def _status(self) -> dict[str, Any]:

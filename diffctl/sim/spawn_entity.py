@@ -41,12 +41,28 @@ def _num(name: str) -> Any:
 @click.option("-Y", "--Y", "yaw", type=float, default=None, help="Spawn yaw (rad).")
 @click.option("-allow_renaming", "--allow-renaming", is_flag=True, help="Rename instead of failing on a taken name.")
 @click.option("--remove", "remove_name", default=None, metavar="NAME", help="Remove entity NAME instead.")
-@click.option("--timeout", type=float, default=DEFAULT_TIMEOUT_S, show_default=True,
-              help="Seconds to wait for the simulator and the description.")
+@click.option(
+    "--timeout",
+    type=float,
+    default=DEFAULT_TIMEOUT_S,
+    show_default=True,
+    help="Seconds to wait for the simulator and the description.",
+)
 def spawn_entity(
-    name: str | None, topic: str | None, file_: str | None, sdf_string: str | None, world: str | None,
-    x: float | None, y: float | None, z: float | None, roll: float | None, pitch: float | None, yaw: float | None,
-    allow_renaming: bool, remove_name: str | None, timeout: float,
+    name: str | None,
+    topic: str | None,
+    file_: str | None,
+    sdf_string: str | None,
+    world: str | None,
+    x: float | None,
+    y: float | None,
+    z: float | None,
+    roll: float | None,
+    pitch: float | None,
+    yaw: float | None,
+    allow_renaming: bool,
+    remove_name: str | None,
+    timeout: float,
 ) -> None:
     """Spawn a model into the simulator (ros_gz_sim create), or remove one with --remove.
 
@@ -98,8 +114,13 @@ def _wait_for_world(session: Any, world: str | None, deadline: float) -> str:
 
     pattern = sim_token_key(world) if world else SIM_TOKEN_PATTERN
     while True:
-        worlds = sorted({str(r.ok.key_expr).split("/")[2] for r in session.liveliness().get(pattern, timeout=0.5)
-                         if r.ok is not None})
+        worlds = sorted(
+            {
+                str(r.ok.key_expr).split("/")[2]
+                for r in session.liveliness().get(pattern, timeout=0.5)
+                if r.ok is not None
+            }
+        )
         if len(worlds) == 1:
             return worlds[0]
         if len(worlds) > 1:
@@ -124,8 +145,10 @@ def _wait_for_description(topic: str, deadline: float) -> str:
     try:
         node.create_subscription(topic, "std_msgs/msg/String", on_msg, latched=True)
         if not event.wait(max(0.0, deadline - time.monotonic())):
-            raise RuntimeFailure(f"no description arrived on {topic} in time",
-                                 hint="is robot_state_publisher running with a robot_description parameter?")
+            raise RuntimeFailure(
+                f"no description arrived on {topic} in time",
+                hint="is robot_state_publisher running with a robot_description parameter?",
+            )
     finally:
         node.close()
     if not got[0].strip():

@@ -193,12 +193,22 @@ class PhysicsWorld:
             # PyBullet motorises every joint by default; Gazebo's joints are free except for their friction.
             if joint.type == "ball":
                 pb.setJointMotorControlMultiDof(
-                    body, index, pb.POSITION_CONTROL, targetPosition=[0, 0, 0, 1], positionGain=0,
-                    velocityGain=1, force=[joint.dynamics.friction] * 3, physicsClientId=cid,
+                    body,
+                    index,
+                    pb.POSITION_CONTROL,
+                    targetPosition=[0, 0, 0, 1],
+                    positionGain=0,
+                    velocityGain=1,
+                    force=[joint.dynamics.friction] * 3,
+                    physicsClientId=cid,
                 )
             else:
                 pb.setJointMotorControl2(
-                    body, index, pb.VELOCITY_CONTROL, targetVelocity=0.0, force=joint.dynamics.friction,
+                    body,
+                    index,
+                    pb.VELOCITY_CONTROL,
+                    targetVelocity=0.0,
+                    force=joint.dynamics.friction,
                     physicsClientId=cid,
                 )
 
@@ -277,8 +287,12 @@ def _shape_kwargs(spec: ShapeSpec, *, collision: bool, static: bool = False, sin
             verts, idx = plane_quad(*g.size_m)
             pose = spec.pose.compose(Pose((0.0, 0.0, 0.0), _quat_z_to(g.normal)))
             kw.update(
-                shapeType=pb.GEOM_MESH, vertices=verts, indices=idx, normals=[[0.0, 0.0, 1.0]] * len(verts),
-                visualFramePosition=pose.xyz, visualFrameOrientation=pose.quat,
+                shapeType=pb.GEOM_MESH,
+                vertices=verts,
+                indices=idx,
+                normals=[[0.0, 0.0, 1.0]] * len(verts),
+                visualFramePosition=pose.xyz,
+                visualFrameOrientation=pose.quat,
             )
         else:
             half, pos, orn = _plane_visual(spec, g)
@@ -295,8 +309,16 @@ def _shape_kwargs(spec: ShapeSpec, *, collision: bool, static: bool = False, sin
 def _shape_arrays(shapes: tuple[ShapeSpec, ...], *, collision: bool, static: bool = False) -> dict:
     frame = "collisionFrame" if collision else "visualFrame"
     out: dict = {
-        "shapeTypes": [], "radii": [], "halfExtents": [], "lengths": [], "fileNames": [], "meshScales": [],
-        "planeNormals": [], "flags": [], f"{frame}Positions": [], f"{frame}Orientations": [],
+        "shapeTypes": [],
+        "radii": [],
+        "halfExtents": [],
+        "lengths": [],
+        "fileNames": [],
+        "meshScales": [],
+        "planeNormals": [],
+        "flags": [],
+        f"{frame}Positions": [],
+        f"{frame}Orientations": [],
     }
     if not collision:
         out["rgbaColors"] = []
@@ -315,4 +337,3 @@ def _shape_arrays(shapes: tuple[ShapeSpec, ...], *, collision: bool, static: boo
         if not collision:
             out["rgbaColors"].append(list(spec.rgba))
     return out
-

@@ -76,8 +76,9 @@ def test_joint_frame_becomes_the_link_frame_and_links_keep_their_sdf_poses() -> 
             assert e.link_pose(link.name).is_close(link.pose_world, 1e-6)  # PyBullet keeps ~1e-7
         # Joint limits from the SDF hold.
         h = e.joint("shoulder")
-        pb.setJointMotorControl2(h.body, h.index, pb.VELOCITY_CONTROL, targetVelocity=5, force=50,
-                                 physicsClientId=pw.client)
+        pb.setJointMotorControl2(
+            h.body, h.index, pb.VELOCITY_CONTROL, targetVelocity=5, force=50, physicsClientId=pw.client
+        )
         pb.setGravity(0, 0, 0, physicsClientId=pw.client)
         for _ in range(500):
             pw.step()

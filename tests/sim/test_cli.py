@@ -20,8 +20,13 @@ def test_gz_args_as_one_string_or_separate_words() -> None:
 
 @pytest.mark.parametrize(
     "args, needle",
-    [(["-x"], "unknown option '-x'"), (["a.sdf", "b.sdf"], "more than one world"), (["-v", "x"], "not an integer"),
-     (["-v7"], "verbosity 7"), (["--iterations"], "needs a value")],
+    [
+        (["-x"], "unknown option '-x'"),
+        (["a.sdf", "b.sdf"], "more than one world"),
+        (["-v", "x"], "not an integer"),
+        (["-v7"], "verbosity 7"),
+        (["--iterations"], "needs a value"),
+    ],
 )
 def test_bad_arguments_are_one_clear_error(args: list[str], needle: str) -> None:
     with pytest.raises(ConfigError, match=needle):

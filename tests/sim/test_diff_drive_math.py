@@ -36,8 +36,9 @@ def test_acceleration_limit_ramps_and_velocity_limit_clamps() -> None:
 
 @given(st.floats(-10, 10), st.floats(-3, 3), st.floats(-3, 3))
 def test_limited_speed_never_leaves_the_bounds(target: float, v0: float, v1: float) -> None:
-    lim = Limits(min_velocity=-1.0, max_velocity=2.0, min_acceleration=-1.0, max_acceleration=1.0,
-                 min_jerk=-5.0, max_jerk=5.0)
+    lim = Limits(
+        min_velocity=-1.0, max_velocity=2.0, min_acceleration=-1.0, max_acceleration=1.0, min_jerk=-5.0, max_jerk=5.0
+    )
     v = limit_speed(target, v0, v1, 0.01, lim)
     assert -1.0 <= v <= 2.0
 
@@ -63,8 +64,9 @@ def plugin(**params: str) -> Plugin:
 
 
 def test_params_defaults_as_gazebo_and_limits_mirror_min_from_max() -> None:
-    p = DiffDriveParams.from_plugin(plugin(left_joint="l", right_joint="r", max_linear_acceleration="2"),
-                                    "car", "chassis")
+    p = DiffDriveParams.from_plugin(
+        plugin(left_joint="l", right_joint="r", max_linear_acceleration="2"), "car", "chassis"
+    )
     assert (p.wheel_separation_m, p.wheel_radius_m, p.odom_publish_frequency_hz) == (1.0, 0.2, 50.0)
     assert (p.topic, p.odom_topic, p.tf_topic) == ("/model/car/cmd_vel", "/model/car/odometry", "/model/car/tf")
     assert (p.frame_id, p.child_frame_id) == ("car/odom", "car/chassis")

@@ -35,8 +35,9 @@ def test_gui_window_shows_the_car(router: str, procs: Any, tmp_path: Path, outpu
         pytest.fail("Xvfb is missing: install Debian's xvfb (`make system-deps` or `apt-get install xvfb`)")
     fbdir = tmp_path / "fb"
     fbdir.mkdir()
-    server = procs.start([xvfb, "-displayfd", "1", "-screen", "0", "1024x768x24", "-fbdir", str(fbdir),
-                          "-nolisten", "tcp"])
+    server = procs.start(
+        [xvfb, "-displayfd", "1", "-screen", "0", "1024x768x24", "-fbdir", str(fbdir), "-nolisten", "tcp"]
+    )
     display = server.stdout.readline().strip()
     assert display.isdigit(), f"Xvfb did not report its display: {display!r}"
     import os
@@ -46,8 +47,10 @@ def test_gui_window_shows_the_car(router: str, procs: Any, tmp_path: Path, outpu
     from diffctl.bus import open_session
 
     session = open_session()
-    wait_for(lambda: list(session.liveliness().get("gz/world/empty/sim", timeout=0.5)) or sim.poll() is not None,
-             what="the sim")
+    wait_for(
+        lambda: list(session.liveliness().get("gz/world/empty/sim", timeout=0.5)) or sim.poll() is not None,
+        what="the sim",
+    )
     assert sim.poll() is None, sim.stdout.read()
     r = run_cli("spawn", "entity", "--file", str(CAR), "--name", "robot")
     assert r.returncode == 0, r.stderr

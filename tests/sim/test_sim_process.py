@@ -18,8 +18,9 @@ from diffctl.bus import hw_endpoint as hw
 
 
 def run_cli(*args: str, timeout: float = 60) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "diffctl", *args], capture_output=True, text=True, timeout=timeout,
-                          cwd=REPO)
+    return subprocess.run(
+        [sys.executable, "-m", "diffctl", *args], capture_output=True, text=True, timeout=timeout, cwd=REPO
+    )
 
 
 def query(session: Any, key: str, body: dict[str, Any] | None = None, timeout: float = 10.0) -> dict[str, Any]:
@@ -44,8 +45,10 @@ def start_sim(procs: Any, *args: str) -> Any:
 
     p = procs.diffctl("sim", "run", *args, str(EMPTY_WORLD), cwd=REPO)
     session = open_session()
-    wait_for(lambda: list(session.liveliness().get("gz/world/empty/sim", timeout=0.5)) or p.poll() is not None,
-             what="the sim's token")
+    wait_for(
+        lambda: list(session.liveliness().get("gz/world/empty/sim", timeout=0.5)) or p.poll() is not None,
+        what="the sim's token",
+    )
     assert p.poll() is None, p.stdout.read()
     return p, session
 
@@ -55,8 +58,10 @@ def test_bad_input_exits_2_with_one_line(tmp_path: Path) -> None:
     assert r.returncode == 2 and "world file" in r.stderr and "not found" in r.stderr
     assert len(r.stderr.strip().splitlines()) == 1
     bad = tmp_path / "bad.world"
-    bad.write_text('<sdf version="1.8"><world name="w"><model name="m"><link name="l"><pose>1 2</pose></link>'
-                   "</model></world></sdf>")
+    bad.write_text(
+        '<sdf version="1.8"><world name="w"><model name="m"><link name="l"><pose>1 2</pose></link>'
+        "</model></world></sdf>"
+    )
     r = run_cli("sim", "run", "-r", str(bad))
     assert r.returncode == 2 and "bad.world:1" in r.stderr and "pose" in r.stderr
     assert "Traceback" not in r.stderr

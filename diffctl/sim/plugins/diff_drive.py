@@ -90,7 +90,8 @@ class DiffDrive(SystemPlugin):
         self._dt_s = ctx.stepper.step_ns * 1e-9
         self._apply(0.0, 0.0)
         self._task = ctx.stepper.add_task(
-            f"diff_drive:{entity.name}", rate_period_ns(params.odom_publish_frequency_hz, ctx.stepper.step_ns),
+            f"diff_drive:{entity.name}",
+            rate_period_ns(params.odom_publish_frequency_hz, ctx.stepper.step_ns),
             self._publish_odometry,
         )
         self._odom_pub = self._tf_pub = None
@@ -119,8 +120,10 @@ class DiffDrive(SystemPlugin):
                 self.ctx.stepper.step_hooks.append(self._limit_step)
                 self._hooked = True
         else:
-            self._push(limit_speed(linear_m_s, self._lin[0], self._lin[1], 0.0, self.p.linear),
-                       limit_speed(angular_rad_s, self._ang[0], self._ang[1], 0.0, self.p.angular))
+            self._push(
+                limit_speed(linear_m_s, self._lin[0], self._lin[1], 0.0, self.p.linear),
+                limit_speed(angular_rad_s, self._ang[0], self._ang[1], 0.0, self.p.angular),
+            )
 
     def _limit_step(self) -> None:
         lin = limit_speed(self.target[0], self._lin[0], self._lin[1], self._dt_s, self.p.linear)
@@ -158,19 +161,26 @@ class DiffDrive(SystemPlugin):
         position = {"x": o.x_m, "y": o.y_m, "z": 0.0}
         orientation = {"x": 0.0, "y": 0.0, "z": math.sin(half), "w": math.cos(half)}
         if odom_pub and odom_pub.matched:
-            odom_pub.publish({
-                "header": gz.header(sim_time_ns, self.p.frame_id, self.p.child_frame_id),
-                "pose": {"position": position, "orientation": orientation},
-                "twist": {"linear": {"x": o.linear_m_s, "y": 0.0, "z": 0.0},
-                          "angular": {"x": 0.0, "y": 0.0, "z": o.angular_rad_s}},
-            })
+            odom_pub.publish(
+                {
+                    "header": gz.header(sim_time_ns, self.p.frame_id, self.p.child_frame_id),
+                    "pose": {"position": position, "orientation": orientation},
+                    "twist": {
+                        "linear": {"x": o.linear_m_s, "y": 0.0, "z": 0.0},
+                        "angular": {"x": 0.0, "y": 0.0, "z": o.angular_rad_s},
+                    },
+                }
+            )
         if tf_pub and tf_pub.matched:
             h = gz.header(sim_time_ns, self.p.frame_id, self.p.child_frame_id)
-            tf_pub.publish({
-                "header": gz.header(sim_time_ns),
-                "pose": [{"name": self.p.child_frame_id, "header": h, "position": position,
-                          "orientation": orientation}],
-            })
+            tf_pub.publish(
+                {
+                    "header": gz.header(sim_time_ns),
+                    "pose": [
+                        {"name": self.p.child_frame_id, "header": h, "position": position, "orientation": orientation}
+                    ],
+                }
+            )
 
     def reset(self) -> None:
         self.odom.reset()

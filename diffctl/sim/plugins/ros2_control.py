@@ -105,12 +105,14 @@ class Ros2ControlEndpoint(SystemPlugin):
     def info(self) -> dict[str, Any]:
         joints = []
         for j in self.block.joints:
-            joints.append({
-                "name": j.name,
-                "command_interfaces": [c.name for c in j.command_interfaces],
-                "state_interfaces": [s.name for s in j.state_interfaces],
-                "initial": {s.name: s.initial_value for s in j.state_interfaces if s.initial_value is not None},
-            })
+            joints.append(
+                {
+                    "name": j.name,
+                    "command_interfaces": [c.name for c in j.command_interfaces],
+                    "state_interfaces": [s.name for s in j.state_interfaces],
+                    "initial": {s.name: s.initial_value for s in j.state_interfaces if s.initial_value is not None},
+                }
+            )
         return {
             "model": self.model,
             "joints": joints,
