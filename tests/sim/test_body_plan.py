@@ -129,3 +129,40 @@ def test_static_models_and_world_anchored_trees_do_not_move() -> None:
         assert ents["statue"].plan.bodies[0].static_base
     finally:
         pw.close()
+
+
+def test_prismatic_and_ball_joints_move_as_their_axes_allow() -> None:
+    rig = """<model name="rig"><pose>0 0 1 0 0 0</pose>
+      <link name="rail"><inertial><mass>1</mass><inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia>
+        </inertial></link>
+      <joint name="fix" type="fixed"><parent>world</parent><child>rail</child></joint>
+      <link name="slider"><pose>0 0 0 0 0 0</pose>
+        <inertial><mass>1</mass><inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia></inertial></link>
+      <joint name="slide" type="prismatic"><parent>rail</parent><child>slider</child>
+        <axis><xyz>0 0 -1</xyz><limit><lower>0</lower><upper>0.3</upper></limit></axis></joint>
+      <link name="bob"><pose>0.4 0 0 0 0 0</pose>
+        <inertial><mass>0.5</mass><inertia><ixx>0.001</ixx><iyy>0.001</iyy><izz>0.001</izz></inertia></inertial></link>
+      <joint name="swivel" type="ball"><parent>slider</parent><child>bob</child><pose>-0.4 0 0 0 0 0</pose></joint>
+    </model>"""
+    pw, ents = build(sdf_world(rig))
+    try:
+        e = ents["rig"]
+        assert set(e.joints) == {"slide", "swivel"}
+        assert pb.getJointInfo(e.joints["swivel"].body, e.joints["swivel"].index, physicsClientId=pw.client)[2] == (
+            pb.JOINT_SPHERICAL
+        )
+        lowest = 0.0
+        for k in range(800):
+            pw.step()
+            if k % 20 == 0:
+                slider, bob = e.link_pose("slider").xyz, e.link_pose("bob").xyz
+                # The bob hangs from the ball joint: always 0.4 m from it, and it swings through the bottom.
+                assert math.dist(bob, slider) == pytest.approx(0.4, abs=2e-3)
+                lowest = min(lowest, bob[2] - slider[2])
+        assert lowest < -0.35
+        # The slider fell down its rail to the lower stop (0.3 m along -z); the rail stays put.
+        assert e.joint_states([e.joint("slide")])[0][0] == pytest.approx(0.3, abs=0.01)
+        assert e.link_pose("rail").is_close(Pose((0, 0, 1)), 1e-6)
+        assert e.link_pose("slider").xyz == pytest.approx((0, 0, 0.7), abs=0.01)
+    finally:
+        pw.close()
