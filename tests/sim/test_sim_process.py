@@ -105,11 +105,26 @@ def test_spawn_entity_and_world_control(router: str, procs: Any, tmp_path: Path)
     stats: list[dict] = []
     from diffctl.bus import gz
 
+    topics: dict[str, list] = {"/lidar": [], "/imu": [], "/model/robot/pose": [], "/clock": []}
+    for t, box in topics.items():
+        session.declare_subscriber(gz.key(t), lambda s, box=box: box.append(gz.decode(s.payload.to_bytes())))
+
     session.declare_subscriber(gz.key("/world/empty/stats"), lambda s: stats.append(gz.decode(s.payload.to_bytes())[1]))
     wait_for(lambda: stats, what="stats while paused")
     assert stats[-1]["paused"] is True and stats[-1]["iterations"] == 250
     assert query(session, "gz/world/empty/control", {"pause": False, "rtf": 0})["ok"]
     wait_for(lambda: query(session, "gz/world/empty/state")["sim_time_ns"] > 2_000_000_000, what="sim time")
+    wait_for(lambda: all(topics.values()), what="sensor, pose and clock topics")
+    assert {t: v[-1][0] for t, v in topics.items()} == {
+        "/lidar": "gz.msgs.LaserScan",
+        "/imu": "gz.msgs.IMU",
+        "/model/robot/pose": "gz.msgs.Pose_V",
+        "/clock": "gz.msgs.Clock",
+    }
+    assert topics["/imu"][-1][1]["linear_acceleration"]["z"] == pytest.approx(9.8, abs=0.2)
+    assert topics["/lidar"][-1][1]["count"] == 360 and topics["/lidar"][-1][1]["frame"] == "lidar_link"
+    pose = topics["/model/robot/pose"][-1][1]["pose"][0]
+    assert pose["name"] == "robot" and pose["position"]["x"] == pytest.approx(1.0, abs=0.01)
     running = wait_for(lambda: [m for m in stats if not m["paused"] and m["real_time_factor"] > 1], what="stats")
     assert running[-1]["step_time_us"] > 0 and running[-1]["lockstep_overruns"] == 0
     assert running[-1]["step_size"] == {"sec": 0, "nsec": 1_000_000} and running[-1]["model_count"] == 3
