@@ -223,21 +223,29 @@ class Client:
         with self._lock:
             seq = next(self._seq)
         start = time.monotonic()
-        replies = self.node.session.get(
-            self._key, payload=data, attachment=wire.pack_attachment(seq, time.time_ns(), self._gid),
-            target=zenoh.QueryTarget.ALL_COMPLETE, consolidation=zenoh.ConsolidationMode.NONE, timeout=timeout,
-        )
-        for r in replies:
-            if r.ok is not None:
-                return types.deserialize(r.ok.payload.to_bytes(), self.type + "_Response")
-            err = r.err.payload.to_string()
-            if err.strip().lower() == "timeout":  # zenoh's own reply when the deadline passes
-                break
-            raise BusError(f"service {self.name} failed: {err}")
-        if time.monotonic() - start < timeout * 0.9:
-            raise BusError(f"no server for service {self.name} ({self.type})",
-                           hint="`diffctl service list` shows the services that exist")
-        raise ServiceTimeout(f"service {self.name} did not answer within {timeout:g} s")
+        deadline = start + timeout
+        attachment = wire.pack_attachment(seq, time.time_ns(), self._gid)
+        while True:
+            replies = self.node.session.get(
+                self._key, payload=data, attachment=attachment, target=zenoh.QueryTarget.ALL_COMPLETE,
+                consolidation=zenoh.ConsolidationMode.NONE, timeout=max(0.01, deadline - time.monotonic()),
+            )
+            for r in replies:
+                if r.ok is not None:
+                    return types.deserialize(r.ok.payload.to_bytes(), self.type + "_Response")
+                err = r.err.payload.to_string()
+                if err.strip().lower() == "timeout":  # zenoh's own reply when the deadline passes
+                    break
+                raise BusError(f"service {self.name} failed: {err}")
+            now = time.monotonic()
+            if now >= deadline - 0.01:
+                raise ServiceTimeout(f"service {self.name} did not answer within {timeout:g} s")
+            # No reply at once: nobody serves it, or the server's queryable has not reached our routes yet
+            # although its graph token has. Retry while the graph says a server exists (briefly otherwise).
+            if not self.service_is_ready() and now - start > 0.5:
+                raise BusError(f"no server for service {self.name} ({self.type})",
+                               hint="`diffctl service list` shows the services that exist")
+            time.sleep(0.02)
 
     def close(self) -> None:
         try:
