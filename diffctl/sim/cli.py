@@ -216,3 +216,115 @@ def serve(world_path: Path, g: GzArgs, *, gui: bool, log: Any) -> None:
         from diffctl.errors import RuntimeFailure
 
         raise RuntimeFailure("lost the Zenoh router; the simulator stopped")
+
+
+# --- talking to a running simulator (Gazebo: `gz service -s /world/<w>/control …`) -------------------------
+
+_world_option = click.option("--world", default=None, help="World to talk to (default: the only one running).")
+
+
+def _control(world: str | None, req: dict[str, Any], timeout: float = 10.0) -> dict[str, Any]:
+    import time
+
+    from diffctl.bus import open_session
+    from diffctl.sim.world_client import call, wait_for_world
+
+    session = open_session()
+    deadline = time.monotonic() + timeout
+    target = wait_for_world(session, world, time.monotonic() + 2.0)
+    return call(session, target, "control", req, deadline)
+
+
+def _status_line(st: dict[str, Any]) -> str:
+    state = "paused" if st["paused"] else "running"
+    return f"{state} at sim time {st['sim_time_ns'] / 1e9:.3f} s ({st['iterations']} steps)"
+
+
+@sim.command("pause")
+@_world_option
+def pause(world: str | None) -> None:
+    """Pause the simulation (sim time stops; controllers in lockstep wait).
+
+    \b
+    Example:
+      diffctl sim pause
+    """
+    click.echo(_status_line(_control(world, {"pause": True})))
+
+
+@sim.command("resume")
+@_world_option
+def resume(world: str | None) -> None:
+    """Resume a paused simulation.
+
+    \b
+    Example:
+      diffctl sim resume
+    """
+    click.echo(_status_line(_control(world, {"pause": False})))
+
+
+@sim.command("step")
+@click.argument("steps", type=click.IntRange(1, 10_000_000), default=1)
+@_world_option
+def step(steps: int, world: str | None) -> None:
+    """Pause, then advance STEPS physics steps (default 1); returns when they are done.
+
+    \b
+    Example:
+      diffctl sim step 100
+    """
+    click.echo(_status_line(_control(world, {"multi_step": steps}, timeout=60.0)))
+
+
+@sim.command("reset")
+@_world_option
+def reset(world: str | None) -> None:
+    """Reset the world: sim time 0, every model back where it was spawned.
+
+    \b
+    Example:
+      diffctl sim reset
+    """
+    click.echo(_status_line(_control(world, {"reset": {"all": True}})))
+
+
+@sim.command("rtf")
+@click.argument("factor", type=click.FloatRange(0.0, 1e6))
+@_world_option
+def rtf_cmd(factor: float, world: str | None) -> None:
+    """Set the target real-time factor (0 = as fast as possible).
+
+    \b
+    Example:
+      diffctl sim rtf 0
+    """
+    click.echo(_status_line(_control(world, {"rtf": factor})))
+
+
+@sim.command("state")
+@_world_option
+def state(world: str | None) -> None:
+    """Show the running world: time, models and their poses.
+
+    \b
+    Example:
+      diffctl sim state
+    """
+    import time
+
+    from diffctl.bus import open_session
+    from diffctl.console import console, table
+    from diffctl.sim.world_client import call, wait_for_world
+
+    session = open_session()
+    target = wait_for_world(session, world, time.monotonic() + 2.0)
+    st = call(session, target, "state", {}, time.monotonic() + 10.0)
+    rows = []
+    for m in st["models"]:
+        p = m["pose"]
+        kind = "static" if m["static"] else ("ros2_control" if m["ros2_control"] else "dynamic")
+        rows.append((m["name"], kind, f"{p['x']:.3f} {p['y']:.3f} {p['z']:.3f}", f"{p['yaw']:.3f}"))
+    target_rtf = "max" if st["rtf_target"] <= 0 else f"{st['rtf_target']:g}"
+    console.print(f"world {st['world']!r}: {_status_line(st)}, target rtf {target_rtf}")
+    console.print(table(None, ["model", "kind", "x y z (m)", "yaw (rad)"], rows))

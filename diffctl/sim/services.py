@@ -144,7 +144,7 @@ class WorldServices:
         if dt < STATS_PERIOD_S:
             return
         st = self.sim.stepper
-        steps = st.stats.iterations - it0
+        steps = max(0, st.stats.iterations - it0)  # a reset restarts the count
         busy = max(0.0, dt - (st.stats.idle_s - idle0))
         self._rtf = (st.sim_time_ns - sim0) * 1e-9 / dt if st.sim_time_ns >= sim0 else 0.0
         self._step_us = busy / steps * 1e6 if steps else 0.0

@@ -8,7 +8,6 @@ exits 1 with the reason; the simulator keeps running. ROS-style single-dash flag
 
 from __future__ import annotations
 
-import json
 import math
 import os
 import threading
@@ -19,6 +18,7 @@ from typing import Any
 import click
 
 from diffctl.errors import RuntimeFailure
+from diffctl.sim.world_client import call, wait_for_world
 
 DEFAULT_TIMEOUT_S = 30.0
 
@@ -86,9 +86,9 @@ def spawn_entity(
             raise click.BadParameter(f"{v!r} must be a finite number (|value| <= 1e6)", param_hint=f"-{k}")
     deadline = time.monotonic() + timeout
     session = open_session()
-    target = _wait_for_world(session, world, deadline)
+    target = wait_for_world(session, world, deadline)
     if remove_name is not None:
-        _call(session, target, "remove", {"name": remove_name}, deadline)
+        call(session, target, "remove", {"name": remove_name}, deadline)
         click.echo(f"removed {remove_name!r} from world {target!r}")
         return
     req: dict[str, Any] = {"allow_renaming": allow_renaming, "base_dir": os.getcwd()}
@@ -105,30 +105,8 @@ def spawn_entity(
         req["sdf"] = sdf_string
     else:
         req["sdf"] = _wait_for_description(str(topic), deadline)
-    reply = _call(session, target, "create", req, deadline)
+    reply = call(session, target, "create", req, deadline)
     click.echo(f"spawned {reply.get('name')!r} into world {target!r}")
-
-
-def _wait_for_world(session: Any, world: str | None, deadline: float) -> str:
-    from diffctl.sim.world_keys import SIM_TOKEN_PATTERN, sim_token_key
-
-    pattern = sim_token_key(world) if world else SIM_TOKEN_PATTERN
-    while True:
-        worlds = sorted(
-            {
-                str(r.ok.key_expr).split("/")[2]
-                for r in session.liveliness().get(pattern, timeout=0.5)
-                if r.ok is not None
-            }
-        )
-        if len(worlds) == 1:
-            return worlds[0]
-        if len(worlds) > 1:
-            raise RuntimeFailure(f"several simulators run worlds {', '.join(worlds)}", hint="choose one with --world")
-        if time.monotonic() > deadline:
-            what = f"world {world!r}" if world else "any world"
-            raise RuntimeFailure(f"no simulator runs {what}", hint="start one with `diffctl sim run -r WORLD`")
-        time.sleep(0.1)
 
 
 def _wait_for_description(topic: str, deadline: float) -> str:
@@ -154,22 +132,3 @@ def _wait_for_description(topic: str, deadline: float) -> str:
     if not got[0].strip():
         raise RuntimeFailure(f"the description on {topic} is empty")
     return got[0]
-
-
-def _call(session: Any, world: str, service: str, req: dict[str, Any], deadline: float) -> dict[str, Any]:
-    from diffctl.sim.world_keys import world_key
-
-    key = world_key(world, service)
-    payload = json.dumps(req).encode()
-    timeout = max(1.0, deadline - time.monotonic())
-    for r in session.get(key, payload=payload, timeout=timeout):
-        if r.ok is None:
-            continue
-        try:
-            body = json.loads(r.ok.payload.to_bytes())
-        except ValueError:
-            raise RuntimeFailure(f"{key}: malformed reply") from None
-        if not body.get("ok"):
-            raise RuntimeFailure(f"{service} failed: {body.get('error', 'no reason given')}")
-        return body
-    raise RuntimeFailure(f"the simulator did not answer {key} in time")

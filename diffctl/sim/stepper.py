@@ -104,8 +104,9 @@ class Stepper:
             self._step_waiters.append(done)
 
     def reset_time(self) -> None:
-        """Back to sim time 0; every task becomes due at once."""
+        """Back to sim time 0 and iteration 0 (as Gazebo's reset); every task becomes due at once."""
         self.sim_time_ns = 0
+        self.stats.iterations = 0
         for t in self.tasks:
             t.next_ns = 0
         self.reschedule()

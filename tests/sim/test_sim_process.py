@@ -133,6 +133,15 @@ def test_spawn_entity_and_world_control(router: str, procs: Any, tmp_path: Path)
     assert query(session, "gz/world/empty/control", {"multi_step": -3})["ok"] is False
     assert query(session, "gz/world/empty/control", {"rtf": "fast"})["ok"] is False
 
+    # The same from the command line.
+    r = run_cli("sim", "step", "40")
+    assert r.returncode == 0 and "paused at sim time 0.040 s (40 steps)" in r.stdout, r.stdout + r.stderr
+    r = run_cli("sim", "state")
+    assert r.returncode == 0 and "robot2" in r.stdout and "world 'empty'" in r.stdout, r.stderr
+    assert run_cli("sim", "resume").stdout.startswith("running")
+    assert run_cli("sim", "pause").stdout.startswith("paused")
+    r = run_cli("sim", "step", "1", "--world", "mars")
+    assert r.returncode == 1 and "no simulator runs world 'mars'" in r.stderr
     r = run_cli("spawn", "entity", "--remove", "robot2")
     assert r.returncode == 0, r.stderr
     assert [m["name"] for m in query(session, "gz/world/empty/state")["models"]] == ["ground_plane", "robot"]
