@@ -11,6 +11,7 @@ from __future__ import annotations
 import re
 import threading
 import time
+import zlib
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -102,7 +103,6 @@ class Simulation:
         self.transport = SimTransport(session, self.stepper.call_soon, self.log) if session is not None else None
         self.ctx = PluginContext(self.stepper, self.transport, self.log, world.name)
         self.seed = seed
-        self.rng = np.random.default_rng(seed)
         self.models: dict[str, ModelRuntime] = {}
         lights = [lt for lt in world.lights if lt.type == "directional"]
         self.light_direction = lights[0].direction if lights else DEFAULT_LIGHT_DIRECTION
@@ -187,15 +187,16 @@ class Simulation:
         for s in entity.model.sensors():
             # update_rate 0 means "every step" in Gazebo.
             period = rate_period_ns(s.update_rate_hz, step_ns) if s.update_rate_hz > 0 else step_ns
+            rng = self.sensor_rng(entity.name, s.name)
             if s.type == "lidar":
-                sensor: Any = Lidar(entity, s, self.rng)
+                sensor: Any = Lidar(entity, s, rng)
                 gz_type = "gz.msgs.LaserScan"
             elif s.type == "imu":
-                sensor = Imu(entity, s, self.physics.physics.gravity, self.rng)
+                sensor = Imu(entity, s, self.physics.physics.gravity, rng)
                 gz_type = "gz.msgs.IMU"
                 rt.imus.append(sensor)
             elif s.type == "camera":
-                sensor = Camera(entity, s, self.rng, self.light_direction, self.physics.all_flat_planes)
+                sensor = Camera(entity, s, rng, self.light_direction, self.physics.all_flat_planes)
                 gz_type = "gz.msgs.Image"
             else:
                 continue
@@ -211,6 +212,11 @@ class Simulation:
                 pre = self._imu_pre(sensor, pub)
                 rt.tasks.append(self.stepper.add_task(name + ":pre", period, pre, first_ns=first))
             rt.tasks.append(self.stepper.add_task(name, period, self._sensor_task(sensor, pub)))
+
+    def sensor_rng(self, model: str, sensor: str) -> np.random.Generator:
+        """Each sensor's own noise stream from the seed and its name: which sensors are read (they sample only
+        while subscribed) never changes another's noise."""
+        return np.random.default_rng([self.seed, zlib.crc32(f"{model}::{sensor}".encode())])
 
     @staticmethod
     def _sensor_task(sensor: Any, pub: GzPublisher) -> Any:
