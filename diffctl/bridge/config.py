@@ -182,6 +182,8 @@ def load_config(path: str | Path, gz_prefix: str = "") -> list[BridgeEntry]:
         raise ConfigError("bridge config file not found", source=str(p)) from None
     except OSError as e:
         raise ConfigError(f"cannot read bridge config: {e.strerror}", source=str(p)) from None
+    except UnicodeDecodeError as e:
+        raise ConfigError(f"not a UTF-8 text file (byte {e.start}: {e.reason})", source=str(p)) from None
     try:
         root = yaml.compose(text, Loader=yaml.SafeLoader)
         data = yaml.safe_load(text)

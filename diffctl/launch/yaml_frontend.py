@@ -271,6 +271,8 @@ def load(path: str | Path) -> LaunchDescription:
         raise LaunchError("launch file does not exist", source=source) from None
     except OSError as e:
         raise LaunchError(f"cannot read launch file: {e.strerror}", source=source) from None
+    except UnicodeDecodeError as e:
+        raise LaunchError(f"not a UTF-8 text file (byte {e.start}: {e.reason})", source=source) from None
     try:
         data = yaml.load(text, Loader=_Loader)
     except yaml.MarkedYAMLError as e:
@@ -281,6 +283,8 @@ def load(path: str | Path) -> LaunchDescription:
             line=mark.line + 1 if mark else None,
             column=mark.column + 1 if mark else None,
         ) from None
+    except yaml.YAMLError as e:  # the reader's (unacceptable characters) carry no problem mark
+        raise LaunchError(f"malformed YAML: {e}", source=source) from None
     except LaunchError as e:
         e.source = source
         raise
