@@ -21,6 +21,8 @@ import time
 from typing import Any
 
 import numpy as np
+import pybullet as pb
+import zenoh
 
 from diffctl.bus import hw_endpoint as hw
 from diffctl.description.model import Plugin, Ros2Control
@@ -95,8 +97,6 @@ class Ros2ControlEndpoint(SystemPlugin):
         for h, j in zip(self.handles, self.block.joints, strict=True):
             for s in j.state_interfaces:
                 if s.initial_value is not None and s.name == "position":
-                    import pybullet as pb
-
                     pb.resetJointState(h.body, h.index, s.initial_value, physicsClientId=self.entity.client)
         self._apply()
 
@@ -222,8 +222,6 @@ class Ros2ControlEndpoint(SystemPlugin):
         self._inbox.put(cmd)
 
     def _on_manager_token(self, sample: Any) -> None:
-        import zenoh
-
         if sample.kind == zenoh.SampleKind.DELETE:
             self._inbox.put(_GONE)
             # When the sim is not waiting (paused, or between ticks), detach on the sim thread too.
