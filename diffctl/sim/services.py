@@ -105,7 +105,9 @@ class WorldServices:
             model = _renamed(model, self.sim.models)
         self.sim.spawn(model)
         ignored = self.sim.model_ignored(model)
-        self.sim.log.info(f"spawned {model.name!r}" + (f" (ignored: {'; '.join(ignored)})" if ignored else ""))
+        self.sim.log.info(f"spawned {model.name!r}")
+        if ignored:
+            self.sim.log.warn(f"model {model.name!r}: ignored (not simulated): {'; '.join(ignored)}")
         return {"ok": True, "name": model.name, "ignored": ignored}
 
     def remove(self, req: dict[str, Any], reply: Reply) -> dict[str, Any]:
