@@ -166,3 +166,45 @@ def test_prismatic_and_ball_joints_move_as_their_axes_allow() -> None:
         assert e.link_pose("slider").xyz == pytest.approx((0, 0, 0.7), abs=0.01)
     finally:
         pw.close()
+
+
+CUBE_OBJ = """# a 0.2 m cube centred at the origin
+v -0.1 -0.1 -0.1
+v 0.1 -0.1 -0.1
+v 0.1 0.1 -0.1
+v -0.1 0.1 -0.1
+v -0.1 -0.1 0.1
+v 0.1 -0.1 0.1
+v 0.1 0.1 0.1
+v -0.1 0.1 0.1
+f 1 3 2
+f 1 4 3
+f 5 6 7
+f 5 7 8
+f 1 2 6
+f 1 6 5
+f 2 3 7
+f 2 7 6
+f 3 4 8
+f 3 8 7
+f 4 1 5
+f 4 5 8
+"""
+
+
+def test_mesh_geometry_collides_at_its_scaled_size(tmp_path) -> None:
+    (tmp_path / "cube.obj").write_text(CUBE_OBJ)
+    crate = f"""<model name="crate"><pose>0 0 1 0 0 0</pose><link name="l">
+      <inertial><mass>1</mass><inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia></inertial>
+      <collision name="c"><geometry><mesh><uri>{tmp_path / "cube.obj"}</uri><scale>2 2 2</scale></mesh></geometry>
+      </collision>
+      <visual name="v"><geometry><mesh><uri>{tmp_path / "cube.obj"}</uri><scale>2 2 2</scale></mesh></geometry></visual>
+    </link></model>"""
+    pw, ents = build(sdf_world(ground() + crate))
+    try:
+        for _ in range(1500):
+            pw.step()
+        # Scaled to 0.4 m, it rests with its centre 0.2 m above the ground.
+        assert ents["crate"].link_pose("l").xyz[2] == pytest.approx(0.2, abs=0.01)
+    finally:
+        pw.close()
