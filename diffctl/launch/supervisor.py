@@ -122,6 +122,11 @@ def describe_exit(code: int) -> str:
     return f"exit code {code}"
 
 
+def _died(code: int) -> str:
+    """'died with exit code 3' / 'was killed by SIGKILL' (not 'died with killed by …')."""
+    return f"was {describe_exit(code)}" if code < 0 else f"died with {describe_exit(code)}"
+
+
 class Supervisor:
     def __init__(
         self,
@@ -325,12 +330,12 @@ class Supervisor:
         else:
             st.state = "failed"
             last = f": {st.tail[-1]}" if st.tail else ""
-            self.output.launcher("ERROR", f"[{name}] died with {describe_exit(code)} ({where}){last}")
+            self.output.launcher("ERROR", f"[{name}] {_died(code)} ({where}){last}")
         self._fire("exit", name, code)
         if self.shutting_down:
             return
         if st.spec.required:
-            why = f"required process {name!r} {'finished' if code == 0 else 'died with ' + describe_exit(code)}"
+            why = f"required process {name!r} {'finished' if code == 0 else _died(code)}"
             if code != 0:
                 self.failures.append(why + (f" (last output: {st.tail[-1]!r})" if st.tail else ""))
             self.shutdown(why)
