@@ -212,6 +212,7 @@ def serve(world_path: Path, g: GzArgs, *, gui: bool, log: Any) -> None:
             raise
     finally:
         sim_.close()
+        log.debug("stopped")
     if lost:
         from diffctl.errors import RuntimeFailure
 
