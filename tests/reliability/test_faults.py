@@ -213,6 +213,7 @@ def test_controller_manager_killed_the_sim_holds_the_joints_then_everything_stop
     try:
         w = stack.watch
         drive(stack, 0.5, 0.0, 3, 0.5)
+        stack.wait_sim(stack.clock_ns + SEC)  # at steady speed for a second
         os.kill(stack.proc.pid, signal.SIGSTOP)
         try:
             kill_ns = w.last(w.truth).t_ns
