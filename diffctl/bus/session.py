@@ -83,6 +83,27 @@ def use_client_mode() -> None:
     _mode = "client"
 
 
+def _fill_safe_defaults(cfg: zenoh.Config, mode: str, endpoint: str) -> None:
+    """What a config file leaves unset gets diffctl's defaults, not Zenoh's: Zenoh's default listener is
+    `tcp/[::]:<port>` (every interface) and it multicast-scouts the LAN. What the file does say is kept."""
+    if json.loads(cfg.get_json("mode")) is None:
+        cfg.insert_json5("mode", json.dumps(mode))
+    mode = json.loads(cfg.get_json("mode"))
+    if mode != "router" and not json.loads(cfg.get_json("connect/endpoints")):
+        cfg.insert_json5("connect/endpoints", json.dumps([endpoint]))
+    if isinstance(json.loads(cfg.get_json("listen/endpoints")), dict):  # unset: Zenoh's per-mode defaults
+        loopback = {"router": [endpoint], "peer": ["tcp/127.0.0.1:0"]}.get(mode, [])
+        cfg.insert_json5("listen/endpoints", json.dumps(loopback))
+    if json.loads(cfg.get_json("scouting/multicast/enabled")) is None:
+        cfg.insert_json5("scouting/multicast/enabled", "false")
+
+
+def connect_endpoints(cfg: zenoh.Config) -> list[str]:
+    """The endpoints a session built from `cfg` connects to (for messages naming them)."""
+    eps = json.loads(cfg.get_json("connect/endpoints"))
+    return [str(e) for e in eps] if isinstance(eps, list) else []
+
+
 def peer_config(endpoint: str | None = None) -> zenoh.Config:
     cfg = _from_file("ZENOH_SESSION_CONFIG_URI")
     if cfg is None:
@@ -92,6 +113,8 @@ def peer_config(endpoint: str | None = None) -> zenoh.Config:
         cfg.insert_json5("listen/endpoints", '["tcp/127.0.0.1:0"]' if _mode == "peer" else "[]")
         cfg.insert_json5("scouting/multicast/enabled", "false")
         cfg.insert_json5("scouting/gossip/enabled", "true")
+    else:
+        _fill_safe_defaults(cfg, _mode, endpoint or router_endpoint())
     # Zenoh maps a 16 MB shared-memory pool into every process that publishes a large sample; over loopback
     # TCP the copies are cheap, and seven such pools would blow the stack's memory budget.
     cfg.insert_json5("transport/shared_memory/enabled", "false")
@@ -118,6 +141,7 @@ def router_config(listen: list[str] | None = None, config_file: str | None = Non
     if listen and config_file:
         cfg.insert_json5("listen/endpoints", json.dumps(listen))
     cfg.insert_json5("mode", '"router"')
+    _fill_safe_defaults(cfg, "router", (listen or [router_endpoint()])[0])
     cfg.insert_json5("transport/shared_memory/enabled", "false")
     # A router otherwise waits 500 ms for scouting before it returns.
     cfg.insert_json5("scouting/delay", "0")
@@ -132,21 +156,43 @@ def open_session() -> zenoh.Session:
     with _session_lock:
         if _session is None:
             _init_log()
-            ep = router_endpoint()
+            cfg = peer_config(router_endpoint())
             try:
-                _session = zenoh.open(peer_config(ep))
+                _session = zenoh.open(cfg)
             except zenoh.ZError as e:
                 if "connect" in str(e).lower() or "timeout" in str(e).lower():
-                    raise NoRouterError(
-                        f"no Zenoh router answers at {ep}",
-                        hint="start one with `diffctl router`, or run `diffctl launch …`, which embeds one",
-                    ) from None
+                    raise _no_router(connect_endpoints(cfg)) from None
                 raise ConfigError(f"cannot open a Zenoh session: {e}") from None
             # Zenoh's callback threads are non-daemon Python threads: the session must close before the
             # interpreter joins them at exit, which plain atexit handlers run too late for.
             register = getattr(threading, "_register_atexit", atexit.register)
             register(close_session)
         return _session
+
+
+def _no_router(endpoints: list[str]) -> NoRouterError:
+    """Nothing listening and a router that turned this session away look alike to Zenoh; a TCP probe tells
+    them apart, so a refused certificate or password is not reported as a missing router."""
+    where = ", ".join(endpoints) or router_endpoint()
+    listening = [ep for ep in endpoints if _answers_quietly(ep)]
+    if listening:
+        config = os.environ.get("ZENOH_SESSION_CONFIG_URI")
+        return NoRouterError(
+            f"the Zenoh router at {', '.join(listening)} refused this session",
+            hint="check the TLS certificate, user and password"
+            + (f" in ZENOH_SESSION_CONFIG_URI={config}" if config else " (ZENOH_SESSION_CONFIG_URI)"),
+        )
+    return NoRouterError(
+        f"no Zenoh router answers at {where}",
+        hint="start one with `diffctl router`, or run `diffctl launch …`, which embeds one",
+    )
+
+
+def _answers_quietly(endpoint: str) -> bool:
+    try:
+        return endpoint_answers(endpoint)
+    except ConfigError:
+        return False
 
 
 def close_session() -> None:
