@@ -53,3 +53,21 @@ def float_param(
 def rate_period_ns(rate_hz: float, step_ns: int) -> int:
     """A task period for `rate_hz`, never shorter than one physics step."""
     return max(step_ns, round(1e9 / rate_hz))
+
+
+def bool_param(plugin: Plugin, tag: str, default: bool, *, source: str) -> bool:
+    """A plugin's boolean parameter (true/false/1/0, as SDF writes them), with a bad value quoted."""
+    text = plugin.get(tag)
+    if text is None:
+        return default
+    value = text.strip().lower()
+    if value in ("true", "1"):
+        return True
+    if value in ("false", "0"):
+        return False
+    raise DescriptionError(
+        f"plugin {plugin.name!r}: <{tag}> {text!r} is not a boolean",
+        source=source or None,
+        field=f"plugin {plugin.filename}: {tag}",
+        hint="valid: true, false, 1, 0",
+    )

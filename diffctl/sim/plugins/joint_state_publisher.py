@@ -7,6 +7,8 @@ no rate is given; at 1 kHz that would be most of the sim's cost, so diffctl defa
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 from diffctl.bus import gz
 from diffctl.description.model import Plugin
 from diffctl.sim.entity import Entity
@@ -15,17 +17,31 @@ from diffctl.sim.plugins.base import PluginContext, SystemPlugin, float_param, r
 DEFAULT_RATE_HZ = 50.0
 
 
+@dataclass(frozen=True)
+class JointStatePublisherParams:
+    joint_names: tuple[str, ...]  # empty: every moving joint
+    topic: str
+    update_rate_hz: float
+
+    @staticmethod
+    def from_plugin(plugin: Plugin, world: str, model: str, source: str = "") -> JointStatePublisherParams:
+        rate = float_param(plugin, "update_rate", DEFAULT_RATE_HZ, source=source, positive=True)
+        return JointStatePublisherParams(
+            joint_names=tuple(plugin.get_all("joint_name")),
+            topic=plugin.get("topic") or f"/world/{world}/model/{model}/joint_state",
+            update_rate_hz=rate or DEFAULT_RATE_HZ,
+        )
+
+
 class JointStatePublisher(SystemPlugin):
     def __init__(self, ctx: PluginContext, entity: Entity, plugin: Plugin) -> None:
         self.ctx, self.entity = ctx, entity
-        names = plugin.get_all("joint_name") or list(entity.joints)
-        self.handles = [entity.joint(n) for n in names]
-        self.topic = plugin.get("topic") or f"/world/{ctx.world_name}/model/{entity.name}/joint_state"
-        rate = float_param(plugin, "update_rate", DEFAULT_RATE_HZ, source=entity.model.source, positive=True)
+        self.params = JointStatePublisherParams.from_plugin(plugin, ctx.world_name, entity.name, entity.model.source)
+        self.handles = [entity.joint(n) for n in self.params.joint_names or entity.joints]
+        self.topic = self.params.topic
         self._pub = ctx.transport.publisher(self.topic, "gz.msgs.Model") if ctx.transport else None
-        self._task = ctx.stepper.add_task(
-            f"joint_states:{entity.name}", rate_period_ns(rate or DEFAULT_RATE_HZ, ctx.stepper.step_ns), self._publish
-        )
+        period = rate_period_ns(self.params.update_rate_hz, ctx.stepper.step_ns)
+        self._task = ctx.stepper.add_task(f"joint_states:{entity.name}", period, self._publish)
 
     def message(self, sim_time_ns: int) -> dict:
         states = self.entity.joint_states(self.handles)

@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 import queue
 import time
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -28,11 +29,28 @@ from diffctl.bus import hw_endpoint as hw
 from diffctl.description.model import Plugin, Ros2Control
 from diffctl.errors import DescriptionError
 from diffctl.sim.entity import Entity, JointHandle
-from diffctl.sim.plugins.base import PluginContext, SystemPlugin, float_param
+from diffctl.sim.plugins.base import PluginContext, SystemPlugin, bool_param, float_param
 
 DEADLINE_S = 1.0
 HARDWARE = "gz_ros2_control/GazeboSimSystem"
 _GONE = object()
+
+
+@dataclass(frozen=True)
+class GzRos2ControlParams:
+    """The gz_ros2_control plugin's own parameters that matter to the simulator side."""
+
+    parameters: tuple[str, ...]  # the controller manager's YAML files (read by the manager, not the sim)
+    hold_joints: bool
+    position_proportional_gain: float
+
+    @staticmethod
+    def from_plugin(plugin: Plugin, source: str = "") -> GzRos2ControlParams:
+        return GzRos2ControlParams(
+            parameters=tuple(plugin.get_all("parameters")),
+            hold_joints=bool_param(plugin, "hold_joints", True, source=source),
+            position_proportional_gain=float_param(plugin, "position_proportional_gain", 0.1, source=source) or 0.1,
+        )
 
 
 def gazebo_block(entity: Entity) -> Ros2Control | None:
@@ -56,8 +74,9 @@ class Ros2ControlEndpoint(SystemPlugin):
                     hint=f"moving joints: {', '.join(entity.joints) or 'none'}",
                 )
             self.handles.append(entity.joint(j.name))
-        self.hold = (plugin.get("hold_joints") or "true").strip().lower() not in ("false", "0")
-        self.kp = float_param(plugin, "position_proportional_gain", 0.1, source=entity.model.source) or 0.1
+        self.params = GzRos2ControlParams.from_plugin(plugin, entity.model.source)
+        self.hold = self.params.hold_joints
+        self.kp = self.params.position_proportional_gain
         n = len(self.handles)
         self.vel_cmd = np.full(n, np.nan)
         self.pos_cmd = np.full(n, np.nan)
