@@ -25,6 +25,10 @@ PREFIX_COLOURS = ("cyan", "green", "magenta", "yellow", "blue", "bright_cyan", "
 def make_console(file: IO[str] | None = None, *, no_color: bool = False, width: int | None = None) -> Console:
     """A rich console; `file=io.StringIO()` for tests, `no_color` honours --no-color and NO_COLOR."""
     no_color = no_color or "NO_COLOR" in os.environ
+    stream = file if file is not None else sys.stdout
+    if width is None and not (hasattr(stream, "isatty") and stream.isatty()):
+        # Piped or captured output: rich would wrap tables at 80 columns and fold names; keep rows whole.
+        width = int(os.environ.get("COLUMNS", "160"))
     return Console(
         file=file,
         no_color=no_color,

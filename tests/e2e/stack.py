@@ -51,6 +51,15 @@ class Watch:
         with self.lock:
             return min(series, key=lambda s: abs(s.t_ns - t_ns))
 
+    def recent_rate_hz(self, topic: str, span_s: float = 2.0) -> float:
+        """`rate_hz` over the last `span_s` of sim time this topic has reached (bridged topics trail others)."""
+        with self.lock:
+            stamps = [t for t, _, _ in self.stamps.get(topic, [])]
+        if not stamps:
+            return 0.0
+        end = max(stamps)
+        return self.rate_hz(topic, end - int(span_s * 1e9), end + 1)
+
     def rate_hz(self, topic: str, start_ns: int, end_ns: int) -> float:
         """Publishing rate in sim time, from the publishers' sequence numbers (robust to samples this busy
         test process may drop): the fastest publisher's (Δseq / Δstamp) over the window."""
@@ -152,19 +161,22 @@ class Stack:
         self.clock_ns = max(self.clock_ns, t_ns)
         cmd, pub = self._cmd, self._cmd_pub
         if cmd is not None and pub is not None:
-            if hasattr(cmd, "header"):
-                # Stamped with the sim time it answers, so cmd_vel_timeout counts from here however late
-                # this process gets to send it.
-                cmd.header.stamp.sec, cmd.header.stamp.nanosec = divmod(t_ns, 1_000_000_000)
+            # The stamp stays zero ("now" on the controller's clock): a stamp from this process could age
+            # past cmd_vel_timeout on a busy machine before it arrives, and be dropped as stale.
             pub.publish(cmd)
             self.last_cmd_ns = t_ns
 
     def command(self, topic: str, typename: str, values: dict | None) -> None:
-        """Publish `values` on every /clock tick from now on (None stops)."""
+        """Publish `values` now and on every odometry sample from now on (None stops)."""
         assert self.node is not None
         if values is not None and (self._cmd_pub is None or self._cmd_pub.topic != topic):
             self._cmd_pub = self.node.create_publisher(topic, typename)
+            deadline = time.monotonic() + 5
+            while self._cmd_pub.subscription_count == 0 and time.monotonic() < deadline:
+                time.sleep(0.01)
         self._cmd = types.new(typename, values) if values is not None else None
+        if self._cmd is not None and not hasattr(self._cmd, "header"):
+            self._cmd_pub.publish(self._cmd)
 
     def wait_sim(self, until_ns: int, timeout_s: float = 60.0) -> None:
         deadline = time.monotonic() + timeout_s
