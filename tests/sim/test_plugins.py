@@ -117,3 +117,23 @@ def test_ros2_control_endpoint_commands_without_a_bus() -> None:
         assert math.isfinite(ep.info()["sim_time_ns"])
     finally:
         sim.close()
+
+
+def test_gz_ros2_control_and_joint_state_publisher_parameters() -> None:
+    from diffctl.description.model import Plugin
+    from diffctl.errors import DescriptionError
+    from diffctl.sim.plugins.joint_state_publisher import JointStatePublisherParams
+    from diffctl.sim.plugins.ros2_control import GzRos2ControlParams
+
+    gz_plugin = Plugin("gz_ros2_control::GazeboSimROS2ControlPlugin", "libgz_ros2_control-system", ())
+    p = GzRos2ControlParams.from_plugin(gz_plugin)
+    assert (p.hold_joints, p.position_proportional_gain, p.parameters) == (True, 0.1, ())
+    off = Plugin(gz_plugin.name, gz_plugin.filename, (("hold_joints", "false"), ("parameters", "/a.yaml")))
+    assert GzRos2ControlParams.from_plugin(off).hold_joints is False
+    with pytest.raises(DescriptionError, match="'flase' is not a boolean"):
+        GzRos2ControlParams.from_plugin(Plugin(gz_plugin.name, gz_plugin.filename, (("hold_joints", "flase"),)))
+    jsp = Plugin("gz::sim::systems::JointStatePublisher", "gz-sim-joint-state-publisher-system", ())
+    jp = JointStatePublisherParams.from_plugin(jsp, "empty", "robot")
+    assert (jp.topic, jp.update_rate_hz, jp.joint_names) == ("/world/empty/model/robot/joint_state", 50.0, ())
+    with pytest.raises(DescriptionError, match="'-5'"):
+        JointStatePublisherParams.from_plugin(Plugin(jsp.name, jsp.filename, (("update_rate", "-5"),)), "w", "m")
