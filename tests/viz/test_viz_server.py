@@ -202,7 +202,11 @@ def test_wrong_token_foreign_origin_and_publisher_panel(viz) -> None:
             assert (await recv_until(ws, lambda m: m["type"] == "publish_state"))["running"] is False
 
     asyncio.run(session())
-    n_at_stop = len(twists.snapshot())
+    # Samples already in flight when the stop was acknowledged may still land: wait for the count to settle.
+    n_at_stop = -1
+    while n_at_stop != len(twists.snapshot()):
+        n_at_stop = len(twists.snapshot())
+        time.sleep(0.3)
     time.sleep(0.4)
     got = twists.snapshot()
     assert 12 <= n_at_stop <= 26, n_at_stop  # ~20 Hz for one second
