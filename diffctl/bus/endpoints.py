@@ -175,6 +175,12 @@ class Service:
         try:
             payload = query.payload.to_bytes() if query.payload is not None else b""
             req = types.deserialize(payload, self.type + "_Request")
+        except MessageError as e:
+            # A malformed request is the caller's fault: answer it, but do not let a flood of them flood the log.
+            self.node.log.throttled(f"badreq{self.name}", f"service {self.name}: dropped a malformed request: {e}")
+            query.reply_err(f"MessageError: {e}")
+            return
+        try:
             resp = self.handler(req)
             if isinstance(resp, dict):
                 resp = types.response(self.type, resp)

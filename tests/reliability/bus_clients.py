@@ -1,7 +1,7 @@
 """Bus clients the fault tests run as their own processes (so they can be SIGKILLed or left slow on purpose).
 
-    python -m tests.reliability.bus_clients teleop VX WZ       # one TwistStamped per odometry sample, stamped
-                                                               # with its sim time (a teleop on sim time)
+    python -m tests.reliability.bus_clients teleop VX WZ       # one TwistStamped per odometry sample (stamp 0
+                                                               # = "now": paced by sim time, never stale)
     python -m tests.reliability.bus_clients flood RATE_HZ VX   # TwistStamped (stamp 0 = "now") at RATE_HZ wall
     python -m tests.reliability.bus_clients slow DELAY_S       # subscribes to the busy topics, sleeps DELAY_S
                                                                # in every callback
@@ -26,8 +26,7 @@ def teleop(vx: float, wz: float) -> None:
     pub = node.create_publisher(CMD, TWIST_STAMPED)
     cmd = types.new(TWIST_STAMPED, {"twist": {"linear": {"x": vx}, "angular": {"z": wz}}})
 
-    def on_odom(m: Any) -> None:
-        cmd.header.stamp = m.header.stamp
+    def on_odom(_m: Any) -> None:
         pub.publish(cmd)
 
     node.create_subscription(ODOM, "nav_msgs/msg/Odometry", on_odom)
