@@ -13,6 +13,7 @@ import pybullet as pb
 
 from diffctl.description.model import Joint, Model
 from diffctl.description.pose import Pose, Vec3
+from diffctl.errors import DescriptionError, suggest
 from diffctl.sim.body_plan import ModelPlan
 
 # A joint without an <effort> limit is driven as Gazebo's velocity command would (nearly ideally).
@@ -111,8 +112,6 @@ class Entity:
         try:
             return self.joints[name]
         except KeyError:
-            from diffctl.errors import DescriptionError, suggest
-
             raise DescriptionError(
                 f"model {self.name!r} has no moving joint {name!r}{suggest(name, self.joints)}",
                 hint=f"moving joints: {', '.join(self.joints) or 'none'}",

@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+import pybullet as pb
 
 from diffctl.bus import gz
 from diffctl.bus.log import Logger
@@ -256,8 +257,6 @@ class Simulation:
         return task
 
     def _look_at(self, entity: Entity) -> None:
-        import pybullet as pb
-
         p = entity.pose().xyz
         pb.resetDebugVisualizerCamera(0.7, 50.0, -30.0, p, physicsClientId=self.physics.client)
 

@@ -19,6 +19,7 @@ import pybullet as pb
 from diffctl.bus import gz
 from diffctl.description.model import Noise, Sensor
 from diffctl.description.pose import Pose, Vec3, quat_from_matrix
+from diffctl.errors import DescriptionError
 from diffctl.sim.entity import Entity
 from diffctl.sim.flat_planes import FlatPlane, camera_rays, composite, linear_depth_m
 
@@ -67,8 +68,6 @@ class Lidar:
         self.frame_id = _frame_id(entity, sensor)
         self.count = spec.horizontal_samples * spec.vertical_samples
         if self.count > MAX_RAYS:
-            from diffctl.errors import DescriptionError
-
             raise DescriptionError(
                 f"lidar {sensor.name!r} casts {self.count} rays per scan; PyBullet allows at most {MAX_RAYS}",
                 field=f"sensor {sensor.name}",

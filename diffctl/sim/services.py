@@ -17,6 +17,7 @@ Topic `/world/<world>/stats` (gz.msgs.WorldStatistics, 5 Hz of wall time, also w
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import os
 import time
@@ -202,8 +203,6 @@ def _pose_from(d: Any) -> Pose | None:
 
 
 def _renamed(model: Any, taken: dict[str, Any]) -> Any:
-    import dataclasses
-
     i = 1
     while f"{model.name}_{i}" in taken:
         i += 1
