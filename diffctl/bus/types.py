@@ -14,14 +14,15 @@ from dataclasses import fields as dc_fields
 from typing import Any
 
 import numpy as np
-from rosbags.typesys import Stores, get_types_from_msg, get_typestore
+from rosbags.typesys import Stores, get_typestore
 from rosbags.typesys.base import Nodetype
 
+from diffctl.bus import typedefs
 from diffctl.errors import MessageError, suggest
 
 _lock = threading.RLock()
 _store = None
-_packages_done: set[str] = set()
+_registered: set[str] = set()
 
 _NUMPY = {
     "bool": np.bool_, "byte": np.uint8, "char": np.uint8, "int8": np.int8, "uint8": np.uint8,
@@ -36,74 +37,31 @@ _INT_RANGE = {
 
 
 def store():
-    """The process-wide typestore (Jazzy), built once; project packages are added by `_ensure`."""
+    """The process-wide typestore; types enter it on first use (`_ensure`)."""
     global _store
     if _store is None:
         with _lock:
             if _store is None:
-                ts = get_typestore(Stores.ROS2_JAZZY)
-                _patch_char_gid(ts)
-                _store = ts
+                _store = get_typestore(Stores.EMPTY)
     return _store
 
 
 def _ensure(typename: str):
-    """The store, with the project-defined package of `typename` registered (parsing .msg text costs tens of
-    milliseconds, so a process only pays for the packages it uses)."""
+    """The store, with `typename` and everything it references registered."""
     ts = store()
-    pkg = typename.split("/", 1)[0]
-    if pkg in _packages_done:
+    if typename in _registered:
         return ts
     with _lock:
-        if pkg not in _packages_done:
-            from diffctl.bus.interfaces import MSGS, SRVS
-
-            for name, text in MSGS.items():
-                if name.startswith(pkg + "/"):
-                    ts.register(get_types_from_msg(text, name))
-            for name, (req, resp) in SRVS.items():
-                if name.startswith(pkg + "/"):
-                    ts.register(_srv_typesdict(name, req, resp))
-            _packages_done.add(pkg)
+        defs = typedefs.definitions()
+        missing = [n for n in typedefs.closure(defs, [typename]) if n not in _registered]
+        if missing:
+            ts.register({n: defs[n] for n in missing})
+            _registered.update(missing)
     return ts
 
 
-def _ensure_all():
-    from diffctl.bus.interfaces import MSGS, SRVS
-
-    for name in (*MSGS, *SRVS):
-        _ensure(name)
-    return store()
-
-
-def _patch_char_gid(ts) -> None:
-    # rosidl turns a .msg `char` into uint8; rosbags keeps it as char, which changes the RIHS01 hash of
-    # every service (its event carries ServiceEventInfo.client_gid). Same wire size, so patching is safe.
-    consts, flds = ts.fielddefs["service_msgs/msg/ServiceEventInfo"]
-    flds = [
-        (n, (Nodetype.ARRAY, ((Nodetype.BASE, ("uint8", 0)), 16))) if n == "client_gid" else (n, t) for n, t in flds
-    ]
-    ts.fielddefs["service_msgs/msg/ServiceEventInfo"] = (consts, flds)
-
-
-def _srv_typesdict(name: str, req_text: str, resp_text: str) -> dict:
-    pkg, _, short = name.split("/")
-    out: dict = {}
-    for suffix, text in (("Request", req_text), ("Response", resp_text)):
-        for k, v in get_types_from_msg(text, f"{pkg}/msg/{short}_{suffix}").items():
-            out[k.replace(f"{pkg}/msg/{short}_", f"{name}_")] = v
-    n = Nodetype
-    out[f"{name}_Event"] = ([], [
-        ("info", (n.NAME, "service_msgs/msg/ServiceEventInfo")),
-        ("request", (n.SEQUENCE, ((n.NAME, f"{name}_Request"), 1))),
-        ("response", (n.SEQUENCE, ((n.NAME, f"{name}_Response"), 1))),
-    ])
-    out[name] = ([], [
-        ("request_message", (n.NAME, f"{name}_Request")),
-        ("response_message", (n.NAME, f"{name}_Response")),
-        ("event_message", (n.NAME, f"{name}_Event")),
-    ])
-    return out
+def _all_names() -> list[str]:
+    return list(typedefs.definitions())
 
 
 def normalize(typename: str) -> str:
@@ -122,7 +80,7 @@ def normalize(typename: str) -> str:
 
 
 def known_types() -> list[str]:
-    return sorted(_ensure_all().types)
+    return sorted(_all_names())
 
 
 def exists(typename: str) -> bool:
@@ -138,8 +96,7 @@ def check(typename: str) -> str:
     t = normalize(typename)
     ts = _ensure(t)
     if t not in ts.types:
-        ts = _ensure_all()
-        raise MessageError(f"unknown message type {typename!r}{suggest(t, ts.types)}")
+        raise MessageError(f"unknown message type {typename!r}{suggest(t, _all_names())}")
     return t
 
 
@@ -149,7 +106,7 @@ def check_service(typename: str) -> str:
         t = t.replace("/msg/", "/srv/", 1)
     ts = _ensure(t)
     if f"{t}_Request" not in ts.types:
-        services = [k for k in _ensure_all().types if k.endswith("_Request")]
+        services = [k for k in _all_names() if k.endswith("_Request")]
         raise MessageError(f"unknown service type {typename!r}{suggest(t + '_Request', services)}")
     return t
 

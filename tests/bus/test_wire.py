@@ -81,14 +81,13 @@ def test_liveliness_tokens_follow_rmw_zenoh() -> None:
 def test_service_hash_matches_rmw_zenoh_design_example() -> None:
     # design.md: 2/add_two_ints/example_interfaces::srv::dds_::AddTwoInts_/RIHS01_e118de6b…239c81a;
     # the same construction gives our service hashes.
-    from rosbags.typesys import get_types_from_msg  # noqa: F401  (the store registers types through it)
+    from diffctl.bus.typedefs import srv_typesdict
+    from diffctl.bus.types import _ensure
 
-    from diffctl.bus.types import _srv_typesdict, store
-
-    ts = store()
+    ts = _ensure("service_msgs/msg/ServiceEventInfo")  # with client_gid as rosidl types it (uint8[16])
     if "example_interfaces/srv/AddTwoInts" not in ts.types:
-        ts.register(_srv_typesdict("example_interfaces/srv/AddTwoInts", "int64 a\nint64 b", "int64 sum"))
-    h = types.type_hash("example_interfaces/srv/AddTwoInts")
+        ts.register(srv_typesdict("example_interfaces/srv/AddTwoInts", "int64 a\nint64 b", "int64 sum"))
+    h = ts.hash_rihs01("example_interfaces/srv/AddTwoInts")
     assert h.startswith("RIHS01_e118de6b") and h.endswith("239c81a")
 
 
