@@ -13,15 +13,18 @@ $(STAMP): pyproject.toml
 	$(BIN)/python -m pip install -q -e '.[test]'
 	@touch $@
 
-# Chromium (browser tests) and Xvfb (the --gui screenshot test) come from Debian's packages.
-# Idempotent: nothing is installed when both are already there.
+# Chromium (browser tests), Xvfb (the --gui screenshot test), openssl and iproute2 (the security tests'
+# certificates and network-namespace hosts) come from Debian's packages.
+# Idempotent: nothing is installed when all are already there.
 system-deps:
-	@if ! command -v chromium >/dev/null || ! command -v Xvfb >/dev/null; then \
+	@if ! command -v chromium >/dev/null || ! command -v Xvfb >/dev/null || ! command -v openssl >/dev/null \
+	    || ! command -v ip >/dev/null; then \
 	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
-	    echo "installing chromium and xvfb from Debian packages"; \
-	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium xvfb >/dev/null; \
+	    echo "installing chromium, xvfb, openssl and iproute2 from Debian packages"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium xvfb openssl \
+	      iproute2 >/dev/null; \
 	  else \
-	    echo "chromium/xvfb missing and cannot apt-get install them: browser and GUI tests will say so"; \
+	    echo "chromium/xvfb/openssl/iproute2 missing and cannot apt-get install them: their tests will say so"; \
 	  fi; \
 	fi
 
