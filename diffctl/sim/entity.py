@@ -102,6 +102,17 @@ class Entity:
         )
         return v, (ang[0], ang[1], ang[2])
 
+    def com_state(self, body: int, index: int) -> tuple[Pose, Vec3, Vec3]:
+        """(centre-of-mass frame in the world, its linear velocity, angular velocity) of a PyBullet link."""
+        cid = self.client
+        if index < 0:
+            pos, orn = pb.getBasePositionAndOrientation(body, physicsClientId=cid)
+            lin, ang = pb.getBaseVelocity(body, physicsClientId=cid)
+        else:
+            st = pb.getLinkState(body, index, computeLinkVelocity=1, computeForwardKinematics=1, physicsClientId=cid)
+            pos, orn, lin, ang = st[0], st[1], st[6], st[7]
+        return Pose(tuple(pos), tuple(orn)), tuple(lin), tuple(ang)
+
     def inertial_frame(self, body: int, index: int) -> Pose:
         """The centre-of-mass frame of a PyBullet link in its link frame (PyBullet reports and casts in it)."""
         return self.plan.bodies[self.bodies.index(body)].links[index + 1].inertial_frame
