@@ -57,6 +57,7 @@ class Stepper:
         self.tasks: list[Task] = []
         self.step_hooks: list[Callable[[], None]] = []
         self.idle_hooks: list[Callable[[], None]] = []
+        self.after_due: list[Callable[[], None]] = []
         self._inbox: collections.deque[Callable[[], None]] = collections.deque()
         self._wake = threading.Event()
         self._pending_steps = 0
@@ -75,9 +76,20 @@ class Stepper:
 
     # --- sim thread ----------------------------------------------------------------------------------
 
-    def add_task(self, name: str, period_ns: int, fn: Callable[[int], None], *, first_ns: int | None = None) -> Task:
+    def add_task(
+        self,
+        name: str,
+        period_ns: int,
+        fn: Callable[[int], None],
+        *,
+        first_ns: int | None = None,
+        before_others: bool = False,
+    ) -> Task:
+        """Run `fn(sim_time_ns)` every `period_ns` of sim time from `first_ns` (default: now); tasks due at
+        the same time run in the order they were added, `before_others` ones first."""
         self._seq += 1
-        task = Task(name, period_ns, fn, self.sim_time_ns if first_ns is None else first_ns, self._seq)
+        seq = -self._seq if before_others else self._seq
+        task = Task(name, period_ns, fn, self.sim_time_ns if first_ns is None else first_ns, seq)
         self.tasks.append(task)
         heapq.heappush(self._heap, (task.next_ns, task.seq, task))
         self._next_due = self._heap[0][0]
@@ -133,6 +145,12 @@ class Stepper:
         while heap and not heap[0][2].live:
             heapq.heappop(heap)
         self._next_due = heap[0][0] if heap else 1 << 62
+        while self.after_due:
+            self.after_due.pop(0)()
+
+    def later_this_step(self, fn: Callable[[], None]) -> None:
+        """Run `fn` once the tasks due now have run (e.g. wait for an answer while they did their work)."""
+        self.after_due.append(fn)
 
     def reschedule(self) -> None:
         """Rebuild the schedule from the tasks' due times (after they were changed wholesale)."""

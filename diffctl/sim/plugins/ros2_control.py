@@ -171,7 +171,11 @@ class Ros2ControlEndpoint(SystemPlugin):
             self.ctx.stepper.remove_task(self._task)
         # The first exchange happens after the next step; ticks continue from the last one sent.
         self._task = self.ctx.stepper.add_task(
-            f"ros2_control:{self.model}", period, self._exchange, first_ns=self.ctx.stepper.sim_time_ns + step_ns
+            f"ros2_control:{self.model}",
+            period,
+            self._exchange,
+            first_ns=self.ctx.stepper.sim_time_ns + step_ns,
+            before_others=True,
         )
         self.ctx.log.info(f"controller manager {manager!r} attached to {self.model!r} at {update_rate:g} Hz")
         return {"ok": True, "next_tick": self.tick, "control_period_ns": period}
@@ -187,7 +191,8 @@ class Ros2ControlEndpoint(SystemPlugin):
         self.hold_all()
 
     def _exchange(self, sim_time_ns: int) -> None:
-        """One control period: publish state for this tick, wait for its command, apply it."""
+        """One control period: publish state for this tick first, then (once the sensors and clock due now
+        have done their work, while the manager computes) wait for its command and apply it."""
         tick = self.tick
         self.tick += 1
         if self._state_pub is not None:
@@ -196,6 +201,10 @@ class Ros2ControlEndpoint(SystemPlugin):
             vel = [s[1] for s in states]
             eff = [s[2] for s in states]
             self._state_pub.put(hw.encode_state(tick, sim_time_ns, pos, vel, eff))
+        if self.manager is not None:
+            self.ctx.stepper.later_this_step(lambda: self._await_command(tick))
+
+    def _await_command(self, tick: int) -> None:
         if self.manager is None:
             return
         t0 = time.perf_counter()
