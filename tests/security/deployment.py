@@ -51,8 +51,9 @@ class Deployment:
 
 
 def _certs(folder: Path, *names: str) -> None:
-    r = subprocess.run([str(EXAMPLES / "make_certs.sh"), str(folder), *names], capture_output=True, text=True,
-                       timeout=60)
+    r = subprocess.run(
+        [str(EXAMPLES / "make_certs.sh"), str(folder), *names], capture_output=True, text=True, timeout=60
+    )
     assert r.returncode == 0, f"make_certs.sh failed: {r.stderr}"
 
 
@@ -65,15 +66,23 @@ def build(root: Path, host_a_address: str, host_b_address: str) -> Deployment:
     files = {
         "a": [ca / "ca.pem", ca / "router-a.pem", ca / "router-a.key"],
         "b": [ca / "ca.pem", ca / "router-b.pem", ca / "router-b.key"],
-        "clients": [ca / "ca.pem", ca / "laptop.pem", ca / "laptop.key", ca / "visitor.pem", ca / "visitor.key",
-                    rogue / "intruder.pem", rogue / "intruder.key"],
+        "clients": [
+            ca / "ca.pem",
+            ca / "laptop.pem",
+            ca / "laptop.key",
+            ca / "visitor.pem",
+            ca / "visitor.key",
+            rogue / "intruder.pem",
+            rogue / "intruder.key",
+        ],
     }
     for host, paths in files.items():
         (root / host).mkdir(mode=0o700)
         for p in paths:
             shutil.copy(p, root / host / p.name)
     (root / "a" / "users.txt").write_text(
-        f"{LOCAL_LOGIN}\nhost-b:change-me-host-b\nlaptop:change-me-laptop\nvisitor:{VISITOR_PASSWORD}\n")
+        f"{LOCAL_LOGIN}\nhost-b:change-me-host-b\nlaptop:change-me-laptop\nvisitor:{VISITOR_PASSWORD}\n"
+    )
     (root / "b" / "users.txt").write_text(f"{LOCAL_LOGIN}\n")
 
     def concrete(example: str, host: str) -> str:
@@ -91,8 +100,11 @@ def build(root: Path, host_a_address: str, host_b_address: str) -> Deployment:
     d.client("visitor").write_text(visitor)
     d.client("wrong_password").write_text(_replace(visitor, f'"{VISITOR_PASSWORD}"', '"guessed"'))
     d.client("other_ca").write_text(_replace(visitor, "visitor.", "intruder."))
-    no_cert = [line for line in visitor.splitlines()
-               if not line.strip().startswith(("connect_private_key", "connect_certificate", "enable_mtls"))]
+    no_cert = [
+        line
+        for line in visitor.splitlines()
+        if not line.strip().startswith(("connect_private_key", "connect_certificate", "enable_mtls"))
+    ]
     assert len(no_cert) == len(visitor.splitlines()) - 3
     d.client("no_certificate").write_text("\n".join(no_cert) + "\n")
     return d

@@ -27,8 +27,13 @@ URL_RE = r"open http://([^\s/:]+|\[[^\]]+\]):(\d+)/\?token=(\S+)"
 CMD_VEL = "/diffbot_base_controller/cmd_vel"
 PROBE_TOPIC = "/security_probe/cmd"
 # The processes of sim_control that stay up (spawners and `create` exit once done).
-RESIDENT = ("diffctl robot-state-publisher", "diffctl sim run", "diffctl control manager", "diffctl bridge",
-            "diffctl viz")
+RESIDENT = (
+    "diffctl robot-state-publisher",
+    "diffctl sim run",
+    "diffctl control manager",
+    "diffctl bridge",
+    "diffctl viz",
+)
 SCOUTING_GROUP_HEX = "E00000E0"  # 224.0.0.224, Zenoh's multicast scouting group, as /proc/net/igmp spells it
 
 
@@ -58,8 +63,17 @@ def recv_until(ws: Any, kind: str, timeout_s: float = 10.0) -> dict[str, Any]:
 
 def start_sim_control(procs: Procs, log_dir: Path, *launch_args: str, on: HostPair | None = None) -> Running:
     """sim_control as a user starts it; `on` runs it on host A of a namespace pair instead of here."""
-    cmd = [sys.executable, "-m", "diffctl", "launch", "sim_control", *launch_args, "--log-dir", str(log_dir),
-           "--no-color"]
+    cmd = [
+        sys.executable,
+        "-m",
+        "diffctl",
+        "launch",
+        "sim_control",
+        *launch_args,
+        "--log-dir",
+        str(log_dir),
+        "--no-color",
+    ]
     if on is None:
         return Running(procs.start(cmd))
     env = {k: v for k, v in os.environ.items() if k != "DIFFCTL_ROUTER"}  # the default port, 7447
@@ -106,8 +120,14 @@ def test_sim_control_listens_on_loopback_only_and_viz_needs_the_token(
         cmds = Recorder(node, CMD_VEL, "geometry_msgs/msg/TwistStamped")
         probes = Recorder(node, PROBE_TOPIC, "geometry_msgs/msg/Twist")
         ws_url = f"ws://127.0.0.1:{viz_port}/ws"
-        publish = {"op": "publish", "id": "p", "topic": PROBE_TOPIC, "type": "geometry_msgs/msg/Twist",
-                   "body": "linear: {x: 0.25}", "rate": 0}
+        publish = {
+            "op": "publish",
+            "id": "p",
+            "topic": PROBE_TOPIC,
+            "type": "geometry_msgs/msg/Twist",
+            "body": "linear: {x: 0.25}",
+            "rate": 0,
+        }
         # No token, then a wrong one (in the URL and by the page's auth message): watched, never obeyed.
         for url in (ws_url, f"{ws_url}?token=wrong-{token[:4]}"):
             with connect(url, open_timeout=10) as ws:
@@ -153,11 +173,17 @@ def netns_probe(hosts: HostPair, ports: list[int]) -> dict[int, str]:
 def test_sim_control_is_unreachable_from_another_host(hosts: HostPair, procs: Procs, tmp_path: Path) -> None:
     # sim_control on host A exactly as a user starts it (default router port 7447, visualizer on 8080).
     launch = start_sim_control(procs, tmp_path / "log", on=hosts)
-    control = Running(procs.start(hosts.a.argv(
-        sys.executable, "-c",
-        "import socket, time\n"
-        "s = socket.socket(); s.bind(('0.0.0.0', 7999)); s.listen()\n"
-        "print('listening', flush=True); time.sleep(300)")))
+    control = Running(
+        procs.start(
+            hosts.a.argv(
+                sys.executable,
+                "-c",
+                "import socket, time\n"
+                "s = socket.socket(); s.bind(('0.0.0.0', 7999)); s.listen()\n"
+                "print('listening', flush=True); time.sleep(300)",
+            )
+        )
+    )
     try:
         _, viz_port, _ = launch.wait_for(URL_RE, timeout_s=120).groups()
         control.wait_for("listening")

@@ -59,8 +59,18 @@ def bring_up(hosts: HostPair, procs: Procs, d: Deployment, log_dir: Path) -> tup
     router_a.wait_for(r"^router \S+ listening")
     router_b = start(procs, diffctl(hosts.b, "router", "--config", str(d.router_b), config=None))
     router_b.wait_for(r"^router \S+ listening")
-    robot = start(procs, diffctl(hosts.a, "launch", str(HERE / "data" / "robot_host.yaml"), "--log-dir",
-                                 str(log_dir), "--no-color", config=d.session_a))
+    robot = start(
+        procs,
+        diffctl(
+            hosts.a,
+            "launch",
+            str(HERE / "data" / "robot_host.yaml"),
+            "--log-dir",
+            str(log_dir),
+            "--no-color",
+            config=d.session_a,
+        ),
+    )
     return router_a, router_b, robot
 
 
@@ -86,24 +96,64 @@ def test_two_hosts_drive_over_tls_and_strangers_get_nothing(hosts: HostPair, pro
     router_a, router_b, robot = bring_up(hosts, procs, d, tmp_path / "log")
     try:
         # Host B: the spawners reach the controller manager on A through both routers (services + graph).
-        spawned = run_to_end(procs, {"diffbot": diffctl(
-            hosts.b, "spawn", "controller", "diffbot_base_controller", "--param-file",
-            "config/diff_drive_controller.yaml", "--controller-manager-timeout", "90", config=d.session_b)})
+        spawned = run_to_end(
+            procs,
+            {
+                "diffbot": diffctl(
+                    hosts.b,
+                    "spawn",
+                    "controller",
+                    "diffbot_base_controller",
+                    "--param-file",
+                    "config/diff_drive_controller.yaml",
+                    "--controller-manager-timeout",
+                    "90",
+                    config=d.session_b,
+                )
+            },
+        )
         assert spawned["diffbot"][0] == 0, spawned["diffbot"][1]
-        spawned = run_to_end(procs, {"jsb": diffctl(hosts.b, "spawn", "controller", "joint_state_broadcaster",
-                                                    "--controller-manager-timeout", "30", config=d.session_b)})
+        spawned = run_to_end(
+            procs,
+            {
+                "jsb": diffctl(
+                    hosts.b,
+                    "spawn",
+                    "controller",
+                    "joint_state_broadcaster",
+                    "--controller-manager-timeout",
+                    "30",
+                    config=d.session_b,
+                )
+            },
+        )
         assert spawned["jsb"][0] == 0, spawned["jsb"][1]
 
-        odom_b = start(procs, diffctl(hosts.b, "topic", "echo", ODOM, ODOMETRY, "--field", "pose.pose.position",
-                                      config=d.session_b))
-        seen_on_a = start(procs, diffctl(hosts.a, "topic", "echo", CMD_VEL, TWIST, "--field", "twist.linear",
-                                         config=d.session_a))
+        odom_b = start(
+            procs,
+            diffctl(hosts.b, "topic", "echo", ODOM, ODOMETRY, "--field", "pose.pose.position", config=d.session_b),
+        )
+        seen_on_a = start(
+            procs, diffctl(hosts.a, "topic", "echo", CMD_VEL, TWIST, "--field", "twist.linear", config=d.session_a)
+        )
         odom_b.wait_for(r"^x: ", timeout_s=30)
         x0 = xs(odom_b.output())[-1]
 
         # Host B drives (sim-time stamps, from /clock that router A lets through) and the car moves.
-        teleop = start(procs, diffctl(hosts.b, "topic", "pub", CMD_VEL, TWIST, "{twist: {linear: {x: 0.5}}}",
-                                      "--rate", "10", config=d.session_b))
+        teleop = start(
+            procs,
+            diffctl(
+                hosts.b,
+                "topic",
+                "pub",
+                CMD_VEL,
+                TWIST,
+                "{twist: {linear: {x: 0.5}}}",
+                "--rate",
+                "10",
+                config=d.session_b,
+            ),
+        )
         deadline = time.monotonic() + 60
         while max(xs(odom_b.output()), default=x0) < x0 + 0.5:
             assert time.monotonic() < deadline, f"the car did not move:\n{teleop.output()}\n{robot.output()}"
@@ -116,20 +166,47 @@ def test_two_hosts_drive_over_tls_and_strangers_get_nothing(hosts: HostPair, pro
         refused = {name: d.client(name) for name in ("no_certificate", "other_ca", "wrong_password")}
         argvs = {}
         for name, cfg in refused.items():
-            argvs[f"{name} pub"] = diffctl(hosts.b, "topic", "pub", CMD_VEL, TWIST,
-                                           "{twist: {linear: {x: 0.777}}}", "--once", config=cfg)
-            argvs[f"{name} echo"] = diffctl(hosts.b, "topic", "echo", ODOM, ODOMETRY, "--once", "--timeout", "5",
-                                            config=cfg)
+            argvs[f"{name} pub"] = diffctl(
+                hosts.b, "topic", "pub", CMD_VEL, TWIST, "{twist: {linear: {x: 0.777}}}", "--once", config=cfg
+            )
+            argvs[f"{name} echo"] = diffctl(
+                hosts.b, "topic", "echo", ODOM, ODOMETRY, "--once", "--timeout", "5", config=cfg
+            )
         # The shipped client config, in router A's access-control list, reads odometry the same way…
-        argvs["laptop echo"] = diffctl(hosts.b, "topic", "echo", ODOM, ODOMETRY, "--once", "--timeout", "20",
-                                       "--field", "pose.pose.position", config=d.client("laptop"))
+        argvs["laptop echo"] = diffctl(
+            hosts.b,
+            "topic",
+            "echo",
+            ODOM,
+            ODOMETRY,
+            "--once",
+            "--timeout",
+            "20",
+            "--field",
+            "pose.pose.position",
+            config=d.client("laptop"),
+        )
         # …where one logged in with a good certificate and password, but in no policy, gets nothing.
         visitor = d.client("visitor")
-        argvs["visitor echo"] = diffctl(hosts.b, "topic", "echo", ODOM, ODOMETRY, "--once", "--timeout", "5",
-                                        config=visitor)
-        visitor_pub = start(procs, diffctl(hosts.b, "topic", "pub", CMD_VEL, TWIST,
-                                           "{twist: {linear: {x: 0.777}}}", "--rate", "20", "-w", "0",
-                                           config=visitor))
+        argvs["visitor echo"] = diffctl(
+            hosts.b, "topic", "echo", ODOM, ODOMETRY, "--once", "--timeout", "5", config=visitor
+        )
+        visitor_pub = start(
+            procs,
+            diffctl(
+                hosts.b,
+                "topic",
+                "pub",
+                CMD_VEL,
+                TWIST,
+                "{twist: {linear: {x: 0.777}}}",
+                "--rate",
+                "20",
+                "-w",
+                "0",
+                config=visitor,
+            ),
+        )
         odom_count = len(xs(odom_b.output()))
         results = run_to_end(procs, argvs)
         for name, (code, out) in results.items():
