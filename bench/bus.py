@@ -14,6 +14,8 @@ import textwrap
 import threading
 import time
 
+from bench.ports import free_port, wait_port
+
 BUDGET = {"bus_rtt_p50_us": ("<=", 300.0), "bus_rtt_p99_us": ("<=", 1000.0),
           "bus_throughput_msgs_s": (">=", 50_000.0)}
 SAMPLES = 5000
@@ -54,13 +56,13 @@ def run() -> dict:
     from diffctl.bus import Node, types
     from diffctl.bus.session import close_session
 
-    port = _free_port()
+    port = free_port()
     os.environ["DIFFCTL_ROUTER"] = f"tcp/127.0.0.1:{port}"
     router = subprocess.Popen([sys.executable, "-m", "diffctl", "router"], stdout=subprocess.DEVNULL,
                               stderr=subprocess.DEVNULL, start_new_session=True)
     procs = [router]
     try:
-        _wait_port(port)
+        wait_port(port)
         pong = subprocess.Popen([sys.executable, "-c", PONG], stdout=subprocess.PIPE, text=True,
                                 start_new_session=True)
         procs.append(pong)
@@ -119,27 +121,6 @@ def run() -> dict:
             except ProcessLookupError:
                 pass
             p.wait()
-
-
-
-def _free_port() -> int:
-    import socket
-
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def _wait_port(port: int) -> None:
-    import socket
-
-    for _ in range(500):
-        try:
-            with socket.create_connection(("127.0.0.1", port), timeout=0.2):
-                return
-        except OSError:
-            time.sleep(0.01)
-    raise TimeoutError(f"router did not listen on {port}")
 
 
 if __name__ == "__main__":

@@ -14,33 +14,17 @@ from __future__ import annotations
 
 import os
 import signal
-import socket
 import subprocess
 import sys
 import time
 from pathlib import Path
 
+from bench.ports import free_port, wait_port
+
 REPO = Path(__file__).resolve().parent.parent
 SDF = REPO / "description" / "my_diff_car_control.sdf"
 CONFIG = REPO / "config" / "diff_drive_controller.yaml"
 BUDGET = {"control_jitter_p99_ms": ("<=", 1.0), "control_update_us": ("<=", 200.0)}
-
-
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def _wait_port(port: int, timeout_s: float = 10.0) -> None:
-    deadline = time.monotonic() + timeout_s
-    while time.monotonic() < deadline:
-        try:
-            with socket.create_connection(("127.0.0.1", port), timeout=0.2):
-                return
-        except OSError:
-            time.sleep(0.02)
-    raise TimeoutError(f"router did not come up on {port}")
 
 
 def run(duration_s: float = 10.0, rate_hz: int = 100) -> dict:
@@ -49,7 +33,7 @@ def run(duration_s: float = 10.0, rate_hz: int = 100) -> dict:
     from diffctl.control.ros2_control_node import ControlNode, ManagerOptions
     from diffctl.control.switching import STRICT
 
-    port = _free_port()
+    port = free_port()
     endpoint = f"tcp/127.0.0.1:{port}"
     old_router = os.environ.get("DIFFCTL_ROUTER")
     os.environ["DIFFCTL_ROUTER"] = endpoint
@@ -68,7 +52,7 @@ def run(duration_s: float = 10.0, rate_hz: int = 100) -> dict:
     node = None
     try:
         child("router", "--listen", endpoint)
-        _wait_port(port)
+        wait_port(port)
         opts = ManagerOptions(
             str(SDF), [str(CONFIG)], None, "mock_components/GenericSystem", {"calculate_dynamics": "true"}
         )

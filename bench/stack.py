@@ -23,15 +23,9 @@ import time
 import numpy as np
 import psutil
 
+from bench.ports import free_port
+
 READY = ("diffbot_base_controller", "joint_state_broadcaster")
-
-
-def _free_port() -> int:
-    import socket
-
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 def _tree_memory_mb(pid: int) -> tuple[float, float]:
@@ -57,7 +51,7 @@ def run() -> dict:
     from diffctl.bus import Node, gz, hw_endpoint
     from diffctl.bus.session import close_session
 
-    os.environ["DIFFCTL_ROUTER"] = f"tcp/127.0.0.1:{_free_port()}"
+    os.environ["DIFFCTL_ROUTER"] = f"tcp/127.0.0.1:{free_port()}"
     with tempfile.TemporaryDirectory(prefix="diffctl-bench-stack-") as tmp:
         t_start = time.monotonic()
         proc = subprocess.Popen(
