@@ -11,53 +11,18 @@ import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
-Vec3 = tuple[float, float, float]
-Quat = tuple[float, float, float, float]
+from diffctl.description.pose import Quat, Vec3, quat_from_rpy, quat_multiply, quat_rotate
+from diffctl.description.pose import quat_normalize as _normalize
 
-
-def quat_multiply(a: Quat, b: Quat) -> Quat:
-    ax, ay, az, aw = a
-    bx, by, bz, bw = b
-    return (
-        aw * bx + ax * bw + ay * bz - az * by,
-        aw * by - ax * bz + ay * bw + az * bx,
-        aw * bz + ax * by - ay * bx + az * bw,
-        aw * bw - ax * bx - ay * by - az * bz,
-    )
+__all__ = ["Quat", "Vec3", "quat_from_rpy", "quat_multiply", "quat_normalize", "quat_rotate", "yaw_of"]
 
 
 def quat_normalize(q: Sequence[float]) -> Quat:
-    n = math.sqrt(sum(c * c for c in q))
-    if not math.isfinite(n) or n < 1e-12:
+    try:
+        return _normalize(q)
+    except ValueError:
         # tf2 rejects such quaternions; identity keeps a bad message from poisoning the whole tree.
         return (0.0, 0.0, 0.0, 1.0)
-    return (q[0] / n, q[1] / n, q[2] / n, q[3] / n)
-
-
-def quat_rotate(q: Quat, v: Sequence[float]) -> Vec3:
-    x, y, z, w = q
-    vx, vy, vz = v
-    # v' = v + 2w(q×v) + 2 q×(q×v)
-    tx = 2.0 * (y * vz - z * vy)
-    ty = 2.0 * (z * vx - x * vz)
-    tz = 2.0 * (x * vy - y * vx)
-    return (
-        vx + w * tx + (y * tz - z * ty),
-        vy + w * ty + (z * tx - x * tz),
-        vz + w * tz + (x * ty - y * tx),
-    )
-
-
-def quat_from_rpy(roll_rad: float, pitch_rad: float, yaw_rad: float) -> Quat:
-    cr, sr = math.cos(roll_rad / 2), math.sin(roll_rad / 2)
-    cp, sp = math.cos(pitch_rad / 2), math.sin(pitch_rad / 2)
-    cy, sy = math.cos(yaw_rad / 2), math.sin(yaw_rad / 2)
-    return (
-        sr * cp * cy - cr * sp * sy,
-        cr * sp * cy + sr * cp * sy,
-        cr * cp * sy - sr * sp * cy,
-        cr * cp * cy + sr * sp * sy,
-    )
 
 
 def yaw_of(q: Quat) -> float:
