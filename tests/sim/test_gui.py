@@ -55,14 +55,19 @@ def test_gui_window_shows_the_car(router: str, procs: Any, tmp_path: Path, outpu
     r = run_cli("spawn", "entity", "--file", str(CAR), "--name", "robot")
     assert r.returncode == 0, r.stderr
     assert any(m["name"] == "robot" for m in query(session, "gz/world/empty/state")["models"])
-    time.sleep(2.0)  # a few frames of the software-rendered window
-    rgb = xwd_to_rgb((fbdir / "Xvfb_screen0").read_bytes())
+    # The window is software-rendered: poll the screen until the car shows (or a generous deadline passes).
+    deadline = time.monotonic() + 20
+    while True:
+        rgb = xwd_to_rgb((fbdir / "Xvfb_screen0").read_bytes())
+        r_, g_, b_ = (rgb[:, :, i].astype(int) for i in range(3))
+        blue = (b_ > 150) & (r_ < 90) & (g_ < 130)  # the chassis (diffuse 0.1 0.3 0.8)
+        red = (r_ > 150) & (g_ < 60) & (b_ < 60)  # the lidar puck (0.9 0.1 0.1)
+        grey = (abs(r_ - g_) < 8) & (abs(g_ - b_) < 8) & (r_ > 120)  # the ground
+        if (blue.sum() > 1000 and red.sum() > 50) or time.monotonic() > deadline:
+            break
+        time.sleep(0.25)
     shot = output_dir / "sim_gui.png"
     shot.write_bytes(encode_png(rgb))
-    r_, g_, b_ = (rgb[:, :, i].astype(int) for i in range(3))
-    blue = (b_ > 150) & (r_ < 90) & (g_ < 130)  # the chassis (diffuse 0.1 0.3 0.8)
-    red = (r_ > 150) & (g_ < 60) & (b_ < 60)  # the lidar puck (0.9 0.1 0.1)
-    grey = (abs(r_ - g_) < 8) & (abs(g_ - b_) < 8) & (r_ > 120)  # the ground
     assert blue.sum() > 1000, f"the car is not visible in {shot}"
     assert red.sum() > 50, f"the lidar puck is not visible in {shot}"
     assert grey.mean() > 0.3, f"the ground is not visible in {shot}"
