@@ -104,6 +104,10 @@ class Stepper:
         self.paused = paused
         self._pending_steps = 0
         self._anchor = None
+        # A step request cut short by pause/resume is answered now rather than never.
+        waiters, self._step_waiters = self._step_waiters, []
+        for w in waiters:
+            w()
 
     def set_rtf(self, rtf: float) -> None:
         self.rtf = rtf
