@@ -28,6 +28,8 @@ RANGE_DECIMALS = 4
 MAX_RAYS = 16384
 # Camera noise is drawn from a pre-computed table (a fresh normal() per 230k pixels costs more than the render).
 NOISE_TABLE_SIZE = 1 << 20
+# Shaded colours of flat planes, by (rgba, normal, light): the same for every camera of the process.
+_PLANE_RGB: dict[tuple, np.ndarray] = {}
 
 
 def _frame_id(entity: Entity, s: Sensor) -> str:
@@ -245,7 +247,6 @@ class Camera:
         self.planes = planes or (lambda: [])
         self.frames = 0
         self._rays = camera_rays(spec.width_px, spec.height_px, spec.vertical_fov_rad)
-        self._plane_rgb: dict[tuple, np.ndarray] = {}
         self.frame_id = _frame_id(entity, sensor)
         self.width, self.height = spec.width_px, spec.height_px
         self._proj = pb.computeProjectionMatrixFOV(
@@ -278,35 +279,43 @@ class Camera:
         return rgba, depth
 
     def plane_colour(self, plane: FlatPlane) -> np.ndarray:
-        """The RGB TinyRenderer shades `plane` with, rendered once on a sample quad far above the world."""
-        key = (plane.rgba, plane.normal)
-        if key not in self._plane_rgb:
-            cid = self.entity.client
-            n, u = plane.normal, plane.u
-            centre = (0.0, 0.0, 10_000.0)
-            quad = pb.createVisualShape(
-                pb.GEOM_MESH,
-                vertices=[[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]],
-                indices=[0, 1, 2, 0, 2, 3],
-                normals=[[0, 0, 1]] * 4,
-                rgbaColor=plane.rgba,
-                physicsClientId=cid,
-            )
-            frame = Pose(centre, quat_from_matrix(np.array([u, np.cross(n, u), n]).T.tolist()))
-            body = pb.createMultiBody(
-                0, -1, quad, basePosition=frame.xyz, baseOrientation=frame.quat, physicsClientId=cid
-            )
+        """The RGB TinyRenderer shades `plane` with, rendered once on a sample quad in a scratch client (so the
+        world's bodies, and so its collision-pair order, never depend on whether a camera was watched)."""
+        key = (plane.rgba, plane.normal, tuple(self._light))
+        if key not in _PLANE_RGB:
+            cid = pb.connect(pb.DIRECT)
             try:
+                n, u = plane.normal, plane.u
+                quad = pb.createVisualShape(
+                    pb.GEOM_MESH,
+                    vertices=[[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]],
+                    indices=[0, 1, 2, 0, 2, 3],
+                    normals=[[0, 0, 1]] * 4,
+                    rgbaColor=plane.rgba,
+                    physicsClientId=cid,
+                )
+                frame = Pose((0.0, 0.0, 0.0), quat_from_matrix(np.array([u, np.cross(n, u), n]).T.tolist()))
+                pb.createMultiBody(0, -1, quad, basePosition=frame.xyz, baseOrientation=frame.quat, physicsClientId=cid)
                 # Seen at 45°, as a ground is from a car: TinyRenderer's specular term is small there.
-                d = np.array(n) + np.array(u)
-                eye = tuple(np.array(centre) + d / np.linalg.norm(d))
-                fwd = tuple(-d / np.linalg.norm(d))
+                d = (np.array(n) + np.array(u)) / math.sqrt(2)
+                up = (np.array(n) - np.array(u)) / math.sqrt(2)
+                view = pb.computeViewMatrix(tuple(d), (0.0, 0.0, 0.0), tuple(up))
                 proj = pb.computeProjectionMatrixFOV(fov=10, aspect=1, nearVal=0.1, farVal=10)
-                rgba, _ = self._tiny(eye, fwd, tuple(np.array(n) - np.array(u)), 5, 5, proj)
-                self._plane_rgb[key] = np.asarray(rgba, dtype=np.uint8).reshape(5, 5, 4)[2, 2, :3].copy()
+                _, _, rgba, _, _ = pb.getCameraImage(
+                    5,
+                    5,
+                    view,
+                    proj,
+                    lightDirection=self._light,
+                    shadow=0,
+                    renderer=pb.ER_TINY_RENDERER,
+                    flags=pb.ER_NO_SEGMENTATION_MASK,
+                    physicsClientId=cid,
+                )
+                _PLANE_RGB[key] = np.asarray(rgba, dtype=np.uint8).reshape(5, 5, 4)[2, 2, :3].copy()
             finally:
-                pb.removeBody(body, physicsClientId=cid)
-        return self._plane_rgb[key]
+                pb.disconnect(cid)
+        return _PLANE_RGB[key]
 
     def render(self) -> np.ndarray:
         """The current image, (height, width, 3) uint8."""
