@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import enum
 import math
+from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Literal, Protocol
 
@@ -104,7 +105,7 @@ class ControllerNode(Protocol):
     def resolve(self, name: str) -> str: ...
 
 
-class ControllerInterface:
+class ControllerInterface(ABC):
     """Base class of every controller plugin (see module docstring for the call order)."""
 
     def __init__(self) -> None:
@@ -146,8 +147,9 @@ class ControllerInterface:
         """Called after update() returned ERROR or raised, before the manager deactivates the controller."""
 
     # --- real-time loop ---------------------------------------------------------------------------------
+    @abstractmethod
     def update(self, time_ns: int, period_s: float) -> ReturnType:
-        raise NotImplementedError(f"{type(self).__name__}.update")
+        """One control cycle: read the state interfaces, write the command interfaces."""
 
     # --- helpers -----------------------------------------------------------------------------------------
     def param(self, name: str, default: Any = None) -> Any:

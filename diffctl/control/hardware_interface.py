@@ -9,6 +9,7 @@ that the resource manager loans to controllers. Raising from a hook fails that l
 from __future__ import annotations
 
 import math
+from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 
 from diffctl.control.controller_interface import CommandInterface, ReturnType, StateInterface
@@ -66,7 +67,7 @@ class HardwareInfo:
         return self.joints + self.sensors + self.gpios
 
 
-class HardwareComponent:
+class HardwareComponent(ABC):
     """Base class of hardware plugins (a ros2_control SystemInterface).
 
     The default `export_*_interfaces` create one handle per interface of the block, starting at its
@@ -129,8 +130,10 @@ class HardwareComponent:
         return True
 
     # --- real-time loop -------------------------------------------------------------------------------------
+    @abstractmethod
     def read(self, time_ns: int, period_s: float) -> ReturnType:
-        raise NotImplementedError(f"{type(self).__name__}.read")
+        """Copy the hardware's state into the exported state interfaces."""
 
+    @abstractmethod
     def write(self, time_ns: int, period_s: float) -> ReturnType:
-        raise NotImplementedError(f"{type(self).__name__}.write")
+        """Send the command interfaces' values to the hardware."""

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import os
 import sys
+from abc import ABC, abstractmethod
 from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar
@@ -45,7 +46,7 @@ def describe(value: Any) -> str:
     return "".join(s.describe() for s in normalize(value))
 
 
-class Action:
+class Action(ABC):
     """Base of everything a launch description holds. Every action takes `condition`, `wait_for`, `wait_timeout`."""
 
     yaml_tags: ClassVar[tuple[str, ...]] = ()
@@ -66,12 +67,13 @@ class Action:
     def label(self) -> str:
         return self.yaml_tags[0] if self.yaml_tags else type(self).__name__
 
+    @abstractmethod
     def visit(self, r: Resolver, scope: Scope) -> list[Step]:
-        raise NotImplementedError
+        """Resolve this action in `scope` into the steps the supervisor carries out."""
 
     @classmethod
     def from_yaml(cls, e: Entity) -> Action:
-        raise NotImplementedError
+        raise LaunchError(f"`{e.tag}` cannot be written in YAML launch files", hint="use the Python frontend")
 
 
 class LaunchDescription(Action):

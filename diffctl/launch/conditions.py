@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
 from typing import TYPE_CHECKING
 
 from diffctl.errors import LaunchError
@@ -24,12 +25,14 @@ def truth(text: str, what: str) -> bool:
     raise LaunchError(f"{what}: {text!r} is not a boolean", hint="valid: true, false, 1, 0")
 
 
-class Condition:
+class Condition(ABC):
+    @abstractmethod
     def evaluate(self, scope: Scope) -> bool:
-        raise NotImplementedError
+        """Whether the guarded entity runs."""
 
+    @abstractmethod
     def describe(self) -> str:
-        raise NotImplementedError
+        """How --print shows the condition."""
 
 
 def _describe(subs: SomeSubstitutions) -> str:

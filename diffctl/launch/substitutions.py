@@ -12,6 +12,7 @@ import math
 import os
 import shlex
 import subprocess
+from abc import ABC, abstractmethod
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -23,11 +24,12 @@ if TYPE_CHECKING:
     from diffctl.launch.context import Scope
 
 
-class Substitution:
+class Substitution(ABC):
     """A piece of text known only at resolve time."""
 
+    @abstractmethod
     def perform(self, scope: Scope) -> str:
-        raise NotImplementedError
+        """The substitution's text in `scope`."""
 
     def describe(self) -> str:
         return f"$({type(self).__name__})"
