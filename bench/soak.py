@@ -152,9 +152,12 @@ def soak(minutes: float, warmup_minutes: float, sample_s: float, viz: bool) -> d
     log_path = log_dir / "launch.out"
     args = ["rtf:=0", f"viz:={'true' if viz else 'false'}", f"viz_port:={_free_port()}"]
     with open(log_path, "w") as out:
-        proc = subprocess.Popen([sys.executable, "-m", "diffctl", "launch", "sim_control", *args, "--log-dir",
-                                 str(log_dir), "--no-color"], stdout=out, stderr=subprocess.STDOUT,
-                                start_new_session=True)
+        proc = subprocess.Popen(
+            [sys.executable, "-m", "diffctl", "launch", "sim_control", *args, "--log-dir", str(log_dir), "--no-color"],
+            stdout=out,
+            stderr=subprocess.STDOUT,
+            start_new_session=True,
+        )
     probe = Probe()
     node = None
     try:
@@ -183,16 +186,20 @@ def soak(minutes: float, warmup_minutes: float, sample_s: float, viz: bool) -> d
             poses = msg.get("pose") or []
             if poses:
                 pos, q = poses[0].get("position", {}), poses[0].get("orientation", {})
-                yaw = math.atan2(2.0 * (q.get("w", 1.0) * q.get("z", 0.0) + q.get("x", 0.0) * q.get("y", 0.0)),
-                                 1.0 - 2.0 * (q.get("y", 0.0) ** 2 + q.get("z", 0.0) ** 2))
+                yaw = math.atan2(
+                    2.0 * (q.get("w", 1.0) * q.get("z", 0.0) + q.get("x", 0.0) * q.get("y", 0.0)),
+                    1.0 - 2.0 * (q.get("y", 0.0) ** 2 + q.get("z", 0.0) ** 2),
+                )
                 probe.on_truth(gz.stamp_ns(msg.get("header")), (pos.get("x", 0.0), pos.get("y", 0.0), yaw))
 
         def on_stats(sample: Any) -> None:
             probe.stats = gz.decode(sample.payload.to_bytes())[1]
 
         node.create_subscription(ODOM, "nav_msgs/msg/Odometry", on_odom)
-        subs = [node.session.declare_subscriber(gz.key("/model/robot/pose"), on_truth),
-                node.session.declare_subscriber(gz.key("/world/empty/stats"), on_stats)]
+        subs = [
+            node.session.declare_subscriber(gz.key("/model/robot/pose"), on_truth),
+            node.session.declare_subscriber(gz.key("/world/empty/stats"), on_stats),
+        ]
         cli = node.create_client("/controller_manager/list_controllers", "controller_manager_msgs/srv/ListControllers")
         while True:
             states: dict[str, str] = {}
@@ -209,9 +216,11 @@ def soak(minutes: float, warmup_minutes: float, sample_s: float, viz: bool) -> d
         deadline = time.monotonic() + 60
         while not probe.stats or probe.anchor() is None:
             if time.monotonic() > deadline:
-                raise RuntimeError(f"no world statistics or no odometry with ground truth after 60 s "
-                                   f"(stats: {bool(probe.stats)}, odometry: {len(probe.odom)}, "
-                                   f"ground truth: {len(probe.truth)})")
+                raise RuntimeError(
+                    f"no world statistics or no odometry with ground truth after 60 s "
+                    f"(stats: {bool(probe.stats)}, odometry: {len(probe.odom)}, "
+                    f"ground truth: {len(probe.truth)})"
+                )
             time.sleep(0.1)
         overruns_at_ready = int(probe.stats.get("lockstep_overruns", 0))
         names = _names(log_path.read_text())
@@ -221,14 +230,18 @@ def soak(minutes: float, warmup_minutes: float, sample_s: float, viz: bool) -> d
             time.sleep(0.2)
             names = _names(log_path.read_text())
         # One-shot processes (spawn entity, spawners) end on their own once their work is done: not tracked.
-        procs = {pid: p for pid, p in _tree(proc.pid).items()
-                 if not names.get(pid, "").startswith(("spawner", "create"))}
+        procs = {
+            pid: p for pid, p in _tree(proc.pid).items() if not names.get(pid, "").startswith(("spawner", "create"))
+        }
         names[proc.pid] = "launcher"
         for pid, p in procs.items():
             if pid not in names:
                 names[pid] = "launch guard" if "guard.py" in " ".join(p.cmdline()) else f"pid {pid}"
-        print(f"soak: {len(procs)} processes up, driving figure-eights for {minutes:g} min "
-              f"(memory baseline after {warmup_minutes:g} min)", flush=True)
+        print(
+            f"soak: {len(procs)} processes up, driving figure-eights for {minutes:g} min "
+            f"(memory baseline after {warmup_minutes:g} min)",
+            flush=True,
+        )
 
         t0 = time.monotonic()
         end = t0 + minutes * 60
@@ -246,8 +259,9 @@ def soak(minutes: float, warmup_minutes: float, sample_s: float, viz: bool) -> d
                 break
             a = probe.anchor()
             if a is not None and last_anchor is not None and a[0] - last_anchor[0] >= WINDOW_NS:
-                err = motion_error(last_anchor[1], a[1], last_anchor[2], a[2], a[3] - last_anchor[3],
-                                   a[4] - last_anchor[4])
+                err = motion_error(
+                    last_anchor[1], a[1], last_anchor[2], a[2], a[3] - last_anchor[3], a[4] - last_anchor[4]
+                )
                 windows.append((a[0], now - t0, err))
                 last_anchor = a
             if now >= next_sample:
@@ -262,10 +276,12 @@ def soak(minutes: float, warmup_minutes: float, sample_s: float, viz: bool) -> d
                 next_report += 60
                 total = sum(m[-1][1] for m in memory.values() if m)
                 worst = max((w[2].position_m for w in windows[-6:]), default=0.0)
-                print(f"  {(now - t0) / 60:5.1f} min  sim {probe.sim_ns / 1e9:8.0f} s  "
-                      f"rtf {probe.stats.get('real_time_factor', 0):5.1f}  PSS {total:6.1f} MB  "
-                      f"overruns {probe.stats.get('lockstep_overruns', 0)}  odom-truth {worst * 100:.1f} cm/10 s",
-                      flush=True)
+                print(
+                    f"  {(now - t0) / 60:5.1f} min  sim {probe.sim_ns / 1e9:8.0f} s  "
+                    f"rtf {probe.stats.get('real_time_factor', 0):5.1f}  PSS {total:6.1f} MB  "
+                    f"overruns {probe.stats.get('lockstep_overruns', 0)}  odom-truth {worst * 100:.1f} cm/10 s",
+                    flush=True,
+                )
         wall_s = time.monotonic() - t0
         sim_s = probe.sim_ns / 1e9
         overruns_end = int(probe.stats.get("lockstep_overruns", 0))
@@ -286,13 +302,36 @@ def soak(minutes: float, warmup_minutes: float, sample_s: float, viz: bool) -> d
             proc.wait()
     log = log_path.read_text()
     lost += [ln for ln in log.splitlines() if re.search(r"was killed|died with|respawning", ln)]
-    return _figures(minutes, wall_s, sim_s, memory, names, windows, overruns_at_ready, overruns_end, lost, code,
-                    stop_s, str(log_path))
+    return _figures(
+        minutes,
+        wall_s,
+        sim_s,
+        memory,
+        names,
+        windows,
+        overruns_at_ready,
+        overruns_end,
+        lost,
+        code,
+        stop_s,
+        str(log_path),
+    )
 
 
-def _figures(minutes: float, wall_s: float, sim_s: float, memory: dict[int, list[tuple[float, float]]],
-             names: dict[int, str], windows: list[tuple[int, float, MotionError]], overruns_at_ready: int,
-             overruns_end: int, lost: list[str], exit_code: int, stop_s: float, log: str) -> dict[str, Any]:
+def _figures(
+    minutes: float,
+    wall_s: float,
+    sim_s: float,
+    memory: dict[int, list[tuple[float, float]]],
+    names: dict[int, str],
+    windows: list[tuple[int, float, MotionError]],
+    overruns_at_ready: int,
+    overruns_end: int,
+    lost: list[str],
+    exit_code: int,
+    stop_s: float,
+    log: str,
+) -> dict[str, Any]:
     per_process = {}
     failures: list[str] = []
     for pid, samples in memory.items():
@@ -301,8 +340,11 @@ def _figures(minutes: float, wall_s: float, sim_s: float, memory: dict[int, list
         rss = [s[0] for s in samples]
         g = growth_percent(rss)
         name = names.get(pid, f"pid {pid}")
-        per_process[name] = {"rss_first_mb": round(rss[0], 1), "rss_last_mb": round(rss[-1], 1),
-                             "growth_percent": round(g, 2)}
+        per_process[name] = {
+            "rss_first_mb": round(rss[0], 1),
+            "rss_last_mb": round(rss[-1], 1),
+            "growth_percent": round(g, 2),
+        }
         if g > MEMORY_LIMIT_PERCENT and rss[-1] - rss[0] > MEMORY_NOISE_MB:
             failures.append(f"{name}: resident memory grew {g:.1f} % ({rss[0]:.1f} → {rss[-1]:.1f} MB)")
     n = min((len(s) for s in memory.values() if s), default=0)
@@ -316,9 +358,11 @@ def _figures(minutes: float, wall_s: float, sim_s: float, memory: dict[int, list
     bad = [w for w in windows if not w[2].within(MOTION_REL, MOTION_ABS_M, MOTION_ABS_RAD)]
     if bad:
         w = bad[0]
-        failures.append(f"{len(bad)} of {len(windows)} windows: odometry and ground truth disagree, first at sim "
-                        f"{w[0] / 1e9:.0f} s: {w[2].position_m * 100:.1f} cm, {w[2].yaw_rad:.3f} rad over "
-                        f"{w[2].path_m:.2f} m and {w[2].turned_rad:.2f} rad")
+        failures.append(
+            f"{len(bad)} of {len(windows)} windows: odometry and ground truth disagree, first at sim "
+            f"{w[0] / 1e9:.0f} s: {w[2].position_m * 100:.1f} cm, {w[2].yaw_rad:.3f} rad over "
+            f"{w[2].path_m:.2f} m and {w[2].turned_rad:.2f} rad"
+        )
     if not windows:
         failures.append("no odometry/ground-truth windows recorded")
     failures += lost
@@ -356,21 +400,35 @@ def report(fig: dict[str, Any]) -> None:
     console = make_console(sys.stdout, width=150)
     rows = [(k, v) for k, v in fig.items() if k not in ("memory_per_process", "failures", "ok")]
     console.print(table("soak: sim_control at rtf:=0, figure-eights", ["figure", "value"], rows))
-    console.print(table("resident memory per process (after warm-up)", ["process", "first MB", "last MB", "growth %"],
-                        [(n, p["rss_first_mb"], p["rss_last_mb"], p["growth_percent"])
-                         for n, p in sorted(fig["memory_per_process"].items())]))
+    console.print(
+        table(
+            "resident memory per process (after warm-up)",
+            ["process", "first MB", "last MB", "growth %"],
+            [
+                (n, p["rss_first_mb"], p["rss_last_mb"], p["growth_percent"])
+                for n, p in sorted(fig["memory_per_process"].items())
+            ],
+        )
+    )
     for f in fig["failures"]:
         console.print(f"FAIL: {f}", markup=False)
     console.print("soak: " + ("held" if fig["ok"] else "FAILED"), markup=False)
 
 
 def main(argv: list[str]) -> int:
-    ap = argparse.ArgumentParser(prog="python -m bench.soak", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter,
-                                 epilog="Example: python -m bench.soak --minutes 5")
+    ap = argparse.ArgumentParser(
+        prog="python -m bench.soak",
+        description=__doc__,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog="Example: python -m bench.soak --minutes 5",
+    )
     ap.add_argument("--minutes", type=float, default=30.0, help="wall time to drive (default 30)")
-    ap.add_argument("--warmup-minutes", type=float, default=None,
-                    help="minutes before the memory baseline (default: a tenth of --minutes, at most 3)")
+    ap.add_argument(
+        "--warmup-minutes",
+        type=float,
+        default=None,
+        help="minutes before the memory baseline (default: a tenth of --minutes, at most 3)",
+    )
     ap.add_argument("--sample-s", type=float, default=10.0, help="seconds between memory samples (default 10)")
     ap.add_argument("--no-viz", action="store_true", help="leave the visualizer out (viz:=false)")
     a = ap.parse_args(argv)
@@ -382,8 +440,9 @@ def main(argv: list[str]) -> int:
     warmup = a.warmup_minutes if a.warmup_minutes is not None else min(3.0, a.minutes / 10)
     fig = soak(a.minutes, warmup, a.sample_s, viz=not a.no_viz)
     RESULTS.mkdir(parents=True, exist_ok=True)
-    (RESULTS / "soak.json").write_text(json.dumps({"when": time.strftime("%Y-%m-%dT%H:%M:%S%z"), **fig}, indent=2)
-                                       + "\n")
+    (RESULTS / "soak.json").write_text(
+        json.dumps({"when": time.strftime("%Y-%m-%dT%H:%M:%S%z"), **fig}, indent=2) + "\n"
+    )
     report(fig)
     return 0 if fig["ok"] else 1
 

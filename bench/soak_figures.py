@@ -37,16 +37,17 @@ class MotionError:
     turned_rad: float  # total turning of the ground truth, both ways counted
 
     def within(self, rel: float, abs_m: float, abs_rad: float) -> bool:
-        return (self.position_m <= rel * self.path_m + abs_m
-                and self.yaw_rad <= rel * abs(self.turned_rad) + abs_rad)
+        return self.position_m <= rel * self.path_m + abs_m and self.yaw_rad <= rel * abs(self.turned_rad) + abs_rad
 
 
-def motion_error(odom_a: Pose2D, odom_b: Pose2D, truth_a: Pose2D, truth_b: Pose2D, path_m: float,
-                 turned_rad: float) -> MotionError:
+def motion_error(
+    odom_a: Pose2D, odom_b: Pose2D, truth_a: Pose2D, truth_b: Pose2D, path_m: float, turned_rad: float
+) -> MotionError:
     o = relative_motion(odom_a, odom_b)
     t = relative_motion(truth_a, truth_b)
-    return MotionError(math.hypot(o[0] - t[0], o[1] - t[1]), abs(math.remainder(o[2] - t[2], math.tau)), path_m,
-                       turned_rad)
+    return MotionError(
+        math.hypot(o[0] - t[0], o[1] - t[1]), abs(math.remainder(o[2] - t[2], math.tau)), path_m, turned_rad
+    )
 
 
 def growth_percent(samples_mb: list[float], edge: int = 3) -> float:

@@ -59,9 +59,14 @@ def slow(delay_s: float) -> None:
     def stall(_m: Any) -> None:
         time.sleep(delay_s)
 
-    for topic, typename in (("/joint_states", "sensor_msgs/msg/JointState"), (ODOM, "nav_msgs/msg/Odometry"),
-                            ("/tf", "tf2_msgs/msg/TFMessage"), ("/clock", "rosgraph_msgs/msg/Clock"),
-                            ("/scan", "sensor_msgs/msg/LaserScan"), (CMD, TWIST_STAMPED)):
+    for topic, typename in (
+        ("/joint_states", "sensor_msgs/msg/JointState"),
+        (ODOM, "nav_msgs/msg/Odometry"),
+        ("/tf", "tf2_msgs/msg/TFMessage"),
+        ("/clock", "rosgraph_msgs/msg/Clock"),
+        ("/scan", "sensor_msgs/msg/LaserScan"),
+        (CMD, TWIST_STAMPED),
+    ):
         node.create_subscription(topic, typename, stall)
     print("slow subscriber ready", flush=True)
     node.spin()

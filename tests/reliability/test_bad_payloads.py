@@ -60,7 +60,8 @@ def payloads(typename: str | None) -> dict[str, bytes]:
 
 
 def test_garbage_on_every_subscribed_topic_is_dropped_and_every_node_keeps_working(
-        stack_env: str, tmp_path: Path) -> None:
+    stack_env: str, tmp_path: Path
+) -> None:
     viz_port = free_port()
     stack = start_stack(tmp_path, "viz:=true", f"viz_port:={viz_port}")
     try:
@@ -69,11 +70,16 @@ def test_garbage_on_every_subscribed_topic_is_dropped_and_every_node_keeps_worki
         node = stack.node
         assert node is not None
         # Every (topic, type) some process of the launch subscribes to, from the graph.
-        wait_until(lambda: any(e.node == "rviz2" for t in node.graph.topics() for e in node.graph.subscribers(t)),
-                   30, "the visualizer's subscriptions in the graph", stack)
+        wait_until(
+            lambda: any(e.node == "rviz2" for t in node.graph.topics() for e in node.graph.subscribers(t)),
+            30,
+            "the visualizer's subscriptions in the graph",
+            stack,
+        )
         time.sleep(1.0)
-        targets = sorted({(t, e.type) for t in node.graph.topics() for e in node.graph.subscribers(t)
-                          if e.node != "e2e_test"})
+        targets = sorted(
+            {(t, e.type) for t in node.graph.topics() for e in node.graph.subscribers(t) if e.node != "e2e_test"}
+        )
         topics = {t for t, _ in targets}
         for expected in ("/diffbot_base_controller/cmd_vel", "/joint_states", "/robot_description", "/clock", "/tf"):
             assert expected in topics, f"{expected} not among the subscribed topics {sorted(topics)}"
@@ -104,8 +110,9 @@ def test_garbage_on_every_subscribed_topic_is_dropped_and_every_node_keeps_worki
         for service, srv_type in services:
             key = wire.service_key(domain, service, srv_type)
             for data in payloads(None).values():
-                for _ in session.get(key, payload=data, attachment=wire.pack_attachment(1, time.time_ns(), gid),
-                                     timeout=2.0):
+                for _ in session.get(
+                    key, payload=data, attachment=wire.pack_attachment(1, time.time_ns(), gid), timeout=2.0
+                ):
                     pass
                 sent["service"] += 1
         assert sent["topic"] > 1000, sent

@@ -65,6 +65,7 @@ def assert_shut_down_cleanly(stack: Stack, name: str, timeout_s: float = 15.0) -
 
 # ------------------------------------------------------------------------------------------------ respawns
 
+
 def test_relays_respawn_mid_drive_and_a_dead_teleop_brakes_the_car(stack_env: str, tmp_path: Path) -> None:
     viz_port = free_port()
     stack = start_stack(tmp_path, "viz:=true", f"viz_port:={viz_port}")
@@ -138,6 +139,7 @@ def test_relays_respawn_mid_drive_and_a_dead_teleop_brakes_the_car(stack_env: st
 
 # ------------------------------------------------------------------------------------------------ required processes
 
+
 def test_simulator_killed_mid_drive_shuts_everything_down(stack_env: str, tmp_path: Path) -> None:
     stack = start_stack(tmp_path)
     try:
@@ -151,7 +153,8 @@ def test_simulator_killed_mid_drive_shuts_everything_down(stack_env: str, tmp_pa
 
 
 def test_controller_manager_killed_the_sim_holds_the_joints_then_everything_stops(
-        separate_router: str, tmp_path: Path) -> None:
+    separate_router: str, tmp_path: Path
+) -> None:
     # The bus runs in a router of its own, so the launcher can be held (SIGSTOP) for a moment: the simulator's
     # own reaction to a vanished manager is then visible before the launch shuts everything down.
     stack = start_stack(tmp_path)
@@ -198,6 +201,7 @@ def test_launcher_killed_every_child_exits_within_2s(stack_env: str, tmp_path: P
 
 # ------------------------------------------------------------------------------------------------ controller fault
 
+
 def install_plugin(root: Path) -> str:
     """A throw-away distribution whose entry point names tests/reliability/raising_controller.py."""
     dist = root / "diffctl_faults-0.0.dist-info"
@@ -205,16 +209,19 @@ def install_plugin(root: Path) -> str:
     (dist / "METADATA").write_text("Metadata-Version: 2.1\nName: diffctl-faults\nVersion: 0.0\n")
     (dist / "entry_points.txt").write_text(
         "[diffctl.controllers]\n"
-        "diffctl_faults/RaisingController = tests.reliability.raising_controller:RaisingController\n")
+        "diffctl_faults/RaisingController = tests.reliability.raising_controller:RaisingController\n"
+    )
     return os.pathsep.join([str(root), str(REPO)])
 
 
 def test_a_controller_raising_in_update_is_deactivated_the_others_keep_running(
-        stack_env: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    stack_env: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
     monkeypatch.setenv("PYTHONPATH", install_plugin(tmp_path / "site"))
     params = tmp_path / "faulty.yaml"
-    params.write_text("faulty_controller:\n  ros__parameters:\n    type: diffctl_faults/RaisingController\n"
-                      "    fail_after: 40\n")
+    params.write_text(
+        "faulty_controller:\n  ros__parameters:\n    type: diffctl_faults/RaisingController\n    fail_after: 40\n"
+    )
     stack = start_stack(tmp_path)
     procs = Procs()
     try:
@@ -223,12 +230,19 @@ def test_a_controller_raising_in_update_is_deactivated_the_others_keep_running(
         spawner = procs.diffctl("spawn", "controller", "faulty_controller", "-p", str(params))
         out, _ = spawner.communicate(timeout=60)
         assert spawner.returncode == 0, out
-        wait_until(lambda: stack.controllers().get("faulty_controller") == "inactive", 30,
-                   "faulty_controller deactivated", stack)
+        wait_until(
+            lambda: stack.controllers().get("faulty_controller") == "inactive",
+            30,
+            "faulty_controller deactivated",
+            stack,
+        )
         wait_until(lambda: "injected fault" in launch_log(stack), 10, "the error logged", stack)
         log = launch_log(stack)
-        assert re.search(r"controller 'faulty_controller' update\(\) raised .*injected fault after 40 cycles"
-                         r".*: deactivating it", log), log[-3000:]
+        assert re.search(
+            r"controller 'faulty_controller' update\(\) raised .*injected fault after 40 cycles"
+            r".*: deactivating it",
+            log,
+        ), log[-3000:]
         states = stack.controllers()
         assert all(states[c] == "active" for c in CONTROLLERS), states
         # The car still answers commands: the controllers and the loop run on.
@@ -245,8 +259,10 @@ def test_a_controller_raising_in_update_is_deactivated_the_others_keep_running(
 
 # ------------------------------------------------------------------------------------------------ load
 
+
 def test_flooding_publisher_and_slow_subscriber_leave_the_control_loop_on_period(
-        stack_env: str, tmp_path: Path) -> None:
+    stack_env: str, tmp_path: Path
+) -> None:
     """At rtf:=1 (sim time = wall time): a publisher at 10× the 20 Hz control rate on cmd_vel and a subscriber
     that sleeps 0.2 s in every callback on the busiest topics."""
     from diffctl.bus import gz
@@ -257,15 +273,20 @@ def test_flooding_publisher_and_slow_subscriber_leave_the_control_loop_on_period
     try:
         w = stack.watch
         stats_sub = stack.node.session.declare_subscriber(
-            gz.key("/world/empty/stats"), lambda s: stats.append(gz.decode(s.payload.to_bytes())[1]))
+            gz.key("/world/empty/stats"), lambda s: stats.append(gz.decode(s.payload.to_bytes())[1])
+        )
         wait_until(lambda: stats, 10, "world statistics", stack)
         overruns_before = stats[-1]["lockstep_overruns"]  # startup is not what this test is about
         slow = procs.start([sys.executable, "-m", "tests.reliability.bus_clients", "slow", "0.2"], cwd=REPO)
         flood = procs.start([sys.executable, "-m", "tests.reliability.bus_clients", "flood", "200", "0.4"], cwd=REPO)
         for p, word in ((slow, "slow subscriber ready"), (flood, "flood ready")):
             assert word in p.stdout.readline(), p.stdout.read() if p.poll() is not None else word
-        wait_until(lambda: w.last(w.odom) and abs(w.last(w.odom).value[3] - 0.4) < 0.01, 30,
-                   "the flood's command drives the car", stack)
+        wait_until(
+            lambda: w.last(w.odom) and abs(w.last(w.odom).value[3] - 0.4) < 0.01,
+            30,
+            "the flood's command drives the car",
+            stack,
+        )
         t0_ns, t0_wall = stack.clock_ns, time.monotonic()
         stack.wait_sim(t0_ns + 5 * SEC, timeout_s=30)
         wall_s = time.monotonic() - t0_wall
@@ -280,8 +301,11 @@ def test_flooding_publisher_and_slow_subscriber_leave_the_control_loop_on_period
             by_pub.setdefault(g, []).append((s, t))
         samples = sorted(max(by_pub.values(), key=len))
         assert len(samples) >= 50, f"only {len(samples)} joint_states in 5 s"
-        bad = [(b[1] - a[1], b[0] - a[0]) for a, b in itertools.pairwise(samples)
-               if b[1] - a[1] != 50_000_000 * (b[0] - a[0])]
+        bad = [
+            (b[1] - a[1], b[0] - a[0])
+            for a, b in itertools.pairwise(samples)
+            if b[1] - a[1] != 50_000_000 * (b[0] - a[0])
+        ]
         assert not bad, f"joint_states stamps off the 50 ms period: {bad[:5]}"
         # The sim kept real time (the loop kept its period on the wall clock too) and never overran lockstep.
         assert 5 / wall_s > 0.85, f"5 s of sim time took {wall_s:.2f} s of wall time"
@@ -302,5 +326,3 @@ def _lines(p: subprocess.Popen) -> list[str]:
         return (p.stdout.read() or "").splitlines()
     except (BlockingIOError, TypeError):
         return []
-
-

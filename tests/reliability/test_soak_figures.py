@@ -26,6 +26,7 @@ def test_relative_motion_is_in_the_start_pose_frame() -> None:
 @given(x=coord, y=coord, yaw=angle, ox=coord, oy=coord, oyaw=angle, bx=coord, by=coord, byaw=angle)
 def test_the_window_error_ignores_where_each_frame_starts(x, y, yaw, ox, oy, oyaw, bx, by, byaw) -> None:
     """Odometry and ground truth live in frames offset by any fixed transform: the same motion has no error."""
+
     def in_frame(p):
         c, s = math.cos(oyaw), math.sin(oyaw)
         return (ox + c * p[0] - s * p[1], oy + s * p[0] + c * p[1], p[2] + oyaw)
