@@ -89,6 +89,7 @@ def test_garbage_on_every_subscribed_topic_is_dropped_and_every_node_keeps_worki
 
         drive(stack, 0.3, 0.0, 3, 0.3)
         session = node.session
+        t_inject = time.monotonic()
         gid = os.urandom(16)
         sent = Counter()
         domain = domain_id()
@@ -116,6 +117,7 @@ def test_garbage_on_every_subscribed_topic_is_dropped_and_every_node_keeps_worki
                     pass
                 sent["service"] += 1
         assert sent["topic"] > 1000, sent
+        inject_s = time.monotonic() - t_inject
 
         # Everything still runs and works: same processes, the car drives, topics flow, services answer.
         time.sleep(1.0)
@@ -140,10 +142,12 @@ def test_garbage_on_every_subscribed_topic_is_dropped_and_every_node_keeps_worki
         # Dropped with a warning, rate-limited: a handful of lines per process and topic, not one per sample.
         dropped = [ln for ln in log.splitlines() if "dropped" in ln]
         assert any("/diffbot_base_controller/cmd_vel" in ln for ln in dropped), "\n".join(dropped[:20])
-        per_key = Counter(re.sub(r"\(\d+ more suppressed\)|\d+\.\d+", "", ln)[:120] for ln in dropped)
-        assert len(dropped) < sent["topic"] / 20, f"{len(dropped)} warning lines for {sent['topic']} bad samples"
-        worst = per_key.most_common(1)[0] if per_key else ("", 0)
-        assert worst[1] <= 4, f"not rate-limited: {worst}"
+        # One warning per (node, what, topic) per 5 s throttle period, the rest counted as "N more suppressed".
+        per_key = Counter(m[1] + m[2] for ln in dropped if (m := re.search(r"(\[[\w.-]+\]): (.*?dropped [^:(]*)", ln)))
+        assert len(per_key) >= 20, per_key  # every node on every topic it subscribes to said so
+        worst = per_key.most_common(1)[0]
+        assert worst[1] <= inject_s / 5 + 2, f"not rate-limited: {worst} in {inject_s:.1f} s of injection"
+        assert any("more suppressed" in ln for ln in dropped)
 
         # Well-formed but absurd commands (NaN, ±inf, 1e308) never reach the physics: the controller's limits and
         # finiteness checks hold the car to |v| ≤ 1 m/s and |ω| ≤ 1 rad/s (the tutorial's limits), all finite.
