@@ -7,7 +7,9 @@ Protocol and keys: diffctl/bus/hw_endpoint.py. The sim side, following gz_ros2_c
   sim time, the sim publishes the joint states for tick n and does not step on until the command for tick n
   arrives (lockstep), so results do not depend on machine speed;
 - a command missing after DEADLINE_S of wall time is counted (stats: lockstep overruns) and logged, and the
-  joints are held; when the manager's liveliness token goes away the sim detaches and runs on, joints held;
+  joints are held (the first command after an attach gets ATTACH_GRACE_S: the manager attaches when its
+  hardware activates and starts its loop after that, which a loaded machine can stretch past a second);
+  when the manager's liveliness token goes away the sim detaches and runs on, joints held;
 - commands apply on every physics step until the next: velocity as a motor target, position through
   gz_ros2_control's P law (v = -Kp (q - q_cmd) update_rate), effort as a torque; joints with no command are
   held (velocity 0) when <hold_joints> is true (the default), else free.
@@ -32,6 +34,7 @@ from diffctl.sim.entity import Entity, JointHandle
 from diffctl.sim.plugins.base import PluginContext, SystemPlugin, bool_param, float_param
 
 DEADLINE_S = 1.0
+ATTACH_GRACE_S = 10.0  # a manager that dies meanwhile is noticed at once, through its liveliness token
 HARDWARE = "gz_ros2_control/GazeboSimSystem"
 _GONE = object()
 
@@ -82,6 +85,7 @@ class Ros2ControlEndpoint(SystemPlugin):
         self.pos_cmd = np.full(n, np.nan)
         self.eff_cmd = np.full(n, np.nan)
         self.tick = 0
+        self._first_command = False  # waiting for a newly attached manager's first command
         self.manager: str | None = None
         self.update_rate = 0.0
         self.period_ns = 0
@@ -167,6 +171,7 @@ class Ros2ControlEndpoint(SystemPlugin):
             )
         self._drain()
         self.manager, self.update_rate, self.period_ns = manager, update_rate, period
+        self._first_command = True
         if self._task is not None:
             self.ctx.stepper.remove_task(self._task)
         # The first exchange happens after the next step; ticks continue from the last one sent.
@@ -208,7 +213,8 @@ class Ros2ControlEndpoint(SystemPlugin):
         if self.manager is None:
             return
         t0 = time.perf_counter()
-        deadline = t0 + DEADLINE_S
+        wait_s = ATTACH_GRACE_S if self._first_command else DEADLINE_S
+        deadline = t0 + wait_s
         while True:
             remaining = deadline - time.perf_counter()
             try:
@@ -217,10 +223,11 @@ class Ros2ControlEndpoint(SystemPlugin):
                 self.overruns += 1
                 self.ctx.stepper.stats.lockstep_overruns += 1
                 self.ctx.log.warn(
-                    f"ros2_control {self.model!r}: no command for tick {tick} within {DEADLINE_S:g} s "
+                    f"ros2_control {self.model!r}: no command for tick {tick} within {wait_s:g} s "
                     f"(lockstep overrun {self.overruns}); joints held"
                 )
                 self.hold_all()
+                self._first_command = False
                 break
             if item is _GONE:
                 if self._manager_alive():
@@ -229,6 +236,7 @@ class Ros2ControlEndpoint(SystemPlugin):
                 break
             if item.tick == tick:
                 self.set_commands(item.velocity, item.position, item.effort)
+                self._first_command = False
                 break
             # A command for an older tick (answered after its deadline): skip it.
         self.ctx.stepper.stats.idle_s += time.perf_counter() - t0
