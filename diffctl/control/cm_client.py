@@ -11,7 +11,7 @@ from collections.abc import Callable
 from typing import Any
 
 from diffctl.control.lifecycle import State
-from diffctl.control.services import P_STRING, P_STRING_ARRAY
+from diffctl.control.parameter_msgs import P_STRING, P_STRING_ARRAY
 from diffctl.errors import BusError, RuntimeFailure, ServiceTimeout
 
 CM = "controller_manager_msgs/srv/"
