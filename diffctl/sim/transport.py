@@ -39,7 +39,9 @@ class Outbox:
 
     def put(self, publisher: Any, payload: bytes) -> None:
         self._items.append((publisher, payload))
-        self._wake.set()
+        if len(self._items) == 1:
+            # Only the first of a batch wakes the thread: it drains whatever arrives meanwhile.
+            self._wake.set()
 
     def _run(self) -> None:
         items = self._items
