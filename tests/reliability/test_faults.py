@@ -14,6 +14,7 @@ The documented outcomes (launch/sim_control.yaml):
 from __future__ import annotations
 
 import itertools
+import json
 import math
 import os
 import re
@@ -164,8 +165,10 @@ def test_controller_manager_killed_the_sim_holds_the_joints_then_everything_stop
         stack.wait_sim(stack.clock_ns + SEC)  # at steady speed for a second
         os.kill(stack.proc.pid, signal.SIGSTOP)
         try:
-            kill_ns = w.last(w.truth).t_ns
             os.kill(pids(stack)["controller_manager"], signal.SIGKILL)
+            # The sim's own clock right after the kill (this process's samples may trail it at rtf:=0); the sim
+            # cannot have stepped far past the kill: it waits for the dead manager's command or detaches.
+            kill_ns = sim_time_ns(stack)
             # The sim detaches (the manager's liveliness token is gone) and runs on with the wheels held.
             wait_until(lambda: w.last(w.truth).t_ns > kill_ns + 3 * SEC, 20, "sim time running on without a manager")
         finally:
@@ -178,6 +181,11 @@ def test_controller_manager_killed_the_sim_holds_the_joints_then_everything_stop
         assert re.search(r"controller manager .* left model 'robot' \(.*\); joints held", log), log[-3000:]
     finally:
         stack.kill()
+
+
+def sim_time_ns(stack: Stack) -> int:
+    replies = list(stack.node.session.get("gz/world/empty/state", payload=b"{}", timeout=5.0))
+    return next(json.loads(r.ok.payload.to_bytes())["sim_time_ns"] for r in replies if r.ok is not None)
 
 
 def test_launcher_killed_every_child_exits_within_2s(stack_env: str, tmp_path: Path) -> None:
