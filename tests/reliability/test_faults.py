@@ -69,7 +69,9 @@ def assert_shut_down_cleanly(stack: Stack, name: str, timeout_s: float = 15.0) -
 
 def test_relays_respawn_mid_drive_and_a_dead_teleop_brakes_the_car(stack_env: str, tmp_path: Path) -> None:
     viz_port = free_port()
-    stack = start_stack(tmp_path, "viz:=true", f"viz_port:={viz_port}")
+    # rtf:=1: cmd_vel_timeout (0.5 s) is then half a second of wall time too, so a hiccup of this busy test
+    # process while a relay restarts cannot starve the controller of commands (at rtf:=0 it is ~20 ms).
+    stack = start_stack(tmp_path, "viz:=true", f"viz_port:={viz_port}", "rtf:=1")
     procs = Procs()
     try:
         wait_until(lambda: "rviz2" in pids(stack), 30, "the visualizer started", stack)
@@ -114,19 +116,15 @@ def test_relays_respawn_mid_drive_and_a_dead_teleop_brakes_the_car(stack_env: st
         # A teleop process on sim time drives the car; SIGKILLed, its last command goes stale and the
         # controller brakes after cmd_vel_timeout (0.5 s) plus its deceleration ramp (1 rad/s²).
         stack.command(CMD, TWIST_STAMPED, None)
-        last_cmd: list[int] = []  # sim time (latest odometry stamp) when each teleop command arrived here
-        stack.node.create_subscription(CMD, TWIST_STAMPED, lambda m: last_cmd.append(stack.clock_ns))
         teleop = procs.start([sys.executable, "-m", "tests.reliability.bus_clients", "teleop", "0", "0.8"], cwd=REPO)
         wait_until(lambda: w.last(w.odom).value[4] > 0.79, 30, "the teleop process drives the car", stack)
         os.kill(teleop.pid, signal.SIGKILL)
+        # The sim's clock just after the kill: the teleop's last command arrived before it.
+        stop_ns = sim_time_ns(stack)
         teleop.wait(5)
-        time.sleep(0.2)
-        stop_ns = max(last_cmd)
         stack.wait_sim(stop_ns + 2 * SEC)
-        # (stop_ns is when this busy process saw the last command: a little after the controller did.)
-        driving = w.at(w.odom, stop_ns - int(0.3 * SEC)).value[4]
+        wait_until(lambda: w.last(w.truth).t_ns >= stop_ns + 2 * SEC, 10, "ground truth past the stop", stack)
         stopped = w.at(w.odom, stop_ns + int(1.6 * SEC)).value[4]
-        assert driving > 0.75, f"only {driving:.3f} rad/s while the teleop was alive"
         assert abs(stopped) < 0.02, f"still turning at {stopped:.3f} rad/s 1.6 s after the teleop died"
         ga, gb = truth_at(stack, stop_ns + int(1.6 * SEC)), truth_at(stack, stop_ns + int(2.0 * SEC))
         assert abs(math.remainder(gb[2] - ga[2], math.tau)) < 0.01, "ground truth still turning"
