@@ -42,7 +42,6 @@ bench: $(STAMP)
 
 lint: $(STAMP)
 	$(BIN)/ruff check diffctl tests bench
-	$(BIN)/ruff format --check diffctl tests bench
 
 soak: $(STAMP)
 	$(BIN)/python -m bench.soak
