@@ -11,12 +11,13 @@ from __future__ import annotations
 
 import os
 import signal
-import socket
 import subprocess
 import sys
 import threading
 import time
 from pathlib import Path
+
+from bench.ports import free_port, wait_port
 
 REPO = Path(__file__).resolve().parent.parent
 CAR = REPO / "description" / "my_diff_car.sdf"
@@ -44,23 +45,6 @@ def _box_sdf(i: int, x: float, y: float) -> str:
       <link name="l"><collision name="c"><geometry><box><size>1 1 1</size></box></geometry></collision>
       <visual name="v"><geometry><box><size>1 1 1</size></box></geometry>
       <material><diffuse>0.8 0.2 0.2 1</diffuse></material></visual></link></model></sdf>"""
-
-
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
-def _wait_port(port: int, timeout_s: float = 10.0) -> None:
-    deadline = time.monotonic() + timeout_s
-    while time.monotonic() < deadline:
-        try:
-            with socket.create_connection(("127.0.0.1", port), timeout=0.2):
-                return
-        except OSError:
-            time.sleep(0.05)
-    raise TimeoutError(f"no router on port {port}")
 
 
 def _models():
@@ -151,7 +135,7 @@ def run_bare(sim_seconds: float) -> tuple[float, float]:
 def run() -> dict:
     from diffctl.bus.session import close_session
 
-    port = _free_port()
+    port = free_port()
     endpoint = f"tcp/127.0.0.1:{port}"
     old = os.environ.get("DIFFCTL_ROUTER")
     os.environ["DIFFCTL_ROUTER"] = endpoint
@@ -162,7 +146,7 @@ def run() -> dict:
         start_new_session=True,
     )
     try:
-        _wait_port(port)
+        wait_port(port)
         # The machine is shared: interleave the runs and keep each one's best, so a burst of load elsewhere
         # does not decide the ratio. CPU-time figures say what the loop costs with a core to itself.
         best: dict[str, tuple[float, ...]] = {}

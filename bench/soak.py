@@ -27,7 +27,6 @@ import math
 import os
 import re
 import signal
-import socket
 import subprocess
 import sys
 import tempfile
@@ -39,6 +38,7 @@ from typing import Any
 
 import psutil
 
+from bench.ports import free_port
 from bench.soak_figures import MotionError, Pose2D, growth_percent, interpolate, motion_error
 
 RESULTS = Path(__file__).resolve().parent / "results"
@@ -53,12 +53,6 @@ MOTION_REL, MOTION_ABS_M, MOTION_ABS_RAD = 0.05, 0.03, 0.03
 SPEED_M_S, TURN_RAD_S = 0.5, 0.5
 LOOP_NS = int(math.tau / TURN_RAD_S * SEC)  # one circle of the eight
 STOP_NS = 3 * SEC
-
-
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 def _yaw(q: Any) -> float:
@@ -147,10 +141,10 @@ def soak(minutes: float, warmup_minutes: float, sample_s: float, viz: bool) -> d
     from diffctl.bus import Node, gz, types
     from diffctl.bus.session import close_session
 
-    os.environ["DIFFCTL_ROUTER"] = f"tcp/127.0.0.1:{_free_port()}"
+    os.environ["DIFFCTL_ROUTER"] = f"tcp/127.0.0.1:{free_port()}"
     log_dir = Path(tempfile.mkdtemp(prefix="diffctl-soak-"))
     log_path = log_dir / "launch.out"
-    args = ["rtf:=0", f"viz:={'true' if viz else 'false'}", f"viz_port:={_free_port()}"]
+    args = ["rtf:=0", f"viz:={'true' if viz else 'false'}", f"viz_port:={free_port()}"]
     with open(log_path, "w") as out:
         proc = subprocess.Popen(
             [sys.executable, "-m", "diffctl", "launch", "sim_control", *args, "--log-dir", str(log_dir), "--no-color"],

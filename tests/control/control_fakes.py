@@ -10,26 +10,7 @@ from diffctl.control.hardware_interface import ComponentInfo, HardwareInfo, Inte
 from diffctl.control.manager import ControllerManager
 from diffctl.control.params import manager_params
 from diffctl.control.plugin_registry import register_controller
-
-
-class RecordingLog:
-    def __init__(self) -> None:
-        self.lines: list[tuple[str, str]] = []
-
-    def debug(self, text: str) -> None:
-        self.lines.append(("DEBUG", text))
-
-    def info(self, text: str) -> None:
-        self.lines.append(("INFO", text))
-
-    def warn(self, text: str) -> None:
-        self.lines.append(("WARN", text))
-
-    def error(self, text: str) -> None:
-        self.lines.append(("ERROR", text))
-
-    def text(self, level: str | None = None) -> str:
-        return "\n".join(t for lv, t in self.lines if level is None or lv == level)
+from tests.control.controllers.controller_fakes import RecordingLog
 
 
 class FakeNode:

@@ -50,7 +50,7 @@ def hosts() -> Iterator[HostPair]:
     """Host A and host B, network namespaces on a veth pair; skipped, saying why, where they cannot be made."""
     reason = netns_unavailable()
     if reason:
-        pytest.skip(reason)
+        pytest.skip(reason=reason)
     pair = HostPair.create()
     try:
         yield pair

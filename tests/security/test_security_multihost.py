@@ -91,7 +91,7 @@ def run_to_end(procs: Procs, argvs: dict[str, list[str]], timeout_s: float = 90.
 @pytest.mark.slow
 def test_two_hosts_drive_over_tls_and_strangers_get_nothing(hosts: HostPair, procs: Procs, tmp_path: Path) -> None:
     if shutil.which("openssl") is None:
-        pytest.skip("openssl is not installed (`make system-deps` installs it): no certificates to test with")
+        pytest.skip(reason="openssl is not installed (`make system-deps` installs it): no certificates to test with")
     d = build(tmp_path / "deploy", hosts.a.address, hosts.b.address)
     router_a, router_b, robot = bring_up(hosts, procs, d, tmp_path / "log")
     try:

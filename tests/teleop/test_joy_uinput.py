@@ -78,7 +78,7 @@ def virtual_pad() -> Iterator[tuple[int, str]]:
             else:
                 time.sleep(0.05)
         if path is None:
-            pytest.skip(f"uinput created {sysname}, but no /dev/input node appeared (no udev/devtmpfs here)")
+            pytest.skip(reason=f"uinput created {sysname}, but no /dev/input node appeared (no udev/devtmpfs here)")
         yield fd, path
     finally:
         try:
