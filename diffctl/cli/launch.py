@@ -26,22 +26,15 @@ def _split_targets(targets: tuple[str, ...]) -> tuple[list[str], dict[str, str]]
 
 
 def _bus_probes(kinds: set[str]) -> Any:
-    try:
-        from diffctl.bus.probes import BusProbes
-    except ImportError:
-        raise LaunchError(
-            "this launch file waits for " + " and ".join(sorted(kinds)) + "s, which needs the bus "
-            "(diffctl.bus.probes), and it is not available in this installation"
-        ) from None
+    # Imported only when a description waits on topics or services: the engine itself knows processes only.
+    from diffctl.bus.probes import BusProbes
+
     return BusProbes()
 
 
 def _ensure_router(output: Any) -> Any:
-    try:
-        from diffctl.bus.router import ensure_router
-    except ImportError:
-        output.launcher("WARN", "no embedded Zenoh router in this installation; start one with `diffctl router`")
-        return None
+    from diffctl.bus.router import ensure_router
+
     return ensure_router()
 
 
