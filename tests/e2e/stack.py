@@ -78,13 +78,13 @@ class Watch:
 
 
 class Stack:
-    """`diffctl launch FILE rtf:=0 viz:=false` in its own process group, plus a test node on its bus."""
+    """`diffctl launch FILE rtf:=… viz:=false` in its own process group, plus a test node on its bus."""
 
-    def __init__(self, launch_file: str, log_dir: Path, *args: str) -> None:
+    def __init__(self, launch_file: str, log_dir: Path, *args: str, rtf: str = "0") -> None:
         self.log_path = log_dir / "launch.out"
         self._out = open(self.log_path, "w")  # noqa: SIM115 — closed in stop()
         self.proc = subprocess.Popen(
-            [sys.executable, "-m", "diffctl", "launch", launch_file, "rtf:=0", "viz:=false", *args,
+            [sys.executable, "-m", "diffctl", "launch", launch_file, f"rtf:={rtf}", "viz:=false", *args,
              "--log-dir", str(log_dir), "--no-color"],
             stdout=self._out, stderr=subprocess.STDOUT, start_new_session=True,
         )
