@@ -147,7 +147,9 @@ def test_garbage_on_every_subscribed_topic_is_dropped_and_every_node_keeps_worki
         assert len(per_key) >= 20, per_key  # every node on every topic it subscribes to said so
         worst = per_key.most_common(1)[0]
         assert worst[1] <= inject_s / 5 + 2, f"not rate-limited: {worst} in {inject_s:.1f} s of injection"
-        assert any("more suppressed" in ln for ln in dropped)
+        if inject_s > 6:
+            # The count of suppressed lines rides on the next warning after a 5 s period, if one comes.
+            assert any("more suppressed" in ln for ln in dropped)
 
         # Well-formed but absurd commands (NaN, ±inf, 1e308) never reach the physics: the controller's limits and
         # finiteness checks hold the car to |v| ≤ 1 m/s and |ω| ≤ 1 rad/s (the tutorial's limits), all finite.
