@@ -175,7 +175,9 @@ def test_controller_manager_killed_the_sim_holds_the_joints_then_everything_stop
         before = moved_m(truth_at(stack, kill_ns - SEC // 2), truth_at(stack, kill_ns))
         after = moved_m(truth_at(stack, kill_ns + SEC), truth_at(stack, kill_ns + 3 * SEC))
         assert before > 0.2, f"the car was not driving before the kill ({before:.3f} m in 0.5 s)"
-        assert after < 0.005, f"the car kept moving {after:.3f} m with no controller manager"
+        # On the stale 0.5 m/s command it would cover 1 m in that window; held wheels leave at most a settling
+        # creep of the chassis on its caster (a few mm, up to ~1.5 cm seen on a fast machine).
+        assert after < 0.05, f"the car kept moving {after:.3f} m with no controller manager"
         log = assert_shut_down_cleanly(stack, "controller_manager")
         assert re.search(r"controller manager .* left model 'robot' \(.*\); joints held", log), log[-3000:]
     finally:
