@@ -18,6 +18,17 @@ def suggest(word: str, candidates: Iterable[str], n: int = 3) -> str:
     return " (did you mean " + " or ".join(repr(m) for m in matches) + "?)"
 
 
+def yaml_error(e: Exception, source: str, what: str = "malformed YAML") -> ConfigError:
+    """A PyYAML error as one located ConfigError: file, line and column of the problem."""
+    mark = getattr(e, "problem_mark", None)
+    return ConfigError(
+        f"{what}: {getattr(e, 'problem', None) or e}",
+        source=source,
+        line=mark.line + 1 if mark else None,
+        column=mark.column + 1 if mark else None,
+    )
+
+
 class DiffctlError(Exception):
     """Base of every error diffctl reports to a user."""
 

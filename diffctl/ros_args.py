@@ -14,7 +14,7 @@ from typing import Any
 
 import yaml
 
-from diffctl.errors import ConfigError
+from diffctl.errors import ConfigError, yaml_error
 
 _current: list[str] = []
 
@@ -70,14 +70,10 @@ def load_params_file(path: str | Path, node_name: str | None) -> dict[str, Any]:
         data = yaml.safe_load(p.read_text()) or {}
     except FileNotFoundError:
         raise ConfigError("parameter file not found", source=str(p)) from None
+    except (OSError, UnicodeDecodeError) as e:
+        raise ConfigError(f"cannot read the parameter file: {e}", source=str(p)) from None
     except yaml.YAMLError as e:
-        mark = getattr(e, "problem_mark", None)
-        raise ConfigError(
-            f"malformed YAML: {getattr(e, 'problem', e)}",
-            source=str(p),
-            line=mark.line + 1 if mark else None,
-            column=mark.column + 1 if mark else None,
-        ) from None
+        raise yaml_error(e, str(p)) from None
     if not isinstance(data, dict):
         raise ConfigError("a parameter file must be a mapping of node names to ros__parameters", source=str(p))
     out: dict[str, Any] = {}

@@ -15,7 +15,7 @@ from typing import Any
 import yaml
 
 from diffctl.bridge.type_pairs import TypePair, describe_pairs, lookup, normalize_gz_type, normalize_ros_type
-from diffctl.errors import ConfigError, suggest
+from diffctl.errors import ConfigError, suggest, yaml_error
 
 
 class Direction(Enum):
@@ -188,13 +188,7 @@ def load_config(path: str | Path, gz_prefix: str = "") -> list[BridgeEntry]:
         root = yaml.compose(text, Loader=yaml.SafeLoader)
         data = yaml.safe_load(text)
     except yaml.YAMLError as e:
-        mark = getattr(e, "problem_mark", None)
-        raise ConfigError(
-            f"malformed YAML: {getattr(e, 'problem', e)}",
-            source=str(p),
-            line=mark.line + 1 if mark else None,
-            column=mark.column + 1 if mark else None,
-        ) from None
+        raise yaml_error(e, str(p)) from None
     if data is None:
         return []
     if not isinstance(data, list):

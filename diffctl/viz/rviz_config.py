@@ -13,7 +13,7 @@ from typing import Any
 
 import yaml
 
-from diffctl.errors import ConfigError
+from diffctl.errors import ConfigError, yaml_error
 
 # RViz2 display class → what the page draws, and the key that holds the display's topic.
 DISPLAY_KINDS: dict[str, tuple[str, str | None]] = {
@@ -251,13 +251,7 @@ def parse_rviz(text: str, source: str = "<rviz>") -> RvizConfig:
     try:
         data = yaml.safe_load(text)
     except yaml.YAMLError as e:
-        mark = getattr(e, "problem_mark", None)
-        raise ConfigError(
-            f"malformed RViz config: {getattr(e, 'problem', None) or e}",
-            source=source,
-            line=mark.line + 1 if mark else None,
-            column=mark.column + 1 if mark else None,
-        ) from None
+        raise yaml_error(e, source, "malformed RViz config") from None
     top = r.mapping(data, "(top level)")
     if "Visualization Manager" not in top:
         raise r.fail("(top level)", "not an RViz config: no 'Visualization Manager' section")
