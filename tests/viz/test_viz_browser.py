@@ -4,7 +4,6 @@ a wrong token. Screenshots land in test-output/viz/ for a person to look at."""
 from __future__ import annotations
 
 import shutil
-import threading
 import time
 from collections.abc import Iterator
 from pathlib import Path
@@ -12,6 +11,7 @@ from pathlib import Path
 import pytest
 
 from diffctl.bus import Node
+from tests.viz.recorder import Recorder
 
 REPO = Path(__file__).resolve().parents[2]
 SHOTS = REPO / "test-output" / "viz"
@@ -49,21 +49,6 @@ def browser(tmp_path: Path) -> Iterator[object]:
             yield ctx
         finally:
             ctx.close()
-
-
-class Recorder:
-    def __init__(self, node: Node, topic: str, type_name: str) -> None:
-        self.msgs: list = []
-        self._lock = threading.Lock()
-        node.create_subscription(topic, type_name, self._on)
-
-    def _on(self, msg) -> None:
-        with self._lock:
-            self.msgs.append(msg)
-
-    def snapshot(self) -> list:
-        with self._lock:
-            return list(self.msgs)
 
 
 def open_page(ctx, url: str, requests: list[str]):

@@ -9,7 +9,6 @@ import re
 import socket
 import subprocess
 import sys
-import threading
 import time
 from pathlib import Path
 
@@ -18,6 +17,7 @@ import websockets
 from websockets.exceptions import InvalidStatus
 
 from diffctl.bus import Node
+from tests.viz.recorder import Recorder
 
 REPO = Path(__file__).resolve().parents[2]
 CMD_TOPIC = "/diffbot_base_controller/cmd_vel"
@@ -31,23 +31,6 @@ def http_get(host_port: str, path: str, headers: dict[str, str] | None = None) -
         return r.status, {k.lower(): v for k, v in r.getheaders()}, r.read()
     finally:
         conn.close()
-
-
-class Recorder:
-    """Messages of one topic seen by a subscriber in the test process."""
-
-    def __init__(self, node: Node, topic: str, type_name: str) -> None:
-        self.msgs: list = []
-        self._lock = threading.Lock()
-        node.create_subscription(topic, type_name, self._on)
-
-    def _on(self, msg) -> None:
-        with self._lock:
-            self.msgs.append(msg)
-
-    def snapshot(self) -> list:
-        with self._lock:
-            return list(self.msgs)
 
 
 async def recv_until(ws, pred, timeout_s: float = 10.0) -> dict:
