@@ -6,7 +6,6 @@ import subprocess
 import sys
 import threading
 import time
-from collections.abc import Callable
 from pathlib import Path
 
 import yaml
@@ -15,17 +14,7 @@ from bridge_samples import GZ_SAMPLES
 
 from diffctl.bridge import type_pairs
 from diffctl.bus import Node, gz, types
-
-
-def wait_for(pred: Callable[[], bool], timeout_s: float = 10.0, every: Callable[[], None] | None = None) -> bool:
-    deadline = time.monotonic() + timeout_s
-    while time.monotonic() < deadline:
-        if every:
-            every()
-        if pred():
-            return True
-        time.sleep(0.05)
-    return pred()
+from tests.waiting import wait_for
 
 
 def output_of(procs, proc: subprocess.Popen) -> str:

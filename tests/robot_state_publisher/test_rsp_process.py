@@ -13,20 +13,10 @@ import yaml
 
 from diffctl.bus import Node, types
 from diffctl.description.pose import Pose
+from tests.waiting import wait_for
 
 REPO = Path(__file__).resolve().parents[2]
 CAR = REPO / "description" / "my_diff_car.sdf"
-
-
-def wait_for(pred: Callable[[], bool], timeout_s: float = 10.0, every: Callable[[], None] | None = None) -> bool:
-    deadline = time.monotonic() + timeout_s
-    while time.monotonic() < deadline:
-        if every:
-            every()
-        if pred():
-            return True
-        time.sleep(0.05)
-    return pred()
 
 
 def pose_of(tf) -> Pose:
