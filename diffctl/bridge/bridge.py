@@ -5,14 +5,13 @@ Semantics follow ros_gz_bridge's parameter_bridge:
 - a lazy channel holds its source subscription only while its destination has subscribers (ROS side:
   graph subscribers other than this node; gz side: Zenoh matching of the gz publisher);
 - a bidirectional entry never echoes what it published itself back to where it came from (gz side: the
-  Zenoh locality of the gz endpoints; ROS side: see `_OwnEchoes`).
+  Zenoh locality of the gz endpoints; ROS side: the subscription ignores this process's own publishers).
 """
 
 from __future__ import annotations
 
 import threading
 import time
-from collections import Counter, deque
 from typing import Any
 
 import zenoh
@@ -20,49 +19,6 @@ import zenoh
 from diffctl.bridge.config import BridgeEntry
 from diffctl.bus import Node, gz, types, wire
 from diffctl.errors import MessageError
-
-
-class _OwnEchoes:
-    """CDR payloads this process published on a ROS topic it also subscribes to, awaiting their local echo.
-
-    The bus delivers a session's own publications to its subscriptions, and the subscription callback only
-    sees bytes. Every publication comes back exactly once, so a multiset of recent payloads recognises the
-    echo; if a remote publisher sends identical bytes first, dropping either copy forwards the same data.
-    Entries expire so a lost echo cannot swallow a later message.
-    """
-
-    TTL_S = 1.0
-
-    def __init__(self) -> None:
-        self._lock = threading.Lock()
-        self._pending: Counter[bytes] = Counter()
-        self._order: deque[tuple[float, bytes]] = deque()
-
-    def add(self, cdr: bytes) -> None:
-        now = time.monotonic()
-        with self._lock:
-            self._expire(now)
-            self._pending[cdr] += 1
-            self._order.append((now, cdr))
-
-    def consume(self, cdr: bytes) -> bool:
-        """True when `cdr` is our own echo (and forget it)."""
-        with self._lock:
-            self._expire(time.monotonic())
-            if self._pending.get(cdr, 0) > 0:
-                self._pending[cdr] -= 1
-                if not self._pending[cdr]:
-                    del self._pending[cdr]
-                return True
-            return False
-
-    def _expire(self, now: float) -> None:
-        while self._order and now - self._order[0][0] > self.TTL_S:
-            _, cdr = self._order.popleft()
-            if self._pending.get(cdr, 0) > 0:
-                self._pending[cdr] -= 1
-                if not self._pending[cdr]:
-                    del self._pending[cdr]
 
 
 def _stamp_now(msg: Any, now: Any) -> None:
@@ -76,11 +32,10 @@ def _stamp_now(msg: Any, now: Any) -> None:
 class GzToRos:
     """gz/<topic> samples → ROS topic."""
 
-    def __init__(self, bridge: Bridge, entry: BridgeEntry, echoes: _OwnEchoes | None) -> None:
+    def __init__(self, bridge: Bridge, entry: BridgeEntry) -> None:
         self.entry = entry
         self.bridge = bridge
         self.node = bridge.node
-        self.echoes = echoes
         self.count = 0
         self._lock = threading.Lock()
         self._sub: Any = None
@@ -124,8 +79,6 @@ class GzToRos:
         except MessageError as err:
             self.node.log.throttled(f"gz{e.gz_topic}", f"dropped a sample on gz {e.gz_topic}: {err}")
             return
-        if self.echoes is not None:
-            self.echoes.add(cdr)
         self.pub.publish_raw(cdr)
         self.count += 1
 
@@ -137,10 +90,9 @@ class GzToRos:
 class RosToGz:
     """ROS topic → gz/<topic> samples."""
 
-    def __init__(self, bridge: Bridge, entry: BridgeEntry, echoes: _OwnEchoes | None) -> None:
+    def __init__(self, bridge: Bridge, entry: BridgeEntry) -> None:
         self.entry = entry
         self.node = bridge.node
-        self.echoes = echoes
         self.count = 0
         self._lock = threading.Lock()
         self._sub: Any = None
@@ -167,14 +119,13 @@ class RosToGz:
                     self._on_cdr,
                     depth=self.entry.subscriber_queue,
                     raw=True,
+                    ignore_local=True,  # never send our own gz→ROS output back to gz
                 )
             elif not on and self._sub is not None:
                 self._sub.close()
                 self._sub = None
 
     def _on_cdr(self, cdr: bytes) -> None:
-        if self.echoes is not None and self.echoes.consume(cdr):
-            return
         e = self.entry
         try:
             msg = types.deserialize(cdr, e.ros_type)
@@ -213,12 +164,10 @@ class Bridge:
 
     def start(self) -> Bridge:
         for e in self.entries:
-            # A bidirectional entry subscribes to what it publishes on the ROS side: remember its own output.
-            echoes = _OwnEchoes() if e.direction.to_ros and e.direction.to_gz else None
             if e.direction.to_ros:
-                self.gz_to_ros.append(GzToRos(self, e, echoes))
+                self.gz_to_ros.append(GzToRos(self, e))
             if e.direction.to_gz:
-                self.ros_to_gz.append(RosToGz(self, e, echoes))
+                self.ros_to_gz.append(RosToGz(self, e))
         for ch in self.ros_to_gz:
             if ch.entry.lazy:
                 self._listeners.append(
