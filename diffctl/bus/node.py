@@ -23,6 +23,7 @@ from diffctl.bus.clock import Clock, Timer
 from diffctl.bus.endpoints import Client, Publisher, Service, Subscription
 from diffctl.bus.graph import Graph
 from diffctl.bus.log import Logger
+from diffctl.bus.parameters import ParameterDescriptor, ParameterStore
 from diffctl.bus.session import domain_id, open_session, router_endpoint
 from diffctl.errors import ConfigError
 
@@ -118,10 +119,15 @@ class Node:
         remaps: dict[str, str] | None = None,
         params: dict[str, Any] | None = None,
         session: zenoh.Session | None = None,
+        allow_undeclared_parameters: bool = True,
     ) -> None:
         self.name = validate_name(name)
         self.namespace = "/" + namespace.strip("/") if namespace and namespace != "/" else "/"
         self.params: dict[str, Any] = dict(params or {})
+        if "use_sim_time" in self.params:
+            # Launch files pass it as text ("true") as often as a bool; ROS reads both.
+            self.params["use_sim_time"] = _as_bool(self.params["use_sim_time"])
+        self.parameters = ParameterStore(self.params, allow_undeclared=allow_undeclared_parameters)
         self.session = session or open_session()
         self.context = _context(self.session)
         self.domain = self.context.domain
@@ -133,7 +139,13 @@ class Node:
         self._token = self.session.liveliness().declare_token(
             wire.node_token(self.domain, self.context.zid, self.node_id, self.namespace, self.name)
         )
-        sim = self.params.get("use_sim_time", False) if use_sim_time is None else use_sim_time
+        # The parameter says what the node was told; the constructor argument may still keep its clock on wall
+        # time (a controller runs on its manager's clock, not its own /clock subscription).
+        sim_param = self.declare_parameter(
+            "use_sim_time", bool(use_sim_time) if use_sim_time is not None else False,
+            ParameterDescriptor(type="bool", description="Use /clock instead of the wall clock"),
+        )
+        sim = sim_param if use_sim_time is None else use_sim_time
         self.clock = Clock(_as_bool(sim))
         if self.clock.use_sim_time:
             self.create_subscription("/clock", "rosgraph_msgs/msg/Clock", self.clock.on_clock)
@@ -165,6 +177,32 @@ class Node:
             raise ConfigError("empty topic or service name")
         full = self._expand(name)
         return self._remaps.get(full, full)
+
+    # ------------------------------------------------------------------ parameters
+    def declare_parameter(self, name: str, default: Any = None,
+                          descriptor: ParameterDescriptor | None = None) -> Any:
+        """Declare a parameter: its override (--ros-args, params) if given, else `default`; ConfigError if invalid."""
+        return self.parameters.declare(name, default, descriptor)
+
+    def get_parameter(self, name: str) -> Any:
+        try:
+            return self.parameters.get(name)
+        except KeyError:
+            raise ConfigError(f"node {self.fqn} has no parameter '{name}'") from None
+
+    def has_parameter(self, name: str) -> bool:
+        return self.parameters.has(name)
+
+    def set_parameters(self, values: dict[str, Any]) -> list[str | None]:
+        """Set each parameter on its own, as the set_parameters service does: a refusal reason or None each."""
+        return self.parameters.set(values)
+
+    def set_parameters_atomically(self, values: dict[str, Any]) -> str | None:
+        return self.parameters.set_atomically(values)
+
+    def add_on_set_parameters_callback(self, cb: Callable[[dict[str, Any]], str | None]) -> None:
+        """`cb(changes)` runs before a set is applied; returning a reason refuses the whole set."""
+        self.parameters.add_on_set_callback(cb)
 
     # ------------------------------------------------------------------ endpoints
     def _keep(self, obj: Any) -> Any:
