@@ -154,6 +154,8 @@ class CameraSpec:
     clip_near_m: float = 0.1
     clip_far_m: float = 100.0
     noise: Noise = field(default_factory=Noise)
+    camera_info_topic: str = ""  # <camera_info_topic>; "" = Gazebo's default beside the image topic
+    optical_frame_id: str = ""  # <optical_frame_id>; "" = the sensor's frame id
 
     @property
     def vertical_fov_rad(self) -> float:
@@ -166,16 +168,16 @@ class ImuSpec:
     linear_acceleration_noise: tuple[Noise, Noise, Noise] = (Noise(), Noise(), Noise())
 
 
-SENSOR_TYPES = ("lidar", "imu", "camera")
+SENSOR_TYPES = ("lidar", "imu", "camera", "depth_camera", "rgbd_camera")
 
 
 @dataclass(frozen=True)
 class Sensor:
     name: str
-    type: str  # one of SENSOR_TYPES (gpu_lidar / gpu_ray / ray map to "lidar")
+    type: str  # one of SENSOR_TYPES (gpu_lidar / gpu_ray / ray map to "lidar", depth / rgbd to the cameras)
     sdf_type: str  # as written in the SDF
     link: str  # scoped name of the owning link
-    topic: str  # <topic>, or Gazebo's default when absent
+    topic: str  # <topic> made absolute; "" when absent (the simulator derives Gazebo's default from the world)
     update_rate_hz: float
     always_on: bool
     visualize: bool

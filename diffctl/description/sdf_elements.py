@@ -57,7 +57,13 @@ ToLink = Callable[[Pose, str | None, Element | None], Pose]
 GEOMETRY_TAGS = ("box", "cylinder", "sphere", "capsule", "plane", "mesh")
 MESH_SUFFIXES = (".obj", ".stl")  # what PyBullet turns into collision and visual shapes
 LIDAR_SENSOR_TYPES = ("gpu_lidar", "lidar", "gpu_ray", "ray")
-CAMERA_SENSOR_TYPES = ("camera",)
+CAMERA_SENSOR_TYPES = {
+    "camera": "camera",
+    "depth_camera": "depth_camera",
+    "depth": "depth_camera",
+    "rgbd_camera": "rgbd_camera",
+    "rgbd": "rgbd_camera",
+}
 IMU_SENSOR_TYPES = ("imu",)
 NOISE_TYPES = ("none", "gaussian", "gaussian_quantized")
 
@@ -270,7 +276,18 @@ def _parse_camera(doc: Doc, sensor: Element) -> CameraSpec:
         far = float_value(doc, clip, "far", 100.0, positive=True)
         if far <= near:
             fail(doc, clip, f"<clip> <far> {far:g} must exceed <near> {near:g}")
-    return CameraSpec(width, height, hfov, fmt, near, far, parse_noise(doc, cam))
+    info_topic = child_text(cam, "camera_info_topic")
+    return CameraSpec(
+        width,
+        height,
+        hfov,
+        fmt,
+        near,
+        far,
+        parse_noise(doc, cam),
+        camera_info_topic="/" + info_topic.lstrip("/") if info_topic else "",
+        optical_frame_id=child_text(cam, "optical_frame_id") or "",
+    )
 
 
 def _parse_imu(doc: Doc, sensor: Element) -> ImuSpec:
@@ -295,18 +312,13 @@ def sensor_kind(sdf_type: str) -> str | None:
     if sdf_type in LIDAR_SENSOR_TYPES:
         return "lidar"
     if sdf_type in CAMERA_SENSOR_TYPES:
-        return "camera"
+        return CAMERA_SENSOR_TYPES[sdf_type]
     if sdf_type in IMU_SENSOR_TYPES:
         return "imu"
     return None
 
 
-_TOPIC_SUFFIX = {"lidar": "scan", "camera": "image", "imu": "imu"}
-
-
-def parse_sensor(
-    doc: Doc, el: Element, link: str, topic_prefix: str, to_link: ToLink, link_world: Pose
-) -> Sensor | None:
+def parse_sensor(doc: Doc, el: Element, link: str, to_link: ToLink, link_world: Pose) -> Sensor | None:
     """The sensor, or None for a type diffctl does not simulate (the loader lists those as ignored)."""
     name = required_attr(doc, el, "name")
     sdf_type = required_attr(doc, el, "type")
@@ -315,9 +327,10 @@ def parse_sensor(
         return None
     pose, rel, pose_el = pose_child(doc, el)
     pose_link = to_link(pose, rel, pose_el)
-    topic = child_text(el, "topic") or f"{topic_prefix}/sensor/{name}/{_TOPIC_SUFFIX[kind]}"
-    # gz-transport makes relative topic names absolute; consumers get one spelling.
-    topic = "/" + topic.lstrip("/")
+    # gz-transport makes relative topic names absolute; consumers get one spelling. Without <topic> Gazebo
+    # derives one from the world's name, which a model file alone does not know: the simulator does that.
+    given = child_text(el, "topic")
+    topic = "/" + given.lstrip("/") if given else ""
     frame_id = child_text(el, "gz_frame_id") or child_text(el, "frame_id") or None
     return Sensor(
         name=name,
@@ -332,7 +345,7 @@ def parse_sensor(
         pose_world=link_world.compose(pose_link),
         frame_id=frame_id,
         lidar=_parse_lidar(doc, el) if kind == "lidar" else None,
-        camera=_parse_camera(doc, el) if kind == "camera" else None,
+        camera=_parse_camera(doc, el) if kind in ("camera", "depth_camera", "rgbd_camera") else None,
         imu=_parse_imu(doc, el) if kind == "imu" else None,
     )
 

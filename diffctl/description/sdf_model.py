@@ -377,7 +377,7 @@ def build_model(
         inertial_el = child(node.el, "inertial")
         sensors: list[Sensor] = []
         for s in children(node.el, "sensor"):
-            sensor = parse_sensor(node.doc, s, key, f"/model/{name}/link/{key}", to_link, pw)
+            sensor = parse_sensor(node.doc, s, key, to_link, pw)
             if sensor is None:
                 ignored.append(f"sensor {s.get('name')!r} of type {s.get('type')!r} on link {key!r} is not simulated")
             else:

@@ -27,7 +27,8 @@ from diffctl.sim.plugins.base import PluginContext, SystemPlugin, rate_period_ns
 from diffctl.sim.plugins.diff_drive import DiffDrive, DiffDriveParams
 from diffctl.sim.plugins.joint_state_publisher import JointStatePublisher
 from diffctl.sim.plugins.ros2_control import Ros2ControlEndpoint, gazebo_block
-from diffctl.sim.sensors import Camera, Imu, Lidar
+from diffctl.sim.sensors import Camera, CameraSensor, CameraTask, Imu, Lidar, RenderRate
+from diffctl.sim.sensors import topics as sensor_topics
 from diffctl.sim.stepper import Stepper, Task
 from diffctl.sim.transport import GzPublisher, SimTransport
 from diffctl.sim.world import PhysicsWorld
@@ -79,7 +80,7 @@ class ModelRuntime:
     tasks: list[Task] = field(default_factory=list)
     publishers: list[GzPublisher] = field(default_factory=list)
     imus: list[Imu] = field(default_factory=list)
-    sensors: list[Lidar | Imu | Camera] = field(default_factory=list)
+    sensors: list[Lidar | Imu | CameraSensor] = field(default_factory=list)
     endpoint: Ros2ControlEndpoint | None = None
 
 
@@ -189,24 +190,32 @@ class Simulation:
             # update_rate 0 means "every step" in Gazebo.
             period = rate_period_ns(s.update_rate_hz, step_ns) if s.update_rate_hz > 0 else step_ns
             rng = self.sensor_rng(entity.name, s.name)
+            sensor: Lidar | Imu | CameraSensor
             if s.type == "lidar":
-                sensor: Any = Lidar(entity, s, rng)
-                gz_type = "gz.msgs.LaserScan"
+                sensor = Lidar(entity, s, rng)
             elif s.type == "imu":
                 sensor = Imu(entity, s, self.physics.physics.gravity, rng)
-                gz_type = "gz.msgs.IMU"
                 rt.imus.append(sensor)
-            elif s.type == "camera":
-                sensor = Camera(entity, s, rng, self.light_direction, self.physics.all_flat_planes)
-                gz_type = "gz.msgs.Image"
             else:
-                continue
+                sensor = CameraSensor(Camera(entity, s, rng, self.light_direction, self.physics.all_flat_planes))
+                if not sensor.format_supported:
+                    self.log.warn(
+                        f"{s.type} {sensor.name}: image format {s.camera.format!r} is not simulated, "
+                        "publishing RGB_INT8 (simulated: R8G8B8, B8G8R8, L8)"
+                    )
             rt.sensors.append(sensor)
             if self.transport is None:
                 continue
-            pub = self.transport.publisher(s.topic, gz_type)
-            rt.publishers.append(pub)
+            base = sensor_topics.base_topic(s, self.name, entity.name)
+            pubs = {o.name: self.transport.publisher(o.topic, o.gz_type) for o in sensor_topics.outputs(s, base)}
+            rt.publishers.extend(pubs.values())
             name = f"{s.type}:{entity.name}:{s.name}"
+            if isinstance(sensor, CameraSensor):
+                job = CameraTask(sensor, pubs, RenderRate(period, step_ns), lambda: self.stepper.rtf, self.log.warn)
+                job.task = self.stepper.add_task(name, period, job)
+                rt.tasks.append(job.task)
+                continue
+            (pub,) = pubs.values()
             if isinstance(sensor, Imu) and period > step_ns:
                 # Acceleration is the velocity difference over the last step: remember it one step earlier.
                 first = self.stepper.sim_time_ns + period - step_ns

@@ -1,0 +1,114 @@
+"""gpu_lidar / lidar / ray sensors on the CPU: one PyBullet `rayTestBatch` per scan, gz.msgs.LaserScan out.
+
+Noise follows SDF/Gazebo: Gaussian with `mean` and `stddev` from the sensor's own seeded numpy Generator.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pybullet as pb
+
+from diffctl.bus import gz
+from diffctl.description.model import Sensor
+from diffctl.errors import DescriptionError
+from diffctl.sim.entity import Entity
+from diffctl.sim.sensors.common import frame_id, pose_msg, rotation
+
+RANGE_DECIMALS = 4
+# PyBullet caps one rayTestBatch at this many rays (SharedMemoryPublic.h).
+MAX_RAYS = 16384
+
+
+def lidar_directions(
+    h_samples: int, h_min: float, h_max: float, v_samples: int, v_min: float, v_max: float
+) -> np.ndarray:
+    """Unit ray directions in the sensor frame, horizontal index fastest (Gazebo's range order), shape (n, 3)."""
+    h = np.linspace(h_min, h_max, h_samples) if h_samples > 1 else np.array([h_min])
+    v = np.linspace(v_min, v_max, v_samples) if v_samples > 1 else np.array([v_min])
+    vv, hh = np.meshgrid(v, h, indexing="ij")
+    return np.stack([np.cos(vv) * np.cos(hh), np.cos(vv) * np.sin(hh), np.sin(vv)], axis=-1).reshape(-1, 3)
+
+
+def ranges_from_hits(fractions: np.ndarray, hit: np.ndarray, range_min_m: float, range_max_m: float) -> np.ndarray:
+    """Ranges of rays cast from range_min to range_max: +inf where nothing was hit (as Gazebo reports)."""
+    r = range_min_m + fractions * (range_max_m - range_min_m)
+    return np.where(hit, r, np.inf)
+
+
+class Lidar:
+    """gpu_lidar / lidar / ray sensors. Rays start at range_min so the sensor never sees its own housing."""
+
+    def __init__(self, entity: Entity, sensor: Sensor, rng: np.random.Generator) -> None:
+        spec = sensor.lidar
+        assert spec is not None
+        self.entity, self.sensor, self.spec, self.rng = entity, sensor, spec, rng
+        self.frame_id = frame_id(entity.name, sensor)
+        self.count = spec.horizontal_samples * spec.vertical_samples
+        if self.count > MAX_RAYS:
+            raise DescriptionError(
+                f"lidar {sensor.name!r} casts {self.count} rays per scan; PyBullet allows at most {MAX_RAYS}",
+                field=f"sensor {sensor.name}",
+                hint="lower <horizontal><samples> or <vertical><samples>",
+            )
+        self.body, self.link, offset = entity.link_frame(sensor.link)
+        # rayTestBatch takes rays relative to a link in that link's centre-of-mass frame.
+        inertial = entity.inertial_frame(self.body, self.link)
+        in_com = inertial.inverse().compose(offset).compose(sensor.pose_link)
+        d = lidar_directions(
+            spec.horizontal_samples,
+            spec.horizontal_min_angle_rad,
+            spec.horizontal_max_angle_rad,
+            spec.vertical_samples,
+            spec.vertical_min_angle_rad,
+            spec.vertical_max_angle_rad,
+        )
+        rot = np.array(rotation(in_com))
+        origin = np.array(in_com.xyz)
+        world_dirs = d @ rot.T
+        self._from = (origin + world_dirs * spec.range_min_m).tolist()
+        self._to = (origin + world_dirs * spec.range_max_m).tolist()
+        self._noise = spec.noise if spec.noise.active else None
+        self._step = spec.angle_increment_rad
+        v_n = spec.vertical_samples
+        self._v_step = (spec.vertical_max_angle_rad - spec.vertical_min_angle_rad) / (v_n - 1) if v_n > 1 else 0.0
+
+    def scan(self) -> np.ndarray:
+        """Ranges in metres (with noise when the SDF asks for it), +inf where nothing is within range."""
+        res = pb.rayTestBatch(
+            self._from,
+            self._to,
+            parentObjectUniqueId=self.body,
+            parentLinkIndex=self.link,
+            physicsClientId=self.entity.client,
+        )
+        # One pass over the result tuples: a miss has fraction 1 and object -1; mark it with fraction 2.
+        frac = np.fromiter((r[2] if r[0] >= 0 else 2.0 for r in res), dtype=np.float64, count=self.count)
+        ranges = ranges_from_hits(frac, frac < 1.5, self.spec.range_min_m, self.spec.range_max_m)
+        if self._noise is not None:
+            n = self._noise
+            ranges = ranges + self.rng.normal(n.mean, n.stddev, self.count) if n.stddev > 0 else ranges + n.mean
+            ranges = np.clip(ranges, self.spec.range_min_m, None)
+        return ranges
+
+    def sample(self, sim_time_ns: int) -> dict:
+        s = self.spec
+        ranges = self.scan()
+        pose = self.entity.link_pose(self.sensor.link).compose(self.sensor.pose_link)
+        return {
+            "header": gz.header(sim_time_ns, self.frame_id),
+            "frame": self.frame_id,
+            "world_pose": pose_msg(pose),
+            "angle_min": s.horizontal_min_angle_rad,
+            "angle_max": s.horizontal_max_angle_rad,
+            "angle_step": self._step,
+            "range_min": s.range_min_m,
+            "range_max": s.range_max_m,
+            "count": s.horizontal_samples,
+            "vertical_angle_min": s.vertical_min_angle_rad,
+            "vertical_angle_max": s.vertical_max_angle_rad,
+            "vertical_angle_step": self._v_step,
+            "vertical_count": s.vertical_samples,
+            # 0.1 mm is below any lidar's resolution, and short numbers halve the encoding time.
+            "ranges": np.round(ranges, RANGE_DECIMALS).tolist(),
+            "intensities": [],
+        }
