@@ -1,4 +1,4 @@
-"""The launch engine: descriptions (YAML and Python), resolution, and leak-proof process supervision.
+"""The launch engine: descriptions (YAML, XML and Python), resolution, and leak-proof process supervision.
 
 Python launch files use these names, as in ROS 2's `launch` / `launch_ros`:
 
@@ -9,6 +9,7 @@ The engine knows processes, not robots: it imports nothing of diffctl but errors
 
 from diffctl.launch.actions import (
     AnyLaunchDescriptionSource,
+    AppendEnvironmentVariable,
     DeclareLaunchArgument,
     EmitEvent,
     FrontendLaunchDescriptionSource,
@@ -34,18 +35,31 @@ from diffctl.launch.conditions import (
     UnlessCondition,
 )
 from diffctl.launch.event_handlers import OnProcessExit, OnProcessStart, OnShutdown, RegisterEventHandler
+from diffctl.launch.logic_substitutions import (
+    AllSubstitution,
+    AndSubstitution,
+    AnySubstitution,
+    EqualsSubstitution,
+    IfElseSubstitution,
+    NotEqualsSubstitution,
+    NotSubstitution,
+    OrSubstitution,
+)
 from diffctl.launch.package_index import get_package_share_directory
-from diffctl.launch.process_actions import ExecuteProcess, Node, ParameterValue
+from diffctl.launch.parameters import ParameterFile, ParameterValue
+from diffctl.launch.process_actions import ExecuteProcess, Node
 from diffctl.launch.readiness import WaitFor
+from diffctl.launch.ros_actions import SetParameter, SetRemap, SetUseSimTime
 from diffctl.launch.substitutions import (
     AnonName,
     Command,
     EnvironmentVariable,
-    EqualsSubstitution,
+    ExecutableInPackage,
     FileContent,
+    FindExecutable,
+    FindPackagePrefix,
     FindPackageShare,
     LaunchConfiguration,
-    NotSubstitution,
     PathJoinSubstitution,
     PythonExpression,
     TextSubstitution,
@@ -54,19 +68,27 @@ from diffctl.launch.substitutions import (
 )
 
 __all__ = [
+    "AllSubstitution",
+    "AndSubstitution",
     "AnonName",
     "AnyLaunchDescriptionSource",
+    "AnySubstitution",
+    "AppendEnvironmentVariable",
     "Command",
     "DeclareLaunchArgument",
     "EmitEvent",
     "EnvironmentVariable",
     "EqualsSubstitution",
+    "ExecutableInPackage",
     "ExecuteProcess",
     "FileContent",
+    "FindExecutable",
+    "FindPackagePrefix",
     "FindPackageShare",
     "FrontendLaunchDescriptionSource",
     "GroupAction",
     "IfCondition",
+    "IfElseSubstitution",
     "IncludeLaunchDescription",
     "LaunchConfiguration",
     "LaunchConfigurationEquals",
@@ -75,10 +97,13 @@ __all__ = [
     "LaunchDescriptionSource",
     "LogInfo",
     "Node",
+    "NotEqualsSubstitution",
     "NotSubstitution",
     "OnProcessExit",
     "OnProcessStart",
     "OnShutdown",
+    "OrSubstitution",
+    "ParameterFile",
     "ParameterValue",
     "PathJoinSubstitution",
     "PushROSNamespace",
@@ -88,6 +113,9 @@ __all__ = [
     "RegisterEventHandler",
     "SetEnvironmentVariable",
     "SetLaunchConfiguration",
+    "SetParameter",
+    "SetRemap",
+    "SetUseSimTime",
     "Shutdown",
     "TextSubstitution",
     "ThisLaunchFile",

@@ -191,7 +191,7 @@ class GroupAction(Action):
     """A group of actions; scoped by default, so configurations, environment and namespace stay inside."""
 
     yaml_tags = ("group",)
-    yaml_attrs = ("scoped", "forwarding", "namespace", "children")
+    yaml_attrs = ("scoped", "forwarding", "namespace", "keep", "children")
 
     def __init__(
         self,
@@ -220,10 +220,14 @@ class GroupAction(Action):
 
     @classmethod
     def from_yaml(cls, e: Entity) -> Action:
+        keep = {
+            k.plain("name", required=True): k.text("value", required=True) for k in e.items("keep", ("name", "value"))
+        }
         return cls(
             e.children(),
             scoped=e.boolean("scoped", True),
             forwarding=e.boolean("forwarding", True),
+            launch_configurations=keep,
             namespace=e.text("namespace"),
         )
 
@@ -266,6 +270,44 @@ class SetEnvironmentVariable(Action):
     @classmethod
     def from_yaml(cls, e: Entity) -> Action:
         return cls(e.text("name", required=True), e.text("value", required=True))
+
+
+@register
+class AppendEnvironmentVariable(Action):
+    """`append_env`: add to a PATH-like variable (`prepend` puts it first), joined with `separator`."""
+
+    yaml_tags = ("append_env",)
+    yaml_attrs = ("name", "value", "prepend", "separator")
+
+    def __init__(
+        self,
+        name: SomeSubstitutions,
+        value: SomeSubstitutions,
+        *,
+        prepend: bool = False,
+        separator: str = os.pathsep,
+        **kw: Any,
+    ) -> None:
+        super().__init__(**kw)
+        self.name, self.value = normalize(name), normalize(value)
+        self.prepend, self.separator = prepend, separator
+
+    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+        name, value = perform(self.name, scope), perform(self.value, scope)
+        old = scope.env.get(name)
+        if old:
+            value = f"{value}{self.separator}{old}" if self.prepend else f"{old}{self.separator}{value}"
+        scope.set_env(name, value)
+        return []
+
+    @classmethod
+    def from_yaml(cls, e: Entity) -> Action:
+        return cls(
+            e.text("name", required=True),
+            e.text("value", required=True),
+            prepend=e.boolean("prepend", False),
+            separator=e.plain("separator") or os.pathsep,
+        )
 
 
 @register

@@ -7,7 +7,10 @@ from __future__ import annotations
 
 import os
 import secrets
+import sys
 from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
 
 from diffctl.launch.plan import Gate
 
@@ -34,12 +37,14 @@ class Scope:
     includes: tuple[str, ...] = ()
     gate: Gate | None = None
     anon: AnonNames = field(default_factory=AnonNames)
+    global_params: dict[str, Any] = field(default_factory=dict)  # SetParameter: for every node after it
+    remaps: list[tuple[str, str]] = field(default_factory=list)  # SetRemap: for every node after it
 
     @classmethod
     def initial(cls, arguments: dict[str, str], launch_file: str | None, env: dict[str, str] | None = None) -> Scope:
         return cls(
             configurations=dict(arguments),
-            env=dict(os.environ if env is None else env),
+            env=with_tool_path(dict(os.environ if env is None else env)),
             launch_file=launch_file,
             includes=(launch_file,) if launch_file else (),
         )
@@ -51,6 +56,8 @@ class Scope:
             configurations=dict(self.configurations) if forwarding else {},
             env=dict(self.env),
             env_changes=dict(self.env_changes),
+            global_params=dict(self.global_params) if forwarding else {},
+            remaps=list(self.remaps) if forwarding else [],
         )
 
     def anon_name(self, base: str) -> str:
@@ -75,3 +82,16 @@ def join_namespace(base: str, ns: str) -> str:
     full = ns if ns.startswith("/") else (base.rstrip("/") + "/" + ns)
     full = "/" + "/".join(p for p in full.split("/") if p)
     return full
+
+
+def with_tool_path(env: dict[str, str]) -> dict[str, str]:
+    """`env` with this interpreter's bin directory first on PATH.
+
+    `$(command 'xacro …')`, `$(find-exec)` and the children find the venv's `xacro` and `diffctl` even when
+    the venv is not activated (the launcher was started as .venv/bin/diffctl).
+    """
+    tools = str(Path(sys.executable).parent)
+    parts = [p for p in env.get("PATH", "").split(os.pathsep) if p]
+    if tools not in parts:
+        env["PATH"] = os.pathsep.join([tools, *parts])
+    return env

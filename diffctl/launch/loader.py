@@ -1,4 +1,4 @@
-"""Read a launch file with the frontend its name calls for."""
+"""Read a launch file with the frontend its name calls for (as `ros2 launch` and AnyLaunchDescriptionSource do)."""
 
 from __future__ import annotations
 
@@ -7,6 +7,9 @@ from pathlib import Path
 from diffctl.errors import LaunchError
 from diffctl.launch.actions import LaunchDescription
 
+XML_SUFFIXES = (".xml", ".launch")
+YAML_SUFFIXES = (".yaml", ".yml")
+
 
 def load(path: str | Path) -> LaunchDescription:
     name = Path(path).name
@@ -14,12 +17,14 @@ def load(path: str | Path) -> LaunchDescription:
         from diffctl.launch import python_frontend
 
         return python_frontend.load(path)  # type: ignore[return-value]
-    if name.endswith((".yaml", ".yml")):
+    if name.endswith(YAML_SUFFIXES):
         from diffctl.launch import yaml_frontend
 
         return yaml_frontend.load(path)
-    if name.endswith(".xml"):
-        raise LaunchError(
-            "XML launch files are not supported", source=str(path), hint="write it in YAML (same tags) or Python"
-        )
-    raise LaunchError("unknown launch file type", source=str(path), hint="valid: NAME.yaml, NAME.launch.py")
+    if name.endswith(XML_SUFFIXES):
+        from diffctl.launch import xml_frontend
+
+        return xml_frontend.load(path)
+    raise LaunchError(
+        "unknown launch file type", source=str(path), hint="valid: NAME.launch.py, NAME.launch.xml, NAME.launch.yaml"
+    )

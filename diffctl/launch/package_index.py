@@ -28,7 +28,7 @@ COMPONENTS: dict[tuple[str, str], tuple[str, ...]] = {
     ("diffctl", "router"): ("router",),
 }
 
-LAUNCH_SUFFIXES = (".yaml", ".launch.yaml", ".launch.py")
+LAUNCH_SUFFIXES = (".yaml", ".launch.yaml", ".launch.py", ".launch.xml", ".xml")
 
 
 def project_root() -> Path:
@@ -154,7 +154,7 @@ def find_launch_file(target: str, file: str | None = None, cwd: Path | None = No
         return path.resolve()
     if path.is_dir():
         raise LaunchError(f"{target} is a directory, not a launch file")
-    looks_like_path = "/" in target or target.endswith((".yaml", ".py", ".yml"))
+    looks_like_path = "/" in target or target.endswith((".yaml", ".py", ".yml", ".xml", ".launch"))
     roots = [project_root()]
     here = (cwd or Path.cwd()).resolve()
     if here not in roots:

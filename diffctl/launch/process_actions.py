@@ -15,13 +15,12 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import yaml
-
 from diffctl.errors import LaunchError
 from diffctl.launch import package_index
 from diffctl.launch.actions import Action, Shutdown, describe, seconds
 from diffctl.launch.conditions import truth
 from diffctl.launch.context import join_namespace
+from diffctl.launch.parameters import ParameterFile, resolve_parameters
 from diffctl.launch.plan import OUTPUTS, AddHandler, Handler, RosNode, StartProcess, Step, TargetRef
 from diffctl.launch.registry import register
 from diffctl.launch.substitutions import SomeSubstitutions, Substitution, normalize, perform
@@ -126,70 +125,6 @@ def _option(value: Any, scope: Scope) -> Any:
     if value is None or isinstance(value, (bool, int, float)):
         return value
     return perform(value, scope)
-
-
-def guess_type(text: str) -> Any:
-    """A substituted parameter value typed as ROS does: '1' → 1, 'true' → True, '[1, 2]' → [1, 2], else text."""
-    try:
-        value = yaml.safe_load(text)
-    except yaml.YAMLError:
-        return text
-    scalar = (bool, int, float)
-    if isinstance(value, scalar) or (isinstance(value, list) and all(isinstance(v, (*scalar, str)) for v in value)):
-        return value
-    return text
-
-
-class ParameterValue:
-    """launch_ros's ParameterValue: a value with an explicit type (`value_type=str` keeps text as text)."""
-
-    def __init__(self, value: Any, *, value_type: type | None = None) -> None:
-        self.value = value
-        self.value_type = value_type
-
-
-def _param_value(value: Any, scope: Scope) -> Any:
-    if isinstance(value, ParameterValue):
-        if value.value_type is None:
-            return _param_value(value.value, scope)
-        raw = value.value
-        text = perform(raw, scope) if isinstance(raw, (Substitution, list, tuple, str)) else raw
-        try:
-            return value.value_type(text) if value.value_type is not bool else truth(str(text), "ParameterValue")
-        except (TypeError, ValueError):
-            raise LaunchError(f"parameter value {text!r} is not a {value.value_type.__name__}") from None
-    if isinstance(value, Substitution) or (
-        isinstance(value, (list, tuple))
-        and value
-        and all(isinstance(v, (str, Substitution)) for v in value)
-        and any(isinstance(v, Substitution) for v in value)
-    ):
-        return guess_type(perform(value, scope))
-    if isinstance(value, (list, tuple)):
-        return [_param_value(v, scope) for v in value]
-    if isinstance(value, Mapping):
-        return {str(k): _param_value(v, scope) for k, v in value.items()}
-    return value
-
-
-def _parameters(entries: Iterable[Any], scope: Scope) -> tuple[str | dict[str, Any], ...]:
-    """Parameter files and dicts in order; consecutive dicts merge, as they would on the node."""
-    out: list[str | dict[str, Any]] = []
-    for entry in entries:
-        if isinstance(entry, Mapping):
-            values = {
-                perform(k, scope) if not isinstance(k, str) else k: _param_value(v, scope) for k, v in entry.items()
-            }
-            if out and isinstance(out[-1], dict):
-                out[-1].update(values)
-            else:
-                out.append(values)
-            continue
-        path = Path(perform(entry, scope) if not isinstance(entry, Path) else str(entry))
-        if not path.is_file():
-            raise LaunchError(f"parameter file {path} does not exist")
-        out.append(str(path.resolve()))
-    return tuple(out)
 
 
 @register
@@ -400,7 +335,7 @@ class Node(ExecuteProcess):
         self.namespace = None if namespace is None else normalize(namespace)
         self.parameters = list(parameters or [])
         for p in self.parameters:
-            if not isinstance(p, (Mapping, str, Path, Substitution, list, tuple)):
+            if not isinstance(p, (Mapping, str, Path, Substitution, list, tuple, ParameterFile)):
                 raise LaunchError(f"parameters entry {p!r} must be a dict or a parameter file path")
         self.remappings = [(normalize(a), normalize(b)) for a, b in (remappings or [])]
         self.ros_arguments = list(ros_arguments or [])
@@ -432,12 +367,12 @@ class Node(ExecuteProcess):
                 f"node name {node_name!r} is not valid",
                 hint="letters, digits and underscores, not starting with a digit",
             )
-        return RosNode(
-            node_name=node_name,
-            namespace=namespace,
-            params=_parameters(self.parameters, scope),
-            remaps=tuple((perform(a, scope), perform(b, scope)) for a, b in self.remappings),
-        ), {}
+        # SetParameter / SetRemap of the scope come first, so the node's own win (launch_ros's order).
+        params = resolve_parameters(self.parameters, scope)
+        if scope.global_params:
+            params = (dict(scope.global_params), *params)
+        own = tuple((perform(a, scope), perform(b, scope)) for a, b in self.remappings)
+        return RosNode(node_name=node_name, namespace=namespace, params=params, remaps=(*scope.remaps, *own)), {}
 
     @classmethod
     def from_yaml(cls, e: Entity) -> Action:

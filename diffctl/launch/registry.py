@@ -1,8 +1,8 @@
-"""The one registry of action classes: YAML tag → class, and the attributes each tag accepts.
+"""The one registry of action classes: frontend tag → class, and the attributes each tag accepts.
 
-Action classes register themselves with `@register`; the YAML frontend looks tags up here (unknown tag →
-close-match suggestion) and checks every attribute against the class's `yaml_attrs` plus the attributes
-every entity takes (`COMMON_ATTRS`).
+Action classes register themselves with `@register`; the YAML and XML frontends look tags up here (unknown
+tag → close-match suggestion) and check every attribute against the class's `yaml_attrs` plus the
+attributes every entity takes (`COMMON_ATTRS`). Python launch files construct the same classes.
 """
 
 from __future__ import annotations
@@ -33,7 +33,8 @@ def actions() -> dict[str, type[Action]]:
     # Importing the modules runs their @register decorators.
     import diffctl.launch.actions
     import diffctl.launch.event_handlers
-    import diffctl.launch.process_actions  # noqa: F401
+    import diffctl.launch.process_actions
+    import diffctl.launch.ros_actions  # noqa: F401
 
     return _ACTIONS
 

@@ -1,14 +1,13 @@
 """Substitutions: values computed when a launch description is resolved (`$(var x)`, LaunchConfiguration, …).
 
-The same classes back both frontends: the YAML frontend parses `$(name arg …)` strings into them with
-`parse()`, the Python frontend constructs them directly (LaunchConfiguration, PathJoinSubstitution, …).
+The same classes back every frontend: the YAML and XML frontends parse `$(name arg …)` strings into them
+(substitution_syntax.py); the Python frontend constructs them directly (LaunchConfiguration, …).
 Everything is evaluated against a `Scope` (see context.py) by `perform(value, scope)`.
 """
 
 from __future__ import annotations
 
 import builtins
-import math
 import os
 import shlex
 import subprocess
@@ -181,18 +180,36 @@ _EVAL_BUILTINS: dict[str, Any] = {
 
 
 class PythonExpression(Substitution):
-    """`$(eval expr)`: a Python expression over `math` and basic builtins, evaluated to text."""
+    """`$(eval expr [modules])`: a Python expression over basic builtins and `math` (or the modules named), as text.
 
-    def __init__(self, expression: SomeSubstitutions) -> None:
+    As in ROS, the names of `math` are also usable bare (`pi`, `sqrt(2)`); other modules are used qualified.
+    """
+
+    def __init__(self, expression: SomeSubstitutions, python_modules: SomeSubstitutions | None = None) -> None:
         self.expression = normalize(expression)
+        self.python_modules = None if python_modules is None else normalize(python_modules)
 
     def describe(self) -> str:
         return f"$(eval '{describe(self.expression)}')"
 
+    def _modules(self, scope: Scope) -> list[str]:
+        if self.python_modules is None:
+            return ["math"]
+        return [m.strip() for m in perform(self.python_modules, scope).split(",") if m.strip()]
+
     def perform(self, scope: Scope) -> str:
+        import importlib
+
         text = perform(self.expression, scope)
-        namespace = {"__builtins__": _EVAL_BUILTINS, "math": math}
-        namespace.update({k: getattr(math, k) for k in dir(math) if not k.startswith("_")})
+        namespace: dict[str, Any] = {"__builtins__": _EVAL_BUILTINS}
+        for name in self._modules(scope):
+            try:
+                module = importlib.import_module(name)
+            except ImportError:
+                raise LaunchError(f"$(eval): python module {name!r} cannot be imported") from None
+            namespace[name.split(".")[0]] = importlib.import_module(name.split(".")[0])
+            if name == "math":
+                namespace.update({k: getattr(module, k) for k in dir(module) if not k.startswith("_")})
         try:
             return str(eval(text, namespace))
         except Exception as e:
@@ -227,12 +244,29 @@ class Command(Substitution):
         policy = perform(self.on_stderr, scope)
         if policy not in ("fail", "warn", "ignore", "capture"):
             raise LaunchError(f"$(command) stderr policy {policy!r} is not valid", hint="valid: fail, warn, ignore")
+        from diffctl.launch.context import with_tool_path
+
         try:
-            done = subprocess.run(shlex.split(text), capture_output=True, text=True, env=dict(scope.env), timeout=30)
-        except (OSError, ValueError, subprocess.TimeoutExpired) as e:
+            argv = shlex.split(text)
+        except ValueError as e:
+            raise LaunchError(f"$(command {text}): cannot split it into arguments: {e}") from None
+        if not argv:
+            raise LaunchError("$(command) was given an empty command")
+        try:
+            done = subprocess.run(
+                argv, capture_output=True, text=True, env=with_tool_path(dict(scope.env)), timeout=120
+            )
+        except (OSError, subprocess.TimeoutExpired) as e:
             raise LaunchError(f"$(command {text}) could not run: {e}") from None
         if done.returncode != 0:
-            raise LaunchError(f"$(command {text}) exited with code {done.returncode}: {done.stderr.strip()[:200]}")
+            raise LaunchError(
+                f"executed command failed (exit code {done.returncode}). Command: {text}: "
+                + (done.stderr.strip().splitlines() or ["(no error output)"])[-1][:300]
+            )
+        if done.stderr.strip() and policy == "warn":
+            from diffctl import console
+
+            console.warn(f"$(command {text}) wrote to stderr: {done.stderr.strip()[:300]}")
         if done.stderr.strip() and policy == "fail":
             raise LaunchError(
                 f"$(command {text}) wrote to stderr: {done.stderr.strip()[:200]}",
@@ -272,159 +306,61 @@ class FileContent(Substitution):
         return text
 
 
-class EqualsSubstitution(Substitution):
-    def __init__(self, left: SomeSubstitutions, right: SomeSubstitutions) -> None:
-        self.left, self.right = normalize(left), normalize(right)
+class FindExecutable(Substitution):
+    """`$(find-exec name)`: the full path of an executable on PATH (this interpreter's bin directory first)."""
+
+    def __init__(self, *, name: SomeSubstitutions) -> None:
+        self.name = normalize(name)
+
+    def describe(self) -> str:
+        return f"$(find-exec {describe(self.name)})"
 
     def perform(self, scope: Scope) -> str:
-        return str(perform(self.left, scope) == perform(self.right, scope)).lower()
+        import shutil
+
+        from diffctl.launch.context import with_tool_path
+
+        name = perform(self.name, scope)
+        found = shutil.which(name, path=with_tool_path(dict(scope.env)).get("PATH", ""))
+        if found is None:
+            raise LaunchError(f"executable {name!r} not found on the PATH")
+        return found
 
 
-class NotSubstitution(Substitution):
-    def __init__(self, value: SomeSubstitutions) -> None:
-        self.value = normalize(value)
+class FindPackagePrefix(Substitution):
+    """`$(find-pkg-prefix pkg)`: the install prefix of a package (its share directory's grandparent)."""
+
+    def __init__(self, package: SomeSubstitutions) -> None:
+        self.package = normalize(package)
+
+    def describe(self) -> str:
+        return f"$(find-pkg-prefix {describe(self.package)})"
 
     def perform(self, scope: Scope) -> str:
-        from diffctl.launch.conditions import truth
+        from diffctl.launch import package_index
 
-        return str(not truth(perform(self.value, scope), "not")).lower()
-
-
-# ---- the `$(...)` parser of the YAML frontend ---------------------------------------------------------------
+        share = package_index.share_dir(perform(self.package, scope))
+        return str(share.parent.parent) if share.parent.name == "share" else str(share)
 
 
-def _make_var(args: list[tuple[Substitution, ...]]) -> Substitution:
-    _arity("var", args, 1, 2)
-    return LaunchConfiguration(args[0], default=args[1] if len(args) > 1 else None)
+class ExecutableInPackage(Substitution):
+    """`$(exec-in-pkg exe pkg)`: the command that runs a package's executable."""
 
+    def __init__(self, executable: SomeSubstitutions, package: SomeSubstitutions) -> None:
+        self.executable, self.package = normalize(executable), normalize(package)
 
-def _make_env(args: list[tuple[Substitution, ...]]) -> Substitution:
-    _arity("env", args, 1, 2)
-    return EnvironmentVariable(args[0], default_value=args[1] if len(args) > 1 else None)
+    def describe(self) -> str:
+        return f"$(exec-in-pkg {describe(self.executable)} {describe(self.package)})"
 
+    def perform(self, scope: Scope) -> str:
+        from diffctl.launch import package_index
 
-def _make_optenv(args: list[tuple[Substitution, ...]]) -> Substitution:
-    _arity("optenv", args, 1, 2)
-    return EnvironmentVariable(args[0], default_value=args[1] if len(args) > 1 else "")
-
-
-def _make_file_content(args: list[tuple[Substitution, ...]]) -> Substitution:
-    # Extra arguments are PLACEHOLDER=value pairs.
-    if not args:
-        _arity("file-content", args, 1, 99)
-    replacements: dict[str, SomeSubstitutions] = {}
-    for pair in args[1:]:
-        head = pair[0] if pair else None
-        if not isinstance(head, TextSubstitution) or "=" not in head.text:
-            raise LaunchError("$(file-content PATH PLACEHOLDER=VALUE …): replacement must be PLACEHOLDER=VALUE")
-        key, first = head.text.split("=", 1)
-        replacements[key] = (TextSubstitution(first), *pair[1:])
-    return FileContent(args[0], replacements)
-
-
-def _make_eval(args: list[tuple[Substitution, ...]]) -> Substitution:
-    # Unquoted `$(eval 1 + 2)` splits into several arguments; the expression is all of them.
-    _arity("eval", args, 1, 99)
-    joined: list[Substitution] = []
-    for i, part in enumerate(args):
-        joined += ([TextSubstitution(" ")] if i else []) + list(part)
-    return PythonExpression(joined)
-
-
-def _arity(name: str, args: list[Any], low: int, high: int) -> None:
-    if not low <= len(args) <= high:
-        want = str(low) if low == high else f"{low} to {high}"
-        raise LaunchError(f"$({name}) takes {want} argument(s), got {len(args)}")
-
-
-SUBSTITUTIONS: dict[str, Any] = {
-    "var": _make_var,
-    "env": _make_env,
-    "optenv": _make_optenv,
-    "find-pkg-share": lambda a: (_arity("find-pkg-share", a, 1, 1), FindPackageShare(a[0]))[1],
-    "dirname": lambda a: (_arity("dirname", a, 0, 0), ThisLaunchFileDir())[1],
-    "filename": lambda a: (_arity("filename", a, 0, 0), ThisLaunchFile())[1],
-    "eval": _make_eval,
-    "anon": lambda a: (_arity("anon", a, 1, 1), AnonName(a[0]))[1],
-    "command": lambda a: (_arity("command", a, 1, 2), Command(a[0], a[1] if len(a) > 1 else "fail"))[1],
-    "file-content": _make_file_content,
-}
-
-
-class _Parser:
-    """Recursive descent over `text $(name arg 'quoted arg' $(nested)) text`."""
-
-    def __init__(self, text: str) -> None:
-        self.text = text
-        self.i = 0
-
-    def error(self, message: str) -> LaunchError:
-        return LaunchError(f"{message} at character {self.i + 1} of {self.text!r}")
-
-    def parse_text(self, stop: str = "") -> tuple[Substitution, ...]:
-        parts: list[Substitution] = []
-        buf: list[str] = []
-        while self.i < len(self.text):
-            c = self.text[self.i]
-            if c == "\\" and self.text.startswith("\\$(", self.i):
-                buf.append("$(")
-                self.i += 3
-                continue
-            if self.text.startswith("$(", self.i):
-                if buf:
-                    parts.append(TextSubstitution("".join(buf)))
-                    buf = []
-                parts.append(self.parse_substitution())
-                continue
-            if c in stop:
-                break
-            buf.append(c)
-            self.i += 1
-        if buf:
-            parts.append(TextSubstitution("".join(buf)))
-        return tuple(parts)
-
-    def parse_substitution(self) -> Substitution:
-        start = self.i
-        self.i += 2
-        name_start = self.i
-        while self.i < len(self.text) and not self.text[self.i].isspace() and self.text[self.i] != ")":
-            self.i += 1
-        name = self.text[name_start : self.i]
-        args: list[tuple[Substitution, ...]] = []
-        while True:
-            while self.i < len(self.text) and self.text[self.i].isspace():
-                self.i += 1
-            if self.i >= len(self.text):
-                self.i = start
-                raise self.error("unterminated $(")
-            if self.text[self.i] == ")":
-                self.i += 1
-                break
-            args.append(self.parse_argument())
-        if name not in SUBSTITUTIONS:
-            raise LaunchError(
-                f"unknown substitution $({name}){suggest(name, SUBSTITUTIONS)}",
-                hint="valid: " + ", ".join(f"$({n})" for n in SUBSTITUTIONS),
-            )
-        return SUBSTITUTIONS[name](args)
-
-    def parse_argument(self) -> tuple[Substitution, ...]:
-        c = self.text[self.i]
-        if c in "'\"":
-            self.i += 1
-            inner = self.parse_text(stop=c)
-            if self.i >= len(self.text):
-                raise self.error(f"unterminated quote {c}")
-            self.i += 1
-            return inner or (TextSubstitution(""),)
-        return self.parse_text(stop=" \t\n)")
+        argv = package_index.executable_argv(perform(self.package, scope), perform(self.executable, scope))
+        return shlex.join(argv)
 
 
 def parse(text: str) -> tuple[Substitution, ...]:
-    """A YAML string with `$(...)` substitutions → a tuple of substitutions (plain text → one TextSubstitution)."""
-    if "$(" not in text:
-        return (TextSubstitution(text),)
-    p = _Parser(text)
-    parts = p.parse_text()
-    return parts or (TextSubstitution(""),)
+    """A frontend string with `$(...)` substitutions → a tuple of substitutions (see substitution_syntax.py)."""
+    from diffctl.launch.substitution_syntax import parse as parse_syntax
+
+    return parse_syntax(text)

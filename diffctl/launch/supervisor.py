@@ -25,6 +25,7 @@ from pathlib import Path
 from typing import Protocol
 
 from diffctl.launch import commandline
+from diffctl.launch.context import with_tool_path
 from diffctl.launch.output import Output
 from diffctl.launch.plan import (
     AddHandler,
@@ -145,7 +146,7 @@ class Supervisor:
         self.clock = clock or SystemClock()
         self.params_dir = (log_dir / "params") if log_dir else Path(tempfile.gettempdir()) / f"diffctl-{os.getpid()}"
         self.poller = poller
-        self.base_env = dict(os.environ if env is None else env)
+        self.base_env = with_tool_path(dict(os.environ if env is None else env))
         self.states = {name: ProcessState(spec) for name, spec in plan.processes.items()}
         self.pid_names: dict[int, str] = {}
         self.handlers: list[Handler] = []
@@ -226,6 +227,7 @@ class Supervisor:
             if st.lingering is not None and not self.spawner.group_alive(st.lingering):
                 self.spawner.forget(st.lingering)
                 st.lingering = None
+                self.output.launcher("INFO", f"[{st.spec.name}] the rest of its process group is gone{self._ran(st)}")
         self._after_event()
 
     def next_deadline(self) -> float | None:
@@ -318,8 +320,7 @@ class Supervisor:
 
     def _process_exited(self, st: ProcessState, code: int, pid: int | None) -> None:
         name = st.spec.name
-        ran = f", ran {self.now() - st.started_at:.1f} s" if st.started_at is not None and pid else ""
-        where = f"pid {pid}{ran}" if pid else "never started"
+        where = f"pid {pid}{self._ran(st)}" if pid else "never started"
         if self.shutting_down:
             st.state = "stopped"
             self.output.launcher("INFO", f"[{name}] stopped ({describe_exit(code)}, {where})")
@@ -352,8 +353,14 @@ class Supervisor:
         elif code != 0:
             self.failed_processes.append(f"{name} ({describe_exit(code)})")
         if st.lingering is not None and not self.shutting_down:
-            self.output.launcher("WARN", f"[{name}] exited but left processes in its group; stopping them")
-            self._stop(st, signal.SIGINT)
+            # What is left (a shell's background job) may well ignore SIGINT, as jobs of a non-interactive shell
+            # do: waiting out sigterm_timeout for it would only delay the inevitable.
+            self.output.launcher("WARN", f"[{name}] exited but left processes in its group; sending them SIGTERM")
+            self._stop(st, signal.SIGTERM, quiet=True)
+
+    def _ran(self, st: ProcessState) -> str:
+        """', ran 3.2 s': since this start of the process (a respawn starts the count again)."""
+        return f", ran {self.now() - st.started_at:.1f} s" if st.started_at is not None else ""
 
     def _fire(self, event: str, name: str, code: int | None) -> None:
         for handler in list(self.handlers):
@@ -437,10 +444,10 @@ class Supervisor:
         if alive:
             self.output.launcher("INFO", "sending SIGINT to " + ", ".join(st.spec.name for st in alive))
             for st in alive:
-                self._stop(st, signal.SIGINT, quiet=True)
+                self._stop(st, signal.SIGINT if st.child is not None else signal.SIGTERM, quiet=True)
 
     def _stop(self, st: ProcessState, sig: int, *, quiet: bool = False) -> None:
-        """SIGINT the group now; SIGTERM and SIGKILL later if it is still there."""
+        """Signal the group now (SIGINT, or SIGTERM for what a finished leader left); escalate later."""
         target = st.child or st.lingering
         if target is None:
             return
@@ -448,11 +455,20 @@ class Supervisor:
             self.output.launcher("INFO", f"sending {signal.Signals(sig).name} to [{st.spec.name}]")
         self.spawner.signal_group(target, sig)
         st.state = "stopping" if st.child else st.state
+        for timer in st.stop_timers:
+            timer.cancelled = True
         term, kill = st.spec.sigterm_timeout_s, st.spec.sigkill_timeout_s
         st.stop_timers = [
-            self._after(term, lambda: self._escalate(st, signal.SIGTERM, f"{term:g} s after SIGINT"), "stop"),
-            self._after(term + kill, lambda: self._escalate(st, signal.SIGKILL, f"{kill:g} s after SIGTERM"), "stop"),
+            self._after(
+                (term if sig == signal.SIGINT else 0.0) + kill,
+                lambda: self._escalate(st, signal.SIGKILL, f"{kill:g} s after SIGTERM"),
+                "stop",
+            )
         ]
+        if sig == signal.SIGINT:
+            st.stop_timers.append(
+                self._after(term, lambda: self._escalate(st, signal.SIGTERM, f"{term:g} s after SIGINT"), "stop")
+            )
 
     def _escalate(self, st: ProcessState, sig: int, why: str) -> None:
         target = st.child or st.lingering

@@ -246,6 +246,12 @@ def _entity(item: Any, source: str, mark: yaml.Mark | None) -> Action:
         action = registry.lookup(tag).from_yaml(e)
     except LaunchError as err:
         raise e.where.attach(err, tag) from None
+    return attach_common(action, e)
+
+
+def attach_common(action: Action, e: Entity) -> Action:
+    """What every entity of every frontend may carry: `if` / `unless`, readiness, and where it was written."""
+    tag = e.tag
     if e.has("if") and e.has("unless"):
         raise e.error("give `if` or `unless`, not both", key="unless")
     if e.has("if"):

@@ -1,0 +1,92 @@
+"""ROS scope actions of launch_ros: SetParameter, SetRemap, SetUseSimTime (`set_parameter`, `set_remap`, …).
+
+They change the scope, so every node started after them in the same scope gets the parameter or remapping
+(before its own), and a scoped group keeps them inside, as launch_ros does.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from diffctl.launch.actions import Action, describe
+from diffctl.launch.parameters import ParameterValue, _param_value
+from diffctl.launch.registry import register
+from diffctl.launch.substitutions import SomeSubstitutions, normalize, perform
+
+if TYPE_CHECKING:
+    from diffctl.launch.context import Scope
+    from diffctl.launch.plan import Step
+    from diffctl.launch.resolver import Resolver
+    from diffctl.launch.yaml_frontend import Entity
+
+
+@register
+class SetParameter(Action):
+    """A parameter for every node after it in this scope (ROS passes it as `-p name:=value`)."""
+
+    yaml_tags = ("set_parameter",)
+    yaml_attrs = ("name", "value")
+
+    def __init__(self, name: SomeSubstitutions, value: Any, **kw: Any) -> None:
+        super().__init__(**kw)
+        self.name = normalize(name)
+        self.value = value if isinstance(value, ParameterValue) or not isinstance(value, str) else normalize(value)
+
+    def label(self) -> str:
+        return f"set_parameter {describe(self.name)}"
+
+    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+        scope.global_params[perform(self.name, scope)] = _param_value(self.value, scope)
+        return []
+
+    @classmethod
+    def from_yaml(cls, e: Entity) -> Action:
+        if not e.has("value"):
+            raise e.error("`set_parameter` needs `value`")
+        return cls(e.text("name", required=True), e.value("value"))
+
+
+@register
+class SetUseSimTime(Action):
+    """`set_use_sim_time`: SetParameter('use_sim_time', value) for every node after it."""
+
+    yaml_tags = ("set_use_sim_time",)
+    yaml_attrs = ("value",)
+
+    def __init__(self, value: bool | SomeSubstitutions, **kw: Any) -> None:
+        super().__init__(**kw)
+        self.value = value
+
+    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+        from diffctl.launch.conditions import truth
+
+        value = self.value if isinstance(self.value, bool) else truth(perform(self.value, scope), "use_sim_time")
+        scope.global_params["use_sim_time"] = value
+        return []
+
+    @classmethod
+    def from_yaml(cls, e: Entity) -> Action:
+        return cls(e.text("value", required=True))
+
+
+@register
+class SetRemap(Action):
+    """A remapping for every node after it in this scope (before each node's own remappings)."""
+
+    yaml_tags = ("set_remap",)
+    yaml_attrs = ("from", "to")
+
+    def __init__(self, src: SomeSubstitutions, dst: SomeSubstitutions, **kw: Any) -> None:
+        super().__init__(**kw)
+        self.src, self.dst = normalize(src), normalize(dst)
+
+    def label(self) -> str:
+        return f"set_remap {describe(self.src)}:={describe(self.dst)}"
+
+    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+        scope.remaps.append((perform(self.src, scope), perform(self.dst, scope)))
+        return []
+
+    @classmethod
+    def from_yaml(cls, e: Entity) -> Action:
+        return cls(e.text("from", required=True), e.text("to", required=True))
