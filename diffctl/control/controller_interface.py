@@ -103,6 +103,11 @@ class ControllerNode(Protocol):
     ) -> Any: ...
     def now_ns(self) -> int: ...
     def resolve(self, name: str) -> str: ...
+    # Declared parameters (rclcpp's): a node without them (a test double) is only validated against the table.
+    def declare_parameter(self, name: str, default: Any, descriptor: Any = None) -> Any: ...
+    def get_parameter(self, name: str) -> Any: ...
+    def set_parameters(self, values: dict[str, Any]) -> list[str | None]: ...
+    def add_on_set_parameters_callback(self, cb: Callable[[dict[str, Any]], str | None]) -> None: ...
 
 
 class ControllerInterface(ABC):
@@ -154,3 +159,42 @@ class ControllerInterface(ABC):
     # --- helpers -----------------------------------------------------------------------------------------
     def param(self, name: str, default: Any = None) -> Any:
         return self.node.params.get(name, default) if self.node is not None else default
+
+
+class ChainableControllerInterface(ControllerInterface):
+    """A controller other controllers can be chained in front of (controller_interface's chainable base).
+
+    It exports reference interfaces, `<controller>/<name>` command handles, when configured. While another
+    active controller claims them the manager puts it in chained mode: it then takes its references from
+    those handles, written by the preceding controller earlier in the same cycle, instead of its topics.
+    """
+
+    is_chainable = True
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.reference_interfaces: list[CommandInterface] = []
+        self._chained_mode = False
+
+    def reference_interface_names(self) -> list[str]:
+        """The suffixes after `<controller>/` (e.g. "linear/velocity"); override in the controller."""
+        return []
+
+    def export_reference_interfaces(self) -> list[CommandInterface]:
+        """Fresh handles `<controller>/<suffix>`, NaN (no reference) until someone writes them."""
+        names = self.reference_interface_names()
+        self.reference_interfaces = [CommandInterface(f"{self.name}/{n}", math.nan) for n in names]
+        return list(self.reference_interfaces)
+
+    def is_in_chained_mode(self) -> bool:
+        return self._chained_mode
+
+    def set_chained_mode(self, chained: bool) -> None:
+        """Switch where the references come from; the references restart as NaN (nothing written)."""
+        self._chained_mode = chained
+        for ref in self.reference_interfaces:
+            ref.set_value(math.nan)
+        self.on_set_chained_mode(chained)
+
+    def on_set_chained_mode(self, chained: bool) -> None:
+        """Hook for the controller (e.g. to reset its command buffers)."""

@@ -7,12 +7,21 @@ Topics (relative to the controller node /<name>):
   ~/cmd_vel_out  geometry_msgs/msg/TwistStamped out, the limited command of every update, when
                  publish_limited_velocity
 
-Command intake follows the tip: a zero stamp means "now"; a command older than cmd_vel_timeout is dropped
-with the reason; in update(), a command older than the timeout brakes to zero through the limiter (a timeout
-of 0 disables both). Until the first command, or the timeout after activation, nothing is written or
-published. Beyond the reference: non-finite or absurd commands (command_sanity) are dropped with a warning,
-and so are commands stamped further in the future than the timeout (a wall-clock stamp sent to a sim-time
-controller would otherwise never time out).
+Command intake follows Jazzy: a zero stamp means "now"; a command older than cmd_vel_timeout is dropped
+with the reason; a stamp in the future is accepted (it times out cmd_vel_timeout after its stamp); in
+update(), a command older than the timeout brakes to zero through the limiter (a timeout of 0 disables
+both). A command with a NaN or infinite component keeps the previous reference, with a throttled warning.
+Until the first command, or the timeout after activation, nothing is written or published. Beyond the
+reference: finite but absurd commands (command_sanity) are dropped with a warning.
+
+Chainable, as Jazzy's: configure exports the reference interfaces `<controller>/linear/velocity` and
+`<controller>/angular/velocity`; in chained mode (a preceding controller claims them) the references are
+what that controller wrote this cycle and ~/cmd_vel is not read.
+
+Parameters are declared on the controller's node from `diff_drive_params.DECLS`. A running controller takes
+changes of its limits, cmd_vel_timeout and multipliers on its next update (as rolling's parameter listener);
+read-only ones are refused by the node, values that break a rule by the controller; the rest apply at the
+next configure.
 
 Each update: limiter (jerk → acceleration → velocity) on the references, odometry (open loop from the limited
 command, or mean wheel position / velocity feedback; non-finite feedback → ERROR, which makes the manager
@@ -21,25 +30,27 @@ deactivate the controller), odom/tf publishing, then the same velocity to every 
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import Any
 
 from diffctl.bus import types
 from diffctl.control.controller_interface import (
+    ChainableControllerInterface,
     CommandInterface,
-    ControllerInterface,
     InterfaceConfiguration,
     ReturnType,
     StateInterface,
 )
 from diffctl.control.controllers.command_sanity import MAX_ANGULAR_RADPS, MAX_LINEAR_MPS, rejection
-from diffctl.control.controllers.diff_drive_params import DiffDriveParams
+from diffctl.control.controllers.diff_drive_params import DECLS, RUNTIME, DiffDriveParams
 from diffctl.control.controllers.owned_endpoints import OwnedEndpoints
+from diffctl.control.controllers.param_decl import declare_all, read_declared
 from diffctl.control.controllers.throttled_log import ThrottledLog
 from diffctl.control.math.kinematics import heading_quaternion, wheel_velocities_radps
 from diffctl.control.math.odometry import Odometry
 from diffctl.control.math.speed_limiter import SpeedLimiter
-from diffctl.errors import RuntimeFailure
+from diffctl.errors import ParameterError, RuntimeFailure
 
 NAN = math.nan
 _NS = 1_000_000_000
@@ -52,10 +63,11 @@ def _set_stamp(stamp: Any, time_ns: int) -> None:
     stamp.sec, stamp.nanosec = divmod(time_ns, _NS)
 
 
-class DiffDriveController(ControllerInterface):
+class DiffDriveController(ChainableControllerInterface):
     def __init__(self) -> None:
         super().__init__()
         self.params: DiffDriveParams | None = None
+        self._runtime_params: DiffDriveParams | None = None  # accepted by the set callback, taken by update()
         self._params_source: dict[str, Any] = {}
         self.odometry: Odometry | None = None
         self._limiter_linear = SpeedLimiter()
@@ -77,14 +89,54 @@ class DiffDriveController(ControllerInterface):
 
     # --- parameters and interfaces ----------------------------------------------------------------------
     def on_init(self) -> None:
-        self._read_params()
-
-    def _read_params(self) -> None:
-        params, warnings = DiffDriveParams.from_params(self.node.params, self.name)
-        self.params = params
-        self._params_source = dict(self.node.params)
+        params, warnings = DiffDriveParams.from_params(dict(self.node.params), self.name)
         for text in warnings:
             self.node.log.warn(text)
+        declare_all(self.node, DECLS, self.name)
+        self.params = params
+        self._params_source = dict(self.node.params)
+        add_callback = getattr(self.node, "add_on_set_parameters_callback", None)
+        if add_callback is not None:
+            add_callback(self._on_set_parameters)
+
+    def reference_interface_names(self) -> list[str]:
+        return ["linear/velocity", "angular/velocity"]
+
+    def _on_set_parameters(self, changes: dict[str, Any]) -> str | None:
+        """Refuse a change that breaks a rule; hand limits and timeout to the next update (bus thread)."""
+        mine = {k: v for k, v in changes.items() if k in DECLS}
+        if not mine:
+            return None
+        try:
+            new = DiffDriveParams.from_values(read_declared(DECLS, {**self.node.params, **mine}, self.name), self.name)
+        except ParameterError as e:
+            return str(e)
+        if RUNTIME.intersection(mine) and self.params is not None:
+            p = self.params
+            self._runtime_params = dataclasses.replace(
+                p,
+                cmd_vel_timeout_s=new.cmd_vel_timeout_s,
+                wheel_separation_multiplier=new.wheel_separation_multiplier,
+                left_wheel_radius_multiplier=new.left_wheel_radius_multiplier,
+                right_wheel_radius_multiplier=new.right_wheel_radius_multiplier,
+                linear=new.linear,
+                angular=new.angular,
+            )
+        return None
+
+    def _take_runtime_params(self) -> None:
+        p, self._runtime_params = self._runtime_params, None
+        if p is None:
+            return
+        self.params = p
+        self._limiter_linear = SpeedLimiter(p.linear)
+        self._limiter_angular = SpeedLimiter(p.angular)
+        self._timeout_ns = round(p.cmd_vel_timeout_s * _NS)
+        if self.odometry is not None:
+            self.odometry.wheel_separation_m = p.effective_wheel_separation_m
+            self.odometry.left_wheel_radius_m = p.left_wheel_radius_m
+            self.odometry.right_wheel_radius_m = p.right_wheel_radius_m
+        self.node.log.info("Parameters were updated")
 
     def _p(self) -> DiffDriveParams:
         if self.params is None:
@@ -105,7 +157,11 @@ class DiffDriveController(ControllerInterface):
     # --- lifecycle ----------------------------------------------------------------------------------------
     def on_configure(self) -> None:
         if self.node.params != self._params_source:
-            self._read_params()  # the reference re-reads parameters that changed since on_init
+            # The reference re-reads parameters that changed since on_init.
+            self.params, _ = DiffDriveParams.from_params(self.node.params, self.name)
+            self._params_source = dict(self.node.params)
+            self.node.log.info("Parameters were updated")
+        self._runtime_params = None
         p = self._p()
         self._limiter_linear = SpeedLimiter(p.linear)
         self._limiter_angular = SpeedLimiter(p.angular)
@@ -149,6 +205,7 @@ class DiffDriveController(ControllerInterface):
             self._cmd_out_pub = self._endpoints.keep(self.node.create_publisher("~/cmd_vel_out", TWIST_STAMPED))
         self._log = ThrottledLog(self.node.log)
         self._endpoints.keep(self.node.create_subscription("~/cmd_vel", TWIST_STAMPED, self._on_cmd_vel))
+        self.export_reference_interfaces()
 
     def on_activate(self) -> None:
         p = self._p()
@@ -200,9 +257,9 @@ class DiffDriveController(ControllerInterface):
 
     def _reset_buffers(self, now_ns: int) -> None:
         # No command yet: NaN references write nothing until a command arrives or the timeout brakes.
-        self._command: tuple[float, float, int] = (NAN, NAN, now_ns)
-        self._reference_linear = NAN
-        self._reference_angular = NAN
+        self._command: tuple[float, float, int, bool] = (NAN, NAN, now_ns, False)  # linear, angular, stamp, real
+        for ref in self.reference_interfaces:
+            ref.set_value(NAN)
         self._previous_linear = (0.0, 0.0)  # last and second-to-last limited commands
         self._previous_angular = (0.0, 0.0)
         self._braking_logged_for: int | None = None
@@ -220,8 +277,9 @@ class DiffDriveController(ControllerInterface):
         if not self._subscriber_active:
             self._log.warn("inactive", "Can't accept new commands. subscriber is inactive")
             return
-        linear, angular = msg.twist.linear.x, msg.twist.angular.z
-        why = rejection((linear, angular), (MAX_LINEAR_MPS, MAX_ANGULAR_RADPS), ("linear.x", "angular.z"))
+        linear, angular = float(msg.twist.linear.x), float(msg.twist.angular.z)
+        finite = [x if math.isfinite(x) else 0.0 for x in (linear, angular)]  # NaN/inf: handled in update()
+        why = rejection(finite, (MAX_LINEAR_MPS, MAX_ANGULAR_RADPS), ("linear.x", "angular.z"))
         if why is not None:
             self._log.warn("bad", f"Ignoring a velocity command: {why}; the wheels keep the previous command")
             return
@@ -235,31 +293,44 @@ class DiffDriveController(ControllerInterface):
             )
             stamp_ns = now_ns
         age_ns = now_ns - stamp_ns
-        if self._timeout_ns and abs(age_ns) >= self._timeout_ns:
-            direction = "older than" if age_ns > 0 else "ahead of"
+        # Jazzy keeps a message unless it is older than the timeout; a stamp ahead of this clock is kept.
+        if self._timeout_ns and age_ns >= self._timeout_ns:
             self._log.warn(
                 "stale",
-                f"Ignoring the received message (timestamp {stamp_ns / _NS:.6f}) because it is {direction} the "
-                f"current time by {abs(age_ns) / _NS:.6f} seconds, which exceeds the allowed timeout "
+                f"Ignoring the received message (timestamp {stamp_ns / _NS:.6f}) because it is older than the "
+                f"current time by {age_ns / _NS:.6f} seconds, which exceeds the allowed timeout "
                 f"({self._timeout_ns / _NS:g}) (stamp it with this controller's clock, or with 0 for 'now')",
             )
             return
         if self._subscriber_active:  # re-checked: on_deactivate may have run while this callback did
-            self._command = (float(linear), float(angular), stamp_ns)  # one atomic store, read whole by update()
+            self._command = (linear, angular, stamp_ns, True)  # one atomic store, read whole by update()
 
     # --- real-time loop ---------------------------------------------------------------------------------------
-    def update(self, time_ns: int, period_s: float) -> ReturnType:
-        linear, angular, stamp_ns = self._command
+    def _update_reference_from_subscribers(self, time_ns: int, ref_linear: Any, ref_angular: Any) -> None:
+        linear, angular, stamp_ns, real = self._command
         if self._timeout_ns and time_ns - stamp_ns > self._timeout_ns:
-            self._reference_linear = self._reference_angular = 0.0
-            if linear == linear and self._braking_logged_for != stamp_ns:  # a real command (not NaN) expired
+            ref_linear.value = ref_angular.value = 0.0
+            if real and self._braking_logged_for != stamp_ns:  # a received command expired
                 self._braking_logged_for = stamp_ns
                 self.node.log.warn("Velocity command timed out. Braking.")
-        elif linear == linear and angular == angular:
-            self._reference_linear, self._reference_angular = linear, angular
-        ref_linear, ref_angular = self._reference_linear, self._reference_angular
-        if ref_linear != ref_linear or ref_angular != ref_angular:
-            return ReturnType.OK  # no command yet
+        elif math.isfinite(linear) and math.isfinite(angular):
+            ref_linear.value, ref_angular.value = linear, angular
+        elif real:
+            self._log.warn(
+                "nan",
+                f"Command message contains NaNs or infinities (linear.x = {linear!r}, angular.z = {angular!r}). "
+                "Not updating reference interfaces.",
+            )
+
+    def update(self, time_ns: int, period_s: float) -> ReturnType:
+        if self._runtime_params is not None:
+            self._take_runtime_params()
+        ref_linear_handle, ref_angular_handle = self.reference_interfaces
+        if not self._chained_mode:
+            self._update_reference_from_subscribers(time_ns, ref_linear_handle, ref_angular_handle)
+        ref_linear, ref_angular = ref_linear_handle.value, ref_angular_handle.value
+        if not (math.isfinite(ref_linear) and math.isfinite(ref_angular)):
+            return ReturnType.OK  # no command yet (or a chained controller wrote none)
 
         last, second = self._previous_linear
         v = self._limiter_linear.limit(ref_linear, last, second, period_s)

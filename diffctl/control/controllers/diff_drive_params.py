@@ -1,15 +1,18 @@
-"""Every parameter of diff_drive_controller/DiffDriveController (Jazzy tip), validated once into a frozen dataclass.
+"""Every parameter of diff_drive_controller/DiffDriveController (Jazzy), declared once and validated into a dataclass.
 
-Built from the controller's flattened parameters (`linear.x.max_velocity`, …) by `DiffDriveParams.from_params`,
-which returns the parameters and the warnings to log (deprecated and removed keys, unknown keys, limits that
-have no effect). Defaults are the reference's: base_frame_id "base_link", cmd_vel_timeout 0.5 s (0 disables
-it), publish_rate 50 Hz, every limit NaN (off).
+`DECLS` is diff_drive_controller's `src/diff_drive_controller_parameter.yaml` as a table (ros-controls/
+ros2_controllers, branch jazzy, v4.42.1 / commit ed360c9, read through the reference notes): type, default,
+read_only, validation. The same table declares the parameters on the controller's node (so `param
+describe` shows them) and validates the values `DiffDriveParams.from_params` builds the dataclass from; the
+few rules beyond single values (wheel lists of equal length, distinct frames, consistent limits) follow.
 
-Deprecated keys still load, with a warning, as the tip does:
-  - `<axis>.has_velocity_limits` / `has_acceleration_limits` / `has_jerk_limits`: false switches that group off
-    (sets it to NaN); true has no effect;
+Defaults are the reference's: base_frame_id "base_link", cmd_vel_timeout 0.5 s (0 disables it), publish_rate
+50 Hz, every limit NaN (off). Read-only, as in the YAML: the wheel names, wheel_separation and wheel_radius.
+Deprecated keys load, as Jazzy loads them:
+  - `<axis>.has_velocity_limits` / `has_acceleration_limits` / `has_jerk_limits` (default true): false switches
+    that group off, whatever numbers the group's limits hold (e.g. `max_jerk: 0.0`); true has no effect;
   - `<axis>.min_acceleration`: the old symmetric lower bound on acceleration; it becomes
-    `max_acceleration_reverse` (which `max_deceleration` then defaults to) unless those are given.
+    `max_acceleration_reverse` (which `max_deceleration` then defaults to) unless that is given.
 Keys removed before Jazzy (`wheels_per_side`, `use_stamped_vel`) are ignored with a warning saying why.
 """
 
@@ -20,9 +23,10 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from diffctl.control.controllers.param_values import ParamReader
+from diffctl.control.controllers.param_decl import BASE_DECLS, Check, ParamDecl, read_declared, table
+from diffctl.control.controllers.param_values import MANAGER_KEYS
 from diffctl.control.math.speed_limiter import LimitError, SpeedLimiter, SpeedLimits
-from diffctl.errors import ParameterError
+from diffctl.errors import ParameterError, suggest
 
 NAN = math.nan
 AXES = ("linear.x", "angular.z")
@@ -53,6 +57,114 @@ _REMOVED = {
     "wheels_per_side": "removed in Jazzy: the number of wheels per side is the length of left_wheel_names",
     "use_stamped_vel": "removed in Jazzy: ~/cmd_vel only accepts geometry_msgs/msg/TwistStamped",
 }
+_POSITIVE = (Check("gt", (0.0,)),)
+_NAMES = (Check("not_empty", ()), Check("unique", ()))
+
+
+def _axis_decls(axis: str) -> list[ParamDecl]:
+    units = _AXIS_UNITS[axis]
+    out = [
+        ParamDecl(f"{axis}.{flag}", "bool", True, f"[deprecated] false switches the {flag[4:-7]} limits off.")
+        for flag in _GROUPS
+    ]
+    for name, _sign, unit in _LIMIT_FIELDS:
+        out.append(ParamDecl(f"{axis}.{name}", "double", NAN, f"{name.replace('_', ' ')} in {units[unit]}; NaN: none."))
+    out.append(
+        ParamDecl(
+            f"{axis}.min_acceleration",
+            "double",
+            NAN,
+            "[deprecated] use max_acceleration_reverse.",
+            False,
+            (Check("lt_eq", (0.0,)),),
+        )
+    )
+    return out
+
+
+DECLS: dict[str, ParamDecl] = table(
+    [
+        *BASE_DECLS,
+        ParamDecl("left_wheel_names", "string_array", [], "Joints of the left wheels.", True, _NAMES),
+        ParamDecl("right_wheel_names", "string_array", [], "Joints of the right wheels.", True, _NAMES),
+        ParamDecl("wheel_separation", "double", 0.0, "Distance between left and right wheels in m.", True, _POSITIVE),
+        ParamDecl("wheel_radius", "double", 0.0, "Wheel radius in m.", True, _POSITIVE),
+        ParamDecl(
+            "wheel_separation_multiplier", "double", 1.0, "Correction factor of wheel_separation.", False, _POSITIVE
+        ),
+        ParamDecl(
+            "left_wheel_radius_multiplier",
+            "double",
+            1.0,
+            "Correction factor of the left wheels' radius.",
+            False,
+            _POSITIVE,
+        ),
+        ParamDecl(
+            "right_wheel_radius_multiplier",
+            "double",
+            1.0,
+            "Correction factor of the right wheels' radius.",
+            False,
+            _POSITIVE,
+        ),
+        ParamDecl("tf_frame_prefix_enable", "bool", True, "Prefix odom_frame_id and base_frame_id."),
+        ParamDecl("tf_frame_prefix", "string", "", "The prefix; empty: the controller's namespace."),
+        ParamDecl("odom_frame_id", "string", "odom", "Frame of the odometry.", False, (Check("not_empty", ()),)),
+        ParamDecl(
+            "base_frame_id",
+            "string",
+            "base_link",
+            "The robot's base frame, child of odom_frame_id.",
+            False,
+            (Check("not_empty", ()),),
+        ),
+        ParamDecl(
+            "pose_covariance_diagonal",
+            "double_array",
+            [0.0] * 6,
+            "Diagonal of the odometry pose covariance.",
+            False,
+            (Check("size_eq", (6,)), Check("lower_element_bounds", (0.0,))),
+        ),
+        ParamDecl(
+            "twist_covariance_diagonal",
+            "double_array",
+            [0.0] * 6,
+            "Diagonal of the odometry twist covariance.",
+            False,
+            (Check("size_eq", (6,)), Check("lower_element_bounds", (0.0,))),
+        ),
+        ParamDecl("open_loop", "bool", False, "Odometry from the commands instead of wheel feedback."),
+        ParamDecl("position_feedback", "bool", True, "Wheel feedback is position (else velocity)."),
+        ParamDecl("enable_odom_tf", "bool", True, "Publish odom_frame_id → base_frame_id on /tf."),
+        ParamDecl(
+            "cmd_vel_timeout",
+            "double",
+            0.5,
+            "Seconds after which a command is stale; 0 disables it.",
+            False,
+            (Check("gt_eq", (0.0,)),),
+        ),
+        ParamDecl("publish_limited_velocity", "bool", False, "Publish the limited command on ~/cmd_vel_out."),
+        ParamDecl(
+            "velocity_rolling_window_size",
+            "int",
+            10,
+            "Samples averaged into the odometry twist.",
+            False,
+            (Check("bounds", (1, 100_000)),),
+        ),
+        ParamDecl("publish_rate", "double", 50.0, "Rate of ~/odom and /tf in Hz.", False, _POSITIVE),
+        *_axis_decls("linear.x"),
+        *_axis_decls("angular.z"),
+    ]
+)
+# Parameters a running controller takes on its next update (the rest wait for the next configure).
+RUNTIME = frozenset(
+    {"cmd_vel_timeout", "wheel_separation_multiplier", "left_wheel_radius_multiplier", "right_wheel_radius_multiplier"}
+    | {k for k in DECLS if k.startswith(AXES)}
+)
 
 
 @dataclass(frozen=True)
@@ -115,104 +227,113 @@ class DiffDriveParams:
         cls, params: Mapping[str, Any], controller: str = "diff_drive_controller"
     ) -> tuple[DiffDriveParams, list[str]]:
         """Validate `params` (flattened) into DiffDriveParams; returns it with the warnings to log."""
-        r = ParamReader(params, controller)
+        values = read_declared(DECLS, params, controller)
         warnings: list[str] = []
+        p = cls.from_values(values, controller, given=params.keys(), warnings=warnings)
+        for key, why in _REMOVED.items():
+            if key in params:
+                warnings.append(f"parameter '{controller}.{key}' is ignored: {why}")
+        if params.get("use_stamped_vel") is False:
+            warnings.append("use_stamped_vel: false has no effect: publish TwistStamped to ~/cmd_vel")
+        known = set(DECLS) | set(_REMOVED) | MANAGER_KEYS
+        for key in params:
+            if key not in known:
+                warnings.append(f"unknown parameter '{controller}.{key}' is ignored{suggest(key, sorted(known))}")
+        return p, warnings
 
-        left = r.str_list("left_wheel_names", [], non_empty=True)
-        right = r.str_list("right_wheel_names", [], non_empty=True)
+    @classmethod
+    def from_values(
+        cls, v: Mapping[str, Any], controller: str, *, given: Any = (), warnings: list[str] | None = None
+    ) -> DiffDriveParams:
+        """Build from typed values (as `read_declared` returns them) and check the rules between values."""
+        warnings = [] if warnings is None else warnings
+        left, right = tuple(v["left_wheel_names"]), tuple(v["right_wheel_names"])
         if len(left) != len(right):
-            raise r.error(
-                "right_wheel_names",
+            raise ParameterError(
                 f"{list(right)!r} has {len(right)} wheel(s) but left_wheel_names {list(left)!r} has {len(left)}",
-                "give the same number of wheels on both sides",
+                field=f"{controller}.right_wheel_names",
+                hint="give the same number of wheels on both sides",
             )
         both = sorted(set(left) & set(right))
         if both:
-            raise r.error("right_wheel_names", f"joint {both[0]!r} is listed on both sides")
-
-        kw: dict[str, Any] = {
-            "left_wheel_names": left,
-            "right_wheel_names": right,
-            "wheel_separation_m": r.float("wheel_separation", 0.0, gt=0.0, what="distance between the wheels in m"),
-            "wheel_radius_m": r.float("wheel_radius", 0.0, gt=0.0, what="wheel radius in m"),
-            "wheel_separation_multiplier": r.float("wheel_separation_multiplier", 1.0, gt=0.0),
-            "left_wheel_radius_multiplier": r.float("left_wheel_radius_multiplier", 1.0, gt=0.0),
-            "right_wheel_radius_multiplier": r.float("right_wheel_radius_multiplier", 1.0, gt=0.0),
-            "tf_frame_prefix_enable": r.bool("tf_frame_prefix_enable", True),
-            "tf_frame_prefix": r.str("tf_frame_prefix", ""),
-            "odom_frame_id": r.str("odom_frame_id", "odom", non_empty=True),
-            "base_frame_id": r.str("base_frame_id", "base_link", non_empty=True),
-            "pose_covariance_diagonal": r.float_list("pose_covariance_diagonal", [0.0] * 6, length=6, ge=0.0),
-            "twist_covariance_diagonal": r.float_list("twist_covariance_diagonal", [0.0] * 6, length=6, ge=0.0),
-            "open_loop": r.bool("open_loop", False),
-            "position_feedback": r.bool("position_feedback", True),
-            "enable_odom_tf": r.bool("enable_odom_tf", True),
-            "cmd_vel_timeout_s": r.float("cmd_vel_timeout", 0.5, ge=0.0, what="seconds; 0 disables the timeout"),
-            "publish_limited_velocity": r.bool("publish_limited_velocity", False),
-            "velocity_rolling_window_size": r.int("velocity_rolling_window_size", 10, ge=1, le=100_000),
-            "publish_rate_hz": r.float("publish_rate", 50.0, gt=0.0, what="odometry and tf rate in Hz"),
-        }
-        if kw["odom_frame_id"] == kw["base_frame_id"]:
-            raise r.error("base_frame_id", f"{kw['base_frame_id']!r} is also odom_frame_id: the frames must differ")
-        for axis in AXES:
-            kw[axis.split(".")[0]] = _axis_limits(r, axis, warnings)
-
-        for key, why in _REMOVED.items():
-            if r.has(key):
-                warnings.append(f"parameter {r.field(key)!r} is ignored: {why}")
-        if r.has("use_stamped_vel") and params["use_stamped_vel"] is False:
-            warnings.append("use_stamped_vel: false has no effect: publish TwistStamped to ~/cmd_vel")
-        warnings.extend(r.unknown_key_warnings())
-        return cls(**kw), warnings
-
-
-def _axis_limits(r: ParamReader, axis: str, warnings: list[str]) -> SpeedLimits:
-    units = _AXIS_UNITS[axis]
-    values: dict[str, float] = {}
-    for name, sign, unit in _LIMIT_FIELDS:
-        key = f"{axis}.{name}"
-        value = r.float(key, NAN, allow_nan=True, allow_inf=True, what=f"{units[unit]}, or .NAN for no limit")
-        raw = r.params.get(key)
-        if sign > 0 and value < 0.0:
-            raise r.error(key, f"{raw!r} must be ≥ 0: it bounds the change from above ({units[unit]})")
-        if sign < 0 and value > 0.0:
-            raise r.error(
-                key,
-                f"{raw!r} must be ≤ 0: it bounds the change from below ({units[unit]})",
-                f"a limit of magnitude {value:g} is written {-value!r}",
+            raise ParameterError(f"joint {both[0]!r} is listed on both sides", field=f"{controller}.right_wheel_names")
+        if v["odom_frame_id"] == v["base_frame_id"]:
+            raise ParameterError(
+                f"{v['base_frame_id']!r} is also odom_frame_id: the frames must differ",
+                field=f"{controller}.base_frame_id",
             )
-        values[name] = value
+        return cls(
+            left_wheel_names=left,
+            right_wheel_names=right,
+            wheel_separation_m=v["wheel_separation"],
+            wheel_radius_m=v["wheel_radius"],
+            wheel_separation_multiplier=v["wheel_separation_multiplier"],
+            left_wheel_radius_multiplier=v["left_wheel_radius_multiplier"],
+            right_wheel_radius_multiplier=v["right_wheel_radius_multiplier"],
+            tf_frame_prefix_enable=v["tf_frame_prefix_enable"],
+            tf_frame_prefix=v["tf_frame_prefix"],
+            odom_frame_id=v["odom_frame_id"],
+            base_frame_id=v["base_frame_id"],
+            pose_covariance_diagonal=tuple(v["pose_covariance_diagonal"]),
+            twist_covariance_diagonal=tuple(v["twist_covariance_diagonal"]),
+            open_loop=v["open_loop"],
+            position_feedback=v["position_feedback"],
+            enable_odom_tf=v["enable_odom_tf"],
+            cmd_vel_timeout_s=v["cmd_vel_timeout"],
+            publish_limited_velocity=v["publish_limited_velocity"],
+            velocity_rolling_window_size=v["velocity_rolling_window_size"],
+            publish_rate_hz=v["publish_rate"],
+            linear=_axis_limits(v, "linear.x", controller, set(given), warnings),
+            angular=_axis_limits(v, "angular.z", controller, set(given), warnings),
+        )
 
-    old_min_key = f"{axis}.min_acceleration"
-    old_min = r.float(old_min_key, NAN, allow_nan=True, le=0.0, what=f"{units[1]}, deprecated")
-    if r.has(old_min_key):
+
+def _axis_limits(v: Mapping[str, Any], axis: str, controller: str, given: set[str], warnings: list[str]) -> SpeedLimits:
+    units = _AXIS_UNITS[axis]
+    values = {name: v[f"{axis}.{name}"] for name, _s, _u in _LIMIT_FIELDS}
+
+    old_min = v[f"{axis}.min_acceleration"]
+    if not math.isnan(old_min):
         if math.isnan(values["max_acceleration_reverse"]):
             values["max_acceleration_reverse"] = old_min
             warnings.append(
-                f"[deprecated] {r.field(old_min_key)} = {old_min!r} is used as {axis}.max_acceleration_reverse "
-                f"(and max_deceleration when unset); rename it"
+                f"[deprecated] {controller}.{axis}.min_acceleration = {old_min!r} is used as "
+                f"{axis}.max_acceleration_reverse (and max_deceleration when unset); rename it"
             )
         else:
             warnings.append(
-                f"[deprecated] {r.field(old_min_key)} is ignored because {axis}.max_acceleration_reverse is set"
+                f"[deprecated] {controller}.{axis}.min_acceleration is ignored because "
+                f"{axis}.max_acceleration_reverse is set"
             )
 
+    # has_*: false switches its group off before any number of the group is looked at, as Jazzy's
+    # on_configure overwrites them with NaN.
     no_effect = []
     for flag, group in _GROUPS.items():
         key = f"{axis}.{flag}"
-        enabled = r.bool(key, True)
-        if not r.has(key):
+        if v[key]:
+            if key in given:
+                no_effect.append(flag)
             continue
-        if enabled:
-            no_effect.append(flag)
-        else:
-            warnings.append(f"[deprecated] {r.field(key)} = false switches these limits off: set them to .NAN")
-            for name in group:
-                values[name] = NAN
+        warnings.append(f"[deprecated] {controller}.{key} = false switches these limits off: set them to .NAN")
+        for name in group:
+            values[name] = NAN
     if no_effect:
         warnings.append(
-            f"[deprecated] {r.field(axis)}.{'/'.join(no_effect)}: true has no effect, a limit is on unless it is .NAN"
+            f"[deprecated] {controller}.{axis}.{'/'.join(no_effect)}: true has no effect, a limit is on unless "
+            "it is .NAN"
         )
+
+    for name, sign, unit in _LIMIT_FIELDS:
+        value, key = values[name], f"{controller}.{axis}.{name}"
+        if sign > 0 and value < 0.0:
+            raise ParameterError(f"{value!r} must be ≥ 0: it bounds the change from above ({units[unit]})", field=key)
+        if sign < 0 and value > 0.0:
+            raise ParameterError(
+                f"{value!r} must be ≤ 0: it bounds the change from below ({units[unit]})",
+                field=key,
+                hint=f"a limit of magnitude {value:g} is written {-value!r}",
+            )
 
     if math.isnan(values["max_acceleration"]) and any(
         not math.isnan(values[n]) for n in ("max_acceleration_reverse", "max_deceleration", "max_deceleration_reverse")
@@ -227,5 +348,5 @@ def _axis_limits(r: ParamReader, axis: str, warnings: list[str]) -> SpeedLimits:
     try:
         SpeedLimiter(limits)
     except LimitError as e:
-        raise ParameterError(e.message, field=r.field(f"{axis}.{e.field}")) from None
+        raise ParameterError(e.message, field=f"{controller}.{axis}.{e.field}") from None
     return limits
