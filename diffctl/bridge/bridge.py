@@ -4,6 +4,9 @@ Semantics follow ros_gz_bridge's parameter_bridge:
 - gz→ROS converts each gz sample and publishes it on the ROS topic; ROS→gz the other way;
 - a lazy channel holds its source subscription only while its destination has subscribers (ROS side:
   graph subscribers other than this node; gz side: Zenoh matching of the gz publisher);
+- gz→ROS channels of rendered data (images, point clouds) are demand-driven whatever `lazy` says: the
+  simulator renders a camera only while its gz topic is matched, so the bridge subscribes to it only while
+  someone on the ROS side wants the frames (docs: ARCHITECTURE "Sensors without a GPU");
 - a bidirectional entry never echoes what it published itself back to where it came from (gz side: the
   Zenoh locality of the gz endpoints; ROS side: the subscription ignores this process's own publishers).
 """
@@ -29,6 +32,17 @@ def _stamp_now(msg: Any, now: Any) -> None:
         t.header.stamp = now
 
 
+def _serialize(msg: Any, ros_type: str) -> bytes:
+    try:
+        return types.serialize(msg, ros_type)
+    except Exception as e:  # rosbags raises struct/overflow/type errors for values its CDR fields cannot hold
+        raise MessageError(f"not a valid {ros_type}: {type(e).__name__}: {e}") from None
+
+
+# gz types the simulator renders on demand: their gz subscription is held only while ROS subscribers exist.
+RENDERED_GZ_TYPES = frozenset({"gz.msgs.Image", "gz.msgs.PointCloudPacked"})
+
+
 class GzToRos:
     """gz/<topic> samples → ROS topic."""
 
@@ -40,8 +54,13 @@ class GzToRos:
         self._lock = threading.Lock()
         self._sub: Any = None
         self._closed = False
+        self.on_demand = entry.lazy or entry.gz_type in RENDERED_GZ_TYPES
         self.pub = self.node.create_publisher(
-            entry.ros_topic, entry.ros_type, depth=entry.publisher_queue, latched=bridge.latched(entry.ros_topic)
+            entry.ros_topic,
+            entry.ros_type,
+            depth=entry.publisher_queue,
+            latched=bridge.latched(entry.ros_topic),
+            reliable=entry.qos.reliable,
         )
 
     @property
@@ -75,7 +94,7 @@ class GzToRos:
             msg = e.pair.convert_to_ros(fields)
             if self.bridge.wall_stamps:
                 _stamp_now(msg, types.time_msg(time.time_ns()))
-            cdr = types.serialize(msg, e.ros_type)
+            cdr = _serialize(msg, e.ros_type)
         except MessageError as err:
             self.node.log.throttled(f"gz{e.gz_topic}", f"dropped a sample on gz {e.gz_topic}: {err}")
             return
@@ -177,10 +196,13 @@ class Bridge:
             else:
                 ch.set_active(True)
         for ch in self.gz_to_ros:
-            if not ch.entry.lazy:
+            if not ch.on_demand:
                 ch.set_active(True)
-        if any(ch.entry.lazy for ch in self.gz_to_ros):
+        if any(ch.on_demand for ch in self.gz_to_ros):
             self.node.graph.add_listener(self._on_graph)
+            for ch in self.gz_to_ros:
+                if ch.on_demand:
+                    ch.set_active(ch.other_subscribers() > 0)
         return self
 
     def _on_graph(self, event: str, ent: wire.Entity) -> None:
@@ -188,7 +210,7 @@ class Bridge:
         if self._closed or ent.kind != wire.KIND_SUB:
             return
         for ch in self.gz_to_ros:
-            if ch.entry.lazy and ent.topic == ch.pub.topic:
+            if ch.on_demand and ent.topic == ch.pub.topic:
                 ch.set_active(ch.other_subscribers() > 0)
 
     def channels(self) -> list[GzToRos | RosToGz]:
@@ -201,7 +223,8 @@ class Bridge:
         for ch in self.channels():
             e = ch.entry
             arrow = "<-" if isinstance(ch, GzToRos) else "->"
-            state = ("active" if ch.active else "idle") + (" (lazy)" if e.lazy else "")
+            on_demand = isinstance(ch, GzToRos) and ch.on_demand and not e.lazy
+            state = ("active" if ch.active else "idle") + (" (lazy)" if e.lazy else " (on demand)" if on_demand else "")
             rows.append((e.ros_topic, e.ros_type, arrow, e.gz_topic, e.gz_type, state, ch.count))
         return table("bridge", ["ROS topic", "ROS type", "", "gz topic", "gz type", "state", "messages"], rows)
 

@@ -52,7 +52,7 @@ def bridge(topics: tuple[str, ...], config_file: str | None) -> None:
 
     TOPICS are `/TOPIC@ROS_TYPE@GZ_TYPE`: `@` both ways, `[` gz to ROS, `]` ROS to gz. The YAML config
     takes ros_gz_bridge's keys as is: topic_name, ros_topic_name, gz_topic_name, ros_type_name,
-    gz_type_name, direction, lazy, publisher_queue, subscriber_queue.
+    gz_type_name, direction, lazy, publisher_queue, subscriber_queue, qos_profile.
 
     \b
     Example:

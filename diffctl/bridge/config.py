@@ -42,8 +42,37 @@ KEYS = (
     "lazy",
     "publisher_queue",
     "subscriber_queue",
+    "qos_profile",
 )
 DEFAULT_QUEUE = 10
+
+
+@dataclass(frozen=True)
+class QosProfile:
+    """An rclcpp QoS preset as the `qos_profile` key names it: its history depth (None: the entry's queue
+    sizes) and reliability. None of the presets is transient local."""
+
+    name: str
+    depth: int | None
+    reliable: bool
+
+
+# rclcpp's presets (rclcpp/qos.hpp): SensorDataQoS keep-last 5 best effort, ClockQoS keep-last 1 best effort,
+# ParametersQoS / ParameterEventsQoS keep-last 1000, ServicesQoS keep-last 10, the system default and
+# best-available profiles take the configured depth, reliable.
+QOS_PROFILES = {
+    p.name: p
+    for p in (
+        QosProfile("SYSTEM_DEFAULT", None, True),
+        QosProfile("DEFAULT", None, True),
+        QosProfile("BEST_AVAILABLE", None, True),
+        QosProfile("SENSOR_DATA", 5, False),
+        QosProfile("CLOCK", 1, False),
+        QosProfile("SERVICES_DEFAULT", 10, True),
+        QosProfile("PARAMETERS", 1000, True),
+        QosProfile("PARAMETER_EVENTS", 1000, True),
+    )
+}
 # The command-line delimiters of parameter_bridge: `@` both ways, `[` gz→ros, `]` ros→gz.
 CLI_DELIMITERS = {"@": Direction.BIDIRECTIONAL, "[": Direction.GZ_TO_ROS, "]": Direction.ROS_TO_GZ}
 
@@ -59,6 +88,7 @@ class BridgeEntry:
     lazy: bool = False
     publisher_queue: int = DEFAULT_QUEUE
     subscriber_queue: int = DEFAULT_QUEUE
+    qos: QosProfile = QOS_PROFILES["SYSTEM_DEFAULT"]
 
     def __rich__(self) -> Any:
         return entries_table([self])
@@ -104,6 +134,13 @@ def _as_queue(name: str, value: Any) -> int:
     if isinstance(value, bool) or not isinstance(value, int) or value < 1:
         raise ValueError(f"{name} {value!r} invalid; valid: an integer >= 1")
     return value
+
+
+def _as_qos(value: Any) -> QosProfile:
+    name = str(value).strip().upper() if isinstance(value, str) else ""
+    if name not in QOS_PROFILES:
+        raise ValueError(f"qos_profile {value!r} invalid; valid: {', '.join(QOS_PROFILES)}")
+    return QOS_PROFILES[name]
 
 
 def _as_bool(name: str, value: Any) -> bool:
@@ -158,10 +195,14 @@ def make_entry(
             raise ValueError(f"direction {item.get('direction')!r} invalid; valid: {', '.join(Direction.__members__)}")
         bad_key[:] = ["lazy"]
         lazy = _as_bool("lazy", item.get("lazy", False))
+        bad_key[:] = ["qos_profile"]
+        qos = _as_qos(item.get("qos_profile", "SYSTEM_DEFAULT"))
+        # An explicit queue size wins over the preset's depth.
+        default_depth = qos.depth or DEFAULT_QUEUE
         bad_key[:] = ["publisher_queue"]
-        pub_q = _as_queue("publisher_queue", item.get("publisher_queue", DEFAULT_QUEUE))
+        pub_q = _as_queue("publisher_queue", item.get("publisher_queue", default_depth))
         bad_key[:] = ["subscriber_queue"]
-        sub_q = _as_queue("subscriber_queue", item.get("subscriber_queue", DEFAULT_QUEUE))
+        sub_q = _as_queue("subscriber_queue", item.get("subscriber_queue", default_depth))
     except ValueError as e:
         raise fail(str(e), bad_key[0] if bad_key else None) from None
     ros_type, gz_type = normalize_ros_type(item["ros_type_name"]), normalize_gz_type(item["gz_type_name"])
@@ -170,7 +211,7 @@ def make_entry(
         raise fail(f"unsupported type pair {ros_type} <-> {gz_type}; supported: {describe_pairs()}", "gz_type_name")
     if gz_prefix:
         gz_topic = gz_prefix.rstrip("/") + "/" + gz_topic.lstrip("/")
-    return BridgeEntry(ros_topic, gz_topic, ros_type, gz_type, Direction(direction_text), pair, lazy, pub_q, sub_q)
+    return BridgeEntry(ros_topic, gz_topic, ros_type, gz_type, Direction(direction_text), pair, lazy, pub_q, sub_q, qos)
 
 
 def load_config(path: str | Path, gz_prefix: str = "") -> list[BridgeEntry]:

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from diffctl.bridge import conversions as c
+from diffctl.bridge import sensor_conversions as sc
 from diffctl.errors import MessageError
 
 
@@ -45,9 +46,16 @@ TYPE_PAIRS: tuple[TypePair, ...] = (
     TypePair("nav_msgs/msg/Odometry", "gz.msgs.Odometry", c.odometry_to_ros, c.odometry_to_gz),
     TypePair("sensor_msgs/msg/JointState", "gz.msgs.Model", c.model_to_joint_state, c.joint_state_to_model),
     TypePair("tf2_msgs/msg/TFMessage", "gz.msgs.Pose_V", c.pose_v_to_tf, c.tf_to_pose_v),
-    TypePair("sensor_msgs/msg/LaserScan", "gz.msgs.LaserScan", c.laser_scan_to_ros, c.laser_scan_to_gz),
-    TypePair("sensor_msgs/msg/Imu", "gz.msgs.IMU", c.imu_to_ros, c.imu_to_gz),
-    TypePair("sensor_msgs/msg/Image", "gz.msgs.Image", c.image_to_ros, c.image_to_gz),
+    TypePair("sensor_msgs/msg/LaserScan", "gz.msgs.LaserScan", sc.laser_scan_to_ros, sc.laser_scan_to_gz),
+    TypePair("sensor_msgs/msg/Imu", "gz.msgs.IMU", sc.imu_to_ros, sc.imu_to_gz),
+    TypePair("sensor_msgs/msg/Image", "gz.msgs.Image", sc.image_to_ros, sc.image_to_gz),
+    TypePair("sensor_msgs/msg/CameraInfo", "gz.msgs.CameraInfo", sc.camera_info_to_ros, sc.camera_info_to_gz),
+    TypePair("sensor_msgs/msg/PointCloud2", "gz.msgs.PointCloudPacked", sc.point_cloud_to_ros, sc.point_cloud_to_gz),
+    TypePair("sensor_msgs/msg/NavSatFix", "gz.msgs.NavSat", sc.nav_sat_to_ros, sc.nav_sat_fix_to_gz),
+    TypePair("sensor_msgs/msg/MagneticField", "gz.msgs.Magnetometer", sc.magnetometer_to_ros, sc.magnetic_field_to_gz),
+    TypePair(
+        "sensor_msgs/msg/FluidPressure", "gz.msgs.FluidPressure", sc.fluid_pressure_to_ros, sc.fluid_pressure_to_gz
+    ),
     TypePair("geometry_msgs/msg/Pose", "gz.msgs.Pose", c.pose_to_ros, c.pose_to_gz),
     TypePair("geometry_msgs/msg/PoseStamped", "gz.msgs.Pose", c.pose_stamped_to_ros, c.pose_stamped_to_gz),
     TypePair(
@@ -67,6 +75,7 @@ TYPE_PAIRS: tuple[TypePair, ...] = (
     TypePair(
         "std_msgs/msg/String", "gz.msgs.StringMsg", c.scalar_to_ros("std_msgs/msg/String", str), c.scalar_to_gz(str)
     ),
+    TypePair("std_msgs/msg/Empty", "gz.msgs.Empty", c.empty_to_ros, c.empty_to_gz),
 )
 
 _BY_KEY = {(p.ros_type, p.gz_type): p for p in TYPE_PAIRS}

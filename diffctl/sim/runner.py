@@ -61,18 +61,6 @@ def system_name(filename: str) -> str:
     return n.removesuffix("-system")
 
 
-_CLOCK = (
-    '{"@type":"gz.msgs.Clock","header":{"stamp":{"sec":%d,"nsec":%d},"data":[]},'
-    '"sim":{"sec":%d,"nsec":%d},"real":{"sec":%d,"nsec":%d},"system":{"sec":%d,"nsec":%d}}'
-)
-
-
-def clock_json(sim_ns: int, real_ns: int, system_ns: int) -> bytes:
-    """gz.msgs.Clock as gz.encode writes it, formatted directly: 100 times per sim second, json.dumps shows."""
-    s, r, w = divmod(sim_ns, 1_000_000_000), divmod(real_ns, 1_000_000_000), divmod(system_ns, 1_000_000_000)
-    return (_CLOCK % (*s, *s, *r, *w)).encode()
-
-
 @dataclass
 class ModelRuntime:
     entity: Entity
@@ -287,7 +275,7 @@ class Simulation:
         if pub is not None and pub.matched:
             wall_ns = time.time_ns()
             real_ns = max(0, wall_ns - int(self.wall_start_s * 1e9))
-            pub.put_raw(clock_json(sim_time_ns, real_ns, wall_ns))
+            pub.put_raw(gz.clock(sim_time_ns, real_ns, wall_ns))
 
     def _report_ignored(self, world: World) -> None:
         lines = []

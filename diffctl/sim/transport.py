@@ -2,8 +2,10 @@
 
 Publishers know whether anyone listens (a Zenoh matching listener), so the sim skips encoding what nobody
 reads and renders cameras only while someone subscribes; samples leave through an `Outbox` thread.
-Subscription callbacks decode on the Zenoh thread and pass the message to the sim thread through
-`Stepper.call_soon`. Services are queryables whose handler
+Samples are gz.msgs dicts in the binary encoding of `diffctl.bus.gz` (raw bytes, packed numeric arrays);
+a sample that cannot be encoded is dropped with a throttled warning naming the topic, never raised into the
+sim loop. Subscription callbacks decode on the Zenoh thread and pass the message to the sim thread through
+`Stepper.call_soon`; malformed samples are dropped the same way. Services are queryables whose handler
 runs on the sim thread and whose reply is JSON; a handler may also answer later (`Reply.defer`).
 """
 
@@ -65,8 +67,16 @@ class Outbox:
 
 
 class GzPublisher:
-    def __init__(self, session: zenoh.Session, topic: str, gz_type: str, outbox: Outbox | None = None) -> None:
+    def __init__(
+        self,
+        session: zenoh.Session,
+        topic: str,
+        gz_type: str,
+        outbox: Outbox | None = None,
+        log: Logger | None = None,
+    ) -> None:
         self.topic = topic
+        self._log = log
         self.gz_type = gz_type
         self.key = gz.key(topic)
         self._pub = session.declare_publisher(self.key)
@@ -78,7 +88,14 @@ class GzPublisher:
         self.matched = bool(status.matching)
 
     def publish(self, msg: dict[str, Any]) -> None:
-        self.put_raw(gz.encode(self.gz_type, msg))
+        try:
+            payload = gz.encode(self.gz_type, msg)
+        except MessageError as e:
+            if self._log is None:
+                raise
+            self._log.throttled(f"enc:{self.topic}", f"dropped a sample on gz topic {self.topic}: {e}")
+            return
+        self.put_raw(payload)
 
     def put_raw(self, payload: bytes) -> None:
         if self._outbox is not None:
@@ -128,7 +145,7 @@ class SimTransport:
         self.outbox = Outbox()
 
     def publisher(self, topic: str, gz_type: str) -> GzPublisher:
-        p = GzPublisher(self.session, topic, gz_type, self.outbox)
+        p = GzPublisher(self.session, topic, gz_type, self.outbox, self.log)
         self._owned.append(p)
         return p
 

@@ -2,12 +2,34 @@
 
 from __future__ import annotations
 
-import base64
 import math
+from typing import Any
+
+import numpy as np
 
 from diffctl.bus import gz
 
 H = gz.header(12_500_000_000, frame_id="robot::base_link", child_frame_id="robot::odom_child")
+
+# An RGBD-style cloud (gz-msgs InitPointCloudPacked layout): x, y, z at 0/4/8, rgb at 16, 24-byte points.
+CLOUD_DTYPE = np.dtype(
+    {"names": ["x", "y", "z", "rgb"], "formats": ["<f4", "<f4", "<f4", "<f4"], "offsets": [0, 4, 8, 16], "itemsize": 24}
+)
+CLOUD = np.zeros(6, dtype=CLOUD_DTYPE)
+CLOUD["x"], CLOUD["y"], CLOUD["z"] = np.arange(6) + 1.0, np.arange(6) * -0.5, 0.25
+CLOUD["rgb"] = np.frombuffer(bytes([30, 20, 10, 0] * 6), dtype="<f4")  # B, G, R in little-endian order
+
+
+def plain(value: Any) -> Any:
+    """A gz dict with its numpy arrays as lists, so two dicts compare with ==."""
+    if isinstance(value, dict):
+        return {k: plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [plain(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    return value
+
 
 # One sim-side sample per pair, in the layouts of diffctl/bus/gz.py, and what the ROS side must see.
 GZ_SAMPLES: dict[tuple[str, str], dict] = {
@@ -58,8 +80,9 @@ GZ_SAMPLES: dict[tuple[str, str], dict] = {
         "range_max": 10.0,
         "count": 4,
         "vertical_count": 1,
-        "ranges": [1.0, 2.0, math.inf, 0.5],
-        "intensities": [0.0, 1.0, 0.0, 1.0],
+        # Packed as the sim packs them: numpy arrays travel as raw little-endian bytes.
+        "ranges": np.array([1.0, 2.0, math.inf, 0.5]),
+        "intensities": np.array([0.0, 1.0, 0.0, 1.0], dtype=np.float32),
     },
     ("sensor_msgs/msg/Imu", "gz.msgs.IMU"): {
         "header": gz.header(3, frame_id="imu_link"),
@@ -67,6 +90,8 @@ GZ_SAMPLES: dict[tuple[str, str], dict] = {
         "orientation": {"x": 0.0, "y": 0.0, "z": 0.0, "w": 1.0},
         "angular_velocity": {"z": 0.5},
         "linear_acceleration": {"z": 9.81},
+        "angular_velocity_covariance": {"data": [0.01, 0, 0, 0, 0.01, 0, 0, 0, 0.01]},
+        "linear_acceleration_covariance": {"data": [0.5]},  # not 9 elements: ignored, as upstream does
     },
     ("sensor_msgs/msg/Image", "gz.msgs.Image"): {
         "header": gz.header(4, frame_id="camera_link"),
@@ -74,8 +99,51 @@ GZ_SAMPLES: dict[tuple[str, str], dict] = {
         "height": 2,
         "step": 6,
         "pixel_format_type": "RGB_INT8",
-        "data": base64.b64encode(bytes(range(12))).decode(),
+        "data": bytes(range(12)),
     },
+    ("sensor_msgs/msg/CameraInfo", "gz.msgs.CameraInfo"): {
+        "header": gz.header(4, frame_id="robot::camera_link::camera"),
+        "width": 320,
+        "height": 240,
+        "distortion": {"model": "PLUMB_BOB", "k": [-0.25, 0.12, -0.00028, -5e-05, 0.0]},
+        "intrinsics": {"k": [277.19, 0.0, 160.5, 0.0, 277.19, 120.5, 0.0, 0.0, 1.0]},
+        "projection": {"p": [277.19, 0.0, 160.5, -19.4, 0.0, 277.19, 120.5, 0.0, 0.0, 0.0, 1.0, 0.0]},
+        "rectification_matrix": [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0],
+    },
+    ("sensor_msgs/msg/PointCloud2", "gz.msgs.PointCloudPacked"): {
+        "header": gz.header(6, frame_id="robot::camera_link::rgbd"),
+        "field": [
+            {"name": "x", "offset": 0, "datatype": "FLOAT32", "count": 1},
+            {"name": "y", "offset": 4, "datatype": "FLOAT32", "count": 1},
+            {"name": "z", "offset": 8, "datatype": "FLOAT32", "count": 1},
+            {"name": "rgb", "offset": 16, "datatype": "FLOAT32", "count": 1},
+        ],
+        "height": 2,
+        "width": 3,
+        "is_bigendian": False,
+        "point_step": 24,
+        "row_step": 72,
+        "data": CLOUD.tobytes(),
+        "is_dense": True,
+    },
+    ("sensor_msgs/msg/NavSatFix", "gz.msgs.NavSat"): {
+        "header": gz.header(9),
+        "latitude_deg": 47.3977,
+        "longitude_deg": 8.5456,
+        "altitude": 488.1,
+        "frame_id": "robot::gps_link",
+        "velocity_east": 0.2,
+    },
+    ("sensor_msgs/msg/MagneticField", "gz.msgs.Magnetometer"): {
+        "header": gz.header(10, frame_id="mag_link"),
+        "field_tesla": {"x": 2.2e-05, "y": 0.0, "z": -4.3e-05},
+    },
+    ("sensor_msgs/msg/FluidPressure", "gz.msgs.FluidPressure"): {
+        "header": gz.header(11, frame_id="baro_link"),
+        "pressure": 101325.0,
+        "variance": 0.25,
+    },
+    ("std_msgs/msg/Empty", "gz.msgs.Empty"): {},
     ("geometry_msgs/msg/Pose", "gz.msgs.Pose"): {
         "name": "robot",
         "position": {"x": 1.0, "y": -2.0, "z": 0.1},

@@ -1,18 +1,24 @@
-"""Every type pair of the bridge, both ways, through the sim-side JSON encoding of diffctl.bus.gz."""
+"""Every type pair of the bridge, both ways, through the sim-side binary encoding of diffctl.bus.gz.
+
+ROS messages are checked after a CDR round trip read back by rosbags' own Jazzy typestore (not ours), field by
+field against the gz sample and ros_gz_bridge's conversion rules (src/convert/sensor_msgs.cpp).
+"""
 
 from __future__ import annotations
 
-import base64
 import math
 
 import numpy as np
 import pytest
-from bridge_samples import GZ_SAMPLES
+from bridge_samples import CLOUD, GZ_SAMPLES, plain
+from rosbags.typesys import Stores, get_typestore
 
 from diffctl.bridge import type_pairs
 from diffctl.bridge.config import Direction
 from diffctl.bus import gz, types
 from diffctl.errors import MessageError
+
+JAZZY = get_typestore(Stores.ROS2_JAZZY)
 
 
 def test_every_pair_has_a_sample() -> None:
@@ -25,13 +31,19 @@ def _wire(gz_type: str, sample: dict) -> dict:
     return fields
 
 
+def _jazzy(msg: object, ros_type: str) -> object:
+    """Our message as CDR, read back by an independent Jazzy typestore."""
+    return JAZZY.deserialize_cdr(types.serialize(msg, ros_type), ros_type)
+
+
 @pytest.mark.parametrize(("ros_type", "gz_type"), sorted(GZ_SAMPLES))
-def test_pair_round_trips_through_cdr_and_json(ros_type: str, gz_type: str) -> None:
+def test_pair_round_trips_through_cdr_and_the_binary_encoding(ros_type: str, gz_type: str) -> None:
     pair = type_pairs.lookup(ros_type, gz_type)
     assert pair is not None
     ros = pair.convert_to_ros(_wire(gz_type, GZ_SAMPLES[(ros_type, gz_type)]))
-    # The ROS message is a real Jazzy message: it serializes and comes back equal.
-    back_ros = types.deserialize(types.serialize(ros, ros_type), ros_type)
+    # The ROS message is a real Jazzy message: another typestore reads its CDR back field for field.
+    back_ros = _jazzy(ros, ros_type)
+    assert types.to_dict(back_ros) == types.to_dict(ros)
     back_gz = pair.convert_to_gz(back_ros)
     again = pair.convert_to_ros(_wire(gz_type, back_gz))
     assert types.to_dict(again) == types.to_dict(ros)
@@ -39,12 +51,20 @@ def test_pair_round_trips_through_cdr_and_json(ros_type: str, gz_type: str) -> N
 
 def _to_ros(ros_type: str, gz_type: str) -> object:
     pair = type_pairs.lookup(ros_type, gz_type)
-    return pair.convert_to_ros(_wire(gz_type, GZ_SAMPLES[(ros_type, gz_type)]))
+    return _jazzy(pair.convert_to_ros(_wire(gz_type, GZ_SAMPLES[(ros_type, gz_type)])), ros_type)
+
+
+def _to_gz(ros_type: str, gz_type: str, msg: object) -> dict:
+    return _wire(gz_type, type_pairs.lookup(ros_type, gz_type).convert_to_gz(msg))
 
 
 def test_clock_takes_sim_time() -> None:
     msg = _to_ros("rosgraph_msgs/msg/Clock", "gz.msgs.Clock")
     assert (msg.clock.sec, msg.clock.nanosec) == (3, 250)
+    fields = gz.decode(gz.clock(12_345_000_001, 7, 1_700_000_000_5), "gz.msgs.Clock")[1]
+    clock = type_pairs.lookup("rosgraph_msgs/msg/Clock", "gz.msgs.Clock").convert_to_ros(fields)
+    assert (clock.clock.sec, clock.clock.nanosec) == (12, 345_000_001)
+    assert fields["real"] == {"sec": 0, "nsec": 7} and fields["system"]["sec"] == 1_700_000_000_5 // 10**9
 
 
 def test_twist_stamped_keeps_header_and_frame() -> None:
@@ -82,42 +102,174 @@ def test_tf_from_pose_v_children_and_stamps() -> None:
 
 def test_laser_scan_fields_and_middle_layer() -> None:
     msg = _to_ros("sensor_msgs/msg/LaserScan", "gz.msgs.LaserScan")
-    assert msg.header.frame_id == "robot/lidar_link"
+    assert msg.header.frame_id == "robot/lidar_link"  # from the `frame` field, not the header
     assert msg.angle_increment == pytest.approx(math.pi / 2)
+    assert (msg.time_increment, msg.scan_time) == (0.0, 0.0)
     assert msg.ranges.dtype == np.float32 and math.isinf(msg.ranges[2])
+    assert msg.ranges.tolist() == [1.0, 2.0, math.inf, 0.5] and msg.intensities.tolist() == [0.0, 1.0, 0.0, 1.0]
     three_layers = dict(
         GZ_SAMPLES[("sensor_msgs/msg/LaserScan", "gz.msgs.LaserScan")],
         vertical_count=3,
-        ranges=[1.0] * 4 + [2.0] * 4 + [3.0] * 4,
+        ranges=np.array([1.0] * 4 + [2.0] * 4 + [3.0] * 4, dtype=np.float32),
         intensities=[],
     )
     pair = type_pairs.lookup("sensor_msgs/msg/LaserScan", "gz.msgs.LaserScan")
-    assert pair.convert_to_ros(three_layers).ranges.tolist() == [2.0] * 4
+    assert pair.convert_to_ros(_wire("gz.msgs.LaserScan", three_layers)).ranges.tolist() == [2.0] * 4
 
 
-def test_imu_fields() -> None:
+def test_imu_fields_and_covariances_of_nine() -> None:
     msg = _to_ros("sensor_msgs/msg/Imu", "gz.msgs.IMU")
     assert (msg.header.frame_id, msg.angular_velocity.z, msg.linear_acceleration.z) == ("imu_link", 0.5, 9.81)
     assert msg.orientation.w == 1.0
+    assert msg.angular_velocity_covariance.tolist() == [0.01, 0, 0, 0, 0.01, 0, 0, 0, 0.01]
+    assert msg.linear_acceleration_covariance.tolist() == [0.0] * 9
 
 
 def test_image_pixels_and_encodings() -> None:
     msg = _to_ros("sensor_msgs/msg/Image", "gz.msgs.Image")
-    assert (msg.encoding, msg.width, msg.height, msg.step) == ("rgb8", 2, 2, 6)
+    assert (msg.encoding, msg.width, msg.height, msg.step, msg.is_bigendian) == ("rgb8", 2, 2, 6, 0)
     assert msg.data.tolist() == list(range(12))
     pair = type_pairs.lookup("sensor_msgs/msg/Image", "gz.msgs.Image")
-    mono = {"width": 3, "height": 1, "pixel_format_type": "L_INT8", "data": base64.b64encode(b"abc").decode()}
-    assert pair.convert_to_ros(mono).encoding == "mono8" and pair.convert_to_ros(mono).step == 3
+    for fmt, encoding, bpp in (("L_INT8", "mono8", 1), ("L_INT16", "mono16", 2), ("R_FLOAT32", "32FC1", 4)):
+        img = {"width": 3, "height": 2, "pixel_format_type": fmt, "data": bytes(3 * bpp * 2)}
+        out = pair.convert_to_ros(_wire("gz.msgs.Image", img))
+        assert (out.encoding, out.step) == (encoding, 3 * bpp)
+    depth = np.array([[0.5, 1.25, math.inf]], dtype="<f4")
+    img = {"width": 3, "height": 1, "step": 12, "pixel_format_type": "R_FLOAT32", "data": depth.tobytes()}
+    out = _jazzy(pair.convert_to_ros(_wire("gz.msgs.Image", img)), "sensor_msgs/msg/Image")
+    assert np.frombuffer(out.data.tobytes(), dtype="<f4").tolist() == [0.5, 1.25, math.inf]
+    # ROS→gz: OpenCV-style single-channel names are the same layouts (a 16UC1 depth image is L_INT16).
+    ros = JAZZY.types["sensor_msgs/msg/Image"](
+        header=_header("depth"), height=1, width=2, encoding="16UC1", is_bigendian=0, step=4,
+        data=np.frombuffer(b"\x01\x00\x02\x00", dtype=np.uint8),
+    )  # fmt: skip
+    back = _to_gz("sensor_msgs/msg/Image", "gz.msgs.Image", ros)
+    assert (back["pixel_format_type"], back["data"], back["step"]) == ("L_INT16", b"\x01\x00\x02\x00", 4)
+    mono = {"width": 3, "height": 1, "pixel_format_type": "L_INT8", "data": b"abc"}
     with pytest.raises(MessageError, match="expected step 3 x height 2"):
         pair.convert_to_ros(dict(mono, height=2))
     with pytest.raises(MessageError, match="pixel_format_type 'YUV'"):
         pair.convert_to_ros(dict(mono, pixel_format_type="YUV"))
+    with pytest.raises(MessageError, match="must be raw bytes"):
+        pair.convert_to_ros(dict(mono, data="YWJj"))  # base64 text is not the contract
 
 
-def test_scalars() -> None:
+def _header(frame: str, sec: int = 5, nanosec: int = 6) -> object:
+    return JAZZY.types["std_msgs/msg/Header"](
+        stamp=JAZZY.types["builtin_interfaces/msg/Time"](sec=sec, nanosec=nanosec), frame_id=frame
+    )
+
+
+def test_camera_info_field_by_field_both_ways() -> None:
+    sample = GZ_SAMPLES[("sensor_msgs/msg/CameraInfo", "gz.msgs.CameraInfo")]
+    msg = _to_ros("sensor_msgs/msg/CameraInfo", "gz.msgs.CameraInfo")
+    assert msg.header.frame_id == "robot/camera_link/camera" and msg.header.stamp.nanosec == 4
+    assert (msg.width, msg.height, msg.distortion_model) == (320, 240, "plumb_bob")
+    assert msg.d.tolist() == sample["distortion"]["k"]
+    assert msg.k.tolist() == sample["intrinsics"]["k"]
+    assert msg.p.tolist() == sample["projection"]["p"]
+    assert msg.r.tolist() == sample["rectification_matrix"]
+    assert (msg.binning_x, msg.binning_y, msg.roi.width) == (0, 0, 0)
+    pair = type_pairs.lookup("sensor_msgs/msg/CameraInfo", "gz.msgs.CameraInfo")
+    for gz_model, ros_model in (("RATIONAL_POLYNOMIAL", "rational_polynomial"), ("EQUIDISTANT", "equidistant")):
+        other = dict(sample, distortion={"model": gz_model, "k": [0.1] * 8})
+        assert pair.convert_to_ros(_wire("gz.msgs.CameraInfo", other)).distortion_model == ros_model
+    # A camera without distortion: no model, no coefficients; missing matrices stay zero.
+    bare = pair.convert_to_ros({"width": 4, "height": 2, "intrinsics": {"k": [1.0, 0.0, 2.0]}})
+    assert (bare.distortion_model, len(bare.d), bare.k.tolist()[:4], bare.p.tolist()) == ("", 0, [1, 0, 2, 0], [0] * 12)
+
+    ros = JAZZY.types["sensor_msgs/msg/CameraInfo"](
+        header=_header("cam_optical"), height=480, width=640, distortion_model="equidistant",
+        d=np.array([0.1, 0.2, 0.3, 0.4]), k=np.arange(9.0), r=np.eye(3).ravel(), p=np.arange(12.0),
+        binning_x=0, binning_y=0,
+        roi=JAZZY.types["sensor_msgs/msg/RegionOfInterest"](
+            x_offset=0, y_offset=0, height=0, width=0, do_rectify=False
+        ),
+    )  # fmt: skip
+    out = plain(_to_gz("sensor_msgs/msg/CameraInfo", "gz.msgs.CameraInfo", ros))
+    assert out["distortion"] == {"model": "EQUIDISTANT", "k": [0.1, 0.2, 0.3, 0.4]}
+    assert out["intrinsics"]["k"] == list(range(9)) and out["projection"]["p"] == list(range(12))
+    assert out["rectification_matrix"] == np.eye(3).ravel().tolist()
+    assert (out["width"], out["height"], gz.header_value(out["header"], "frame_id")) == (640, 480, "cam_optical")
+    with pytest.raises(MessageError, match="distortion_model 'fisheye' has no gz equivalent"):
+        pair.convert_to_gz(JAZZY.types["sensor_msgs/msg/CameraInfo"](**{**ros.__dict__, "distortion_model": "fisheye"}))
+    with pytest.raises(MessageError, match=r"intrinsics\.k has 10 elements, at most 9"):
+        pair.convert_to_ros({"intrinsics": {"k": [1.0] * 10}})
+
+
+def _cloud_points(msg: object) -> np.ndarray:
+    """Decode a PointCloud2 by its own PointFields, independently of the bridge."""
+    kinds = {7: "<f4", 8: "<f8", 2: "u1", 4: "<u2", 6: "<u4"}
+    dt = np.dtype(
+        {
+            "names": [f.name for f in msg.fields],
+            "formats": [kinds[f.datatype] for f in msg.fields],
+            "offsets": [f.offset for f in msg.fields],
+            "itemsize": msg.point_step,
+        }
+    )
+    return np.frombuffer(msg.data.tobytes(), dtype=dt).reshape(msg.height, msg.width)
+
+
+def test_point_cloud_copied_one_to_one_both_ways() -> None:
+    msg = _to_ros("sensor_msgs/msg/PointCloud2", "gz.msgs.PointCloudPacked")
+    point_field = JAZZY.types["sensor_msgs/msg/PointField"]
+    assert [(f.name, f.offset, f.datatype, f.count) for f in msg.fields] == [
+        ("x", 0, point_field.FLOAT32, 1),
+        ("y", 4, point_field.FLOAT32, 1),
+        ("z", 8, point_field.FLOAT32, 1),
+        ("rgb", 16, point_field.FLOAT32, 1),
+    ]
+    assert (msg.height, msg.width, msg.point_step, msg.row_step) == (2, 3, 24, 72)
+    assert (msg.is_bigendian, msg.is_dense, msg.header.frame_id) == (False, True, "robot/camera_link/rgbd")
+    points = _cloud_points(msg)
+    assert points["x"].ravel().tolist() == CLOUD["x"].tolist() and points["y"].ravel().tolist() == CLOUD["y"].tolist()
+    # rgb keeps its packed bytes: B, G, R in little-endian order.
+    assert points["rgb"].ravel()[0].tobytes() == bytes([30, 20, 10, 0])
+
+    # ROS→gz: a lidar-style cloud with a UINT16 ring field, every datatype named as gz-msgs spells it.
+    fields = [point_field(name=n, offset=o, datatype=d, count=1) for n, o, d in (("x", 0, 7), ("ring", 4, 4))]
+    ros = JAZZY.types["sensor_msgs/msg/PointCloud2"](
+        header=_header("lidar"), height=1, width=2, fields=fields, is_bigendian=False, point_step=8, row_step=16,
+        data=np.arange(16, dtype=np.uint8), is_dense=False,
+    )  # fmt: skip
+    out = _to_gz("sensor_msgs/msg/PointCloud2", "gz.msgs.PointCloudPacked", ros)
+    assert [(f["name"], f["datatype"]) for f in out["field"]] == [("x", "FLOAT32"), ("ring", "UINT16")]
+    assert out["data"] == bytes(range(16)) and (out["row_step"], out["is_dense"]) == (16, False)
+    pair = type_pairs.lookup("sensor_msgs/msg/PointCloud2", "gz.msgs.PointCloudPacked")
+    sample = GZ_SAMPLES[("sensor_msgs/msg/PointCloud2", "gz.msgs.PointCloudPacked")]
+    with pytest.raises(MessageError, match="expected row_step 72 x height 2"):
+        pair.convert_to_ros(dict(sample, data=b"\x00" * 10))
+    with pytest.raises(MessageError, match="datatype 'FLOAT16' unsupported"):
+        pair.convert_to_ros(dict(sample, field=[{"name": "x", "datatype": "FLOAT16"}]))
+
+
+def test_nav_sat_magnetometer_fluid_pressure_both_ways() -> None:
+    fix = _to_ros("sensor_msgs/msg/NavSatFix", "gz.msgs.NavSat")
+    status = JAZZY.types["sensor_msgs/msg/NavSatStatus"]
+    assert (fix.latitude, fix.longitude, fix.altitude) == (47.3977, 8.5456, 488.1)
+    assert fix.header.frame_id == "robot/gps_link"  # NavSat's frame_id field, `::` → `/`
+    assert fix.status.status == status.STATUS_FIX
+    assert fix.position_covariance_type == JAZZY.types["sensor_msgs/msg/NavSatFix"].COVARIANCE_TYPE_UNKNOWN
+    back = _to_gz("sensor_msgs/msg/NavSatFix", "gz.msgs.NavSat", fix)
+    assert (back["latitude_deg"], back["frame_id"], back["velocity_east"]) == (47.3977, "robot/gps_link", 0.0)
+
+    mag = _to_ros("sensor_msgs/msg/MagneticField", "gz.msgs.Magnetometer")
+    assert (mag.magnetic_field.x, mag.magnetic_field.z, mag.header.frame_id) == (2.2e-05, -4.3e-05, "mag_link")
+    assert _to_gz("sensor_msgs/msg/MagneticField", "gz.msgs.Magnetometer", mag)["field_tesla"]["x"] == 2.2e-05
+
+    baro = _to_ros("sensor_msgs/msg/FluidPressure", "gz.msgs.FluidPressure")
+    assert (baro.fluid_pressure, baro.variance, baro.header.stamp.nanosec) == (101325.0, 0.25, 11)
+    assert _to_gz("sensor_msgs/msg/FluidPressure", "gz.msgs.FluidPressure", baro)["pressure"] == 101325.0
+
+
+def test_scalars_and_empty() -> None:
     assert _to_ros("std_msgs/msg/String", "gz.msgs.StringMsg").data == "hello"
     assert _to_ros("std_msgs/msg/Int32", "gz.msgs.Int32").data == -7
     assert _to_ros("std_msgs/msg/Bool", "gz.msgs.Boolean").data is True
+    assert _to_ros("std_msgs/msg/Float64", "gz.msgs.Double").data == 2.5
+    empty = _to_ros("std_msgs/msg/Empty", "gz.msgs.Empty")
+    assert _to_gz("std_msgs/msg/Empty", "gz.msgs.Empty", empty) == {}
 
 
 def test_ros_to_gz_twist_stamped_and_non_finite_commands_never_reach_the_sim() -> None:
@@ -149,5 +301,6 @@ def test_type_name_spellings() -> None:
     assert type_pairs.lookup("geometry_msgs/Twist", "ignition.msgs.Twist") is type_pairs.lookup(
         "geometry_msgs/msg/Twist", "gz.msgs.Twist"
     )
+    assert type_pairs.lookup("sensor_msgs/msg/CameraInfo", "ignition.msgs.CameraInfo") is not None
     assert type_pairs.lookup("geometry_msgs/msg/Twist", "gz.msgs.Odometry") is None
     assert Direction.GZ_TO_ROS.to_ros and not Direction.GZ_TO_ROS.to_gz
