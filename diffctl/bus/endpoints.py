@@ -19,20 +19,37 @@ if TYPE_CHECKING:
     from diffctl.bus.node import Node
 
 
+def endpoint_qos(latched: bool, depth: int | None, reliable: bool, qos: wire.QoS | None) -> wire.QoS:
+    """The endpoint's real profile: `qos` if given, else from the flags (a latched endpoint keeps 1 by default)."""
+    if qos is not None:
+        return qos
+    if depth is None:
+        depth = 1 if latched else 10
+    return wire.QoS(reliable=reliable, transient_local=latched, depth=depth)
+
+
+def history_depth(qos: wire.QoS) -> int:
+    # KEEP_ALL has no depth; bound the late-joiner cache as rmw_zenoh does its own queues.
+    return max(1, qos.depth) if not qos.keep_all else 10_000
+
+
 class Publisher:
-    def __init__(self, node: Node, topic: str, typename: str, *, latched: bool = False, depth: int = 10,
-                 reliable: bool = True) -> None:
+    def __init__(self, node: Node, topic: str, typename: str, *, latched: bool = False, depth: int | None = None,
+                 reliable: bool = True, qos: wire.QoS | None = None) -> None:
         self.node = node
         self.topic = node.resolve(topic)
         self.type = types.check(typename)
-        self.latched = latched
+        self.qos = endpoint_qos(latched, depth, reliable, qos)
+        self.latched = self.qos.transient_local
         key = wire.topic_key(node.domain, self.topic, self.type)
-        qos = wire.qos_string(reliable=reliable, transient_local=latched, depth=1 if latched else depth)
-        token = node.context.entity_token(node, wire.KIND_PUB, self.topic, self.type, qos)
+        token = node.context.entity_token(node, wire.KIND_PUB, self.topic, self.type, self.qos.token())
+        self.token_key = token
         self.gid = wire.gid_of(token)
-        if latched:
+        if self.latched:
+            # TRANSIENT_LOCAL: late joiners get up to `depth` of the newest samples, as from a DDS writer's history.
             self._pub = ext.declare_advanced_publisher(
-                node.session, key, cache=ext.CacheConfig(max_samples=1), publisher_detection=True
+                node.session, key, cache=ext.CacheConfig(max_samples=history_depth(self.qos)),
+                publisher_detection=True,
             )
         else:
             self._pub = node.session.declare_publisher(key, express=True)
@@ -40,6 +57,8 @@ class Publisher:
         self._seq = itertools.count(1)
         node.context.add_local(self.topic, self.type, wire.KIND_PUB, node)
         node.context.local_gids.add(self.gid)
+
+    closed = False
 
     def publish(self, msg: Any) -> None:
         if isinstance(msg, dict):
@@ -67,6 +86,7 @@ class Publisher:
         return self._pub.declare_matching_listener(lambda st: callback(bool(st.matching)))
 
     def close(self) -> None:
+        self.closed = True
         for h in (self._token, self._pub):
             try:
                 h.undeclare()
@@ -85,8 +105,8 @@ class MessageInfo:
 
 class Subscription:
     def __init__(self, node: Node, topic: str, typename: str, callback: Callable[..., None], *,
-                 latched: bool = False, depth: int = 10, raw: bool = False, ignore_local: bool = False,
-                 with_info: bool = False) -> None:
+                 latched: bool = False, depth: int | None = None, raw: bool = False, ignore_local: bool = False,
+                 with_info: bool = False, reliable: bool = True, qos: wire.QoS | None = None) -> None:
         self.node = node
         self.topic = node.resolve(topic)
         self.type = types.check(typename)
@@ -96,13 +116,13 @@ class Subscription:
         # rclcpp's ignore_local_publications: drop samples from publishers of this process (a bridge must
         # not hear its own output on a bidirectional topic).
         self._ignore_gids = node.context.local_gids if ignore_local else None
+        self.qos = endpoint_qos(latched, depth, reliable, qos)
         key = wire.topic_key(node.domain, self.topic, self.type)
-        qos = wire.qos_string(transient_local=latched, depth=1 if latched else depth)
-        token = node.context.entity_token(node, wire.KIND_SUB, self.topic, self.type, qos)
-        if latched:
+        token = node.context.entity_token(node, wire.KIND_SUB, self.topic, self.type, self.qos.token())
+        if self.qos.transient_local:
             self._sub = ext.declare_advanced_subscriber(
                 node.session, key, self._on_sample,
-                history=ext.HistoryConfig(detect_late_publishers=True, max_samples=1),
+                history=ext.HistoryConfig(detect_late_publishers=True, max_samples=history_depth(self.qos)),
                 subscriber_detection=True,
             )
         else:
@@ -150,13 +170,15 @@ class Subscription:
 
 
 class Service:
-    def __init__(self, node: Node, name: str, srv_type: str, handler: Callable[[Any], Any]) -> None:
+    def __init__(self, node: Node, name: str, srv_type: str, handler: Callable[[Any], Any], *,
+                 qos: wire.QoS | None = None) -> None:
         self.node = node
         self.name = node.resolve(name)
         self.type = types.check_service(srv_type)
         self.handler = handler
+        self.qos = qos or wire.QoS()  # rmw_qos_profile_services_default: reliable, volatile, keep_last 10
         key = wire.service_key(node.domain, self.name, self.type)
-        token = node.context.entity_token(node, wire.KIND_SERVICE, self.name, self.type, wire.qos_string())
+        token = node.context.entity_token(node, wire.KIND_SERVICE, self.name, self.type, self.qos.token())
         self._gid = wire.gid_of(token)
         self._q = node.session.declare_queryable(key, self._on_query, complete=True)
         self._token = node.session.liveliness().declare_token(token)
@@ -200,12 +222,13 @@ class Service:
 
 
 class Client:
-    def __init__(self, node: Node, name: str, srv_type: str) -> None:
+    def __init__(self, node: Node, name: str, srv_type: str, *, qos: wire.QoS | None = None) -> None:
         self.node = node
         self.name = node.resolve(name)
         self.type = types.check_service(srv_type)
+        self.qos = qos or wire.QoS()
         self._key = wire.service_key(node.domain, self.name, self.type)
-        token = node.context.entity_token(node, wire.KIND_CLIENT, self.name, self.type, wire.qos_string())
+        token = node.context.entity_token(node, wire.KIND_CLIENT, self.name, self.type, self.qos.token())
         self._gid = wire.gid_of(token)
         self._token = node.session.liveliness().declare_token(token)
         self._seq = itertools.count(1)

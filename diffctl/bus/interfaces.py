@@ -88,6 +88,18 @@ SRVS: dict[str, tuple[str, str]] = {
     "rcl_interfaces/srv/GetParameters": ("string[] names", "rcl_interfaces/ParameterValue[] values"),
     "rcl_interfaces/srv/ListParameters": ("string[] prefixes\nuint64 depth\nuint64 DEPTH_RECURSIVE=0",
                                           "rcl_interfaces/ListParametersResult result"),
+    "rcl_interfaces/srv/SetParametersAtomically": ("rcl_interfaces/Parameter[] parameters",
+                                                   "rcl_interfaces/SetParametersResult result"),
+    "rcl_interfaces/srv/DescribeParameters": ("string[] names", "rcl_interfaces/ParameterDescriptor[] descriptors"),
+    "rcl_interfaces/srv/GetParameterTypes": ("string[] names", "uint8[] types"),
+    # Every node's ~/get_type_description (REP-2016); the request's default (include_type_sources=true) is not
+    # part of the type hash.
+    "type_description_interfaces/srv/GetTypeDescription": (
+        "string type_name\nstring type_hash\nbool include_type_sources",
+        "bool successful\nstring failure_reason\ntype_description_interfaces/TypeDescription type_description\n"
+        "type_description_interfaces/TypeSource[] type_sources\n"
+        "type_description_interfaces/KeyValue[] extra_information",
+    ),
     "std_srvs/srv/Empty": ("", ""),
     "std_srvs/srv/Trigger": ("", "bool success\nstring message"),
     "std_srvs/srv/SetBool": ("bool data", "bool success\nstring message"),

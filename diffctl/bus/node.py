@@ -23,8 +23,11 @@ from diffctl.bus.clock import Clock, Timer
 from diffctl.bus.endpoints import Client, Publisher, Service, Subscription
 from diffctl.bus.graph import Graph
 from diffctl.bus.log import Logger
+from diffctl.bus.parameter_services import ParameterServices
 from diffctl.bus.parameters import ParameterDescriptor, ParameterStore
+from diffctl.bus.rosout import Rosout
 from diffctl.bus.session import domain_id, open_session, router_endpoint
+from diffctl.bus.type_description import TypeDescriptionService
 from diffctl.errors import ConfigError
 
 _contexts: dict[int, _Context] = {}
@@ -139,16 +142,32 @@ class Node:
         self._token = self.session.liveliness().declare_token(
             wire.node_token(self.domain, self.context.zid, self.node_id, self.namespace, self.name)
         )
+        # Every ROS node's standard endpoints: /rosout, parameter services and events, type descriptions.
+        self._builtin_services: dict[str, Service] = {}
+        self._rosout = self._keep(Rosout(self))
+        self._parameter_services = self._keep(ParameterServices(self))
+        self._builtin_services.update(self._parameter_services.services)
+        self.clock = Clock(False)
         # The parameter says what the node was told; the constructor argument may still keep its clock on wall
         # time (a controller runs on its manager's clock, not its own /clock subscription).
         sim_param = self.declare_parameter(
             "use_sim_time", bool(use_sim_time) if use_sim_time is not None else False,
             ParameterDescriptor(type="bool", description="Use /clock instead of the wall clock"),
         )
+        self._type_descriptions: TypeDescriptionService | None = None
+        if self.declare_parameter("start_type_description_service", True,
+                                  ParameterDescriptor(type="bool", read_only=True)):
+            self._type_descriptions = self._keep(TypeDescriptionService(self))
+            self._builtin_services[self._type_descriptions.service.name] = self._type_descriptions.service
+            for ep in [*self._parameter_services.services.values(), self._parameter_services.events,
+                       self._rosout.pub, self._type_descriptions.service]:
+                self._type_descriptions.use(ep.type)
         sim = sim_param if use_sim_time is None else use_sim_time
         self.clock = Clock(_as_bool(sim))
         if self.clock.use_sim_time:
-            self.create_subscription("/clock", "rosgraph_msgs/msg/Clock", self.clock.on_clock)
+            # rclcpp's TimeSource subscribes best-effort, depth 1.
+            self.create_subscription("/clock", "rosgraph_msgs/msg/Clock", self.clock.on_clock, reliable=False,
+                                     depth=1)
 
     @classmethod
     def from_ros_args(cls, default_name: str, namespace: str = "/", *, defaults: dict[str, Any] | None = None,
@@ -207,23 +226,35 @@ class Node:
     # ------------------------------------------------------------------ endpoints
     def _keep(self, obj: Any) -> Any:
         self._closables.append(obj)
+        td = getattr(self, "_type_descriptions", None)
+        if td is not None and isinstance(obj, (Publisher, Subscription, Service, Client)):
+            td.use(obj.type)
         return obj
 
-    def create_publisher(self, topic: str, typename: str, *, latched: bool = False, depth: int = 10,
-                         reliable: bool = True) -> Publisher:
-        return self._keep(Publisher(self, topic, typename, latched=latched, depth=depth, reliable=reliable))
+    def create_publisher(self, topic: str, typename: str, *, latched: bool = False, depth: int | None = None,
+                         reliable: bool = True, qos: wire.QoS | None = None) -> Publisher:
+        """`latched` is TRANSIENT_LOCAL (depth 1 unless given); `qos` states the whole profile instead."""
+        return self._keep(Publisher(self, topic, typename, latched=latched, depth=depth, reliable=reliable, qos=qos))
 
     def create_subscription(self, topic: str, typename: str, callback: Callable[[Any], None], *,
-                            latched: bool = False, depth: int = 10, raw: bool = False,
-                            ignore_local: bool = False, with_info: bool = False) -> Subscription:
+                            latched: bool = False, depth: int | None = None, raw: bool = False,
+                            ignore_local: bool = False, with_info: bool = False, reliable: bool = True,
+                            qos: wire.QoS | None = None) -> Subscription:
         return self._keep(Subscription(self, topic, typename, callback, latched=latched, depth=depth, raw=raw,
-                                       ignore_local=ignore_local, with_info=with_info))
+                                       ignore_local=ignore_local, with_info=with_info, reliable=reliable, qos=qos))
 
-    def create_service(self, name: str, srv_type: str, handler: Callable[[Any], Any]) -> Service:
-        return self._keep(Service(self, name, srv_type, handler))
+    def create_service(self, name: str, srv_type: str, handler: Callable[[Any], Any], *,
+                       qos: wire.QoS | None = None) -> Service:
+        full = self.resolve(name)
+        builtin = self._builtin_services.pop(full, None)
+        if builtin is not None:
+            # A component serving one of the node's standard services itself (the controller manager's own
+            # set_parameters, kept while it moves onto declared parameters) replaces the built-in one.
+            builtin.close()
+        return self._keep(Service(self, name, srv_type, handler, qos=qos))
 
-    def create_client(self, name: str, srv_type: str) -> Client:
-        return self._keep(Client(self, name, srv_type))
+    def create_client(self, name: str, srv_type: str, *, qos: wire.QoS | None = None) -> Client:
+        return self._keep(Client(self, name, srv_type, qos=qos))
 
     def create_timer(self, period_s: float, callback: Callable[[], None]) -> Timer:
         return self._keep(Timer(self.clock, period_s, callback, self.log.error))

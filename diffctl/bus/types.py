@@ -60,6 +60,11 @@ def _ensure(typename: str):
     return ts
 
 
+def store_with(typename: str):
+    """The typestore with `typename` (and what it references) registered."""
+    return _ensure(typename)
+
+
 def _all_names() -> list[str]:
     return list(typedefs.definitions())
 

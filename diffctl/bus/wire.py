@@ -7,9 +7,10 @@ attachment = zenoh-ext serialized (int64 seq, int64 source_timestamp_ns, uint8[1
 
 from __future__ import annotations
 
-import hashlib
 import struct
 from dataclasses import dataclass
+
+import xxhash
 
 from diffctl.bus.types import dds_name, from_dds_name, type_hash
 from diffctl.errors import MessageError
@@ -62,12 +63,67 @@ def unmangle(part: str) -> str:
     return part.replace("%", "/")
 
 
+_INFINITE_S, _INFINITE_NS = 9223372036, 854775807  # RMW_DURATION_INFINITE as rmw_zenoh splits it
+
+
+@dataclass(frozen=True)
+class QoS:
+    """An endpoint's QoS as rmw_zenoh puts it in the liveliness token (durations in ns; None = infinite)."""
+
+    reliable: bool = True
+    transient_local: bool = False
+    keep_all: bool = False
+    depth: int = 10
+    deadline_ns: int | None = None
+    lifespan_ns: int | None = None
+
+    def __post_init__(self) -> None:
+        if self.depth < 0:
+            raise ValueError(f"QoS depth must be >= 0, got {self.depth}")
+
+    def token(self) -> str:
+        """`rel:dur:hist,depth:dl_s,dl_ns:ls_s,ls_ns:liv,lease_s,lease_ns`; rmw_zenoh's defaults left empty."""
+        rel = "" if self.reliable else str(BEST_EFFORT)
+        dur = str(TRANSIENT_LOCAL) if self.transient_local else ""
+        hist = str(KEEP_ALL) if self.keep_all else ""
+        # rmw_zenoh first adapts the profile: depth 0 (system default) becomes its default 42.
+        depth = self.depth or 42
+        d = "" if depth == 42 else str(depth)
+        return f"{rel}:{dur}:{hist},{d}:{_duration(self.deadline_ns)}:{_duration(self.lifespan_ns)}:,,"
+
+    @classmethod
+    def parse(cls, text: str) -> QoS | None:
+        """A token's QoS field back to a profile (None if it is not rmw_zenoh's six-group form)."""
+        parts = text.split(":")
+        if len(parts) < 6:
+            return None
+        try:
+            hist, _, depth = parts[2].partition(",")
+            return cls(
+                reliable=parts[0] in ("", str(RELIABLE)), transient_local=parts[1] == str(TRANSIENT_LOCAL),
+                keep_all=hist == str(KEEP_ALL), depth=int(depth) if depth else 42,
+                deadline_ns=_parse_duration(parts[3]), lifespan_ns=_parse_duration(parts[4]),
+            )
+        except ValueError:
+            return None
+
+
+def _duration(ns: int | None) -> str:
+    if ns is None:
+        return ","
+    sec, nsec = divmod(int(ns), 1_000_000_000)
+    return f"{'' if sec == _INFINITE_S else sec},{'' if nsec == _INFINITE_NS else nsec}"
+
+
+def _parse_duration(text: str) -> int | None:
+    sec, _, nsec = text.partition(",")
+    if sec in ("", str(_INFINITE_S)) and nsec in ("", str(_INFINITE_NS)):
+        return None
+    return int(sec or 0) * 1_000_000_000 + int(nsec or 0)
+
+
 def qos_string(*, reliable: bool = True, transient_local: bool = False, depth: int = 10) -> str:
-    # Fields equal to rmw_zenoh's defaults (RELIABLE, VOLATILE, KEEP_LAST, depth 42) are left empty.
-    rel = "" if reliable else str(BEST_EFFORT)
-    dur = str(TRANSIENT_LOCAL) if transient_local else ""
-    d = "" if depth == 42 else str(depth)
-    return f"{rel}:{dur}:,{d}:,:,:,,"
+    return QoS(reliable=reliable, transient_local=transient_local, depth=depth).token()
 
 
 def node_token(domain: int, zid: str, node_id: int, namespace: str, node: str) -> str:
@@ -85,8 +141,8 @@ def entity_token(
 
 
 def gid_of(token: str) -> bytes:
-    # rmw_zenoh uses XXH3-128 of the token key; any stable 16-byte digest identifies the entity as well.
-    return hashlib.blake2b(token.encode(), digest_size=16).digest()
+    """rmw_zenoh's GID: XXH3-128 (seed 0) of the liveliness key, low 64 bits then high, each little-endian."""
+    return xxhash.xxh3_128_intdigest(token.encode()).to_bytes(16, "little")
 
 
 @dataclass(frozen=True)
@@ -112,6 +168,10 @@ class Entity:
     @property
     def transient_local(self) -> bool:
         return self.qos.split(":")[1:2] == [str(TRANSIENT_LOCAL)]
+
+    @property
+    def qos_profile(self) -> QoS | None:
+        return QoS.parse(self.qos)
 
 
 def parse_token(key: str) -> Entity | None:

@@ -1,0 +1,114 @@
+"""REP-2016 type descriptions: the structure a RIHS01 hash is computed from, and `~/get_type_description`.
+
+`describe()` builds type_description_interfaces/msg/TypeDescription as plain data from the typestore's field
+definitions, exactly the form rosidl writes into `share/<pkg>/msg/<Type>.json`, so the same function serves
+the service and the Jazzy oracle test. `hash_of()` hashes it the way REP-2016 says (JSON of the description
+without default values, sha256).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+from typing import TYPE_CHECKING, Any
+
+from rosbags.typesys.base import Nodetype
+
+from diffctl.bus import types
+
+if TYPE_CHECKING:
+    from diffctl.bus.endpoints import Service
+    from diffctl.bus.node import Node
+
+# type_description_interfaces/msg/FieldType
+FIELD_TYPE_IDS = {
+    "nested": 1, "int8": 2, "uint8": 3, "int16": 4, "uint16": 5, "int32": 6, "uint32": 7, "int64": 8,
+    "uint64": 9, "float32": 10, "float64": 11, "longdouble": 12, "char": 13, "wchar": 14, "bool": 15,
+    "byte": 16, "string": 17, "wstring": 18, "bounded_string": 21, "bounded_wstring": 22,
+}
+ARRAY_OFFSET, BOUNDED_SEQUENCE_OFFSET, UNBOUNDED_SEQUENCE_OFFSET = 48, 96, 144
+SERVICE_TYPE = "type_description_interfaces/srv/GetTypeDescription"
+
+
+def _field_type(desc: tuple) -> dict[str, Any]:
+    offset = capacity = string_capacity = 0
+    kind, spec = desc
+    if kind == Nodetype.ARRAY:
+        offset, (kind, spec), capacity = ARRAY_OFFSET, spec[0], spec[1]
+    elif kind == Nodetype.SEQUENCE:
+        bound = spec[1]
+        offset = BOUNDED_SEQUENCE_OFFSET if bound else UNBOUNDED_SEQUENCE_OFFSET
+        (kind, spec), capacity = spec[0], bound
+    nested = ""
+    if kind == Nodetype.NAME:
+        tid, nested = FIELD_TYPE_IDS["nested"], spec
+    else:
+        base, bound = spec
+        if base in ("string", "wstring") and bound:
+            tid, string_capacity = FIELD_TYPE_IDS[f"bounded_{base}"], bound
+        else:
+            tid = FIELD_TYPE_IDS[base]
+    return {"type_id": offset + tid, "capacity": capacity, "string_capacity": string_capacity,
+            "nested_type_name": nested}
+
+
+def individual(typename: str) -> dict[str, Any]:
+    """IndividualTypeDescription of one type (an empty message gets rosidl's placeholder member)."""
+    fields = types.store_with(typename).fielddefs[typename][1] or [
+        ("structure_needs_at_least_one_member", (Nodetype.BASE, ("uint8", 0)))
+    ]
+    return {"type_name": typename,
+            "fields": [{"name": n, "type": _field_type(d), "default_value": ""} for n, d in fields]}
+
+
+def describe(typename: str) -> dict[str, Any]:
+    """TypeDescription: the type and every type it references, those sorted by name."""
+    seen: dict[str, dict[str, Any]] = {}
+    todo = [typename]
+    while todo:
+        t = todo.pop()
+        if t in seen:
+            continue
+        seen[t] = individual(t)
+        todo += [f["type"]["nested_type_name"] for f in seen[t]["fields"] if f["type"]["nested_type_name"]]
+    return {"type_description": seen[typename],
+            "referenced_type_descriptions": [seen[k] for k in sorted(seen) if k != typename]}
+
+
+def hash_of(description: dict[str, Any]) -> str:
+    """RIHS01 of a TypeDescription: sha256 of its JSON with default values left out (REP-2016)."""
+    def strip(ind: dict[str, Any]) -> dict[str, Any]:
+        return {"type_name": ind["type_name"],
+                "fields": [{"name": f["name"], "type": f["type"]} for f in ind["fields"]]}
+
+    dct = {"type_description": strip(description["type_description"]),
+           "referenced_type_descriptions": [strip(r) for r in description["referenced_type_descriptions"]]}
+    return "RIHS01_" + hashlib.sha256(json.dumps(dct).encode()).hexdigest()
+
+
+class TypeDescriptionService:
+    """`~/get_type_description`: answers for the types this node's endpoints use, matched by hash as rcl does."""
+
+    def __init__(self, node: Node) -> None:
+        from diffctl.bus.endpoints import Service
+
+        self.node = node
+        self.used: dict[str, str] = {}  # RIHS01 hash → type name
+        self.service: Service = Service(node, "~/get_type_description", SERVICE_TYPE, self.handle)
+
+    def use(self, typename: str) -> None:
+        self.used.setdefault(types.type_hash(typename), typename)
+
+    def handle(self, req: Any) -> dict[str, Any]:
+        typename = self.used.get(str(req.type_hash))
+        if typename is None:
+            return {"successful": False, "failure_reason": "Type not currently in use by this node"}
+        out: dict[str, Any] = {"successful": True, "type_description": describe(typename)}
+        if req.include_type_sources:
+            encoding = "srv" if "/srv/" in typename else "msg"
+            out["type_sources"] = [{"type_name": typename, "encoding": encoding,
+                                    "raw_file_contents": types.definition(typename)}]
+        return out
+
+    def close(self) -> None:
+        self.service.close()
