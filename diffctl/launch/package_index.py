@@ -1,9 +1,8 @@
 """The package index: `Node(package, executable)` → a command line, `$(find-pkg-share pkg)` → a directory.
 
-diffctl's own components stand under the ROS names they replace and start as `python -m diffctl …`.
-The project's packages are directories: `robot_description` is `description/`, `diff_sim` the top of the
-project (so `$(find-pkg-share diff_sim)/launch`, `/config` work) — from a checkout, or from `diffctl/share`
-in an installed wheel. Packages of an ament workspace on AMENT_PREFIX_PATH are found as ROS finds them.
+Share directories come from `diffctl.workspace` (the user's workspace, install trees, diffctl's own
+packages, in that order). diffctl's own components stand under the ROS names they replace and start as
+`python -m diffctl …`; a package of the user's workspace or an install tree starts its `lib/<pkg>/<exe>`.
 """
 
 from __future__ import annotations
@@ -12,11 +11,14 @@ import os
 import sys
 from pathlib import Path
 
+from diffctl import workspace
 from diffctl.errors import LaunchError, suggest
+from diffctl.workspace import builtin
 
 # (package, executable) → diffctl subcommand
 COMPONENTS: dict[tuple[str, str], tuple[str, ...]] = {
     ("robot_state_publisher", "robot_state_publisher"): ("robot-state-publisher",),
+    ("joint_state_publisher", "joint_state_publisher"): ("joint-state-publisher",),
     ("controller_manager", "ros2_control_node"): ("control", "manager"),
     ("controller_manager", "spawner"): ("spawn", "controller"),
     ("ros_gz_sim", "gz_sim"): ("sim", "run"),
@@ -30,33 +32,17 @@ COMPONENTS: dict[tuple[str, str], tuple[str, ...]] = {
 
 LAUNCH_SUFFIXES = (".yaml", ".launch.yaml", ".launch.py", ".launch.xml", ".xml")
 
+# Share directories of component packages (launch files written for ROS include them, e.g. gz_sim.launch.py).
+COMPONENT_SHARES = builtin.COMPONENT_SHARES
+
 
 def project_root() -> Path:
     """The top of the project: the checkout holding diffctl/, or diffctl/share in an installed wheel."""
-    override = os.environ.get("DIFFCTL_PROJECT_DIR")
-    if override:
-        return Path(override).resolve()
-    package_dir = Path(__file__).resolve().parent.parent
-    top = package_dir.parent
-    if (top / "pyproject.toml").is_file() and (top / "launch").is_dir():
-        return top
-    return package_dir / "share"
-
-
-# Share directories of component packages (launch files written for ROS include them, e.g. gz_sim.launch.py).
-COMPONENT_SHARES = Path(__file__).resolve().parent / "share"
+    return builtin.project_root()
 
 
 def project_packages() -> dict[str, Path]:
-    root = project_root()
-    packages = {"diff_sim": root, "robot_description": root / "description"}
-    if COMPONENT_SHARES.is_dir():
-        packages.update({p.name: p for p in COMPONENT_SHARES.iterdir() if p.is_dir()})
-    return packages
-
-
-def _ament_prefixes() -> list[Path]:
-    return [Path(p) for p in os.environ.get("AMENT_PREFIX_PATH", "").split(os.pathsep) if p]
+    return builtin.builtin_packages()
 
 
 def component_packages() -> set[str]:
@@ -64,53 +50,52 @@ def component_packages() -> set[str]:
 
 
 def known_packages() -> list[str]:
-    names = set(project_packages()) | component_packages()
-    for prefix in _ament_prefixes():
-        share = prefix / "share"
-        if share.is_dir():
-            names |= {p.name for p in share.iterdir() if p.is_dir()}
-    return sorted(names)
+    return sorted({p.name for p in workspace.list_packages()} | component_packages())
 
 
 def share_dir(package: str) -> Path:
     """The share directory of `package`, as ament_index's get_package_share_directory gives it."""
-    project = project_packages()
-    if package in project:
-        return project[package]
-    for prefix in _ament_prefixes():
-        candidate = prefix / "share" / package
-        if candidate.is_dir():
-            return candidate
-    if package in component_packages():
-        raise LaunchError(
-            f"package {package!r} is a diffctl component with no share directory",
-            hint=f"start it with Node(package={package!r}, executable=…); share directories: "
-            + ", ".join(sorted(project)),
-        )
+    try:
+        return workspace.share_dir(package)
+    except workspace.PackageNotFoundError:
+        if package not in component_packages():
+            raise
     raise LaunchError(
-        f"unknown package {package!r}{suggest(package, known_packages())}",
-        hint="known packages: " + ", ".join(known_packages()),
+        f"package {package!r} is a diffctl component with no share directory",
+        hint=f"start it with Node(package={package!r}, executable=…)",
     )
+
+
+def _lib_dir(package: str) -> Path | None:
+    """`<prefix>/lib/<package>` of a workspace or installed package, when it resolves to one."""
+    try:
+        found = workspace.find_package(package)
+    except LaunchError:
+        return None
+    if found.prefix is None:
+        return None
+    lib = found.prefix / "lib" / package
+    return lib if lib.is_dir() else None
 
 
 def executables(package: str) -> list[str]:
     names = [exe for pkg, exe in COMPONENTS if pkg == package]
-    for prefix in _ament_prefixes():
-        lib = prefix / "lib" / package
-        if lib.is_dir():
-            names += [p.name for p in lib.iterdir() if p.is_file() and os.access(p, os.X_OK)]
+    lib = _lib_dir(package)
+    if lib is not None:
+        names += [p.name for p in lib.iterdir() if p.is_file() and os.access(p, os.X_OK)]
     return sorted(set(names))
 
 
 def executable_argv(package: str, executable: str) -> list[str]:
-    """The command line that starts `executable` of `package`."""
+    """The command line that starts `executable` of `package`: the user's own executable when the package
+    resolves to a workspace or install tree that has it, else the diffctl component of that name."""
+    lib = _lib_dir(package)
+    candidate = lib / executable if lib is not None else None
+    if candidate is not None and candidate.is_file() and os.access(candidate, os.X_OK):
+        return [str(candidate)]
     sub = COMPONENTS.get((package, executable))
     if sub is not None:
         return [sys.executable, "-m", "diffctl", *sub]
-    for prefix in _ament_prefixes():
-        candidate = prefix / "lib" / package / executable
-        if candidate.is_file() and os.access(candidate, os.X_OK):
-            return [str(candidate)]
     if package not in known_packages():
         raise LaunchError(
             f"unknown package {package!r}{suggest(package, known_packages())}",

@@ -1,0 +1,43 @@
+"""The user's workspace: finding it, its packages, and their share directories, without colcon or CMake.
+
+`share_dir(pkg)` is the one entry point the launch and description layers call for `$(find-pkg-share)`,
+`FindPackageShare`, `get_package_share_directory` and xacro's `$(find)`. Precedence: the enclosing
+workspace's sources (or `--workspace DIR` / $DIFFCTL_WORKSPACE), then AMENT_PREFIX_PATH and
+COLCON_PREFIX_PATH install trees, then diffctl's own packages. This package imports no launch, bus,
+sim or control code.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from diffctl.workspace.builtin import DEMO_DESCRIPTION_PACKAGE, DEMO_PACKAGE, project_root
+from diffctl.workspace.discovery import WORKSPACE_ENV, find_workspace
+from diffctl.workspace.resolve import Package, PackageNotFoundError, find_package, list_packages
+
+__all__ = [
+    "DEMO_DESCRIPTION_PACKAGE",
+    "DEMO_PACKAGE",
+    "WORKSPACE_ENV",
+    "Package",
+    "PackageNotFoundError",
+    "find_package",
+    "find_workspace",
+    "list_packages",
+    "package_prefix",
+    "project_root",
+    "share_dir",
+]
+
+
+def share_dir(package: str) -> Path:
+    """The share directory of `package` (ament_index's get_package_share_directory); raises
+    PackageNotFoundError (exit 2) naming the places searched and close matches."""
+    return find_package(package).share
+
+
+def package_prefix(package: str) -> Path:
+    """The install prefix of `package` (ament_index's get_package_prefix): `<prefix>/share/<package>`
+    is its share directory. diffctl's own packages are plain folders; their prefix is the share's parent."""
+    found = find_package(package)
+    return found.prefix if found.prefix is not None else found.share.parent

@@ -1,0 +1,77 @@
+"""A package's `package.xml` (REP 149): its name, build type and the exports diffctl reads.
+
+Parsed with lxml, as catkin_pkg reads it: the name is `<name>` (not the directory), the build type is
+`<export><build_type>`, defaulting to `catkin` when absent.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from lxml import etree
+
+from diffctl.errors import ConfigError
+
+# ament_index_python's rule for a valid resource name.
+NAME_RE = re.compile(r"^[a-zA-Z0-9][a-zA-Z0-9_-]+$")
+
+
+@dataclass(frozen=True)
+class PackageManifest:
+    name: str
+    build_type: str
+    version: str = ""
+    description: str = ""
+    path: Path = Path()
+    # <export><gazebo_ros gazebo_model_path="…" plugin_path="…"/>: attribute → value, as gz_sim.launch.py reads them
+    gazebo_exports: dict[str, str] = field(default_factory=dict)
+
+
+def _text(root: etree._Element, tag: str) -> str:
+    el = root.find(tag)
+    return (el.text or "").strip() if el is not None else ""
+
+
+def read_manifest(path: Path) -> PackageManifest:
+    """Read `path` (a package.xml); a broken file is one located ConfigError."""
+    try:
+        root = etree.parse(str(path), etree.XMLParser(resolve_entities=False, no_network=True)).getroot()
+    except etree.XMLSyntaxError as e:
+        line = e.position[0] if e.position else None
+        raise ConfigError(f"malformed package.xml: {e.msg}", source=str(path), line=line) from None
+    except OSError as e:
+        raise ConfigError(f"cannot read package.xml: {e}", source=str(path)) from None
+    if root.tag != "package":
+        raise ConfigError(f"root element is <{root.tag}>, not <package>", source=str(path), line=root.sourceline)
+    name = _text(root, "name")
+    if not name:
+        raise ConfigError("package.xml has no <name>", source=str(path), line=root.sourceline, field="name")
+    if not NAME_RE.match(name):
+        el = root.find("name")
+        raise ConfigError(
+            f"package name {name!r} is not valid",
+            source=str(path),
+            line=el.sourceline if el is not None else None,
+            field="name",
+            hint="letters, digits, '_' and '-', starting with a letter or digit",
+        )
+    build_type = "catkin"
+    gazebo: dict[str, str] = {}
+    export = root.find("export")
+    if export is not None:
+        bt = export.find("build_type")
+        if bt is not None and (bt.text or "").strip():
+            build_type = (bt.text or "").strip()
+        gz = export.find("gazebo_ros")
+        if gz is not None:
+            gazebo = {k: v for k, v in gz.attrib.items() if isinstance(k, str)}
+    return PackageManifest(
+        name=name,
+        build_type=build_type,
+        version=_text(root, "version"),
+        description=" ".join(_text(root, "description").split()),
+        path=path,
+        gazebo_exports=gazebo,
+    )
