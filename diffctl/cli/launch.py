@@ -74,7 +74,7 @@ def launch(
     Example:
       diffctl launch sim_control
       diffctl launch sim_control use_sim_time:=false --print
-      diffctl launch diff_sim sim_control.launch.py
+      diffctl launch diffctl_demo sim_control.launch.py
       diffctl launch ./my_robot.yaml --show-args
     """
     from diffctl.console import make_console, warn

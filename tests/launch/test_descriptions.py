@@ -42,7 +42,7 @@ def error_of(tmp_path: Path, text: str, name: str = "t.yaml", **kw) -> LaunchErr
         ("$(env DIFFCTL_T_SET)/$(optenv DIFFCTL_T_UNSET)|$(optenv DIFFCTL_T_UNSET dflt)", "yes/|dflt"),
         ("$(eval '$(var count) * 2 + 1')", "7"),
         ("$(eval math.pi > 3)", "True"),
-        ("$(find-pkg-share robot_description)", str(REPO / "description")),
+        ("$(find-pkg-share diffctl_demo_description)", str(REPO / "description")),
         ("$(dirname)", "/some/dir"),
         ("$(anon talker) == $(anon talker)", None),
         ("$(command 'echo hello')", "hello\n"),
@@ -70,7 +70,7 @@ launch:
 - let:
     name: description
     file: $(dirname)/robot.sdf
-    replace: {PLACEHOLDER: $(find-pkg-share diff_sim)/config/diff_drive_controller.yaml}
+    replace: {PLACEHOLDER: $(find-pkg-share diffctl_demo)/config/diff_drive_controller.yaml}
 - node:
     pkg: robot_state_publisher
     exec: robot_state_publisher
@@ -151,7 +151,7 @@ def test_the_package_index_maps_ros_names_to_diffctl_components() -> None:
     argv = package_index.executable_argv("controller_manager", "ros2_control_node")
     assert argv == [sys.executable, "-m", "diffctl", "control", "manager"]
     assert package_index.executable_argv("ros_gz_bridge", "parameter_bridge")[-1] == "bridge"
-    assert package_index.share_dir("diff_sim") == REPO
+    assert package_index.share_dir("diffctl_demo") == REPO
     assert package_index.find_launch_file("teleop") == REPO / "launch" / "teleop.yaml"
 
 
@@ -161,9 +161,9 @@ def test_the_project_packages_resolve_from_an_installed_wheel_layout(tmp_path: P
     (share / "description").mkdir()
     (share / "launch" / "demo.launch.py").write_text("")
     monkeypatch.setenv("DIFFCTL_PROJECT_DIR", str(share))
-    assert package_index.share_dir("robot_description") == share / "description"
+    assert package_index.share_dir("diffctl_demo_description") == share / "description"
     assert package_index.find_launch_file("demo", cwd=tmp_path) == share / "launch" / "demo.launch.py"
-    assert package_index.find_launch_file("diff_sim", "demo.launch.py") == share / "launch" / "demo.launch.py"
+    assert package_index.find_launch_file("diffctl_demo", "demo.launch.py") == share / "launch" / "demo.launch.py"
 
 
 def test_python_event_handlers_target_the_action_objects(tmp_path: Path) -> None:

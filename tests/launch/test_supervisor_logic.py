@@ -241,7 +241,7 @@ from launch.launch_description_sources import PythonLaunchDescriptionSource
 
 def generate_launch_description():
     gazebo_launch_file = os.path.join(get_package_share_directory("ros_gz_sim"), "launch", "gz_sim.launch.py")
-    world_file = os.path.join(get_package_share_directory("diff_sim"), "worlds", "empty.world")
+    world_file = os.path.join(get_package_share_directory("diffctl_demo"), "worlds", "empty.world")
     return LaunchDescription([
         IncludeLaunchDescription(PythonLaunchDescriptionSource(gazebo_launch_file),
             launch_arguments={"gz_args": [" -r -s -v4 ", world_file], "on_exit_shutdown": "true"}.items()),

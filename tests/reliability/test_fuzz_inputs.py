@@ -92,7 +92,7 @@ def works_or_project_error(fn: Any, *args: Any, **kw: Any) -> Any:
 LAUNCH_WORDS = (
     "$(var gui)",
     "$(var nope)",
-    "$(find-pkg-share diff_sim)",
+    "$(find-pkg-share diffctl_demo)",
     "$(find-pkg-share nope)",
     "$(env HOME)",
     "$(",
@@ -140,7 +140,7 @@ SUBSTITUTION_NAMES = (
 subst_text = st.builds(
     lambda name, arg, pre: f"{pre}$({name} {arg})",
     st.sampled_from(SUBSTITUTION_NAMES),
-    st.sampled_from(["gui", "rtf", "diff_sim", "x y", "", "$(var rtf)"]),
+    st.sampled_from(["gui", "rtf", "diffctl_demo", "x y", "", "$(var rtf)"]),
     st.text(max_size=4),
 )
 LAUNCH_TAGS = (

@@ -22,8 +22,8 @@ from launch import LaunchDescription
 
 
 def generate_launch_description():
-    robot_description = get_package_share_directory("robot_description")
-    simulation_package = get_package_share_directory("diff_sim")
+    robot_description = get_package_share_directory("diffctl_demo_description")
+    simulation_package = get_package_share_directory("diffctl_demo")
     rviz_file = os.path.join(simulation_package, "config", "diffbot.rviz")
     sdf_file = os.path.join(robot_description, "my_diff_car_control.sdf")
     controller_config_path = os.path.join(simulation_package, "config", "diff_drive_controller.yaml")
