@@ -1,5 +1,9 @@
 """The node handle a controller gets: a bus Node named /<controller>, its parameters, and the manager's clock.
 
+Parameters are the bus Node's (declared with descriptors, served by the six parameter services, changes
+announced on /parameter_events): a controller declares its table in on_init and may register a set-callback
+to refuse a change or take it on its next update.
+
 The controller's time is the manager's: wall time, or sim time (the newest of the current cycle's time
 and /clock), so a command stamped by a teleop node on the same clock is compared with the same clock
 the controller's update() runs on.
@@ -40,6 +44,23 @@ class BusControllerNode:
         self, topic: str, type_name: str, callback: Callable[[Any], None], latched: bool = False, depth: int = 10
     ) -> Any:
         return self._node.create_subscription(topic, type_name, callback, latched=latched, depth=depth)
+
+    # --- parameters ----------------------------------------------------------------------------------------
+    @property
+    def parameters(self) -> Any:
+        return self._node.parameters
+
+    def declare_parameter(self, name: str, default: Any, descriptor: Any = None) -> Any:
+        return self._node.declare_parameter(name, default, descriptor)
+
+    def get_parameter(self, name: str) -> Any:
+        return self._node.get_parameter(name)
+
+    def set_parameters(self, values: dict[str, Any]) -> list[str | None]:
+        return self._node.set_parameters(values)
+
+    def add_on_set_parameters_callback(self, cb: Callable[[dict[str, Any]], str | None]) -> None:
+        self._node.add_on_set_parameters_callback(cb)
 
     def now_ns(self) -> int:
         return self._now_ns()

@@ -23,10 +23,16 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from diffctl.control.controllers.param_decl import BASE_DECLS, Check, ParamDecl, read_declared, table
-from diffctl.control.controllers.param_values import MANAGER_KEYS
+from diffctl.control.controllers.param_decl import (
+    BASE_DECLS,
+    Check,
+    ParamDecl,
+    read_declared,
+    table,
+    unknown_key_warnings,
+)
 from diffctl.control.math.speed_limiter import LimitError, SpeedLimiter, SpeedLimits
-from diffctl.errors import ParameterError, suggest
+from diffctl.errors import ParameterError
 
 NAN = math.nan
 AXES = ("linear.x", "angular.z")
@@ -235,10 +241,7 @@ class DiffDriveParams:
                 warnings.append(f"parameter '{controller}.{key}' is ignored: {why}")
         if params.get("use_stamped_vel") is False:
             warnings.append("use_stamped_vel: false has no effect: publish TwistStamped to ~/cmd_vel")
-        known = set(DECLS) | set(_REMOVED) | MANAGER_KEYS
-        for key in params:
-            if key not in known:
-                warnings.append(f"unknown parameter '{controller}.{key}' is ignored{suggest(key, sorted(known))}")
+        warnings.extend(unknown_key_warnings(DECLS, params, controller, also_known=_REMOVED))
         return p, warnings
 
     @classmethod

@@ -1,9 +1,15 @@
-"""velocity_controllers/JointGroupVelocityController: forwards ~/commands to the joints' velocity interfaces.
+"""forward_command_controller/ForwardCommandController and velocity_controllers/JointGroupVelocityController.
 
-The simplest controller (forward_command_controller): parameter `joints`, interface fixed to `velocity`;
-`~/commands` (std_msgs/msg/Float64MultiArray) holds one value per joint, in the order of `joints`. A command
-of the wrong length, or with a non-finite or absurd value, is dropped with a warning. Nothing is written until
-the first command; deactivation writes zero to every joint, as the reference's velocity controller does.
+The simplest controllers: `~/commands` (std_msgs/msg/Float64MultiArray) holds one value per joint, in the order
+of `joints`, written to `<joint>/<interface_name>` every update. Parameters as forward_command_controller's
+`src/forward_command_controller_parameters.yaml` (ros2_controllers, jazzy): `joints` and `interface_name`,
+both read-only and non-empty; JointGroupVelocityController fixes `interface_name` to `velocity`. A "joint" may
+be another controller's reference interface prefix (`diff_drive/linear` with interface `velocity`), which
+chains this controller in front of that one.
+
+A command of the wrong length, or with a non-finite or absurd value, is dropped with a warning. Nothing is
+written until the first command. On deactivation the velocity controller writes zero to every joint (it
+stops them), as the reference's does; the generic controller leaves the last values in place.
 """
 
 from __future__ import annotations
@@ -15,11 +21,39 @@ from typing import Any
 from diffctl.control.controller_interface import ControllerInterface, InterfaceConfiguration, ReturnType
 from diffctl.control.controllers.command_sanity import MAX_JOINT_VELOCITY, rejection
 from diffctl.control.controllers.owned_endpoints import OwnedEndpoints
-from diffctl.control.controllers.param_values import ParamReader
+from diffctl.control.controllers.param_decl import (
+    BASE_DECLS,
+    Check,
+    ParamDecl,
+    declare_all,
+    read_declared,
+    table,
+    unknown_key_warnings,
+)
 from diffctl.control.controllers.throttled_log import ThrottledLog
 from diffctl.errors import RuntimeFailure
 
 FLOAT64_MULTI_ARRAY = "std_msgs/msg/Float64MultiArray"
+_NOT_EMPTY = (Check("not_empty", ()),)
+
+DECLS = table(
+    [
+        *BASE_DECLS,
+        ParamDecl("joints", "string_array", [], "Joints to command.", True, (*_NOT_EMPTY, Check("unique", ()))),
+        ParamDecl("interface_name", "string", "", "Command interface of every joint.", True, _NOT_EMPTY),
+    ]
+)
+VELOCITY_DECLS = {
+    **DECLS,
+    "interface_name": ParamDecl(
+        "interface_name",
+        "string",
+        "velocity",
+        "Command interface of every joint.",
+        True,
+        (Check("one_of", (["velocity"],)),),
+    ),
+}
 
 
 @dataclass(frozen=True)
@@ -29,15 +63,16 @@ class ForwardCommandParams:
 
     @classmethod
     def from_params(
-        cls, params: Mapping[str, Any], controller: str = "forward_velocity_controller"
+        cls, params: Mapping[str, Any], controller: str = "forward_velocity_controller", decls: Mapping = VELOCITY_DECLS
     ) -> tuple[ForwardCommandParams, list[str]]:
-        r = ParamReader(params, controller)
-        joints = r.str_list("joints", [], non_empty=True)
-        iface = r.str("interface_name", "velocity", choices=["velocity"])
-        return cls(joints, iface), r.unknown_key_warnings()
+        v = read_declared(decls, params, controller)
+        return cls(tuple(v["joints"]), v["interface_name"]), unknown_key_warnings(decls, params, controller)
 
 
-class JointGroupVelocityController(ControllerInterface):
+class ForwardCommandController(ControllerInterface):
+    DECLS: Mapping[str, ParamDecl] = DECLS
+    zero_on_deactivate = False
+
     def __init__(self) -> None:
         super().__init__()
         self.params: ForwardCommandParams | None = None
@@ -47,9 +82,10 @@ class JointGroupVelocityController(ControllerInterface):
         self._active = False
 
     def on_init(self) -> None:
-        self.params, warnings = ForwardCommandParams.from_params(self.node.params, self.name)
+        self.params, warnings = ForwardCommandParams.from_params(dict(self.node.params), self.name, self.DECLS)
         for text in warnings:
             self.node.log.warn(text)
+        declare_all(self.node, self.DECLS, self.name)
 
     def _names(self) -> list[str]:
         if self.params is None:
@@ -79,8 +115,9 @@ class JointGroupVelocityController(ControllerInterface):
 
     def on_deactivate(self) -> None:
         self._active = False
-        for handle in self._handles:
-            handle.set_value(0.0)
+        if self.zero_on_deactivate:
+            for handle in self._handles:
+                handle.set_value(0.0)
         self._handles = []
         self._command = None
 
@@ -99,7 +136,7 @@ class JointGroupVelocityController(ControllerInterface):
         if len(data) != n:
             self._log.warn(
                 "size",
-                f"command size ({len(data)}) does not match number of interfaces ({n}): expected one velocity "
+                f"command size ({len(data)}) does not match number of interfaces ({n}): expected one value "
                 f"per joint of {list(self.params.joints)}; command ignored",
             )
             return
@@ -115,3 +152,8 @@ class JointGroupVelocityController(ControllerInterface):
             for handle, value in zip(self._handles, command, strict=False):
                 handle.set_value(value)
         return ReturnType.OK
+
+
+class JointGroupVelocityController(ForwardCommandController):
+    DECLS = VELOCITY_DECLS
+    zero_on_deactivate = True

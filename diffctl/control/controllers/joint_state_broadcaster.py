@@ -23,13 +23,42 @@ import numpy as np
 from diffctl.bus import types
 from diffctl.control.controller_interface import ControllerInterface, InterfaceConfiguration, ReturnType
 from diffctl.control.controllers.owned_endpoints import OwnedEndpoints
-from diffctl.control.controllers.param_values import ParamReader
-from diffctl.errors import RuntimeFailure
+from diffctl.control.controllers.param_decl import (
+    BASE_DECLS,
+    Check,
+    ParamDecl,
+    declare_all,
+    read_declared,
+    table,
+    unknown_key_warnings,
+)
+from diffctl.errors import ParameterError, RuntimeFailure
 
 JOINT_STATE = "sensor_msgs/msg/JointState"
 DYNAMIC_JOINT_STATE = "control_msgs/msg/DynamicJointState"
 _FIELDS = ("position", "velocity", "effort")
 _NS = 1_000_000_000
+_NAME = (Check("not_empty", ()),)
+_UNIQUE = (Check("unique", ()),)
+
+# joint_state_broadcaster's `src/joint_state_broadcaster_parameters.yaml` (ros2_controllers, jazzy): every
+# parameter is read-only: they shape the interfaces claimed and the messages built at activation.
+DECLS = table(
+    [
+        *BASE_DECLS,
+        ParamDecl("use_local_topics", "bool", False, "Publish ~/joint_states instead of /joint_states.", True),
+        ParamDecl("joints", "string_array", [], "Joints to publish (with interfaces); empty: all.", True, _UNIQUE),
+        ParamDecl("extra_joints", "string_array", [], "Joints added with state 0.", True, _UNIQUE),
+        ParamDecl("interfaces", "string_array", [], "Interfaces to publish (with joints); empty: all.", True, _UNIQUE),
+        *(
+            ParamDecl(f"map_interface_to_joint_state.{f}", "string", f, f"Interface published as {f}.", True, _NAME)
+            for f in _FIELDS
+        ),
+        ParamDecl("use_urdf_to_filter", "bool", True, "Publish only joints of the robot description.", True),
+        ParamDecl("frame_id", "string", "base_link", "header.frame_id of the messages.", True),
+        ParamDecl("publish_dynamic_joint_states", "bool", True, "Publish dynamic_joint_states too.", True),
+    ]
+)
 
 
 @dataclass(frozen=True)
@@ -54,25 +83,25 @@ class JointStateBroadcasterParams:
     def from_params(
         cls, params: Mapping[str, Any], controller: str = "joint_state_broadcaster"
     ) -> tuple[JointStateBroadcasterParams, list[str]]:
-        r = ParamReader(params, controller)
+        v = read_declared(DECLS, params, controller)
         p = cls(
-            joints=r.str_list("joints", []),
-            interfaces=r.str_list("interfaces", []),
-            use_local_topics=r.bool("use_local_topics", False),
-            extra_joints=r.str_list("extra_joints", []),
-            map_position=r.str("map_interface_to_joint_state.position", "position", non_empty=True),
-            map_velocity=r.str("map_interface_to_joint_state.velocity", "velocity", non_empty=True),
-            map_effort=r.str("map_interface_to_joint_state.effort", "effort", non_empty=True),
-            use_urdf_to_filter=r.bool("use_urdf_to_filter", True),
-            frame_id=r.str("frame_id", "base_link"),
-            publish_dynamic_joint_states=r.bool("publish_dynamic_joint_states", True),
+            joints=tuple(v["joints"]),
+            interfaces=tuple(v["interfaces"]),
+            use_local_topics=v["use_local_topics"],
+            extra_joints=tuple(v["extra_joints"]),
+            map_position=v["map_interface_to_joint_state.position"],
+            map_velocity=v["map_interface_to_joint_state.velocity"],
+            map_effort=v["map_interface_to_joint_state.effort"],
+            use_urdf_to_filter=v["use_urdf_to_filter"],
+            frame_id=v["frame_id"],
+            publish_dynamic_joint_states=v["publish_dynamic_joint_states"],
         )
         if len(set(p.field_of_interface)) != 3:
-            raise r.error(
-                "map_interface_to_joint_state",
+            raise ParameterError(
                 f"{[p.map_position, p.map_velocity, p.map_effort]!r} maps one interface to two fields",
+                field=f"{controller}.map_interface_to_joint_state",
             )
-        warnings = r.unknown_key_warnings()
+        warnings = unknown_key_warnings(DECLS, params, controller)
         if bool(p.joints) != bool(p.interfaces):
             given = "joints" if p.joints else "interfaces"
             warnings.append(f"only '{given}' is set: both 'joints' and 'interfaces' are needed, so all are published")
@@ -103,9 +132,10 @@ class JointStateBroadcaster(ControllerInterface):
         self.joint_names: list[str] = []
 
     def on_init(self) -> None:
-        self.params, warnings = JointStateBroadcasterParams.from_params(self.node.params, self.name)
+        self.params, warnings = JointStateBroadcasterParams.from_params(dict(self.node.params), self.name)
         for text in warnings:
             self.node.log.warn(text)
+        declare_all(self.node, DECLS, self.name)
 
     def command_interface_configuration(self) -> InterfaceConfiguration:
         return InterfaceConfiguration.none()

@@ -21,7 +21,7 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from diffctl.errors import ParameterError
+from diffctl.errors import ParameterError, suggest
 
 # generate_parameter_library type name → rcl_interfaces ParameterType name (ParameterDescriptor.type).
 _ROS_TYPE = {
@@ -205,6 +205,18 @@ def table(decls: Iterable[ParamDecl]) -> dict[str, ParamDecl]:
 def read_declared(decls: Mapping[str, ParamDecl], params: Mapping[str, Any], controller: str) -> dict[str, Any]:
     """Every declared parameter's typed value: the one in `params` if given, else the default."""
     return {name: check(d, params.get(name, d.default), controller) for name, d in decls.items()}
+
+
+def unknown_key_warnings(
+    decls: Mapping[str, ParamDecl], params: Mapping[str, Any], controller: str, also_known: Iterable[str] = ()
+) -> list[str]:
+    """One warning per key in `params` the table does not declare (and the manager does not own)."""
+    from diffctl.control.controllers.param_values import MANAGER_KEYS
+
+    known = set(decls) | MANAGER_KEYS | set(also_known)
+    return [
+        f"unknown parameter '{controller}.{k}' is ignored{suggest(k, sorted(known))}" for k in params if k not in known
+    ]
 
 
 def declare_all(node: Any, decls: Mapping[str, ParamDecl], controller: str) -> dict[str, Any]:

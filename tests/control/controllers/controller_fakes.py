@@ -1,11 +1,13 @@
 """Drive controller objects directly: a fake controller node (records what is published, hands out the
-subscription callbacks, has a settable clock) and real interface handles, no manager and no bus."""
+subscription callbacks, has a settable clock; its parameters are the bus's real ParameterStore, which does
+no I/O) and real interface handles, no manager and no bus."""
 
 from __future__ import annotations
 
 from typing import Any
 
 from diffctl.bus import types
+from diffctl.bus.parameters import ParameterStore
 from diffctl.control.controller_interface import CommandInterface, ControllerInterface, StateInterface
 
 NS = 1_000_000_000
@@ -62,6 +64,7 @@ class FakeNode:
         self.name = name
         self.namespace = namespace
         self.params = params
+        self.parameters = ParameterStore(self.params)
         self.log = RecordingLog()
         self.time_ns = 100 * NS
         self.publishers: dict[str, FakePublisher] = {}
@@ -85,6 +88,18 @@ class FakeNode:
 
     def now_ns(self) -> int:
         return self.time_ns
+
+    def declare_parameter(self, name: str, default: Any, descriptor: Any = None) -> Any:
+        return self.parameters.declare(name, default, descriptor)
+
+    def get_parameter(self, name: str) -> Any:
+        return self.parameters.get(name)
+
+    def set_parameters(self, values: dict[str, Any]) -> list[str | None]:
+        return self.parameters.set(values)
+
+    def add_on_set_parameters_callback(self, cb: Any) -> None:
+        self.parameters.add_on_set_callback(cb)
 
     # --- test helpers ---------------------------------------------------------------------------------------
     def deliver(self, topic: str, values: dict[str, Any]) -> None:
