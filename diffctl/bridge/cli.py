@@ -7,7 +7,7 @@ from typing import Any
 import click
 
 from diffctl import ros_args
-from diffctl.bridge.config import BridgeEntry, load_config, parse_cli_entry
+from diffctl.bridge.config import BridgeEntry, GzNamespace, load_config, parse_cli_entry
 from diffctl.errors import ConfigError, ParameterError
 
 NODE_NAME = "ros_gz_bridge"
@@ -21,14 +21,19 @@ def _bool_param(params: dict[str, Any], name: str) -> bool:
 
 
 def collect_entries(
-    topics: tuple[str, ...], config_file: str | None, params: dict[str, Any], namespace: str | None
+    topics: tuple[str, ...],
+    config_file: str | None,
+    params: dict[str, Any],
+    namespace: str | None,
+    node_name: str = NODE_NAME,
 ) -> list[BridgeEntry]:
     """Every entry from the config file and the command line, validated before anything starts."""
     config_file = config_file or params.get("config_file") or None
-    gz_prefix = (namespace or "") if _bool_param(params, "expand_gz_topic_names") else ""
+    # As parameter_bridge: only the config file's gz names are expanded, never the command-line ones.
+    gz_namespace = GzNamespace(namespace or "/", node_name) if _bool_param(params, "expand_gz_topic_names") else None
     entries: list[BridgeEntry] = []
     if config_file:
-        entries += load_config(str(config_file), gz_prefix=gz_prefix)
+        entries += load_config(str(config_file), gz_namespace=gz_namespace)
     entries += [parse_cli_entry(arg, i) for i, arg in enumerate(topics)]
     if not entries:
         raise ConfigError(
@@ -61,7 +66,7 @@ def bridge(topics: tuple[str, ...], config_file: str | None) -> None:
       diffctl bridge --ros-args -p config_file:=config/bridge_config_control.yaml
     """
     ra = ros_args.current(NODE_NAME)
-    entries = collect_entries(topics, config_file, ra.params, ra.namespace)
+    entries = collect_entries(topics, config_file, ra.params, ra.namespace, ra.node_name or NODE_NAME)
 
     from diffctl.bridge.bridge import Bridge
     from diffctl.bus import Node, close_session

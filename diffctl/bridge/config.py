@@ -105,6 +105,24 @@ def entries_table(entries: list[BridgeEntry]) -> Any:
     return table("bridge", ["ROS topic", "ROS type", "", "gz topic", "gz type", ""], rows)
 
 
+@dataclass(frozen=True)
+class GzNamespace:
+    """`expand_gz_topic_names`: gz names of config entries are expanded like ROS names of this node (rclcpp's
+    expand_topic_or_service_name): absolute names stay, relative names go under the namespace, `~` under the
+    node's own name."""
+
+    namespace: str
+    node_name: str
+
+    def expand(self, name: str) -> str:
+        ns = "/" + self.namespace.strip("/") if self.namespace.strip("/") else ""
+        if name.startswith("/"):
+            return name
+        if name.startswith("~"):
+            return f"{ns}/{self.node_name}" + ("/" + name[1:].lstrip("/") if name[1:].strip("/") else "")
+        return f"{ns}/{name}"
+
+
 def _entry_error(message: str, source: str | None, line: int | None, index: int, topic: str | None) -> ConfigError:
     field = f"entry {index}" + (f" ({topic})" if topic else "")
     return ConfigError(message, source=source, line=line, field=field)
@@ -156,7 +174,7 @@ def make_entry(
     index: int,
     source: str | None = None,
     line: int | None = None,
-    gz_prefix: str = "",
+    gz_namespace: GzNamespace | None = None,
     key_lines: dict[str, int] | None = None,
 ) -> BridgeEntry:
     """One validated entry from a YAML map with ros_gz_bridge's keys (`key_lines`: line of each key)."""
@@ -209,12 +227,12 @@ def make_entry(
     pair = lookup(ros_type, gz_type)
     if pair is None:
         raise fail(f"unsupported type pair {ros_type} <-> {gz_type}; supported: {describe_pairs()}", "gz_type_name")
-    if gz_prefix:
-        gz_topic = gz_prefix.rstrip("/") + "/" + gz_topic.lstrip("/")
+    if gz_namespace is not None:
+        gz_topic = gz_namespace.expand(gz_topic)
     return BridgeEntry(ros_topic, gz_topic, ros_type, gz_type, Direction(direction_text), pair, lazy, pub_q, sub_q, qos)
 
 
-def load_config(path: str | Path, gz_prefix: str = "") -> list[BridgeEntry]:
+def load_config(path: str | Path, gz_namespace: GzNamespace | None = None) -> list[BridgeEntry]:
     """Entries of a ros_gz_bridge YAML file (a YAML array of maps)."""
     p = Path(path)
     try:
@@ -243,7 +261,7 @@ def load_config(path: str | Path, gz_prefix: str = "") -> list[BridgeEntry]:
         if not isinstance(item, dict):
             raise _entry_error(f"must be a map of {', '.join(KEYS)}, got {item!r}", str(p), line, i, None)
         key_lines = {str(k.value): k.start_mark.line + 1 for k, _ in node.value} if node is not None else {}
-        entries.append(make_entry(item, i, str(p), line, gz_prefix, key_lines))
+        entries.append(make_entry(item, i, str(p), line, gz_namespace, key_lines))
     return entries
 
 

@@ -57,6 +57,54 @@ def test_yaml_keys_defaults_and_spellings(tmp_path: Path) -> None:
     )
 
 
+def test_one_sided_topic_names_qos_profiles_and_queue_precedence(tmp_path: Path) -> None:
+    p = write(
+        tmp_path,
+        """
+- ros_topic_name: /scan
+  ros_type_name: sensor_msgs/msg/LaserScan
+  gz_type_name: gz.msgs.LaserScan
+  direction: GZ_TO_ROS
+  qos_profile: SENSOR_DATA
+- gz_topic_name: /model/robot/cmd_vel
+  ros_type_name: geometry_msgs/msg/TwistStamped
+  gz_type_name: ignition.msgs.Twist
+  direction: ROS_TO_GZ
+  qos_profile: sensor_data
+  subscriber_queue: 20
+- topic_name: /clock
+  ros_type_name: rosgraph_msgs/msg/Clock
+  gz_type_name: gz.msgs.Clock
+  direction: BIDIRECTIONAL
+  qos_profile: CLOCK
+  lazy: "false"
+- topic_name: /camera/camera_info
+  ros_type_name: sensor_msgs/CameraInfo
+  gz_type_name: gz.msgs.CameraInfo
+  qos_profile: SYSTEM_DEFAULT
+""",
+    )
+    scan, cmd, clock, info = load_config(p)
+    # One of ros_topic_name / gz_topic_name names both sides, as parameter_bridge does.
+    assert (scan.ros_topic, scan.gz_topic) == ("/scan", "/scan")
+    assert (cmd.ros_topic, cmd.gz_topic) == ("/model/robot/cmd_vel", "/model/robot/cmd_vel")
+    # SENSOR_DATA: depth 5, best effort; an explicit queue size wins over the preset's depth.
+    assert (scan.qos.name, scan.qos.reliable, scan.publisher_queue, scan.subscriber_queue) == (
+        "SENSOR_DATA",
+        False,
+        5,
+        5,
+    )
+    assert (cmd.gz_type, cmd.subscriber_queue, cmd.publisher_queue) == ("gz.msgs.Twist", 20, 5)
+    assert (clock.direction, clock.lazy, clock.publisher_queue, clock.qos.reliable) == (
+        Direction.BIDIRECTIONAL,
+        False,
+        1,
+        False,
+    )
+    assert (info.ros_type, info.qos.reliable, info.publisher_queue) == ("sensor_msgs/msg/CameraInfo", True, 10)
+
+
 @pytest.mark.parametrize(
     ("body", "expected"),
     [
@@ -66,6 +114,10 @@ def test_yaml_keys_defaults_and_spellings(tmp_path: Path) -> None:
             r"valid: BIDIRECTIONAL, GZ_TO_ROS, ROS_TO_GZ",
         ),
         ("  direction: GZ_TO_ROS", r"entry 1 \(/odom\): missing key 'gz_type_name'"),
+        (
+            "  gz_type_name: gz.msgs.Odometry\n  qos_profile: FAST",
+            r"bridge.yaml:7: entry 1 \(/odom\): qos_profile 'FAST' invalid; valid: SYSTEM_DEFAULT, .*SENSOR_DATA",
+        ),
         (
             "  gz_type_name: gz.msgs.Twist",
             r"entry 1 \(/odom\): unsupported type pair nav_msgs/msg/Odometry <-> gz.msgs.Twist; supported: .*Odometry",
@@ -112,6 +164,9 @@ def test_file_level_errors(tmp_path: Path) -> None:
         ("/clock@rosgraph_msgs/msg/Clock[gz.msgs.Clock", Direction.GZ_TO_ROS),
         ("/cmd_vel@geometry_msgs/msg/Twist]gz.msgs.Twist", Direction.ROS_TO_GZ),
         ("/chatter@std_msgs/msg/String@gz.msgs.StringMsg", Direction.BIDIRECTIONAL),
+        ("/camera/camera_info@sensor_msgs/msg/CameraInfo[ignition.msgs.CameraInfo", Direction.GZ_TO_ROS),
+        ("/points@sensor_msgs/msg/PointCloud2[gz.msgs.PointCloudPacked", Direction.GZ_TO_ROS),
+        ("/reset@std_msgs/msg/Empty]gz.msgs.Empty", Direction.ROS_TO_GZ),
     ],
 )
 def test_command_line_form(arg: str, direction: Direction) -> None:
@@ -134,11 +189,29 @@ def test_command_line_form_errors(arg: str, expected: str) -> None:
 
 
 def test_config_file_parameter_and_expand_gz_topic_names(tmp_path: Path) -> None:
+    clock = "  ros_type_name: rosgraph_msgs/msg/Clock\n  gz_type_name: gz.msgs.Clock\n"
     p = write(
-        tmp_path, "- topic_name: /clock\n  ros_type_name: rosgraph_msgs/msg/Clock\n  gz_type_name: gz.msgs.Clock\n"
+        tmp_path,
+        f"- topic_name: /clock\n{clock}- topic_name: odom_clock\n{clock}- gz_topic_name: ~/status\n"
+        f"  ros_topic_name: status\n{clock}",
     )
-    (e,) = collect_entries((), None, {"config_file": str(p), "expand_gz_topic_names": True}, "/robot1")
-    assert (e.ros_topic, e.gz_topic) == ("/clock", "/robot1/clock")
+    # rclcpp's expand_topic_or_service_name, as parameter_bridge applies it: absolute names stay.
+    params = {"config_file": str(p), "expand_gz_topic_names": True}
+    absolute, relative, private = collect_entries(
+        ("rel@rosgraph_msgs/msg/Clock[gz.msgs.Clock",), None, params, "/robot1"
+    )[:3]
+    assert (absolute.ros_topic, absolute.gz_topic) == ("/clock", "/clock")
+    assert (relative.ros_topic, relative.gz_topic) == ("odom_clock", "/robot1/odom_clock")
+    assert private.gz_topic == "/robot1/ros_gz_bridge/status"
+    cli = collect_entries(("rel@rosgraph_msgs/msg/Clock[gz.msgs.Clock",), None, params, "/robot1")[-1]
+    assert cli.gz_topic == "rel"  # command-line entries are never expanded
+    assert [e.gz_topic for e in collect_entries((), None, {"config_file": str(p)}, "/robot1")] == [
+        "/clock",
+        "odom_clock",
+        "~/status",
+    ]
+    (_, top, _) = collect_entries((), None, params, None)
+    assert top.gz_topic == "/odom_clock"
     with pytest.raises(ConfigError, match="nothing to bridge"):
         collect_entries((), None, {}, None)
     with pytest.raises(ConfigError, match="expand_gz_topic_names"):
