@@ -1,0 +1,1 @@
+"""Recording and replay: rosbag2-compatible bags (metadata.yaml + MCAP) written and read by diffctl."""
