@@ -203,6 +203,9 @@ class Simulation:
                 job.task = self.stepper.add_task(name, period, job)
                 rt.tasks.append(job.task)
                 continue
+            if isinstance(sensor, Lidar):
+                rt.tasks.append(self.stepper.add_task(name, period, self._outputs_task(sensor, pubs)))
+                continue
             (pub,) = pubs.values()
             if isinstance(sensor, Imu) and period > step_ns:
                 # Acceleration is the velocity difference over the last step: remember it one step earlier.
@@ -221,6 +224,17 @@ class Simulation:
         def task(sim_time_ns: int) -> None:
             if pub.matched:
                 pub.publish(sensor.sample(sim_time_ns))
+
+        return task
+
+    @staticmethod
+    def _outputs_task(sensor: Lidar, pubs: dict[str, GzPublisher]) -> Any:
+        """One sample feeds every subscribed output (a lidar's scan and points)."""
+
+        def task(sim_time_ns: int) -> None:
+            wanted = {name for name, pub in pubs.items() if pub.matched}
+            for name, msg in sensor.messages(sim_time_ns, wanted).items():
+                pubs[name].publish(msg)
 
         return task
 

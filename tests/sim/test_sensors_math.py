@@ -122,7 +122,8 @@ def test_topics_as_gazebo_names_them() -> None:
         "camera_info": "/camera_info",
     }
     assert topics(_sensor("depth_camera"))["depth_image"] == default + "/depth_image"
-    assert topics(_sensor("lidar")) == {"scan": default + "/scan"}
+    assert topics(_sensor("lidar")) == {"scan": default + "/scan", "points": default + "/scan/points"}
+    assert topics(_sensor("lidar", "/lidar")) == {"scan": "/lidar", "points": "/lidar/points"}
     nested = "/world/w/model/m/model/inner/link/body/sensor/eye/imu"
     assert topics(_sensor("imu", link="inner::body")) == {"imu": nested}
     assert sibling_camera_info("/a/b/c") == "/a/b/camera_info"

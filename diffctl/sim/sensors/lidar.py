@@ -13,8 +13,20 @@ from diffctl.description.model import Sensor
 from diffctl.errors import DescriptionError
 from diffctl.sim.entity import Entity
 from diffctl.sim.sensors.common import frame_id, pose_msg, rotation
+from diffctl.sim.sensors.topics import POINTS, SCAN
 
 RANGE_DECIMALS = 4
+# gpu_lidar's points: InitPointCloudPacked(aligned, {xyz FLOAT32, intensity FLOAT32, ring UINT16}).
+LIDAR_POINT_STEP = 32
+_LIDAR_FIELDS = (("x", 0, "FLOAT32"), ("y", 4, "FLOAT32"), ("z", 8, "FLOAT32"), ("intensity", 16, "FLOAT32"))
+_LIDAR_DTYPE = np.dtype(
+    {
+        "names": ["x", "y", "z", "intensity", "ring"],
+        "formats": ["<f4", "<f4", "<f4", "<f4", "<u2"],
+        "offsets": [0, 4, 8, 16, 24],
+        "itemsize": LIDAR_POINT_STEP,
+    }
+)
 # PyBullet caps one rayTestBatch at this many rays (SharedMemoryPublic.h).
 MAX_RAYS = 16384
 
@@ -33,6 +45,39 @@ def ranges_from_hits(fractions: np.ndarray, hit: np.ndarray, range_min_m: float,
     """Ranges of rays cast from range_min to range_max: +inf where nothing was hit (as Gazebo reports)."""
     r = range_min_m + fractions * (range_max_m - range_min_m)
     return np.where(hit, r, np.inf)
+
+
+def lidar_points(ranges: np.ndarray, directions: np.ndarray) -> np.ndarray:
+    """Points (n, 3) float32 in the sensor frame: range times the ray's unit direction, in float32 as Gazebo
+    computes them (so a ray that hit nothing gives ±inf, or NaN where the direction's component is 0)."""
+    with np.errstate(invalid="ignore"):
+        return np.asarray(ranges, dtype=np.float32)[:, None] * directions
+
+
+def pack_lidar_points(points: np.ndarray, h_samples: int) -> bytes:
+    """PointCloudPacked data: x, y, z, intensity (0: no retro-reflectors simulated), ring = vertical row."""
+    out = np.zeros(len(points), dtype=_LIDAR_DTYPE)
+    out["x"], out["y"], out["z"] = points[:, 0], points[:, 1], points[:, 2]
+    out["ring"] = np.arange(len(points)) // h_samples
+    return out.tobytes()
+
+
+def lidar_cloud_msg(sim_time_ns: int, frame: str, h_samples: int, v_samples: int, data: bytes) -> dict:
+    fields = [{"name": n, "offset": o, "datatype": t, "count": 1} for n, o, t in _LIDAR_FIELDS]
+    points = np.frombuffer(data, dtype=_LIDAR_DTYPE)
+    finite = np.isfinite(points["x"]) & np.isfinite(points["y"]) & np.isfinite(points["z"])
+    return {
+        "header": gz.header(sim_time_ns, frame),
+        "field": [*fields, {"name": "ring", "offset": 24, "datatype": "UINT16", "count": 1}],
+        "height": v_samples,
+        "width": h_samples,
+        "is_bigendian": False,
+        "point_step": LIDAR_POINT_STEP,
+        "row_step": LIDAR_POINT_STEP * h_samples,
+        "data": data,
+        # gpu_lidar clears is_dense when any range is inf or NaN (GpuLidarSensor FillPointCloudMsg).
+        "is_dense": bool(finite.all()),
+    }
 
 
 class Lidar:
@@ -62,6 +107,7 @@ class Lidar:
             spec.vertical_min_angle_rad,
             spec.vertical_max_angle_rad,
         )
+        self.directions = d.astype(np.float32)  # in the sensor frame, for the point cloud
         rot = np.array(rotation(in_com))
         origin = np.array(in_com.xyz)
         world_dirs = d @ rot.T
@@ -91,8 +137,24 @@ class Lidar:
         return ranges
 
     def sample(self, sim_time_ns: int) -> dict:
-        s = self.spec
+        return self.scan_msg(sim_time_ns, self.scan())
+
+    def messages(self, sim_time_ns: int, wanted: set[str]) -> dict[str, dict]:
+        """The `wanted` outputs ("scan", "points") from one scan, as gpu_lidar publishes T and T/points."""
+        if not wanted:
+            return {}
         ranges = self.scan()
+        out = {}
+        if SCAN in wanted:
+            out[SCAN] = self.scan_msg(sim_time_ns, ranges)
+        if POINTS in wanted:
+            s = self.spec
+            data = pack_lidar_points(lidar_points(ranges, self.directions), s.horizontal_samples)
+            out[POINTS] = lidar_cloud_msg(sim_time_ns, self.frame_id, s.horizontal_samples, s.vertical_samples, data)
+        return out
+
+    def scan_msg(self, sim_time_ns: int, ranges: np.ndarray) -> dict:
+        s = self.spec
         pose = self.entity.link_pose(self.sensor.link).compose(self.sensor.pose_link)
         return {
             "header": gz.header(sim_time_ns, self.frame_id),

@@ -3,7 +3,8 @@
 The base topic T is `<topic>`, else `/world/<w>/model/<m>/link/<l>/sensor/<s>` plus a per-type suffix
 (gz-sim RenderUtil.cc, Imu.cc). From T: camera → T (Image) and its CameraInfo on `<camera_info_topic>`, else
 T with the last segment replaced by `camera_info`; depth_camera → T (depth Image), T/points and CameraInfo by
-the camera rule; rgbd_camera → T/image, T/depth_image, T/points, T/camera_info; lidar → T; imu → T.
+the camera rule; rgbd_camera → T/image, T/depth_image, T/points, T/camera_info; lidar → T and T/points;
+imu → T.
 """
 
 from __future__ import annotations
@@ -51,7 +52,7 @@ def sibling_camera_info(image_topic: str) -> str:
 def outputs(sensor: Sensor, base: str) -> tuple[Output, ...]:
     kind = sensor.type
     if kind == "lidar":
-        return (Output(SCAN, base, "gz.msgs.LaserScan"),)
+        return (Output(SCAN, base, "gz.msgs.LaserScan"), Output(POINTS, base + "/points", "gz.msgs.PointCloudPacked"))
     if kind == "imu":
         return (Output(IMU, base, "gz.msgs.IMU"),)
     if kind == "rgbd_camera":
