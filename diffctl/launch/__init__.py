@@ -8,25 +8,18 @@ The engine knows processes, not robots: it imports nothing of diffctl but errors
 """
 
 from diffctl.launch.actions import (
-    AnyLaunchDescriptionSource,
     AppendEnvironmentVariable,
     DeclareLaunchArgument,
-    EmitEvent,
-    FrontendLaunchDescriptionSource,
     GroupAction,
-    IncludeLaunchDescription,
     LaunchDescription,
-    LaunchDescriptionSource,
     LogInfo,
     PushROSNamespace,
     PushRosNamespace,
-    PythonLaunchDescriptionSource,
     SetEnvironmentVariable,
     SetLaunchConfiguration,
     Shutdown,
     TimerAction,
     UnsetEnvironmentVariable,
-    YAMLLaunchDescriptionSource,
 )
 from diffctl.launch.conditions import (
     IfCondition,
@@ -34,7 +27,23 @@ from diffctl.launch.conditions import (
     LaunchConfigurationNotEquals,
     UnlessCondition,
 )
-from diffctl.launch.event_handlers import OnProcessExit, OnProcessStart, OnShutdown, RegisterEventHandler
+from diffctl.launch.event_actions import EmitEvent, OpaqueFunction
+from diffctl.launch.event_handlers import (
+    OnProcessExit,
+    OnProcessIO,
+    OnProcessStart,
+    OnShutdown,
+    RegisterEventHandler,
+)
+from diffctl.launch.include_action import (
+    AnyLaunchDescriptionSource,
+    FrontendLaunchDescriptionSource,
+    IncludeLaunchDescription,
+    LaunchDescriptionSource,
+    PythonLaunchDescriptionSource,
+    XMLLaunchDescriptionSource,
+    YAMLLaunchDescriptionSource,
+)
 from diffctl.launch.logic_substitutions import (
     AllSubstitution,
     AndSubstitution,
@@ -100,8 +109,10 @@ __all__ = [
     "NotEqualsSubstitution",
     "NotSubstitution",
     "OnProcessExit",
+    "OnProcessIO",
     "OnProcessStart",
     "OnShutdown",
+    "OpaqueFunction",
     "OrSubstitution",
     "ParameterFile",
     "ParameterValue",
@@ -124,6 +135,7 @@ __all__ = [
     "UnlessCondition",
     "UnsetEnvironmentVariable",
     "WaitFor",
+    "XMLLaunchDescriptionSource",
     "YAMLLaunchDescriptionSource",
     "get_package_share_directory",
 ]

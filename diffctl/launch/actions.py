@@ -2,7 +2,8 @@
 
 Both frontends build these objects: Python launch files construct them, the YAML frontend builds them with
 each class's `from_yaml`. `visit()` resolves an action in a scope into plan steps (see resolver.py).
-Processes (ExecuteProcess, Node) live in process_actions.py, event handlers in event_handlers.py.
+Processes (ExecuteProcess, Node) live in process_actions.py, event handlers in event_handlers.py, includes in
+include_action.py, EmitEvent and OpaqueFunction in event_actions.py, launch_ros's scope actions in ros_actions.py.
 """
 
 from __future__ import annotations
@@ -11,7 +12,6 @@ import os
 import sys
 from abc import ABC, abstractmethod
 from collections.abc import Iterable, Mapping
-from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar
 
 from diffctl.errors import LaunchError
@@ -415,89 +415,6 @@ class Shutdown(Action):
     @classmethod
     def from_yaml(cls, e: Entity) -> Action:
         return cls(reason=e.text("reason"))
-
-
-class EmitEvent(Action):
-    """Emit an event; the engine knows `diffctl.launch.events.Shutdown`."""
-
-    def __init__(self, *, event: Any, **kw: Any) -> None:
-        super().__init__(**kw)
-        from diffctl.launch.events import Shutdown as ShutdownEvent
-
-        if not isinstance(event, (ShutdownEvent, Shutdown)):
-            raise LaunchError(f"EmitEvent: {type(event).__name__} events are not supported", hint="valid: Shutdown")
-        self.event = event
-
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
-        if isinstance(self.event, Shutdown):
-            return self.event.visit(r, scope)
-        return [RequestShutdown(reason=perform(self.event.reason, scope))]
-
-
-class LaunchDescriptionSource:
-    """Where an included description comes from (Python or YAML, chosen by the file's name)."""
-
-    def __init__(self, launch_file_path: SomeSubstitutions) -> None:
-        self.location = normalize(launch_file_path)
-
-
-PythonLaunchDescriptionSource = LaunchDescriptionSource
-AnyLaunchDescriptionSource = LaunchDescriptionSource
-FrontendLaunchDescriptionSource = LaunchDescriptionSource
-YAMLLaunchDescriptionSource = LaunchDescriptionSource
-
-
-@register
-class IncludeLaunchDescription(Action):
-    """Include another launch file with arguments; what it sets stays inside it."""
-
-    yaml_tags = ("include",)
-    yaml_attrs = ("file", "arg")
-
-    def __init__(
-        self,
-        launch_description_source: LaunchDescriptionSource | SomeSubstitutions,
-        *,
-        launch_arguments: Iterable[tuple[SomeSubstitutions, SomeSubstitutions]]
-        | Mapping[str, SomeSubstitutions]
-        | None = None,
-        **kw: Any,
-    ) -> None:
-        super().__init__(**kw)
-        if isinstance(launch_description_source, LaunchDescriptionSource):
-            self.location = launch_description_source.location
-        else:
-            self.location = normalize(launch_description_source)
-        pairs = launch_arguments.items() if isinstance(launch_arguments, Mapping) else (launch_arguments or [])
-        self.launch_arguments = [(normalize(k), normalize(v)) for k, v in pairs]
-
-    def label(self) -> str:
-        return f"include {describe(self.location)}"
-
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
-        path = Path(perform(self.location, scope))
-        if not path.is_absolute() and scope.launch_file:
-            beside = Path(scope.launch_file).parent / path
-            path = beside if beside.exists() else path
-        path = path.resolve()
-        if str(path) in scope.includes:
-            chain = " → ".join(Path(p).name for p in (*scope.includes, str(path)))
-            raise LaunchError(f"include cycle: {chain}")
-        if not path.is_file():
-            raise LaunchError(f"included launch file {path} does not exist")
-        inner = scope.child()
-        inner.launch_file = str(path)
-        inner.includes = (*scope.includes, str(path))
-        for key, value in self.launch_arguments:
-            inner.configurations[perform(key, scope)] = perform(value, scope)
-        return r.include(path, inner)
-
-    @classmethod
-    def from_yaml(cls, e: Entity) -> Action:
-        args = [
-            (a.text("name", required=True), a.text("value", required=True)) for a in e.items("arg", ("name", "value"))
-        ]
-        return cls(e.text("file", required=True), launch_arguments=args)
 
 
 def is_substitution_list(value: Any) -> bool:

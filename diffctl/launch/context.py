@@ -60,6 +60,21 @@ class Scope:
             remaps=list(self.remaps) if forwarding else [],
         )
 
+    # ---- as launch's LaunchContext, for OpaqueFunction and callable handlers ------------------------------------
+
+    @property
+    def launch_configurations(self) -> dict[str, str]:
+        return self.configurations
+
+    @property
+    def environment(self) -> dict[str, str]:
+        return self.env
+
+    def perform_substitution(self, substitution: Any) -> str:
+        from diffctl.launch.substitutions import perform
+
+        return perform(substitution, self)
+
     def anon_name(self, base: str) -> str:
         return self.anon.get(base)
 

@@ -1,12 +1,117 @@
-"""Events a launch file can emit with EmitEvent (as `launch.events`)."""
+"""Events of `launch.events` / `launch.events.process`: what EmitEvent emits and what callables receive.
+
+Emitted: `Shutdown(reason=…)`, `process.SignalProcess(signal_number=…, process_matcher=matches_action(node))`,
+`process.ShutdownProcess(process_matcher=…)`. Received by callable handlers: `ProcessStarted`,
+`ProcessExited` (`returncode`), `ProcessIO` (`text` as bytes, `from_stdout`/`from_stderr`), `Shutdown`.
+"""
 
 from __future__ import annotations
 
+import signal as signal_module
+from dataclasses import dataclass, field
+from typing import Any
+
+from diffctl.errors import LaunchError
 from diffctl.launch.substitutions import SomeSubstitutions, normalize
 
 
 class Shutdown:
     """Ask the launch to shut down, as `launch.events.Shutdown(reason=…)`."""
 
-    def __init__(self, *, reason: SomeSubstitutions = "shutdown event emitted by the launch file") -> None:
+    def __init__(
+        self, *, reason: SomeSubstitutions = "shutdown event emitted by the launch file", due_to_sigint: bool = False
+    ) -> None:
         self.reason = normalize(reason)
+        self.due_to_sigint = due_to_sigint
+
+
+@dataclass(frozen=True)
+class ProcessMatcher:
+    """Which processes an event is for: one action object, or processes of a name."""
+
+    action: Any = None
+    name: str | None = None
+
+
+def matches_action(target_action: Any) -> ProcessMatcher:
+    return ProcessMatcher(action=target_action)
+
+
+def matches_name(name: str) -> ProcessMatcher:
+    return ProcessMatcher(name=name)
+
+
+def _matcher(process_matcher: Any) -> ProcessMatcher:
+    if isinstance(process_matcher, ProcessMatcher):
+        return process_matcher
+    raise LaunchError(
+        "process_matcher must be launch.events.matches_action(action) or matches_name(name)",
+        hint="a lambda over process events cannot be resolved before the launch starts",
+    )
+
+
+class SignalProcess:
+    """Send a signal to the matched processes' groups (`signal_number` an int, a Signals or a name 'SIGINT')."""
+
+    def __init__(self, *, signal_number: int | str, process_matcher: Any) -> None:
+        if isinstance(signal_number, str):
+            try:
+                signal_number = signal_module.Signals[signal_number]
+            except KeyError:
+                raise LaunchError(f"SignalProcess: {signal_number!r} is not a signal name") from None
+        try:
+            self.signal = signal_module.Signals(int(signal_number))
+        except ValueError:
+            raise LaunchError(f"SignalProcess: {signal_number!r} is not a signal") from None
+        self.matcher = _matcher(process_matcher)
+
+
+class ShutdownProcess:
+    """Stop the matched processes as launch shutdown would: SIGINT, then SIGTERM, then SIGKILL."""
+
+    def __init__(self, *, process_matcher: Any) -> None:
+        self.matcher = _matcher(process_matcher)
+
+
+@dataclass
+class ProcessEvent:
+    """What a callable handler receives about one process (the fields of launch's process events)."""
+
+    action: Any
+    name: str
+    pid: int | None
+    cmd: list[str] = field(default_factory=list)
+    cwd: str | None = None
+    env: dict[str, str] = field(default_factory=dict)
+
+    @property
+    def process_name(self) -> str:
+        return self.name
+
+
+@dataclass
+class ProcessStarted(ProcessEvent):
+    pass
+
+
+@dataclass
+class ProcessExited(ProcessEvent):
+    returncode: int = 0
+
+
+@dataclass
+class ProcessIO(ProcessEvent):
+    text: bytes = b""
+    fd: int = 1
+
+    @property
+    def from_stdout(self) -> bool:
+        return self.fd == 1
+
+    @property
+    def from_stderr(self) -> bool:
+        return self.fd == 2
+
+
+ProcessStdout = ProcessIO
+ProcessStderr = ProcessIO

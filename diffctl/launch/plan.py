@@ -7,7 +7,7 @@ readiness gate, inside a timer or inside an event handler.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
@@ -166,12 +166,37 @@ class Skipped(Step):
     condition: str
 
 
+@dataclass(frozen=True, kw_only=True)
+class SignalProcesses(Step):
+    """EmitEvent(SignalProcess / ShutdownProcess): signal the targets' groups (None: stop them, escalating)."""
+
+    signal: int | None
+    targets: tuple[TargetRef, ...]
+
+
+@dataclass(frozen=True)
+class EventInfo:
+    """What happened, for a callable handler: the process, its pid, exit code or output line."""
+
+    name: str
+    pid: int | None = None
+    exit_code: int | None = None
+    text: str | None = None
+    stream: str | None = None
+
+
 @dataclass(frozen=True)
 class Handler:
-    event: Literal["exit", "start", "shutdown"]
+    event: Literal["exit", "start", "shutdown", "io"]
     targets: tuple[TargetRef, ...]  # empty: any process
     steps: tuple[Step, ...]
     exit_code: int | None = None
+    # A Python callable (launch's `on_exit=lambda event, context: …`): called when the event happens,
+    # returns the steps of the actions it gave back (resolved then, not before).
+    callback: Callable[[EventInfo], tuple[Step, ...]] | None = field(default=None, compare=False)
+    streams: tuple[str, ...] = ()  # io: which of stdout / stderr
+    describe_callback: str = ""
+    once: bool = False  # handle_once: removed after it first fires
 
     def matches(self, name: str, exit_code: int | None = None) -> bool:
         if self.targets and name not in {t.name for t in self.targets}:

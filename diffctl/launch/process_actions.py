@@ -176,6 +176,9 @@ class ExecuteProcess(Action):
             # The `required` idiom: keep it a flag so YAML `on_exit: shutdown` and Python print the same.
             self.options["required"] = True
             on_exit = None
+        self.on_exit_callable = on_exit if callable(on_exit) and not isinstance(on_exit, Action) else None
+        if self.on_exit_callable is not None:
+            on_exit = None
         self.on_exit = [on_exit] if isinstance(on_exit, Action) else list(on_exit or [])
 
     def label(self) -> str:
@@ -232,6 +235,11 @@ class ExecuteProcess(Action):
             **self.index_names(scope),
         )
         steps: list[Step] = []
+        if self.on_exit_callable is not None:
+            from diffctl.launch.event_handlers import OnProcessExit
+
+            handler = OnProcessExit(target_action=self, on_exit=self.on_exit_callable).resolve(r, scope)
+            steps.append(AddHandler(handler=handler))
         if self.on_exit:
             handler_steps = r.visit_all(self.on_exit, scope.child())
             ref = TargetRef(name=spec.name, label=spec.name)

@@ -1,8 +1,9 @@
 """The Python frontend: a `.launch.py` file's `generate_launch_description()` → a LaunchDescription.
 
-Launch files may import from `diffctl.launch`, or from `launch`, `launch_ros` and `ament_index_python`
-as written for ROS 2: while a file loads, those module names are aliases of `diffctl.launch`. Anything the
-file raises becomes one LaunchError naming the file and line.
+Launch files may import from `diffctl.launch`, or from `launch`, `launch_ros`, `launch_xml` and
+`ament_index_python` as written for ROS 2: while a file loads, those module names are aliases of
+`diffctl.launch` (events modules: of `diffctl.launch.events`). A name diffctl lacks fails with one line
+naming it, never an AttributeError. Anything the file raises becomes one LaunchError naming file and line.
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ from collections.abc import Iterator
 from pathlib import Path
 
 from diffctl.errors import DiffctlError, LaunchError, suggest
+from diffctl.launch.context import Scope
 
 ROS_MODULES = (
     "launch",
@@ -27,35 +29,60 @@ ROS_MODULES = (
     "launch.conditions",
     "launch.event_handlers",
     "launch.events",
+    "launch.events.process",
     "launch.launch_description_sources",
+    "launch_xml",
+    "launch_xml.launch_description_sources",
+    "launch_yaml",
+    "launch_yaml.launch_description_sources",
     "launch_ros",
     "launch_ros.actions",
     "launch_ros.substitutions",
     "launch_ros.parameter_descriptions",
+    "launch_ros.descriptions",
+    "launch_ros.event_handlers",
     "ament_index_python",
     "ament_index_python.packages",
 )
+EVENT_MODULES = ("launch.events", "launch.events.process")
 
 _counter = itertools.count()
+
+
+class RosAliasModule(types.ModuleType):
+    """A stand-in for a ROS launch module: what diffctl has, and a one-line error naming what it lacks."""
+
+    def __getattr__(self, name: str) -> object:
+        if name.startswith("__"):
+            raise AttributeError(name)
+        raise LaunchError(
+            f"{self.__name__}.{name} is not supported by diffctl",
+            hint=f"{self.__name__} here provides: " + ", ".join(sorted(k for k in vars(self) if not k.startswith("_"))),
+        )
 
 
 @contextlib.contextmanager
 def ros_module_aliases() -> Iterator[None]:
     """`from launch.actions import …` / `from launch_ros.actions import Node` resolve to diffctl.launch."""
     import diffctl.launch as api
+    from diffctl.launch import events
 
     saved = {name: sys.modules.get(name) for name in ROS_MODULES}
     try:
         modules: dict[str, types.ModuleType] = {}
+        event_names = [
+            k for k in vars(events) if (not k.startswith("_") and k[0].isupper()) or k.startswith("matches_")
+        ]
         for name in ROS_MODULES:
-            module = types.ModuleType(name, f"alias of diffctl.launch for ROS 2 launch files ({name})")
-            module.__dict__.update({k: getattr(api, k) for k in api.__all__})
+            module = RosAliasModule(name, f"alias of diffctl.launch for ROS 2 launch files ({name})")
+            if name in EVENT_MODULES:
+                module.__dict__.update({k: getattr(events, k) for k in event_names})
+            else:
+                module.__dict__.update({k: getattr(api, k) for k in api.__all__})
+                module.__dict__["LaunchContext"] = Scope
             module.__path__ = []  # a package, so submodule imports work
             modules[name] = module
             sys.modules[name] = module
-        from diffctl.launch import events
-
-        modules["launch.events"].Shutdown = events.Shutdown  # the event, not the action of the same name
         for name, module in modules.items():
             parent, _, child = name.rpartition(".")
             if parent:

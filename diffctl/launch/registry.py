@@ -32,7 +32,9 @@ def register(cls: A) -> A:
 def actions() -> dict[str, type[Action]]:
     # Importing the modules runs their @register decorators.
     import diffctl.launch.actions
+    import diffctl.launch.event_actions
     import diffctl.launch.event_handlers
+    import diffctl.launch.include_action
     import diffctl.launch.process_actions
     import diffctl.launch.ros_actions  # noqa: F401
 

@@ -7,6 +7,7 @@ built from console.Text so colours go away with --no-color and in tests.
 from __future__ import annotations
 
 import shlex
+import signal
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import Any
@@ -21,6 +22,7 @@ from diffctl.launch.plan import (
     Plan,
     ProcessSpec,
     RequestShutdown,
+    SignalProcesses,
     Skipped,
     StartProcess,
     StartTimer,
@@ -125,13 +127,23 @@ def _steps(node: _Node, steps: Iterable[Step]) -> None:
         elif isinstance(step, AddHandler):
             h = step.handler
             targets = ", ".join(str(t) for t in h.targets) or "any process"
-            label = {"exit": f"on exit of {targets}", "start": f"on start of {targets}", "shutdown": "on shutdown"}
+            label = {
+                "exit": f"on exit of {targets}",
+                "start": f"on start of {targets}",
+                "shutdown": "on shutdown",
+                "io": f"on output ({', '.join(h.streams)}) of {targets}",
+            }
             text = label[h.event] + (f" with code {h.exit_code}" if h.exit_code is not None else "")
+            if h.callback is not None:
+                text += f": calls {h.describe_callback or 'a function'} (its actions are resolved when it fires)"
             child = node.add(Text(text, style="magenta"))
             _gate(child, step.gate)
             _steps(child, h.steps)
         elif isinstance(step, LogMessage):
             _gate(node.add(f"log {step.message!r}"), step.gate)
+        elif isinstance(step, SignalProcesses):
+            what = signal.Signals(step.signal).name if step.signal is not None else "stop (SIGINT, escalating)"
+            _gate(node.add(f"{what} to {', '.join(str(t) for t in step.targets)}", "red"), step.gate)
         elif isinstance(step, RequestShutdown):
             _gate(node.add(f"shutdown {step.reason!r}", "red"), step.gate)
         elif isinstance(step, Skipped):

@@ -13,15 +13,10 @@ from pathlib import Path
 from typing import Any
 
 from diffctl.errors import LaunchError, suggest
-from diffctl.launch.actions import (
-    Action,
-    DeclareLaunchArgument,
-    GroupAction,
-    IncludeLaunchDescription,
-    LaunchDescription,
-)
+from diffctl.launch.actions import Action, DeclareLaunchArgument, GroupAction, LaunchDescription
 from diffctl.launch.context import Scope
 from diffctl.launch.event_handlers import YamlTarget
+from diffctl.launch.include_action import IncludeLaunchDescription
 from diffctl.launch.plan import (
     PROCESS_WAIT_KINDS,
     Argument,
@@ -42,6 +37,7 @@ class Resolver:
         self.strict = strict
         self.processes: dict[str, ProcessSpec] = {}
         self.origin_names: dict[int, str] = {}
+        self.process_actions: dict[str, Action] = {}  # for the `action` of events given to callables
         self.arguments: list[Argument] = []
         self.warnings: list[str] = []
         self._refs: list[tuple[TargetRef, bool, Where, str]] = []  # (ref, must exist, where, entity)
@@ -60,6 +56,12 @@ class Resolver:
             self._declared.pop()
         self._link()
         return Plan(source, self.arguments, tuple(steps), dict(self.processes), list(self.warnings))
+
+    def resolve_more(self, actions: Iterable[Action], scope: Scope) -> list[Step]:
+        """Actions a callable handler or OpaqueFunction returned while the launch runs: resolved and linked."""
+        steps = self.visit_all(actions, scope)
+        self._link()
+        return steps
 
     def include(self, path: Path, scope: Scope) -> list[Step]:
         from diffctl.launch.loader import load
@@ -124,6 +126,7 @@ class Resolver:
         self.origin_names.setdefault(id(action), unique)
         spec = ProcessSpec(name=unique, where=str(action.where), origin=id(action), **fields)
         self.processes[unique] = spec
+        self.process_actions[unique] = action
         return spec
 
     def ref(self, target: Any, scope: Scope, *, must_exist: bool = False) -> TargetRef:
@@ -153,7 +156,8 @@ class Resolver:
 
     def _link(self) -> None:
         names = sorted(self.processes)
-        for ref, must_exist, where, entity in self._refs:
+        refs, self._refs = self._refs, []
+        for ref, must_exist, where, entity in refs:
             if ref.origin is not None:
                 ref.name = self.origin_names.get(ref.origin)
                 if ref.name is None and must_exist:

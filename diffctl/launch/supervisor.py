@@ -17,24 +17,23 @@ import os
 import re
 import signal
 import tempfile
-import time
-from collections import deque
 from collections.abc import Callable
-from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Protocol
 
+from diffctl.errors import LaunchError
 from diffctl.launch import commandline
 from diffctl.launch.context import with_tool_path
 from diffctl.launch.output import Output
 from diffctl.launch.plan import (
     AddHandler,
+    EventInfo,
     Gate,
     Handler,
     LogMessage,
     Plan,
     ProcessSpec,
     RequestShutdown,
+    SignalProcesses,
     StartProcess,
     StartTimer,
     Step,
@@ -42,90 +41,20 @@ from diffctl.launch.plan import (
     Wait,
     walk,
 )
+from diffctl.launch.process_state import (
+    Clock,
+    Pending,
+    ProcessState,
+    Spawner,
+    SystemClock,
+    Timer,
+    describe_exit,
+    died,
+)
 from diffctl.launch.readiness import ProbePoller
 from diffctl.launch.status import ProcessRow, StatusView
 
 STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
-
-
-class Clock(Protocol):
-    def monotonic(self) -> float: ...
-
-
-class SystemClock:
-    def monotonic(self) -> float:
-        return time.monotonic()
-
-
-@dataclass(frozen=True)
-class Child:
-    pid: int
-    pgid: int
-
-
-class Spawner(Protocol):
-    def spawn(self, name: str, argv: list[str], env: dict[str, str], cwd: str | None, interactive: bool) -> Child:
-        """Start a process in a new process group; raises OSError when it cannot start."""
-
-    def signal_group(self, child: Child, sig: int) -> bool:
-        """Signal the child's process group; False when the group no longer exists."""
-
-    def group_alive(self, child: Child) -> bool: ...
-
-    def forget(self, child: Child) -> None:
-        """The group is gone: stop guarding it."""
-
-
-@dataclass
-class ProcessState:
-    spec: ProcessSpec
-    state: str = "not started"
-    child: Child | None = None
-    lingering: Child | None = None  # leader exited, others of its group still alive
-    starts: int = 0
-    restarts: int = 0
-    started_at: float | None = None
-    exit_code: int | None = None
-    tail: deque[str] = field(default_factory=lambda: deque(maxlen=5))
-    seen_patterns: set[str] = field(default_factory=set)
-    stop_timers: list[_Timer] = field(default_factory=list)
-
-    @property
-    def alive(self) -> bool:
-        return self.child is not None or self.lingering is not None
-
-    @property
-    def respawns_left(self) -> bool:
-        limit = self.spec.respawn_max_retries
-        return self.spec.respawn and (limit < 0 or self.restarts < limit)
-
-
-@dataclass
-class _Timer:
-    callback: Callable[[], None]
-    kind: str  # "timer" | "respawn" | "stop"
-    cancelled: bool = False
-
-
-@dataclass
-class _Pending:
-    step: Step
-    gate: Gate
-    since: float
-
-
-def describe_exit(code: int) -> str:
-    if code < 0:
-        try:
-            return f"killed by {signal.Signals(-code).name}"
-        except ValueError:
-            return f"killed by signal {-code}"
-    return f"exit code {code}"
-
-
-def _died(code: int) -> str:
-    """'died with exit code 3' / 'was killed by SIGKILL' (not 'died with killed by …')."""
-    return f"was {describe_exit(code)}" if code < 0 else f"died with {describe_exit(code)}"
 
 
 class Supervisor:
@@ -152,7 +81,7 @@ class Supervisor:
         self.handlers: list[Handler] = []
         self.fired: set[int] = set()
         self.start_order: list[str] = []
-        self.pending: list[_Pending] = []
+        self.pending: list[Pending] = []
         self.failures: list[str] = []  # why the launch failed: required process, readiness, …
         self.failed_processes: list[str] = []
         self.shutting_down = False
@@ -160,7 +89,7 @@ class Supervisor:
         self.done = False
         self.exit_code = 0
         self.started_all_at: float | None = None
-        self._timers: list[tuple[float, int, _Timer]] = []
+        self._timers: list[tuple[float, int, Timer]] = []
         self._seq = itertools.count()
         self._t0 = 0.0
         self._shutdown_at: float | None = None
@@ -201,6 +130,10 @@ class Supervisor:
         st.tail.append(text)
         screen = st.spec.output in ("screen", "both") or stream == "stderr"
         self.output.process_line(name, stream, text, screen=screen)
+        if self._io_handlers:
+            pid = st.child.pid if st.child else None
+            self._fire("io", name, None, EventInfo(name, pid, text=text, stream=stream))
+            self._after_event()
         for pattern, compiled in self._patterns.get(name, ()):
             if pattern not in st.seen_patterns and compiled.search(text):
                 st.seen_patterns.add(pattern)
@@ -245,9 +178,12 @@ class Supervisor:
     # ---- steps -------------------------------------------------------------------------------------------------
 
     def run_steps(self, steps: tuple[Step, ...]) -> None:
+        # As in ros2 launch, where events are handled after the actions that caused them: a handler written
+        # after the process it watches still sees that process start.
+        steps = tuple(sorted(steps, key=lambda s: not (isinstance(s, AddHandler) and s.gate is None)))
         for step in steps:
             if step.gate is not None and self._gate_state(step.gate)[0] is not True:
-                self.pending.append(_Pending(step, step.gate, self.now()))
+                self.pending.append(Pending(step, step.gate, self.now()))
                 for w in step.gate.waits:
                     if w.kind in ("topic", "service") and self.poller is not None:
                         self.poller.want(w.kind, str(w.target))
@@ -270,9 +206,22 @@ class Supervisor:
             self.shutdown(step.reason)
         elif isinstance(step, AddHandler):
             self.handlers.append(step.handler)
+        elif isinstance(step, SignalProcesses):
+            self._signal_processes(step)
 
-    def _after(self, delay_s: float, callback: Callable[[], None], kind: str) -> _Timer:
-        timer = _Timer(callback, kind)
+    def _signal_processes(self, step: SignalProcesses) -> None:
+        for ref in step.targets:
+            st = self.states.get(ref.name or "")
+            if st is None or not st.alive:
+                self.output.launcher("WARN", f"cannot signal [{ref}]: it is not running")
+            elif step.signal is None:
+                self._stop(st, signal.SIGINT)
+            else:
+                self.output.launcher("INFO", f"sending {signal.Signals(step.signal).name} to [{st.spec.name}]")
+                self.spawner.signal_group(st.child or st.lingering, step.signal)  # type: ignore[arg-type]
+
+    def _after(self, delay_s: float, callback: Callable[[], None], kind: str) -> Timer:
+        timer = Timer(callback, kind)
         heapq.heappush(self._timers, (self.now() + delay_s, next(self._seq), timer))
         return timer
 
@@ -316,7 +265,7 @@ class Supervisor:
         if self.started_all_at is None:
             self.output.live(self._live_text())  # this one is no longer awaited
         self.output.launcher("INFO", f"[{spec.name}] started (pid {child.pid})")
-        self._fire("start", spec.name, None)
+        self._fire("start", spec.name, None, EventInfo(spec.name, child.pid))
 
     def _process_exited(self, st: ProcessState, code: int, pid: int | None) -> None:
         name = st.spec.name
@@ -331,12 +280,12 @@ class Supervisor:
         else:
             st.state = "failed"
             last = f": {st.tail[-1]}" if st.tail else ""
-            self.output.launcher("ERROR", f"[{name}] {_died(code)} ({where}){last}")
-        self._fire("exit", name, code)
+            self.output.launcher("ERROR", f"[{name}] {died(code)} ({where}){last}")
+        self._fire("exit", name, code, EventInfo(name, pid, exit_code=code))
         if self.shutting_down:
             return
         if st.spec.required:
-            why = f"required process {name!r} {'finished' if code == 0 else _died(code)}"
+            why = f"required process {name!r} {'finished' if code == 0 else died(code)}"
             if code != 0:
                 self.failures.append(why + (f" (last output: {st.tail[-1]!r})" if st.tail else ""))
             self.shutdown(why)
@@ -362,11 +311,37 @@ class Supervisor:
         """', ran 3.2 s': since this start of the process (a respawn starts the count again)."""
         return f", ran {self.now() - st.started_at:.1f} s" if st.started_at is not None else ""
 
-    def _fire(self, event: str, name: str, code: int | None) -> None:
+    @property
+    def _io_handlers(self) -> bool:
+        return any(h.event == "io" for h in self.handlers)
+
+    def _fire(self, event: str, name: str, code: int | None, info: EventInfo | None = None) -> None:
         for handler in list(self.handlers):
-            if handler.event == event and handler.matches(name, code):
-                self.fired.add(id(handler))
-                self.run_steps(handler.steps)
+            if handler.event != event or not handler.matches(name, code):
+                continue
+            if event == "io" and info is not None and info.stream not in handler.streams:
+                continue
+            self.fired.add(id(handler))
+            if handler.once:
+                self.handlers.remove(handler)
+            self.run_steps(handler.steps)
+            if handler.callback is not None:
+                self._call(handler, info or EventInfo(name, exit_code=code))
+
+    def _call(self, handler: Handler, info: EventInfo) -> None:
+        """A launch file's callable handler: what it returns is resolved now and run."""
+        try:
+            steps = handler.callback(info)  # type: ignore[misc]
+        except LaunchError as e:
+            self.failures.append(f"event handler {handler.describe_callback or ''} failed: {e}")
+            self.output.launcher("ERROR", str(e))
+            self.shutdown("an event handler failed")
+            return
+        for step in walk(steps):
+            if isinstance(step, StartProcess) and step.spec.name not in self.states:
+                self.states[step.spec.name] = ProcessState(step.spec)
+                self.plan.processes[step.spec.name] = step.spec
+        self.run_steps(steps)
 
     # ---- readiness ---------------------------------------------------------------------------------------------
 
@@ -433,7 +408,7 @@ class Supervisor:
         self._shutdown_at = self.now()
         self.output.live(None)
         self.output.launcher("WARN" if self.failures else "INFO", f"shutting down: {reason}")
-        self._fire("shutdown", "", None)
+        self._fire("shutdown", "", None, EventInfo("", text=reason))
         for _, _, timer in self._timers:
             timer.cancelled = True
         for p in self.pending:
