@@ -304,3 +304,33 @@ def test_unsupported_pair_is_one_line_naming_the_entry_and_the_supported_pairs(t
         assert "unsupported type pair sensor_msgs/msg/BatteryState <-> gz.msgs.BatteryState" in err
         assert "/battery" in err and "sensor_msgs/msg/CameraInfo<->gz.msgs.CameraInfo" in err
         assert "Traceback" not in r.stderr and len(lines) <= 2, r.stderr
+
+
+def test_malformed_gz_samples_are_dropped_with_one_warning_and_the_bridge_goes_on(router: str, procs) -> None:
+    bridge = procs.diffctl("bridge", "/camera@sensor_msgs/msg/Image[gz.msgs.Image")
+    node = Node("malformed_probe")
+    images: list[object] = []
+    node.create_subscription("/camera", "sensor_msgs/msg/Image", images.append)
+    cam = node.session.declare_publisher(gz.key("/camera"))
+    good = GZ_SAMPLES[("sensor_msgs/msg/Image", "gz.msgs.Image")]
+    bad = [
+        b'{"@type":"gz.msgs.Image","width":2}',  # the old JSON form
+        b"\x92\xc1",
+        gz.encode("gz.msgs.Twist", {}),
+        gz.encode("gz.msgs.Image", dict(good, data=b"short")),
+        gz.encode("gz.msgs.Image", dict(good, pixel_format_type="YUV")),
+        gz.encode("gz.msgs.Image", dict(good, width=-1, step=-3, data=b"")),
+    ]
+    try:
+        assert wait_for(lambda: cam.matching_status.matching, 10.0), output_of(procs, bridge)
+        for _ in range(20):
+            for payload in bad:
+                cam.put(payload)
+        assert wait_for(lambda: bool(images), 10.0, lambda: cam.put(gz.encode("gz.msgs.Image", good)))
+        assert images[0].data.tolist() == list(range(12))
+    finally:
+        node.close()
+    assert procs.stop(bridge) == 0
+    out = bridge.stdout.read()
+    assert "dropped a sample on gz /camera" in out and "Traceback" not in out
+    assert out.count("dropped a sample on gz /camera") < 5  # throttled, not one line per sample
