@@ -27,7 +27,7 @@ from diffctl.control.lifecycle import ManagedController, State, TransitionError,
 from diffctl.control.params import ManagerParams, controller_node_params, with_controller_param
 from diffctl.control.plugin_registry import controller_class
 from diffctl.control.resource_manager import ResourceManager
-from diffctl.control.switching import STRICT, ControllerView, SwitchPlan, plan_switch
+from diffctl.control.switching import STRICT, ControllerView, SwitchPlan, chain_order, plan_switch
 from diffctl.errors import ConfigError, ParameterError
 
 NodeFactory = Callable[[str, dict[str, Any]], ControllerNode]
@@ -151,6 +151,9 @@ class ControllerManager:
         with self._admin:
             mc = self._get(name)
             mc.configure()
+            if getattr(mc.instance, "is_chainable", False):  # its references become claimable command interfaces
+                with self._lock:
+                    self.rm.import_reference_interfaces(name, mc.instance.reference_interfaces)
             mc.required_command = self._resolve(mc.instance.command_interface_configuration(), command=True)
             mc.required_state = self._resolve(mc.instance.state_interface_configuration(), command=False)
             self.log.info(f"configured controller '{name}'")
@@ -158,6 +161,8 @@ class ControllerManager:
     def cleanup_controller(self, name: str) -> None:
         with self._admin:
             self._get(name).cleanup()
+            with self._lock:
+                self.rm.remove_reference_interfaces(name)
             self.log.info(f"cleaned up controller '{name}'")
 
     def unload_controller(self, name: str) -> None:
@@ -170,6 +175,7 @@ class ControllerManager:
             finally:
                 with self._lock:
                     del self.controllers[name]
+                    self.rm.remove_reference_interfaces(name)
                 _close(mc.instance.node)
             self.log.info(f"unloaded controller '{name}'")
 
@@ -240,6 +246,7 @@ class ControllerManager:
             claimed=self.rm.claimed,
             command_available=self.rm.command_available,
             state_available=self.rm.state_available,
+            reference_owner=self.rm.reference_owner,
         )
 
     def _execute(self, pending: _PendingSwitch) -> None:
@@ -286,6 +293,7 @@ class ControllerManager:
             inst.command_interfaces, inst.state_interfaces = [], []
             return f"could not activate controller '{mc.name}': on_activate failed: {hook_message(e)}"
         mc.state = State.ACTIVE
+        self.rm.set_reference_available(mc.name, True)
         mc.last_update_ns = None
         mc.last_error = ""
         return None
@@ -298,10 +306,18 @@ class ControllerManager:
         self.rm.release(mc.claimed)
         mc.claimed = []
         mc.instance.command_interfaces, mc.instance.state_interfaces = [], []
+        self.rm.set_reference_available(mc.name, False)
         mc.state = State.INACTIVE
 
     def _refresh_active(self) -> None:
-        self._active = tuple(mc for mc in self.controllers.values() if mc.state is State.ACTIVE)
+        # Controllers chained in front of others update first, so a following one reads this cycle's references.
+        active = [n for n, mc in self.controllers.items() if mc.state is State.ACTIVE]
+        views = {n: ControllerView(mc.state, mc.claimed) for n, mc in self.controllers.items()}
+        self._active = tuple(self.controllers[n] for n in chain_order(active, views, self.rm.reference_owner))
+        for mc in self.controllers.values():  # chained mode while a controller claims its references
+            chained = any(self.rm.claimed.get(r.name) for r in getattr(mc.instance, "reference_interfaces", ()))
+            if getattr(mc.instance, "is_chainable", False) and mc.instance.is_in_chained_mode() != chained:
+                mc.instance.set_chained_mode(chained)
 
     # ---------------------------------------------------------------------------------------------- real time
     def read(self, time_ns: int, period_s: float) -> None:

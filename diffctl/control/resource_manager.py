@@ -5,6 +5,10 @@ inactive or active and may be shared; command interfaces are available only whil
 claimed by at most one controller. read() runs on inactive and active components, write() on active ones;
 a component whose read or write returns ERROR (or raises) is reported so the manager can deactivate the
 controllers that use it, and it goes to unconfigured.
+
+Reference interfaces of chainable controllers (`<controller>/linear/velocity`) are command interfaces too,
+owned by that controller instead of a component: imported when it is configured, available while it is
+active, claimed like any other by the controller chained in front of it, removed at cleanup.
 """
 
 from __future__ import annotations
@@ -46,6 +50,8 @@ class ResourceManager:
         self.command_interfaces: dict[str, CommandInterface] = {}
         self.owner: dict[str, str] = {}  # interface name → component name
         self.claimed: dict[str, str] = {}  # command interface → controller name
+        self.reference_owner: dict[str, str] = {}  # reference interface → the controller exporting it
+        self._reference_available: set[str] = set()
         self._warn = log or (lambda _t: None)
         self._active: tuple[HardwareHandle, ...] = ()
         self._readable: tuple[HardwareHandle, ...] = ()
@@ -141,8 +147,36 @@ class ResourceManager:
         )
 
     def command_available(self, name: str) -> bool:
+        if name in self.reference_owner:
+            return name in self._reference_available
         o = self.owner.get(name)
         return name in self.command_interfaces and o is not None and self.components[o].state is State.ACTIVE
+
+    # --- reference interfaces of chainable controllers ---------------------------------------------------
+    def import_reference_interfaces(self, controller: str, handles: Iterable[CommandInterface]) -> None:
+        self.remove_reference_interfaces(controller)
+        for h in handles:
+            if h.name in self.command_interfaces:
+                raise TransitionError(
+                    f"controller '{controller}' exports reference interface '{h.name}', which already exists "
+                    f"(owned by '{self.owner.get(h.name) or self.reference_owner.get(h.name)}')"
+                )
+            self.command_interfaces[h.name] = h
+            self.reference_owner[h.name] = controller
+
+    def remove_reference_interfaces(self, controller: str) -> None:
+        for name in [n for n, c in self.reference_owner.items() if c == controller]:
+            del self.reference_owner[name]
+            self.command_interfaces.pop(name, None)
+            self._reference_available.discard(name)
+            self.claimed.pop(name, None)
+
+    def set_reference_available(self, controller: str, available: bool) -> None:
+        names = {n for n, c in self.reference_owner.items() if c == controller}
+        if available:
+            self._reference_available |= names
+        else:
+            self._reference_available -= names
 
     def available_command_names(self) -> list[str]:
         return [n for n in self.command_interfaces if self.command_available(n)]

@@ -5,6 +5,11 @@ controller that is not inactive, any deactivation of one that is not active; BES
 entries with a warning and fails only when none of the requested names exist. AUTO and FORCE_AUTO are
 not implemented upstream and behave as BEST_EFFORT. The interface check applies whatever the strictness:
 command interfaces are exclusive, state interfaces shared.
+
+Chaining (controller_manager's chained controllers): a controller that claims another's reference interfaces
+("preceding") needs that "following" controller active, or activated in the same request (it is then
+activated first); a following controller can not be deactivated while a preceding one that stays active
+claims its references. `chain_order` sorts controllers so preceding ones update before those they feed.
 """
 
 from __future__ import annotations
@@ -49,8 +54,11 @@ def plan_switch(
     claimed: Mapping[str, str],
     command_available: Callable[[str], bool],
     state_available: Callable[[str], bool],
+    reference_owner: Mapping[str, str] | None = None,
 ) -> SwitchPlan:
-    """Check a switch request; `claimed` maps command interface → controller currently holding it."""
+    """Check a switch request; `claimed` maps command interface → controller currently holding it, and
+    `reference_owner` reference interface → the chainable controller exporting it."""
+    reference_owner = reference_owner or {}
     warnings: list[str] = []
     if strictness in (AUTO, FORCE_AUTO):
         warnings.append(f"{STRICTNESS_NAMES[strictness]} strictness is not currently implemented; using BEST_EFFORT")
@@ -96,11 +104,34 @@ def plan_switch(
 
     # Interface check, whatever the strictness.
     leaving = set(deact)
+    for name in deact:
+        users = sorted(
+            {c for i, c in claimed.items() if reference_owner.get(i) == name and c not in leaving and c != name}
+        )
+        if users:
+            return SwitchPlan(
+                False,
+                f"could not deactivate controller '{name}': controller '{users[0]}' is chained in front of it "
+                "(claims its reference interfaces); deactivate that one too",
+                warnings=warnings,
+            )
     taken_by_new: dict[str, str] = {}
     for name in act:
         view = controllers[name]
         for iface in view.command_interfaces:
-            if not command_available(iface):
+            following = reference_owner.get(iface)
+            if (
+                following is not None
+                and following not in act
+                and (following in leaving or not command_available(iface))
+            ):
+                return SwitchPlan(
+                    False,
+                    f"could not activate controller '{name}': it is chained in front of '{following}' "
+                    f"(claims '{iface}'), which is not active; activate '{following}' first or in the same request",
+                    warnings=warnings,
+                )
+            if following is None and not command_available(iface):
                 return SwitchPlan(
                     False,
                     f"could not activate controller '{name}': command interface '{iface}' is not available",
@@ -130,4 +161,32 @@ def plan_switch(
                     f"could not activate controller '{name}': state interface '{iface}' is not available",
                     warnings=warnings,
                 )
-    return SwitchPlan(True, "", act, deact, warnings)
+    return SwitchPlan(True, "", chain_order(act, controllers, reference_owner, following_first=True), deact, warnings)
+
+
+def chain_order(
+    names: Sequence[str],
+    controllers: Mapping[str, ControllerView],
+    reference_owner: Mapping[str, str],
+    *,
+    following_first: bool = False,
+) -> list[str]:
+    """`names` with every controller before the ones it is chained in front of (stable otherwise); with
+    `following_first`, the reverse (activation order: a controller before those that feed it)."""
+    feeds = {n: {reference_owner[i] for i in controllers[n].command_interfaces if i in reference_owner} for n in names}
+    out: list[str] = []
+    placed: set[str] = set()
+
+    def place(n: str, path: tuple[str, ...]) -> None:
+        if n in placed or n in path:
+            return
+        # Everything that feeds n (is chained in front of it) comes first.
+        for m in names:
+            if n in feeds[m]:
+                place(m, (*path, n))
+        placed.add(n)
+        out.append(n)
+
+    for n in names:
+        place(n, ())
+    return list(reversed(out)) if following_first else out
