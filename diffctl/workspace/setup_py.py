@@ -250,18 +250,21 @@ def python_install_index(package_dir: Path, package_name: str) -> InstallIndex:
             for kw in call.keywords:
                 if kw.arg not in ("data_files", "entry_points"):
                     continue
-                try:
-                    value = ev.eval(kw.value)
-                except (_Unsupported, TypeError, ValueError) as e:
-                    line = e.line if isinstance(e, _Unsupported) else kw.value.lineno
-                    index.problems.append(
-                        f"setup.py:{line}: {kw.arg} uses code diffctl does not run (it never executes setup.py)"
-                    )
-                    continue
-                if kw.arg == "data_files":
-                    _add_data_files(index, package_dir, value, f"setup.py:{kw.value.lineno}")
-                else:
-                    _console_scripts(index, value)
+                # A literal list is read entry by entry, so one entry built by code loses only itself.
+                literal = kw.arg == "data_files" and isinstance(kw.value, (ast.List, ast.Tuple))
+                for node in kw.value.elts if literal else [kw.value]:  # type: ignore[attr-defined]
+                    try:
+                        value = ev.eval(node)
+                    except (_Unsupported, TypeError, ValueError) as e:
+                        line = e.line if isinstance(e, _Unsupported) else node.lineno
+                        index.problems.append(
+                            f"setup.py:{line}: {kw.arg} uses code diffctl does not run (it never executes setup.py)"
+                        )
+                        continue
+                    if kw.arg == "entry_points":
+                        _console_scripts(index, value)
+                    else:
+                        _add_data_files(index, package_dir, [value] if literal else value, f"setup.py:{node.lineno}")
     # colcon installs package.xml and the index marker itself when data_files leaves them out.
     manifest = package_dir / "package.xml"
     key = f"share/{package_name}/package.xml"
