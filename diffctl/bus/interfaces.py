@@ -26,9 +26,13 @@ string[] exported_state_interfaces
 string[] reference_interfaces
 controller_manager_msgs/ChainConnection[] chain_connections
 """,
+    # ros-controls/ros2_control, branch `jazzy` (controller_manager_msgs 4.x as released for Jazzy and published at
+    # docs.ros.org/en/jazzy/p/controller_manager_msgs): HardwareInterface has no `data_type` (that field is
+    # Kilted/Rolling only) and HardwareComponentState keeps the deprecated `class_type` between rw_rate and
+    # plugin_name. rosidl's Jazzy build of these two gives HardwareComponentState
+    # RIHS01_0ed49e3b2669d3a540536dd4806a301612d0daf93a25bb1eebfd55817416026d, checked in tests/graph.
     "controller_manager_msgs/msg/HardwareInterface": """
 string name
-string data_type
 bool is_available
 bool is_claimed
 """,
@@ -37,6 +41,7 @@ string name
 string type
 bool is_async
 uint16 rw_rate
+string class_type
 string plugin_name
 lifecycle_msgs/State state
 controller_manager_msgs/HardwareInterface[] command_interfaces

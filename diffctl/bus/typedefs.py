@@ -19,7 +19,7 @@ from typing import Any
 
 from rosbags.typesys.base import Nodetype
 
-FORMAT = 1
+FORMAT = 2  # 2: every char is uint8, as rosidl has it
 _defs: dict[str, tuple[list, list]] | None = None
 _lock = threading.Lock()
 
@@ -34,13 +34,24 @@ def _cache_file() -> Path:
     return base / f"typedefs-jazzy-{h.hexdigest()[:16]}.json"
 
 
-def patch_char_gid(fielddefs: dict[str, Any]) -> None:
-    # rosidl turns a .msg `char` into uint8; rosbags keeps it as char, which changes the RIHS01 hash of
-    # every service (its event carries ServiceEventInfo.client_gid). Same wire size, so patching is safe.
-    consts, flds = fielddefs["service_msgs/msg/ServiceEventInfo"]
-    fielddefs["service_msgs/msg/ServiceEventInfo"] = (consts, [
-        (n, (Nodetype.ARRAY, ((Nodetype.BASE, ("uint8", 0)), 16))) if n == "client_gid" else (n, t) for n, t in flds
-    ])
+def _char_as_uint8(desc: tuple) -> tuple:
+    kind, spec = desc
+    if kind == Nodetype.BASE:
+        return (kind, ("uint8", spec[1])) if spec[0] == "char" else desc
+    if kind in (Nodetype.ARRAY, Nodetype.SEQUENCE):
+        return (kind, (_char_as_uint8(spec[0]), spec[1]))
+    return desc
+
+
+def patch_chars(fielddefs: dict[str, Any]) -> None:
+    """rosidl turns a .msg `char` into IDL uint8; rosbags keeps it as char, which changes the RIHS01 hash of
+    std_msgs/Char, rmw_dds_common/Gid and every service (its event carries ServiceEventInfo.client_gid).
+    Same wire size, so the patch is safe."""
+    for name, (consts, flds) in list(fielddefs.items()):
+        fielddefs[name] = (
+            [(c[0], "uint8" if c[1] == "char" else c[1], c[2]) for c in consts],
+            [(n, _char_as_uint8(t)) for n, t in flds],
+        )
 
 
 def srv_typesdict(name: str, req_text: str, resp_text: str) -> dict[str, Any]:
@@ -72,7 +83,7 @@ def _build() -> dict[str, tuple[list, list]]:
     from diffctl.bus.interfaces import MSGS, SRVS
 
     defs: dict[str, Any] = dict(get_typestore(Stores.ROS2_JAZZY).fielddefs)
-    patch_char_gid(defs)
+    patch_chars(defs)
     for name, text in MSGS.items():
         defs.update(get_types_from_msg(text, name))
     for name, (req, resp) in SRVS.items():
