@@ -27,33 +27,66 @@ from diffctl.errors import DiffctlError, MessageError
 class Outbox:
     """Puts samples on a thread of its own, in order. A Zenoh put usually costs microseconds, but when the
     machine is busy its transmit thread falls behind and a put can wait up to a millisecond (measured: 15 µs
-    to 0.7 ms on the same run), which the sim thread must not spend. At most MAX_QUEUED samples wait; beyond
-    that the oldest are dropped, as Zenoh drops for a congested link."""
+    to 0.7 ms on the same run), which the sim thread must not spend, and a full-size camera frame or point
+    cloud (1–12 MB) takes longer still. What waits is bounded twice: beyond MAX_BYTES the oldest large samples
+    (frames, clouds) are dropped first, so a burst of images never pushes out /clock, IMU or scan samples;
+    beyond MAX_QUEUED samples the oldest are dropped, as Zenoh drops for a congested link."""
 
     MAX_QUEUED = 512
+    MAX_BYTES = 48 * 1024 * 1024
+    LARGE_BYTES = 64 * 1024
 
     def __init__(self) -> None:
-        self._items: collections.deque[tuple[Any, bytes]] = collections.deque(maxlen=self.MAX_QUEUED)
+        self._items: collections.deque[tuple[Any, bytes]] = collections.deque()
+        self._lock = threading.Lock()
+        self._bytes = 0
+        self.dropped = 0
         self._wake = threading.Event()
         self._stopping = False
         self._thread = threading.Thread(target=self._run, name="sim-outbox", daemon=True)
         self._thread.start()
 
     def put(self, publisher: Any, payload: bytes) -> None:
-        self._items.append((publisher, payload))
-        if len(self._items) == 1:
+        with self._lock:
+            items = self._items
+            items.append((publisher, payload))
+            self._bytes += len(payload)
+            if self._bytes > self.MAX_BYTES:
+                self._drop_large()
+            while len(items) > self.MAX_QUEUED:
+                self._bytes -= len(items.popleft()[1])
+                self.dropped += 1
+            first = len(items) == 1
+        if first:
             # Only the first of a batch wakes the thread: it drains whatever arrives meanwhile.
             self._wake.set()
 
+    def _drop_large(self) -> None:
+        # Oldest large samples first; small ones (clock, IMU, scans) stay. Runs only over budget, under the lock.
+        kept: collections.deque[tuple[Any, bytes]] = collections.deque()
+        for item in self._items:
+            if self._bytes > self.MAX_BYTES and len(item[1]) >= self.LARGE_BYTES:
+                self._bytes -= len(item[1])
+                self.dropped += 1
+            else:
+                kept.append(item)
+        self._items = kept
+
+    def _next(self) -> tuple[Any, bytes] | None:
+        with self._lock:
+            if not self._items:
+                return None
+            item = self._items.popleft()
+            self._bytes -= len(item[1])
+            return item
+
     def _run(self) -> None:
-        items = self._items
         while True:
             self._wake.wait()
             self._wake.clear()
-            while items:
-                publisher, payload = items.popleft()
+            while (item := self._next()) is not None:
                 try:
-                    publisher.put(payload)
+                    item[0].put(item[1])
                 except Exception:
                     pass  # undeclared while queued: nobody to deliver to
             if self._stopping:

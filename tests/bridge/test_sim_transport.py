@@ -47,3 +47,37 @@ def test_publish_and_subscribe_binary_samples_and_drop_what_is_malformed(
     assert "dropped a malformed message on gz topic /scan_in: malformed gz message" in err
     assert "dropped a sample on gz topic /scan_in: cannot encode gz.msgs.LaserScan" in err
     assert "Traceback" not in err
+
+
+class _StalledLink:
+    """A publisher whose first put blocks until released: a congested transmit thread."""
+
+    def __init__(self) -> None:
+        self.release = threading.Event()
+        self.sent: list[bytes] = []
+
+    def put(self, payload: bytes) -> None:
+        if not self.sent:
+            self.release.wait(10.0)
+        self.sent.append(payload)
+
+
+def test_outbox_under_a_frame_burst_drops_old_frames_never_the_clock() -> None:
+    from diffctl.sim.transport import Outbox
+
+    outbox = Outbox()
+    link = _StalledLink()
+    frame = bytes(2 * 1024 * 1024)  # a full-size rgbd frame
+    clocks = [gz.clock(i * 10_000_000, 0, 0) for i in range(60)]
+    try:
+        outbox.put(link, clocks[0])
+        for i in range(1, 60):
+            outbox.put(link, frame)
+            outbox.put(link, clocks[i])
+        link.release.set()
+        assert wait_for(lambda: clocks[-1] in link.sent, 10.0)
+    finally:
+        outbox.close()
+    assert [p for p in link.sent if p != frame] == clocks  # every clock, in order
+    frames = sum(p == frame for p in link.sent)
+    assert 0 < frames <= Outbox.MAX_BYTES // len(frame) and outbox.dropped == 59 - frames
