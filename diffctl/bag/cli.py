@@ -173,7 +173,7 @@ def play(bag_path: Path, rate: float, loop: bool, clock_hz: float, start_offset:
                                                                              "nanosec": ns % 1_000_000_000}}))
 
         player = Player(lambda from_ns: b.messages(wanted, from_ns), b.metadata.starting_time_ns, options,
-                        lambda topic, data: pubs[topic](data), publish_clock if clock_pub else None)
+                        lambda m: pubs[m.topic](m.data), publish_clock if clock_pub else None)
 
         def on_key(key: str) -> None:
             if key == "space":

@@ -93,7 +93,7 @@ class Player:
         messages: Callable[[int], Iterable[Message]],
         start_ns: int,
         options: PlayOptions,
-        publish: Callable[[str, bytes], None],
+        publish: Callable[[Message], None],
         publish_clock: Callable[[int], None] | None = None,
         now_s: Callable[[], float] = time.monotonic,
         sleep_s: Callable[[float], None] | None = None,
@@ -140,8 +140,10 @@ class Player:
         return True
 
     def change_rate(self, delta: float) -> float:
+        return self.set_rate(max(RATE_STEP, round(self.timer.rate + delta, 6)))
+
+    def set_rate(self, rate: float) -> float:
         with self._lock:
-            rate = max(RATE_STEP, round(self.timer.rate + delta, 6))
             self.timer.set_rate(rate)
         self.wake()
         return rate
@@ -176,7 +178,7 @@ class Player:
             for msg in source:
                 if not self._due(msg):
                     return
-                self._publish(msg.topic, msg.data)
+                self._publish(msg)
                 self.published += 1
         finally:
             source.close()

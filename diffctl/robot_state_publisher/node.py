@@ -15,7 +15,7 @@ from typing import Any
 
 from diffctl.description.model import Model
 from diffctl.description.pose import Pose
-from diffctl.description.sdf_loader import parse_model
+from diffctl.description.robot_files import parse_description
 from diffctl.errors import ParameterError
 from diffctl.robot_state_publisher.kinematics import KinematicTree, Segment
 
@@ -69,8 +69,11 @@ class RspParams:
 
 
 def load_description(params: RspParams, base_dir: Path | None = None) -> Model:
-    # TF needs no meshes, and a description may name files of another machine: do not check them.
-    return parse_model(params.robot_description, source="robot_description", base_dir=base_dir, check_files=False)
+    # TF needs no meshes, and a description may name files of another machine: do not check them. A URDF keeps
+    # every link and joint as written (no Gazebo lumping), so TF has each frame ROS's robot_state_publisher gives.
+    return parse_description(
+        params.robot_description, source="robot_description", base_dir=base_dir, simulation=False, check_files=False
+    )
 
 
 def transform_dict(parent: str, child: str, pose: Pose, stamp_ns: int) -> dict[str, Any]:

@@ -27,7 +27,7 @@ from typing import Any
 
 from diffctl.bus import gz
 from diffctl.description.pose import Pose
-from diffctl.description.sdf_loader import load_model, parse_model
+from diffctl.description.robot_files import load_description, parse_description
 from diffctl.errors import RuntimeFailure
 from diffctl.sim.runner import Simulation
 from diffctl.sim.transport import Reply
@@ -92,9 +92,9 @@ class WorldServices:
             path = Path(str(req["sdf_filename"]))
             if not path.is_file():
                 return {"ok": False, "error": f"{path}: no such file"}
-            model = load_model(path, name=name, pose=pose)
+            model = load_description(path, name=name, pose=pose)
         elif req.get("sdf"):
-            model = parse_model(str(req["sdf"]), source="robot_description", name=name, pose=pose, base_dir=base_dir)
+            model = parse_description(str(req["sdf"]), source="robot_description", name=name, pose=pose, base_dir=base_dir)
         else:
             return {"ok": False, "error": "give the model as 'sdf' (text) or 'sdf_filename' (a path)"}
         if model.name in self.sim.models:

@@ -96,8 +96,9 @@ def from_model(model: sdf.Model) -> RobotModel:
 
 
 def parse_description(text: str, source: str = "/robot_description") -> RobotModel:
-    """The robot in an SDF string (a <model>, or the first model of a <world>)."""
+    """The robot in an SDF or URDF string (a <model>, the first model of a <world>, or a <robot>)."""
     from diffctl.description import sdf_loader
+    from diffctl.description.robot_files import parse_description as parse_robot
 
     # Mesh files may live on another machine: the outline does not need them, so they are not checked.
     if "<world" in text:
@@ -105,4 +106,4 @@ def parse_description(text: str, source: str = "/robot_description") -> RobotMod
         if not world.models:
             raise DescriptionError("the description holds no <model>", source=source)
         return from_model(world.models[0])
-    return from_model(sdf_loader.parse_model(text, source=source, check_files=False))
+    return from_model(parse_robot(text, source=source, simulation=False, check_files=False))

@@ -112,10 +112,10 @@ def description_joint_names(description: str) -> list[str] | None:
     """Joint names of the robot description in document order, or None when it cannot be read."""
     if not description.strip():
         return None
-    from diffctl.description.sdf_loader import parse_model
+    from diffctl.description.robot_files import parse_description
 
     try:
-        model = parse_model(description, source="robot_description", check_files=False)
+        model = parse_description(description, source="robot_description", simulation=False, check_files=False)
     except Exception:  # an unreadable description just disables the filter, as in the reference
         return None
     return [j.name for j in model.joints]

@@ -1,0 +1,71 @@
+"""`diffctl foxglove-bridge`: foxglove_bridge's counterpart; also what `Node(package='foxglove_bridge',
+executable='foxglove_bridge')` starts, taking `port` and `address` from `--ros-args -p` as the real one."""
+
+from __future__ import annotations
+
+import signal
+import threading
+from pathlib import Path
+
+import click
+
+from diffctl.console import info
+
+
+@click.command("foxglove-bridge")
+@click.option("--port", type=int, default=None, help="WebSocket port (default 8765; 0 picks a free one).")
+@click.option("--address", default=None, help="Loopback address to listen on (default 127.0.0.1).")
+@click.option("--bag", "bag_path", type=click.Path(path_type=Path), default=None,
+              help="Serve this bag with playback controls instead of the live graph.")
+@click.option("--rate", type=float, default=1.0, help="Bag playback rate.")
+def foxglove_bridge(port: int | None, address: str | None, bag_path: Path | None, rate: float) -> None:
+    """Serve ROS topics to the Foxglove app over its WebSocket protocol (foxglove_bridge).
+
+    Every topic is advertised with its ros2msg schema and cdr encoding; clients may publish (cmd_vel).
+    With --bag, the server plays a bag instead, under the app's play/pause/seek controls.
+
+    \b
+    Example:
+      diffctl foxglove-bridge --port 8765
+      diffctl foxglove-bridge --bag run1
+    """
+    import foxglove
+
+    from diffctl import ros_args
+    from diffctl.foxglove import server as fg
+
+    ra = ros_args.current("foxglove_bridge")
+    port = fg.check_port(port if port is not None else ra.params.get("port", 8765))
+    address = fg.check_loopback(address or str(ra.params.get("address", "127.0.0.1")))
+    stop = threading.Event()
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(sig, lambda *_: stop.set())
+    context = foxglove.Context()
+    if bag_path is not None:
+        from diffctl.bag.reader import Bag
+        from diffctl.bag.timing import check_rate
+        from diffctl.foxglove.playback import BagPlayback
+
+        check_rate(rate)
+        bag = Bag(bag_path)
+        playback = BagPlayback(bag, context, rate)
+        server = fg.start(address, port, playback=playback, context=context)
+        playback.start(paused=True)
+        info(f"Foxglove server on ws://{address}:{server.port} playing {bag_path} (paused; play it from the app)")
+        stop.wait()
+        playback.close()
+        server.stop()
+        bag.close()
+        return
+    from diffctl.bus import Node
+    from diffctl.foxglove.live import LiveBridge
+
+    node = Node.from_ros_args("foxglove_bridge")
+    live = LiveBridge(node, context, say=info)
+    server = fg.start(address, port, live=live, context=context)
+    live.start()
+    info(f"Foxglove server on ws://{address}:{server.port} (connect from the Foxglove app)")
+    stop.wait()
+    live.close()
+    server.stop()
+    node.close()

@@ -1,0 +1,93 @@
+"""Starts the `foxglove-sdk` WebSocket server and routes its callbacks to the live bridge or a bag player.
+
+The server speaks the Foxglove WebSocket protocol (subprotocol `foxglove.sdk.v1`, which the app and
+the SDK's servers use) on a loopback address only; each instance has its own SDK context, so channels
+never leak between servers in one process (tests run several).
+"""
+
+from __future__ import annotations
+
+import ipaddress
+from typing import Any
+
+import foxglove
+from foxglove.websocket import Capability, ServerListener
+
+from diffctl.errors import ConfigError
+from diffctl.foxglove.live import LiveBridge
+from diffctl.foxglove.playback import BagPlayback
+
+
+def check_loopback(address: str) -> str:
+    try:
+        ok = ipaddress.ip_address(address).is_loopback
+    except ValueError:
+        ok = address == "localhost"
+    if not ok:
+        raise ConfigError(f"address {address!r} is not a loopback address",
+                          hint="diffctl serves Foxglove on 127.0.0.1 or ::1 only")
+    return address
+
+
+def check_port(port: Any) -> int:
+    try:
+        p = int(port)
+    except (TypeError, ValueError):
+        p = -1
+    if not 0 <= p <= 65535:
+        raise ConfigError(f"port {port!r} is not a TCP port", hint="0 to 65535 (0 picks a free one)")
+    return p
+
+
+class _Listener(ServerListener):
+    def __init__(self, live: LiveBridge | None, playback: BagPlayback | None) -> None:
+        self.live = live
+        self.playback = playback
+
+    def on_subscribe(self, client: Any, channel: Any) -> None:
+        if self.live is not None:
+            self.live.on_subscribe(channel.id)
+
+    def on_unsubscribe(self, client: Any, channel: Any) -> None:
+        if self.live is not None:
+            self.live.on_unsubscribe(channel.id)
+
+    def on_client_advertise(self, client: Any, channel: Any) -> None:
+        if self.live is not None:
+            self.live.on_client_advertise(client.id, channel)
+
+    def on_client_unadvertise(self, client: Any, client_channel_id: int) -> None:
+        if self.live is not None:
+            self.live.on_client_unadvertise(client.id, client_channel_id)
+
+    def on_message_data(self, client: Any, client_channel_id: int, data: bytes) -> None:
+        if self.live is not None:
+            self.live.on_message_data(client.id, client_channel_id, data)
+
+    def on_playback_control_request(self, playback_control_request: Any) -> Any:
+        if self.playback is None:
+            return None
+        return self.playback.control(playback_control_request)
+
+
+def start(host: str, port: int, *, live: LiveBridge | None = None, playback: BagPlayback | None = None,
+          context: foxglove.Context) -> Any:
+    """The running server (its `.port()` is the bound port)."""
+    listener = _Listener(live, playback)
+    kw: dict[str, Any] = {}
+    if playback is not None:
+        caps = [Capability.Time]
+        kw["playback_time_range"] = playback.time_range
+    else:
+        caps = [Capability.ClientPublish]
+    try:
+        server = foxglove.start_server(name="diffctl foxglove_bridge", host=check_loopback(host),
+                                       port=check_port(port), capabilities=caps, server_listener=listener,
+                                       supported_encodings=["cdr", "json"], context=context, **kw)
+    except RuntimeError as e:
+        raise ConfigError(f"cannot serve Foxglove on {host}:{port}: {e}", hint="is the port in use? try --port 0") \
+            from None
+    for part in (live, playback):
+        if part is not None:
+            part.server = server
+    return server
