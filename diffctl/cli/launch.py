@@ -55,6 +55,13 @@ def _ensure_router(output: Any) -> Any:
 )
 @click.option("--no-color", is_flag=True, help="No colours in the output.")
 @click.option("--no-router", is_flag=True, help="Do not start the embedded Zenoh router.")
+@click.option(
+    "--workspace",
+    "workspace_dir",
+    type=click.Path(file_okay=False, path_type=Path),
+    default=None,
+    help="The ROS workspace whose packages to use (default: $DIFFCTL_WORKSPACE, else the enclosing one).",
+)
 def launch(
     target: tuple[str, ...],
     show_args: bool,
@@ -62,6 +69,7 @@ def launch(
     log_dir: Path | None,
     no_color: bool,
     no_router: bool,
+    workspace_dir: Path | None,
 ) -> None:
     """Start a launch file and supervise its processes (ros2 launch).
 
@@ -84,6 +92,7 @@ def launch(
     from diffctl.launch.resolver import Resolver, declared_arguments
 
     positional, arguments = _split_targets(target)
+    _choose_workspace(workspace_dir)
     path = package_index.find_launch_file(*positional)
     description = load(path)
     # Piped output is not cut to 80 columns: paths and commands must stay whole.
@@ -103,6 +112,18 @@ def launch(
         return
     # SystemExit, not ctx.exit: the entry point runs click with standalone_mode=False, which drops exit codes.
     raise SystemExit(_run(plan, log_dir=log_dir, no_color=no_color, no_router=no_router))
+
+
+def _choose_workspace(workspace_dir: Path | None) -> None:
+    # Children inherit the environment: every process (and xacro run as a command) resolves packages
+    # in the same workspace, whatever its own working directory.
+    import os
+
+    from diffctl.workspace import WORKSPACE_ENV, find_workspace
+
+    ws = find_workspace(explicit=workspace_dir)
+    if ws is not None:
+        os.environ[WORKSPACE_ENV] = str(ws)
 
 
 def _run(plan: Any, *, log_dir: Path | None, no_color: bool, no_router: bool) -> int:
