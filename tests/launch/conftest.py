@@ -24,8 +24,8 @@ import pytest
 from diffctl.launch.loader import load
 from diffctl.launch.output import Output
 from diffctl.launch.plan import Plan
-from diffctl.launch.resolver import resolve
 from diffctl.launch.process_state import Child
+from diffctl.launch.resolver import resolve
 from diffctl.launch.supervisor import Supervisor
 
 DATA = Path(__file__).parent / "data"
