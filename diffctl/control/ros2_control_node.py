@@ -68,7 +68,9 @@ class ControlNode:
             p = Path(opts.description_file)
             if not p.is_file():
                 raise ConfigError("robot description file not found", source=str(p))
-            self._prepare(p.read_text(), str(p))
+            from diffctl.description.robot_files import read_description_text  # a xacro file expands first
+
+            self._prepare(read_description_text(p), str(p))
         self.node = Node(self.name, self.ra.namespace or "/", remaps=self.ra.remaps, params=dict(self.base_flat))
         self.log = self.node.log
         self.cm: ControllerManager | None = None

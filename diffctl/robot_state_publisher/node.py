@@ -15,7 +15,7 @@ from typing import Any
 
 from diffctl.description.model import Model
 from diffctl.description.pose import Pose
-from diffctl.description.robot_files import parse_description
+from diffctl.description.robot_files import parse_description, read_description_text
 from diffctl.errors import ParameterError
 from diffctl.robot_state_publisher.kinematics import KinematicTree, Segment
 
@@ -158,7 +158,7 @@ def run(params: dict[str, Any], *, description_file: Path | None = None) -> None
     base_dir = None
     if description_file is not None:
         try:
-            params = {**params, "robot_description": description_file.read_text()}
+            params = {**params, "robot_description": read_description_text(description_file)}
         except OSError as e:
             raise ParameterError(f"cannot read description: {e.strerror}", source=str(description_file)) from None
         base_dir = description_file.resolve().parent
