@@ -5,6 +5,11 @@ A package adds its own plugin by declaring, in its pyproject.toml,
     "my_pkg/MyController" = "my_pkg.controller:MyController"
 (or the group "diffctl.hardware" for a hardware SystemInterface); diffctl needs no change.
 `register_*` adds a class in-process (tests, notebooks).
+
+A hardware plugin diffctl does not have is, almost always, the user's own C++ pluginlib plugin (the driver of
+a real robot, `diffdrive_arduino/DiffDriveArduinoHardware`): that is bad input for diffctl, reported in one
+line that names the plugin (and the `<ros2_control>` block and file when known) and says how to run the
+same description on `mock_components/GenericSystem` instead.
 """
 
 from __future__ import annotations
@@ -13,7 +18,7 @@ import importlib
 from importlib.metadata import entry_points
 
 from diffctl.control.controller_interface import ControllerInterface
-from diffctl.control.hardware_interface import HardwareComponent
+from diffctl.control.hardware_interface import HardwareComponent, HardwareInfo
 from diffctl.errors import ConfigError, suggest
 
 CONTROLLER_GROUP = "diffctl.controllers"
@@ -46,15 +51,33 @@ def hardware_plugins() -> list[str]:
     return available(HARDWARE_GROUP)
 
 
-def _load(group: str, name: str, base: type, what: str) -> type:
+MOCK_HARDWARE = "mock_components/GenericSystem"
+
+
+def _unknown(group: str, name: str, what: str, source: str | None, block: str | None) -> ConfigError:
+    close = suggest(name, available(group))
+    if group != HARDWARE_GROUP or close:
+        return ConfigError(
+            f"unknown {what} plugin {name!r}{close}",
+            source=source,
+            hint="installed: " + (", ".join(available(group)) or "none"),
+        )
+    return ConfigError(
+        f"hardware plugin {name!r} is not available in diffctl (a C++ ros2_control plugin can not be loaded; "
+        f"diffctl has {', '.join(available(group)) or 'none'})",
+        source=source,
+        field=f"<ros2_control name={block!r}>/hardware/plugin" if block else None,
+        hint=f"run it on mock hardware: use_mock_hardware:=true if your launch file or xacro has that argument, "
+        f"or `diffctl control manager --hardware-plugin {MOCK_HARDWARE}`",
+    )
+
+
+def _load(group: str, name: str, base: type, what: str, source: str | None = None, block: str | None = None) -> type:
     if name in _local[group]:
         return _local[group][name]
     eps = _entry_points(group)
     if name not in eps:
-        raise ConfigError(
-            f"unknown {what} plugin {name!r}{suggest(name, available(group))}",
-            hint="installed: " + (", ".join(available(group)) or "none"),
-        )
+        raise _unknown(group, name, what, source, block)
     module_name, _, attr = eps[name].partition(":")
     try:
         obj = importlib.import_module(module_name)
@@ -71,8 +94,14 @@ def controller_class(type_name: str) -> type[ControllerInterface]:
     return _load(CONTROLLER_GROUP, type_name, ControllerInterface, "controller")
 
 
-def hardware_class(plugin_name: str) -> type[HardwareComponent]:
-    return _load(HARDWARE_GROUP, plugin_name, HardwareComponent, "hardware")
+def hardware_class(plugin_name: str, source: str | None = None, block: str | None = None) -> type[HardwareComponent]:
+    """The class of hardware plugin `plugin_name`; `source`/`block` (file, `<ros2_control name>`) locate errors."""
+    return _load(HARDWARE_GROUP, plugin_name, HardwareComponent, "hardware", source, block)
+
+
+def hardware_for(info: HardwareInfo) -> type[HardwareComponent]:
+    """The plugin class of one `<ros2_control>` block (errors name the block and its file)."""
+    return hardware_class(info.plugin_name, info.source, info.name)
 
 
 def base_class_of(type_name: str) -> str:

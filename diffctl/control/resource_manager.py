@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 from diffctl.control.controller_interface import CommandInterface, ReturnType, StateInterface
 from diffctl.control.hardware_interface import HardwareComponent, HardwareInfo
 from diffctl.control.lifecycle import State, TransitionError, hook_message
-from diffctl.control.plugin_registry import hardware_class
+from diffctl.control.plugin_registry import hardware_for
 from diffctl.errors import ConfigError, DiffctlError
 
 
@@ -62,7 +62,7 @@ class ResourceManager:
     ) -> HardwareHandle:
         if info.name in self.components:
             raise ConfigError(f"two <ros2_control> blocks are named {info.name!r}", source=info.source)
-        cls = hardware_class(info.plugin_name)
+        cls = hardware_for(info)
         comp = cls()
         comp.log = logger
         comp.update_rate = update_rate

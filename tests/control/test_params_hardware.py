@@ -130,12 +130,65 @@ def test_generic_system_integrates_with_calculate_dynamics() -> None:
     hw.commands["right_wheel/position"].set_value(2.0)
     for _ in range(10):
         hw.read(0, 0.01)
-    assert hw.states["left_wheel/position"].value == pytest.approx(1.5 + 10 * 0.01 * 2.0)
+    # Backward integration as upstream: the position moves by the previous velocity, so 9 of the 10 steps.
+    assert hw.states["left_wheel/position"].value == pytest.approx(1.5 + 9 * 0.01 * 2.0)
     assert hw.states["left_wheel/velocity"].value == 2.0
     assert hw.states["right_wheel/position"].value == 2.0
     hw.perform_command_mode_switch([], ["left_wheel/velocity"])
     hw.read(0, 0.01)
-    assert hw.states["left_wheel/position"].value == pytest.approx(1.7)  # no mode: no motion
+    assert hw.states["left_wheel/position"].value == pytest.approx(1.68)  # no mode: no motion
+
+
+def _mock_block(hw_params: dict[str, str], **joint_params: dict[str, str]) -> GenericSystem:
+    from diffctl.control.hardware_interface import ComponentInfo, HardwareInfo, InterfaceInfo
+
+    def joint(name: str) -> ComponentInfo:
+        return ComponentInfo(
+            name,
+            command_interfaces=(InterfaceInfo("position"),),
+            state_interfaces=(InterfaceInfo("position"), InterfaceInfo("velocity"), InterfaceInfo("actual")),
+            parameters=joint_params.get(name, {}),
+        )
+
+    imu = ComponentInfo("imu", "sensor", state_interfaces=(InterfaceInfo("orientation.z"),))
+    info = HardwareInfo(
+        "arm", plugin_name="mock_components/GenericSystem", hardware_parameters=hw_params,
+        joints=(joint("a"), joint("b")), sensors=(imu,), source="arm.urdf",
+    )  # fmt: skip
+    hw = GenericSystem()
+    hw.on_init(info)
+    hw.export_state_interfaces()
+    hw.export_command_interfaces()
+    hw.on_configure()
+    return hw
+
+
+def test_generic_system_disable_commands_mock_sensor_commands_offsets_and_mimic() -> None:
+    log = RecordingLog()
+    hw = _mock_block({"disable_commands": "true"})
+    hw.log = log
+    hw.commands["a/position"].set_value(1.0)
+    assert hw.read(0, 0.01) is ReturnType.OK
+    assert hw.states["a/position"].value == 0.0 and "Command propagation is disabled" in log.text("WARN")
+
+    hw = _mock_block({"mock_sensor_commands": "true", "calculate_dynamics": "true"})
+    assert "imu/orientation.z" in hw.commands  # a command interface for every sensor state
+    hw.commands["imu/orientation.z"].set_value(0.7)
+    hw.read(0, 0.01)
+    assert hw.states["imu/orientation.z"].value == 0.7  # mirrored, with calculate_dynamics too
+    assert "imu/orientation.z" not in _mock_block({}).commands
+
+    hw = _mock_block({"position_state_following_offset": "0.5", "custom_interface_with_following_offset": "actual"})
+    hw.commands["a/position"].set_value(1.0)
+    hw.read(0, 0.01)
+    assert (hw.states["a/position"].value, hw.states["a/actual"].value) == (1.0, 1.5)
+
+    hw = _mock_block({}, b={"mimic": "a", "multiplier": "-2"})
+    hw.commands["a/position"].set_value(0.25)
+    hw.read(0, 0.01)
+    assert hw.states["b/position"].value == -0.5
+    with pytest.raises(ParameterError, match="mimicked joint 'c' not found"):
+        _mock_block({}, b={"mimic": "c"})
 
 
 def test_generic_system_refuses_bad_params() -> None:
@@ -189,3 +242,47 @@ def test_manager_refuses_bad_input_before_starting(args: list[str], message: str
         env={**os.environ, "DIFFCTL_ROUTER": "tcp/127.0.0.1:9"},  # no router: nothing may start
     )
     assert p.returncode == 2 and message in p.stderr, p.stderr
+
+
+USER_URDF = """<?xml version="1.0"?>
+<robot name="real_bot">
+  <link name="base_link"/><link name="wheel"/>
+  <joint name="wheel_joint" type="continuous"><parent link="base_link"/><child link="wheel"/></joint>
+  <ros2_control name="RealRobot" type="system">
+    <hardware><plugin>diffdrive_arduino/DiffDriveArduinoHardware</plugin>
+      <param name="device">/dev/ttyUSB0</param></hardware>
+    <joint name="wheel_joint"><command_interface name="velocity"/><state_interface name="position"/></joint>
+  </ros2_control>
+</robot>
+"""
+
+
+def test_a_users_cpp_hardware_plugin_is_one_clear_line_suggesting_mock_hardware(tmp_path) -> None:
+    urdf = tmp_path / "real_bot.urdf"
+    urdf.write_text(USER_URDF)
+    p = subprocess.run(
+        [sys.executable, "-m", "diffctl", "control", "manager", "--description", str(urdf)],
+        capture_output=True,
+        text=True,
+        timeout=30,
+        cwd=tmp_path,
+        env={**os.environ, "DIFFCTL_ROUTER": "tcp/127.0.0.1:9"},  # no router: nothing may start
+    )
+    lines = [line for line in p.stderr.splitlines() if line.strip()]
+    assert p.returncode == 2 and len(lines) == 1, p.stderr
+    assert "'diffdrive_arduino/DiffDriveArduinoHardware' is not available in diffctl" in lines[0]
+    assert "mock_components/GenericSystem" in lines[0] and "use_mock_hardware:=true" in lines[0]
+
+
+def test_the_resource_manager_names_the_block_and_file_of_an_unknown_plugin() -> None:
+    from diffctl.control.resource_manager import ResourceManager
+    from diffctl.errors import ConfigError
+
+    info = wheel_info(name="RealRobot", plugin="my_robot_hardware/MyRobotSystem")
+    info = type(info)(**{**info.__dict__, "source": "robot.urdf.xacro"})
+    with pytest.raises(ConfigError) as e:
+        ResourceManager().load(info)
+    text = str(e.value)
+    assert text.startswith("robot.urdf.xacro: <ros2_control name='RealRobot'>/hardware/plugin: ")
+    assert "'my_robot_hardware/MyRobotSystem'" in text and "mock_components/GenericSystem" in text
+    assert e.value.exit_code == 2

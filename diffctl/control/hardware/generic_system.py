@@ -4,12 +4,17 @@ Hardware `<param>`s, as in ros2_control's mock components:
   calculate_dynamics (false)   false: a position command sets the position state (+ offset); any other
                                command is mirrored to the state of the same name. true: the claimed
                                command (position, velocity or acceleration; one per joint) is integrated
-                               into position/velocity/acceleration states.
-  position_state_following_offset (0.0), custom_interface_with_following_offset ("")
+                               into position/velocity/acceleration states, backward as upstream (position
+                               advances by the previous velocity); other commands are mirrored.
+  position_state_following_offset (0.0) is added to the position state (in velocity and acceleration
+                               mode on every step, as upstream); with custom_interface_with_following_offset
+                               ("") it goes to that interface instead: its state = position command + offset.
   disable_commands (false)     states never follow commands (warned about, throttled)
   mock_sensor_commands, mock_gpio_commands (false)  command interfaces for sensor/GPIO states, mirrored.
 States start at their `initial_value` or 0.0 at configure; commands start as NaN (no command).
-A NaN command is ignored; an infinite one makes read() return ERROR.
+A NaN command is ignored; an infinite one makes read() return ERROR. A joint with `<param name="mimic">`
+(and optional `multiplier`) copies every state of the mimicked joint, scaled.
+Behaviour read from ros2_control's hardware_interface/src/mock_components/generic_system.cpp (commit 03bf04b).
 """
 
 from __future__ import annotations
@@ -71,6 +76,32 @@ class GenericSystem(HardwareComponent):
                     f"with calculate_dynamics, command interfaces must be among {_MODES}; joint {j.name!r} has {bad}",
                     source=info.source,
                 )
+        # <joint><param name="mimic">other</param><param name="multiplier">k</param>: every state = k × other's.
+        names = {j.name for j in info.joints}
+        self._joint_interfaces = {j.name: [it.name for it in j.state_interfaces] for j in info.joints}
+        self._mimics: list[tuple[str, str, float]] = []
+        for j in info.joints:
+            mimicked = j.parameters.get("mimic")
+            if mimicked is None:
+                continue
+            if mimicked not in names:
+                raise ParameterError(
+                    f"mimicked joint {mimicked!r} not found (joints: {sorted(names)})",
+                    source=info.source,
+                    field=f"<ros2_control name={info.name!r}>/joint[{j.name}]/param[mimic]",
+                )
+            raw = j.parameters.get("multiplier", "1.0")
+            try:
+                multiplier = float(raw)
+            except ValueError:
+                multiplier = math.nan
+            if not math.isfinite(multiplier):
+                raise ParameterError(
+                    f"{raw!r} is not a finite number",
+                    source=info.source,
+                    field=f"<ros2_control name={info.name!r}>/joint[{j.name}]/param[multiplier]",
+                )
+            self._mimics.append((j.name, mimicked, multiplier))
         self._initial: dict[str, float] = {}
         for comp in info.components:
             for it in comp.state_interfaces:
@@ -133,44 +164,47 @@ class GenericSystem(HardwareComponent):
             now = time.monotonic()
             if self.log is not None and now - self._last_warn > 10.0:
                 self._last_warn = now
-                self.log.warn(f"{self.name}: disable_commands is set, states do not follow commands")
+                self.log.warn(f"{self.name}: Command propagation is disabled - no values will be returned!")
             return ReturnType.OK
         states, commands = self.states, self.commands
+        for name, cmd in commands.items():
+            if math.isinf(cmd.value):
+                if self.log is not None:
+                    self.log.error(f"{self.name}: command {name} is {cmd.value}")
+                return ReturnType.ERROR
+        # The position offset goes to the custom interface when one is named, else to the position state.
+        position_offset = 0.0 if self.custom_offset_interface else self.offset
+        if self.calculate_dynamics:
+            self._integrate(period_s, position_offset)
         for name, cmd in commands.items():
             v = cmd.value
             if v != v:  # NaN: no command
                 continue
-            if math.isinf(v):
-                if self.log is not None:
-                    self.log.error(f"{self.name}: command {name} is {v}")
-                return ReturnType.ERROR
-        if self.calculate_dynamics:
-            self._integrate(period_s)
-            return ReturnType.OK
-        for name, cmd in commands.items():
-            v = cmd.value
-            if v != v:
-                continue
             joint, _, iface = name.rpartition("/")
-            if iface == "position":
-                if self.custom_offset_interface:
-                    target = states.get(f"{joint}/{self.custom_offset_interface}")
-                    if target is not None:
-                        target.value = v + self.offset
+            if iface in (_MODES if self.calculate_dynamics else ("position",)) and joint in self._mode:
+                if iface == "position" and not self.calculate_dynamics:
                     st = states.get(name)
                     if st is not None:
-                        st.value = v
-                else:
-                    st = states.get(name)
-                    if st is not None:
-                        st.value = v + self.offset
-            else:
-                st = states.get(name)
-                if st is not None:
-                    st.value = v
+                        st.value = v + position_offset
+                continue
+            st = states.get(name)
+            if st is not None:
+                st.value = v
+        if self.custom_offset_interface:
+            for joint in self._mode:
+                cmd = commands.get(f"{joint}/position")
+                target = states.get(f"{joint}/{self.custom_offset_interface}")
+                if cmd is not None and target is not None and cmd.value == cmd.value:
+                    target.value = cmd.value + self.offset
+        for joint, mimicked, multiplier in self._mimics:
+            for iface in self._joint_interfaces[joint]:
+                src = states.get(f"{mimicked}/{iface}")
+                if src is not None:
+                    states[f"{joint}/{iface}"].value = multiplier * src.value
         return ReturnType.OK
 
-    def _integrate(self, dt: float) -> None:
+    def _integrate(self, dt: float, position_offset: float) -> None:
+        """One step of the mock's dynamics (backward integration: position advances by the previous velocity)."""
         if not dt > 0.0:
             return
         states, commands = self.states, self.commands
@@ -178,26 +212,25 @@ class GenericSystem(HardwareComponent):
             if mode is None:
                 continue
             cmd = commands[f"{joint}/{mode}"].value
-            if cmd != cmd:
-                continue
             pos_s, vel_s, acc_s = (states.get(f"{joint}/{k}") for k in _MODES)
             pos = pos_s.value if pos_s is not None else 0.0
             vel = vel_s.value if vel_s is not None else 0.0
             acc = acc_s.value if acc_s is not None else 0.0
-            if mode == "velocity":
-                new_vel = cmd
-                acc = (new_vel - vel) / dt
-                pos += new_vel * dt
-                vel = new_vel
-            elif mode == "position":
-                new_pos = cmd + self.offset
+            if mode == "acceleration":
+                pos += vel * dt + position_offset
+                vel += acc * dt
+                if cmd == cmd:
+                    acc = cmd
+            elif mode == "velocity":
+                pos += vel * dt + position_offset
+                if cmd == cmd:
+                    acc = (cmd - vel) / dt
+                    vel = cmd
+            elif cmd == cmd:  # position
+                new_pos = cmd + position_offset
                 new_vel = (new_pos - pos) / dt
                 acc = (new_vel - vel) / dt
                 pos, vel = new_pos, new_vel
-            else:
-                acc = cmd
-                vel += acc * dt
-                pos += vel * dt
             for s, v in ((pos_s, pos), (vel_s, vel), (acc_s, acc)):
                 if s is not None:
                     s.value = v
