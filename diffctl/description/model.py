@@ -168,7 +168,13 @@ class ImuSpec:
     linear_acceleration_noise: tuple[Noise, Noise, Noise] = (Noise(), Noise(), Noise())
 
 
-SENSOR_TYPES = ("lidar", "imu", "camera", "depth_camera", "rgbd_camera")
+@dataclass(frozen=True)
+class AirPressureSpec:
+    reference_altitude_m: float = 0.0  # <reference_altitude>: added to the sensor's height in the world
+    noise: Noise = field(default_factory=Noise)  # <pressure><noise>, in pascals
+
+
+SENSOR_TYPES = ("lidar", "imu", "camera", "depth_camera", "rgbd_camera", "air_pressure")
 
 
 @dataclass(frozen=True)
@@ -187,6 +193,7 @@ class Sensor:
     lidar: LidarSpec | None = None
     camera: CameraSpec | None = None
     imu: ImuSpec | None = None
+    air_pressure: AirPressureSpec | None = None
 
 
 # --- links, joints, frames ------------------------------------------------------------------------------

@@ -12,6 +12,7 @@ from collections.abc import Callable
 from lxml import etree
 
 from diffctl.description.model import (
+    AirPressureSpec,
     Box,
     CameraSpec,
     Capsule,
@@ -308,6 +309,14 @@ def _parse_imu(doc: Doc, sensor: Element) -> ImuSpec:
     return ImuSpec(axes("angular_velocity"), axes("linear_acceleration"))
 
 
+def _parse_air_pressure(doc: Doc, sensor: Element) -> AirPressureSpec:
+    el = child(sensor, "air_pressure")
+    if el is None:
+        return AirPressureSpec()
+    pressure = child(el, "pressure")
+    return AirPressureSpec(float_value(doc, el, "reference_altitude", 0.0), parse_noise(doc, pressure))
+
+
 def sensor_kind(sdf_type: str) -> str | None:
     if sdf_type in LIDAR_SENSOR_TYPES:
         return "lidar"
@@ -315,6 +324,8 @@ def sensor_kind(sdf_type: str) -> str | None:
         return CAMERA_SENSOR_TYPES[sdf_type]
     if sdf_type in IMU_SENSOR_TYPES:
         return "imu"
+    if sdf_type == "air_pressure":
+        return "air_pressure"
     return None
 
 
@@ -347,6 +358,7 @@ def parse_sensor(doc: Doc, el: Element, link: str, to_link: ToLink, link_world: 
         lidar=_parse_lidar(doc, el) if kind == "lidar" else None,
         camera=_parse_camera(doc, el) if kind in ("camera", "depth_camera", "rgbd_camera") else None,
         imu=_parse_imu(doc, el) if kind == "imu" else None,
+        air_pressure=_parse_air_pressure(doc, el) if kind == "air_pressure" else None,
     )
 
 

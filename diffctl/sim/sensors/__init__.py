@@ -1,11 +1,13 @@
 """CPU sensors as Gazebo Harmonic's sensors system produces them: lidar by ray casting, IMU from link
-velocities, camera / depth_camera / rgbd_camera by PyBullet's TinyRenderer, rendered only on demand.
+velocities, air pressure from height, camera / depth_camera / rgbd_camera by PyBullet's TinyRenderer,
+rendered only on demand.
 
 Each sensor reads the physics world when asked and returns gz.msgs messages as dicts (gz-msgs .proto field
 names, bytes fields as raw `bytes`); topics (topics.py) and scheduling (camera_task.py, the runner) are
 separate from the sampling. All randomness comes from each sensor's own seeded numpy Generator.
 """
 
+from diffctl.sim.sensors.air_pressure import AirPressure
 from diffctl.sim.sensors.camera import Camera, Frame
 from diffctl.sim.sensors.camera_sensor import CameraSensor
 from diffctl.sim.sensors.camera_task import CameraTask
@@ -16,6 +18,7 @@ from diffctl.sim.sensors.rate import RenderRate
 __all__ = [
     "MAX_RAYS",
     "RANGE_DECIMALS",
+    "AirPressure",
     "Camera",
     "CameraSensor",
     "CameraTask",
