@@ -18,6 +18,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "topic": ("diffctl.cli.topic:topic", "List, echo, publish, measure topics (ros2 topic)."),
     "node": ("diffctl.cli.graph:node", "List nodes and show what they publish and serve (ros2 node)."),
     "service": ("diffctl.cli.graph:service", "List and call services (ros2 service)."),
+    "param": ("diffctl.cli.param:param", "List, get, set, describe, dump and load node parameters (ros2 param)."),
     "interface": ("diffctl.cli.graph:interface", "Show message and service definitions (ros2 interface)."),
     "launch": ("diffctl.cli.launch:launch", "Start a launch file and supervise it (ros2 launch)."),
     "sim": ("diffctl.sim.cli:sim", "Run the PyBullet simulator on an SDF world (gz sim)."),
