@@ -1,0 +1,197 @@
+"""Bags on disk, no bus: diffctl's writer read back by the independent `mcap` reader (and mcap-ros2-support's
+decoder), bags written by rosbags and by the mcap library read by `bag info`, and bad bags refused."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+from mcap.reader import make_reader
+from mcap.writer import CompressionType
+from mcap_ros2.decoder import DecoderFactory
+
+from diffctl.bag.metadata import Qos, parse
+from diffctl.bag.msgdefs import ros2msg
+from diffctl.bag.reader import Bag
+from diffctl.bag.writer import BagWriter, WriterOptions
+from diffctl.bus import types
+from diffctl.errors import ConfigError
+from tests.bag.fixtures import BASIC, T0, downgrade, mcap_file, rosbags_bag
+
+ODOM = "nav_msgs/msg/Odometry"
+
+
+def run(*args: str) -> subprocess.CompletedProcess:
+    return subprocess.run([sys.executable, "-m", "diffctl", *args], capture_output=True, text=True, timeout=120)
+
+
+def write_bag(path: Path, n: int = 25, **opts) -> None:
+    w = BagWriter(path, WriterOptions(**opts))
+    w.add_topic("/odom", ODOM, ros2msg(ODOM), qos=[Qos(depth=5)], type_hash=types.type_hash(ODOM))
+    for i in range(n):
+        m = types.new(ODOM, {"header": {"frame_id": "odom"}, "pose": {"pose": {"position": {"x": 0.25 * i}}}})
+        w.write("/odom", types.serialize(m, ODOM), T0 + i * 10_000_000, T0 + i * 10_000_000 - 5, i + 1)
+    w.close()
+
+
+def topic_counts(info_text: str) -> dict[str, int]:
+    out = {}
+    for line in info_text.splitlines():
+        if "Topic: " in line:
+            fields = dict(part.strip().split(": ", 1) for part in line.split("Topic information:")[-1].split("|"))
+            out[fields["Topic"]] = int(fields["Count"])
+    return out
+
+
+@pytest.mark.parametrize("chunks", ["none", "zstd", "lz4"])
+def test_diffctl_bag_is_read_by_the_mcap_library(tmp_path: Path, chunks: str) -> None:
+    bag = tmp_path / "b"
+    write_bag(bag, chunk_compression=chunks)
+    meta = yaml.safe_load((bag / "metadata.yaml").read_text())["rosbag2_bagfile_information"]
+    assert meta["version"] == 9 and meta["relative_file_paths"] == ["b_0.mcap"]
+    assert meta["topics_with_message_count"][0]["topic_metadata"]["offered_qos_profiles"][0]["depth"] == 5
+    with open(bag / "b_0.mcap", "rb") as f:
+        reader = make_reader(f, decoder_factories=[DecoderFactory()])
+        assert reader.get_header().profile == "ros2"
+        summary = reader.get_summary()
+        assert summary.chunk_indexes and all(c.compression == ("" if chunks == "none" else chunks)
+                                             for c in summary.chunk_indexes)
+        got = list(reader.iter_decoded_messages())
+    assert len(got) == 25
+    schema, channel, message, decoded = got[3]
+    assert (schema.name, schema.encoding, channel.message_encoding) == (ODOM, "ros2msg", "cdr")
+    assert "\n" + "=" * 80 + "\nMSG: std_msgs/Header\n" in schema.data.decode()
+    assert channel.metadata["topic_type_hash"] == types.type_hash(ODOM)
+    assert yaml.safe_load(channel.metadata["offered_qos_profiles"])[0]["reliability"] == "reliable"
+    assert decoded.pose.pose.position.x == pytest.approx(0.75)
+    assert (message.log_time, message.publish_time, message.sequence) == (T0 + 30_000_000, T0 + 29_999_995, 4)
+
+
+def test_splits_and_file_compression(tmp_path: Path) -> None:
+    bag = tmp_path / "split"
+    write_bag(bag, n=400, max_bag_size_bytes=20_000, chunk_size_bytes=4096, compression_mode="file",
+              compression_format="zstd")
+    b = Bag(bag)
+    try:
+        names = b.metadata.relative_file_paths
+        assert len(names) > 1 and names[0] == "split_0.mcap.zstd" and b.metadata.compression_mode == "FILE"
+        assert sum(f.message_count for f in b.metadata.files) == 400 == len(list(b.messages()))
+    finally:
+        b.close()
+    out = run("bag", "info", str(bag))
+    assert out.returncode == 0, out.stderr
+    assert topic_counts(out.stdout) == {"/odom": 400}
+
+
+@pytest.mark.parametrize("version", [4, 5, 6, 7, 8, 9])
+def test_info_reads_rosbags_bags_of_every_metadata_version(tmp_path: Path, version: int) -> None:
+    bag = tmp_path / f"v{version}"
+    counts = rosbags_bag(bag, version=9 if version == 9 else 8)
+    if version < 8:
+        downgrade(bag, version)
+    out = run("bag", "info", str(bag))
+    assert out.returncode == 0, out.stderr
+    assert topic_counts(out.stdout) == counts
+    assert f"Messages:          {sum(counts.values())}" in out.stdout
+    assert "Type: test_msgs/msg/BasicTypes" in out.stdout
+
+
+@pytest.mark.parametrize("compression", [CompressionType.ZSTD, CompressionType.LZ4])
+def test_info_of_a_bare_mcap_and_of_a_folder_without_metadata(tmp_path: Path, compression) -> None:
+    d = tmp_path / "nometa"
+    d.mkdir()
+    n = mcap_file(d / "nometa_0.mcap", compression)
+    for target in (d, d / "nometa_0.mcap"):
+        out = run("bag", "info", str(target))
+        assert out.returncode == 0, out.stderr
+        assert topic_counts(out.stdout) == {"/cmd_vel": n}
+        assert "Duration:          1.450000000s" in out.stdout
+
+
+def test_a_type_unknown_to_diffctl_is_learnt_from_the_bag(tmp_path: Path) -> None:
+    bag = tmp_path / "basic"
+    rosbags_bag(bag, version=8)
+    assert not types.exists(BASIC)
+    from diffctl.bag.bus_side import plan_topics
+
+    b = Bag(bag)
+    try:
+        played = plan_topics(b, ("/basic",), {}, set())
+        assert [p.type for p in played] == [BASIC] and types.exists(BASIC)
+        first = next(m for m in b.messages({"/basic"}))
+        msg = types.deserialize(first.data, BASIC)
+        assert (msg.int64_value, msg.uint64_value, msg.char_value) == (-(2**40), 2**50, 65)
+    finally:
+        b.close()
+
+
+def one_error_line(out: subprocess.CompletedProcess) -> str:
+    assert out.returncode == 2, (out.stdout, out.stderr)
+    lines = [ln for ln in out.stderr.splitlines() if ln.strip()]
+    assert len(lines) == 1 and lines[0].startswith("error: "), out.stderr
+    return lines[0]
+
+
+def test_truncated_mcap_is_refused_in_one_line(tmp_path: Path) -> None:
+    bag = tmp_path / "cut"
+    write_bag(bag, n=200)
+    f = bag / "cut_0.mcap"
+    f.write_bytes(f.read_bytes()[: f.stat().st_size // 2])
+    for cmd in ("info", "play"):
+        line = one_error_line(run("bag", cmd, str(bag)))
+        assert "cut_0.mcap" in line and "truncated" in line and "reindex" in line
+
+
+def test_metadata_that_lies_about_its_files(tmp_path: Path) -> None:
+    bag = tmp_path / "liar"
+    write_bag(bag)
+    meta = bag / "metadata.yaml"
+    doc = yaml.safe_load(meta.read_text())
+    doc["rosbag2_bagfile_information"]["relative_file_paths"] = ["liar_0.mcap", "liar_1.mcap"]
+    meta.write_text(yaml.safe_dump(doc))
+    line = one_error_line(run("bag", "play", str(bag)))
+    assert "metadata.yaml" in line and "liar_1.mcap" in line and "present: liar_0.mcap" in line
+    doc["rosbag2_bagfile_information"]["relative_file_paths"] = ["liar_0.mcap"]
+    doc["rosbag2_bagfile_information"]["files"][0]["message_count"] = 99
+    meta.write_text(yaml.safe_dump(doc))
+    line = one_error_line(run("bag", "info", str(bag)))
+    assert "99 messages" in line and "holds 25" in line
+
+
+def test_unknown_compression_is_refused(tmp_path: Path) -> None:
+    bag = tmp_path / "comp"
+    write_bag(bag)
+    meta = bag / "metadata.yaml"
+    doc = yaml.safe_load(meta.read_text())
+    doc["rosbag2_bagfile_information"].update(compression_format="bz2", compression_mode="FILE")
+    meta.write_text(yaml.safe_dump(doc))
+    line = one_error_line(run("bag", "play", str(bag)))
+    assert "compression_format" in line and "'bz2'" in line
+
+
+def test_metadata_missing_a_key_of_its_version(tmp_path: Path) -> None:
+    bag = tmp_path / "v5"
+    rosbags_bag(bag, version=8)
+    downgrade(bag, 5)
+    doc = yaml.safe_load((bag / "metadata.yaml").read_text())
+    del doc["rosbag2_bagfile_information"]["files"]
+    with pytest.raises(ConfigError, match="missing key 'files'"):
+        parse(yaml.safe_dump(doc), "metadata.yaml")
+
+
+def test_reindex_recovers_a_bag_whose_writer_never_finished(tmp_path: Path) -> None:
+    bag = tmp_path / "killed"
+    w = BagWriter(bag, WriterOptions(chunk_size_bytes=2048))
+    w.add_topic("/odom", ODOM, ros2msg(ODOM), type_hash=types.type_hash(ODOM))
+    for i in range(100):
+        m = types.new(ODOM, {"pose": {"pose": {"position": {"x": float(i)}}}})
+        w.write("/odom", types.serialize(m, ODOM), T0 + i * 1000, 0, i + 1)
+    w.flush()  # what the recorder does every second; the process then dies without closing
+    one_error_line(run("bag", "info", str(bag)))
+    out = run("bag", "reindex", str(bag))
+    assert out.returncode == 0, out.stderr
+    out = run("bag", "info", str(bag))
+    assert out.returncode == 0 and topic_counts(out.stdout) == {"/odom": 100}
