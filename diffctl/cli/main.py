@@ -31,6 +31,11 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "bridge": ("diffctl.bridge.cli:bridge", "Bridge simulator topics to ROS topics (ros_gz_bridge)."),
     "viz": ("diffctl.viz.cli:viz", "Browser visualizer (rviz2)."),
     "teleop": ("diffctl.teleop.cli:teleop", "Drive the robot from a keyboard or a game pad."),
+    "pkg": ("diffctl.cli.pkg:pkg", "List packages and where they were found (ros2 pkg)."),
+    "joint-state-publisher": (
+        "diffctl.joint_state_publisher.cli:joint_state_publisher",
+        "Publish the non-fixed joints of /robot_description (joint_state_publisher).",
+    ),
     "bag": ("diffctl.bag.cli:bag", "Record and replay rosbag2 MCAP bags (ros2 bag)."),
     "foxglove-bridge": ("diffctl.foxglove.cli:foxglove_bridge", "Serve the Foxglove WebSocket protocol (foxglove_bridge)."),
 }
