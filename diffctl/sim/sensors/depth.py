@@ -33,17 +33,17 @@ _POINT_DTYPE = np.dtype(
 def sensor_points(depth_fwd_m: np.ndarray, rays: np.ndarray, near_m: float, far_m: float) -> np.ndarray:
     """Per-pixel points in the sensor frame, shape (n, 3) float32, from the forward distance of each pixel
     (n,) and its ray (3, n) with forward component 1 (`flat_planes.camera_rays`); clipped as Gazebo clips."""
-    d = np.asarray(depth_fwd_m, dtype=np.float64)
-    pts = np.empty((d.size, 3), dtype=np.float64)
+    d = np.asarray(depth_fwd_m, dtype=np.float32)
+    pts = np.empty((d.size, 3), dtype=np.float32)
     pts[:, 0] = d
-    pts[:, 1] = d * rays[1]
-    pts[:, 2] = d * rays[2]
-    length = np.sqrt(pts[:, 0] ** 2 + pts[:, 1] ** 2 + pts[:, 2] ** 2)
-    far = length > far_m - CLIP_TOLERANCE_M
+    np.multiply(d, rays[1], out=pts[:, 1], casting="unsafe")
+    np.multiply(d, rays[2], out=pts[:, 2], casting="unsafe")
+    # Squared lengths against the squared far clip: no square root over the whole frame.
+    far = np.einsum("ij,ij->i", pts, pts) > (far_m - CLIP_TOLERANCE_M) ** 2
     near = ~far & (d < near_m + CLIP_TOLERANCE_M)
     pts[far] = np.inf
     pts[near] = -np.inf
-    return pts.astype(np.float32)
+    return pts
 
 
 def depth_image(points: np.ndarray, width_px: int, height_px: int) -> np.ndarray:
@@ -53,9 +53,12 @@ def depth_image(points: np.ndarray, width_px: int, height_px: int) -> np.ndarray
 
 def pack_points(points: np.ndarray, rgb: np.ndarray) -> bytes:
     """PointCloudPacked data of `points` (n, 3) float32 and their colours (n, 3) uint8 R, G, B."""
-    out = np.zeros(len(points), dtype=_POINT_DTYPE)
-    out["x"], out["y"], out["z"] = points[:, 0], points[:, 1], points[:, 2]
-    out["r"], out["g"], out["b"] = rgb[:, 0], rgb[:, 1], rgb[:, 2]
+    # Six 4-byte words a point: x, y, z, padding, colour, padding.
+    out = np.zeros((len(points), POINT_STEP // 4), dtype="<f4")
+    out[:, :3] = points
+    colour = rgb.astype("<u4")
+    # Little-endian R << 16 | G << 8 | B puts the bytes B, G, R, 0 in memory.
+    out.view("<u4")[:, 4] = (colour[:, 0] << 16) | (colour[:, 1] << 8) | colour[:, 2]
     return out.tobytes()
 
 
