@@ -139,12 +139,13 @@ class _Reader:
                 self.fail(el, f"<{el.tag}> needs a {attr!r} attribute")
             return default
         parts = text.split()
+        what = "a number" if n == 1 else f"{n} numbers"
         try:
             values = tuple(float(p) for p in parts)
         except ValueError:
-            self.fail(el, f"<{el.tag} {attr}> must hold {n} numbers, got {text!r}")
+            self.fail(el, f"<{el.tag} {attr}> must be {what}, got {text!r}")
         if len(values) != n:
-            self.fail(el, f"<{el.tag} {attr}> must hold {n} numbers, got {text!r}")
+            self.fail(el, f"<{el.tag} {attr}> must be {what}, got {text!r}")
         if not all(math.isfinite(v) for v in values):
             self.fail(el, f"<{el.tag} {attr}> must hold finite numbers, got {text!r}")
         return values
