@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from diffctl.errors import LaunchError
-from diffctl.launch.substitutions import SomeSubstitutions, normalize
+from diffctl.launch.substitutions import SomeSubstitutions
 
 
 class Shutdown:
@@ -21,7 +21,7 @@ class Shutdown:
     def __init__(
         self, *, reason: SomeSubstitutions = "shutdown event emitted by the launch file", due_to_sigint: bool = False
     ) -> None:
-        self.reason = normalize(reason)
+        self.reason = reason  # text for handlers to read; EmitEvent substitutes it
         self.due_to_sigint = due_to_sigint
 
 

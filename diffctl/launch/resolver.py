@@ -168,6 +168,9 @@ class Resolver:
                         ),
                         entity,
                     )
+                if ref.name is None:
+                    # A process a callable may still return at run time: linked when it is resolved then.
+                    self._refs.append((ref, must_exist, where, entity))
                 continue
             if ref.name not in self.processes:
                 message = f"unknown process {ref.name!r}{suggest(ref.name or '', names)}"
