@@ -5,7 +5,7 @@ from __future__ import annotations
 BUDGET: dict[str, tuple[str, float, str]] = {
     "stack_launch_to_ready_s": ("<=", 1.5, "launch sim_control → controllers active + first /odom"),
     "stack_ctrl_c_to_reaped_s": ("<=", 0.5, "Ctrl-C → every process reaped"),
-    "stack_rtf": (">=", 30.0, "full-stack real-time factor, rtf:=0, lockstep 20 Hz"),
+    "stack_rtf": (">=", 30.0, "full-stack real-time factor, rtf:=0, manager in the sim at 20 Hz"),
     "stack_cmd_vel_to_wheel_ms": ("<=", 50.0, "cmd_vel → wheel command latency at real time (≤ one 50 ms period)"),
     "stack_rss_mb": ("<=", 400.0, "all processes of sim_control, resident memory"),
     "bus_rtt_p50_us": ("<=", 300.0, "bus round trip TwistStamped, p50"),

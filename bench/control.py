@@ -54,7 +54,7 @@ def run(duration_s: float = 10.0, rate_hz: int = 100) -> dict:
         child("router", "--listen", endpoint)
         wait_port(port)
         opts = ManagerOptions(
-            str(SDF), [str(CONFIG)], None, "mock_components/GenericSystem", {"calculate_dynamics": "true"}
+            str(SDF), [str(CONFIG)], "mock_components/GenericSystem", {"calculate_dynamics": "true"}
         )
         ra = ros_args.parse(["-p", "use_sim_time:=false", "-p", f"update_rate:={rate_hz}"], "controller_manager")
         node = ControlNode(opts, ra)

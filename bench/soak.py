@@ -8,7 +8,6 @@ Sampled, and printed at the end (bench/results/soak.json too):
 - resident memory (RSS and PSS) of the launcher and every descendant, every --sample-s; growth from the
   first samples after --warmup-minutes to the last samples. Fails if any process or the whole tree grows by
   more than 10 % (growth under 2 MB is allocator noise, not a leak, and is not counted);
-- the simulator's lockstep overruns (world statistics): fails on any after the controllers are active;
 - odometry vs ground truth: the motion over every 10 s window of sim time, in the robot's frame, from both.
   The tutorial's controller is open_loop, so odometry integrates the (limited) commands; the physics follows
   them with wheel slip and the 20 Hz command hold. Fails when a window disagrees by more than 5 % of the
@@ -216,7 +215,6 @@ def soak(minutes: float, warmup_minutes: float, sample_s: float, viz: bool) -> d
                     f"ground truth: {len(probe.truth)})"
                 )
             time.sleep(0.1)
-        overruns_at_ready = int(probe.stats.get("lockstep_overruns", 0))
         names = _names(log_path.read_text())
         while viz and "rviz2" not in names.values():  # the visualizer starts once the controllers are active
             if time.monotonic() > deadline or proc.poll() is not None:
@@ -273,12 +271,11 @@ def soak(minutes: float, warmup_minutes: float, sample_s: float, viz: bool) -> d
                 print(
                     f"  {(now - t0) / 60:5.1f} min  sim {probe.sim_ns / 1e9:8.0f} s  "
                     f"rtf {probe.stats.get('real_time_factor', 0):5.1f}  PSS {total:6.1f} MB  "
-                    f"overruns {probe.stats.get('lockstep_overruns', 0)}  odom-truth {worst * 100:.1f} cm/10 s",
+                    f"odom-truth {worst * 100:.1f} cm/10 s",
                     flush=True,
                 )
         wall_s = time.monotonic() - t0
         sim_s = probe.sim_ns / 1e9
-        overruns_end = int(probe.stats.get("lockstep_overruns", 0))
         for s in subs:
             s.undeclare()
         node.close()
@@ -303,8 +300,6 @@ def soak(minutes: float, warmup_minutes: float, sample_s: float, viz: bool) -> d
         memory,
         names,
         windows,
-        overruns_at_ready,
-        overruns_end,
         lost,
         code,
         stop_s,
@@ -319,8 +314,6 @@ def _figures(
     memory: dict[int, list[tuple[float, float]]],
     names: dict[int, str],
     windows: list[tuple[int, float, MotionError]],
-    overruns_at_ready: int,
-    overruns_end: int,
     lost: list[str],
     exit_code: int,
     stop_s: float,
@@ -346,9 +339,6 @@ def _figures(
     total_growth = growth_percent(totals)
     if total_growth > MEMORY_LIMIT_PERCENT and totals and totals[-1] - totals[0] > MEMORY_NOISE_MB:
         failures.append(f"all processes: memory (PSS) grew {total_growth:.1f} %")
-    overruns = overruns_end - overruns_at_ready
-    if overruns:
-        failures.append(f"{overruns} lockstep overrun(s) while driving")
     bad = [w for w in windows if not w[2].within(MOTION_REL, MOTION_ABS_M, MOTION_ABS_RAD)]
     if bad:
         w = bad[0]
@@ -374,8 +364,6 @@ def _figures(
         "memory_total_growth_percent": round(total_growth, 2),
         "memory_samples": n,
         "memory_per_process": per_process,
-        "lockstep_overruns_startup": overruns_at_ready,
-        "lockstep_overruns_driving": overruns,
         "odom_truth_windows": len(windows),
         "odom_truth_worst_cm_first_10pct": round(max((w[2].position_m for w in first), default=0) * 100, 2),
         "odom_truth_worst_cm_last_10pct": round(max((w[2].position_m for w in last), default=0) * 100, 2),

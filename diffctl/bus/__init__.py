@@ -16,7 +16,7 @@ _LAZY = {
     "open_session": "diffctl.bus.session",
     "router_endpoint": "diffctl.bus.session",
 }
-_MODULES = {"gz", "types", "hw_endpoint", "wire", "graph", "session", "router", "probes"}
+_MODULES = {"gz", "types", "wire", "graph", "session", "router", "probes"}
 
 __all__ = ["Node", "close_session", "domain_id", "gz", "open_session", "router_endpoint", "types"]
 

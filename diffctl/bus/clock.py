@@ -21,6 +21,12 @@ class Clock:
             self._sim_ns = ns
             self._cond.notify_all()
 
+    def set_sim_ns(self, ns: int) -> None:
+        """Sim time from the simulator itself (a node hosted inside it needs no /clock round trip)."""
+        with self._cond:
+            self._sim_ns = ns
+            self._cond.notify_all()
+
     @property
     def started(self) -> bool:
         return not self.use_sim_time or self._sim_ns > 0

@@ -98,12 +98,7 @@ def control() -> None:
     multiple=True,
     type=click.Path(dir_okay=False),
     metavar="FILE",
-    help="Controller manager parameter file (repeatable), added to the gz_ros2_control <parameters>.",
-)
-@click.option(
-    "--model",
-    default=None,
-    help="Simulator model whose ros2_control endpoint to attach to (default: the only one whose joints match).",
+    help="Controller manager parameter file (repeatable), added to the description's gz_ros2_control <parameters>.",
 )
 @click.option(
     "--hardware-plugin",
@@ -122,11 +117,11 @@ def control() -> None:
 def manager(
     description_file: str | None,
     param_files: tuple[str, ...],
-    model: str | None,
     hardware_plugin: str | None,
     hardware_params: tuple[str, ...],
 ) -> None:
-    """The controller manager (ros2_control_node): hardware from <ros2_control>, controllers, services.
+    """The controller manager (ros2_control_node) for mock or real hardware: hardware from <ros2_control>,
+    controllers, services. A simulated robot's manager runs inside `diffctl sim` (gz_ros2_control).
 
     Accepts --ros-args (-p update_rate:=50, --params-file F, -r __ns:=/robot).
 
@@ -146,7 +141,7 @@ def manager(
             raise ConfigError(f"--hardware-param {item!r} must be NAME=VALUE", hint="e.g. calculate_dynamics=true")
         k, v = item.split("=", 1)
         hw[k.strip()] = v.strip()
-    main(ManagerOptions(description_file, list(param_files), model, hardware_plugin, hw))
+    main(ManagerOptions(description_file, list(param_files), hardware_plugin, hw))
 
 
 @control.command("list_controllers")

@@ -22,7 +22,7 @@ from diffctl.control.controller_interface import (
     ReturnType,
     StateInterface,
 )
-from diffctl.control.hardware_interface import HardwareInfo
+from diffctl.control.hardware_interface import HardwareComponent, HardwareInfo
 from diffctl.control.lifecycle import ManagedController, State, TransitionError, hook_message
 from diffctl.control.params import ManagerParams, controller_node_params, with_controller_param
 from diffctl.control.plugin_registry import controller_class
@@ -70,11 +70,15 @@ class ControllerManager:
         return self.params.update_rate
 
     # ---------------------------------------------------------------------------------------------- hardware
-    def load_hardware(self, infos: Sequence[HardwareInfo]) -> None:
-        """Load every component, then bring it to its initial state (active unless the parameters say not)."""
+    def load_hardware(
+        self, infos: Sequence[HardwareInfo], factory: Callable[[HardwareInfo], HardwareComponent] | None = None
+    ) -> None:
+        """Load every component (made by `factory` when given, else from the plugin registry), then bring it to
+        its initial state (active unless the parameters say not)."""
         with self._admin, self._lock:
             for info in infos:
-                self.rm.load(info, self.log, self.update_rate, self.cancel)
+                component = factory(info) if factory is not None else None
+                self.rm.load(info, self.log, self.update_rate, self.cancel, component)
             for info in infos:
                 if info.name in self.params.hardware_unconfigured:
                     continue

@@ -1,11 +1,10 @@
 """The ros2_control_node loop: read → update → write once per tick, with its timing statistics.
 
-A tick comes from one of three sources, as in ros2_control_node and gz_ros2_control:
+A tick comes from one of two sources, as in ros2_control_node:
   WallTicker     wall clock at update_rate: a precise sleep to the next period boundary; a late cycle is an
                  overrun, counted and logged, and the missed periods are skipped (overruns.manage);
-  SimClockTicker sim time from /clock (use_sim_time without a simulator-driven hardware);
-  a lockstep ticker from the gz_ros2_control hardware: the simulator's state sample for tick n drives
-                 the cycle, and the commands written answer that tick.
+  SimClockTicker sim time from /clock (use_sim_time).
+(A simulated robot's manager is stepped by the simulator itself: diffctl/sim/plugins/gz_ros2_control.py.)
 """
 
 from __future__ import annotations

@@ -58,12 +58,18 @@ class ResourceManager:
 
     # --- loading ---------------------------------------------------------------------------------------
     def load(
-        self, info: HardwareInfo, logger: object | None = None, update_rate: int = 0, cancel: object | None = None
+        self,
+        info: HardwareInfo,
+        logger: object | None = None,
+        update_rate: int = 0,
+        cancel: object | None = None,
+        component: HardwareComponent | None = None,
     ) -> HardwareHandle:
+        """Initialise `info`'s hardware: an instance of its registered plugin, or `component` when the host
+        built it already (the simulator binds GazeboSimSystem to its model's joints)."""
         if info.name in self.components:
             raise ConfigError(f"two <ros2_control> blocks are named {info.name!r}", source=info.source)
-        cls = hardware_for(info)
-        comp = cls()
+        comp = component if component is not None else hardware_for(info)()
         comp.log = logger
         comp.update_rate = update_rate
         comp.cancel = cancel

@@ -8,10 +8,11 @@ tutorial's robot without a simulator); `extra_params` adds hardware `<param>`s (
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from pathlib import Path
 
 from diffctl.control.hardware_interface import ComponentInfo, HardwareInfo, InterfaceInfo
-from diffctl.description.model import Ros2ControlInterface, Ros2ControlJoint
+from diffctl.description.model import Ros2Control, Ros2ControlInterface, Ros2ControlJoint
 from diffctl.description.ros2_control import gz_ros2_control_parameters, ros2_control_blocks
 from diffctl.errors import DescriptionError
 
@@ -52,6 +53,17 @@ def hardware_infos(
             source=source,
             hint='add <ros2_control name=… type="system"> with <hardware><plugin>…</plugin></hardware> and joints',
         )
+    return infos_from_blocks(blocks, source, plugin_override=plugin_override, extra_params=extra_params)
+
+
+def infos_from_blocks(
+    blocks: Sequence[Ros2Control],
+    source: str | None,
+    *,
+    plugin_override: str | None = None,
+    extra_params: dict[str, str] | None = None,
+) -> list[HardwareInfo]:
+    """HardwareInfo of each parsed `<ros2_control>` block (as the simulator's model already holds them)."""
     out = []
     for b in blocks:
         params = {**dict(b.hardware_params), **(extra_params or {})}

@@ -41,7 +41,6 @@ SWITCH_INTERVAL_S = 0.0002
 class ManagerOptions:
     description_file: str | None = None
     param_files: list[str] = field(default_factory=list)
-    model: str | None = None
     hardware_plugin: str | None = None
     hardware_params: dict[str, str] = field(default_factory=dict)
 
@@ -86,8 +85,6 @@ class ControlNode:
     def _prepare(self, text: str, source: str) -> None:
         """Parse everything the description gives before anything starts (raises ConfigError subclasses)."""
         extra = dict(self.opts.hardware_params)
-        if self.opts.model:
-            extra["model"] = self.opts.model
         self.infos = hardware_infos(text, source, plugin_override=self.opts.hardware_plugin, extra_params=extra)
         for info in self.infos:
             hardware_class(info.plugin_name)  # an unknown plugin is bad input: refuse it before starting anything
@@ -148,14 +145,6 @@ class ControlNode:
 
     def _make_ticker(self) -> Ticker:
         assert self.cm is not None
-        sources = [h.component for h in self.cm.rm.components.values() if hasattr(h.component, "ticker")]
-        if len(sources) > 1:
-            raise ConfigError(
-                "more than one hardware component drives the control loop (simulator lockstep); "
-                "only one gz_ros2_control/GazeboSimSystem block per manager is supported"
-            )
-        if sources:
-            return sources[0].ticker()
         if self.cm.params.use_sim_time:
             return SimClockTicker(self.cm.update_rate, self.node.clock)
 

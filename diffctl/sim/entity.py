@@ -149,6 +149,17 @@ class Entity:
         pb.setJointMotorControl2(h.body, h.index, pb.VELOCITY_CONTROL, force=0.0, physicsClientId=self.client)
         pb.setJointMotorControl2(h.body, h.index, pb.TORQUE_CONTROL, force=e, physicsClientId=self.client)
 
+    def reset_joint(self, h: JointHandle, *, position: float | None = None, velocity: float | None = None) -> None:
+        """Set a joint's position and/or velocity outright (gz's JointPositionReset / JointVelocityReset)."""
+        pos, vel, _f, _t = pb.getJointState(h.body, h.index, physicsClientId=self.client)
+        pb.resetJointState(
+            h.body,
+            h.index,
+            pos if position is None else position,
+            vel if velocity is None else velocity,
+            physicsClientId=self.client,
+        )
+
     def release_joint(self, h: JointHandle) -> None:
         """Back to a free joint with only its SDF friction."""
         pb.setJointMotorControl2(

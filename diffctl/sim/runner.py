@@ -25,8 +25,8 @@ from diffctl.errors import DescriptionError, RuntimeFailure
 from diffctl.sim.entity import Entity
 from diffctl.sim.plugins.base import PluginContext, SystemPlugin, rate_period_ns
 from diffctl.sim.plugins.diff_drive import DiffDrive, DiffDriveParams
+from diffctl.sim.plugins.gz_ros2_control import GzRos2Control
 from diffctl.sim.plugins.joint_state_publisher import JointStatePublisher
-from diffctl.sim.plugins.ros2_control import Ros2ControlEndpoint, gazebo_block
 from diffctl.sim.sensors import AirPressure, Camera, CameraSensor, CameraTask, Imu, Lidar, RenderRate
 from diffctl.sim.sensors import topics as sensor_topics
 from diffctl.sim.stepper import Stepper, Task
@@ -69,7 +69,7 @@ class ModelRuntime:
     publishers: list[GzPublisher] = field(default_factory=list)
     imus: list[Imu] = field(default_factory=list)
     sensors: list[Lidar | Imu | CameraSensor | AirPressure] = field(default_factory=list)
-    endpoint: Ros2ControlEndpoint | None = None
+    control: GzRos2Control | None = None  # the model's controller manager (gz_ros2_control)
 
 
 class Simulation:
@@ -109,8 +109,9 @@ class Simulation:
 
     # --- models ----------------------------------------------------------------------------------------
 
-    def spawn(self, model: Model) -> Entity:
-        """Add `model` (already at its spawn pose) with its sensors and systems; sim thread only."""
+    def spawn(self, model: Model, description: str = "") -> Entity:
+        """Add `model` (already at its spawn pose) with its sensors and systems; sim thread only.
+        `description` is the text it came from (the robot_description its controller manager gets)."""
         if not _NAME_RE.match(model.name):
             raise DescriptionError(
                 f"model name {model.name!r} may hold only letters, digits, '_', '-' and '.'", field="name"
@@ -121,7 +122,7 @@ class Simulation:
         rt = ModelRuntime(entity)
         self.models[model.name] = rt
         try:
-            self._add_systems(rt)
+            self._add_systems(rt, description)
             self._add_sensors(rt)
             if not model.static and self.transport is not None:
                 pub = self.transport.publisher(f"/model/{model.name}/pose", "gz.msgs.Pose_V")
@@ -149,7 +150,7 @@ class Simulation:
         self.physics.remove(name)
         self.stepper.reschedule()
 
-    def _add_systems(self, rt: ModelRuntime) -> None:
+    def _add_systems(self, rt: ModelRuntime, description: str = "") -> None:
         model = rt.entity.model
         for plugin in model.plugins:
             kind = system_name(plugin.filename)
@@ -160,16 +161,14 @@ class Simulation:
             elif kind == "joint-state-publisher":
                 rt.plugins.append(JointStatePublisher(self.ctx, rt.entity, plugin))
             elif kind in ("gz_ros2_control", "ign_ros2_control"):
-                block = gazebo_block(rt.entity)
-                if block is None:
+                if rt.control is not None:
                     raise DescriptionError(
-                        f"model {model.name!r} has the {plugin.filename} plugin but no <ros2_control> block "
-                        "with gz_ros2_control/GazeboSimSystem hardware",
+                        f"model {model.name!r} has the gz_ros2_control plugin twice",
                         source=model.source or None,
                         field=f"plugin {plugin.filename}",
                     )
-                rt.endpoint = Ros2ControlEndpoint(self.ctx, rt.entity, plugin, block)
-                rt.plugins.append(rt.endpoint)
+                rt.control = GzRos2Control(self.ctx, rt.entity, plugin, description)
+                rt.plugins.append(rt.control)
 
     def _add_sensors(self, rt: ModelRuntime) -> None:
         entity = rt.entity

@@ -12,7 +12,7 @@ Queryables under `gz/world/<world>/`, JSON in and out; every answer has "ok" (an
 Liveliness token `gz/world/<world>/sim` while the simulator runs (spawners wait for it).
 Topic `/world/<world>/stats` (gz.msgs.WorldStatistics, 5 Hz of wall time, also while paused), with extras:
   {"sim_time", "real_time", "pause_time", "iterations", "paused", "real_time_factor", "step_size",
-   "step_time_us" (mean wall time of one step and its bookkeeping), "lockstep_overruns", "model_count"}.
+   "step_time_us" (mean wall time of one step and its bookkeeping), "model_count"}.
 """
 
 from __future__ import annotations
@@ -93,8 +93,12 @@ class WorldServices:
             if not path.is_file():
                 return {"ok": False, "error": f"{path}: no such file"}
             model = load_description(path, name=name, pose=pose)
+            description = path.read_text()
         elif req.get("sdf"):
-            model = parse_description(str(req["sdf"]), source="robot_description", name=name, pose=pose, base_dir=base_dir)
+            description = str(req["sdf"])
+            model = parse_description(
+                description, source="robot_description", name=name, pose=pose, base_dir=base_dir
+            )
         else:
             return {"ok": False, "error": "give the model as 'sdf' (text) or 'sdf_filename' (a path)"}
         if model.name in self.sim.models:
@@ -104,7 +108,7 @@ class WorldServices:
                     hint="choose another --name, or remove it first",
                 )
             model = _renamed(model, self.sim.models)
-        self.sim.spawn(model)
+        self.sim.spawn(model, description)
         ignored = self.sim.model_ignored(model)
         self.sim.log.info(f"spawned {model.name!r}")
         if ignored:
@@ -129,7 +133,7 @@ class WorldServices:
                     "name": name,
                     "static": rt.entity.model.static,
                     "pose": {"x": p.xyz[0], "y": p.xyz[1], "z": p.xyz[2], "roll": r[0], "pitch": r[1], "yaw": r[2]},
-                    "ros2_control": rt.endpoint is not None,
+                    "ros2_control": rt.control is not None,
                 }
             )
         return {**self._status(), "world": self.sim.name, "rtf_target": self.sim.stepper.rtf, "models": models}
@@ -183,7 +187,6 @@ class WorldServices:
             "real_time_factor": round(self._rtf, 4),
             "step_size": gz.stamp(st.step_ns),
             "step_time_us": round(self._step_us, 3),
-            "lockstep_overruns": st.stats.lockstep_overruns,
             "model_count": len(self.sim.models),
         }
 

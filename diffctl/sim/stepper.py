@@ -1,8 +1,8 @@
 """The simulation loop: fixed physics steps, sim-time tasks, run/pause/step, real-time factor pacing.
 
 One thread (the sim thread) owns PyBullet. Other threads (Zenoh callbacks) hand work over with
-`call_soon`, which runs between two steps. Periodic work (sensors, clock, odometry, ros2_control
-exchanges) is a `Task` run right after the step that reaches its due time, on sim time, so what it sees
+`call_soon`, which runs between two steps. Periodic work (sensors, clock, odometry, controller
+manager cycles) is a `Task` run right after the step that reaches its due time, on sim time, so what it sees
 never depends on machine speed. Per-step cost is kept to a counter compare when no task is due:
 1 ms steps at 50x real time leave well under 20 µs per step for everything.
 """
@@ -16,7 +16,7 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-# Behind real time by more than this (a slow machine, a lockstep wait), pacing restarts from now instead of
+# Behind real time by more than this (a slow machine, a long task), pacing restarts from now instead of
 # bursting to catch up.
 MAX_LAG_S = 0.2
 # Sleep only when at least this far ahead: shorter sleeps cost more than they pace.
@@ -42,8 +42,7 @@ class LoopStats:
 
     iterations: int = 0
     wall_start_s: float = field(default_factory=time.perf_counter)
-    idle_s: float = 0.0  # sleeping for pacing, paused, or waiting in lockstep
-    lockstep_overruns: int = 0
+    idle_s: float = 0.0  # sleeping for pacing or paused
 
 
 class Stepper:
@@ -57,7 +56,6 @@ class Stepper:
         self.tasks: list[Task] = []
         self.step_hooks: list[Callable[[], None]] = []
         self.idle_hooks: list[Callable[[], None]] = []
-        self.after_due: list[Callable[[], None]] = []
         self._inbox: collections.deque[Callable[[], None]] = collections.deque()
         self._wake = threading.Event()
         self._pending_steps = 0
@@ -149,12 +147,6 @@ class Stepper:
         while heap and not heap[0][2].live:
             heapq.heappop(heap)
         self._next_due = heap[0][0] if heap else 1 << 62
-        while self.after_due:
-            self.after_due.pop(0)()
-
-    def later_this_step(self, fn: Callable[[], None]) -> None:
-        """Run `fn` once the tasks due now have run (e.g. wait for an answer while they did their work)."""
-        self.after_due.append(fn)
 
     def reschedule(self) -> None:
         """Rebuild the schedule from the tasks' due times (after they were changed wholesale)."""

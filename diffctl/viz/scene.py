@@ -337,7 +337,7 @@ class Scene:
             if stats is not None:
                 sim_info = {
                     k: stats.get(k)
-                    for k in ("paused", "iterations", "step_time_us", "lockstep_overruns", "model_count")
+                    for k in ("paused", "iterations", "step_time_us", "model_count")
                     if k in stats
                 }
             return {

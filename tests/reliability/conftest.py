@@ -1,13 +1,12 @@
-"""Fault-test fixtures: a private router port per test (the launcher's embedded one, or a separate router)."""
+"""Fault-test fixtures: a private router port per test (the launcher's embedded router)."""
 
 from __future__ import annotations
 
-import subprocess
 from collections.abc import Iterator
 
 import pytest
 
-from tests.conftest import Procs, free_port, wait_port
+from tests.conftest import free_port
 
 
 @pytest.fixture
@@ -19,15 +18,3 @@ def stack_env(monkeypatch: pytest.MonkeyPatch) -> Iterator[str]:
     monkeypatch.setenv("DIFFCTL_ROUTER", endpoint)
     yield endpoint
     close_session()
-
-
-@pytest.fixture
-def separate_router(stack_env: str) -> Iterator[str]:
-    """A `diffctl router` of its own at stack_env, so the launcher can be paused without pausing the bus."""
-    ps = Procs()
-    try:
-        ps.diffctl("router", "--listen", stack_env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        wait_port(int(stack_env.rsplit(":", 1)[1]))
-        yield stack_env
-    finally:
-        ps.close()

@@ -19,7 +19,6 @@ from pathlib import Path
 import pytest
 
 from diffctl.bus import gz, types, wire
-from diffctl.bus import hw_endpoint as hw
 from diffctl.bus.session import domain_id
 from tests.conftest import free_port
 from tests.reliability.stack_faults import (
@@ -102,8 +101,8 @@ def test_garbage_on_every_subscribed_topic_is_dropped_and_every_node_keeps_worki
                     att = None if kind == "empty" and seq % 2 else wire.pack_attachment(seq, time.time_ns(), gid)
                     session.put(key, data, attachment=att)
                     sent["topic"] += 1
-            # Simulator side: the keys the bridge takes gz data from, and the ros2_control commands.
-            for key in (gz.key("/clock"), gz.key("/lidar"), gz.key("/imu"), hw.command_key("robot")):
+            # Simulator side: the keys the bridge takes gz data from.
+            for key in (gz.key("/clock"), gz.key("/lidar"), gz.key("/imu")):
                 for kind, data in payloads(None).items():
                     if kind != "oversized" or seq < 2:
                         session.put(key, data)

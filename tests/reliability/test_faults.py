@@ -2,12 +2,11 @@
 mid-drive, the launcher SIGKILLed, a controller raising in update(), a flooding publisher and a slow subscriber.
 
 The documented outcomes (launch/sim_control.yaml):
-- gz_sim and controller_manager are `on_exit: shutdown`: everything stops cleanly, the launcher names the
-  process and how it ended, and exits 1;
+- gz_sim (which hosts the controller manager, as gz_ros2_control does) is `on_exit: shutdown`: everything
+  stops cleanly, the launcher names the process and how it ended, and exits 1;
 - robot_state_publisher, parameter_bridge and rviz2 (the visualizer) are `respawn: true` (1 s delay): each
   comes back and its output flows again, while the car keeps driving;
 - the car never drives on a stale command: a teleop that dies → the controller brakes after cmd_vel_timeout;
-  the controller manager that dies → the simulator detaches and holds the joints (the car stops);
 - the launcher SIGKILLed: every child exits within 2 s (PR_SET_PDEATHSIG).
 """
 
@@ -39,7 +38,6 @@ from tests.reliability.stack_faults import (
     alive,
     drive,
     launch_log,
-    moved_m,
     pids,
     start_stack,
     truth_at,
@@ -152,38 +150,6 @@ def test_simulator_killed_mid_drive_shuts_everything_down(stack_env: str, tmp_pa
         stack.kill()
 
 
-def test_controller_manager_killed_the_sim_holds_the_joints_then_everything_stops(
-    separate_router: str, tmp_path: Path
-) -> None:
-    # The bus runs in a router of its own, so the launcher can be held (SIGSTOP) for a moment: the simulator's
-    # own reaction to a vanished manager is then visible before the launch shuts everything down.
-    stack = start_stack(tmp_path)
-    try:
-        w = stack.watch
-        drive(stack, 0.5, 0.0, 3, 0.5)
-        stack.wait_sim(stack.clock_ns + SEC)  # at steady speed for a second
-        os.kill(stack.proc.pid, signal.SIGSTOP)
-        try:
-            os.kill(pids(stack)["controller_manager"], signal.SIGKILL)
-            # The sim's own clock right after the kill (this process's samples may trail it at rtf:=0); the sim
-            # cannot have stepped far past the kill: it waits for the dead manager's command or detaches.
-            kill_ns = sim_time_ns(stack)
-            # The sim detaches (the manager's liveliness token is gone) and runs on with the wheels held.
-            wait_until(lambda: w.last(w.truth).t_ns > kill_ns + 3 * SEC, 20, "sim time running on without a manager")
-        finally:
-            os.kill(stack.proc.pid, signal.SIGCONT)
-        before = moved_m(truth_at(stack, kill_ns - SEC // 2), truth_at(stack, kill_ns))
-        after = moved_m(truth_at(stack, kill_ns + SEC), truth_at(stack, kill_ns + 3 * SEC))
-        assert before > 0.2, f"the car was not driving before the kill ({before:.3f} m in 0.5 s)"
-        # On the stale 0.5 m/s command it would cover 1 m in that window; held wheels leave at most a settling
-        # creep of the chassis on its caster (a few mm, up to ~1.5 cm seen on a fast machine).
-        assert after < 0.05, f"the car kept moving {after:.3f} m with no controller manager"
-        log = assert_shut_down_cleanly(stack, "controller_manager")
-        assert re.search(r"controller manager .* left model 'robot' \(.*\); joints held", log), log[-3000:]
-    finally:
-        stack.kill()
-
-
 def sim_time_ns(stack: Stack) -> int:
     replies = list(stack.node.session.get("gz/world/empty/state", payload=b"{}", timeout=5.0))
     return next(json.loads(r.ok.payload.to_bytes())["sim_time_ns"] for r in replies if r.ok is not None)
@@ -285,7 +251,6 @@ def test_flooding_publisher_and_slow_subscriber_leave_the_control_loop_on_period
             gz.key("/world/empty/stats"), lambda s: stats.append(gz.decode(s.payload.to_bytes())[1])
         )
         wait_until(lambda: stats, 10, "world statistics", stack)
-        overruns_before = stats[-1]["lockstep_overruns"]  # startup is not what this test is about
         slow = procs.start([sys.executable, "-m", "tests.reliability.bus_clients", "slow", "0.2"], cwd=REPO)
         flood = procs.start([sys.executable, "-m", "tests.reliability.bus_clients", "flood", "200", "0.4"], cwd=REPO)
         for p, word in ((slow, "slow subscriber ready"), (flood, "flood ready")):
@@ -316,10 +281,9 @@ def test_flooding_publisher_and_slow_subscriber_leave_the_control_loop_on_period
             if b[1] - a[1] != 50_000_000 * (b[0] - a[0])
         ]
         assert not bad, f"joint_states stamps off the 50 ms period: {bad[:5]}"
-        # The sim kept real time (the loop kept its period on the wall clock too) and never overran lockstep.
+        # The sim kept real time: the manager inside it kept its period on the wall clock too.
         assert 5 / wall_s > 0.85, f"5 s of sim time took {wall_s:.2f} s of wall time"
         assert stats, "no world statistics"
-        assert stats[-1]["lockstep_overruns"] == overruns_before, stats[-1]
         assert slow.poll() is None and flood.poll() is None
         stats_sub.undeclare()
         assert stack.stop(signal.SIGINT) == 0, stack.output()

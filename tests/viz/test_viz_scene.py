@@ -123,7 +123,6 @@ def test_status_prefers_sim_stats_and_nan_becomes_null() -> None:
             "sim_time": {"sec": 12, "nsec": 500_000_000},
             "real_time_factor": 0.98,
             "paused": False,
-            "lockstep_overruns": 0,
             "step_time_us": 11.5,
         }
     )

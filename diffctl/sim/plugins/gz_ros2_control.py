@@ -1,0 +1,241 @@
+"""The gz_ros2_control system plugin: a controller manager hosted inside the simulator for one model.
+
+As gz_ros2_control does (reference ros2_control.md §4, workspace_urdf.md §5): when a model whose description
+carries `<plugin filename="gz_ros2_control-system" name="gz_ros2_control::GazeboSimROS2ControlPlugin">` is
+spawned, the simulator builds a controller manager named `<controller_manager_name>` (default
+controller_manager) in `<ros><namespace>`, with the plugin's `<parameters>` files (later ones override) as its
+parameter files and `<ros><remapping>`s applied to it and its controllers, `use_sim_time` forced on, and a
+GazeboSimSystem hardware bound to the model's joints for every `<ros2_control>` block that asks for it.
+Every 1/update_rate of sim time the physics loop calls read → update → write synchronously on the sim thread,
+so results do not depend on machine speed and no message crosses a process boundary. The manager serves the
+same `/controller_manager/*` services as `diffctl control manager`. A controller that raises is deactivated
+and reported by the manager; the simulation goes on. While the world is paused, no cycle runs (a pending
+switch waits, as in Gazebo).
+"""
+
+from __future__ import annotations
+
+import shlex
+import threading
+from dataclasses import dataclass
+from typing import Any
+
+from lxml import etree
+
+from diffctl.control.controller_node import BusControllerNode
+from diffctl.control.hardware_interface import HardwareInfo
+from diffctl.control.manager import ControllerManager
+from diffctl.control.params import load_manager_files, manager_params
+from diffctl.control.robot_hardware import PLACEHOLDER, infos_from_blocks
+from diffctl.control.services import ManagerServices
+from diffctl.description.model import Model, Plugin
+from diffctl.errors import ConfigError, DescriptionError
+from diffctl.sim.entity import Entity
+from diffctl.sim.plugins.base import PluginContext, SystemPlugin, bool_param, float_param
+from diffctl.sim.plugins.gazebo_sim_system import PLUGIN_ALIASES, GazeboSimSystem
+
+
+@dataclass(frozen=True)
+class GzRos2ControlParams:
+    """The plugin's own elements."""
+
+    parameters: tuple[str, ...]  # parameter files of the manager and its controllers, in order
+    namespace: str
+    remappings: tuple[tuple[str, str], ...]
+    controller_manager_name: str
+    hold_joints: bool
+    position_proportional_gain: float
+
+    @staticmethod
+    def from_plugin(plugin: Plugin, source: str) -> GzRos2ControlParams:
+        where = f"plugin {plugin.filename}"
+        files = tuple(f.strip() for f in plugin.get_all("parameters"))
+        if not files or any(not f for f in files):
+            raise DescriptionError(
+                "the gz_ros2_control plugin needs a <parameters> file (found an empty or missing one)",
+                source=source or None,
+                field=f"{where}: parameters",
+                hint="<parameters>$(find my_pkg)/config/controllers.yaml</parameters>",
+            )
+        for f in files:
+            if f == PLACEHOLDER:
+                raise DescriptionError(
+                    f"the gz_ros2_control <parameters> is still {PLACEHOLDER}",
+                    source=source or None,
+                    field=f"{where}: parameters",
+                    hint="the launch file replaces it with the controller YAML's path before the model is spawned",
+                )
+        namespace, remaps = _ros_element(plugin, source)
+        name = (plugin.get("controller_manager_name") or "controller_manager").strip()
+        return GzRos2ControlParams(
+            parameters=files,
+            namespace=namespace,
+            remappings=remaps,
+            controller_manager_name=name,
+            hold_joints=bool_param(plugin, "hold_joints", True, source=source),
+            position_proportional_gain=float_param(plugin, "position_proportional_gain", 0.1, source=source) or 0.1,
+        )
+
+
+def _ros_element(plugin: Plugin, source: str) -> tuple[str, tuple[tuple[str, str], ...]]:
+    """`<ros><namespace>` and `<ros><remapping>from:=to</remapping>` (also `--ros-args -r from:=to`)."""
+    if not plugin.xml:
+        return "/", ()
+    root = etree.fromstring(plugin.xml.encode())
+    namespace = "/"
+    remaps: list[tuple[str, str]] = []
+    for ros in root.findall("ros"):
+        ns = ros.findtext("namespace")
+        if ns and ns.strip():
+            namespace = "/" + ns.strip().strip("/")
+        for r in ros.findall("remapping"):
+            words = [w for w in shlex.split(r.text or "") if w not in ("--ros-args", "-r", "--remap")]
+            for w in words:
+                src, sep, dst = w.partition(":=")
+                if not sep or not src or not dst:
+                    raise DescriptionError(
+                        f"<remapping> {r.text!r} is not from:=to",
+                        source=source or None,
+                        field=f"plugin {plugin.filename}: ros/remapping",
+                        hint="e.g. <remapping>/diff_drive_controller/cmd_vel:=/cmd_vel</remapping>",
+                    )
+                remaps.append((src, dst))
+    return namespace, tuple(remaps)
+
+
+def wants_controller_manager(model: Model) -> list[Plugin]:
+    return [p for p in model.plugins if p.system == "gz_ros2_control"]
+
+
+class GzRos2Control(SystemPlugin):
+    """One model's controller manager, stepped by the simulator."""
+
+    def __init__(self, ctx: PluginContext, entity: Entity, plugin: Plugin, description: str = "") -> None:
+        from diffctl.bus import Node
+
+        self.ctx, self.entity = ctx, entity
+        source = entity.model.source or ""
+        self.params = GzRos2ControlParams.from_plugin(plugin, source)
+        blocks = [b for b in entity.model.ros2_control if b.hardware_plugin in PLUGIN_ALIASES]
+        skipped = [b for b in entity.model.ros2_control if b.hardware_plugin not in PLUGIN_ALIASES]
+        for b in skipped:
+            ctx.log.warn(
+                f"model {entity.name!r}: <ros2_control name={b.name!r}> asks for {b.hardware_plugin}; inside the "
+                f"simulator only {PLUGIN_ALIASES[0]} exists (as with gz_ros2_control): block skipped"
+            )
+        if not blocks:
+            raise DescriptionError(
+                f"model {entity.name!r} has the gz_ros2_control plugin but no <ros2_control> block with "
+                f"{PLUGIN_ALIASES[0]} hardware",
+                source=source or None,
+                field=f"plugin {plugin.filename}",
+            )
+        self.infos = infos_from_blocks(blocks, source or None)
+        name = self.params.controller_manager_name
+        remaps = dict(self.params.remappings)
+        flat = {**load_manager_files(self.params.parameters, name), "use_sim_time": True}
+        cm_params = manager_params(flat, source=f"{name} parameters", params_files=self.params.parameters)
+        self.stop = threading.Event()
+        self.systems: list[GazeboSimSystem] = []
+        self.node: Any = None
+        self.cm: ControllerManager | None = None
+        self.services: ManagerServices | None = None
+        self._task = None
+        self._last_ns: int | None = None
+        if ctx.transport is None:
+            raise ConfigError("the gz_ros2_control plugin needs the bus (the simulator runs without one)")
+        try:
+            self.node = Node(name, self.params.namespace, remaps=remaps, params=dict(flat), use_sim_time=False)
+            self.node.clock.use_sim_time = True
+            self.node.clock.set_sim_ns(ctx.stepper.sim_time_ns)
+            namespace = self.node.namespace
+            stepper = ctx.stepper
+
+            def controller_node(cname: str, p: dict[str, Any]) -> BusControllerNode:
+                return BusControllerNode(cname, namespace, p, lambda: stepper.sim_time_ns, remaps=remaps)
+
+            self.cm = ControllerManager(
+                cm_params, log=self.node.log, node_factory=controller_node, robot_description=description,
+                cancel=self.stop,
+            )
+            self.cm.load_hardware(self.infos, self._hardware)
+            self.services = ManagerServices(self.node, self.cm, self.node.params)
+            self.cm.loop_running = True
+            self._start_loop()
+        except Exception:
+            self.close()
+            raise
+        ctx.stepper.step_hooks.append(self._each_step)
+        ctx.log.info(
+            f"controller manager {self.node.fqn} for model {entity.name!r}: {self.cm.update_rate} Hz of sim time, "
+            f"hardware [{', '.join(f'{i.name} ({i.plugin_name})' for i in self.infos)}]"
+        )
+
+    def _hardware(self, info: HardwareInfo) -> GazeboSimSystem:
+        hw = GazeboSimSystem().bind(
+            self.entity,
+            hold_joints=self.params.hold_joints,
+            position_proportional_gain=self.params.position_proportional_gain,
+        )
+        self.systems.append(hw)
+        return hw
+
+    def _start_loop(self) -> None:
+        assert self.cm is not None
+        step_ns = self.ctx.stepper.step_ns
+        wanted_ns = round(1e9 / self.cm.update_rate)
+        if wanted_ns < step_ns:
+            self.ctx.log.warn(
+                f"controller manager update_rate {self.cm.update_rate} Hz is faster than the physics step "
+                f"({step_ns * 1e-6:g} ms): it runs once per step"
+            )
+        self.period_ns = max(step_ns, wanted_ns)
+        self._task = self.ctx.stepper.add_task(f"controller_manager:{self.entity.name}", self.period_ns, self._cycle)
+
+    def _cycle(self, sim_time_ns: int) -> None:
+        cm = self.cm
+        if cm is None:
+            return
+        period_s = self.period_ns * 1e-9 if self._last_ns is None else (sim_time_ns - self._last_ns) * 1e-9
+        if period_s <= 0:  # the world was reset: time went back
+            period_s = self.period_ns * 1e-9
+        self._last_ns = sim_time_ns
+        self.node.clock.set_sim_ns(sim_time_ns)
+        try:
+            cm.read(sim_time_ns, period_s)
+            cm.update(sim_time_ns, period_s)
+            cm.write(sim_time_ns, period_s)
+        except Exception as e:  # the simulation goes on; the manager already deactivated what it could
+            self.ctx.log.throttled(
+                f"cm:{self.entity.name}", f"controller manager of {self.entity.name!r}: {type(e).__name__}: {e}"
+            )
+
+    def _each_step(self) -> None:
+        for hw in self.systems:
+            hw.step()
+
+    def reset(self) -> None:
+        self._last_ns = None
+        for hw in self.systems:
+            hw.reset_initial_states()
+
+    def close(self) -> None:
+        self.stop.set()
+        if self._task is not None:
+            self.ctx.stepper.remove_task(self._task)
+            self._task = None
+        if self._each_step in self.ctx.stepper.step_hooks:
+            self.ctx.stepper.step_hooks.remove(self._each_step)
+        if self.cm is not None:
+            self.cm.loop_running = False
+            try:
+                self.cm.shutdown()
+            except Exception as e:
+                self.ctx.log.warn(f"controller manager of {self.entity.name!r} did not shut down cleanly: {e}")
+        if self.services is not None:
+            self.services.close()
+            self.services = None
+        if self.node is not None:
+            self.node.close()
+            self.node = None
+        self.cm = None
