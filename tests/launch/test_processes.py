@@ -201,3 +201,19 @@ def test_show_args_lists_declared_arguments_with_defaults_and_descriptions() -> 
     rows = [line for line in done.stdout.splitlines() if line.startswith("│")]
     assert "python" in rows[0] and "'python3'" in rows[0] and "interpreter for step.py" in rows[0]
     assert "record" in rows[1] and "(required)" in rows[1]
+
+
+def test_a_background_job_left_by_a_finished_shell_gets_sigterm_at_once(launch_run, tmp_path) -> None:
+    # A non-interactive shell's background job ignores SIGINT; with sigterm_timeout 120 a SIGINT-first stop
+    # would keep it (and the launch) alive for two minutes.
+    launch = tmp_path / "bg.yaml"
+    launch.write_text(
+        "launch:\n- executable: {cmd: \"sh -c 'sleep 300 & sleep 1; exit 0'\", name: bg, sigterm_timeout: 120}\n"
+    )
+    run = launch_run(str(launch), "--no-router")
+    run.wait_for(r"\[bg\] exited but left processes in its group; sending them SIGTERM", timeout_s=30)
+    run.wait_for(r"\[bg\] the rest of its process group is gone", timeout_s=30)
+    assert run.wait(30) == 0, run.text()
+    ran = float(run.wait_for(r"\[bg\] finished cleanly \(pid \d+, ran ([\d.]+) s\)").group(1))
+    assert ran >= 1.0  # the shell slept a second before exiting: the figure counts from its start
+    assert_nothing_left(run)
