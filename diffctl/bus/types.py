@@ -269,6 +269,10 @@ def new(typename: str, values: dict[str, Any] | None = None, *, _path: str = "")
 def to_dict(msg: Any) -> Any:
     """A message as plain Python data (numpy arrays → lists), ready for YAML or JSON."""
     if hasattr(msg, "__dataclass_fields__"):
+        typename = getattr(msg, "__msgtype__", None)
+        if typename:
+            # The type's fields only: rosbags' generated classes also carry the .msg constants as attributes.
+            return {n: to_dict(getattr(msg, n)) for n, _ in _field_defs(typename)}
         return {f.name: to_dict(getattr(msg, f.name)) for f in dc_fields(msg) if f.name != "__msgtype__"}
     if isinstance(msg, np.ndarray):
         return msg.tolist()

@@ -1,0 +1,165 @@
+"""Every node is a ROS 2 node on the wire: parameter services and events, /rosout, type descriptions, and
+rmw_zenoh's GIDs and QoS tokens — read back with plain Zenoh and xxhash, not with the code under test."""
+
+from __future__ import annotations
+
+import threading
+import time
+
+import xxhash
+import zenoh
+
+from diffctl.bus import Node, types, wire
+from diffctl.bus.parameters import ParameterDescriptor
+from tests.graph import jazzy_oracle
+
+
+def wait_for(pred, timeout_s: float = 10.0) -> bool:
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        if pred():
+            return True
+        time.sleep(0.02)
+    return bool(pred())
+
+
+def tokens(session: zenoh.Session) -> list[str]:
+    return [str(r.ok.key_expr) for r in session.liveliness().get("@ros2_lv/**", timeout=2.0) if r.ok is not None]
+
+
+def test_parameter_services_events_and_descriptors(router: str) -> None:
+    server = Node("param_server", params={"limit": 2, "legacy": "x"})
+    server.declare_parameter("limit", 1.0, ParameterDescriptor(floating_point_range=(0.0, 5.0, 0.0),
+                                                               description="m/s"))
+    server.declare_parameter("frame", "odom", ParameterDescriptor(read_only=True))
+    seen: list[dict] = []
+    server.add_on_set_parameters_callback(lambda ch: seen.append(ch) or None)
+    probe = Node("probe")
+    events: list = []
+    probe.create_subscription("/parameter_events", "rcl_interfaces/msg/ParameterEvent", events.append, depth=1000)
+
+    def call(short: str, srv: str, req: dict):
+        c = probe.create_client(f"/param_server/{short}", f"rcl_interfaces/srv/{srv}")
+        assert c.wait_for_service(10.0), short
+        return c.call(req, timeout=10.0)
+
+    names = list(call("list_parameters", "ListParameters", {}).result.names)
+    assert {"limit", "frame", "legacy", "use_sim_time", "start_type_description_service"} <= set(names)
+    values = call("get_parameters", "GetParameters", {"names": ["limit", "legacy"]}).values
+    assert (values[0].type, values[0].double_value) == (3, 2.0)  # override, taken as the declared double
+    assert (values[1].type, values[1].string_value) == (4, "x")
+    assert list(call("get_parameter_types", "GetParameterTypes", {"names": ["frame", "use_sim_time"]}).types) \
+        == [4, 1]
+    desc = call("describe_parameters", "DescribeParameters", {"names": ["limit", "frame"]}).descriptors
+    assert desc[0].floating_point_range[0].to_value == 5.0 and desc[0].description == "m/s"
+    assert desc[1].read_only
+
+    results = call("set_parameters", "SetParameters", {"parameters": [
+        {"name": "limit", "value": {"type": 3, "double_value": 4.5}},
+        {"name": "limit", "value": {"type": 3, "double_value": 9.0}},
+        {"name": "frame", "value": {"type": 4, "string_value": "map"}},
+    ]}).results
+    assert [r.successful for r in results] == [True, False, False]
+    assert "range" in results[1].reason and "read-only" in results[2].reason
+    assert server.get_parameter("limit") == 4.5 and server.params["limit"] == 4.5
+    atomic = call("set_parameters_atomically", "SetParametersAtomically", {"parameters": [
+        {"name": "limit", "value": {"type": 3, "double_value": 1.0}},
+        {"name": "frame", "value": {"type": 4, "string_value": "map"}},
+    ]}).result
+    assert not atomic.successful and server.get_parameter("limit") == 4.5, "all or nothing"
+    assert {"limit": 4.5} in seen
+
+    assert wait_for(lambda: any(e.node == "/param_server" and any(p.name == "limit" and p.value.double_value == 4.5
+                                                                  for p in e.changed_parameters) for e in events))
+
+
+def test_rosout_carries_log_lines_for_late_joiners(router: str, capfd) -> None:
+    talker = Node("talker")
+    talker.log.warn("wheel slip detected")
+    line = capfd.readouterr().err
+    assert "[WARN]" in line and "[talker]: wheel slip detected" in line, "console output is unchanged"
+    time.sleep(0.5)
+    got: list = []
+    # A late subscriber with rcl's rosout QoS still gets the line (transient local, depth 1000).
+    Node("console").create_subscription("/rosout", "rcl_interfaces/msg/Log", got.append, latched=True, depth=1000)
+    assert wait_for(lambda: any(m.msg == "wheel slip detected" for m in got))
+    m = next(m for m in got if m.msg == "wheel slip detected")
+    assert (m.level, m.name, m.function) == (30, "talker", "test_rosout_carries_log_lines_for_late_joiners")
+    assert m.file.endswith("test_node_services.py") and m.line > 0 and m.stamp.sec > 0
+
+
+def test_type_description_service_answers_for_types_in_use(router: str) -> None:
+    oracle = jazzy_oracle.descriptions(jazzy_oracle.fetch())
+    user = Node("user")
+    user.create_publisher("/cmd_vel", "geometry_msgs/msg/TwistStamped")
+    c = Node("asker").create_client("/user/get_type_description",
+                                    "type_description_interfaces/srv/GetTypeDescription")
+    assert c.wait_for_service(10.0)
+    want = oracle["geometry_msgs/msg/TwistStamped"]
+    r = c.call({"type_name": "geometry_msgs/msg/TwistStamped", "type_hash": want["type_hashes"][0]["hash_string"],
+                "include_type_sources": True}, timeout=10.0)
+    assert r.successful
+    got = types.to_dict(r.type_description)
+    assert got["type_description"] == want["type_description_msg"]["type_description"]
+    assert got["referenced_type_descriptions"] == want["type_description_msg"]["referenced_type_descriptions"]
+    assert r.type_sources[0].type_name == "geometry_msgs/msg/TwistStamped"
+    miss = c.call({"type_name": "sensor_msgs/msg/Imu", "type_hash": types.type_hash("sensor_msgs/msg/Imu")})
+    assert not miss.successful and "not currently in use" in miss.failure_reason
+
+
+def test_gid_is_xxh3_of_the_token_and_tokens_carry_the_real_qos(router: str) -> None:
+    node = Node("gid_talker")
+    pub = node.create_publisher("/chatter", "std_msgs/msg/String", qos=wire.QoS(reliable=False, depth=7))
+    latched = node.create_publisher("/latched", "std_msgs/msg/String", latched=True, depth=3)
+    for i in range(5):
+        latched.publish({"data": str(i)})
+    raw = zenoh.open(_client_config(router))
+    try:
+        keys = tokens(raw)
+        chatter = [k for k in keys if "/MP/" in k and "/gid_talker/%chatter/" in k]
+        assert len(chatter) == 1, keys
+        # rmw_zenoh's qos field: best effort (2), volatile default, keep_last default, depth 7.
+        assert chatter[0].endswith("/2::,7:,:,:,,")
+        assert any("/gid_talker/%latched/" in k and k.endswith("/:1:,3:,:,:,,") for k in keys)
+        assert any("/gid_talker/%rosout/" in k and k.endswith("/:1:,1000:,:10,0:,,") for k in keys)
+        assert any("/gid_talker/%parameter_events/" in k and k.endswith("/::,1000:,:,:,,") for k in keys)
+        got: list[bytes] = []
+        ready = threading.Event()
+
+        def on_sample(s: zenoh.Sample) -> None:
+            got.append(s.attachment.to_bytes())
+            ready.set()
+
+        sub = raw.declare_subscriber(f"{node.domain}/chatter/**", on_sample)
+        assert wait_for(lambda: (pub.publish({"data": "hi"}), ready.is_set())[1], 10.0)
+        att = got[0]
+        assert len(att) == 33 and att[16] == 16, "rmw_zenoh >= 0.2.4 positional attachment"
+        expected = xxhash.xxh3_128_intdigest(chatter[0].encode()).to_bytes(16, "little")
+        assert att[17:] == expected
+        sub.undeclare()
+    finally:
+        raw.close()
+    # TRANSIENT_LOCAL depth 3: a late joiner gets the newest three.
+    late: list = []
+    Node("late").create_subscription("/latched", "std_msgs/msg/String", late.append, latched=True, depth=3)
+    assert wait_for(lambda: len(late) >= 3)
+    time.sleep(0.3)
+    assert [m.data for m in late] == ["2", "3", "4"]
+
+
+def test_a_component_serving_its_own_parameter_service_replaces_the_builtin(router: str) -> None:
+    node = Node("custom")
+    node.create_service("~/list_parameters", "rcl_interfaces/srv/ListParameters",
+                        lambda req: {"result": {"names": ["only_mine"]}})
+    c = Node("asker2").create_client("/custom/list_parameters", "rcl_interfaces/srv/ListParameters")
+    assert c.wait_for_service(10.0)
+    for _ in range(5):  # one server answers, every time
+        assert list(c.call({}, timeout=10.0).result.names) == ["only_mine"]
+
+
+def _client_config(endpoint: str) -> zenoh.Config:
+    conf = zenoh.Config()
+    conf.insert_json5("mode", '"client"')
+    conf.insert_json5("connect/endpoints", f'["{endpoint}"]')
+    conf.insert_json5("scouting/multicast/enabled", "false")
+    return conf
