@@ -187,7 +187,9 @@ class ControllerManager:
         if cfg.type == "none":
             return []
         if cfg.type == "all":
-            return list(self.rm.command_interfaces if command else self.rm.state_interfaces)
+            if command:  # every hardware command interface; other controllers' references are claimed by name
+                return [n for n in self.rm.command_interfaces if n not in self.rm.reference_owner]
+            return list(self.rm.state_interfaces)
         if cfg.type == "individual":
             return list(cfg.names)
         raise TransitionError(f"interface configuration type {cfg.type!r} is not one of all, individual, none")

@@ -127,3 +127,9 @@ def test_cleanup_removes_the_reference_interfaces():
     assert not any(r in rig.cm.rm.command_interfaces for r in REFS) and not rig.cm.rm.reference_owner
     rig.cm.configure_controller("ddc")
     assert all(r in rig.cm.rm.command_interfaces for r in REFS)
+
+
+def test_claiming_all_command_interfaces_takes_the_hardware_ones_not_references():
+    rig = Rig()
+    cfg = type(rig.ddc().command_interface_configuration()).all()
+    assert sorted(rig.cm._resolve(cfg, command=True)) == ["left_wheel/velocity", "right_wheel/velocity"]
