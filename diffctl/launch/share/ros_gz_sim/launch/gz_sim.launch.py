@@ -2,55 +2,96 @@
 
 Included by launch files written for Gazebo, e.g. the tutorial's
 `IncludeLaunchDescription(PythonLaunchDescriptionSource(.../gz_sim.launch.py), launch_arguments={"gz_args": …})`.
+Arguments as in ros_gz_sim (Jazzy): gz_args (`-r -s -g -v N`, a world file or a name such as `empty.sdf`),
+gz_version, ign_args/ign_version (deprecated spellings), debugger, on_exit_shutdown, and the composition
+arguments container_name/create_own_container/use_composition (accepted: the simulator is one process).
 `gz sim -g` alone (the GUI client) starts nothing: diffctl's simulator is headless and the browser
-visualizer (rviz2) shows the scene.
+visualizer (rviz2) shows the scene. World names are looked up on GZ_SIM_RESOURCE_PATH, which gets the
+packages' `gazebo_ros` exports and then Gazebo's own worlds (shipped in this package's worlds/).
 """
 
+import os
+import shlex
+
+from diffctl.errors import LaunchError
 from diffctl.launch import (
+    AppendEnvironmentVariable,
     DeclareLaunchArgument,
-    IfCondition,
     LaunchConfiguration,
     LaunchDescription,
     LogInfo,
     Node,
-    PythonExpression,
+    OpaqueFunction,
     Shutdown,
 )
-from diffctl.launch.process_actions import SplitArgs
+from diffctl.workspace.gazebo_paths import gazebo_paths
+
+WORLDS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "worlds")
+TRUE_WORDS, FALSE_WORDS = ("true", "1", "yes", "on"), ("false", "0", "no", "off", "")
+
+
+def _flag(context, name):
+    value = LaunchConfiguration(name).perform(context).strip().lower()
+    if value not in TRUE_WORDS + FALSE_WORDS:
+        raise LaunchError(
+            f"launch argument {name}:={value!r} of gz_sim.launch.py is not a boolean", hint="valid: true, false"
+        )
+    return value in TRUE_WORDS
+
+
+def launch_gz(context):
+    gz_args = LaunchConfiguration("gz_args").perform(context)
+    ign_args = LaunchConfiguration("ign_args").perform(context)
+    actions = []
+    if not gz_args.strip() and ign_args.strip():
+        actions.append(LogInfo(msg="ign_args is deprecated, migrate to gz_args!"))
+        gz_args = ign_args
+    version = LaunchConfiguration("ign_version").perform(context) or LaunchConfiguration("gz_version").perform(context)
+    if not version.strip().isdigit():
+        raise LaunchError(f"launch argument gz_version:={version!r} of gz_sim.launch.py is not a version number")
+    try:
+        words = shlex.split(gz_args)
+    except ValueError as e:
+        raise LaunchError(f"launch argument gz_args:={gz_args!r} of gz_sim.launch.py cannot be split: {e}") from None
+    shutdown = _flag(context, "on_exit_shutdown")
+    for name in ("use_composition", "create_own_container"):
+        _flag(context, name)
+    if LaunchConfiguration("debugger").perform(context).strip().lower() not in FALSE_WORDS:
+        actions.append(LogInfo(msg="debugger: diffctl's simulator is a Python process; start it under a debugger "
+                                   "with `python -m pdb -m diffctl sim run …` instead"))
+    if "-g" in words:
+        # `gz sim -g` runs only the GUI client, which connects to a server started elsewhere.
+        actions.append(LogInfo(
+            msg="gz sim -g (GUI client): diffctl's simulator is headless; the browser visualizer shows the scene"
+        ))
+        return actions
+    models, plugins = gazebo_paths()
+    for path in [*models, WORLDS]:
+        actions.append(AppendEnvironmentVariable("GZ_SIM_RESOURCE_PATH", path))
+    for path in plugins:
+        actions.append(AppendEnvironmentVariable("GZ_SIM_SYSTEM_PLUGIN_PATH", path))
+    extra = {"on_exit": Shutdown()} if shutdown else {}
+    actions.append(Node(package="ros_gz_sim", executable="gz_sim", arguments=words, output="screen", **extra))
+    return actions
 
 
 def generate_launch_description():
-    gz_args = LaunchConfiguration("gz_args")
-    words = ["'''", gz_args, "'''.split()"]
-    gui_only = PythonExpression(["'-g' in ", *words])
-    shutdown_on_exit = PythonExpression(
-        ["'-g' not in ", *words, " and '''", LaunchConfiguration("on_exit_shutdown"), "'''.lower() in ('true', '1')"]
-    )
-    keep_running = PythonExpression(
-        [
-            "'-g' not in ",
-            *words,
-            " and '''",
-            LaunchConfiguration("on_exit_shutdown"),
-            "'''.lower() not in ('true', '1')",
-        ]
-    )
-
-    def server(**kw):
-        return Node(package="ros_gz_sim", executable="gz_sim", arguments=[SplitArgs(gz_args)], output="screen", **kw)
-
     return LaunchDescription(
         [
             DeclareLaunchArgument("gz_args", default_value="", description="Arguments for the simulator (gz sim)"),
-            DeclareLaunchArgument("gz_version", default_value="8", description="Accepted for compatibility"),
+            DeclareLaunchArgument("gz_version", default_value="8", description="Gazebo Sim's major version"),
+            DeclareLaunchArgument("ign_args", default_value="", description="Deprecated: use gz_args"),
+            DeclareLaunchArgument("ign_version", default_value="", description="Deprecated: use gz_version"),
+            DeclareLaunchArgument("debugger", default_value="false", description="Run in a debugger"),
             DeclareLaunchArgument(
                 "on_exit_shutdown", default_value="false", description="Shut the launch down when the simulator exits"
             ),
-            LogInfo(
-                msg="gz sim -g (GUI client): diffctl's simulator is headless; the browser visualizer shows the scene",
-                condition=IfCondition(gui_only),
-            ),
-            server(on_exit=Shutdown(), condition=IfCondition(shutdown_on_exit)),
-            server(condition=IfCondition(keep_running)),
+            DeclareLaunchArgument("container_name", default_value="ros_gz_container",
+                                  description="Accepted for compatibility (composition)"),
+            DeclareLaunchArgument("create_own_container", default_value="false",
+                                  description="Accepted for compatibility (composition)"),
+            DeclareLaunchArgument("use_composition", default_value="false",
+                                  description="Accepted for compatibility (composition)"),
+            OpaqueFunction(function=launch_gz),
         ]
     )
