@@ -318,8 +318,8 @@ class DiffDriveController(ChainableControllerInterface):
         elif real:
             self._log.warn(
                 "nan",
-                f"Command message contains NaNs or infinities (linear.x = {linear!r}, angular.z = {angular!r}). "
-                "Not updating reference interfaces.",
+                "Command message contains NaNs. Not updating reference interfaces. "
+                f"(linear.x = {linear!r}, angular.z = {angular!r})",
             )
 
     def update(self, time_ns: int, period_s: float) -> ReturnType:
