@@ -32,6 +32,7 @@ class UrdfGeometry:
     length_m: float = 0.0  # cylinder
     filename: str = ""  # mesh URI as written (package://, file://, model://, relative or absolute)
     scale: Vec3 = (1.0, 1.0, 1.0)  # mesh
+    line: int = 0  # of the shape element, for errors about the file it names
 
 
 @dataclass(frozen=True)
@@ -204,7 +205,7 @@ class _Reader:
         scale = self.floats(g, "scale", 3, (1.0, 1.0, 1.0))
         if not all(s > 0 for s in scale):
             self.fail(g, f"<mesh scale> must be positive, got {g.get('scale')!r}")
-        return UrdfGeometry("mesh", filename=filename, scale=(scale[0], scale[1], scale[2]))
+        return UrdfGeometry("mesh", filename=filename, scale=(scale[0], scale[1], scale[2]), line=g.sourceline or 0)
 
     def material(self, el: Element, named: dict[str, tuple[RGBA | None, str]]) -> tuple[RGBA | None, str]:
         """(colour, texture) of a `<material>`: inline, or by name from the robot's top-level materials."""

@@ -159,7 +159,7 @@ class _Converter:
             mesh = _sub(geo, "mesh", line=line)
             uri = g.filename
             if self.options.resolve_meshes:
-                uri = str(resolve_mesh(g.filename, self.options.base_dir, self.robot.source, line))
+                uri = str(resolve_mesh(g.filename, self.options.base_dir, self.robot.source, g.line or line))
             _sub(mesh, "uri", uri, line)
             _sub(mesh, "scale", " ".join(_num(v) for v in g.scale), line)
 
