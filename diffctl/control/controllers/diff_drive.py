@@ -102,6 +102,12 @@ class DiffDriveController(ChainableControllerInterface):
     def reference_interface_names(self) -> list[str]:
         return ["linear/velocity", "angular/velocity"]
 
+    def on_set_chained_mode(self, chained: bool) -> None:
+        # controller_manager restarts a controller to switch its mode (deactivate → mode → activate): the
+        # wheels stop and the buffers start over, so no command of the previous source lingers.
+        self._halt()
+        self._reset_buffers(self.node.now_ns())
+
     def _on_set_parameters(self, changes: dict[str, Any]) -> str | None:
         """Refuse a change that breaks a rule; hand limits and timeout to the next update (bus thread)."""
         mine = {k: v for k, v in changes.items() if k in DECLS}

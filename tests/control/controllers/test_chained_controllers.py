@@ -115,6 +115,8 @@ def test_the_following_controller_stays_while_one_is_chained_in_front_and_leaves
 
     assert rig.cm.switch_controller([], ["fwd"], STRICT) == (True, "")
     assert not rig.ddc().is_in_chained_mode()
+    rig.cycle(2)
+    assert rig.wheels() == (0.0, 0.0)  # leaving chained mode stops the wheels until a command arrives
     rig.nodes["ddc"].deliver("/ddc/cmd_vel", {"twist": {"linear": {"x": 0.1}}})
     rig.cycle(2)
     assert rig.wheels() == pytest.approx((0.1 / 0.04, 0.1 / 0.04))
@@ -133,3 +135,17 @@ def test_claiming_all_command_interfaces_takes_the_hardware_ones_not_references(
     rig = Rig()
     cfg = type(rig.ddc().command_interface_configuration()).all()
     assert sorted(rig.cm._resolve(cfg, command=True)) == ["left_wheel/velocity", "right_wheel/velocity"]
+
+
+def test_chaining_in_front_of_a_running_controller_stops_the_wheels_until_the_new_source_commands():
+    rig = Rig()
+    rig.cm.switch_controller(["ddc"], [], STRICT)
+    rig.nodes["ddc"].deliver("/ddc/cmd_vel", {"twist": {"linear": {"x": 0.1}}})
+    rig.cycle(2)
+    assert rig.wheels() == pytest.approx((2.5, 2.5))
+    assert rig.cm.switch_controller(["fwd"], [], STRICT) == (True, "")
+    rig.cycle(3)
+    assert rig.wheels() == (0.0, 0.0)
+    rig.nodes["fwd"].deliver("/fwd/commands", {"data": [0.04, 0.0]})
+    rig.cycle(2)
+    assert rig.wheels() == pytest.approx((1.0, 1.0))
