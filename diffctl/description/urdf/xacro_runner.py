@@ -82,8 +82,16 @@ def _error(e: Exception, top: str) -> DescriptionError:
     message = " ".join(str(e).split()) or repr(e)
     if isinstance(e, ExpatError):
         return DescriptionError(f"xacro: malformed XML: {message}", source=file, line=e.lineno, field="xacro")
-    macros = [m.body.getAttribute("name") for m in (xacro.macrostack or []) if getattr(m, "body", None)]
-    hint = f"in macro {macros[-1]!r}" if macros else None
+    macros = [m for m in (xacro.macrostack or []) if getattr(m, "body", None)]
+    hint = None
+    if macros:
+        # The failing text sits in the innermost macro's body, in the file that defined it.
+        innermost = macros[-1]
+        defined_in = innermost.history[-1][-1] if innermost.history and innermost.history[-1] else None
+        hint = f"in macro {innermost.body.getAttribute('name')!r}, used in {file}"
+        line = _locate(defined_in, message)
+        if line is not None:
+            return DescriptionError(f"xacro: {message}", source=str(defined_in), line=line, field="xacro", hint=hint)
     return DescriptionError(f"xacro: {message}", source=file, line=_locate(file, message), field="xacro", hint=hint)
 
 
