@@ -297,15 +297,14 @@ def param_load(node_name: str, file: str, no_use_wildcard: bool, timeout: float)
             except ValueError as e:
                 raise ConfigError(f"parameter '{name}': {e}", source=file) from None
         resp = remote.call("set_parameters", "SetParameters", {"parameters": params})
-        failed = 0
+        # As ros2 param load: each parameter's outcome, and refusals (a dump's read-only parameters) are
+        # reported, not fatal.
         for p, result in zip(params, resp.results, strict=False):
             if result.successful:
                 console.print(f"Set parameter {p['name']} successful", markup=False)
             else:
-                failed += 1
-                console.print(f"Set parameter {p['name']} failed: {result.reason}", markup=False)
-        if failed:
-            raise BusError(f"{failed} of {len(params)} parameters were refused by {remote.fqn}")
+                console.print(f"Set parameter {p['name']} failed" + (f": {result.reason}" if result.reason else ""),
+                              markup=False)
     finally:
         remote.close()
 
