@@ -156,6 +156,11 @@ class CameraSpec:
     noise: Noise = field(default_factory=Noise)
     camera_info_topic: str = ""  # <camera_info_topic>; "" = Gazebo's default beside the image topic
     optical_frame_id: str = ""  # <optical_frame_id>; "" = the sensor's frame id
+    lens_intrinsics_px: tuple[float, float, float, float, float] | None = None  # <lens><intrinsics> fx fy cx cy s
+    # <lens><projection> p_fx p_fy p_cx p_cy tx ty
+    lens_projection_px: tuple[float, float, float, float, float, float] | None = None
+    distortion: tuple[float, float, float, float, float] = (0.0, 0.0, 0.0, 0.0, 0.0)  # <distortion> k1 k2 p1 p2 k3
+    depth_clip_m: tuple[float | None, float | None] = (None, None)  # <depth_camera><clip> near, far
 
     @property
     def vertical_fov_rad(self) -> float:

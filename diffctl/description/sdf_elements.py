@@ -257,6 +257,44 @@ def _scan_axis(doc: Doc, el: Element | None, samples_default: int) -> tuple[int,
     return (samples, resolution, lo, hi)
 
 
+# sdformat's defaults (sdf/1.11/camera.sdf) for what a given <intrinsics> / <projection> leaves out.
+def _lens_intrinsics(doc: Doc, el: Element | None) -> tuple[float, float, float, float, float] | None:
+    if el is None:
+        return None
+    fx, fy = float_value(doc, el, "fx", 277.0, positive=True), float_value(doc, el, "fy", 277.0, positive=True)
+    return (
+        fx,
+        fy,
+        float_value(doc, el, "cx", 160.0),
+        float_value(doc, el, "cy", 120.0),
+        float_value(doc, el, "s", 0.0),
+    )
+
+
+def _lens_projection(doc: Doc, el: Element | None) -> tuple[float, float, float, float, float, float] | None:
+    if el is None:
+        return None
+    return (
+        float_value(doc, el, "p_fx", 277.0, positive=True),
+        float_value(doc, el, "p_fy", 277.0, positive=True),
+        float_value(doc, el, "p_cx", 160.0),
+        float_value(doc, el, "p_cy", 120.0),
+        float_value(doc, el, "tx", 0.0),
+        float_value(doc, el, "ty", 0.0),
+    )
+
+
+def _distortion(doc: Doc, el: Element | None) -> tuple[float, float, float, float, float]:
+    if el is None:
+        return (0.0, 0.0, 0.0, 0.0, 0.0)
+    k1, k2, k3 = (float_value(doc, el, t, 0.0) for t in ("k1", "k2", "k3"))
+    return (k1, k2, float_value(doc, el, "p1", 0.0), float_value(doc, el, "p2", 0.0), k3)
+
+
+def _optional_positive(doc: Doc, el: Element | None, tag: str) -> float | None:
+    return float_value(doc, el, tag, positive=True) if el is not None and child(el, tag) is not None else None
+
+
 def _parse_camera(doc: Doc, sensor: Element) -> CameraSpec:
     cam = child(sensor, "camera")
     if cam is None:
@@ -278,6 +316,9 @@ def _parse_camera(doc: Doc, sensor: Element) -> CameraSpec:
         if far <= near:
             fail(doc, clip, f"<clip> <far> {far:g} must exceed <near> {near:g}")
     info_topic = child_text(cam, "camera_info_topic")
+    lens = child(cam, "lens")
+    depth_camera = child(cam, "depth_camera")
+    depth_clip = child(depth_camera, "clip") if depth_camera is not None else None
     return CameraSpec(
         width,
         height,
@@ -288,6 +329,10 @@ def _parse_camera(doc: Doc, sensor: Element) -> CameraSpec:
         parse_noise(doc, cam),
         camera_info_topic="/" + info_topic.lstrip("/") if info_topic else "",
         optical_frame_id=child_text(cam, "optical_frame_id") or "",
+        lens_intrinsics_px=_lens_intrinsics(doc, child(lens, "intrinsics") if lens is not None else None),
+        lens_projection_px=_lens_projection(doc, child(lens, "projection") if lens is not None else None),
+        distortion=_distortion(doc, child(cam, "distortion")),
+        depth_clip_m=(_optional_positive(doc, depth_clip, "near"), _optional_positive(doc, depth_clip, "far")),
     )
 
 

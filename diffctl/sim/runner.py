@@ -187,11 +187,8 @@ class Simulation:
                 rt.imus.append(sensor)
             else:
                 sensor = CameraSensor(Camera(entity, s, rng, self.light_direction, self.physics.all_flat_planes))
-                if not sensor.format_supported:
-                    self.log.warn(
-                        f"{s.type} {sensor.name}: image format {s.camera.format!r} is not simulated, "
-                        "publishing RGB_INT8 (simulated: R8G8B8, B8G8R8, L8)"
-                    )
+                for note in sensor.notes:
+                    self.log.warn(f"{s.type} {sensor.name}: {note}")
             rt.sensors.append(sensor)
             if self.transport is None:
                 continue

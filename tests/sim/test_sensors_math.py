@@ -15,7 +15,16 @@ from diffctl.description.model import CameraSpec, Sensor
 from diffctl.description.pose import Pose
 from diffctl.sim.flat_planes import camera_rays
 from diffctl.sim.sensors import depth
-from diffctl.sim.sensors.camera_info import camera_info_msg, intrinsics_from_fov
+from diffctl.sim.sensors.camera_info import (
+    Intrinsics,
+    camera_info_msg,
+    camera_k,
+    camera_p,
+    gl_projection,
+    intrinsics_from_fov,
+    pixel_rays,
+    render_intrinsics,
+)
 from diffctl.sim.sensors.rate import RenderRate
 from diffctl.sim.sensors.topics import base_topic, outputs, sibling_camera_info
 
@@ -37,6 +46,42 @@ def test_intrinsics_are_what_the_render_projection_implies(w: int, h: int, hfov:
     assert (pp[0], pp[2], pp[3], pp[5], pp[6], pp[10]) == (intr.fx_px, intr.cx_px, 0.0, intr.fy_px, intr.cy_px, 1.0)
     assert msg["rectification_matrix"] == [1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0]
     assert msg["distortion"] == {"model": "PLUMB_BOB", "k": [0.0] * 5}
+
+
+@pytest.mark.parametrize(("w", "h", "hfov"), [(800, 600, 1.047), (320, 240, 1.3962634), (64, 48, 2.0)])
+def test_the_render_frustum_of_a_fov_is_pybullets_own(w: int, h: int, hfov: float) -> None:
+    spec = CameraSpec(width_px=w, height_px=h, horizontal_fov_rad=hfov, clip_near_m=0.05, clip_far_m=30.0)
+    ours = gl_projection(intrinsics_from_fov(w, h, hfov), w, h, 0.05, 30.0)
+    theirs = pb.computeProjectionMatrixFOV(math.degrees(spec.vertical_fov_rad), w / h, 0.05, 30.0)
+    assert np.allclose(ours, theirs, rtol=1e-6, atol=1e-9)
+    assert np.allclose(pixel_rays(intrinsics_from_fov(w, h, hfov), w, h), camera_rays(w, h, spec.vertical_fov_rad))
+
+
+def test_an_off_centre_skewed_lens_maps_each_ray_back_onto_its_pixel() -> None:
+    """Through the GL frustum of K (what TinyRenderer draws with) every pixel's ray lands on that pixel."""
+    w, h = 40, 30
+    k = Intrinsics(fx_px=35.0, fy_px=33.0, cx_px=17.0, cy_px=18.5, skew_px=2.0)
+    rays = pixel_rays(k, w, h)
+    proj = np.array(gl_projection(k, w, h, 0.1, 10.0)).reshape(4, 4).T  # back to rows
+    # sensor (x fwd, y left, z up) → GL eye (x right, y up, -z forward), 2 m along each ray
+    eye = np.stack([-rays[1], rays[2], -rays[0], np.ones(w * h) / 2.0]) * 2.0
+    clip = proj @ eye
+    ndc = clip[:3] / clip[3]
+    u, v = (ndc[0] + 1) * w / 2, (1 - ndc[1]) * h / 2
+    cols, rows = np.meshgrid(np.arange(w) + 0.5, np.arange(h) + 0.5)
+    assert np.allclose(u, cols.ravel()) and np.allclose(v, rows.ravel())
+    assert np.all(np.abs(ndc[2]) < 1)  # inside the depth range
+
+
+def test_lens_blocks_choose_k_p_and_the_render_pinhole() -> None:
+    plain = CameraSpec(width_px=320, height_px=240, horizontal_fov_rad=1.047)
+    assert camera_p(plain).p[:3] == [camera_k(plain).fx_px, 0.0, 160.0] and render_intrinsics(plain) == camera_k(plain)
+    lens = CameraSpec(lens_intrinsics_px=(300.0, 310.0, 150.0, 110.0, 0.5))
+    assert camera_k(lens).k == [300.0, 0.5, 150.0, 0.0, 310.0, 110.0, 0.0, 0.0, 1.0]
+    assert camera_p(lens).p == [300.0, 0.0, 150.0, 0.0, 0.0, 310.0, 110.0, 0.0, 0.0, 0.0, 1.0, 0.0]
+    stereo = CameraSpec(lens_projection_px=(280.0, 281.0, 161.0, 121.0, -14.0, 0.0))
+    assert camera_p(stereo).p[3] == -14.0 and render_intrinsics(stereo).fx_px == 280.0
+    assert camera_k(stereo) == intrinsics_from_fov(320, 240, 1.047)  # K from the fov, as Gazebo leaves it
 
 
 def test_points_of_a_wall_project_back_onto_their_pixels_through_camera_info() -> None:

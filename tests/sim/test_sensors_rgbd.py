@@ -20,11 +20,11 @@ WALL_DIST, WALL_THICK, WALL_HALF = 2.0, 0.2, 0.5  # wall centre distance, thickn
 FACE = WALL_DIST - WALL_THICK / 2
 
 
-def rig(kind: str, yaw: float, extra: str = "") -> str:
+def rig(kind: str, yaw: float, extra: str = "", lens: str = "") -> str:
     return f"""<model name="rig"><static>true</static><pose>0 0 {CAM_Z} 0 0 {yaw}</pose><link name="l">
       <sensor name="eye" type="{kind}"><update_rate>10</update_rate>
         <camera><horizontal_fov>{HFOV}</horizontal_fov><image><width>{W}</width><height>{H}</height></image>
-          <clip><near>{NEAR}</near><far>{FAR}</far></clip></camera></sensor>{extra}
+          <clip><near>{NEAR}</near><far>{FAR}</far></clip>{lens}</camera></sensor>{extra}
     </link></model>"""
 
 
@@ -37,8 +37,8 @@ def wall(yaw: float) -> str:
       </collision></link></model>"""
 
 
-def scene(kind: str, yaw: float) -> tuple[Any, CameraSensor]:
-    pw, ents = build(sdf_world(wall(yaw) + rig(kind, yaw)))
+def scene(kind: str, yaw: float, lens: str = "") -> tuple[Any, CameraSensor]:
+    pw, ents = build(sdf_world(wall(yaw) + rig(kind, yaw, lens=lens)))
     entity = ents["rig"]
     s = next(entity.model.sensors())
     return pw, CameraSensor(Camera(entity, s, np.random.default_rng(0), (-0.5, 0.1, -0.9), pw.all_flat_planes))
@@ -57,9 +57,13 @@ def wall_mask(info: dict, margin_px: float) -> tuple[np.ndarray, np.ndarray]:
     return inside, outside
 
 
-@pytest.mark.parametrize("yaw", [0.0, 2.0])
-def test_rgbd_sees_the_wall_where_it_is(yaw: float) -> None:
-    pw, cam = scene("rgbd_camera", yaw)
+# An off-centre lens (<lens><intrinsics>) moves the wall in the image; camera_info's K says where.
+OFF_CENTRE = "<lens><intrinsics><fx>120</fx><fy>120</fy><cx>70</cx><cy>50</cy><s>0</s></intrinsics></lens>"
+
+
+@pytest.mark.parametrize(("yaw", "lens"), [(0.0, ""), (2.0, ""), (0.0, OFF_CENTRE)])
+def test_rgbd_sees_the_wall_where_it_is(yaw: float, lens: str) -> None:
+    pw, cam = scene("rgbd_camera", yaw, lens)
     try:
         msgs = cam.messages(1_500_000_000, {"image", "depth_image", "points", "camera_info"})
         assert cam.frames == 1  # one render fed all four
@@ -206,5 +210,34 @@ def test_every_output_reaches_ros_through_the_bridge_conversions() -> None:
         assert (cloud.point_step, cloud.row_step, len(cloud.data)) == (24, 24 * W, 24 * W * H)
         info = ros["camera_info"]
         assert info.distortion_model == "plumb_bob" and info.k[2] == W / 2 and info.k[5] == H / 2
+    finally:
+        pw.close()
+
+
+def test_depth_clip_and_distortion_of_an_rgbd_camera_as_gazebo() -> None:
+    lens = (
+        "<distortion><k1>-0.2</k1><k2>0.05</k2><p1>0.001</p1><p2>0.002</p2><k3>0.01</k3></distortion>"
+        "<depth_camera><clip><near>0.2</near><far>1.5</far></clip></depth_camera>"
+    )
+    pw, cam = scene("rgbd_camera", 0.0, lens)
+    try:
+        msgs = cam.messages(0, {"depth_image", "points", "camera_info", "image"})
+        d = np.frombuffer(msgs["depth_image"]["data"], dtype="<f4")
+        assert np.all(np.isposinf(d))  # the wall at 1.9 m is beyond the depth clip's 1.5 m
+        xyz, _ = unpack_points(msgs["points"]["data"])
+        assert np.all(np.isposinf(xyz))
+        rgb = np.frombuffer(msgs["image"]["data"], dtype=np.uint8).reshape(H, W, 3)
+        assert rgb[H // 2, W // 2, 0] > 2 * rgb[H // 2, W // 2, 1]  # the colour image still sees it
+        # Gazebo does not distort depth or rgbd images, and reports the SDF's coefficients as they are.
+        assert msgs["camera_info"]["distortion"]["k"] == [-0.2, 0.05, 0.001, 0.002, 0.01] and not cam.notes
+    finally:
+        pw.close()
+
+
+def test_a_plain_cameras_distortion_is_reported_as_not_simulated() -> None:
+    pw, cam = scene("camera", 0.0, "<distortion><k1>-0.2</k1></distortion>")
+    try:
+        assert cam.messages(0, {"camera_info"})["camera_info"]["distortion"]["k"] == [0.0] * 5
+        assert len(cam.notes) == 1 and "<distortion>" in cam.notes[0]
     finally:
         pw.close()

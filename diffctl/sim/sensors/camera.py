@@ -21,7 +21,8 @@ from diffctl.bus import gz
 from diffctl.description.model import Sensor
 from diffctl.description.pose import Pose, Vec3, quat_from_matrix
 from diffctl.sim.entity import Entity
-from diffctl.sim.flat_planes import FlatPlane, camera_rays, composite, linear_depth_m
+from diffctl.sim.flat_planes import FlatPlane, composite, linear_depth_m
+from diffctl.sim.sensors.camera_info import gl_projection, pixel_rays, render_intrinsics
 from diffctl.sim.sensors.common import frame_id
 
 # Noise is drawn from a pre-computed table (a fresh normal() per 230k pixels costs more than the render).
@@ -54,15 +55,12 @@ class Camera:
         self.entity, self.sensor, self.spec = entity, sensor, spec
         self.planes = planes or (lambda: [])
         self.frames = 0
-        self.rays = camera_rays(spec.width_px, spec.height_px, spec.vertical_fov_rad)
         self.frame_id = spec.optical_frame_id or frame_id(entity.name, sensor)
         self.width, self.height = spec.width_px, spec.height_px
-        self._proj = pb.computeProjectionMatrixFOV(
-            fov=math.degrees(spec.vertical_fov_rad),
-            aspect=self.width / self.height,
-            nearVal=spec.clip_near_m,
-            farVal=spec.clip_far_m,
-        )
+        # One pinhole for TinyRenderer's frustum, the ray-cast planes and the points derived from depth.
+        k = render_intrinsics(spec)
+        self.rays = pixel_rays(k, self.width, self.height)
+        self._proj = gl_projection(k, self.width, self.height, spec.clip_near_m, spec.clip_far_m)
         # PyBullet wants the position the light comes from; SDF gives the direction the light travels.
         self._light = [-light_direction[0] * 10, -light_direction[1] * 10, -light_direction[2] * 10]
         self.rng = rng

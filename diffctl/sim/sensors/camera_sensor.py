@@ -13,7 +13,7 @@ import numpy as np
 from diffctl.bus import gz
 from diffctl.sim.sensors import depth as depth_math
 from diffctl.sim.sensors.camera import Camera
-from diffctl.sim.sensors.camera_info import camera_info_msg, intrinsics_from_fov
+from diffctl.sim.sensors.camera_info import camera_info_msg, camera_k, camera_p
 from diffctl.sim.sensors.topics import DEPTH, IMAGE, INFO, POINTS
 
 RENDERED = frozenset({IMAGE, DEPTH, POINTS})
@@ -59,13 +59,26 @@ class CameraSensor:
         self.name = f"{camera.entity.name}::{camera.sensor.link}::{camera.sensor.name}"
         self.frame = camera.frame_id
         self.width, self.height = spec.width_px, spec.height_px
-        self.intrinsics = intrinsics_from_fov(spec.width_px, spec.height_px, spec.horizontal_fov_rad)
+        self.k, self.p = camera_k(spec), camera_p(spec)
+        self.notes: list[str] = []  # what of the SDF is not simulated, one line each
+        self.distortion = spec.distortion
+        if self.kind == "camera" and any(spec.distortion):
+            # Gazebo distorts a plain camera's image; we render an ideal pinhole, and say so in camera_info
+            # too, so that rectifying the image leaves it as it is. (Depth and rgbd cameras are not
+            # distorted in Gazebo either, and report the SDF's coefficients as it does.)
+            self.notes.append("<distortion> is not simulated: the image is an ideal pinhole, camera_info says so")
+            self.distortion = (0.0, 0.0, 0.0, 0.0, 0.0)
         fmt = spec.format.upper()
         # rgbd_camera images are always RGB (RgbdCameraSensor); a format we cannot produce falls back to RGB.
-        self.format_supported = self.kind != "camera" or fmt in IMAGE_FORMATS
+        if self.kind == "camera" and fmt not in IMAGE_FORMATS:
+            self.notes.append(
+                f"image format {spec.format!r} is not simulated, publishing RGB_INT8 (simulated: R8G8B8, B8G8R8, L8)"
+            )
         self.pixel_format, self.bytes_per_px = IMAGE_FORMATS.get(fmt, IMAGE_FORMATS["R8G8B8"])
         if self.kind == "rgbd_camera":
             self.pixel_format, self.bytes_per_px = IMAGE_FORMATS["R8G8B8"]
+        # <depth_camera><clip> narrows an rgbd camera's depth (RgbdCameraSensor); depth_camera ignores it.
+        self.depth_clip_m = spec.depth_clip_m if self.kind == "rgbd_camera" else (None, None)
 
     @property
     def frames(self) -> int:
@@ -78,7 +91,9 @@ class CameraSensor:
         """The messages of the `wanted` outputs now, rendering at most once."""
         out: dict[str, dict] = {}
         if INFO in wanted:
-            out[INFO] = camera_info_msg(sim_time_ns, self.frame, self.width, self.height, self.intrinsics)
+            out[INFO] = camera_info_msg(
+                sim_time_ns, self.frame, self.width, self.height, self.k, self.p, self.distortion
+            )
         if not self.needs_render(wanted):
             return out
         spatial = bool(wanted & {DEPTH, POINTS})
@@ -91,6 +106,7 @@ class CameraSensor:
         assert frame.depth_fwd_m is not None
         spec = self.camera.spec
         points = depth_math.sensor_points(frame.depth_fwd_m, self.camera.rays, spec.clip_near_m, spec.clip_far_m)
+        depth_math.clip_depth(points, *self.depth_clip_m)
         if DEPTH in wanted:
             d = depth_math.depth_image(points, self.width, self.height)
             out[DEPTH] = image_msg(sim_time_ns, self.frame, d.astype("<f4"), "R_FLOAT32", 4)

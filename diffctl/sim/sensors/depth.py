@@ -46,6 +46,16 @@ def sensor_points(depth_fwd_m: np.ndarray, rays: np.ndarray, near_m: float, far_
     return pts
 
 
+def clip_depth(points: np.ndarray, near_m: float | None, far_m: float | None) -> None:
+    """An rgbd camera's `<depth_camera><clip>`, in place: depth beyond `far_m` becomes +inf, nearer than
+    `near_m` -inf, on all three axes (RgbdCameraSensor applies it to the depth buffer, then the points)."""
+    x = points[:, 0]
+    if far_m is not None:
+        points[x > far_m] = np.inf
+    if near_m is not None:
+        points[x < near_m] = -np.inf
+
+
 def depth_image(points: np.ndarray, width_px: int, height_px: int) -> np.ndarray:
     """The depth image (height, width) float32 metres: each point's x (±inf where clipped)."""
     return np.ascontiguousarray(points[:, 0]).reshape(height_px, width_px)
