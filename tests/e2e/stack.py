@@ -80,13 +80,20 @@ class Watch:
 class Stack:
     """`diffctl launch FILE rtf:=… viz:=false` in its own process group, plus a test node on its bus."""
 
-    def __init__(self, launch_file: str, log_dir: Path, *args: str, rtf: str = "0") -> None:
+    def __init__(
+        self, launch_file: str | list[str], log_dir: Path, *args: str, rtf: str | None = "0",
+        cwd: Path | None = None,
+    ) -> None:
+        """`launch_file`: a NAME, a PATH or [PKG, FILE]; `rtf`/`viz:=false` are passed to the project's own launch
+        files (None: a user's file that declares neither)."""
         self.log_path = log_dir / "launch.out"
         self._out = open(self.log_path, "w")  # noqa: SIM115 — closed in stop()
+        target = [launch_file] if isinstance(launch_file, str) else list(launch_file)
+        ours = [f"rtf:={rtf}", "viz:=false"] if rtf is not None else []
         self.proc = subprocess.Popen(
-            [sys.executable, "-m", "diffctl", "launch", launch_file, f"rtf:={rtf}", "viz:=false", *args,
+            [sys.executable, "-m", "diffctl", "launch", *target, *ours, *args,
              "--log-dir", str(log_dir), "--no-color"],
-            stdout=self._out, stderr=subprocess.STDOUT, start_new_session=True,
+            stdout=self._out, stderr=subprocess.STDOUT, start_new_session=True, cwd=cwd,
         )
         self.node: Node | None = None
         self.watch = Watch()
