@@ -10,7 +10,13 @@ the arguments gui, viz, viz_port, world and rtf, and paths of this repository's 
 import os
 
 from ament_index_python.packages import get_package_share_directory
-from launch.actions import DeclareLaunchArgument, IncludeLaunchDescription, LogInfo, RegisterEventHandler
+from launch.actions import (
+    DeclareLaunchArgument,
+    ExecuteProcess,
+    IncludeLaunchDescription,
+    LogInfo,
+    RegisterEventHandler,
+)
 from launch.conditions import IfCondition, UnlessCondition
 from launch.event_handlers import OnProcessExit
 from launch.launch_description_sources import PythonLaunchDescriptionSource
@@ -162,6 +168,10 @@ def generate_launch_description():
             DeclareLaunchArgument(
                 "rtf", default_value="1", description="Real-time factor target; 0 runs as fast as possible"
             ),
+            DeclareLaunchArgument(
+                "record", default_value="false", choices=["true", "false"],
+                description="Record the topics with diffctl bag record (camera images left out) next to the logs",
+            ),
             robot_state_publisher_node,
             robot_controller_spawner,
             gazebo_node,
@@ -171,5 +181,10 @@ def generate_launch_description():
             start_gazebo_ros_bridge_cmd,
             delay_joint_state_broadcaster_after_robot_controller_spawner,
             delay_rviz_after_joint_state_broadcaster_spawner,
+            # ros2 bag record; the camera is rendered on demand, so its images are left out.
+            ExecuteProcess(
+                cmd=["diffctl", "bag", "record", "-a", "--exclude-regex", "^/camera/"], name="bag_record",
+                output="screen", condition=IfCondition(LaunchConfiguration("record")),
+            ),
         ]
     )

@@ -27,6 +27,7 @@ COMPONENTS: dict[tuple[str, str], tuple[str, ...]] = {
     ("rviz2", "rviz2"): ("viz",),
     ("teleop_twist_joy", "teleop_node"): ("teleop", "joy"),
     ("teleop_twist_keyboard", "teleop_twist_keyboard"): ("teleop", "keyboard"),
+    ("foxglove_bridge", "foxglove_bridge"): ("foxglove-bridge",),
     ("diffctl", "router"): ("router",),
 }
 
