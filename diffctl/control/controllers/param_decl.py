@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 import sys
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 from diffctl.errors import ParameterError, suggest
@@ -34,6 +34,10 @@ _ROS_TYPE = {
     "double_array": "double_array",
     "string_array": "string_array",
 }
+# Keys the controller manager owns on every controller node (`<name>.type`, `.params_file`, …): never unknown.
+MANAGER_KEYS = frozenset(
+    {"type", "update_rate", "use_sim_time", "params_file", "is_async", "thread_priority", "fallback_controllers"}
+)
 _DOUBLE_MAX = sys.float_info.max
 _INT_MAX = 2**63 - 1
 
@@ -93,7 +97,6 @@ class ParamDecl:
     description: str = ""
     read_only: bool = False
     checks: tuple[Check, ...] = ()
-    extra: tuple[str, ...] = field(default=(), compare=False)  # words added to the description (units, why)
 
     @property
     def ros_type(self) -> str:
@@ -115,10 +118,9 @@ class ParamDecl:
                 fp = (float(lo), float(hi), 0.0)
             elif self.type == "int":
                 ir = (int(lo), int(hi), 0)
-        description = " ".join([self.description, *self.extra]).strip()
         return ParameterDescriptor(
             type=self.ros_type,
-            description=description,
+            description=self.description,
             read_only=self.read_only,
             floating_point_range=fp,
             integer_range=ir,
@@ -211,8 +213,6 @@ def unknown_key_warnings(
     decls: Mapping[str, ParamDecl], params: Mapping[str, Any], controller: str, also_known: Iterable[str] = ()
 ) -> list[str]:
     """One warning per key in `params` the table does not declare (and the manager does not own)."""
-    from diffctl.control.controllers.param_values import MANAGER_KEYS
-
     known = set(decls) | MANAGER_KEYS | set(also_known)
     return [
         f"unknown parameter '{controller}.{k}' is ignored{suggest(k, sorted(known))}" for k in params if k not in known
