@@ -159,6 +159,11 @@ class Entity:
     type: str = ""
     type_hash: str = ""
     qos: str = ""
+    token: str = ""  # the liveliness key itself (rmw_zenoh derives the GID from it)
+
+    @property
+    def gid(self) -> bytes:
+        return gid_of(self.token) if self.token else b""
 
     @property
     def node_fqn(self) -> str:
@@ -182,7 +187,7 @@ def parse_token(key: str) -> Entity | None:
     ns = unmangle(ns)
     node = unmangle(node)
     if kind == KIND_NODE:
-        return Entity(zid, nid, eid, kind, ns if ns != "/" else "/", node)
+        return Entity(zid, nid, eid, kind, ns if ns != "/" else "/", node, token=str(key))
     if len(rest) < 4:
         return None
     topic, dds, thash, qos = rest[0], rest[1], rest[2], "/".join(rest[3:])
@@ -190,4 +195,5 @@ def parse_token(key: str) -> Entity | None:
         typename = from_dds_name(dds)
     except ValueError:
         typename = dds
-    return Entity(zid, nid, eid, kind, ns if ns != "/" else "/", node, unmangle(topic), typename, thash, qos)
+    return Entity(zid, nid, eid, kind, ns if ns != "/" else "/", node, unmangle(topic), typename, thash, qos,
+                  str(key))

@@ -15,7 +15,7 @@ from typing import Any
 import click
 import yaml
 
-from diffctl.bus import Node, types
+from diffctl.bus import Node, types, wire
 from diffctl.cli import bus_common as bc
 from diffctl.console import console, info, warn
 from diffctl.errors import ConfigError
@@ -298,12 +298,28 @@ def info_(topic_name: str, verbose: bool) -> None:
         for title, ents in (("Publishers", pubs), ("Subscriptions", subs)):
             console.print(f"\n{title}:", markup=False)
             for e in ents:
-                console.print(f"  Node name: {e.node}\n  Node namespace: {e.namespace}\n  Topic type: {e.type}\n"
-                              f"  Topic type hash: {e.type_hash}\n  Endpoint type: "
-                              f"{'PUBLISHER' if e in pubs else 'SUBSCRIPTION'}\n  QoS: {e.qos}\n", markup=False)
+                console.print(f"Node name: {e.node}\nNode namespace: {e.namespace}\nTopic type: {e.type}\n"
+                              f"Topic type hash: {e.type_hash}\nEndpoint type: "
+                              f"{'PUBLISHER' if e in pubs else 'SUBSCRIPTION'}\nGID: {e.gid.hex('.')}\n"
+                              f"QoS profile:\n{qos_text(e.qos_profile)}\n", markup=False)
     if len(ts) > 1:
         detail = "; ".join(bc.fmt_endpoint(e) for e in pubs + subs)
         warn(f"type mismatch on {name}: {' vs '.join(ts)} — these endpoints never exchange messages ({detail})")
+
+
+def qos_text(q: wire.QoS | None) -> str:
+    """A QoS profile as `ros2 topic info -v` prints it."""
+    if q is None:
+        return "  (unknown)"
+
+    def duration(ns: int | None) -> str:
+        return "Infinite" if ns is None else f"{ns} nanoseconds"
+
+    history = "KEEP_ALL" if q.keep_all else f"KEEP_LAST ({q.depth})"
+    return (f"  Reliability: {'RELIABLE' if q.reliable else 'BEST_EFFORT'}\n  History (Depth): {history}\n"
+            f"  Durability: {'TRANSIENT_LOCAL' if q.transient_local else 'VOLATILE'}\n"
+            f"  Lifespan: {duration(q.lifespan_ns)}\n  Deadline: {duration(q.deadline_ns)}\n"
+            "  Liveliness: AUTOMATIC\n  Liveliness lease duration: Infinite")
 
 
 @topic.command("type")

@@ -3,6 +3,8 @@ rmw_zenoh's GIDs and QoS tokens — read back with plain Zenoh and xxhash, not w
 
 from __future__ import annotations
 
+import subprocess
+import sys
 import threading
 import time
 
@@ -139,6 +141,11 @@ def test_gid_is_xxh3_of_the_token_and_tokens_carry_the_real_qos(router: str) -> 
         sub.undeclare()
     finally:
         raw.close()
+    # `topic info -v` shows that GID and the profile, as ros2 topic info -v does.
+    out = subprocess.run([sys.executable, "-m", "diffctl", "topic", "info", "/chatter", "-v"], capture_output=True,
+                         text=True, timeout=60).stdout
+    assert f"GID: {expected.hex('.')}" in out, out
+    assert "Reliability: BEST_EFFORT" in out and "History (Depth): KEEP_LAST (7)" in out
     # TRANSIENT_LOCAL depth 3: a late joiner gets the newest three.
     late: list = []
     Node("late").create_subscription("/latched", "std_msgs/msg/String", late.append, latched=True, depth=3)
