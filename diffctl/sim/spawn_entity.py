@@ -1,9 +1,14 @@
 """`diffctl spawn entity`: ros_gz_sim's `create` — put a model into the running simulator, or remove one.
 
-Takes the model from a latched topic (`--topic /robot_description`, std_msgs/msg/String), a file or a string,
-waits for the simulator (its `gz/world/<w>/sim` token) and the description, asks the world's `create`
-service, and exits 0 once the model is in. Any failure (name taken, bad SDF, nothing answering in time)
-exits 1 with the reason; the simulator keeps running. ROS-style single-dash flags work as with `create`.
+Flags as `create` takes them (gflags style: `-name robot`, `-name=robot`, `--name robot`): the model from
+`-file` (a path, a model folder, `model://`/`package://` URI found on GZ_SIM_RESOURCE_PATH), `-string`,
+`-topic` (latched std_msgs/String, relative names in the node's namespace) or `-param NAME` (a parameter
+of this node), in create's precedence (-file > -param > -string > -topic); `-name`, `-allow_renaming`
+(a bool flag: alone or `=true`/`=false`; a separate `false` word is ignored, as gflags does), `-world`,
+and the pose `-x -y -z -R -P -Y`. ROS parameters of the same names (`--ros-args -p name:=…`) win over
+flags as in create: a non-empty string, a non-zero pose value, `allow_renaming` true; the source
+parameters go file > string > topic. Waits for the simulator and the description, asks the world's
+`create` service, exits 0 once the model is in; a refusal exits 1, bad flags exit 2.
 """
 
 from __future__ import annotations
@@ -12,34 +17,165 @@ import math
 import os
 import threading
 import time
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 import click
 
-from diffctl.errors import RuntimeFailure
+from diffctl.errors import ConfigError, RuntimeFailure
 from diffctl.sim.world_client import call, wait_for_world
 
 DEFAULT_TIMEOUT_S = 30.0
+NODE_NAME = "ros_gz_sim"
+POSE_FIELDS = (("x", "x"), ("y", "y"), ("z", "z"), ("R", "roll"), ("P", "pitch"), ("Y", "yaw"))
+_RENAMING_FLAGS = ("-allow_renaming", "--allow_renaming", "--allow-renaming")
+_POSE_FLAGS = {flag for flag, _ in POSE_FIELDS}
+_TRUE, _FALSE = ("true", "t", "yes", "y", "1"), ("false", "f", "no", "n", "0")
 
 
-def _num(name: str) -> Any:
-    return click.option(f"-{name}", f"--{name}", type=float, default=None, help=f"Spawn pose {name}.")
+@dataclass(frozen=True)
+class CreateRequest:
+    """What to spawn, validated: exactly one model source, a finite pose."""
+
+    source: str  # "file", "string" or "topic"
+    value: str  # the path, the XML text, or the topic name
+    name: str | None
+    world: str | None
+    allow_renaming: bool
+    pose: dict[str, float] | None
 
 
-@click.command("entity")
-@click.option("-name", "--name", default=None, help="Entity name (default: the model's name).")
-@click.option("-topic", "--topic", default=None, help="Latched std_msgs/String topic with the SDF.")
-@click.option("-file", "--file", "file_", default=None, type=click.Path(dir_okay=False), help="SDF file.")
-@click.option("-string", "--string", "sdf_string", default=None, help="SDF text.")
-@click.option("-world", "--world", default=None, help="World to spawn into (default: the only one running).")
-@_num("x")
-@_num("y")
-@_num("z")
-@click.option("-R", "--R", "roll", type=float, default=None, help="Spawn roll (rad).")
-@click.option("-P", "--P", "pitch", type=float, default=None, help="Spawn pitch (rad).")
-@click.option("-Y", "--Y", "yaw", type=float, default=None, help="Spawn yaw (rad).")
-@click.option("-allow_renaming", "--allow-renaming", is_flag=True, help="Rename instead of failing on a taken name.")
+def gflags_args(args: list[str]) -> tuple[list[str], list[str]]:
+    """gflags spellings click does not take → click's; the warnings to print. `-allow_renaming[=v]`
+    becomes `--allow-renaming`/`--no-allow-renaming` (gflags never reads a separate word as a bool
+    flag's value), `-R=0.1` becomes `-R 0.1`."""
+    out: list[str] = []
+    notes: list[str] = []
+    i = 0
+    while i < len(args):
+        flag, eq, value = args[i].partition("=")
+        if eq and flag.lstrip("-") in _POSE_FLAGS and flag in (f"-{flag.lstrip('-')}", f"--{flag.lstrip('-')}"):
+            out += [flag, value]  # gflags' -R=0.1; click would read "=0.1" as the value of -R
+        elif flag not in _RENAMING_FLAGS:
+            out.append(args[i])
+        elif eq:
+            v = value.strip().lower()
+            if v not in _TRUE + _FALSE:
+                raise click.BadParameter(f"{value!r} is not a boolean (valid: true, false)", param_hint=flag)
+            out.append("--allow-renaming" if v in _TRUE else "--no-allow-renaming")
+        else:
+            out.append("--allow-renaming")
+            nxt = args[i + 1].strip().lower() if i + 1 < len(args) else ""
+            if nxt in _TRUE + _FALSE:
+                if nxt in _FALSE:
+                    notes.append(
+                        f"{flag} {args[i + 1]}: the flag alone means true and the word is ignored (as ros_gz_sim's "
+                        f"create reads it): renaming is allowed; write {flag}=false to refuse it"
+                    )
+                i += 1
+        i += 1
+    return out, notes
+
+
+def _ros_param(params: dict[str, Any], name: str, kind: type) -> Any:
+    value = params.get(name)
+    if value is None:
+        return None
+    if kind is float and isinstance(value, int) and not isinstance(value, bool):
+        value = float(value)
+    if not isinstance(value, kind) or isinstance(value, bool) != (kind is bool):
+        raise ConfigError(f"parameter {name!r} of create must be a {kind.__name__}, got {value!r}", field=name)
+    return value
+
+
+def build_request(flags: dict[str, Any], params: dict[str, Any]) -> CreateRequest:
+    """Flags and ROS parameters → one request, with create's precedence between them."""
+    source: tuple[str, str] | None = None
+    for key, kind in (("file", "file"), ("string", "string"), ("topic", "topic")):
+        value = _ros_param(params, key, str)
+        if value:
+            source = (kind, value)
+            break
+    if source is None and flags.get("file"):
+        source = ("file", flags["file"])
+    if source is None and flags.get("param"):
+        xml = params.get(flags["param"])
+        if not isinstance(xml, str) or not xml.strip():
+            raise ConfigError(
+                f"-param {flags['param']}: this node has no parameter {flags['param']!r} holding the model",
+                hint=f"pass it with --ros-args -p {flags['param']}:=\"$(cat FILE)\"",
+            )
+        source = ("string", xml)
+    if source is None and flags.get("string"):
+        source = ("string", flags["string"])
+    if source is None and flags.get("topic"):
+        source = ("topic", flags["topic"])
+    if source is None:
+        raise ConfigError("no model given", hint="give -file FILE, -string XML, -topic TOPIC or -param NAME")
+    pose: dict[str, float] = {}
+    for flag, key in POSE_FIELDS:
+        value = _ros_param(params, flag, float) or flags.get(key)
+        if value is None:
+            continue
+        if not (math.isfinite(value) and abs(value) <= 1e6):
+            raise ConfigError(f"-{flag} {value!r} must be a finite number (|value| <= 1e6)", field=f"-{flag}")
+        pose[key] = float(value)
+    return CreateRequest(
+        source=source[0],
+        value=source[1],
+        name=_ros_param(params, "name", str) or flags.get("name") or None,
+        world=_ros_param(params, "world", str) or flags.get("world") or None,
+        allow_renaming=bool(_ros_param(params, "allow_renaming", bool)) or bool(flags.get("allow_renaming")),
+        pose={k: pose.get(k, 0.0) for _, k in POSE_FIELDS} if pose else None,
+    )
+
+
+def resolve_model_file(text: str, cwd: Path) -> Path:
+    """`-file`: a path, a model folder, or a model://, package://, file:// URI on the resource path."""
+    from diffctl.description.resources import env_search_path, model_file_in, resolve_uri
+
+    found = resolve_uri(text, cwd, env_search_path())
+    if found is not None and found.is_dir():
+        found = model_file_in(found)
+    if found is None or not found.is_file():
+        raise ConfigError(
+            f"-file {text}: no such model file",
+            hint="give a path, a model folder, or a model:// URI found on GZ_SIM_RESOURCE_PATH",
+        )
+    return found
+
+
+class _GflagsCommand(click.Command):
+    def parse_args(self, ctx: click.Context, args: list[str]) -> list[str]:
+        args, notes = gflags_args(list(args))
+        ctx.meta["gflags_notes"] = notes
+        return super().parse_args(ctx, args)
+
+
+def _flag(name: str, dest: str, help_text: str, **kw: Any) -> Any:
+    return click.option(f"-{name}", f"--{name}", dest, default=None, help=help_text, **kw)
+
+
+@click.command("entity", cls=_GflagsCommand)
+@_flag("name", "name", "Entity name (default: the model's name).")
+@_flag("topic", "topic", "Latched std_msgs/String topic with the model (relative: in the node's namespace).")
+@_flag("file", "file", "SDF or URDF file, model folder or model:// URI.")
+@_flag("string", "string", "The model's SDF or URDF text.")
+@_flag("param", "param", "Name of this node's parameter holding the model's text.")
+@_flag("world", "world", "World to spawn into (default: the only one running).")
+@_flag("x", "x", "Spawn position x (m).", type=float)
+@_flag("y", "y", "Spawn position y (m).", type=float)
+@_flag("z", "z", "Spawn position z (m).", type=float)
+@_flag("R", "roll", "Spawn roll (rad).", type=float)
+@_flag("P", "pitch", "Spawn pitch (rad).", type=float)
+@_flag("Y", "yaw", "Spawn yaw (rad).", type=float)
+@click.option(
+    "--allow-renaming/--no-allow-renaming",
+    "allow_renaming",
+    default=False,
+    help="Rename instead of failing on a taken name (also -allow_renaming, -allow_renaming=true).",
+)
 @click.option("--remove", "remove_name", default=None, metavar="NAME", help="Remove entity NAME instead.")
 @click.option(
     "--timeout",
@@ -48,64 +184,48 @@ def _num(name: str) -> Any:
     show_default=True,
     help="Seconds to wait for the simulator and the description.",
 )
-def spawn_entity(
-    name: str | None,
-    topic: str | None,
-    file_: str | None,
-    sdf_string: str | None,
-    world: str | None,
-    x: float | None,
-    y: float | None,
-    z: float | None,
-    roll: float | None,
-    pitch: float | None,
-    yaw: float | None,
-    allow_renaming: bool,
-    remove_name: str | None,
-    timeout: float,
-) -> None:
+@click.pass_context
+def spawn_entity(ctx: click.Context, remove_name: str | None, timeout: float, **flags: Any) -> None:
     """Spawn a model into the simulator (ros_gz_sim create), or remove one with --remove.
 
     \b
     Example:
-      diffctl spawn entity --name robot --topic /robot_description
-      diffctl spawn entity -topic /robot_description -name robot -x 1.0 -Y 1.57
-      diffctl spawn entity --file description/my_diff_car.sdf --name car2 --y 1
+      diffctl spawn entity -topic robot_description -name robot -allow_renaming -z 0.1
+      diffctl spawn entity -file description/my_diff_car.sdf -name car2 -x 1.0 -Y 1.57
+      diffctl spawn entity -file model://my_robot -name r1 --ros-args -r __ns:=/r1
       diffctl spawn entity --remove car2
     """
+    from diffctl import ros_args
     from diffctl.bus import open_session
+    from diffctl.console import warn
 
     if not (math.isfinite(timeout) and timeout > 0):
         raise click.BadParameter(f"{timeout!r} must be a positive number of seconds", param_hint="--timeout")
-    sources = [s for s in (topic, file_, sdf_string) if s]
-    if remove_name is None and len(sources) != 1:
-        raise click.UsageError("give exactly one of --topic, --file or --string (or --remove NAME)")
-    pose_vals = {"x": x, "y": y, "z": z, "roll": roll, "pitch": pitch, "yaw": yaw}
-    for k, v in pose_vals.items():
-        if v is not None and not (math.isfinite(v) and abs(v) <= 1e6):
-            raise click.BadParameter(f"{v!r} must be a finite number (|value| <= 1e6)", param_hint=f"-{k}")
+    for note in ctx.meta.get("gflags_notes", []):
+        warn(note)
+    req = None
+    if remove_name is None:
+        req = build_request(flags, dict(ros_args.current(NODE_NAME).params))
+    model_file = resolve_model_file(req.value, Path.cwd()) if req is not None and req.source == "file" else None
     deadline = time.monotonic() + timeout
     session = open_session()
-    target = wait_for_world(session, world, deadline)
-    if remove_name is not None:
+    target = wait_for_world(session, None if req is None else req.world, deadline)
+    if req is None:
         call(session, target, "remove", {"name": remove_name}, deadline)
         click.echo(f"removed {remove_name!r} from world {target!r}")
         return
-    req: dict[str, Any] = {"allow_renaming": allow_renaming, "base_dir": os.getcwd()}
-    if name:
-        req["name"] = name
-    if any(v is not None for v in pose_vals.values()):
-        req["pose"] = {k: (v or 0.0) for k, v in pose_vals.items()}
-    if file_:
-        path = Path(file_).expanduser().resolve()
-        if not path.is_file():
-            raise RuntimeFailure(f"{file_}: no such file")
-        req["sdf_filename"] = str(path)
-    elif sdf_string:
-        req["sdf"] = sdf_string
+    body: dict[str, Any] = {"allow_renaming": req.allow_renaming, "base_dir": os.getcwd()}
+    if req.name:
+        body["name"] = req.name
+    if req.pose is not None:
+        body["pose"] = req.pose
+    if model_file is not None:
+        body["sdf_filename"] = str(model_file)
+    elif req.source == "string":
+        body["sdf"] = req.value
     else:
-        req["sdf"] = _wait_for_description(str(topic), deadline)
-    reply = call(session, target, "create", req, deadline)
+        body["sdf"] = _wait_for_description(req.value, deadline)
+    reply = call(session, target, "create", body, deadline)
     click.echo(f"spawned {reply.get('name')!r} into world {target!r}")
 
 
@@ -119,16 +239,17 @@ def _wait_for_description(topic: str, deadline: float) -> str:
         got.append(str(msg.data))
         event.set()
 
-    node = Node("ros_gz_sim_create")
+    node = Node.from_ros_args(NODE_NAME)
     try:
+        resolved = node.resolve(topic)
         node.create_subscription(topic, "std_msgs/msg/String", on_msg, latched=True)
         if not event.wait(max(0.0, deadline - time.monotonic())):
             raise RuntimeFailure(
-                f"no description arrived on {topic} in time",
+                f"no description arrived on {resolved} in time",
                 hint="is robot_state_publisher running with a robot_description parameter?",
             )
     finally:
         node.close()
     if not got[0].strip():
-        raise RuntimeFailure(f"the description on {topic} is empty")
+        raise RuntimeFailure(f"the description on {resolved} is empty")
     return got[0]
