@@ -24,7 +24,7 @@ from diffctl.control.controller_interface import (
 )
 from diffctl.control.hardware_interface import HardwareComponent, HardwareInfo
 from diffctl.control.lifecycle import ManagedController, State, TransitionError, hook_message
-from diffctl.control.params import ManagerParams, controller_node_params, with_controller_param
+from diffctl.control.params import ManagerParams, controller_node_params, node_options, with_controller_param
 from diffctl.control.plugin_registry import controller_class
 from diffctl.control.resource_manager import ResourceManager
 from diffctl.control.switching import STRICT, ControllerView, SwitchPlan, chain_order, plan_switch
@@ -125,10 +125,12 @@ class ControllerManager:
             try:
                 cls = controller_class(ctype)
                 params = controller_node_params(name, self.params)
+                extra_params, remaps = node_options(spec)
+                params.update(extra_params)
                 rate = _controller_rate(name, params, self.update_rate, self.log)
             except ConfigError as e:
                 raise TransitionError(f"could not load controller '{name}': {e}") from e
-            node = self.node_factory(name, params)
+            node = self.node_factory(name, params, remaps=remaps) if remaps else self.node_factory(name, params)
             inst = cls()
             inst.name, inst.node, inst.update_rate = name, node, rate
             inst.robot_description = self.robot_description

@@ -34,7 +34,7 @@ _MANAGER_KEYS = {
     "lock_memory",
     "robot_description",
 }
-_CONTROLLER_KEYS = {"type", "params_file", "update_rate", "fallback_controllers", "is_async"}
+_CONTROLLER_KEYS = {"type", "params_file", "update_rate", "fallback_controllers", "is_async", "node_options_args"}
 
 
 @dataclass(frozen=True)
@@ -46,6 +46,7 @@ class ControllerSpec:
     params_files: tuple[str, ...] = ()
     update_rate: int | None = None
     fallback_controllers: tuple[str, ...] = ()
+    node_options_args: tuple[str, ...] = ()  # the spawner's --controller-ros-args: the node's remaps, -p values
 
 
 @dataclass(frozen=True)
@@ -156,7 +157,18 @@ def controller_spec(name: str, d: Mapping[str, Any], source: str) -> ControllerS
         if "fallback_controllers" in d
         else ()
     )
-    return ControllerSpec(name, ctype, files, rate, fallbacks)
+    options = _str_list(d["node_options_args"], f"{name}.node_options_args", source) if "node_options_args" in d else ()
+    return ControllerSpec(name, ctype, files, rate, fallbacks, options)
+
+
+def node_options(spec: ControllerSpec | None) -> tuple[dict[str, Any], dict[str, str]]:
+    """`<name>.node_options_args` (`-r ~/cmd_vel:=/cmd_vel`, `-p k:=v`) → the controller node's params and remaps."""
+    if spec is None or not spec.node_options_args:
+        return {}, {}
+    from diffctl import ros_args
+
+    ra = ros_args.parse(list(spec.node_options_args), spec.name)
+    return dict(ra.params), dict(ra.remaps)
 
 
 def with_controller_param(params: ManagerParams, name: str, key: str, value: Any) -> ManagerParams:
@@ -167,6 +179,7 @@ def with_controller_param(params: ManagerParams, name: str, key: str, value: Any
         "params_file": list(old.params_files),
         "update_rate": old.update_rate,
         "fallback_controllers": list(old.fallback_controllers),
+        "node_options_args": list(old.node_options_args),
     }
     d = {k: v for k, v in d.items() if v not in (None, [])}
     d[key] = value

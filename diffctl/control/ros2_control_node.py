@@ -120,8 +120,8 @@ class ControlNode:
             self.node.clock.use_sim_time = True
             self.node.create_subscription("/clock", "rosgraph_msgs/msg/Clock", self.node.clock.on_clock)
 
-        def factory(name: str, p: dict[str, Any]) -> BusControllerNode:
-            return BusControllerNode(name, self.node.namespace, p, self.now_ns)
+        def factory(name: str, p: dict[str, Any], remaps: dict[str, str] | None = None) -> BusControllerNode:
+            return BusControllerNode(name, self.node.namespace, p, self.now_ns, remaps=remaps)
 
         self.cm = ControllerManager(
             params, log=self.log, node_factory=factory, robot_description=self.description, cancel=self.stop

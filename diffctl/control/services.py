@@ -94,11 +94,9 @@ class ManagerServices:
         out = []
         for n in names:
             avail = rm.command_available(n) if command else rm.state_available(n)
-            table = rm.command_interfaces if command else rm.state_interfaces
             out.append(
                 {
                     "name": n,
-                    "data_type": table[n].data_type,
                     "is_available": avail,
                     "is_claimed": command and n in rm.claimed,
                 }
@@ -115,6 +113,7 @@ class ManagerServices:
                         "type": h.info.type,
                         "is_async": False,
                         "rw_rate": h.rw_rate or self.cm.update_rate,
+                        "class_type": h.plugin_name,  # Jazzy fills the deprecated field with the plugin name too
                         "plugin_name": h.plugin_name,
                         "state": {"id": h.state.id, "label": h.state.value},
                         "command_interfaces": self._interfaces([c.name for c in h.commands], True),
@@ -181,7 +180,8 @@ class ManagerServices:
             try:
                 if name == "update_rate":
                     raise TransitionError("parameter 'update_rate' is read-only")
-                if prefix and key in ("type", "params_file", "update_rate", "fallback_controllers"):
+                settings = ("type", "params_file", "update_rate", "fallback_controllers", "node_options_args")
+                if prefix and key in settings:
                     self.cm.set_controller_param(prefix, key, value)
                 self.params[name] = value
                 results.append({"successful": True, "reason": ""})

@@ -3,6 +3,8 @@
 Flow per controller (Jazzy tip): list_controllers; load unless already loaded (after setting
 `<name>.params_file` and `<name>.type` from --param-file on the manager); configure unless --load-only;
 activate with a STRICT switch unless --inactive (one switch for all with --activate-as-group).
+--controller-ros-args become `<name>.node_options_args` on the manager (the controller node's remaps and
+parameters), -t sets `<name>.type`, -n (deprecated) is the spawner's namespace for a relative -c.
 Concurrent spawners are serialised by a file lock under $ROS_HOME/locks. Exit code 0 on success, 1 with
 the reason on failure. With -u it stays up and, on Ctrl-C/SIGTERM, deactivates and unloads what it spawned.
 """
@@ -12,6 +14,7 @@ from __future__ import annotations
 import contextlib
 import fcntl
 import os
+import shlex
 import signal
 import threading
 import time
@@ -21,6 +24,7 @@ from pathlib import Path
 import click
 
 from diffctl.control.cm_client import ManagerClient
+from diffctl.control.parameter_msgs import P_STRING, P_STRING_ARRAY
 from diffctl.control.params import section_type
 from diffctl.control.switching import STRICT
 from diffctl.errors import ParameterError, RuntimeFailure
@@ -63,6 +67,17 @@ def spawner_lock(log, attempts: int = 5, wait_s: float = 20.0) -> Iterator[None]
             fcntl.flock(fh, fcntl.LOCK_UN)
 
 
+def controller_node_options(ros_args_texts: list[str]) -> list[str]:
+    """`--controller-ros-args '-r ~/cmd_vel:=/cmd_vel'` (repeatable) → `<ctrl>.node_options_args` words."""
+    words: list[str] = []
+    for text in ros_args_texts:
+        try:
+            words += shlex.split(text)
+        except ValueError as e:
+            raise click.BadParameter(f"cannot split {text!r}: {e}", param_hint="--controller-ros-args") from None
+    return words
+
+
 def spawn(
     names: list[str],
     *,
@@ -76,11 +91,18 @@ def spawn(
     unload_on_kill: bool,
     switch_asap: bool = True,
     call_timeout_s: float = 10.0,
+    controller_ros_args: list[str] | None = None,
+    controller_type: str | None = None,
+    namespace: str | None = None,
 ) -> None:
     """The spawner; raises RuntimeFailure (exit 1) with the reason when anything fails."""
     from diffctl import ros_args
     from diffctl.bus import Node
 
+    ra = ros_args.current(f"spawner_{names[0]}")
+    # `--ros-args --params-file` files count as --param-file (controller_manager 4.44+): a launch file's
+    # `parameters=[…]` on the spawner Node reach the controllers this way.
+    param_files = [*param_files, *(f for f in ra.params_files if f not in param_files)]
     for f in param_files:
         if not Path(f).is_file():
             raise RuntimeFailure(f"parameter file {f!r} does not exist", hint="--param-file takes an existing YAML")
@@ -93,9 +115,18 @@ def spawn(
                 raise RuntimeFailure(str(e)) from None
             if t:
                 types[name] = t
-    ra = ros_args.current(f"spawner_{names[0]}")
-    node = Node(ra.node_name or f"spawner_{names[0]}", ra.namespace or "/", remaps=ra.remaps, params=ra.params)
+        if controller_type:
+            types[name] = controller_type
+    spawner_ns = ra.namespace or "/"
+    if namespace is not None:
+        if ra.namespace not in (None, "/"):
+            raise click.UsageError("give the spawner's namespace with -n/--namespace or with -r __ns:=, not both")
+        spawner_ns = namespace if namespace.startswith("/") else "/" + namespace
+    options = controller_node_options(controller_ros_args or [])
+    node = Node(ra.node_name or f"spawner_{names[0]}", spawner_ns, remaps=ra.remaps, params=ra.params)
     log = node.log
+    if namespace is not None:
+        log.warn("the -n/--namespace argument is deprecated; use --ros-args -r __ns:=<namespace>")
     cm = ManagerClient(node, manager, call_timeout_s)
     stop = threading.Event()
 
@@ -110,7 +141,7 @@ def spawn(
             for service in ("load_controller", "configure_controller", "switch_controller", "set_parameters"):
                 cm.wait(service, manager_timeout_s, None, log.warn)
             for name in names:
-                _load_and_configure(cm, log, name, types.get(name), param_files, load_only)
+                _load_and_configure(cm, log, name, types.get(name), param_files, load_only, options)
                 if not (load_only or inactive or activate_as_group):
                     _activate(cm, log, [name], switch_timeout_s, switch_asap)
             if activate_as_group and not (load_only or inactive):
@@ -130,15 +161,39 @@ def spawn(
         node.close()
 
 
+def _set_node_options(cm: ManagerClient, name: str, options: list[str]) -> None:
+    key = f"{name}.node_options_args"
+    resp = cm.call(
+        "set_parameters",
+        {"parameters": [{"name": key, "value": {"type": P_STRING_ARRAY, "string_array_value": options}}]},
+    )
+    for r in resp.results:
+        if not r.successful:
+            raise RuntimeFailure(f"could not set {key} on {cm.manager}: {r.reason}")
+
+
 def _load_and_configure(
-    cm: ManagerClient, log, name: str, type_name: str | None, param_files: list[str], load_only: bool
+    cm: ManagerClient,
+    log,
+    name: str,
+    type_name: str | None,
+    param_files: list[str],
+    load_only: bool,
+    options: list[str] | None = None,
 ) -> None:
     state = cm.controller_state(name)
     if state is not None:
         log.warn(f"Controller already loaded, skipping load_controller ({name} is {state})")
     else:
+        if options:
+            _set_node_options(cm, name, options)
         if param_files:
             cm.set_controller_params(name, type_name, param_files)
+        elif type_name:
+            cm.call(
+                "set_parameters",
+                {"parameters": [{"name": f"{name}.type", "value": {"type": P_STRING, "string_value": type_name}}]},
+            )
         if not cm.ok("load_controller", name):
             raise RuntimeFailure(
                 f"Failed loading controller {name}",
@@ -235,6 +290,23 @@ def _unload(cm: ManagerClient, log, names: list[str], *, deactivate: bool, switc
 @click.option(
     "-u", "--unload-on-kill", is_flag=True, help="Stay up; on Ctrl-C/SIGTERM deactivate and unload the controllers."
 )
+@click.option(
+    "--controller-ros-args",
+    "controller_ros_args",
+    multiple=True,
+    metavar="ARGS",
+    help="--ros-args for the controller's node, e.g. '-r ~/cmd_vel:=/cmd_vel' (repeatable).",
+)
+@click.option(
+    "-t",
+    "--controller-type",
+    "controller_type",
+    default=None,
+    help="The controller's type when no parameter file gives it (older spawners' option).",
+)
+@click.option(
+    "-n", "--namespace", default=None, help="Deprecated: the spawner's namespace (use --ros-args -r __ns:=NS)."
+)
 def spawn_controller(
     names: tuple[str, ...],
     param_files: tuple[str, ...],
@@ -247,6 +319,9 @@ def spawn_controller(
     activate_as_group: bool,
     switch_asap: bool,
     unload_on_kill: bool,
+    controller_ros_args: tuple[str, ...],
+    controller_type: str | None,
+    namespace: str | None,
 ) -> None:
     """Load, configure and activate controllers in a running controller manager (controller_manager spawner).
 
@@ -257,6 +332,7 @@ def spawn_controller(
       diffctl spawn controller joint_state_broadcaster
       diffctl spawn controller diffbot_base_controller --param-file config/diff_drive_controller.yaml
       diffctl spawn controller a b --activate-as-group --controller-manager-timeout 10
+      diffctl spawn controller diff_cont -c my_ctrl_mgr --controller-ros-args '-r ~/cmd_vel:=/cmd_vel'
     """
     if manager_timeout < 0 or switch_timeout < 0 or service_call_timeout <= 0:
         raise click.BadParameter("timeouts must be ≥ 0 (the service call timeout > 0)")
@@ -272,4 +348,7 @@ def spawn_controller(
         unload_on_kill=unload_on_kill,
         switch_asap=switch_asap,
         call_timeout_s=service_call_timeout,
+        controller_ros_args=list(controller_ros_args),
+        controller_type=controller_type,
+        namespace=namespace,
     )

@@ -151,8 +151,14 @@ class GzRos2Control(SystemPlugin):
             namespace = self.node.namespace
             stepper = ctx.stepper
 
-            def controller_node(cname: str, p: dict[str, Any]) -> BusControllerNode:
-                return BusControllerNode(cname, namespace, p, lambda: stepper.sim_time_ns, remaps=remaps)
+            plugin_remaps = remaps
+
+            def controller_node(
+                cname: str, p: dict[str, Any], remaps: dict[str, str] | None = None
+            ) -> BusControllerNode:
+                # The plugin's <remapping>s apply to every controller; --controller-ros-args to its own.
+                own = {**plugin_remaps, **(remaps or {})}
+                return BusControllerNode(cname, namespace, p, lambda: stepper.sim_time_ns, remaps=own)
 
             self.cm = ControllerManager(
                 cm_params, log=self.node.log, node_factory=controller_node, robot_description=description,
