@@ -164,10 +164,28 @@ class Node:
                 self._type_descriptions.use(ep.type)
         sim = sim_param if use_sim_time is None else use_sim_time
         self.clock = Clock(_as_bool(sim))
+        self._clock_sub: Subscription | None = None
         if self.clock.use_sim_time:
+            self._follow_clock(True)
+        if use_sim_time is None:
+            # As rclcpp's TimeSource: setting use_sim_time at run time switches the node's clock.
+            self.parameters.add_listener(self._on_use_sim_time)
+
+    def _follow_clock(self, on: bool) -> None:
+        if on and self._clock_sub is None:
             # rclcpp's TimeSource subscribes best-effort, depth 1.
-            self.create_subscription("/clock", "rosgraph_msgs/msg/Clock", self.clock.on_clock, reliable=False,
-                                     depth=1)
+            self._clock_sub = self.create_subscription("/clock", "rosgraph_msgs/msg/Clock", self.clock.on_clock,
+                                                       reliable=False, depth=1)
+        elif not on and self._clock_sub is not None:
+            self._clock_sub.close()
+            self._closables.remove(self._clock_sub)
+            self._clock_sub = None
+        self.clock.use_sim_time = on
+
+    def _on_use_sim_time(self, changes: list[Any]) -> None:
+        for c in changes:
+            if c.name == "use_sim_time" and c.kind == "changed" and bool(c.value) != self.clock.use_sim_time:
+                self._follow_clock(bool(c.value))
 
     @classmethod
     def from_ros_args(cls, default_name: str, namespace: str = "/", *, defaults: dict[str, Any] | None = None,

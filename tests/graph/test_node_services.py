@@ -170,3 +170,13 @@ def _client_config(endpoint: str) -> zenoh.Config:
     conf.insert_json5("connect/endpoints", f'["{endpoint}"]')
     conf.insert_json5("scouting/multicast/enabled", "false")
     return conf
+
+
+def test_use_sim_time_set_at_run_time_switches_the_clock(router: str) -> None:
+    node = Node("timed")
+    assert not node.clock.use_sim_time and node.now_ns() > 0
+    assert node.set_parameters({"use_sim_time": True}) == [None]
+    clock = Node("clock_source").create_publisher("/clock", "rosgraph_msgs/msg/Clock")
+    assert wait_for(lambda: (clock.publish({"clock": {"sec": 42}}), node.now_ns() == 42 * 10**9)[1])
+    assert node.set_parameters({"use_sim_time": False}) == [None]
+    assert node.now_ns() > 10**18, "back on the wall clock"
