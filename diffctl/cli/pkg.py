@@ -62,7 +62,7 @@ def pkg_list() -> None:
     named = {p.name for p in packages}
     rows += [(name, "diffctl", "executables only", "") for name in sorted(component_packages() - named)]
     title = f"workspace: {ws}" if ws is not None else "no workspace (none encloses the current directory)"
-    console.print(table(title, ["package", "from", "build type", "location"], rows))
+    console.print(table(title, ["package", "from", "build type", "location"], rows, box=None))
     if scan is not None:
         for name, paths in sorted(scan.duplicates.items()):
             warn(f"package {name!r} is defined twice: " + " and ".join(str(p) for p in paths))

@@ -125,14 +125,16 @@ def find_launch_file(target: str, file: str | None = None, cwd: Path | None = No
     """`NAME`, `PATH` or `PKG FILE` (as `ros2 launch` takes them) → the launch file to read."""
     if file is not None:
         share = share_dir(target)
+        package = workspace.find_package(target)
         for candidate in (share / "launch" / file, share / file):
             if candidate.is_file():
                 return candidate
         found = sorted(p for p in share.rglob(file) if p.is_file())
         if found:
             return found[0]
+        origin = f"{package.origin} {package.source or package.prefix or share}"
         raise LaunchError(
-            f"no launch file {file!r} in package {target!r}{suggest(file, launch_files(share))}",
+            f"no launch file {file!r} in package {target!r} ({origin}){suggest(file, launch_files(share))}",
             hint="its launch files: " + (", ".join(launch_files(share)) or "none"),
         )
     path = Path(target)
