@@ -117,13 +117,9 @@ def launch(
 def _choose_workspace(workspace_dir: Path | None) -> None:
     # Children inherit the environment: every process (and xacro run as a command) resolves packages
     # in the same workspace, whatever its own working directory.
-    import os
+    from diffctl.workspace import find_workspace, use_in_children
 
-    from diffctl.workspace import WORKSPACE_ENV, find_workspace
-
-    ws = find_workspace(explicit=workspace_dir)
-    if ws is not None:
-        os.environ[WORKSPACE_ENV] = str(ws)
+    use_in_children(find_workspace(explicit=workspace_dir))
 
 
 def _run(plan: Any, *, log_dir: Path | None, no_color: bool, no_router: bool) -> int:

@@ -9,6 +9,7 @@ sim or control code.
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 from diffctl.workspace.builtin import DEMO_DESCRIPTION_PACKAGE, DEMO_PACKAGE, project_root
@@ -18,6 +19,7 @@ from diffctl.workspace.resolve import Package, PackageNotFoundError, find_packag
 __all__ = [
     "DEMO_DESCRIPTION_PACKAGE",
     "DEMO_PACKAGE",
+    "PYTHON_PATH",
     "WORKSPACE_ENV",
     "Package",
     "PackageNotFoundError",
@@ -27,7 +29,11 @@ __all__ = [
     "package_prefix",
     "project_root",
     "share_dir",
+    "use_in_children",
 ]
+
+# Holds a top-level `ament_index_python` answering from this package, for child processes.
+PYTHON_PATH = Path(__file__).resolve().parent / "python_path"
 
 
 def share_dir(package: str) -> Path:
@@ -41,3 +47,12 @@ def package_prefix(package: str) -> Path:
     is its share directory. diffctl's own packages are plain folders; their prefix is the share's parent."""
     found = find_package(package)
     return found.prefix if found.prefix is not None else found.share.parent
+
+
+def use_in_children(workspace: Path | None, env: dict[str, str] | os._Environ[str] = os.environ) -> None:
+    """Make processes started with `env` resolve packages as this one does: the workspace in
+    $DIFFCTL_WORKSPACE, diffctl's ament_index_python first on PYTHONPATH (xacro's `$(find)`)."""
+    if workspace is not None:
+        env[WORKSPACE_ENV] = str(workspace)
+    parts = [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p and p != str(PYTHON_PATH)]
+    env["PYTHONPATH"] = os.pathsep.join([str(PYTHON_PATH), *parts])

@@ -14,7 +14,7 @@ from tests.workspace.conftest import package_xml, snapshot, write_tree
 CMAKE = """cmake_minimum_required(VERSION 3.8)
 project(my_bot)
 find_package(ament_cmake REQUIRED)
-install(DIRECTORY launch config DESTINATION share/${PROJECT_NAME})
+install(DIRECTORY launch config urdf DESTINATION share/${PROJECT_NAME})
 install(DIRECTORY worlds_missing DESTINATION share/${PROJECT_NAME})
 install(PROGRAMS scripts/hello.sh DESTINATION lib/${PROJECT_NAME})
 ament_package()
@@ -27,6 +27,13 @@ LAUNCH = """launch:
     cwd: /
     cmd: "{python} -m diffctl pkg prefix --share my_bot"
 - node: {{pkg: my_bot, exec: hello.sh, name: hello}}
+- executable: {{name: xacro, cwd: /, cmd: "xacro $(find-pkg-share my_bot)/urdf/bot.urdf.xacro"}}
+"""
+
+XACRO = """<?xml version="1.0"?>
+<robot name="bot" xmlns:xacro="http://www.ros.org/wiki/xacro">
+  <link name="base"><visual><geometry><mesh filename="$(find my_bot)/config/params.yaml"/></geometry></visual></link>
+</robot>
 """
 
 
@@ -51,6 +58,7 @@ def ws(tmp_path: Path) -> Path:
             "CMakeLists.txt": CMAKE,
             "launch/bringup.launch.yaml": LAUNCH.format(python=sys.executable),
             "config/params.yaml": "a: 1\n",
+            "urdf/bot.urdf.xacro": XACRO,
             "scripts/hello.sh": "#!/bin/sh\necho hello from my_bot\n",
         },
     )
@@ -103,4 +111,6 @@ def test_launch_resolves_the_users_package_and_children_resolve_the_same(ws: Pat
     share = next(line for line in r.stdout.splitlines() if line.startswith("[resolver] ")).split()[-1]
     assert (Path(share) / "launch" / "bringup.launch.yaml").resolve() == ws / "src/my_bot/launch/bringup.launch.yaml"
     assert "hello from my_bot" in r.stdout
+    # the real xacro, run as a command, resolves $(find) through diffctl's ament_index_python
+    assert f'filename="{share}/config/params.yaml"' in r.stdout
     assert snapshot(ws) == before  # nothing written into the user's workspace
