@@ -89,6 +89,8 @@ class GzToRos:
 
     def _on_sample(self, sample: zenoh.Sample) -> None:
         e = self.entry
+        if self._closed:
+            return
         try:
             _, fields = gz.decode(sample.payload.to_bytes(), e.gz_type)
             msg = e.pair.convert_to_ros(fields)
@@ -98,7 +100,10 @@ class GzToRos:
         except MessageError as err:
             self.node.log.throttled(f"gz{e.gz_topic}", f"dropped a sample on gz {e.gz_topic}: {err}")
             return
-        self.pub.publish_raw(cdr)
+        try:
+            self.pub.publish_raw(cdr)
+        except zenoh.ZError:
+            return  # a sample still in flight while the bridge shuts down: its publisher is gone
         self.count += 1
 
     def close(self) -> None:
@@ -137,6 +142,7 @@ class RosToGz:
                     self.entry.ros_type,
                     self._on_cdr,
                     depth=self.entry.subscriber_queue,
+                    reliable=self.entry.qos.reliable,
                     raw=True,
                     ignore_local=True,  # never send our own gz→ROS output back to gz
                 )
@@ -146,13 +152,18 @@ class RosToGz:
 
     def _on_cdr(self, cdr: bytes) -> None:
         e = self.entry
+        if self._closed:
+            return
         try:
             msg = types.deserialize(cdr, e.ros_type)
             payload = gz.encode(e.gz_type, e.pair.convert_to_gz(msg))
         except MessageError as err:
             self.node.log.throttled(f"ros{e.ros_topic}", f"dropped a message on {e.ros_topic}: {err}")
             return
-        self.gz_pub.put(payload)
+        try:
+            self.gz_pub.put(payload)
+        except zenoh.ZError:
+            return  # in flight while the bridge shuts down
         self.count += 1
 
     def close(self) -> None:

@@ -11,6 +11,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from diffctl.bridge import conversions as c
+from diffctl.bridge import geometry_conversions as g
 from diffctl.bridge import sensor_conversions as sc
 from diffctl.errors import MessageError
 
@@ -58,6 +59,22 @@ TYPE_PAIRS: tuple[TypePair, ...] = (
     ),
     TypePair("geometry_msgs/msg/Pose", "gz.msgs.Pose", c.pose_to_ros, c.pose_to_gz),
     TypePair("geometry_msgs/msg/PoseStamped", "gz.msgs.Pose", c.pose_stamped_to_ros, c.pose_stamped_to_gz),
+    TypePair("geometry_msgs/msg/PoseArray", "gz.msgs.Pose_V", g.pose_v_to_pose_array, g.pose_array_to_pose_v),
+    TypePair("geometry_msgs/msg/Transform", "gz.msgs.Pose", g.pose_to_transform, g.transform_to_pose),
+    TypePair(
+        "geometry_msgs/msg/TransformStamped", "gz.msgs.Pose", g.pose_to_transform_stamped, g.transform_stamped_to_pose
+    ),
+    TypePair(
+        "geometry_msgs/msg/Vector3",
+        "gz.msgs.Vector3d",
+        g.vector3d_to_ros("geometry_msgs/msg/Vector3"),
+        g.vector3d_to_gz,
+    ),
+    TypePair(
+        "geometry_msgs/msg/Point", "gz.msgs.Vector3d", g.vector3d_to_ros("geometry_msgs/msg/Point"), g.vector3d_to_gz
+    ),
+    TypePair("geometry_msgs/msg/Wrench", "gz.msgs.Wrench", g.wrench_to_ros, g.wrench_to_gz),
+    TypePair("geometry_msgs/msg/WrenchStamped", "gz.msgs.Wrench", g.wrench_stamped_to_ros, g.wrench_stamped_to_gz),
     TypePair(
         "std_msgs/msg/Float64",
         "gz.msgs.Double",
@@ -72,6 +89,7 @@ TYPE_PAIRS: tuple[TypePair, ...] = (
     ),
     TypePair("std_msgs/msg/Bool", "gz.msgs.Boolean", c.scalar_to_ros("std_msgs/msg/Bool", bool), c.scalar_to_gz(bool)),
     TypePair("std_msgs/msg/Int32", "gz.msgs.Int32", c.scalar_to_ros("std_msgs/msg/Int32", int), c.scalar_to_gz(int)),
+    TypePair("std_msgs/msg/UInt32", "gz.msgs.UInt32", c.scalar_to_ros("std_msgs/msg/UInt32", int), c.scalar_to_gz(int)),
     TypePair(
         "std_msgs/msg/String", "gz.msgs.StringMsg", c.scalar_to_ros("std_msgs/msg/String", str), c.scalar_to_gz(str)
     ),

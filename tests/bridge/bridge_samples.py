@@ -155,6 +155,32 @@ GZ_SAMPLES: dict[tuple[str, str], dict] = {
         "position": {"x": 1.0},
         "orientation": {"w": 1.0},
     },
+    ("geometry_msgs/msg/PoseArray", "gz.msgs.Pose_V"): {
+        "header": gz.header(13, frame_id="map"),
+        "pose": [
+            {"name": "a", "position": {"x": 1.0, "y": 2.0}, "orientation": {"w": 1.0}},
+            {"name": "b", "position": {"z": -1.0}, "orientation": {"z": 0.6, "w": 0.8}},
+        ],
+    },
+    ("geometry_msgs/msg/Transform", "gz.msgs.Pose"): {
+        "position": {"x": 0.1, "y": 0.2, "z": 0.3},
+        "orientation": {"x": 0.0, "y": 0.0, "z": 0.6, "w": 0.8},
+    },
+    ("geometry_msgs/msg/TransformStamped", "gz.msgs.Pose"): {
+        "header": gz.header(14, "robot::base_link", "robot::lidar_link"),
+        "name": "lidar_link",
+        "position": {"z": 0.2},
+        "orientation": {"w": 1.0},
+    },
+    ("geometry_msgs/msg/Vector3", "gz.msgs.Vector3d"): {"x": 1.5, "y": -2.5, "z": 3.5},
+    ("geometry_msgs/msg/Point", "gz.msgs.Vector3d"): {"x": -1.0, "z": 0.25},
+    ("geometry_msgs/msg/Wrench", "gz.msgs.Wrench"): {"force": {"x": 10.0}, "torque": {"z": -0.5}},
+    ("geometry_msgs/msg/WrenchStamped", "gz.msgs.Wrench"): {
+        "header": gz.header(15, frame_id="wheel"),
+        "force": {"y": 2.0},
+        "torque": {"x": 0.25},
+    },
+    ("std_msgs/msg/UInt32", "gz.msgs.UInt32"): {"data": 4_000_000_000},
     ("std_msgs/msg/Float64", "gz.msgs.Double"): {"data": 2.5},
     ("std_msgs/msg/Float32", "gz.msgs.Float"): {"data": 1.5},
     ("std_msgs/msg/Bool", "gz.msgs.Boolean"): {"data": True},

@@ -263,6 +263,40 @@ def test_nav_sat_magnetometer_fluid_pressure_both_ways() -> None:
     assert _to_gz("sensor_msgs/msg/FluidPressure", "gz.msgs.FluidPressure", baro)["pressure"] == 101325.0
 
 
+def test_further_geometry_pairs_field_by_field() -> None:
+    poses = _to_ros("geometry_msgs/msg/PoseArray", "gz.msgs.Pose_V")
+    assert poses.header.frame_id == "map" and [p.position.x for p in poses.poses] == [1.0, 0.0]
+    assert (poses.poses[1].position.z, poses.poses[1].orientation.z) == (-1.0, 0.6)
+    back = _to_gz("geometry_msgs/msg/PoseArray", "gz.msgs.Pose_V", poses)
+    assert [p["position"]["x"] for p in back["pose"]] == [1.0, 0.0]
+
+    t = _to_ros("geometry_msgs/msg/Transform", "gz.msgs.Pose")
+    assert (t.translation.x, t.translation.z, t.rotation.z, t.rotation.w) == (0.1, 0.3, 0.6, 0.8)
+    ts = _to_ros("geometry_msgs/msg/TransformStamped", "gz.msgs.Pose")
+    assert (ts.header.frame_id, ts.child_frame_id, ts.transform.translation.z) == (
+        "robot/base_link",
+        "robot/lidar_link",
+        0.2,
+    )
+    back = _to_gz("geometry_msgs/msg/TransformStamped", "gz.msgs.Pose", ts)
+    assert gz.header_value(back["header"], "child_frame_id") == "robot/lidar_link"
+
+    v = _to_ros("geometry_msgs/msg/Vector3", "gz.msgs.Vector3d")
+    assert (v.x, v.y, v.z) == (1.5, -2.5, 3.5)
+    pt = _to_ros("geometry_msgs/msg/Point", "gz.msgs.Vector3d")
+    assert (pt.x, pt.y, pt.z) == (-1.0, 0.0, 0.25)
+    w = _to_ros("geometry_msgs/msg/WrenchStamped", "gz.msgs.Wrench")
+    assert (w.header.frame_id, w.wrench.force.y, w.wrench.torque.x) == ("wheel", 2.0, 0.25)
+    assert _to_ros("std_msgs/msg/UInt32", "gz.msgs.UInt32").data == 4_000_000_000
+    # Non-finite values never go to the simulator.
+    wrench = type_pairs.lookup("geometry_msgs/msg/Wrench", "gz.msgs.Wrench")
+    with pytest.raises(MessageError, match="non-finite"):
+        wrench.convert_to_gz(types.new("geometry_msgs/msg/Wrench", {"force": {"x": math.inf}}))
+    transform = type_pairs.lookup("geometry_msgs/msg/Transform", "gz.msgs.Pose")
+    with pytest.raises(MessageError, match="non-finite"):
+        transform.convert_to_gz(types.new("geometry_msgs/msg/Transform", {"rotation": {"w": math.nan}}))
+
+
 def test_scalars_and_empty() -> None:
     assert _to_ros("std_msgs/msg/String", "gz.msgs.StringMsg").data == "hello"
     assert _to_ros("std_msgs/msg/Int32", "gz.msgs.Int32").data == -7
