@@ -179,7 +179,18 @@ class AirPressureSpec:
     noise: Noise = field(default_factory=Noise)  # <pressure><noise>, in pascals
 
 
-SENSOR_TYPES = ("lidar", "imu", "camera", "depth_camera", "rgbd_camera", "air_pressure")
+@dataclass(frozen=True)
+class NavSatSpec:
+    """<navsat> noise: position in degrees (horizontal, on latitude and longitude) and metres (vertical),
+    velocity in m/s, as gz-sensors applies them."""
+
+    horizontal_position_noise: Noise = field(default_factory=Noise)
+    vertical_position_noise: Noise = field(default_factory=Noise)
+    horizontal_velocity_noise: Noise = field(default_factory=Noise)
+    vertical_velocity_noise: Noise = field(default_factory=Noise)
+
+
+SENSOR_TYPES = ("lidar", "imu", "camera", "depth_camera", "rgbd_camera", "air_pressure", "navsat")
 
 
 @dataclass(frozen=True)
@@ -199,6 +210,7 @@ class Sensor:
     camera: CameraSpec | None = None
     imu: ImuSpec | None = None
     air_pressure: AirPressureSpec | None = None
+    navsat: NavSatSpec | None = None
 
 
 # --- links, joints, frames ------------------------------------------------------------------------------
@@ -435,6 +447,18 @@ class Model:
 
 
 @dataclass(frozen=True)
+class SphericalCoordinates:
+    """<spherical_coordinates>: the geodetic position of the world's origin, and the heading of its x axis."""
+
+    latitude_deg: float = 0.0
+    longitude_deg: float = 0.0
+    elevation_m: float = 0.0
+    heading_deg: float = 0.0
+    surface_model: str = "EARTH_WGS84"
+    world_frame_orientation: str = "ENU"
+
+
+@dataclass(frozen=True)
 class World:
     name: str
     physics: Physics
@@ -442,6 +466,7 @@ class World:
     lights: tuple[Light, ...] = ()
     plugins: tuple[Plugin, ...] = ()
     source: str = ""
+    spherical_coordinates: SphericalCoordinates | None = None  # where the world's origin is on the planet
 
     def model(self, name: str) -> Model:
         for m in self.models:

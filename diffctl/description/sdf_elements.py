@@ -24,12 +24,14 @@ from diffctl.description.model import (
     LidarSpec,
     Light,
     Mesh,
+    NavSatSpec,
     Noise,
     Physics,
     Plane,
     Plugin,
     Sensor,
     Sphere,
+    SphericalCoordinates,
     Surface,
     Visual,
 )
@@ -362,6 +364,40 @@ def _parse_air_pressure(doc: Doc, sensor: Element) -> AirPressureSpec:
     return AirPressureSpec(float_value(doc, el, "reference_altitude", 0.0), parse_noise(doc, pressure))
 
 
+def _parse_navsat(doc: Doc, sensor: Element) -> NavSatSpec:
+    el = child(sensor, "navsat")
+    if el is None:
+        el = child(sensor, "gps")
+    if el is None:
+        return NavSatSpec()
+
+    def noise(group: str, axis: str) -> Noise:
+        g = child(el, group)
+        a = child(g, axis) if g is not None else None
+        return parse_noise(doc, a) if a is not None else Noise()
+
+    return NavSatSpec(
+        noise("position_sensing", "horizontal"),
+        noise("position_sensing", "vertical"),
+        noise("velocity_sensing", "horizontal"),
+        noise("velocity_sensing", "vertical"),
+    )
+
+
+def parse_spherical_coordinates(doc: Doc, world: Element) -> SphericalCoordinates | None:
+    el = child(world, "spherical_coordinates")
+    if el is None:
+        return None
+    return SphericalCoordinates(
+        latitude_deg=float_value(doc, el, "latitude_deg", 0.0),
+        longitude_deg=float_value(doc, el, "longitude_deg", 0.0),
+        elevation_m=float_value(doc, el, "elevation", 0.0),
+        heading_deg=float_value(doc, el, "heading_deg", 0.0),
+        surface_model=(child_text(el, "surface_model") or "EARTH_WGS84").strip(),
+        world_frame_orientation=(child_text(el, "world_frame_orientation") or "ENU").strip(),
+    )
+
+
 def sensor_kind(sdf_type: str) -> str | None:
     if sdf_type in LIDAR_SENSOR_TYPES:
         return "lidar"
@@ -371,6 +407,8 @@ def sensor_kind(sdf_type: str) -> str | None:
         return "imu"
     if sdf_type == "air_pressure":
         return "air_pressure"
+    if sdf_type in ("navsat", "gps"):  # sdformat reads the old "gps" as navsat
+        return "navsat"
     return None
 
 
@@ -404,6 +442,7 @@ def parse_sensor(doc: Doc, el: Element, link: str, to_link: ToLink, link_world: 
         camera=_parse_camera(doc, el) if kind in ("camera", "depth_camera", "rgbd_camera") else None,
         imu=_parse_imu(doc, el) if kind == "imu" else None,
         air_pressure=_parse_air_pressure(doc, el) if kind == "air_pressure" else None,
+        navsat=_parse_navsat(doc, el) if kind == "navsat" else None,
     )
 
 

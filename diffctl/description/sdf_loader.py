@@ -14,7 +14,7 @@ from diffctl.description.model import Model, World
 from diffctl.description.pose import Pose
 from diffctl.description.resources import search_path_for
 from diffctl.description.sdf_documents import Include, read_file, read_include, stack_key, text_doc
-from diffctl.description.sdf_elements import parse_light, parse_physics, parse_plugin
+from diffctl.description.sdf_elements import parse_light, parse_physics, parse_plugin, parse_spherical_coordinates
 from diffctl.description.sdf_model import build_model
 from diffctl.description.sdf_values import Doc, Element, child, children, fail, pose_child, required_attr
 from diffctl.errors import suggest
@@ -114,7 +114,7 @@ def _world_from_root(root: Element, doc: Doc) -> World:
         resolved[nm] = models[-1].pose_world  # placement frames can move it: later references see the result
     lights = tuple(parse_light(doc, c, Pose()) for c in children(w, "light"))
     plugins = tuple(parse_plugin(doc, p) for p in children(w, "plugin"))
-    return World(world_name, physics, tuple(models), lights, plugins, doc.source)
+    return World(world_name, physics, tuple(models), lights, plugins, doc.source, parse_spherical_coordinates(doc, w))
 
 
 def load_world(path: str | Path, *, search_path: tuple[str | Path, ...] = (), check_files: bool = True) -> World:

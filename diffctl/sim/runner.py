@@ -27,7 +27,17 @@ from diffctl.sim.plugins.base import PluginContext, SystemPlugin, rate_period_ns
 from diffctl.sim.plugins.diff_drive import DiffDrive, DiffDriveParams
 from diffctl.sim.plugins.gz_ros2_control import GzRos2Control
 from diffctl.sim.plugins.joint_state_publisher import JointStatePublisher
-from diffctl.sim.sensors import AirPressure, Camera, CameraSensor, CameraTask, Imu, Lidar, RenderRate
+from diffctl.sim.sensors import (
+    AirPressure,
+    Camera,
+    CameraSensor,
+    CameraTask,
+    Imu,
+    Lidar,
+    NavSat,
+    RenderRate,
+    origin_problem,
+)
 from diffctl.sim.sensors import topics as sensor_topics
 from diffctl.sim.stepper import Stepper, Task
 from diffctl.sim.transport import GzPublisher, SimTransport
@@ -68,7 +78,7 @@ class ModelRuntime:
     tasks: list[Task] = field(default_factory=list)
     publishers: list[GzPublisher] = field(default_factory=list)
     imus: list[Imu] = field(default_factory=list)
-    sensors: list[Lidar | Imu | CameraSensor | AirPressure] = field(default_factory=list)
+    sensors: list[Lidar | Imu | CameraSensor | AirPressure | NavSat] = field(default_factory=list)
     control: GzRos2Control | None = None  # the model's controller manager (gz_ros2_control)
 
 
@@ -177,11 +187,18 @@ class Simulation:
             # update_rate 0 means "every step" in Gazebo.
             period = rate_period_ns(s.update_rate_hz, step_ns) if s.update_rate_hz > 0 else step_ns
             rng = self.sensor_rng(entity.name, s.name)
-            sensor: Lidar | Imu | CameraSensor | AirPressure
+            sensor: Lidar | Imu | CameraSensor | AirPressure | NavSat
             if s.type == "lidar":
                 sensor = Lidar(entity, s, rng)
             elif s.type == "air_pressure":
                 sensor = AirPressure(entity, s, rng)
+            elif s.type == "navsat":
+                origin = self.world_model.spherical_coordinates
+                problem = origin_problem(origin)
+                if problem is not None or origin is None:
+                    self.log.warn(f"navsat {entity.name}::{s.link}::{s.name}: {problem}")
+                    continue
+                sensor = NavSat(entity, s, rng, origin)
             elif s.type == "imu":
                 sensor = Imu(entity, s, self.physics.physics.gravity, rng)
                 rt.imus.append(sensor)

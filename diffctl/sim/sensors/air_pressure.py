@@ -15,7 +15,7 @@ import numpy as np
 from diffctl.bus import gz
 from diffctl.description.model import Sensor
 from diffctl.sim.entity import Entity
-from diffctl.sim.sensors.common import frame_id
+from diffctl.sim.sensors.common import ScalarNoise, frame_id
 
 GAS_CONSTANT_J_PER_KMOL_K = 8314.32
 AIR_MOLAR_MASS_KG_PER_KMOL = 28.9644
@@ -40,19 +40,12 @@ class AirPressure:
         assert spec is not None
         self.entity, self.sensor, self.spec, self.rng = entity, sensor, spec, rng
         self.frame_id = frame_id(entity.name, sensor)
-        n = spec.noise
-        self._bias = 0.0
-        if n.active:
-            b = rng.normal(n.bias_mean, n.bias_stddev) if n.bias_stddev > 0 else n.bias_mean
-            self._bias = b if rng.random() < 0.5 else -b
+        self._noise = ScalarNoise(spec.noise, rng)
 
     def sample(self, sim_time_ns: int) -> dict:
         z = self.entity.link_pose(self.sensor.link).compose(self.sensor.pose_link).xyz[2]
         p = pressure_pa(self.spec.reference_altitude_m + z)
-        n = self.spec.noise
-        msg = {"header": gz.header(sim_time_ns, self.frame_id), "pressure": p}
-        if n.active:
-            msg["pressure"] = p + self._bias + (self.rng.normal(n.mean, n.stddev) if n.stddev > 0 else n.mean)
-            if n.type.startswith("gaussian"):
-                msg["variance"] = math.sqrt(n.stddev)
+        msg = {"header": gz.header(sim_time_ns, self.frame_id), "pressure": self._noise.apply(p)}
+        if self.spec.noise.active and self.spec.noise.type.startswith("gaussian"):
+            msg["variance"] = math.sqrt(self.spec.noise.stddev)
         return msg

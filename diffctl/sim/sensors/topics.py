@@ -4,7 +4,7 @@ The base topic T is `<topic>`, else `/world/<w>/model/<m>/link/<l>/sensor/<s>` p
 (gz-sim RenderUtil.cc, Imu.cc). From T: camera → T (Image) and its CameraInfo on `<camera_info_topic>`, else
 T with the last segment replaced by `camera_info`; depth_camera → T (depth Image), T/points and CameraInfo by
 the camera rule; rgbd_camera → T/image, T/depth_image, T/points, T/camera_info; lidar → T and T/points;
-imu → T; air_pressure → T.
+imu, air_pressure, navsat → T.
 """
 
 from __future__ import annotations
@@ -20,10 +20,11 @@ DEFAULT_SUFFIX = {
     "lidar": "/scan",
     "imu": "/imu",
     "air_pressure": "/air_pressure",
+    "navsat": "/navsat",
 }
 
 IMAGE, DEPTH, POINTS, INFO, SCAN, IMU = "image", "depth_image", "points", "camera_info", "scan", "imu"
-PRESSURE = "air_pressure"
+PRESSURE, NAVSAT = "air_pressure", "navsat"
 
 
 @dataclass(frozen=True)
@@ -59,6 +60,8 @@ def outputs(sensor: Sensor, base: str) -> tuple[Output, ...]:
         return (Output(IMU, base, "gz.msgs.IMU"),)
     if kind == "air_pressure":
         return (Output(PRESSURE, base, "gz.msgs.FluidPressure"),)
+    if kind == "navsat":
+        return (Output(NAVSAT, base, "gz.msgs.NavSat"),)
     if kind == "rgbd_camera":
         return (
             Output(IMAGE, base + "/image", "gz.msgs.Image"),
