@@ -18,6 +18,7 @@ from diffctl.description.pose import Pose
 from diffctl.description.robot_files import load_description, parse_description
 from diffctl.description.sdf_loader import parse_model
 from diffctl.description.urdf.lumping import tensor
+from diffctl.description.urdf.to_model import urdf_to_sdf_text
 from tests.description.description_helpers import mat_np
 
 DATA = Path(__file__).resolve().parent / "data" / "urdf"
@@ -317,3 +318,16 @@ def test_meshes_resolve_by_package_file_and_relative_uris(tmp_path: Path, monkey
     converted = trimesh.load(paths[3], force="mesh")
     assert converted.bounds == pytest.approx(box.bounds, abs=1e-6)  # the same shape, now readable by PyBullet
     assert visuals[0].geometry.scale == (2.0, 2.0, 2.0)
+    assert [v.geometry.uri for v in visuals] == [
+        "package://demo_meshes/meshes/body.stl",
+        f"file://{tmp_path}/wheel.obj",
+        "wheel.obj",
+        "package://demo_meshes/meshes/shell.dae",
+    ]
+
+
+def test_sdf_text_is_what_the_sdf_loader_reads_back_to_the_same_model() -> None:
+    text = (DATA / "lumped_arm.urdf").read_text()
+    sdf = urdf_to_sdf_text(text)
+    assert sdf.startswith('<sdf version="1.11">')
+    assert parse_model(sdf) == parse_description(text)

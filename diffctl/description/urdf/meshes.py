@@ -61,7 +61,7 @@ def convert_to_obj(path: Path) -> Path:
         raise DescriptionError(f"mesh {path} cannot be read: {e}", source=str(path)) from None
     out.parent.mkdir(parents=True, exist_ok=True)
     tmp = out.with_suffix(f".{os.getpid()}.tmp")
-    tmp.write_text(trimesh.exchange.obj.export_obj(mesh))
+    tmp.write_text(trimesh.exchange.obj.export_obj(mesh, include_normals=False))  # PyBullet computes its own
     tmp.replace(out)  # atomic: a concurrent loader never reads half a file
     return out
 

@@ -12,7 +12,7 @@ from pathlib import Path
 
 from lxml import etree
 
-from diffctl.description.model import Model
+from diffctl.description.model import Link, Mesh, Model
 from diffctl.description.pose import Pose
 from diffctl.description.resources import search_path_for
 from diffctl.description.sdf_model import build_model
@@ -38,9 +38,9 @@ def urdf_model(
     base = Path(base_dir).resolve() if base_dir is not None else Path.cwd()
     robot = parse_urdf(text_or_root, source)
     options = ConversionOptions(lump=simulation, resolve_meshes=check_files, base_dir=base)
-    sdf, ignored = urdf_to_sdf(robot, options, name)
+    conv = urdf_to_sdf(robot, options, name)
     doc = Doc(source, base, (1, 11), search_path_for(base), check_files)
-    model_el = sdf.find("model")
+    model_el = conv.sdf.find("model")
     # Kinematics need no mass: the tree view skips the simulator's "moving links need an <inertial>" check.
     kinematic_only = not simulation and static is None
     model = build_model(
@@ -54,11 +54,31 @@ def urdf_model(
     )
     if kinematic_only:
         model = dataclasses.replace(model, static=False)
-    return dataclasses.replace(model, ignored=(*ignored, *model.ignored))
+    if conv.mesh_uris:
+        model = dataclasses.replace(model, links=tuple(_with_urdf_uris(link, conv.mesh_uris) for link in model.links))
+    return dataclasses.replace(model, ignored=(*conv.ignored, *model.ignored))
+
+
+def _with_urdf_uris(link: Link, uris: dict[tuple[str, str, int], str]) -> Link:
+    """Meshes keep the URI the URDF wrote (package://…) beside the file they load, as SDF meshes do."""
+
+    def fix(geometry: object, kind: str, index: int) -> object:
+        uri = uris.get((link.name, kind, index))
+        return dataclasses.replace(geometry, uri=uri) if uri is not None and isinstance(geometry, Mesh) else geometry
+
+    return dataclasses.replace(
+        link,
+        visuals=tuple(
+            dataclasses.replace(v, geometry=fix(v.geometry, "visual", i)) for i, v in enumerate(link.visuals)
+        ),
+        collisions=tuple(
+            dataclasses.replace(c, geometry=fix(c.geometry, "collision", i)) for i, c in enumerate(link.collisions)
+        ),
+    )
 
 
 def urdf_to_sdf_text(text: str, *, source: str = "<string>", base_dir: str | Path | None = None) -> str:
     """The SDF Gazebo would spawn for this URDF, as text (`gz sdf -p` for diffctl): meshes left as written."""
     base = Path(base_dir).resolve() if base_dir is not None else Path.cwd()
-    sdf, _ = urdf_to_sdf(parse_urdf(text, source), ConversionOptions(resolve_meshes=False, base_dir=base))
-    return etree.tostring(sdf, pretty_print=True, encoding="unicode")
+    conv = urdf_to_sdf(parse_urdf(text, source), ConversionOptions(resolve_meshes=False, base_dir=base))
+    return etree.tostring(conv.sdf, pretty_print=True, encoding="unicode")

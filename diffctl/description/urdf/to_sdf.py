@@ -82,6 +82,7 @@ class _Converter:
         self.robot = robot
         self.options = options
         self.ignored: list[str] = []
+        self.mesh_uris: dict[tuple[str, str, int], str] = {}  # (link, visual|collision, index) → URDF's URI
         self.extensions = read_extensions(robot.gazebo, robot.source)
         self.preserve: set[str] = set()
         self.locked: set[str] = set()  # disableFixedJointLumping: kept as a revolute joint with limits 0/0
@@ -171,6 +172,8 @@ class _Converter:
             if not name.startswith(body.name):  # sdformat marks names that do not start with the link's
                 name = body.name + LUMP_PREFIX + name
             el = _sub(link_el, kind, line=shape.line, name=name)
+            if shape.geometry.kind == "mesh":
+                self.mesh_uris[(body.name, kind, count)] = shape.geometry.filename
             _sub(el, "pose", _pose_text(pose), shape.line)
             self.geometry(el, shape.geometry, shape.line)
             if kind == "visual" and shape.rgba is not None:
@@ -345,8 +348,15 @@ class _Converter:
             self.ignored.append(f"<gazebo reference={ext.reference!r}> (line {ext.line}) names no link or joint")
 
 
-def urdf_to_sdf(robot: UrdfRobot, options: ConversionOptions, name: str | None = None) -> tuple[Element, list[str]]:
-    """The `<sdf><model>` of `robot` and one line for each thing Gazebo would drop or not simulate."""
+@dataclass(frozen=True)
+class Conversion:
+    sdf: Element  # <sdf version="1.11"><model>…
+    ignored: tuple[str, ...]  # one line for each thing Gazebo would drop or not simulate
+    mesh_uris: dict[tuple[str, str, int], str]  # (link, "visual"|"collision", index) → the URI the URDF gave
+
+
+def urdf_to_sdf(robot: UrdfRobot, options: ConversionOptions, name: str | None = None) -> Conversion:
+    """The `<sdf><model>` Gazebo makes of `robot`."""
     conv = _Converter(robot, options)
     sdf, _ = conv.convert(name or robot.name)
-    return sdf, conv.ignored
+    return Conversion(sdf, tuple(conv.ignored), dict(conv.mesh_uris))
