@@ -56,6 +56,8 @@ NATIVE_SYSTEMS = {
     "scene-broadcaster",
     "sensors",
     "imu",
+    "air-pressure",
+    "navsat",
     "contact",
     "pose-publisher",
 }
