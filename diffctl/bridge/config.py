@@ -149,6 +149,8 @@ def _as_topic(value: Any, kind: str) -> str:
 
 
 def _as_queue(name: str, value: Any) -> int:
+    if isinstance(value, str) and value.strip().isdigit():
+        value = int(value)  # yaml-cpp's as<size_t> reads a quoted number too
     if isinstance(value, bool) or not isinstance(value, int) or value < 1:
         raise ValueError(f"{name} {value!r} invalid; valid: an integer >= 1")
     return value

@@ -71,7 +71,7 @@ def test_one_sided_topic_names_qos_profiles_and_queue_precedence(tmp_path: Path)
   gz_type_name: ignition.msgs.Twist
   direction: ROS_TO_GZ
   qos_profile: sensor_data
-  subscriber_queue: 20
+  subscriber_queue: "20"
 - topic_name: /clock
   ros_type_name: rosgraph_msgs/msg/Clock
   gz_type_name: gz.msgs.Clock
