@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterator
+from functools import lru_cache
 from pathlib import Path
 
 from diffctl.errors import ConfigError
@@ -61,7 +62,14 @@ def find_workspace(explicit: str | Path | None = None, start: str | Path | None 
     env = os.environ.get(WORKSPACE_ENV, "")
     if env:
         return _named_workspace(Path(env), WORKSPACE_ENV)
-    here = Path(start if start is not None else os.getcwd()).resolve()
+    return _enclosing(str(Path(start if start is not None else os.getcwd()).resolve()))
+
+
+@lru_cache(maxsize=64)
+def _enclosing(start: str) -> Path | None:
+    # Remembered per process: a `src/` that is no workspace (say ~/src full of other repositories) is
+    # crawled once, not on every package lookup.
+    here = Path(start)
     for d in (here, *here.parents):
         if holds_packages(d / "src"):
             return d

@@ -34,8 +34,26 @@ def _text(root: etree._Element, tag: str) -> str:
     return (el.text or "").strip() if el is not None else ""
 
 
+_cache: dict[Path, tuple[tuple[int, int], PackageManifest]] = {}
+
+
 def read_manifest(path: Path) -> PackageManifest:
-    """Read `path` (a package.xml); a broken file is one located ConfigError."""
+    """Read `path` (a package.xml); a broken file is one located ConfigError. Unchanged files are
+    remembered (by modification time and size): every package lookup rescans the workspace."""
+    try:
+        st = path.stat()
+    except OSError as e:
+        raise ConfigError(f"cannot read package.xml: {e.strerror}", source=str(path)) from None
+    key = (st.st_mtime_ns, st.st_size)
+    hit = _cache.get(path)
+    if hit is not None and hit[0] == key:
+        return hit[1]
+    manifest = _parse_manifest(path)
+    _cache[path] = (key, manifest)
+    return manifest
+
+
+def _parse_manifest(path: Path) -> PackageManifest:
     try:
         root = etree.parse(str(path), etree.XMLParser(resolve_entities=False, no_network=True)).getroot()
     except etree.XMLSyntaxError as e:
