@@ -142,6 +142,14 @@ class Bag:
     def __init__(self, path: Path) -> None:
         self.path = path
         self._tmp: Path | None = None
+        try:
+            self._open()
+        except BaseException:
+            self.close()  # a refused bag leaves no decompressed copies behind
+            raise
+
+    def _open(self) -> None:
+        path = self.path
         if not path.exists():
             raise ConfigError(f"no bag at {path}", hint="give a bag folder or an .mcap file")
         meta_path = path / "metadata.yaml" if path.is_dir() else None

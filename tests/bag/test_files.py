@@ -195,3 +195,40 @@ def test_reindex_recovers_a_bag_whose_writer_never_finished(tmp_path: Path) -> N
     assert out.returncode == 0, out.stderr
     out = run("bag", "info", str(bag))
     assert out.returncode == 0 and topic_counts(out.stdout) == {"/odom": 100}
+
+
+@pytest.mark.parametrize("mode", ["FILE", "MESSAGE"])
+def test_rosbags_file_and_message_compression_are_read(tmp_path: Path, mode: str) -> None:
+    from rosbags.rosbag2 import StoragePlugin
+    from rosbags.rosbag2 import Writer as RosbagsWriter
+    from rosbags.rosbag2.enums import CompressionFormat, CompressionMode
+    from rosbags.typesys import Stores, get_typestore
+
+    ts = get_typestore(Stores.ROS2_JAZZY)
+    path = tmp_path / mode.lower()
+    w = RosbagsWriter(path, version=8, storage_plugin=StoragePlugin.MCAP)
+    w.set_compression(CompressionMode[mode], CompressionFormat.ZSTD)
+    w.open()
+    conn = w.add_connection("/chatter", "std_msgs/msg/String", typestore=ts)
+    for i in range(5):
+        w.write(conn, T0 + i, ts.serialize_cdr(ts.types["std_msgs/msg/String"](data=f"x{i}"), "std_msgs/msg/String"))
+    w.close()
+    b = Bag(path)
+    try:
+        assert b.metadata.compression_mode.upper() == mode
+        assert [types.deserialize(m.data, "std_msgs/msg/String").data for m in b.messages()] == \
+            [f"x{i}" for i in range(5)]
+    finally:
+        b.close()
+
+
+def test_unknown_chunk_compression_is_refused(tmp_path: Path) -> None:
+    bag = tmp_path / "chunks"
+    write_bag(bag, chunk_compression="zstd")
+    f = bag / "chunks_0.mcap"
+    raw = f.read_bytes()
+    # The compression name is stored length-prefixed in every Chunk and Chunk Index record: rename it in
+    # place (same length, offsets unchanged) to a compression no reader knows.
+    f.write_bytes(raw.replace(b"\x04\x00\x00\x00zstd", b"\x04\x00\x00\x00zzzz"))
+    line = one_error_line(run("bag", "play", str(bag)))
+    assert "chunks_0.mcap" in line and "'zzzz'" in line and "readable: none, zstd, lz4" in line
