@@ -128,7 +128,9 @@ def echo(topic_name: str, typename: str | None, once: bool, field: str | None, n
             if once:
                 stop.set()
 
-    node.create_subscription(name, t, on_msg, latched=bc.is_latched(g, name))
+    # As ros2 topic echo: depth 10, transient local when the publishers are (a late echo of /rosout shows its
+    # recent lines, of /robot_description the one there is).
+    node.create_subscription(name, t, on_msg, latched=bc.is_latched(g, name), depth=10)
     deadline = None if timeout is None else time.monotonic() + timeout
     while not stop.wait(0.05):
         if deadline and not got.is_set() and time.monotonic() > deadline:
