@@ -163,6 +163,19 @@ def find_launch_file(target: str, file: str | None = None, cwd: Path | None = No
     )
 
 
-def get_package_share_directory(package: str) -> str:
+PackageNotFoundError = workspace.PackageNotFoundError  # ament_index_python's, a KeyError too
+
+
+def get_package_share_directory(package: str, print_warning: bool = True) -> str:
     """ament_index_python's function, for launch files written against it."""
     return str(share_dir(package))
+
+
+def get_package_share_path(package: str, print_warning: bool = True) -> Path:
+    """ament_index_python's pathlib variant."""
+    return share_dir(package)
+
+
+def get_package_prefix(package: str) -> str:
+    """ament_index_python's function: `<prefix>/share/<package>` is the share directory."""
+    return str(workspace.package_prefix(package))
