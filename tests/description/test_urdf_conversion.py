@@ -293,6 +293,11 @@ def test_meshes_resolve_by_package_file_and_relative_uris(tmp_path: Path, monkey
     box.export(share / "meshes" / "body.stl")
     box.export(tmp_path / "wheel.obj")
     box.export(share / "meshes" / "shell.dae")
+    # the same box drawn in centimetres: COLLADA's <unit> scales it back to metres, as Gazebo's loader does
+    big = trimesh.creation.box(extents=(10.0, 20.0, 30.0))
+    big.export(share / "meshes" / "shell_cm.dae")
+    cm = (share / "meshes" / "shell_cm.dae").read_text()
+    (share / "meshes" / "shell_cm.dae").write_text(cm.replace("<asset>", '<asset><unit meter="0.01" name="cm"/>', 1))
     monkeypatch.setenv("AMENT_PREFIX_PATH", str(prefix))
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
     monkeypatch.chdir(tmp_path)
@@ -306,7 +311,8 @@ def test_meshes_resolve_by_package_file_and_relative_uris(tmp_path: Path, monkey
             extra=mesh("package://demo_meshes/meshes/body.stl")
             + mesh(f"file://{tmp_path}/wheel.obj")
             + mesh("wheel.obj")
-            + mesh("package://demo_meshes/meshes/shell.dae"),
+            + mesh("package://demo_meshes/meshes/shell.dae")
+            + mesh("package://demo_meshes/meshes/shell_cm.dae"),
         )
     )
     (tmp_path / "r.urdf").write_text(urdf)
@@ -317,12 +323,14 @@ def test_meshes_resolve_by_package_file_and_relative_uris(tmp_path: Path, monkey
     assert paths[3].suffix == ".obj" and paths[3].is_relative_to(tmp_path / "cache")
     converted = trimesh.load(paths[3], force="mesh")
     assert converted.bounds == pytest.approx(box.bounds, abs=1e-6)  # the same shape, now readable by PyBullet
+    assert trimesh.load(paths[4], force="mesh").bounds == pytest.approx(box.bounds, abs=1e-6)
     assert visuals[0].geometry.scale == (2.0, 2.0, 2.0)
     assert [v.geometry.uri for v in visuals] == [
         "package://demo_meshes/meshes/body.stl",
         f"file://{tmp_path}/wheel.obj",
         "wheel.obj",
         "package://demo_meshes/meshes/shell.dae",
+        "package://demo_meshes/meshes/shell_cm.dae",
     ]
 
 

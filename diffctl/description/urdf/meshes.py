@@ -59,6 +59,8 @@ def convert_to_obj(path: Path) -> Path:
         mesh = trimesh.load(str(path), force="mesh")
     except Exception as e:  # trimesh raises many types for unreadable files
         raise DescriptionError(f"mesh {path} cannot be read: {e}", source=str(path)) from None
+    if mesh.units and mesh.units != "meters":
+        mesh.convert_units("meters")  # COLLADA's <unit meter="…">, which Gazebo's loader applies too
     out.parent.mkdir(parents=True, exist_ok=True)
     tmp = out.with_suffix(f".{os.getpid()}.tmp")
     tmp.write_text(trimesh.exchange.obj.export_obj(mesh, include_normals=False))  # PyBullet computes its own
