@@ -90,7 +90,7 @@ def control() -> None:
     "description_file",
     type=click.Path(dir_okay=False),
     default=None,
-    help="Robot description (SDF/URDF with a <ros2_control> block); default: the /robot_description topic.",
+    help="Robot description (SDF, URDF or xacro with a <ros2_control> block); default: /robot_description.",
 )
 @click.option(
     "--param-file",

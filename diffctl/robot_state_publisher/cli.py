@@ -13,7 +13,7 @@ import click
     "description_file",
     type=click.Path(dir_okay=False, path_type=Path),
     default=None,
-    help="SDF file to publish; overrides the robot_description parameter.",
+    help="SDF, URDF or xacro file to publish (xacro expanded); overrides the robot_description parameter.",
 )
 @click.option("--frame-prefix", default=None, help="Prefix for every TF frame name (parameter frame_prefix).")
 @click.option(
