@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 import threading
 from collections.abc import Callable, Iterable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 from diffctl.errors import ConfigError
@@ -226,6 +226,8 @@ class ParameterStore:
         except ValueError as e:
             return str(e)
         want = desc.type or "not_set"
+        if got == "string_array" and not value and want.endswith("_array"):
+            got = want  # an empty list fits any array type
         if not desc.dynamic_typing and got != want and want != "not_set" and got != "not_set":
             return (f"Wrong parameter type, parameter {{{name}}} is of type {{{_ROS_TYPE_WORD[want]}}}, "
                     f"setting it to {{{_ROS_TYPE_WORD[got]}}} is not allowed.")
@@ -300,8 +302,6 @@ class ParameterStore:
 
 
 def _with_type(desc: ParameterDescriptor, type_name: str) -> ParameterDescriptor:
-    from dataclasses import replace
-
     # A parameter declared with no default (None) and no type takes any type, as rclcpp's dynamic typing.
     if type_name == "not_set":
         return replace(desc, type="not_set", dynamic_typing=True)

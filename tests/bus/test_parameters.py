@@ -79,3 +79,11 @@ def test_descriptor_is_validated() -> None:
         ParameterDescriptor(floating_point_range=(0, 1, 0), integer_range=(0, 1, 0))
     with pytest.raises(ConfigError, match="unknown type"):
         ParameterDescriptor(type="float")
+
+
+def test_an_empty_list_fits_any_array_type() -> None:
+    s = ParameterStore({"joints": []})
+    assert s.declare("joints", ["a"], ParameterDescriptor(type="string_array")) == []
+    s.declare("gains", [1.0, 2.0])
+    assert s.set({"gains": []}) == [None]
+    assert "is of type {double_array}" in s.set({"gains": ["x"]})[0]
