@@ -27,7 +27,7 @@ from typing import Any
 
 from diffctl.bus import gz
 from diffctl.description.pose import Pose
-from diffctl.description.robot_files import load_description, parse_description
+from diffctl.description.robot_files import parse_description, read_description_text
 from diffctl.errors import RuntimeFailure
 from diffctl.sim.runner import Simulation
 from diffctl.sim.transport import Reply
@@ -92,8 +92,10 @@ class WorldServices:
             path = Path(str(req["sdf_filename"]))
             if not path.is_file():
                 return {"ok": False, "error": f"{path}: no such file"}
-            model = load_description(path, name=name, pose=pose)
-            description = path.read_text()
+            description = read_description_text(path)  # a xacro file expands first, for the model and the manager
+            model = parse_description(
+                description, source=str(path), name=name, pose=pose, base_dir=path.resolve().parent
+            )
         elif req.get("sdf"):
             description = str(req["sdf"])
             model = parse_description(
