@@ -48,7 +48,7 @@ def tagged(tag: str) -> list[psutil.Process]:
 class LaunchRun:
     """`diffctl launch …` as a real child, its output in a file, polled with timeouts."""
 
-    def __init__(self, args: list[str], tmp: Path, env: dict[str, str] | None = None) -> None:
+    def __init__(self, args: list[str], tmp: Path, env: dict[str, str] | None = None, cwd: Path | None = None) -> None:
         self.tag = uuid.uuid4().hex
         self.log_dir = tmp / f"logs-{self.tag[:8]}"
         self.out_path = tmp / f"launcher-{self.tag[:8]}.out"
@@ -61,6 +61,7 @@ class LaunchRun:
             stdin=subprocess.DEVNULL,
             env=full_env,
             start_new_session=True,
+            cwd=cwd,
         )
 
     def text(self) -> str:
@@ -110,8 +111,8 @@ class LaunchRun:
 def launch_run(tmp_path: Path) -> Iterator:
     runs: list[LaunchRun] = []
 
-    def start(*args: str, env: dict[str, str] | None = None) -> LaunchRun:
-        run = LaunchRun(list(args), tmp_path, env)
+    def start(*args: str, env: dict[str, str] | None = None, cwd: Path | None = None) -> LaunchRun:
+        run = LaunchRun(list(args), tmp_path, env, cwd)
         runs.append(run)
         return run
 
