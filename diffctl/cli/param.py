@@ -16,6 +16,7 @@ import yaml
 
 from diffctl import ros_args
 from diffctl.bus import Node, parameter_msgs
+from diffctl.bus.graph import Graph
 from diffctl.bus.parameters import TYPE_NAMES, ParameterDescriptor
 from diffctl.cli import bus_common as bc
 from diffctl.console import console
@@ -35,24 +36,29 @@ _DESCRIBE_WORDS = {
 
 
 class _Remote:
-    """Calls one node's parameter services from a short-lived CLI node."""
+    """Calls one node's parameter services from a CLI node (shared when one command asks several nodes)."""
 
-    def __init__(self, node_name: str, timeout_s: float) -> None:
-        g = bc.graph()
+    def __init__(self, node_name: str, timeout_s: float, *, graph: Graph | None = None,
+                 me: Node | None = None) -> None:
+        g = graph or bc.graph()
         nodes = g.nodes()
         self.fqn = bc.resolve_name(g, node_name, nodes, "node")
         if self.fqn not in nodes:
             raise ConfigError(f"unknown node {self.fqn}{suggest(self.fqn, nodes)}",
                               hint="`diffctl node list` shows them")
         self.timeout_s = timeout_s
-        self.me = Node(f"diffctl_param_{os.getpid()}")
+        self._own = me is None
+        self.me = me or Node(f"diffctl_param_{os.getpid()}")
 
     def call(self, short: str, srv: str, request: dict[str, Any]) -> Any:
         client = self.me.create_client(f"{self.fqn}/{short}", RCL + srv)
-        if not client.wait_for_service(self.timeout_s):
-            raise BusError(f"node {self.fqn} offers no {short} service",
-                           hint="only nodes with parameter services answer `diffctl param`")
-        return client.call(request, timeout=self.timeout_s)
+        try:
+            if not client.wait_for_service(self.timeout_s):
+                raise BusError(f"node {self.fqn} offers no {short} service",
+                               hint="only nodes with parameter services answer `diffctl param`")
+            return client.call(request, timeout=self.timeout_s)
+        finally:
+            client.close()
 
     def names(self) -> list[str]:
         return sorted(str(n) for n in self.call("list_parameters", "ListParameters", {}).result.names)
@@ -62,7 +68,8 @@ class _Remote:
         return list(resp.values)
 
     def close(self) -> None:
-        self.me.close()
+        if self._own:
+            self.me.close()
 
 
 def _remote(node_name: str, timeout_s: float) -> _Remote:
@@ -101,9 +108,11 @@ def param_list(node_name: str | None, param_type: bool, pattern: str | None, tim
         regex = re.compile(pattern) if pattern else None
     except re.error as e:
         raise ConfigError(f"--filter {pattern!r} is not a regular expression: {e}") from None
-    targets = [node_name] if node_name else bc.graph().nodes()
+    g = bc.graph()
+    me = Node(f"diffctl_param_{os.getpid()}")
+    targets = [node_name] if node_name else [n for n in g.nodes() if n != me.fqn]
     for target in targets:
-        remote = _remote(target, timeout)
+        remote = _Remote(target, timeout, graph=g, me=me)
         try:
             try:
                 names = [n for n in remote.names() if regex is None or regex.search(n)]
@@ -120,6 +129,7 @@ def param_list(node_name: str | None, param_type: bool, pattern: str | None, tim
                 console.print(f"  {n}{suffix}", markup=False)
         finally:
             remote.close()
+    me.close()
 
 
 @param.command("get")
