@@ -23,6 +23,7 @@ from diffctl.bus import types, wire
 from diffctl.errors import ConfigError
 
 FLUSH_PERIOD_S = 1.0  # bytes reach the OS at least this often, so a killed recorder loses little
+_Idle = object()  # nothing arrived for a flush period
 
 
 @dataclass(frozen=True)
@@ -87,6 +88,24 @@ def qos_from_token(field: str) -> Qos:
     )
 
 
+@dataclass(frozen=True)
+class _NewTopic:
+    topic: str
+    type: str
+    schema_text: str
+    offered: tuple[Qos, ...]
+    type_hash: str
+
+
+@dataclass(frozen=True)
+class _Sample:
+    topic: str
+    data: bytes
+    log_time_ns: int
+    publish_time_ns: int
+    sequence: int
+
+
 class Recorder:
     def __init__(self, node: Any, writer: BagWriter, selection: Selection,
                  say: Callable[[str], None] = print) -> None:
@@ -94,10 +113,11 @@ class Recorder:
         self.writer = writer
         self.selection = selection
         self.say = say
-        self._queue: queue.Queue[tuple[str, bytes, int, int, int] | None] = queue.Queue()
+        # Topics and samples go through one queue, so the writer thread alone touches the writer and a
+        # topic is always registered before its first sample.
+        self._queue: queue.Queue[_NewTopic | _Sample | None] = queue.Queue()
         self._subscribed: set[str] = set()
         self._skipped: set[str] = set()
-        self._pending: dict[str, tuple[str, str, list[Qos], str]] = {}
         self._wake = threading.Event()
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._write_loop, name="bag-writer", daemon=True)
@@ -146,20 +166,16 @@ class Recorder:
     def _subscribe(self, topic: str, typename: str, pubs: list[Any]) -> None:
         offered = [qos_from_token(e.qos) for e in pubs]
         latched = any(q.durability == "transient_local" for q in offered)
-        self.writer_add(topic, typename, offered, pubs[0].type_hash or types.type_hash(typename))
+        self._queue.put(_NewTopic(topic, typename, ros2msg(typename), tuple(offered),
+                                  pubs[0].type_hash or types.type_hash(typename)))
 
         def on_sample(data: bytes, info: Any) -> None:
-            self._queue.put((topic, data, time.time_ns(), info.source_timestamp_ns, info.sequence_number))
+            self._queue.put(_Sample(topic, data, time.time_ns(), info.source_timestamp_ns, info.sequence_number))
 
         self.node.create_subscription(topic, typename, on_sample, raw=True, with_info=True, latched=latched,
                                       depth=max(q.depth for q in offered))
         self._subscribed.add(topic)
         self.say(f"Subscribed to topic '{topic}'")
-
-    def writer_add(self, topic: str, typename: str, offered: list[Qos], type_hash: str) -> None:
-        # Topics are registered through the queue, so the writer thread alone touches the writer.
-        self._pending[topic] = (typename, ros2msg(typename), offered, type_hash)
-        self._queue.put((topic, b"", -1, 0, 0))
 
     # ------------------------------------------------------------------ writing
     def _write_loop(self) -> None:
@@ -168,16 +184,14 @@ class Recorder:
             try:
                 item = self._queue.get(timeout=FLUSH_PERIOD_S)
             except queue.Empty:
-                item = ()  # type: ignore[assignment]
+                item = _Idle
             if item is None:
                 return
-            if item:
-                topic, data, log_ns, pub_ns, seq = item
-                if log_ns == -1:
-                    typename, text, offered, thash = self._pending.pop(topic)
-                    self.writer.add_topic(topic, typename, text, qos=offered, type_hash=thash)
-                else:
-                    self.writer.write(topic, data, log_ns, pub_ns, seq)
+            if isinstance(item, _Sample):
+                self.writer.write(item.topic, item.data, item.log_time_ns, item.publish_time_ns, item.sequence)
+            elif isinstance(item, _NewTopic):
+                self.writer.add_topic(item.topic, item.type, item.schema_text, qos=list(item.offered),
+                                      type_hash=item.type_hash)
             if time.monotonic() - last_flush >= FLUSH_PERIOD_S:
                 self.writer.flush()
                 last_flush = time.monotonic()

@@ -57,12 +57,16 @@ def foxglove_bridge(port: int | None, address: str | None, bag_path: Path | None
         server.stop()
         bag.close()
         return
-    from diffctl.bus import Node
+    from diffctl.bus import Node, types
     from diffctl.foxglove.live import LiveBridge
 
     node = Node.from_ros_args("foxglove_bridge")
+    sim_time = node.clock.use_sim_time
     live = LiveBridge(node, context, say=info)
-    server = fg.start(address, port, live=live, context=context)
+    server = fg.start(address, port, live=live, context=context, sim_time=sim_time)
+    if sim_time:
+        node.create_subscription("/clock", "rosgraph_msgs/msg/Clock",
+                                 lambda m: server.broadcast_time(types.time_ns(m.clock)))
     live.start()
     info(f"Foxglove server on ws://{address}:{server.port} (connect from the Foxglove app)")
     stop.wait()

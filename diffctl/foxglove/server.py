@@ -71,15 +71,16 @@ class _Listener(ServerListener):
 
 
 def start(host: str, port: int, *, live: LiveBridge | None = None, playback: BagPlayback | None = None,
-          context: foxglove.Context) -> Any:
-    """The running server (its `.port()` is the bound port)."""
+          context: foxglove.Context, sim_time: bool = False) -> Any:
+    """The running server (`.port` is the bound port). `sim_time`: the server announces its own time (from
+    /clock), as foxglove_bridge does under use_sim_time, so the app's timeline follows the simulation."""
     listener = _Listener(live, playback)
     kw: dict[str, Any] = {}
     if playback is not None:
         caps = [Capability.Time]
         kw["playback_time_range"] = playback.time_range
     else:
-        caps = [Capability.ClientPublish]
+        caps = [Capability.ClientPublish, *([Capability.Time] if sim_time else [])]
     try:
         server = foxglove.start_server(name="diffctl foxglove_bridge", host=check_loopback(host),
                                        port=check_port(port), capabilities=caps, server_listener=listener,

@@ -129,3 +129,29 @@ def test_bag_playback_server(procs: Any, tmp_path: Path) -> None:
 
 def test_non_loopback_address_is_refused() -> None:
     assert "loopback" in one_error_line(run("foxglove-bridge", "--address", "0.0.0.0", "--port", "0"))
+
+
+def test_sim_time_is_the_servers_time(router: str, procs: Any) -> None:
+    node = Node("fg_clock")
+    clock = node.create_publisher("/clock", "rosgraph_msgs/msg/Clock")
+    port = free_port()
+    bridge = procs.diffctl("foxglove-bridge", "--ros-args", "-p", f"port:={port}", "-p", "use_sim_time:=true")
+    wait_port(port, 60)
+
+    async def client() -> tuple[dict, int]:
+        async with websockets.connect(f"ws://127.0.0.1:{port}", subprotocols=[PROTOCOL]) as ws:
+            info = json.loads(await _read_until(ws, lambda m: isinstance(m, str) and '"serverInfo"' in m))
+            for _ in range(200):
+                clock.publish({"clock": {"sec": 42, "nanosec": 5}})
+                try:
+                    m = await asyncio.wait_for(ws.recv(), 0.1)
+                except TimeoutError:
+                    continue
+                if isinstance(m, bytes) and m[0] == 2:
+                    return info, struct.unpack_from("<Q", m, 1)[0]
+            raise AssertionError("no Time message")
+
+    info, t = asyncio.run(client())
+    assert "time" in info["capabilities"] and t == 42 * 10**9 + 5
+    procs.stop(bridge)
+    node.close()
