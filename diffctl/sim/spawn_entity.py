@@ -79,11 +79,21 @@ def gflags_args(args: list[str]) -> tuple[list[str], list[str]]:
 
 
 def _ros_param(params: dict[str, Any], name: str, kind: type) -> Any:
+    """A parameter of create's node; launch files often pass numbers and booleans as text ('0.0', 'False')."""
     value = params.get(name)
     if value is None:
         return None
+    if kind is float and isinstance(value, str) and value.strip():
+        try:
+            value = float(value)
+        except ValueError:
+            pass
+    if kind is bool and isinstance(value, str) and value.strip().lower() in _TRUE + _FALSE:
+        value = value.strip().lower() in _TRUE
     if kind is float and isinstance(value, int) and not isinstance(value, bool):
         value = float(value)
+    if kind is float and value == "":
+        return None
     if not isinstance(value, kind) or isinstance(value, bool) != (kind is bool):
         raise ConfigError(f"parameter {name!r} of create must be a {kind.__name__}, got {value!r}", field=name)
     return value

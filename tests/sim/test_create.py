@@ -116,3 +116,31 @@ def test_create_spawns_from_a_namespaced_topic_renames_and_places(router: str, p
         node.close()
     assert sim.poll() is None
     assert procs.stop(sim) == 0
+
+
+def test_gz_spawn_model_launch_passes_creates_parameters(tmp_path: Path) -> None:
+    from diffctl.launch.loader import load
+    from diffctl.launch.resolver import resolve
+
+    path = tmp_path / "spawn.launch.py"
+    path.write_text(
+        "import os\n"
+        "from ament_index_python.packages import get_package_share_directory\n"
+        "from launch import LaunchDescription\n"
+        "from launch.actions import IncludeLaunchDescription\n"
+        "from launch.launch_description_sources import PythonLaunchDescriptionSource\n"
+        "def generate_launch_description():\n"
+        "    f = os.path.join(get_package_share_directory('ros_gz_sim'), 'launch', 'gz_spawn_model.launch.py')\n"
+        "    args = {'topic': 'robot_description', 'entity_name': 'bot', 'z': '0.3', 'Y': '-1', 'allow_renaming': 'true'}\n"
+        "    return LaunchDescription([IncludeLaunchDescription(PythonLaunchDescriptionSource(f),\n"
+        "                              launch_arguments=args.items())])\n"
+    )
+    (create,) = resolve(load(path), {}, str(path)).processes.values()
+    assert create.argv[-2:] == ("spawn", "entity")
+    (params,) = create.node.params
+    req = build_request({}, dict(params))
+    assert (req.source, req.value, req.name, req.allow_renaming) == ("topic", "robot_description", "bot", True)
+    assert req.pose == {"x": 0.0, "y": 0.0, "z": 0.3, "roll": 0.0, "pitch": 0.0, "yaw": -1.0}
+    # as text, the way some launch files hand them over
+    req = build_request({"topic": "t"}, {"allow_renaming": "False", "x": "1.5", "world": ""})
+    assert (req.allow_renaming, req.pose["x"], req.world) == (False, 1.5, None)
