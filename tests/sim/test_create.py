@@ -131,7 +131,8 @@ def test_gz_spawn_model_launch_passes_creates_parameters(tmp_path: Path) -> None
         "from launch.launch_description_sources import PythonLaunchDescriptionSource\n"
         "def generate_launch_description():\n"
         "    f = os.path.join(get_package_share_directory('ros_gz_sim'), 'launch', 'gz_spawn_model.launch.py')\n"
-        "    args = {'topic': 'robot_description', 'entity_name': 'bot', 'z': '0.3', 'Y': '-1', 'allow_renaming': 'true'}\n"
+        "    args = {'topic': 'robot_description', 'entity_name': 'bot', 'z': '0.3', 'Y': '-1',\n"
+        "            'allow_renaming': 'true'}\n"
         "    return LaunchDescription([IncludeLaunchDescription(PythonLaunchDescriptionSource(f),\n"
         "                              launch_arguments=args.items())])\n"
     )
