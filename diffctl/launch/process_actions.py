@@ -334,9 +334,8 @@ class Node(ExecuteProcess):
         **kw: Any,
     ) -> None:
         super().__init__(cmd=[], **kw)
-        if package is None:
-            raise LaunchError("Node needs a package (diffctl resolves executables through the package index)")
-        self.package = normalize(package)
+        # Without a package the executable is looked up on PATH, as launch_ros does.
+        self.package = None if package is None else normalize(package)
         self.executable = normalize(executable)
         self.node_name = None if name is None else normalize(name)
         self.name = None if exec_name is None else normalize(exec_name)
@@ -350,16 +349,21 @@ class Node(ExecuteProcess):
         self.arguments = list(arguments or [])
 
     def label(self) -> str:
-        return f"node {describe(self.package)}/{describe(self.executable)}"
+        return f"node {describe(self.package) + '/' if self.package else ''}{describe(self.executable)}"
 
     def command(self, scope: Scope) -> list[str]:
-        argv = package_index.executable_argv(perform(self.package, scope), perform(self.executable, scope))
+        if self.package is None:
+            argv = [perform(self.executable, scope)]
+        else:
+            argv = package_index.executable_argv(perform(self.package, scope), perform(self.executable, scope))
         argv += _arguments(self.arguments, scope)
         if self.ros_arguments:
             argv += ["--ros-args", *_arguments(self.ros_arguments, scope), "--"]
         return argv
 
     def index_names(self, scope: Scope) -> dict[str, str]:
+        if self.package is None:
+            return {}
         return {"package": perform(self.package, scope), "executable": perform(self.executable, scope)}
 
     def default_name(self, argv: list[str], scope: Scope) -> str:
@@ -390,7 +394,7 @@ class Node(ExecuteProcess):
         if e.has("namespace") and e.has("ns"):
             raise e.error("give `namespace` or `ns`, not both", key="ns")
         return cls(
-            package=e.text("pkg", required=True),
+            package=e.text("pkg"),
             executable=e.text("exec", required=True),
             namespace=e.text("namespace") if e.has("namespace") else e.text("ns"),
             arguments=yaml_words(e, "args"),

@@ -1,7 +1,8 @@
 """The `$(name arg …)` syntax of the YAML and XML frontends: text → substitution objects.
 
-Arguments are separated by spaces, may be quoted with '…' or "…", and may nest `$(…)`; `\\$(` is a literal
-`$(`. Every name maps to a substitution class of substitutions.py / logic_substitutions.py.
+Arguments are separated by spaces, may be quoted with '…' or "…", and may nest `$(…)`; inside them a
+backslash escapes any character (`\\'` in a '…' argument); anywhere, `\\$(` is a literal `$(`. Every
+name maps to a substitution class of substitutions.py / logic_substitutions.py.
 """
 
 from __future__ import annotations
@@ -149,6 +150,12 @@ class _Parser:
             if c == "\\" and self.text.startswith("\\$(", self.i):
                 buf.append("$(")
                 self.i += 3
+                continue
+            if c == "\\" and stop and self.i + 1 < len(self.text):
+                # Inside a substitution's arguments a backslash escapes any character, as in launch's grammar:
+                # $(eval '\'$(var mode)\' == \'sim\''). Outside, text is kept as written (regexes, paths).
+                buf.append(self.text[self.i + 1])
+                self.i += 2
                 continue
             if self.text.startswith("$(", self.i):
                 if buf:

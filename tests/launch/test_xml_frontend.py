@@ -281,6 +281,10 @@ def test_substitutions_of_launch_xml(tmp_path: Path, monkeypatch) -> None:
           <log message="$(anon a)=$(anon a)"/>
           <log message="$(find-exec sh)"/>
           <log message="$(if $(equals $(var n) 3.0) yes no)"/>
+          <log message="$(eval '\\'$(var n)\\' == \\'3\\'')"/>
+          <log message="$(eval &quot;'$(var n)' in ('2', '3')&quot;)"/>
+          <log message="$(eval 'os.sep' 'os')"/>
+          <log message="a\\d+"/>
         </launch>
     """
     path = str(tmp_path / "t.launch.xml")
@@ -289,7 +293,7 @@ def test_substitutions_of_launch_xml(tmp_path: Path, monkeypatch) -> None:
     left, right = got[4].split("=")
     assert left == right and left.startswith("a_")
     assert got[5].endswith("/sh") and Path(got[5]).is_file()
-    assert got[6] == "yes"
+    assert got[6:] == ["yes", "True", "True", "/", "a\\d+"]  # backslashes escape inside arguments only
 
 
 def test_command_runs_xacro_as_xacro_itself_expands(tmp_path: Path) -> None:
@@ -378,7 +382,8 @@ def test_the_same_description_in_xml_and_yaml_resolves_to_the_same_plan(tmp_path
         ('<log message="$(var x"/>', 2, r"unterminated"),
         ("<log message='x'>\n</lg>", 3, r"malformed XML"),
         ('<timer><log message="x"/></timer>', 2, r"needs the attribute `period`"),
-        ('<node exec="x"/>', 2, r"needs the attribute `pkg`"),
+        ('<node exec="no-such-exe-xyz"/>', 2, r"'no-such-exe-xyz' not found on PATH"),
+        ('<node pkg="robot_state_publisher"/>', 2, r"needs the attribute `exec`"),
     ],
 )
 def test_bad_xml_is_one_message_with_file_and_line(tmp_path: Path, body: str, line: int, pattern: str) -> None:

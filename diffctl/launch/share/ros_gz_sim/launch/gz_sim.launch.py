@@ -57,13 +57,19 @@ def launch_gz(context):
     for name in ("use_composition", "create_own_container"):
         _flag(context, name)
     if LaunchConfiguration("debugger").perform(context).strip().lower() not in FALSE_WORDS:
-        actions.append(LogInfo(msg="debugger: diffctl's simulator is a Python process; start it under a debugger "
-                                   "with `python -m pdb -m diffctl sim run …` instead"))
+        actions.append(
+            LogInfo(
+                msg="debugger: diffctl's simulator is a Python process; start it under a debugger "
+                "with `python -m pdb -m diffctl sim run …` instead"
+            )
+        )
     if "-g" in words:
         # `gz sim -g` runs only the GUI client, which connects to a server started elsewhere.
-        actions.append(LogInfo(
-            msg="gz sim -g (GUI client): diffctl's simulator is headless; the browser visualizer shows the scene"
-        ))
+        actions.append(
+            LogInfo(
+                msg="gz sim -g (GUI client): diffctl's simulator is headless; the browser visualizer shows the scene"
+            )
+        )
         return actions
     models, plugins = gazebo_paths()
     for path in [*models, WORLDS]:
@@ -86,12 +92,17 @@ def generate_launch_description():
             DeclareLaunchArgument(
                 "on_exit_shutdown", default_value="false", description="Shut the launch down when the simulator exits"
             ),
-            DeclareLaunchArgument("container_name", default_value="ros_gz_container",
-                                  description="Accepted for compatibility (composition)"),
-            DeclareLaunchArgument("create_own_container", default_value="false",
-                                  description="Accepted for compatibility (composition)"),
-            DeclareLaunchArgument("use_composition", default_value="false",
-                                  description="Accepted for compatibility (composition)"),
+            DeclareLaunchArgument(
+                "container_name",
+                default_value="ros_gz_container",
+                description="Accepted for compatibility (composition)",
+            ),
+            DeclareLaunchArgument(
+                "create_own_container", default_value="false", description="Accepted for compatibility (composition)"
+            ),
+            DeclareLaunchArgument(
+                "use_composition", default_value="false", description="Accepted for compatibility (composition)"
+            ),
             OpaqueFunction(function=launch_gz),
         ]
     )
