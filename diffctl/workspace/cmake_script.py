@@ -284,6 +284,12 @@ class Script:
             self.variables.update(
                 PROJECT_NAME=values[0], PROJECT_SOURCE_DIR=str(current), **{f"{values[0]}_SOURCE_DIR": str(current)}
             )
+            # catkin's destinations, for packages still written against them
+            self.variables.update(
+                CATKIN_PACKAGE_SHARE_DESTINATION=f"share/{values[0]}",
+                CATKIN_PACKAGE_BIN_DESTINATION=f"lib/{values[0]}",
+                CATKIN_GLOBAL_SHARE_DESTINATION="share",
+            )
         elif cmd.name == "set" and values:
             items = values[1:]
             if "PARENT_SCOPE" in items:

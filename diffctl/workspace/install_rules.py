@@ -24,6 +24,7 @@ _FILE_KEYWORDS = {"DESTINATION", "TYPE", "PERMISSIONS", "CONFIGURATIONS", "COMPO
 _DIR_KEYWORDS = {"DESTINATION", "TYPE", "FILE_PERMISSIONS", "DIRECTORY_PERMISSIONS", "USE_SOURCE_PERMISSIONS",
                  "OPTIONAL", "MESSAGE_NEVER", "CONFIGURATIONS", "COMPONENT", "EXCLUDE_FROM_ALL", "FILES_MATCHING",
                  "PATTERN", "REGEX"}
+_AMENT_AUTO_KEYWORDS = {"INSTALL_TO_PATH", "INSTALL_TO_SHARE", "CONFIG_EXTRAS", "USE_SCOPED_HEADER_INSTALL_DIR"}
 # install(… TYPE X) without DESTINATION: CMake's default directories.
 _TYPE_DESTINATIONS = {"BIN": "bin", "SBIN": "sbin", "LIB": "lib", "INCLUDE": "include", "SYSCONF": "etc",
                       "DATA": "share", "DOC": "share/doc"}
@@ -94,10 +95,15 @@ class _Collector:
         return f"{rel}:{call.line}"
 
     def __call__(self, call: Call) -> None:
-        if call.name == "ament_package":
+        if call.name in ("ament_package", "ament_auto_package"):
             manifest = self.package_dir / "package.xml"
             if manifest.is_file():
                 self.index.add(f"share/{self.package_name}/package.xml", manifest)
+            if call.name == "ament_auto_package" and "INSTALL_TO_SHARE" in call.args:
+                # ament_cmake_auto: INSTALL_TO_SHARE dirs… is install(DIRECTORY dirs… DESTINATION share/<pkg>)
+                start = call.args.index("INSTALL_TO_SHARE") + 1
+                dirs, _ = _sources(call.args[start:], _AMENT_AUTO_KEYWORDS)
+                self._directories(call, [*dirs, "DESTINATION", f"share/{self.package_name}"])
         elif call.name == "install" and call.args:
             kind, args = call.args[0], call.args[1:]
             if kind in ("FILES", "PROGRAMS"):

@@ -163,3 +163,24 @@ def test_malformed_cmake_is_one_located_error(tmp_path: Path, text: str, line: i
     assert e.value.line == line
     assert message in str(e.value)
     assert str(e.value).startswith(str(pkg / "CMakeLists.txt"))
+
+
+def test_ament_cmake_auto_and_catkin_destinations(tmp_path: Path) -> None:
+    pkg = write_tree(
+        tmp_path / "pkg",
+        {
+            "package.xml": "<package/>",
+            "launch/a.launch.py": "",
+            "config/c.yaml": "",
+            "rviz/v.rviz": "",
+            "CMakeLists.txt": "project(auto_bot)\nfind_package(ament_cmake_auto REQUIRED)\n"
+            "install(DIRECTORY rviz DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})\n"
+            "ament_auto_package(INSTALL_TO_SHARE launch config USE_SCOPED_HEADER_INSTALL_DIR)\n",
+        },
+    )
+    assert sorted(cmake_install_index(pkg, "auto_bot").files) == [
+        "share/auto_bot/config/c.yaml",
+        "share/auto_bot/launch/a.launch.py",
+        "share/auto_bot/package.xml",
+        "share/auto_bot/rviz/v.rviz",
+    ]
