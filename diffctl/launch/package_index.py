@@ -157,9 +157,10 @@ def find_launch_file(target: str, file: str | None = None, cwd: Path | None = No
     available = sorted({name.split(".")[0] for root in roots for name in launch_files(root)})
     if looks_like_path:
         raise LaunchError(f"launch file {target} does not exist")
+    searched = ", ".join(str(root / "launch") for root in roots)
     raise LaunchError(
         f"no launch file named {target!r}{suggest(target, available)}",
-        hint="available: " + (", ".join(available) or "none") + "; or give a path or PKG FILE",
+        hint=f"searched {searched}; available: " + (", ".join(available) or "none") + "; or give a path or PKG FILE",
     )
 
 
