@@ -52,8 +52,12 @@ def test_urdf_by_file_and_by_string(router: str, procs: Any, tmp_path: Path) -> 
     run = _cli("spawn", "entity", "-string", CAR_MODEL, "-name", "by_string", "-y", "1")
     assert run.returncode == 0, run.stderr
     broken = tmp_path / "broken.urdf"
-    broken.write_text(CAR_MODEL.replace('<sphere radius="0.02"/></geometry></collision>',
-                                        '<mesh filename="package://diffctl_nothing/c.stl"/></geometry></collision>'))
+    broken.write_text(
+        CAR_MODEL.replace(
+            '<sphere radius="0.02"/></geometry></collision>',
+            '<mesh filename="package://diffctl_nothing/c.stl"/></geometry></collision>',
+        )
+    )
     run = _cli("spawn", "entity", "-file", str(broken), "-name", "broken")
     assert run.returncode == 1
     assert "package://diffctl_nothing/c.stl" in run.stderr and len(run.stderr.strip().splitlines()) == 1

@@ -49,8 +49,9 @@ def test_xacro_urdf_robot_drives_from_its_own_launch_file(stack: Stack, tmp_path
 
     descriptions: list[str] = []
     statics: list[set[tuple[str, str]]] = []
-    node.create_subscription("/robot_description", "std_msgs/msg/String", lambda m: descriptions.append(m.data),
-                             latched=True)
+    node.create_subscription(
+        "/robot_description", "std_msgs/msg/String", lambda m: descriptions.append(m.data), latched=True
+    )
     node.create_subscription(
         "/tf_static",
         "tf2_msgs/msg/TFMessage",
