@@ -67,16 +67,21 @@ def share_dir(package: str) -> Path:
     )
 
 
-def _lib_dir(package: str) -> Path | None:
-    """`<prefix>/lib/<package>` of a workspace or installed package, when it resolves to one."""
+def _lib_dir(package: str, *, workspace_only: bool = False) -> Path | None:
+    """`<prefix>/lib/<package>` of a workspace (or, unless `workspace_only`, installed) package."""
     try:
         found = workspace.find_package(package)
     except LaunchError:
         return None
-    if found.prefix is None:
+    if found.prefix is None or (workspace_only and found.origin != "workspace"):
         return None
     lib = found.prefix / "lib" / package
     return lib if lib.is_dir() else None
+
+
+def _program(lib: Path | None, executable: str) -> Path | None:
+    candidate = lib / executable if lib is not None else None
+    return candidate if candidate is not None and candidate.is_file() and os.access(candidate, os.X_OK) else None
 
 
 def executables(package: str) -> list[str]:
@@ -88,15 +93,19 @@ def executables(package: str) -> list[str]:
 
 
 def executable_argv(package: str, executable: str) -> list[str]:
-    """The command line that starts `executable` of `package`: the user's own executable when the package
-    resolves to a workspace or install tree that has it, else the diffctl component of that name."""
-    lib = _lib_dir(package)
-    candidate = lib / executable if lib is not None else None
-    if candidate is not None and candidate.is_file() and os.access(candidate, os.X_OK):
-        return [str(candidate)]
+    """The command line that starts `executable` of `package` (`<prefix>/lib/<package>/<executable>`, as
+    launch_ros runs it, or a diffctl component)."""
+    # The user's own package first; then diffctl's component of that name, even over an installed ROS
+    # package (a sourced /opt/ros must not start the real robot_state_publisher); then install trees.
+    program = _program(_lib_dir(package, workspace_only=True), executable)
+    if program is not None:
+        return [str(program)]
     sub = COMPONENTS.get((package, executable))
     if sub is not None:
         return [sys.executable, "-m", "diffctl", *sub]
+    program = _program(_lib_dir(package), executable)
+    if program is not None:
+        return [str(program)]
     if package not in known_packages():
         raise LaunchError(
             f"unknown package {package!r}{suggest(package, known_packages())}",

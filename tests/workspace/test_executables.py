@@ -1,0 +1,64 @@
+"""`Node(package, executable)`: the user's program, diffctl's component, an installed program — in that order."""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+import pytest
+
+from diffctl.errors import LaunchError
+from diffctl.launch import package_index
+from tests.workspace.conftest import package_xml, write_tree
+from tests.workspace.test_resolution import install_tree
+
+
+def program(path: Path) -> Path:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text("#!/bin/sh\n")
+    path.chmod(0o755)
+    return path
+
+
+def test_the_users_program_then_diffctls_component_then_an_installed_one(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # /opt/ros sourced: real robot_state_publisher and controller_manager programs on AMENT_PREFIX_PATH
+    opt = tmp_path / "opt"
+    for pkg, exe in (("robot_state_publisher", "robot_state_publisher"), ("controller_manager", "spawner"),
+                     ("tf2_ros", "static_transform_publisher")):
+        install_tree(opt, pkg)
+        program(opt / "lib" / pkg / exe)
+    monkeypatch.setenv("AMENT_PREFIX_PATH", str(opt))
+    ws = tmp_path / "ws"
+    write_tree(
+        ws / "src" / "controller_manager",
+        {
+            "package.xml": package_xml("controller_manager"),
+            "CMakeLists.txt": "project(controller_manager)\n"
+            "install(PROGRAMS scripts/spawner DESTINATION lib/${PROJECT_NAME})\n",
+        },
+    )
+    program(ws / "src/controller_manager/scripts/spawner")
+    monkeypatch.chdir(ws)
+    (spawner,) = package_index.executable_argv("controller_manager", "spawner")
+    assert Path(spawner).resolve() == ws / "src/controller_manager/scripts/spawner"  # the user's own
+    assert package_index.executable_argv("robot_state_publisher", "robot_state_publisher") == [
+        sys.executable, "-m", "diffctl", "robot-state-publisher",
+    ]  # diffctl's, not /opt/ros's
+    assert package_index.executable_argv("tf2_ros", "static_transform_publisher") == [
+        str(opt / "lib/tf2_ros/static_transform_publisher")
+    ]
+    assert "static_transform_publisher" in package_index.executables("tf2_ros")
+
+
+def test_a_missing_executable_names_the_packages_programs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    opt = install_tree(tmp_path / "opt", "tf2_ros")
+    program(opt / "lib/tf2_ros/static_transform_publisher")
+    monkeypatch.setenv("AMENT_PREFIX_PATH", os.fspath(opt))
+    with pytest.raises(LaunchError) as e:
+        package_index.executable_argv("tf2_ros", "static_transform_publishr")
+    assert "has no executable 'static_transform_publishr' (did you mean 'static_transform_publisher'?)" in str(e.value)
+    with pytest.raises(LaunchError, match="unknown package 'tf2_rs'"):
+        package_index.executable_argv("tf2_rs", "x")
