@@ -62,6 +62,12 @@ CASES = [
     ),
     ("two_roots", robot(LINKS), 1, ["2 root links: a, b", "one tree"]),
     (
+        "joint_named_like_a_link",
+        robot(LINKS + "\n" + joint("continuous", name="b")),
+        4,
+        ["joint 'b' has the name of link 'b' (line 3)", "'b_joint'"],
+    ),
+    (
         "two_parents",
         robot(
             f'{LINKS}\n<link name="c"/>\n<joint name="j1" type="fixed"><parent link="a"/><child link="c"/></joint>'

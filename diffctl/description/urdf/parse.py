@@ -364,6 +364,13 @@ def parse_urdf(text_or_root: str | Element, source: str = "<string>") -> UrdfRob
         joint = _joint(r, el, links)
         if joint.name in joints:
             r.fail(el, f"joint {joint.name!r} is defined twice (first on line {joints[joint.name].line})")
+        if joint.name in links:
+            r.fail(
+                el,
+                f"joint {joint.name!r} has the name of link {joint.name!r} (line {links[joint.name].line})",
+                hint=f"in SDF, which Gazebo turns a URDF into, links and joints share names: rename the joint, "
+                f"e.g. {joint.name + '_joint'!r}",
+            )
         if joint.child in parent_of:
             r.fail(el, f"link {joint.child!r} is the child of joints {parent_of[joint.child]!r} and {joint.name!r}")
         parent_of[joint.child] = joint.name
