@@ -10,7 +10,6 @@ visualizer (rviz2) shows the scene. World names are looked up on GZ_SIM_RESOURCE
 packages' `gazebo_ros` exports and then Gazebo's own worlds (shipped in this package's worlds/).
 """
 
-import os
 import shlex
 
 from diffctl.errors import LaunchError
@@ -24,9 +23,9 @@ from diffctl.launch import (
     OpaqueFunction,
     Shutdown,
 )
+from diffctl.workspace.builtin import GAZEBO_WORLDS
 from diffctl.workspace.gazebo_paths import gazebo_paths
 
-WORLDS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "worlds")
 TRUE_WORDS, FALSE_WORDS = ("true", "1", "yes", "on"), ("false", "0", "no", "off", "")
 
 
@@ -72,7 +71,7 @@ def launch_gz(context):
         )
         return actions
     models, plugins = gazebo_paths()
-    for path in [*models, WORLDS]:
+    for path in [*models, str(GAZEBO_WORLDS)]:
         actions.append(AppendEnvironmentVariable("GZ_SIM_RESOURCE_PATH", path))
     for path in plugins:
         actions.append(AppendEnvironmentVariable("GZ_SIM_SYSTEM_PLUGIN_PATH", path))
