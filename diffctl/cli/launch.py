@@ -74,9 +74,10 @@ def launch(
     """Start a launch file and supervise its processes (ros2 launch).
 
     NAME is launch/NAME.yaml or launch/NAME.launch.py of the project (YAML first); PATH is any YAML or
-    Python launch file; PACKAGE FILE looks in that package's share directory. Every process gets its own
-    process group and dies with the launcher; Ctrl-C stops them all (SIGINT, then SIGTERM, then SIGKILL),
-    a second Ctrl-C kills at once. Press Enter (or send SIGUSR1) for a status table.
+    Python launch file; PACKAGE FILE looks in that package's share directory (the packages of the workspace
+    enclosing the current directory, or --workspace, come first; `diffctl pkg list` shows them all). Every
+    process gets its own process group and dies with the launcher; Ctrl-C stops them all (SIGINT, then
+    SIGTERM, then SIGKILL), a second Ctrl-C kills at once. Press Enter (or send SIGUSR1) for a status table.
 
     \b
     Example:
