@@ -95,6 +95,8 @@ class XmlEntity:
         return key in self.attrs or key in self.sub
 
     def raw(self, key: str) -> Any:
+        if key == "wait_for" and key in self.sub:
+            return [self._wait(c) for c in self.sub[key]]
         if key == "choices" and key in self.sub:
             return [XmlEntity(c, self.source, ("value",)).plain("value", required=True) for c in self.sub[key]]
         value = self.attrs.get(key)
@@ -104,6 +106,22 @@ class XmlEntity:
             except ValueError:
                 raise self.error(f"exit_code {value!r} must be an integer", key=key) from None
         return value
+
+    def _wait(self, element: Any) -> dict[str, Any]:
+        """`<wait_for exited="spawn_entity"/>`, `<wait_for log="sim" regex="ready"/>` → the YAML shape."""
+        attrs = dict(element.attrib)
+        if "log" in attrs:
+            if set(attrs) != {"log", "regex"}:
+                raise XmlEntity._at(element, self.source, '<wait_for log="PROCESS" regex="PATTERN"/> takes those two')
+            return {"log": {"process": attrs["log"], "regex": attrs["regex"]}}
+        if len(attrs) != 1:
+            raise XmlEntity._at(
+                element,
+                self.source,
+                "<wait_for> takes one condition",
+                hint='e.g. <wait_for exited="spawn_entity"/>, <wait_for topic="/robot_description"/>',
+            )
+        return attrs
 
     def parse(self, text: str, key: str | None = None) -> tuple[Substitution, ...]:
         try:

@@ -440,3 +440,25 @@ def test_handlers_in_plan_are_from_the_shared_registry(tmp_path: Path) -> None:
     plan = plan_of(tmp_path, text)
     (handler,) = [s.handler for s in plan.steps if isinstance(s, AddHandler)]
     assert handler.event == "exit" and handler.exit_code == 0 and [t.name for t in handler.targets] == ["a"]
+
+
+def test_readiness_in_xml_as_nested_wait_for_elements(tmp_path: Path) -> None:
+    text = """
+        <launch>
+          <executable cmd="sleep 1" name="a"/>
+          <executable cmd="sleep 1" name="b" wait_timeout="5">
+            <wait_for exited="a"/>
+            <wait_for log="a" regex="ready"/>
+            <wait_for topic="/robot_description"/>
+          </executable>
+        </launch>
+    """
+    gate = next(s.gate for s in plan_of(tmp_path, text).steps if isinstance(s, StartProcess) and s.spec.name == "b")
+    assert [(w.kind, str(w.target), w.pattern) for w in gate.waits] == [
+        ("exited", "a", None),
+        ("log", "a", "ready"),
+        ("topic", "/robot_description", None),
+    ]
+    assert gate.timeout_s == 5.0
+    e = error_of(tmp_path, '<launch>\n  <log message="x">\n    <wait_for exited="a" started="b"/>\n  </log>\n</launch>')
+    assert "takes one condition" in str(e) and e.line == 3
