@@ -172,6 +172,8 @@ def test_kinematic_view_keeps_every_urdf_link_and_joint() -> None:
         "right_wheel",
     }
     assert model.link("base_footprint").inertial is None
+    static = (DATA / "diff_car.urdf").read_text().replace("</robot>", "<gazebo><static>true</static></gazebo></robot>")
+    assert parse_description(static, simulation=False).static and parse_description(static).static
     assert {j.name: j.type for j in model.joints} == {
         "base_joint": "fixed",
         "caster_joint": "fixed",

@@ -53,7 +53,8 @@ def urdf_model(
         pose_override=pose,
     )
     if kinematic_only:
-        model = dataclasses.replace(model, static=False)
+        declared = (model_el.findtext("static") or "").strip().lower() in ("true", "1")  # <gazebo><static>
+        model = dataclasses.replace(model, static=declared)
     if conv.mesh_uris:
         model = dataclasses.replace(model, links=tuple(_with_urdf_uris(link, conv.mesh_uris) for link in model.links))
     return dataclasses.replace(model, ignored=(*conv.ignored, *model.ignored))
