@@ -9,11 +9,14 @@ from __future__ import annotations
 import signal
 import time
 from collections import deque
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Protocol
+from typing import TYPE_CHECKING, Protocol
 
-from diffctl.launch.plan import Gate, ProcessSpec, Step
+from diffctl.launch.plan import Gate, ProcessSpec, Step, Wait
+
+if TYPE_CHECKING:
+    from diffctl.launch.readiness import ProbePoller
 
 
 class Clock(Protocol):
@@ -94,3 +97,26 @@ def describe_exit(code: int) -> str:
 def died(code: int) -> str:
     """'died with exit code 3' / 'was killed by SIGKILL' (not 'died with killed by …')."""
     return f"was {describe_exit(code)}" if code < 0 else f"died with {describe_exit(code)}"
+
+
+def wait_state(w: Wait, states: Mapping[str, ProcessState], poller: ProbePoller | None) -> bool | str:
+    """One readiness condition: True when met, False while it may still be met, or why it never will be."""
+    if w.kind in ("topic", "service"):
+        return poller is not None and poller.ready(w.kind, str(w.target))
+    st = states.get(str(w.target))
+    if st is None:
+        return f"{w.target} is not a process of this launch"
+    if w.kind == "started":
+        if st.starts == 0 and st.state == "failed":
+            return f"{w.target} could not start"
+        return st.starts > 0
+    finished = not st.alive and st.state in ("exited", "failed")
+    if w.kind == "exited":
+        if finished and st.exit_code == 0:
+            return True
+        if finished and st.state == "failed":
+            return f"{w.target} {describe_exit(st.exit_code or 0)}"
+        return False
+    if w.pattern in st.seen_patterns:
+        return True
+    return f"{w.target} ended without printing /{w.pattern}/" if finished else False

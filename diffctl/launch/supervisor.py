@@ -50,9 +50,10 @@ from diffctl.launch.process_state import (
     Timer,
     describe_exit,
     died,
+    wait_state,
 )
 from diffctl.launch.readiness import ProbePoller
-from diffctl.launch.status import ProcessRow, StatusView
+from diffctl.launch.status import ProcessRow, StatusView, awaited, process_rows
 
 STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
 
@@ -347,25 +348,7 @@ class Supervisor:
 
     def _wait_state(self, w: Wait) -> bool | str:
         """True when met, False while it may still be met, or the reason it never will be."""
-        if w.kind in ("topic", "service"):
-            return self.poller is not None and self.poller.ready(w.kind, str(w.target))
-        st = self.states.get(str(w.target))
-        if st is None:
-            return f"{w.target} is not a process of this launch"
-        if w.kind == "started":
-            if st.starts == 0 and st.state == "failed":
-                return f"{w.target} could not start"
-            return st.starts > 0
-        finished = not st.alive and st.state in ("exited", "failed")
-        if w.kind == "exited":
-            if finished and st.exit_code == 0:
-                return True
-            if finished and st.state == "failed":
-                return f"{w.target} {describe_exit(st.exit_code or 0)}"
-            return False
-        if w.pattern in st.seen_patterns:
-            return True
-        return f"{w.target} ended without printing /{w.pattern}/" if finished else False
+        return wait_state(w, self.states, self.poller)
 
     def _gate_state(self, gate: Gate) -> tuple[bool | str, Wait | None]:
         for w in gate.waits:
@@ -493,27 +476,7 @@ class Supervisor:
     # ---- live line and status ----------------------------------------------------------------------------------
 
     def _awaited(self) -> list[str]:
-        waiting = []
-        for p in self.pending:
-            _, w = self._gate_state(p.gate)
-            what = p.step.spec.name if isinstance(p.step, StartProcess) else "step"
-            waiting.append(f"{what} ({w.describe() if w else '…'})")
-        for handler in self.handlers:
-            starts = any(isinstance(s, StartProcess) for s in handler.steps)
-            if (
-                starts
-                and handler.event in ("exit", "start")
-                and id(handler) not in self.fired
-                and handler.exit_code in (None, 0)
-                and handler.targets
-            ):
-                names = [t.name for t in handler.targets if t.name]
-                if any(
-                    self.states[n].alive or self.states[n].state == "not started" for n in names if n in self.states
-                ):
-                    started = [s.spec.name for s in handler.steps if isinstance(s, StartProcess)]
-                    waiting.append(f"{', '.join(started)} (on {handler.event} of {', '.join(names)})")
-        return waiting
+        return awaited(self)
 
     def _live_text(self) -> str | None:
         waiting = self._awaited()
@@ -534,18 +497,7 @@ class Supervisor:
             self.output.launcher("INFO", f"all {running} processes started in {took_ms:.0f} ms")
 
     def rows(self) -> list[ProcessRow]:
-        now = self.now()
-        return [
-            ProcessRow(
-                name,
-                st.child.pid if st.child else None,
-                st.state,
-                st.restarts,
-                now - st.started_at if st.child and st.started_at is not None else None,
-                st.exit_code,
-            )
-            for name, st in self.states.items()
-        ]
+        return process_rows(self)
 
     def show_status(self) -> None:
         self.output.show(StatusView(self.rows()))
