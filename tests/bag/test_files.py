@@ -232,3 +232,19 @@ def test_unknown_chunk_compression_is_refused(tmp_path: Path) -> None:
     f.write_bytes(raw.replace(b"\x04\x00\x00\x00zstd", b"\x04\x00\x00\x00zzzz"))
     line = one_error_line(run("bag", "play", str(bag)))
     assert "chunks_0.mcap" in line and "'zzzz'" in line and "readable: none, zstd, lz4" in line
+
+
+def test_split_by_duration(tmp_path: Path) -> None:
+    import time
+
+    bag = tmp_path / "dur"
+    w = BagWriter(bag, WriterOptions(max_bag_duration_s=0.2))
+    w.add_topic("/odom", ODOM, ros2msg(ODOM))
+    cdr = types.serialize(types.new(ODOM, {}), ODOM)
+    w.write("/odom", cdr, T0)
+    time.sleep(0.3)  # the first file is now older than --max-bag-duration
+    w.write("/odom", cdr, T0 + 1)
+    meta = w.close()
+    assert meta.relative_file_paths == ("dur_0.mcap", "dur_1.mcap")
+    assert [f.message_count for f in meta.files] == [1, 1]
+    assert topic_counts(run("bag", "info", str(bag)).stdout) == {"/odom": 2}

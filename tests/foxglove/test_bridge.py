@@ -86,6 +86,14 @@ def test_live_topics_subscribe_decode_and_client_publish(router: str, procs: Any
                 await asyncio.sleep(0.05)
                 if cmds:
                     break
+            # The app may publish JSON too (its teleop panel on a server without ros2msg definitions).
+            await ws.send(json.dumps({"op": "advertise", "channels": [
+                {"id": 4, "topic": "/cmd_vel", "encoding": "json", "schemaName": "geometry_msgs/msg/Twist"}]}))
+            for _ in range(100):
+                await ws.send(struct.pack("<BI", 1, 4) + json.dumps({"linear": {"x": 0.7}}).encode())
+                await asyncio.sleep(0.05)
+                if any(c.linear.x == 0.7 for c in cmds):
+                    break
             return ch, msg
 
     ch, msg = asyncio.run(client())
@@ -93,6 +101,7 @@ def test_live_topics_subscribe_decode_and_client_publish(router: str, procs: Any
     assert (ch["encoding"], ch["schemaEncoding"], ch["schemaName"]) == ("cdr", "ros2msg", "nav_msgs/msg/Odometry")
     assert msg.header.frame_id == "odom" and msg.pose.pose.position.x >= 1.5
     assert cmds and cmds[0].linear.x == 0.4 and cmds[0].angular.z == -0.2
+    assert any(c.linear.x == 0.7 and c.angular.z == 0.0 for c in cmds)
     procs.stop(bridge)
     node.close()
 
