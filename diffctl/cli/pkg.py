@@ -95,7 +95,7 @@ def pkg_prefix(package: str, share: bool) -> None:
     if share:
         click.echo(str(found.share))
     else:
-        click.echo(str(found.prefix if found.prefix is not None else found.share.parent))
+        click.echo(str(found.prefix if found.prefix is not None else found.share))
 
 
 @pkg.command("xml")

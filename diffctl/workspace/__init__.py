@@ -44,9 +44,9 @@ def share_dir(package: str) -> Path:
 
 def package_prefix(package: str) -> Path:
     """The install prefix of `package` (ament_index's get_package_prefix): `<prefix>/share/<package>`
-    is its share directory. diffctl's own packages are plain folders; their prefix is the share's parent."""
+    is its share directory. diffctl's own packages are plain folders: their prefix is the folder itself."""
     found = find_package(package)
-    return found.prefix if found.prefix is not None else found.share.parent
+    return found.prefix if found.prefix is not None else found.share
 
 
 def use_in_children(workspace: Path | None, env: dict[str, str] | os._Environ[str] = os.environ) -> None:

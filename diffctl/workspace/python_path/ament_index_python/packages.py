@@ -26,4 +26,4 @@ def get_package_share_path(package_name: str, print_warning: bool = True) -> Pat
 
 
 def get_packages_with_prefixes() -> dict[str, str]:
-    return {p.name: str(p.prefix if p.prefix is not None else p.share.parent) for p in list_packages()}
+    return {p.name: str(p.prefix if p.prefix is not None else p.share) for p in list_packages()}
