@@ -135,3 +135,32 @@ def test_bad_play_arguments(tmp_path: Path, args: list[str]) -> None:
     bag = tmp_path / "b"
     write_bag(bag, n=3)
     one_error_line(run("bag", "play", str(bag), *args))
+
+
+def test_keyboard_pause_step_resume_in_a_terminal(router: str, procs: Any, tmp_path: Path) -> None:
+    import os
+    import pty
+
+    bag = tmp_path / "keys"
+    write_bag(bag, n=25)
+    node = Node("bag_test_keys")
+    got: list[float] = []
+    node.create_subscription("/odom", "nav_msgs/msg/Odometry", lambda m: got.append(m.pose.pose.position.x))
+    master, slave = pty.openpty()
+    player = procs.diffctl("bag", "play", str(bag), "--start-paused", stdin=slave)
+    try:
+        assert wait_for(lambda: any(e.node_fqn == "/rosbag2_player" for e in node.graph.publishers("/odom")), 60)
+        time.sleep(1.0)
+        assert got == []  # paused from the start
+        os.write(master, b"\x1b[C")  # → publishes exactly the next message
+        assert wait_for(lambda: len(got) == 1, 20)
+        time.sleep(0.5)
+        assert got == [0.0]
+        os.write(master, b" ")  # SPACE resumes
+        assert wait_for(lambda: len(got) == 25, 20)
+        assert player.wait(30) == 0
+        assert "Resumed" in player.stdout.read()
+    finally:
+        os.close(master)
+        os.close(slave)
+        node.close()
