@@ -54,13 +54,26 @@ def known_packages() -> list[str]:
     return sorted({p.name for p in workspace.list_packages()} | component_packages())
 
 
+_reported: set[str] = set()
+
+
 def share_dir(package: str) -> Path:
-    """The share directory of `package`, as ament_index's get_package_share_directory gives it."""
+    """The share directory of `package`, as ament_index's get_package_share_directory gives it. Install
+    rules of a workspace package that install nothing are reported once: a file the launch file then
+    opens would otherwise be missing without a word."""
     try:
-        return workspace.share_dir(package)
+        found = workspace.find_package(package)
     except workspace.PackageNotFoundError:
         if package not in component_packages():
             raise
+    else:
+        if found.problems and package not in _reported:
+            from diffctl.console import warn
+
+            _reported.add(package)
+            for problem in found.problems:
+                warn(f"package {package!r} ({found.source}): {problem}")
+        return found.share
     raise LaunchError(
         f"package {package!r} is a diffctl component with no share directory",
         hint=f"start it with Node(package={package!r}, executable=…)",

@@ -93,7 +93,8 @@ def test_unknown_packages_and_launch_files_exit_2_naming_the_search(ws: Path) ->
     assert f"searched: workspace {ws} (2 packages)" in line
     r = diffctl("launch", "my_bot", "bringup.launch.yml", "--print", cwd=ws)
     assert r.returncode == 2
-    (line,) = r.stderr.strip().splitlines()
+    warning, line = r.stderr.strip().splitlines()
+    assert warning.startswith("warning: package 'my_bot'") and "worlds_missing does not exist" in warning
     assert f"no launch file 'bringup.launch.yml' in package 'my_bot' (workspace {ws / 'src' / 'my_bot'})" in line
     assert "did you mean 'bringup.launch.yaml'" in line
     r = diffctl("launch", "--workspace", str(ws.parent), "my_bot", "bringup.launch.yaml", cwd=ws)
@@ -111,6 +112,8 @@ def test_launch_resolves_the_users_package_and_children_resolve_the_same(ws: Pat
     share = next(line for line in r.stdout.splitlines() if line.startswith("[resolver] ")).split()[-1]
     assert (Path(share) / "launch" / "bringup.launch.yaml").resolve() == ws / "src/my_bot/launch/bringup.launch.yaml"
     assert "hello from my_bot" in r.stdout
+    # an install rule that installs nothing is said once, not left to a missing file later
+    assert r.stderr.count("CMakeLists.txt:5: directory worlds_missing does not exist") == 1
     # the real xacro, run as a command, resolves $(find) through diffctl's ament_index_python
     assert f'filename="{share}/config/params.yaml"' in r.stdout
     assert snapshot(ws) == before  # nothing written into the user's workspace
