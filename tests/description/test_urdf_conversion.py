@@ -327,6 +327,12 @@ def test_meshes_resolve_by_package_file_and_relative_uris(tmp_path: Path, monkey
     assert converted.bounds == pytest.approx(box.bounds, abs=1e-6)  # the same shape, now readable by PyBullet
     assert trimesh.load(paths[4], force="mesh").bounds == pytest.approx(box.bounds, abs=1e-6)
     assert visuals[0].geometry.scale == (2.0, 2.0, 2.0)
+    # an unindexed package found the way Gazebo finds it: <GZ_SIM_RESOURCE_PATH entry>/<package>/<path>
+    (tmp_path / "models" / "loose_pkg").mkdir(parents=True)
+    box.export(tmp_path / "models" / "loose_pkg" / "part.stl")
+    monkeypatch.setenv("GZ_SIM_RESOURCE_PATH", str(tmp_path / "models"))
+    loose = parse_description(ROBOT.format(_link("a", extra=mesh("package://loose_pkg/part.stl"))))
+    assert Path(loose.link("a").visuals[0].geometry.path) == (tmp_path / "models" / "loose_pkg" / "part.stl").resolve()
     assert [v.geometry.uri for v in visuals] == [
         "package://demo_meshes/meshes/body.stl",
         f"file://{tmp_path}/wheel.obj",

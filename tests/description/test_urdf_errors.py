@@ -158,7 +158,7 @@ def test_mesh_of_an_unknown_package(tmp_path: Path, monkeypatch: pytest.MonkeyPa
         parse_description(text, source="robot.urdf")
     assert info.value.line == 3
     assert "package://no_such_pkg/m.stl" in str(info.value)
-    assert "package 'no_such_pkg' not found" in str(info.value)
+    assert "package 'no_such_pkg' not found (searched: " in str(info.value)
     # TF and the visualizer do not need the file: the kinematic view keeps the URI as written
     model = parse_description(text, simulation=False, check_files=False)
     assert model.link("a").collisions[0].geometry.uri == "package://no_such_pkg/m.stl"

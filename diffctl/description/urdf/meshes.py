@@ -30,10 +30,13 @@ def _candidates(uri: str, base_dir: Path) -> tuple[list[Path], str | None]:
     """Paths `uri` may name, in order, and the reason none could be listed (an unknown package)."""
     if uri.startswith("package://"):
         package, _, rest = uri[len("package://") :].partition("/")
+        # Gazebo rewrites package:// to model:// and searches GZ_SIM_RESOURCE_PATH: those places come after the
+        # package index, so a setup that only exported the resource path keeps working.
+        fallback = [d / package / rest for d in env_search_path()]
         try:
-            return [package_share(package) / rest], None
+            return [package_share(package) / rest, *fallback], None
         except DiffctlError as e:
-            return [], f"package {package!r} not found ({e.message})"
+            return fallback, f"package {package!r} not found" + (f" ({e.hint})" if e.hint else "")
     if uri.startswith("model://"):
         rest = uri[len("model://") :]
         return [d / rest for d in env_search_path()], None
@@ -73,15 +76,15 @@ def resolve_mesh(uri: str, base_dir: Path, source: str, line: int | None) -> Pat
     candidates, problem = _candidates(uri, base_dir)
     found = next((c for c in candidates if c.is_file()), None)
     if found is None:
-        looked = ", ".join(str(c) for c in candidates) or "nowhere"
-        if uri.startswith("model://") and not candidates:
-            looked = "nowhere: GZ_SIM_RESOURCE_PATH is empty"
+        looked = ", ".join(str(c) for c in candidates)
+        if not looked and uri.startswith(("model://", "package://")):
+            looked = "GZ_SIM_RESOURCE_PATH, which is empty"
         raise DescriptionError(
             f"mesh {uri!r} not found" + (f": {problem}" if problem else ""),
             source=source,
             line=line,
             field="mesh",
-            hint=f"looked in {looked}",
+            hint=f"looked in {looked}" if looked else None,
         )
     suffix = found.suffix.lower()
     if suffix in DIRECT_SUFFIXES:
