@@ -163,9 +163,10 @@ class Player:
             while not self._stop.is_set():
                 with self._lock:
                     self.timer.jump_to(self.first_ns)
+                before = self.published
                 self._play_once()
-                if not self.options.loop:
-                    break
+                if not self.options.loop or self.published == before:
+                    break  # looping over nothing (an offset past the end) would spin
         finally:
             self._stop.set()
             if clock is not None:

@@ -15,6 +15,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import zstandard
+from mcap import records as mcap_records
 from mcap.exceptions import McapError
 from mcap.reader import FOOTER_SIZE, make_reader
 from mcap.records import Chunk, Footer
@@ -64,14 +65,14 @@ class Message:
     data: bytes
 
 
-def _channel(ch: object, schema: object | None, where: str) -> Channel:
-    meta = dict(getattr(ch, "metadata", {}) or {})
-    qos = qos_list_from(meta.get("offered_qos_profiles", ""), f"{where}: channel {ch.topic}")  # type: ignore[attr-defined]
+def _channel(ch: mcap_records.Channel, schema: mcap_records.Schema | None, where: str) -> Channel:
+    meta = dict(ch.metadata or {})
+    qos = tuple(qos_list_from(meta.get("offered_qos_profiles", ""), f"{where}: channel {ch.topic}"))
+    type_hash = meta.get("topic_type_hash", "")
     if schema is None:
-        return Channel(ch.topic, "", ch.message_encoding, "", "", tuple(qos), meta.get("topic_type_hash", ""))  # type: ignore[attr-defined]
-    data = schema.data  # type: ignore[attr-defined]
-    return Channel(ch.topic, schema.name, ch.message_encoding, schema.encoding,  # type: ignore[attr-defined]
-                   bytes(data).decode("utf-8", "replace"), tuple(qos), meta.get("topic_type_hash", ""))
+        return Channel(ch.topic, "", ch.message_encoding, "", "", qos, type_hash)
+    return Channel(ch.topic, schema.name, ch.message_encoding, schema.encoding,
+                   bytes(schema.data).decode("utf-8", "replace"), qos, type_hash)
 
 
 def _fail(path: Path, what: str) -> ConfigError:

@@ -37,7 +37,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "Publish the non-fixed joints of /robot_description (joint_state_publisher).",
     ),
     "bag": ("diffctl.bag.cli:bag", "Record and replay rosbag2 MCAP bags (ros2 bag)."),
-    "foxglove-bridge": ("diffctl.foxglove.cli:foxglove_bridge", "Serve the Foxglove WebSocket protocol (foxglove_bridge)."),
+    "foxglove-bridge": ("diffctl.foxglove.cli:foxglove_bridge", "Foxglove WebSocket server (foxglove_bridge)."),
 }
 
 

@@ -68,11 +68,14 @@ class LiveBridge:
             if len(kinds) == 1 and types.exists(next(iter(kinds))):
                 offered[topic] = (next(iter(kinds)), any(e.transient_local for e in pubs))
         with self._lock:
-            for topic in [t for t in self._topics if t not in offered or offered[t][0] != self._topics[t].type]:
-                self._drop(topic)
+            gone = [self._forget(t) for t in list(self._topics)
+                    if t not in offered or offered[t][0] != self._topics[t].type]
             for topic, (typename, latched) in offered.items():
                 if topic not in self._topics:
                     self._add(topic, typename, latched)
+        # Closed outside the lock: the SDK reports the unsubscriptions a close causes through our callbacks.
+        for t in gone:
+            self._close(t)
 
     def _add(self, topic: str, typename: str, latched: bool) -> None:
         schema = foxglove.Schema(name=typename, encoding="ros2msg", data=ros2msg(typename).encode())
@@ -80,9 +83,13 @@ class LiveBridge:
         self._topics[topic] = _Topic(typename, ch, latched)
         self._by_channel[ch.id()] = topic
 
-    def _drop(self, topic: str) -> None:
+    def _forget(self, topic: str) -> _Topic:
         t = self._topics.pop(topic)
         self._by_channel.pop(t.channel.id(), None)
+        return t
+
+    @staticmethod
+    def _close(t: _Topic) -> None:
         if t.sub is not None:
             t.sub.close()
         t.channel.close()
@@ -154,8 +161,10 @@ class LiveBridge:
         self._wake.set()
         self._thread.join(2.0)
         with self._lock:
-            for topic in list(self._topics):
-                self._drop(topic)
-            for pub, _, _ in self._client_pubs.values():
-                pub.close()
+            gone = [self._forget(t) for t in list(self._topics)]
+            pubs = [pub for pub, _, _ in self._client_pubs.values()]
             self._client_pubs.clear()
+        for t in gone:
+            self._close(t)
+        for pub in pubs:
+            pub.close()
