@@ -217,3 +217,18 @@ def test_a_background_job_left_by_a_finished_shell_gets_sigterm_at_once(launch_r
     ran = float(run.wait_for(r"\[bg\] finished cleanly \(pid \d+, ran ([\d.]+) s\)").group(1))
     assert ran >= 1.0  # the shell slept a second before exiting: the figure counts from its start
     assert_nothing_left(run)
+
+
+def test_children_and_command_substitutions_find_the_venvs_tools_without_activation(launch_run, tmp_path) -> None:
+    bindir = str(Path(sys.executable).parent)
+    launch = tmp_path / "tools.launch.xml"
+    launch.write_text(
+        "<launch>\n"
+        "  <log message=\"command: $(command 'sh -c \\'command -v xacro\\'')\"/>\n"
+        '  <executable cmd="sh -c \'command -v diffctl\'" name="child" output="screen"/>\n'
+        "</launch>\n"
+    )
+    run = launch_run(str(launch), "--no-router", env={"PATH": "/usr/bin:/bin"})
+    assert run.wait(30) == 0, run.text()
+    assert f"command: {bindir}/xacro" in run.text()
+    assert f"[child] {bindir}/diffctl" in run.text()
