@@ -186,6 +186,8 @@ class Bag:
         paths = []
         for name in meta.relative_file_paths:
             p = self.path / name
+            if not p.is_file() and (self.path / Path(name).name).is_file():
+                p = self.path / Path(name).name  # Foxy-era bags list `<bag dir>/<file>`
             if not p.is_file():
                 present = ", ".join(sorted(q.name for q in self.path.iterdir() if q.name != "metadata.yaml"))
                 raise ConfigError(f"lists {name} but the bag folder has no such file", source=source,

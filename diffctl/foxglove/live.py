@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -32,7 +33,7 @@ class _Topic:
 
 
 class LiveBridge:
-    def __init__(self, node: Any, context: foxglove.Context, say: Any = print) -> None:
+    def __init__(self, node: Any, context: foxglove.Context, say: Callable[[str], None] = print) -> None:
         self.node = node
         self.context = context
         self.say = say

@@ -110,6 +110,8 @@ def downgrade(bag_dir: Path, version: int) -> None:
     for key, since in (("ros_distro", 8), ("custom_data", 6), ("files", 5)):
         if version < since:
             info.pop(key, None)
+    if version == 4:  # Foxy listed files with the bag folder in front
+        info["relative_file_paths"] = [f"{bag_dir.name}/{p}" for p in info["relative_file_paths"]]
     for t in info["topics_with_message_count"]:
         tm = t["topic_metadata"]
         if version < 7:
