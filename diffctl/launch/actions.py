@@ -1,7 +1,8 @@
 """The description model: launch actions named as in `launch` (DeclareLaunchArgument, GroupAction, …).
 
-Both frontends build these objects: Python launch files construct them, the YAML frontend builds them with
-each class's `from_yaml`. `visit()` resolves an action in a scope into plan steps (see resolver.py).
+Every frontend builds these objects: Python launch files construct them, the YAML and XML frontends build
+them with each class's `from_entity` (the entity's accessors hide which of the two it came from).
+`visit()` resolves an action in a scope into plan steps (see resolver.py).
 Processes (ExecuteProcess, Node) live in process_actions.py, event handlers in event_handlers.py, includes in
 include_action.py, EmitEvent and OpaqueFunction in event_actions.py, launch_ros's scope actions in ros_actions.py.
 """
@@ -49,8 +50,8 @@ def describe(value: Any) -> str:
 class Action(ABC):
     """Base of everything a launch description holds. Every action takes `condition`, `wait_for`, `wait_timeout`."""
 
-    yaml_tags: ClassVar[tuple[str, ...]] = ()
-    yaml_attrs: ClassVar[tuple[str, ...]] = ()
+    frontend_tags: ClassVar[tuple[str, ...]] = ()
+    frontend_attrs: ClassVar[tuple[str, ...]] = ()
 
     def __init__(
         self,
@@ -65,15 +66,15 @@ class Action(ABC):
         self.where = caller_where()
 
     def label(self) -> str:
-        return self.yaml_tags[0] if self.yaml_tags else type(self).__name__
+        return self.frontend_tags[0] if self.frontend_tags else type(self).__name__
 
     @abstractmethod
     def visit(self, r: Resolver, scope: Scope) -> list[Step]:
         """Resolve this action in `scope` into the steps the supervisor carries out."""
 
     @classmethod
-    def from_yaml(cls, e: Entity) -> Action:
-        raise LaunchError(f"`{e.tag}` cannot be written in YAML launch files", hint="use the Python frontend")
+    def from_entity(cls, e: Entity) -> Action:
+        raise LaunchError(f"`{e.tag}` cannot be written in YAML or XML launch files", hint="use the Python frontend")
 
 
 class LaunchDescription(Action):
@@ -98,8 +99,8 @@ class LaunchDescription(Action):
 
 @register
 class DeclareLaunchArgument(Action):
-    yaml_tags = ("arg",)
-    yaml_attrs = ("name", "default", "description", "choices")
+    frontend_tags = ("arg",)
+    frontend_attrs = ("name", "default", "description", "choices")
 
     def __init__(
         self,
@@ -139,7 +140,7 @@ class DeclareLaunchArgument(Action):
         return []
 
     @classmethod
-    def from_yaml(cls, e: Entity) -> Action:
+    def from_entity(cls, e: Entity) -> Action:
         choices = e.raw("choices")
         if choices is not None and not isinstance(choices, list):
             raise e.error("choices must be a list", key="choices")
@@ -155,8 +156,8 @@ class DeclareLaunchArgument(Action):
 class SetLaunchConfiguration(Action):
     """`let`: set a launch configuration; `let: {name, file, replace}` reads a file with placeholders replaced."""
 
-    yaml_tags = ("let",)
-    yaml_attrs = ("name", "value", "file", "replace")
+    frontend_tags = ("let",)
+    frontend_attrs = ("name", "value", "file", "replace")
 
     def __init__(self, name: SomeSubstitutions, value: SomeSubstitutions, **kw: Any) -> None:
         super().__init__(**kw)
@@ -171,7 +172,7 @@ class SetLaunchConfiguration(Action):
         return []
 
     @classmethod
-    def from_yaml(cls, e: Entity) -> Action:
+    def from_entity(cls, e: Entity) -> Action:
         if e.has("file") == e.has("value"):
             raise e.error("`let` takes either `value` or `file` (with optional `replace`)")
         if e.has("replace") and not e.has("file"):
@@ -190,8 +191,8 @@ class SetLaunchConfiguration(Action):
 class GroupAction(Action):
     """A group of actions; scoped by default, so configurations, environment and namespace stay inside."""
 
-    yaml_tags = ("group",)
-    yaml_attrs = ("scoped", "forwarding", "namespace", "keep", "children")
+    frontend_tags = ("group",)
+    frontend_attrs = ("scoped", "forwarding", "namespace", "keep", "children")
 
     def __init__(
         self,
@@ -219,7 +220,7 @@ class GroupAction(Action):
         return r.visit_all(self.actions, inner)
 
     @classmethod
-    def from_yaml(cls, e: Entity) -> Action:
+    def from_entity(cls, e: Entity) -> Action:
         keep = {
             k.plain("name", required=True): k.text("value", required=True) for k in e.items("keep", ("name", "value"))
         }
@@ -234,8 +235,8 @@ class GroupAction(Action):
 
 @register
 class PushRosNamespace(Action):
-    yaml_tags = ("push_ros_namespace",)
-    yaml_attrs = ("namespace",)
+    frontend_tags = ("push_ros_namespace",)
+    frontend_attrs = ("namespace",)
 
     def __init__(self, namespace: SomeSubstitutions, **kw: Any) -> None:
         super().__init__(**kw)
@@ -246,7 +247,7 @@ class PushRosNamespace(Action):
         return []
 
     @classmethod
-    def from_yaml(cls, e: Entity) -> Action:
+    def from_entity(cls, e: Entity) -> Action:
         return cls(e.text("namespace", required=True))
 
 
@@ -255,8 +256,8 @@ PushROSNamespace = PushRosNamespace
 
 @register
 class SetEnvironmentVariable(Action):
-    yaml_tags = ("set_env",)
-    yaml_attrs = ("name", "value")
+    frontend_tags = ("set_env",)
+    frontend_attrs = ("name", "value")
 
     def __init__(self, name: SomeSubstitutions, value: SomeSubstitutions, **kw: Any) -> None:
         super().__init__(**kw)
@@ -268,7 +269,7 @@ class SetEnvironmentVariable(Action):
         return []
 
     @classmethod
-    def from_yaml(cls, e: Entity) -> Action:
+    def from_entity(cls, e: Entity) -> Action:
         return cls(e.text("name", required=True), e.text("value", required=True))
 
 
@@ -276,8 +277,8 @@ class SetEnvironmentVariable(Action):
 class AppendEnvironmentVariable(Action):
     """`append_env`: add to a PATH-like variable (`prepend` puts it first), joined with `separator`."""
 
-    yaml_tags = ("append_env",)
-    yaml_attrs = ("name", "value", "prepend", "separator")
+    frontend_tags = ("append_env",)
+    frontend_attrs = ("name", "value", "prepend", "separator")
 
     def __init__(
         self,
@@ -301,7 +302,7 @@ class AppendEnvironmentVariable(Action):
         return []
 
     @classmethod
-    def from_yaml(cls, e: Entity) -> Action:
+    def from_entity(cls, e: Entity) -> Action:
         return cls(
             e.text("name", required=True),
             e.text("value", required=True),
@@ -312,8 +313,8 @@ class AppendEnvironmentVariable(Action):
 
 @register
 class UnsetEnvironmentVariable(Action):
-    yaml_tags = ("unset_env",)
-    yaml_attrs = ("name",)
+    frontend_tags = ("unset_env",)
+    frontend_attrs = ("name",)
 
     def __init__(self, name: SomeSubstitutions, **kw: Any) -> None:
         super().__init__(**kw)
@@ -324,7 +325,7 @@ class UnsetEnvironmentVariable(Action):
         return []
 
     @classmethod
-    def from_yaml(cls, e: Entity) -> Action:
+    def from_entity(cls, e: Entity) -> Action:
         return cls(e.text("name", required=True))
 
 
@@ -341,8 +342,8 @@ def seconds(text: str, what: str, *, allow_zero: bool = True) -> float:
 
 @register
 class TimerAction(Action):
-    yaml_tags = ("timer",)
-    yaml_attrs = ("period", "children", "cancel_on_shutdown")
+    frontend_tags = ("timer",)
+    frontend_attrs = ("period", "children", "cancel_on_shutdown")
 
     def __init__(
         self,
@@ -366,7 +367,7 @@ class TimerAction(Action):
         return [StartTimer(period_s=period, steps=tuple(steps), cancel_on_shutdown=self.cancel_on_shutdown)]
 
     @classmethod
-    def from_yaml(cls, e: Entity) -> Action:
+    def from_entity(cls, e: Entity) -> Action:
         return cls(
             period=e.text("period", required=True),
             actions=e.children(),
@@ -376,8 +377,8 @@ class TimerAction(Action):
 
 @register
 class LogInfo(Action):
-    yaml_tags = ("log",)
-    yaml_attrs = ("message", "level")
+    frontend_tags = ("log",)
+    frontend_attrs = ("message", "level")
 
     def __init__(self, *, msg: SomeSubstitutions, **kw: Any) -> None:
         super().__init__(**kw)
@@ -390,7 +391,7 @@ class LogInfo(Action):
         return [LogMessage(message=perform(self.msg, scope))]
 
     @classmethod
-    def from_yaml(cls, e: Entity) -> Action:
+    def from_entity(cls, e: Entity) -> Action:
         level = e.plain("level")
         if level is not None and level.upper() != "INFO":
             raise e.error(f"log level {level!r} is not supported", key="level", hint="valid: INFO")
@@ -401,8 +402,8 @@ class LogInfo(Action):
 class Shutdown(Action):
     """Shut the whole launch down (the `required` idiom: `on_exit=Shutdown()` / `on_exit: shutdown`)."""
 
-    yaml_tags = ("shutdown",)
-    yaml_attrs = ("reason",)
+    frontend_tags = ("shutdown",)
+    frontend_attrs = ("reason",)
 
     def __init__(self, *, reason: SomeSubstitutions | None = None, **kw: Any) -> None:
         super().__init__(**kw)
@@ -413,7 +414,7 @@ class Shutdown(Action):
         return [RequestShutdown(reason=reason)]
 
     @classmethod
-    def from_yaml(cls, e: Entity) -> Action:
+    def from_entity(cls, e: Entity) -> Action:
         return cls(reason=e.text("reason"))
 
 

@@ -187,8 +187,8 @@ class OnProcessIO(EventHandler):
 
 @register
 class RegisterEventHandler(Action):
-    yaml_tags = ("on_exit", "on_start", "on_shutdown")
-    yaml_attrs = ("target", "exit_code", "do")
+    frontend_tags = ("on_exit", "on_start", "on_shutdown")
+    frontend_attrs = ("target", "exit_code", "do")
 
     def __init__(self, event_handler: EventHandler, **kw: Any) -> None:
         super().__init__(**kw)
@@ -206,7 +206,7 @@ class RegisterEventHandler(Action):
         return [AddHandler(handler=self.event_handler.resolve(r, scope))]
 
     @classmethod
-    def from_yaml(cls, e: Entity) -> Action:
+    def from_entity(cls, e: Entity) -> Action:
         if e.tag == "on_shutdown" and e.has("target"):
             raise e.error("on_shutdown takes no target", key="target")
         if e.tag != "on_exit" and e.has("exit_code"):

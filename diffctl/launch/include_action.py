@@ -40,8 +40,8 @@ XMLLaunchDescriptionSource = LaunchDescriptionSource
 class IncludeLaunchDescription(Action):
     """Include another launch file with arguments; what it sets stays inside it."""
 
-    yaml_tags = ("include",)
-    yaml_attrs = ("file", "arg")
+    frontend_tags = ("include",)
+    frontend_attrs = ("file", "arg")
 
     def __init__(
         self,
@@ -82,7 +82,7 @@ class IncludeLaunchDescription(Action):
         return r.include(path, inner)
 
     @classmethod
-    def from_yaml(cls, e: Entity) -> Action:
+    def from_entity(cls, e: Entity) -> Action:
         args = [
             (a.text("name", required=True), a.text("value", required=True)) for a in e.items("arg", ("name", "value"))
         ]

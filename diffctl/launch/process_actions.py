@@ -129,8 +129,8 @@ def _option(value: Any, scope: Scope) -> Any:
 
 @register
 class ExecuteProcess(Action):
-    yaml_tags = ("executable",)
-    yaml_attrs = ("cmd", "args", "shell", *PROCESS_ATTRS)
+    frontend_tags = ("executable",)
+    frontend_attrs = ("cmd", "args", "shell", *PROCESS_ATTRS)
 
     def __init__(
         self,
@@ -251,7 +251,7 @@ class ExecuteProcess(Action):
         return {}
 
     @classmethod
-    def yaml_process_options(cls, e: Entity) -> dict[str, Any]:
+    def entity_process_options(cls, e: Entity) -> dict[str, Any]:
         on_exit: Any = None
         if e.has("on_exit"):
             raw = e.raw("on_exit")
@@ -283,15 +283,15 @@ class ExecuteProcess(Action):
         }
 
     @classmethod
-    def from_yaml(cls, e: Entity) -> Action:
+    def from_entity(cls, e: Entity) -> Action:
         if not e.has("cmd"):
             raise e.error("`executable` needs `cmd`")
-        cmd = yaml_words(e, "cmd") + yaml_words(e, "args")
-        kw = {k: v for k, v in cls.yaml_process_options(e).items() if v is not None}
+        cmd = entity_words(e, "cmd") + entity_words(e, "args")
+        kw = {k: v for k, v in cls.entity_process_options(e).items() if v is not None}
         return cls(cmd=cmd, shell=e.boolean("shell", False), **kw)
 
 
-def yaml_words(e: Entity, key: str) -> list[Any]:
+def entity_words(e: Entity, key: str) -> list[Any]:
     """`args: "a b 'c d'"` is split like a shell would; `args: [a, b, c d]` is taken item by item."""
     raw = e.raw(key)
     if raw is None:
@@ -316,8 +316,19 @@ def _check_executable(program: str, path: str, cwd: str | None) -> None:
 class Node(ExecuteProcess):
     """A ROS node from the package index: `Node(package="controller_manager", executable="spawner", …)`."""
 
-    yaml_tags = ("node",)
-    yaml_attrs = ("pkg", "exec", "namespace", "ns", "args", "ros_args", "param", "remap", "exec_name", *PROCESS_ATTRS)
+    frontend_tags = ("node",)
+    frontend_attrs = (
+        "pkg",
+        "exec",
+        "namespace",
+        "ns",
+        "args",
+        "ros_args",
+        "param",
+        "remap",
+        "exec_name",
+        *PROCESS_ATTRS,
+    )
 
     def __init__(
         self,
@@ -387,8 +398,8 @@ class Node(ExecuteProcess):
         return RosNode(node_name=node_name, namespace=namespace, params=params, remaps=(*scope.remaps, *own)), {}
 
     @classmethod
-    def from_yaml(cls, e: Entity) -> Action:
-        kw = {k: v for k, v in cls.yaml_process_options(e).items() if v is not None}
+    def from_entity(cls, e: Entity) -> Action:
+        kw = {k: v for k, v in cls.entity_process_options(e).items() if v is not None}
         kw["exec_name"] = e.text("exec_name")
         kw["name"] = e.text("name")
         if e.has("namespace") and e.has("ns"):
@@ -397,9 +408,9 @@ class Node(ExecuteProcess):
             package=e.text("pkg"),
             executable=e.text("exec", required=True),
             namespace=e.text("namespace") if e.has("namespace") else e.text("ns"),
-            arguments=yaml_words(e, "args"),
-            ros_arguments=yaml_words(e, "ros_args"),
-            parameters=_yaml_params(e),
+            arguments=entity_words(e, "args"),
+            ros_arguments=entity_words(e, "ros_args"),
+            parameters=_entity_params(e),
             remappings=[
                 (r.text("from", required=True), r.text("to", required=True)) for r in e.items("remap", ("from", "to"))
             ],
@@ -407,7 +418,7 @@ class Node(ExecuteProcess):
         )
 
 
-def _yaml_params(e: Entity, key: str = "param") -> list[Any]:
+def _entity_params(e: Entity, key: str = "param") -> list[Any]:
     """`param:` items: {name, value}, {from: FILE}, or {name, param: [...]} for a nested namespace."""
     out: list[Any] = []
     for item in e.items(key, ("name", "value", "from", "param")):
@@ -419,7 +430,7 @@ def _yaml_params(e: Entity, key: str = "param") -> list[Any]:
         name = item.plain("name", required=True)
         if item.has("param"):
             nested: dict[str, Any] = {}
-            for sub in _yaml_params(item, "param"):
+            for sub in _entity_params(item, "param"):
                 if not isinstance(sub, Mapping):
                     raise item.error("nested parameters cannot load files", key="param")
                 nested.update(sub)

@@ -1,7 +1,7 @@
 """The one registry of action classes: frontend tag → class, and the attributes each tag accepts.
 
 Action classes register themselves with `@register`; the YAML and XML frontends look tags up here (unknown
-tag → close-match suggestion) and check every attribute against the class's `yaml_attrs` plus the
+tag → close-match suggestion) and check every attribute against the class's `frontend_attrs` plus the
 attributes every entity takes (`COMMON_ATTRS`). Python launch files construct the same classes.
 """
 
@@ -22,7 +22,7 @@ A = TypeVar("A", bound="type[Action]")
 
 
 def register(cls: A) -> A:
-    for tag in cls.yaml_tags:
+    for tag in cls.frontend_tags:
         if tag in _ACTIONS:
             raise RuntimeError(f"YAML tag {tag!r} registered twice")
         _ACTIONS[tag] = cls
@@ -49,4 +49,4 @@ def lookup(tag: str) -> type[Action]:
 
 
 def attributes(tag: str) -> tuple[str, ...]:
-    return lookup(tag).yaml_attrs + COMMON_ATTRS
+    return lookup(tag).frontend_attrs + COMMON_ATTRS

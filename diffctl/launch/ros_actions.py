@@ -24,8 +24,8 @@ if TYPE_CHECKING:
 class SetParameter(Action):
     """A parameter for every node after it in this scope (ROS passes it as `-p name:=value`)."""
 
-    yaml_tags = ("set_parameter",)
-    yaml_attrs = ("name", "value")
+    frontend_tags = ("set_parameter",)
+    frontend_attrs = ("name", "value")
 
     def __init__(self, name: SomeSubstitutions, value: Any, **kw: Any) -> None:
         super().__init__(**kw)
@@ -40,7 +40,7 @@ class SetParameter(Action):
         return []
 
     @classmethod
-    def from_yaml(cls, e: Entity) -> Action:
+    def from_entity(cls, e: Entity) -> Action:
         if not e.has("value"):
             raise e.error("`set_parameter` needs `value`")
         return cls(e.text("name", required=True), e.value("value"))
@@ -50,8 +50,8 @@ class SetParameter(Action):
 class SetUseSimTime(Action):
     """`set_use_sim_time`: SetParameter('use_sim_time', value) for every node after it."""
 
-    yaml_tags = ("set_use_sim_time",)
-    yaml_attrs = ("value",)
+    frontend_tags = ("set_use_sim_time",)
+    frontend_attrs = ("value",)
 
     def __init__(self, value: bool | SomeSubstitutions, **kw: Any) -> None:
         super().__init__(**kw)
@@ -65,7 +65,7 @@ class SetUseSimTime(Action):
         return []
 
     @classmethod
-    def from_yaml(cls, e: Entity) -> Action:
+    def from_entity(cls, e: Entity) -> Action:
         return cls(e.text("value", required=True))
 
 
@@ -73,8 +73,8 @@ class SetUseSimTime(Action):
 class SetRemap(Action):
     """A remapping for every node after it in this scope (before each node's own remappings)."""
 
-    yaml_tags = ("set_remap",)
-    yaml_attrs = ("from", "to")
+    frontend_tags = ("set_remap",)
+    frontend_attrs = ("from", "to")
 
     def __init__(self, src: SomeSubstitutions, dst: SomeSubstitutions, **kw: Any) -> None:
         super().__init__(**kw)
@@ -88,5 +88,5 @@ class SetRemap(Action):
         return []
 
     @classmethod
-    def from_yaml(cls, e: Entity) -> Action:
+    def from_entity(cls, e: Entity) -> Action:
         return cls(e.text("from", required=True), e.text("to", required=True))

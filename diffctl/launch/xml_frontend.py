@@ -2,7 +2,7 @@
 
 Tags and attributes are those of ROS 2's `launch_xml` (`-` and `_` are interchangeable, as in
 `launch-prefix` / `push-ros-namespace`); every tag maps through the one registry of action classes, whose
-`from_yaml` reads an `XmlEntity` exactly as it reads a YAML entity. Attribute values are text, so `<param>`
+`from_entity` reads an `XmlEntity` exactly as it reads a YAML entity. Attribute values are text, so `<param>`
 values are typed as launch_xml types them (parameters.coerce). Errors name file:line, the tag and the
 attribute, with a close match when there is one.
 """
@@ -208,7 +208,7 @@ def _entity(element: Any, source: str) -> Action:
     for param in e.items("param", ("name", "value", "from", "param")) if "param" in allowed else ():
         _check_param(param)
     try:
-        action = registry.lookup(tag).from_yaml(e)  # type: ignore[arg-type]
+        action = registry.lookup(tag).from_entity(e)  # type: ignore[arg-type]
     except LaunchError as err:
         raise where.attach(err, tag) from None
     return attach_common(action, e)  # type: ignore[arg-type]

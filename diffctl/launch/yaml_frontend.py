@@ -243,7 +243,7 @@ def _entity(item: Any, source: str, mark: yaml.Mark | None) -> Action:
         raise where.attach(e) from None
     e = Entity(tag, value, source, tag_mark, allowed)
     try:
-        action = registry.lookup(tag).from_yaml(e)
+        action = registry.lookup(tag).from_entity(e)
     except LaunchError as err:
         raise e.where.attach(err, tag) from None
     return attach_common(action, e)
