@@ -329,6 +329,47 @@ class UnsetEnvironmentVariable(Action):
         return cls(e.text("name", required=True))
 
 
+@register
+class ResetEnvironment(Action):
+    """`reset_env`: the environment as it was when the launch started, for everything after it in this scope."""
+
+    frontend_tags = ("reset_env",)
+
+    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+        for name in set(scope.env) | set(scope.initial_env):
+            if scope.env.get(name) != scope.initial_env.get(name):
+                scope.set_env(name, scope.initial_env.get(name))
+        return []
+
+    @classmethod
+    def from_entity(cls, e: Entity) -> Action:
+        return cls()
+
+
+@register
+class ResetLaunchConfigurations(Action):
+    """`reset`: forget every launch configuration but the `<keep>` ones (evaluated before forgetting)."""
+
+    frontend_tags = ("reset",)
+    frontend_attrs = ("keep",)
+
+    def __init__(self, launch_configurations: Mapping[str, SomeSubstitutions] | None = None, **kw: Any) -> None:
+        super().__init__(**kw)
+        self.keep = {k: normalize(v) for k, v in (launch_configurations or {}).items()}
+
+    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+        kept = {k: perform(v, scope) for k, v in self.keep.items()}
+        scope.configurations.clear()
+        scope.configurations.update(kept)
+        return []
+
+    @classmethod
+    def from_entity(cls, e: Entity) -> Action:
+        return cls(
+            {k.plain("name", required=True): k.text("value", required=True) for k in e.items("keep", ("name", "value"))}
+        )
+
+
 def seconds(text: str, what: str, *, allow_zero: bool = True) -> float:
     """A duration attribute → float seconds, rejecting negative, NaN and infinite values."""
     try:

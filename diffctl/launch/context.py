@@ -37,14 +37,17 @@ class Scope:
     includes: tuple[str, ...] = ()
     gate: Gate | None = None
     anon: AnonNames = field(default_factory=AnonNames)
+    initial_env: dict[str, str] = field(default_factory=dict)  # what ResetEnvironment goes back to
     global_params: dict[str, Any] = field(default_factory=dict)  # SetParameter: for every node after it
     remaps: list[tuple[str, str]] = field(default_factory=list)  # SetRemap: for every node after it
 
     @classmethod
     def initial(cls, arguments: dict[str, str], launch_file: str | None, env: dict[str, str] | None = None) -> Scope:
+        start = with_tool_path(dict(os.environ if env is None else env))
         return cls(
             configurations=dict(arguments),
-            env=with_tool_path(dict(os.environ if env is None else env)),
+            env=start,
+            initial_env=dict(start),
             launch_file=launch_file,
             includes=(launch_file,) if launch_file else (),
         )

@@ -462,3 +462,19 @@ def test_readiness_in_xml_as_nested_wait_for_elements(tmp_path: Path) -> None:
     assert gate.timeout_s == 5.0
     e = error_of(tmp_path, '<launch>\n  <log message="x">\n    <wait_for exited="a" started="b"/>\n  </log>\n</launch>')
     assert "takes one condition" in str(e) and e.line == 3
+
+
+def test_reset_env_and_reset_keep(tmp_path: Path, monkeypatch) -> None:
+    monkeypatch.setenv("DIFFCTL_XML_KEEP", "original")
+    text = """
+        <launch>
+          <let name="a" value="1"/>
+          <let name="b" value="2"/>
+          <set_env name="DIFFCTL_XML_KEEP" value="changed"/>
+          <set_env name="DIFFCTL_XML_NEW" value="new"/>
+          <reset_env/>
+          <reset><keep name="b" value="$(var b)"/></reset>
+          <log message="$(env DIFFCTL_XML_KEEP) $(env DIFFCTL_XML_NEW 'unset') $(var a 'gone') $(var b)"/>
+        </launch>
+    """
+    assert logs(plan_of(tmp_path, text)) == ["original unset gone 2"]
