@@ -175,7 +175,11 @@ class ThisLaunchFile(Substitution):
 
 # What `$(eval …)` may use: arithmetic, comparisons and a few pure builtins, plus `math`.
 _EVAL_BUILTINS: dict[str, Any] = {
-    name: getattr(builtins, name) for name in ("abs", "min", "max", "round", "int", "float", "str", "bool", "len")
+    name: getattr(builtins, name)
+    for name in (
+        *("abs", "min", "max", "round", "int", "float", "str", "bool", "len", "pow", "divmod", "sum"),
+        *("list", "tuple", "dict", "set", "sorted", "any", "all", "range", "zip", "enumerate", "reversed"),
+    )
 }
 
 
@@ -187,7 +191,13 @@ class PythonExpression(Substitution):
 
     def __init__(self, expression: SomeSubstitutions, python_modules: SomeSubstitutions | None = None) -> None:
         self.expression = normalize(expression)
-        self.python_modules = None if python_modules is None else normalize(python_modules)
+        # ROS takes a list of module names; `$(eval expr 'math,os')` gives one comma-separated text.
+        if python_modules is None:
+            self.python_modules: list[tuple[Substitution, ...]] | None = None
+        elif isinstance(python_modules, (list, tuple)):
+            self.python_modules = [normalize(m) for m in python_modules]
+        else:
+            self.python_modules = [normalize(python_modules)]
 
     def describe(self) -> str:
         return f"$(eval '{describe(self.expression)}')"
@@ -195,7 +205,8 @@ class PythonExpression(Substitution):
     def _modules(self, scope: Scope) -> list[str]:
         if self.python_modules is None:
             return ["math"]
-        return [m.strip() for m in perform(self.python_modules, scope).split(",") if m.strip()]
+        names = ",".join(perform(m, scope) for m in self.python_modules)
+        return [m.strip() for m in names.split(",") if m.strip()]
 
     def perform(self, scope: Scope) -> str:
         import importlib

@@ -73,7 +73,7 @@ def test_substitutions(tmp_path: Path, monkeypatch) -> None:
                 LogInfo(msg=Command([FindExecutable(name="echo"), " ", "-n", " ", n, "x"])),
                 LogInfo(msg=PathJoinSubstitution(["/a", n, TextSubstitution(text="b")])),
                 LogInfo(msg=PythonExpression([n, " * 2 + math.floor(1.5)"])),
-                LogInfo(msg=PythonExpression(["os.sep"], python_modules=["os"])),
+                LogInfo(msg=PythonExpression(["os.sep + str(math.floor(2.5))"], python_modules=["os", "math"])),
                 LogInfo(msg=EnvironmentVariable("DIFFCTL_PY_T")),
                 LogInfo(msg=EnvironmentVariable("DIFFCTL_PY_UNSET", default_value="dflt")),
                 LogInfo(msg=[AndSubstitution("true", "1"), OrSubstitution("false", "0"), NotSubstitution("false")]),
@@ -83,7 +83,7 @@ def test_substitutions(tmp_path: Path, monkeypatch) -> None:
         """,
     )
     got = messages(plan.steps)
-    assert got[:7] == ["3x", "/a/3/b", "7", os.sep, "env-value", "dflt", "truefalsetrue"]
+    assert got[:7] == ["3x", "/a/3/b", "7", os.sep + "2", "env-value", "dflt", "truefalsetrue"]
     assert got[7] == "true"  # numbers compare as numbers
     assert Path(got[8]).is_dir()
     echo = shutil.which("echo")
