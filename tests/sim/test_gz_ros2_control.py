@@ -151,18 +151,24 @@ def test_plugin_elements_are_read_with_their_defaults_and_errors() -> None:
 # --- hosted by a simulation, on a real router ---------------------------------------------------------
 
 
+def step(sim: Any, n: int) -> None:
+    """Step the world `n` times on this thread, as the sim thread does."""
+    st = sim.stepper
+    st.drain()
+    for _ in range(n):
+        for h in st.step_hooks:
+            h()
+        sim.physics.step()
+        st.sim_time_ns += st.step_ns
+        st.run_due()
+
+
 def run_until(sim: Any, pred: Any, timeout_s: float = 20.0, what: str = "condition") -> None:
-    """Step the world (on this thread, as the sim thread would) until `pred()` holds."""
+    """Step the world until `pred()` holds."""
     deadline = time.monotonic() + timeout_s
     while not pred():
         assert time.monotonic() < deadline, f"timed out waiting for {what}"
-        sim.stepper.drain()
-        for _ in range(20):
-            for h in sim.stepper.step_hooks:
-                h()
-            sim.physics.step()
-            sim.stepper.sim_time_ns += sim.stepper.step_ns
-            sim.stepper.run_due()
+        step(sim, 20)
 
 
 def test_the_simulation_hosts_a_manager_that_drives_the_car(router: str) -> None:
@@ -213,7 +219,7 @@ def test_the_simulation_hosts_a_manager_that_drives_the_car(router: str) -> None
         while sim.stepper.sim_time_ns - t0 < 2_000_000_000:  # 2 s of sim time at 0.5 m/s, commands at 20 Hz
             cmd.publish({"twist": {"linear": {"x": 0.5}}})
             time.sleep(0.005)
-            run_until(sim, lambda: True)
+            step(sim, 20)
         assert rt.entity.pose().xyz[0] - x0 > 0.5
         assert odom and odom[-1].header.stamp.sec >= 1  # stamped with sim time
         assert odom[-1].pose.pose.position.x > 0.5

@@ -1,18 +1,18 @@
-"""Gazebo systems inside a Simulation without a bus: DiffDrive, JointStatePublisher, the ros2_control endpoint."""
+"""Gazebo systems inside a Simulation without a bus: DiffDrive, JointStatePublisher; gz_ros2_control's parameters."""
 
 from __future__ import annotations
 
-import math
 import threading
 
-import numpy as np
 import pytest
-from sim_helpers import CAR, CAR_CONTROL, EMPTY_WORLD, LEFT, RIGHT, box, sdf_world
+from sim_helpers import CAR, CAR_CONTROL, EMPTY_WORLD, LEFT, REPO, RIGHT, box, sdf_world
 
-from diffctl.description.sdf_loader import load_model, load_world
+from diffctl.description.sdf_loader import load_model, load_world, parse_model
 from diffctl.sim.plugins.diff_drive import DiffDrive
 from diffctl.sim.plugins.joint_state_publisher import JointStatePublisher
 from diffctl.sim.runner import Simulation
+
+CONTROLLERS = REPO / "config" / "diff_drive_controller.yaml"
 
 
 def advance(sim: Simulation, steps: int) -> None:
@@ -91,30 +91,15 @@ def test_same_world_commands_and_seed_give_bit_identical_runs() -> None:
     assert a[:-1] == c[:-1] and a[-1] != c[-1]
 
 
-def test_ros2_control_endpoint_commands_without_a_bus() -> None:
-    sim = car_sim(CAR_CONTROL)
+def test_gz_ros2_control_needs_the_bus() -> None:
+    from diffctl.errors import ConfigError
+
+    sim = Simulation(load_world(EMPTY_WORLD), rtf=0.0)
     try:
-        ep = sim.models["robot"].endpoint
-        assert ep is not None and ep.joint_names == ["base_link_to_right_wheel", "base_link_to_left_wheel"]
-        assert ep.info()["joints"][1]["state_interfaces"] == ["position", "velocity"]
-        car = sim.models["robot"].entity
-        handles = [car.joint(n) for n in ep.joint_names]
-        # Held before any manager: the wheels do not turn.
-        advance(sim, 300)
-        assert max(abs(s[1]) for s in car.joint_states(handles)) < 0.02  # settling on the ground only
-        # Velocity, then position (gz_ros2_control's P law at the update rate), then NaN = held.
-        ep.update_rate = 20.0  # as a manager's attach would set it (no bus here: no lockstep)
-        ep.set_commands([2.0, 2.0], [np.nan, np.nan], [np.nan, np.nan])
-        advance(sim, 1000)
-        assert [s[1] for s in car.joint_states(handles)] == pytest.approx([2.0, 2.0], rel=0.01)
-        q = car.joint_states(handles)[0][0]
-        ep.set_commands([np.nan, np.nan], [q + 1.0, q + 1.0], [np.nan, np.nan])
-        advance(sim, 3000)
-        assert car.joint_states(handles)[0][0] == pytest.approx(q + 1.0, abs=0.05)
-        ep.hold_all()
-        advance(sim, 200)
-        assert max(abs(s[1]) for s in car.joint_states(handles)) < 1e-2
-        assert math.isfinite(ep.info()["sim_time_ns"])
+        text = CAR_CONTROL.read_text().replace("PARAMETERS_CONFIG_FILE_PLACEHOLDER", str(CONTROLLERS))
+        with pytest.raises(ConfigError, match="needs the bus"):
+            sim.spawn(parse_model(text, name="robot"), text)
+        assert "robot" not in sim.models  # nothing half-spawned
     finally:
         sim.close()
 
@@ -122,16 +107,20 @@ def test_ros2_control_endpoint_commands_without_a_bus() -> None:
 def test_gz_ros2_control_and_joint_state_publisher_parameters() -> None:
     from diffctl.description.model import Plugin
     from diffctl.errors import DescriptionError
+    from diffctl.sim.plugins.gz_ros2_control import GzRos2ControlParams
     from diffctl.sim.plugins.joint_state_publisher import JointStatePublisherParams
-    from diffctl.sim.plugins.ros2_control import GzRos2ControlParams
 
-    gz_plugin = Plugin("gz_ros2_control::GazeboSimROS2ControlPlugin", "libgz_ros2_control-system", ())
-    p = GzRos2ControlParams.from_plugin(gz_plugin)
-    assert (p.hold_joints, p.position_proportional_gain, p.parameters) == (True, 0.1, ())
-    off = Plugin(gz_plugin.name, gz_plugin.filename, (("hold_joints", "false"), ("parameters", "/a.yaml")))
-    assert GzRos2ControlParams.from_plugin(off).hold_joints is False
+    name, filename = "gz_ros2_control::GazeboSimROS2ControlPlugin", "libgz_ros2_control-system"
+    p = GzRos2ControlParams.from_plugin(Plugin(name, filename, (("parameters", "/a.yaml"),)), "t")
+    assert (p.hold_joints, p.position_proportional_gain, p.parameters) == (True, 0.1, ("/a.yaml",))
+    assert (p.namespace, p.remappings, p.controller_manager_name) == ("/", (), "controller_manager")
+    off = Plugin(name, filename, (("hold_joints", "false"), ("parameters", "/a.yaml"), ("parameters", "/b.yaml")))
+    assert GzRos2ControlParams.from_plugin(off, "t").hold_joints is False
+    assert GzRos2ControlParams.from_plugin(off, "t").parameters == ("/a.yaml", "/b.yaml")  # later ones override
     with pytest.raises(DescriptionError, match="'flase' is not a boolean"):
-        GzRos2ControlParams.from_plugin(Plugin(gz_plugin.name, gz_plugin.filename, (("hold_joints", "flase"),)))
+        GzRos2ControlParams.from_plugin(Plugin(name, filename, (("hold_joints", "flase"), ("parameters", "/a"))), "t")
+    with pytest.raises(DescriptionError, match="needs a <parameters> file"):
+        GzRos2ControlParams.from_plugin(Plugin(name, filename, ()), "t")
     jsp = Plugin("gz::sim::systems::JointStatePublisher", "gz-sim-joint-state-publisher-system", ())
     jp = JointStatePublisherParams.from_plugin(jsp, "empty", "robot")
     assert (jp.topic, jp.update_rate_hz, jp.joint_names) == ("/world/empty/model/robot/joint_state", 50.0, ())
