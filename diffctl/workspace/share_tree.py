@@ -25,10 +25,34 @@ def cache_root() -> Path:
     return Path(base) / "diffctl" / "workspaces"
 
 
+OWNER_FILE = ".workspace"  # the workspace a cache folder belongs to, so folders of deleted ones can go
+
+
 def workspace_cache(workspace: Path) -> Path:
     """The cache folder of one workspace, keyed by its absolute path."""
-    key = hashlib.sha256(str(workspace.resolve()).encode()).hexdigest()[:16]
-    return cache_root() / f"{workspace.name}-{key}"
+    ws = workspace.resolve()
+    key = hashlib.sha256(str(ws).encode()).hexdigest()[:16]
+    folder = cache_root() / f"{workspace.name}-{key}"
+    if not (folder / OWNER_FILE).is_file():
+        _prune_orphans()
+        folder.mkdir(parents=True, exist_ok=True)
+        (folder / OWNER_FILE).write_text(str(ws))
+    return folder
+
+
+def _prune_orphans() -> None:
+    """Remove the cache folders of workspaces that no longer exist (checked when a new one is added)."""
+    root = cache_root()
+    if not root.is_dir():
+        return
+    for folder in root.iterdir():
+        owner = folder / OWNER_FILE
+        try:
+            gone = owner.is_file() and not Path(owner.read_text().strip()).is_dir()
+        except OSError:
+            continue
+        if gone:
+            shutil.rmtree(folder, ignore_errors=True)
 
 
 def _script(package_dir: Path, target: str) -> str:

@@ -221,3 +221,21 @@ def test_duplicate_and_broken_manifests_are_reported(ws: Path, monkeypatch: pyte
     assert find_package("robot_description").origin == "workspace"
     with pytest.raises(PackageNotFoundError, match=r"unreadable: .*broken/package.xml:2: malformed package.xml"):
         share_dir("brokn")
+
+
+def test_the_cache_of_a_deleted_workspace_goes_when_another_arrives(tmp_path: Path, monkeypatch) -> None:
+    import shutil
+
+    from diffctl.workspace.share_tree import workspace_cache
+
+    first, second = tmp_path / "ws1", tmp_path / "ws2"
+    cmake_package(first / "src" / "pkg_a", "pkg_a")
+    cmake_package(second / "src" / "pkg_b", "pkg_b")
+    share_a = find_package("pkg_a", first).share
+    assert (share_a / "package.xml").is_file()
+    cache_a = share_a.parents[2]
+    assert cache_a == workspace_cache(first)
+    shutil.rmtree(first)
+    find_package("pkg_b", second)
+    assert not cache_a.exists()
+    assert (find_package("pkg_b", second).share / "package.xml").is_file()
