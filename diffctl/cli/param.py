@@ -164,7 +164,8 @@ def _show(value: Any) -> str:
     return str(value)
 
 
-@param.command("set")
+# A negative VALUE (-2.0) is a value, as `ros2 param set` takes it, not an unknown option.
+@param.command("set", context_settings={"ignore_unknown_options": True})
 @click.argument("node_name", metavar="NODE")
 @click.argument("name")
 @click.argument("value")

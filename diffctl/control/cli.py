@@ -246,8 +246,7 @@ def list_hardware_components(manager: str, wait_s: float, verbose: bool) -> None
 @control.command("list_hardware_interfaces")
 @_cm_option
 @_timeout_option
-@click.option("-v", "--verbose", is_flag=True, help="Also show each interface's data type.")
-def list_hardware_interfaces(manager: str, wait_s: float, verbose: bool) -> None:
+def list_hardware_interfaces(manager: str, wait_s: float) -> None:
     """List command and state interfaces with their availability and claims.
 
     \b
@@ -267,10 +266,9 @@ def list_hardware_interfaces(manager: str, wait_s: float, verbose: bool) -> None
                     kind,
                     "yes" if i.is_available else "no",
                     ("yes" if i.is_claimed else "no") if kind == "command" else "-",
-                    *([i.data_type] if verbose else []),
                 ]
             )
-    _print(table(None, ["interface", "kind", "available", "claimed", *(["data type"] if verbose else [])], rows))
+    _print(table(None, ["interface", "kind", "available", "claimed"], rows))
 
 
 def _check(ok: bool, what: str, reason: str = "") -> None:

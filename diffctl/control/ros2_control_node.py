@@ -21,7 +21,7 @@ from diffctl import ros_args
 from diffctl.control.controller_node import BusControllerNode
 from diffctl.control.manager import ControllerManager
 from diffctl.control.params import load_manager_files, manager_params
-from diffctl.control.plugin_registry import hardware_class
+from diffctl.control.plugin_registry import hardware_for
 from diffctl.control.realtime_loop import (
     LoopStats,
     SimClockTicker,
@@ -87,7 +87,7 @@ class ControlNode:
         extra = dict(self.opts.hardware_params)
         self.infos = hardware_infos(text, source, plugin_override=self.opts.hardware_plugin, extra_params=extra)
         for info in self.infos:
-            hardware_class(info.plugin_name)  # an unknown plugin is bad input: refuse it before starting anything
+            hardware_for(info)  # an unknown plugin is bad input: refuse it before starting anything
         files, problems = parameter_files(text, source)
         self.gz_files = files
         self.problems = problems
@@ -127,7 +127,7 @@ class ControlNode:
             params, log=self.log, node_factory=factory, robot_description=self.description, cancel=self.stop
         )
         self.cm.load_hardware(self.infos)
-        self.services = ManagerServices(self.node, self.cm, self.node.params)
+        self.services = ManagerServices(self.node, self.cm)
         self.ticker = self._make_ticker()
         # A waking control thread waits for the GIL up to the switch interval (5 ms by default) while a bus
         # thread runs: shorten it so a period's jitter stays well under a millisecond. Objects alive after

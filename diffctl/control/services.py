@@ -1,4 +1,4 @@
-"""The controller manager's services (controller_manager_msgs) and parameter services (rcl_interfaces).
+"""The controller manager's services (controller_manager_msgs); its parameters are the node's (rcl_interfaces).
 
 Handlers translate requests into ControllerManager calls and back; a failed call answers ok=false and
 the manager logs why, as controller_manager does.
@@ -12,10 +12,6 @@ from typing import Any
 from diffctl.control import plugin_registry
 from diffctl.control.lifecycle import State, TransitionError
 from diffctl.control.manager import ControllerManager
-from diffctl.control.parameter_msgs import (
-    param_value_to_python,
-    python_to_param_value,
-)
 from diffctl.errors import DiffctlError
 
 CM = "controller_manager_msgs/srv/"
@@ -23,10 +19,9 @@ CM = "controller_manager_msgs/srv/"
 class ManagerServices:
     """Registers every service of the manager node on `node` (a bus Node named controller_manager)."""
 
-    def __init__(self, node: Any, cm: ControllerManager, node_params: dict[str, Any]) -> None:
+    def __init__(self, node: Any, cm: ControllerManager) -> None:
         self.node = node
         self.cm = cm
-        self.params = node_params  # the manager node's own parameters (for get/list_parameters)
         self.log = node.log
         handlers: dict[str, tuple[str, Callable[[Any], Any]]] = {
             "list_controllers": ("ListControllers", self.list_controllers),
@@ -42,12 +37,7 @@ class ManagerServices:
             "reload_controller_libraries": ("ReloadControllerLibraries", self.reload_controller_libraries),
         }
         self.services = [node.create_service(f"~/{name}", CM + srv, h) for name, (srv, h) in handlers.items()]
-        rcl = "rcl_interfaces/srv/"
-        self.services += [
-            node.create_service("~/set_parameters", rcl + "SetParameters", self.set_parameters),
-            node.create_service("~/get_parameters", rcl + "GetParameters", self.get_parameters),
-            node.create_service("~/list_parameters", rcl + "ListParameters", self.list_parameters),
-        ]
+        self._declare_parameters()
 
     def close(self) -> None:
         for s in self.services:
@@ -80,10 +70,21 @@ class ManagerServices:
                         "required_command_interfaces": list(mc.required_command),
                         "required_state_interfaces": list(mc.required_state),
                         "is_chainable": bool(getattr(mc.instance, "is_chainable", False)),
-                        "is_chained": False,
+                        "is_chained": bool(getattr(mc.instance, "is_in_chained_mode", lambda: False)()),
+                        "reference_interfaces": [r.name for r in getattr(mc.instance, "reference_interfaces", [])],
+                        "chain_connections": self._chain_connections(mc),
                     }
                 )
         return {"controller": out}
+
+    def _chain_connections(self, mc: Any) -> list[dict[str, Any]]:
+        """The controllers whose reference interfaces `mc` claims, with those interfaces."""
+        owners: dict[str, list[str]] = {}
+        for name in mc.claimed:
+            owner = self.cm.rm.reference_owner.get(name)
+            if owner is not None:
+                owners.setdefault(owner, []).append(name)
+        return [{"name": o, "reference_interfaces": names} for o, names in owners.items()]
 
     def list_controller_types(self, _req: Any) -> dict[str, Any]:
         names = plugin_registry.controller_types()
@@ -171,28 +172,25 @@ class ManagerServices:
             self.cm.unload_controller(name)
         return {"ok": True}
 
-    # --- rcl_interfaces ---------------------------------------------------------------------------------
-    def set_parameters(self, req: Any) -> dict[str, Any]:
-        results = []
-        for p in req.parameters:
-            name, value = str(p.name), param_value_to_python(p.value)
+    # --- the manager's own parameters (served by the node's parameter services, as every node's) --------
+    def _declare_parameters(self) -> None:
+        from diffctl.bus.parameters import ParameterDescriptor
+
+        self.node.declare_parameter(
+            "update_rate",
+            self.cm.update_rate,
+            ParameterDescriptor(description="controller manager update rate in Hz", read_only=True),
+        )
+        self.node.add_on_set_parameters_callback(self._on_set_parameters)
+
+    def _on_set_parameters(self, changes: dict[str, Any]) -> str | None:
+        """`<controller>.type`, `.params_file`, … set at runtime (the spawner does) reach the manager."""
+        settings = ("type", "params_file", "update_rate", "fallback_controllers", "node_options_args")
+        for name, value in changes.items():
             prefix, _, key = name.rpartition(".")
-            try:
-                if name == "update_rate":
-                    raise TransitionError("parameter 'update_rate' is read-only")
-                settings = ("type", "params_file", "update_rate", "fallback_controllers", "node_options_args")
-                if prefix and key in settings:
+            if prefix and key in settings:
+                try:
                     self.cm.set_controller_param(prefix, key, value)
-                self.params[name] = value
-                results.append({"successful": True, "reason": ""})
-            except DiffctlError as e:
-                results.append({"successful": False, "reason": str(e)})
-        return {"results": results}
-
-    def get_parameters(self, req: Any) -> dict[str, Any]:
-        return {"values": [python_to_param_value(self.params.get(str(n))) for n in req.names]}
-
-    def list_parameters(self, req: Any) -> dict[str, Any]:
-        prefixes = [str(p) for p in req.prefixes]
-        names = sorted(n for n in self.params if not prefixes or any(n.startswith(p) for p in prefixes))
-        return {"result": {"names": names, "prefixes": sorted({n.rpartition(".")[0] for n in names} - {""})}}
+                except DiffctlError as e:
+                    return str(e)
+        return None

@@ -165,7 +165,7 @@ class GzRos2Control(SystemPlugin):
                 cancel=self.stop,
             )
             self.cm.load_hardware(self.infos, self._hardware)
-            self.services = ManagerServices(self.node, self.cm, self.node.params)
+            self.services = ManagerServices(self.node, self.cm)
             self.cm.loop_running = True
             self._start_loop()
         except Exception:
