@@ -10,6 +10,7 @@ sim or control code.
 from __future__ import annotations
 
 import os
+from collections.abc import MutableMapping
 from pathlib import Path
 
 from diffctl.workspace.builtin import DEMO_DESCRIPTION_PACKAGE, DEMO_PACKAGE, project_root
@@ -49,7 +50,7 @@ def package_prefix(package: str) -> Path:
     return found.prefix if found.prefix is not None else found.share
 
 
-def use_in_children(workspace: Path | None, env: dict[str, str] | os._Environ[str] = os.environ) -> None:
+def use_in_children(workspace: Path | None, env: MutableMapping[str, str] = os.environ) -> None:
     """Make processes started with `env` resolve packages as this one does: the workspace in
     $DIFFCTL_WORKSPACE, diffctl's ament_index_python first on PYTHONPATH (xacro's `$(find)`)."""
     if workspace is not None:
