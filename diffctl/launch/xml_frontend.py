@@ -27,6 +27,8 @@ CHILD_KEYS = {"choice": "choices"}
 # Attributes `<param>` takes in XML only: the text has a type to be read as, and lists a separator.
 PARAM_EXTRAS = ("type", "value_sep", "allow_substs")
 ACTION_CHILDREN = ("children", "do")
+# What XML writes only as nested elements (YAML: lists of mappings).
+NESTED_ONLY = ("param", "remap", "env", "arg", "keep", "choices", "wait_for")
 
 
 def _norm(name: str) -> str:
@@ -55,6 +57,13 @@ class XmlEntity:
                     f"unknown attribute {raw_name!r} of <{element.tag}>{suggest(name, valid)}",
                     hint="valid: " + ", ".join(a.replace("_", "-") if a == "launch_prefix" else a for a in valid),
                 )
+            if name in NESTED_ONLY:
+                raise self.error(
+                    f"`{raw_name}` is written as nested elements in XML, not as an attribute",
+                    hint=f'e.g. <{element.tag} …><{raw_name} name="…" value="…"/></{element.tag}>',
+                )
+            if name in self.attrs:
+                raise self.error(f"attribute {raw_name!r} given twice (- and _ are the same)", key=name)
             self.attrs[name] = value
         self.sub: dict[str, list[Any]] = {}
         self.actions: list[Any] = []

@@ -383,6 +383,8 @@ def test_the_same_description_in_xml_and_yaml_resolves_to_the_same_plan(tmp_path
         ("<log message='x'>\n</lg>", 3, r"malformed XML"),
         ('<timer><log message="x"/></timer>', 2, r"needs the attribute `period`"),
         ('<node exec="no-such-exe-xyz"/>', 2, r"'no-such-exe-xyz' not found on PATH"),
+        ('<node pkg="a" exec="b" remap="x:=y"/>', 2, r"`remap` is written as nested elements"),
+        ('<executable cmd="x" launch-prefix="a" launch_prefix="b"/>', 2, r"given twice"),
         ('<node pkg="robot_state_publisher"/>', 2, r"needs the attribute `exec`"),
     ],
 )
