@@ -2,9 +2,9 @@
 
 `share_dir(pkg)` is the one entry point the launch and description layers call for `$(find-pkg-share)`,
 `FindPackageShare`, `get_package_share_directory` and xacro's `$(find)`. Precedence: the enclosing
-workspace's sources (or `--workspace DIR` / $DIFFCTL_WORKSPACE), then AMENT_PREFIX_PATH and
-COLCON_PREFIX_PATH install trees, then diffctl's own packages. This package imports no launch, bus,
-sim or control code.
+workspace's sources (or `--workspace DIR` / $DIFFCTL_WORKSPACE), then the ROS packages diffctl replaces
+(ros_gz_sim, …), then AMENT_PREFIX_PATH and COLCON_PREFIX_PATH install trees, then diffctl's demo
+packages. This package imports no launch, bus, sim or control code.
 """
 
 from __future__ import annotations
