@@ -117,3 +117,22 @@ def test_package_model_path_exports_join_the_resource_path(tmp_path: Path, monke
         ws / "src/my_models/models/box/model.sdf"
     )
     assert sim.env["GZ_SIM_SYSTEM_PLUGIN_PATH"].endswith("my_models/plugins")
+
+
+def server_plan(tmp_path: Path, args: dict[str, str]):
+    path = tmp_path / "server.launch.py"
+    path.write_text(INCLUDE.replace("gz_sim.launch.py", "gz_server.launch.py").replace("{ARGS}", repr(args)))
+    return resolve(load(path), {}, str(path))
+
+
+def test_gz_server_launch_runs_a_world_file_or_text(tmp_path: Path) -> None:
+    (sim,) = server_plan(tmp_path, {"world_sdf_file": "/worlds/w.sdf"}).processes.values()
+    assert sim.argv[-3:] == ("-r", "-s", "/worlds/w.sdf")
+    (sim,) = server_plan(tmp_path, {"start_paused": "True"}).processes.values()
+    assert sim.argv[-2:] == ("-s", "empty.sdf")
+    text = (Path(resource_path(dict(sim.env))[-1]) / "empty.sdf").read_text()
+    (sim,) = server_plan(tmp_path, {"world_sdf_string": text}).processes.values()
+    written = Path(sim.argv[-1])
+    assert written.read_text() == text and (tmp_path / "cache") in written.parents  # diffctl's cache only
+    with pytest.raises(LaunchError, match="not both"):
+        server_plan(tmp_path, {"world_sdf_file": "/w.sdf", "world_sdf_string": text})
