@@ -1,4 +1,5 @@
-"""A ros2_control demo bringup written in XML, in a throw-away workspace, run as `ros2 launch` would run it.
+"""A ros2_control demo bringup written in XML (and in Python), in a throw-away workspace, run as `ros2 launch`
+would run it.
 
 Three ament_cmake packages under src/: `wheel_parts` (a xacro wheel macro), `demo_description` (the robot,
 including the wheel macro across packages with `$(find wheel_parts)`, and a `<ros2_control>` block whose
@@ -133,12 +134,59 @@ BRINGUP = """<launch>
 """
 
 
+# The same bringup as ros2_control_demos writes it in Python.
+BRINGUP_PY = """
+from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument, RegisterEventHandler
+from launch.conditions import IfCondition
+from launch.event_handlers import OnProcessExit
+from launch.substitutions import Command, FindExecutable, LaunchConfiguration, PathJoinSubstitution
+from launch_ros.actions import Node
+from launch_ros.parameter_descriptions import ParameterValue
+from launch_ros.substitutions import FindPackageShare
+
+
+def generate_launch_description():
+    use_mock_hardware = LaunchConfiguration("use_mock_hardware")
+    robot_description_content = Command([
+        PathJoinSubstitution([FindExecutable(name="xacro")]), " ",
+        PathJoinSubstitution([FindPackageShare("demo_description"), "urdf", "demo_bot.urdf.xacro"]), " ",
+        "use_mock_hardware:=", use_mock_hardware,
+    ])
+    robot_description = {"robot_description": ParameterValue(robot_description_content, value_type=str)}
+    controllers = PathJoinSubstitution([FindPackageShare("demo_bringup"), "config", "demo_controllers.yaml"])
+    control_node = Node(package="controller_manager", executable="ros2_control_node", name="my_ctrl_mgr",
+                        parameters=[controllers], remappings=[("~/robot_description", "/robot_description")],
+                        output="both")
+    rsp = Node(package="robot_state_publisher", executable="robot_state_publisher", output="both",
+               parameters=[robot_description])
+    jsb_spawner = Node(package="controller_manager", executable="spawner",
+                       arguments=["joint_broad", "-c", "my_ctrl_mgr", "--param-file", controllers])
+    drive_spawner = Node(package="controller_manager", executable="spawner",
+                         arguments=["diff_cont", "-c", "my_ctrl_mgr", "--param-file", controllers,
+                                    "--controller-ros-args", "-r ~/cmd_vel:=/cmd_vel"],
+                         condition=IfCondition(LaunchConfiguration("start_drive")))
+    return LaunchDescription([
+        DeclareLaunchArgument("use_mock_hardware", default_value="false"),
+        DeclareLaunchArgument("start_drive", default_value="true"),
+        control_node,
+        rsp,
+        jsb_spawner,
+        RegisterEventHandler(OnProcessExit(target_action=jsb_spawner, on_exit=[drive_spawner])),
+    ])
+"""
+
+
 def make_workspace(root: Path) -> Path:
     ws = root / "demo_ws"
     packages = {
         "wheel_parts": {"urdf/wheel.xacro": WHEEL_XACRO},
         "demo_description": {"urdf/demo_bot.urdf.xacro": ROBOT_XACRO},
-        "demo_bringup": {"launch/demo.launch.xml": BRINGUP, "config/demo_controllers.yaml": CONTROLLERS},
+        "demo_bringup": {
+            "launch/demo.launch.xml": BRINGUP,
+            "launch/demo.launch.py": BRINGUP_PY,
+            "config/demo_controllers.yaml": CONTROLLERS,
+        },
     }
     for name, files in packages.items():
         pkg = ws / "src" / name
@@ -152,11 +200,14 @@ def make_workspace(root: Path) -> Path:
 
 
 @pytest.mark.slow
-def test_an_xml_bringup_with_xacro_across_packages_drives_on_mock_hardware(router, launch_run, tmp_path) -> None:
+@pytest.mark.parametrize("launch_file", ["demo.launch.xml", "demo.launch.py"])
+def test_a_bringup_with_xacro_across_packages_drives_on_mock_hardware(
+    launch_file: str, router, launch_run, tmp_path
+) -> None:
     from diffctl.bus import Node
 
     ws = make_workspace(tmp_path)
-    run = launch_run("demo_bringup", "demo.launch.xml", "use_mock_hardware:=true", cwd=ws)
+    run = launch_run("demo_bringup", launch_file, "use_mock_hardware:=true", cwd=ws)
     node = Node("xml_bringup_test")
     try:
         odom_x: list[float] = []
