@@ -13,6 +13,8 @@ from typing import Any
 
 import pytest
 from mcap.reader import make_reader
+from mcap.records import Message as McapMessage
+from mcap.stream_reader import StreamReader
 
 from diffctl.bag.msgdefs import register_schema
 from diffctl.bag.reader import Bag
@@ -28,6 +30,18 @@ def run(*args: str) -> subprocess.CompletedProcess:
     return subprocess.run([sys.executable, "-m", "diffctl", *args], capture_output=True, text=True, timeout=120)
 
 
+def complete_messages(path: Path) -> int:
+    """Messages in the complete records of a file still being written, read by the mcap library."""
+    n = 0
+    try:
+        with open(path, "rb") as f:
+            for rec in StreamReader(f).records:
+                n += isinstance(rec, McapMessage)
+    except Exception:  # the first incomplete record ends the count
+        pass
+    return n
+
+
 def recorder_subscribed(node: Node, topic: str) -> bool:
     return any(e.node_fqn == "/rosbag2_recorder" for e in node.graph.subscribers(topic))
 
@@ -39,13 +53,14 @@ def test_record_late_and_latched_topics_then_ctrl_c(router: str, procs: Any, tmp
     chatter = node.create_publisher("/chatter", STRING)
     bag = tmp_path / "run"
     rec = procs.diffctl("bag", "record", "-a", "-o", str(bag))
-    assert wait_for(lambda: recorder_subscribed(node, "/chatter") and recorder_subscribed(node, "/robot_description"),
-                    60), rec.stdout
+    # The graph shows the recorder's subscription; Zenoh's matching status says its route reached us.
+    assert wait_for(lambda: recorder_subscribed(node, "/chatter") and recorder_subscribed(node, "/robot_description")
+                    and chatter.matching, 60), rec.stdout
     for i in range(40):
         chatter.publish({"data": f"m{i}"})
         time.sleep(0.005)
     late = node.create_publisher("/late", "geometry_msgs/msg/Twist")  # appears after the recording started
-    assert wait_for(lambda: recorder_subscribed(node, "/late"), 30)
+    assert wait_for(lambda: recorder_subscribed(node, "/late") and late.matching, 30)
     for i in range(7):
         late.publish({"linear": {"x": float(i)}})
     time.sleep(1.0)
@@ -70,10 +85,11 @@ def test_killed_recorder_is_recovered_by_reindex(router: str, procs: Any, tmp_pa
     pub = node.create_publisher("/chatter", STRING)
     bag = tmp_path / "killed"
     rec = procs.diffctl("bag", "record", "/chatter", "-o", str(bag))
-    assert wait_for(lambda: recorder_subscribed(node, "/chatter"), 60)
+    assert wait_for(lambda: recorder_subscribed(node, "/chatter") and pub.matching, 60)
     for i in range(30):
         pub.publish({"data": f"m{i}"})
-    time.sleep(2.5)  # the recorder hands complete chunks to the OS every second
+    # The recorder hands complete chunks to the OS every second: wait until all 30 are readable on disk.
+    assert wait_for(lambda: complete_messages(bag / "killed_0.mcap") == 30, 60)
     procs.stop(rec, signal.SIGKILL)
     assert "reindex" in one_error_line(run("bag", "info", str(bag)))
     assert run("bag", "reindex", str(bag)).returncode == 0
