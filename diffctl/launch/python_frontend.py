@@ -49,16 +49,28 @@ EVENT_MODULES = ("launch.events", "launch.events.process")
 _counter = itertools.count()
 
 
+class MissingName(LaunchError, AttributeError):
+    """A ROS launch name diffctl lacks: one line naming it; still an AttributeError, so `hasattr` feature checks
+    in launch files see False instead of failing."""
+
+
 class RosAliasModule(types.ModuleType):
     """A stand-in for a ROS launch module: what diffctl has, and a one-line error naming what it lacks."""
 
     def __getattr__(self, name: str) -> object:
         if name.startswith("__"):
             raise AttributeError(name)
-        raise LaunchError(
-            f"{self.__name__}.{name} is not supported by diffctl",
-            hint=f"{self.__name__} here provides: " + ", ".join(sorted(k for k in vars(self) if not k.startswith("_"))),
-        )
+        raise missing(self.__name__, name)
+
+
+def missing(module: str, name: str) -> MissingName:
+    provided = sorted(k for k in vars(sys.modules.get(module, types.ModuleType(module))) if not k.startswith("_"))
+    return MissingName(
+        f"{module}.{name} is not supported by diffctl", hint=f"{module} here provides: " + ", ".join(provided)
+    )
+
+
+_CANNOT_IMPORT = re.compile(r"cannot import name '(\w+)' from '([\w.]+)'")
 
 
 @contextlib.contextmanager
@@ -147,6 +159,15 @@ def load(path: str | Path) -> object:
         except TypeError as e:
             line = _line_in(source, e.__traceback__)
             raise LaunchError(_unexpected_keyword(e), source=str(path), line=line) from None
+        except ImportError as e:
+            # `from launch.actions import X`: Python turns the module's MissingName into "cannot import name".
+            m = _CANNOT_IMPORT.search(str(e))
+            line = _line_in(source, e.__traceback__)
+            if m and m.group(2) in ROS_MODULES:
+                err = missing(m.group(2), m.group(1))
+                err.source, err.line = str(path), line
+                raise err from None
+            raise LaunchError(f"launch file raised ImportError: {e}", source=str(path), line=line) from None
         except Exception as e:
             raise LaunchError(
                 f"launch file raised {type(e).__name__}: {e}", source=str(path), line=_line_in(source, e.__traceback__)

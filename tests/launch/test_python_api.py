@@ -215,6 +215,14 @@ def test_a_missing_feature_fails_in_one_line_naming_it(tmp_path: Path) -> None:
     path.write_text("import launch_ros.actions\n\ndef generate_launch_description():\n    launch_ros.actions.Foo()\n")
     with pytest.raises(LaunchError, match=r"launch_ros\.actions\.Foo is not supported"):
         load(path)
+    # Feature checks by hasattr see a missing name as absent rather than failing.
+    path.write_text(
+        "import launch_ros.actions\nfrom launch import LaunchDescription\n\n"
+        "def generate_launch_description():\n"
+        "    assert not hasattr(launch_ros.actions, 'LifecycleNode')\n"
+        "    return LaunchDescription([])\n"
+    )
+    assert load(path).entities == []
 
 
 # ---- runtime: callables, events, timers -----------------------------------------------------------------------
