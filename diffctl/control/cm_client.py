@@ -6,15 +6,18 @@ service name when the manager cannot be reached.
 
 from __future__ import annotations
 
+import re
 import time
 from collections.abc import Callable
 from typing import Any
 
 from diffctl.control.lifecycle import State
 from diffctl.control.parameter_msgs import P_STRING, P_STRING_ARRAY
-from diffctl.errors import BusError, RuntimeFailure, ServiceTimeout
+from diffctl.errors import BusError, ConfigError, RuntimeFailure, ServiceTimeout
 
 CM = "controller_manager_msgs/srv/"
+# One token of a ROS name (rcl_validate_topic_name): a letter or "_" first, then letters, digits and "_".
+_NAME_TOKEN = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 SRV_TYPES = {
     "list_controllers": CM + "ListControllers",
     "list_controller_types": CM + "ListControllerTypes",
@@ -32,13 +35,19 @@ SRV_TYPES = {
 
 
 def manager_fqn(name: str, namespace: str = "/") -> str:
-    """`-c controller_manager` → /controller_manager (relative names take the caller's namespace)."""
-    name = name.strip()
-    if not name:
-        raise RuntimeFailure("the controller manager name is empty")
-    if name.startswith("/"):
-        return name.rstrip("/")
-    return f"{namespace.rstrip('/')}/{name}"
+    """The manager's fully qualified node name, as rcl expands `-c`: `/robot1/controller_manager` as given,
+    a relative `controller_manager` or `robot1/controller_manager` under the caller's namespace."""
+    text = name.strip()
+    tokens = text.strip("/").split("/")
+    if not text or text == "/" or "//" in text or text.endswith("/") or not all(_NAME_TOKEN.match(t) for t in tokens):
+        raise ConfigError(
+            f"-c/--controller-manager {name!r} is not a ROS node name",
+            field="--controller-manager",
+            hint="e.g. controller_manager or /robot1/controller_manager (letters, digits and '_' between '/')",
+        )
+    if text.startswith("/"):
+        return text
+    return f"{namespace.rstrip('/')}/{text}"
 
 
 class ManagerClient:
