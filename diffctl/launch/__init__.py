@@ -60,7 +60,7 @@ from diffctl.launch.package_index import get_package_share_directory
 from diffctl.launch.parameters import ParameterFile, ParameterValue
 from diffctl.launch.process_actions import ExecuteProcess, Node
 from diffctl.launch.readiness import WaitFor
-from diffctl.launch.ros_actions import SetParameter, SetRemap, SetUseSimTime
+from diffctl.launch.ros_actions import SetParameter, SetParametersFromFile, SetRemap, SetUseSimTime
 from diffctl.launch.substitutions import (
     AnonName,
     Command,
@@ -129,6 +129,7 @@ __all__ = [
     "SetEnvironmentVariable",
     "SetLaunchConfiguration",
     "SetParameter",
+    "SetParametersFromFile",
     "SetRemap",
     "SetUseSimTime",
     "Shutdown",

@@ -40,6 +40,7 @@ class Scope:
     initial_env: dict[str, str] = field(default_factory=dict)  # what ResetEnvironment goes back to
     global_params: dict[str, Any] = field(default_factory=dict)  # SetParameter: for every node after it
     remaps: list[tuple[str, str]] = field(default_factory=list)  # SetRemap: for every node after it
+    param_files: list[str] = field(default_factory=list)  # SetParametersFromFile: for every node after it
 
     @classmethod
     def initial(cls, arguments: dict[str, str], launch_file: str | None, env: dict[str, str] | None = None) -> Scope:
@@ -61,6 +62,7 @@ class Scope:
             env_changes=dict(self.env_changes),
             global_params=dict(self.global_params) if forwarding else {},
             remaps=list(self.remaps) if forwarding else [],
+            param_files=list(self.param_files) if forwarding else [],
         )
 
     # ---- as launch's LaunchContext, for OpaqueFunction and callable handlers ------------------------------------

@@ -394,6 +394,7 @@ class Node(ExecuteProcess):
         params = resolve_parameters(self.parameters, scope)
         if scope.global_params:
             params = (dict(scope.global_params), *params)
+        params = (*scope.param_files, *params)
         own = tuple((perform(a, scope), perform(b, scope)) for a, b in self.remappings)
         return RosNode(node_name=node_name, namespace=namespace, params=params, remaps=(*scope.remaps, *own)), {}
 

@@ -1,4 +1,5 @@
-"""ROS scope actions of launch_ros: SetParameter, SetRemap, SetUseSimTime (`set_parameter`, `set_remap`, …).
+"""ROS scope actions of launch_ros: SetParameter, SetParametersFromFile, SetRemap, SetUseSimTime (`set_parameter`,
+`set_parameters_from_file`, `set_remap`, `set_use_sim_time`).
 
 They change the scope, so every node started after them in the same scope gets the parameter or remapping
 (before its own), and a scoped group keeps them inside, as launch_ros does.
@@ -6,8 +7,10 @@ They change the scope, so every node started after them in the same scope gets t
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from diffctl.errors import LaunchError
 from diffctl.launch.actions import Action, describe
 from diffctl.launch.parameters import ParameterValue, _param_value
 from diffctl.launch.registry import register
@@ -67,6 +70,34 @@ class SetUseSimTime(Action):
     @classmethod
     def from_entity(cls, e: Entity) -> Action:
         return cls(e.text("value", required=True))
+
+
+@register
+class SetParametersFromFile(Action):
+    """A parameter file for every node after it in this scope (before each node's own parameters)."""
+
+    frontend_tags = ("set_parameters_from_file",)
+    frontend_attrs = ("filename",)
+
+    def __init__(self, filename: SomeSubstitutions, **kw: Any) -> None:
+        super().__init__(**kw)
+        self.filename = normalize(filename)
+
+    def label(self) -> str:
+        return f"set_parameters_from_file {describe(self.filename)}"
+
+    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+        path = Path(perform(self.filename, scope))
+        if not path.is_absolute() and scope.launch_file:
+            path = Path(scope.launch_file).parent / path
+        if not path.is_file():
+            raise LaunchError(f"parameter file {path} does not exist")
+        scope.param_files.append(str(path.resolve()))
+        return []
+
+    @classmethod
+    def from_entity(cls, e: Entity) -> Action:
+        return cls(e.text("filename", required=True))
 
 
 @register

@@ -148,6 +148,19 @@ def test_param_from_a_file_and_set_parameter_come_before_the_nodes_own(tmp_path:
     assert spec.node.params[0] == {"use_sim_time": True}
     assert spec.node.params[1] == str(tmp_path / "p.yaml")
     assert spec.node.remaps == (("cmd_vel", "/cmd_vel"), ("odom", "/odom"))
+    text = """
+        <launch>
+          <group>
+            <set_parameters_from_file filename="p.yaml"/>
+            <set_use_sim_time value="true"/>
+            <node pkg="robot_state_publisher" exec="robot_state_publisher" name="in"/>
+          </group>
+          <node pkg="robot_state_publisher" exec="robot_state_publisher" name="out"/>
+        </launch>
+    """
+    procs = processes(plan_of(tmp_path, text))
+    assert procs["in"].node.params == (str(tmp_path / "p.yaml"), {"use_sim_time": True})
+    assert procs["out"].node.params == ()
 
 
 @pytest.mark.parametrize(
