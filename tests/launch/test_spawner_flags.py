@@ -118,10 +118,13 @@ def test_spawner_flags_on_a_named_manager(router, procs, tmp_path, monkeypatch) 
     )
     assert code == 1 and "/robot1/my_ctrl_mgr/list_controllers" in out and "deprecated" in out, out
 
-    # Two controllers in one switch.
-    (tmp_path / "fwd.yaml").write_text(
-        "jsb3:\n  ros__parameters:\n    type: joint_state_broadcaster/JointStateBroadcaster\n"
+    # Two controllers in one switch, their types from two parameter files (later files win).
+    (tmp_path / "a.yaml").write_text(
         "jsb2:\n  ros__parameters:\n    type: joint_state_broadcaster/JointStateBroadcaster\n"
+        "jsb3:\n  ros__parameters:\n    type: no_such/Controller\n"
+    )
+    (tmp_path / "b.yaml").write_text(
+        "jsb3:\n  ros__parameters:\n    type: joint_state_broadcaster/JointStateBroadcaster\n"
     )
     code, out = finish(
         procs.diffctl(
@@ -130,12 +133,32 @@ def test_spawner_flags_on_a_named_manager(router, procs, tmp_path, monkeypatch) 
             "jsb2",
             "jsb3",
             "--activate-as-group",
+            "--switch-timeout",
+            "10",
             "-c",
             "my_ctrl_mgr",
             "-p",
-            str(tmp_path / "fwd.yaml"),
+            str(tmp_path / "a.yaml"),
+            "--param-file",
+            str(tmp_path / "b.yaml"),
         )
     )
     assert code == 0, out
     assert (cm.controller_state("jsb2"), cm.controller_state("jsb3")) == ("active", "active")
+
+    # --inactive: loaded and configured, not activated.
+    code, out = finish(
+        procs.diffctl(
+            "spawn",
+            "controller",
+            "jsb4",
+            "--inactive",
+            "-c",
+            "my_ctrl_mgr",
+            "-t",
+            "joint_state_broadcaster/JointStateBroadcaster",
+        )
+    )
+    assert code == 0, out
+    assert cm.controller_state("jsb4") == "inactive"
     node.close()
