@@ -12,7 +12,7 @@ import click
 def joint_state_publisher(description_file: Path | None) -> None:
     """Publish sensor_msgs/JointState for the non-fixed joints of a robot description (no GUI).
 
-    The description comes from DESCRIPTION_FILE (URDF or SDF) and from the latched robot_description
+    The description comes from DESCRIPTION_FILE (URDF, SDF or xacro, expanded) and from the latched robot_description
     topic (each message reconfigures). Parameters from --ros-args as the ROS node takes them: rate (Hz,
     default 10), source_list (JointState topics whose values win), zeros.<joint>,
     dependent_joints.<joint>.{parent,factor,offset}, use_mimic_tags, use_smallest_joint_limits,

@@ -8,7 +8,8 @@ import threading
 from pathlib import Path
 from typing import Any
 
-from diffctl.errors import DescriptionError, ParameterError
+from diffctl.description.robot_files import read_description_text
+from diffctl.errors import DescriptionError
 from diffctl.joint_state_publisher.joints import parse_joints
 from diffctl.joint_state_publisher.params import JspParams
 from diffctl.joint_state_publisher.state import JointStates
@@ -73,10 +74,8 @@ def run(params: dict[str, Any], description_file: Path | None = None) -> None:
     jsp_params = JspParams.from_dict(params)
     description = None
     if description_file is not None:
-        try:
-            description = description_file.read_text()
-        except OSError as e:
-            raise ParameterError(f"cannot read description: {e.strerror}", source=str(description_file)) from None
+        # A .xacro file (or xacro-namespaced URDF) is expanded as robot_state_publisher's launch files do.
+        description = read_description_text(description_file)
         parse_joints(description, jsp_params, str(description_file))  # a bad file starts nothing
     node = Node.from_ros_args(NODE_NAME, params={**params, "use_sim_time": jsp_params.use_sim_time})
     try:
