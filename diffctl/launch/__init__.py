@@ -56,7 +56,12 @@ from diffctl.launch.logic_substitutions import (
     NotSubstitution,
     OrSubstitution,
 )
-from diffctl.launch.package_index import get_package_share_directory
+from diffctl.launch.package_index import (
+    PackageNotFoundError,
+    get_package_prefix,
+    get_package_share_directory,
+    get_package_share_path,
+)
 from diffctl.launch.parameters import ParameterFile, ParameterValue
 from diffctl.launch.process_actions import ExecuteProcess, Node
 from diffctl.launch.readiness import WaitFor
@@ -116,6 +121,7 @@ __all__ = [
     "OnShutdown",
     "OpaqueFunction",
     "OrSubstitution",
+    "PackageNotFoundError",
     "ParameterFile",
     "ParameterValue",
     "PathJoinSubstitution",
@@ -142,5 +148,7 @@ __all__ = [
     "WaitFor",
     "XMLLaunchDescriptionSource",
     "YAMLLaunchDescriptionSource",
+    "get_package_prefix",
     "get_package_share_directory",
+    "get_package_share_path",
 ]

@@ -104,14 +104,21 @@ def _int(text: str, flag: str) -> int:
 
 
 def find_world(name: str) -> Path:
-    """The world file: a path, or a name looked up on GZ_SIM_RESOURCE_PATH and the project's worlds."""
+    """The world file: a path, or a name looked up on GZ_SIM_RESOURCE_PATH, the project's worlds and Gazebo's."""
     p = Path(name).expanduser()
     if p.is_file():
         return p
     from diffctl.description.resources import env_search_path
+    from diffctl.workspace.builtin import GAZEBO_WORLDS
 
     here = Path(__file__).resolve().parent.parent
-    candidates = [*env_search_path(), here.parent / "config" / "worlds", here / "share" / "config" / "worlds"]
+    # Last, Gazebo's own worlds (empty.sdf …), as `gz sim empty.sdf` finds them.
+    candidates = [
+        *env_search_path(),
+        here.parent / "config" / "worlds",
+        here / "share" / "config" / "worlds",
+        GAZEBO_WORLDS,
+    ]
     for d in candidates:
         for cand in (d / name, d / f"{name}.sdf", d / f"{name}.world"):
             if cand.is_file():

@@ -180,7 +180,7 @@ def build(root: Path) -> Path:
     (sim / "package.xml").write_text(PACKAGE_XML.format(name="diff_sim"))
     (sim / "CMakeLists.txt").write_text(CMAKE.format(name="diff_sim", dirs="launch config worlds"))
     (desc / "package.xml").write_text(PACKAGE_XML.format(name="robot_description"))
-    (desc / "CMakeLists.txt").write_text(CMAKE.format(name="robot_description", dirs="sdf/"))
+    (desc / "CMakeLists.txt").write_text(CMAKE.format(name="robot_description", dirs="sdf"))
     (sim / "launch" / "sim_control_gz.launch.py").write_text(tutorial_launch_text())
     (sim / "launch" / "mock_control.launch.py").write_text(MOCK_LAUNCH)
     controllers = (REPO / "config" / "diff_drive_controller.yaml").read_text()
