@@ -13,6 +13,8 @@ from pathlib import Path
 
 import pytest
 import yaml
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from lxml import etree
 
 from diffctl.errors import LaunchError
@@ -493,3 +495,49 @@ def test_reset_env_and_reset_keep(tmp_path: Path, monkeypatch) -> None:
         </launch>
     """
     assert logs(plan_of(tmp_path, text)) == ["original unset gone 2"]
+
+
+_PIECES = [
+    "<launch>",
+    "</launch>",
+    "<node ",
+    'pkg="robot_state_publisher" ',
+    'exec="robot_state_publisher" ',
+    "/>",
+    ">",
+    "</node>",
+    "<param ",
+    'name="a" ',
+    'value="1" ',
+    'type="int" ',
+    'value-sep="," ',
+    "</param>",
+    "<group>",
+    "</group>",
+    "<arg ",
+    'default="x" ',
+    "<let ",
+    "<log ",
+    'message="$(var a)" ',
+    'if="true" ',
+    "<timer ",
+    'period="1" ',
+    "</timer>",
+    "<include ",
+    'file="nope.xml" ',
+    "<!-- c -->",
+    "&amp;",
+    "<",
+    '"',
+]
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.lists(st.sampled_from(_PIECES), max_size=14))
+def test_any_xml_is_a_plan_or_one_located_launch_error(tmp_path_factory, pieces: list[str]) -> None:
+    path = tmp_path_factory.mktemp("fuzz") / "f.launch.xml"
+    path.write_text("".join(pieces))
+    try:
+        resolve(load(path), {}, str(path))
+    except LaunchError as e:
+        assert e.source == str(path) and "\n" not in e.message, str(e)
