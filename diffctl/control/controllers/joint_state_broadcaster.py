@@ -148,7 +148,8 @@ class JointStateBroadcaster(ControllerInterface):
 
     def on_configure(self) -> None:
         self._close_endpoints()
-        local = "~/" if self.params.use_local_topics else "/"
+        # Relative, as upstream: a broadcaster in /robot1 publishes /robot1/joint_states (multi-robot setups).
+        local = "~/" if self.params.use_local_topics else ""
         self._js_pub = self._endpoints.keep(self.node.create_publisher(f"{local}joint_states", JOINT_STATE))
         if self.params.publish_dynamic_joint_states:
             self._djs_pub = self._endpoints.keep(
