@@ -1,6 +1,6 @@
 """Several tutorial cars in one simulated world, each in its own namespace with its own controller manager.
 
-    diffctl launch fleet robots:=3 [rtf:=1] [viz:=true] [spacing:=1.5] [gui:=false]
+    diffctl launch fleet robots:=3 [rtf:=1] [spacing:=1.5] [gui:=false]
 
 Written as a ROS 2 user writes a multi-robot gz_ros2_control launch file, with public launch features only:
 an OpaqueFunction reads `robots`, and for every robot K a GroupAction with PushRosNamespace("robotK") holds
@@ -11,8 +11,7 @@ gz_ros2_control plugin (so the simulator hosts /robotK/controller_manager and it
 /robotK/diffbot_base_controller/odom and TF robotK/odom → robotK/base_footprint), and every sensor `<topic>`
 prefixed with "robotK/": Gazebo publishes a `<topic>` as written (a relative one at the root), so two cars
 with `<topic>lidar</topic>` would share one topic. One bridge carries /clock and each robot's sensors
-(gz robotK/lidar → /robotK/scan, …) from one config written at launch time; static transforms
-world → robotK/odom (the spawn pose) give the visualizer one frame in which every car is drawn.
+(gz robotK/lidar → /robotK/scan, …) from one config written at launch time.
 """
 
 import atexit
@@ -94,7 +93,6 @@ def _written(text: str, suffix: str) -> str:
 
 def fleet(context):
     description_dir = get_package_share_directory("diffctl_demo_description")
-    share = get_package_share_directory("diffctl_demo")
     controllers = LaunchConfiguration("controllers_file").perform(context)
     count_text = LaunchConfiguration("robots").perform(context)
     spacing_text = LaunchConfiguration("spacing").perform(context)
@@ -161,14 +159,6 @@ def fleet(context):
                         output="screen",
                     ),
                     diff_spawner,
-                    Node(
-                        package="tf2_ros",
-                        executable="static_transform_publisher",
-                        name="world_to_odom",
-                        arguments=["--x", str(x_m), "--y", str(y_m), "--frame-id", "world",
-                                   "--child-frame-id", f"{ns}/odom"],
-                        condition=IfCondition(LaunchConfiguration("viz")),
-                    ),
                 ]
             )
         )
@@ -181,20 +171,6 @@ def fleet(context):
             output="screen",
             respawn=True,
             respawn_delay=1.0,
-        )
-    )
-    actions.append(
-        Node(
-            package="rviz2",
-            executable="rviz2",
-            name="rviz2",
-            output="screen",
-            arguments=["-d", os.path.join(share, "config", "diffbot.rviz"), "--port", LaunchConfiguration("viz_port"),
-                       "--fixed-frame", "world", "--robots", ",".join(f"robot{k}" for k in range(1, count + 1))],
-            parameters=[{"use_sim_time": use_sim_time}],
-            respawn=True,
-            respawn_delay=1.0,
-            condition=IfCondition(LaunchConfiguration("viz")),
         )
     )
     return actions
@@ -214,11 +190,6 @@ def generate_launch_description():
                 "gui", default_value="false", choices=["true", "false"],
                 description="Open the PyBullet window (Gazebo's GUI)",
             ),
-            DeclareLaunchArgument(
-                "viz", default_value="true", choices=["true", "false"],
-                description="Start the browser visualizer (RViz2) showing every car",
-            ),
-            DeclareLaunchArgument("viz_port", default_value="8080", description="Port of the visualizer's web page"),
             DeclareLaunchArgument(
                 "world", default_value=os.path.join(share, "config", "worlds", "empty.world"),
                 description="SDF world file",
