@@ -12,13 +12,12 @@ from diffctl.sim.sensors.camera import Camera, Frame
 from diffctl.sim.sensors.camera_sensor import CameraSensor
 from diffctl.sim.sensors.camera_task import CameraTask
 from diffctl.sim.sensors.imu import Imu, ImuNoise, point_velocity, specific_force
-from diffctl.sim.sensors.lidar import MAX_RAYS, RANGE_DECIMALS, Lidar, lidar_directions, ranges_from_hits
+from diffctl.sim.sensors.lidar import MAX_RAYS, Lidar, lidar_directions, ranges_from_hits
 from diffctl.sim.sensors.navsat import NavSat, origin_problem
 from diffctl.sim.sensors.rate import RenderRate
 
 __all__ = [
     "MAX_RAYS",
-    "RANGE_DECIMALS",
     "AirPressure",
     "Camera",
     "CameraSensor",

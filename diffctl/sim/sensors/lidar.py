@@ -15,7 +15,6 @@ from diffctl.sim.entity import Entity
 from diffctl.sim.sensors.common import frame_id, pose_msg, rotation
 from diffctl.sim.sensors.topics import POINTS, SCAN
 
-RANGE_DECIMALS = 4
 # gpu_lidar's points: InitPointCloudPacked(aligned, {xyz FLOAT32, intensity FLOAT32, ring UINT16}).
 LIDAR_POINT_STEP = 32
 _LIDAR_FIELDS = (("x", 0, "FLOAT32"), ("y", 4, "FLOAT32"), ("z", 8, "FLOAT32"), ("intensity", 16, "FLOAT32"))
@@ -170,7 +169,7 @@ class Lidar:
             "vertical_angle_max": s.vertical_max_angle_rad,
             "vertical_angle_step": self._v_step,
             "vertical_count": s.vertical_samples,
-            # 0.1 mm is below any lidar's resolution, and short numbers halve the encoding time.
-            "ranges": np.round(ranges, RANGE_DECIMALS).tolist(),
+            # As gz-sensors sends them (full doubles); the gz encoding carries the array as raw bytes.
+            "ranges": np.ascontiguousarray(ranges, dtype=np.float64),
             "intensities": [],
         }
