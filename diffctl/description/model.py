@@ -267,6 +267,9 @@ class Joint:
     axis_child: Vec3 | None  # the same axis in the child link's frame
     limits: JointLimits = field(default_factory=JointLimits)
     dynamics: JointDynamics = field(default_factory=JointDynamics)
+    # <axis><mimic> (SDF 1.11; URDF's <mimic>): (leader joint, multiplier, offset), this joint's position being
+    # multiplier · leader + offset. SDF's <reference> r is folded into the offset (offset − multiplier · r).
+    mimic: tuple[str, float, float] | None = None
 
     @property
     def moves(self) -> bool:

@@ -259,6 +259,8 @@ def _joint(b: _Builder, key: str, model_world: Pose) -> Joint:
                     spring_stiffness=float_value(doc, dyn, "spring_stiffness", 0.0, minimum=0.0),
                 )
         axis_model = frame.rotate(xyz)
+    mimic_el = child(axis_el, "mimic") if axis_el is not None else None
+    mimic = _mimic(b, key, doc, mimic_el) if mimic_el is not None else None
     child_pose_model = g.pose_model(child_link)
     return Joint(
         name=key,
@@ -271,7 +273,65 @@ def _joint(b: _Builder, key: str, model_world: Pose) -> Joint:
         axis_child=child_pose_model.inverse().rotate(axis_model) if axis_model else None,
         limits=limits,
         dynamics=dynamics,
+        mimic=mimic,
     )
+
+
+MIMIC_JOINT_TYPES = ("revolute", "continuous", "prismatic")
+
+
+def _mimic(b: _Builder, key: str, doc: Doc, el: Element) -> tuple[str, float, float]:
+    """<mimic joint="leader" axis="axis"><multiplier/><offset/><reference/></mimic> (sdformat's mimic.sdf)."""
+    g = b.graph
+    kind = g.nodes[key].el.get("type")
+    if kind not in MIMIC_JOINT_TYPES:
+        fail(doc, el, f"a {kind} joint cannot mimic another", hint="valid: " + ", ".join(MIMIC_JOINT_TYPES))
+    leader_name = (el.get("joint") or "").strip()
+    if not leader_name:
+        fail(doc, el, "<mimic> needs a 'joint' attribute naming the joint to follow")
+    scope = next(s for k, s in b.joints if k == key)
+    leader = scope.lookup(leader_name)
+    joints = [k for k, _ in b.joints if k != key]
+    if leader is None or g.nodes[leader].kind != "joint":
+        fail(
+            doc,
+            el,
+            f"<mimic joint={leader_name!r}> names no joint of this model{suggest(leader_name, joints)}",
+            hint="joints: " + ", ".join(joints),
+        )
+    if leader == key:
+        fail(doc, el, f"joint {key!r} cannot mimic itself")
+    leader_kind = g.nodes[leader].el.get("type")
+    if leader_kind not in MIMIC_JOINT_TYPES:
+        fail(
+            doc,
+            el,
+            f"joint {leader!r} is {leader_kind}: it has no axis to mimic",
+            hint="mimic a " + ", ".join(MIMIC_JOINT_TYPES) + " joint",
+        )
+    axis = (el.get("axis") or "axis").strip()
+    if axis != "axis":
+        fail(doc, el, f"<mimic axis={axis!r}>: joint {leader!r} has a single axis", hint="valid: axis")
+    multiplier = float_value(doc, el, "multiplier", 1.0)
+    offset = float_value(doc, el, "offset", 0.0)
+    reference = float_value(doc, el, "reference", 0.0)
+    return (leader, multiplier, offset - multiplier * reference)
+
+
+def _check_mimic_chains(b: _Builder, joints: tuple[Joint, ...]) -> None:
+    """Followers may be led by followers (a chain), never round in a loop: no position would satisfy it."""
+    leader_of = {j.name: j.mimic[0] for j in joints if j.mimic is not None}
+    for start in leader_of:
+        seen = [start]
+        joint = leader_of[start]
+        while joint in leader_of:
+            if joint == start:
+                node = b.graph.nodes[start]
+                fail(node.doc, node.el, "joints mimic each other in a loop: " + " → ".join([*seen, start]))
+            if joint in seen:
+                break  # a loop not through `start`: reported when its own member is the start
+            seen.append(joint)
+            joint = leader_of[joint]
 
 
 def _limits(doc: Doc, axis_el: Element, kind: str) -> JointLimits:
@@ -396,6 +456,7 @@ def build_model(
         )
     joints = tuple(_joint(b, key, model_world) for key, _ in b.joints)
     _check_tree(b, is_static, links)
+    _check_mimic_chains(b, joints)
     frames = tuple(
         Frame(key, b.graph.link_of(key), model_world.compose(b.graph.pose_model(key)), b.graph.pose_model(key))
         for key in [k for k, _ in b.frames] + b.models

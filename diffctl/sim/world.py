@@ -9,6 +9,7 @@ the same commands at the same steps and the same seed give bit-identical traject
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import pybullet as pb
 
@@ -18,6 +19,7 @@ from diffctl.errors import DescriptionError, RuntimeFailure
 from diffctl.sim.body_plan import BodyPlan, LinkPlan, ShapeSpec, plan_model
 from diffctl.sim.entity import Entity
 from diffctl.sim.flat_planes import FlatPlane
+from diffctl.sim.mimic import Mimics
 
 # PyBullet defaults to 50; at 1 ms steps 10 give the same drive trajectories (to 0.1 mm over 6 s, measured)
 # for a third of the cost, which is most of the step budget.
@@ -67,6 +69,8 @@ class PhysicsWorld:
         self.flat_planes: dict[str, list[FlatPlane]] = {}
         self._planes: list[FlatPlane] = []
         self._no_visual = -1
+        self.mimics: dict[str, Mimics] = {}
+        self._before_step: list[Callable[[], None]] = []  # only models that need work every step add to it
 
     # --- entities ------------------------------------------------------------------------------------
 
@@ -85,7 +89,16 @@ class PhysicsWorld:
                 pb.removeBody(b, physicsClientId=self.client)
             raise
         entity = Entity(self.client, model, plan, tuple(bodies))
+        try:
+            mimics = Mimics(entity, self.step_s)
+        except Exception:
+            for b in bodies:
+                pb.removeBody(b, physicsClientId=self.client)
+            raise
         self.entities[model.name] = entity
+        self.mimics[model.name] = mimics
+        if mimics.servos:
+            self._before_step.append(mimics.before_step)
         if self._planes:
             self.flat_planes[model.name] = self._planes
         return entity
@@ -97,6 +110,10 @@ class PhysicsWorld:
         entity = self.entities.pop(name, None)
         if entity is None:
             raise RuntimeFailure(f"no entity named {name!r}", hint=f"entities: {', '.join(self.entities) or 'none'}")
+        mimics = self.mimics.pop(name)
+        mimics.close()
+        if mimics.before_step in self._before_step:
+            self._before_step.remove(mimics.before_step)
         for b in entity.bodies:
             pb.removeBody(b, physicsClientId=self.client)
         self.flat_planes.pop(name, None)
@@ -104,8 +121,11 @@ class PhysicsWorld:
     def reset(self) -> None:
         for e in self.entities.values():
             e.reset()
+            self.mimics[e.name].reset()
 
     def step(self) -> None:
+        for hook in self._before_step:
+            hook()
         pb.stepSimulation(physicsClientId=self.client)
 
     def close(self) -> None:

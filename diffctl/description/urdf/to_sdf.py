@@ -255,11 +255,6 @@ class _Converter:
             mimic = _sub(axis, "mimic", line=joint.line, joint=joint.mimic.joint)
             _sub(mimic, "multiplier", _num(joint.mimic.multiplier), joint.line)
             _sub(mimic, "offset", _num(joint.mimic.offset), joint.line)
-            if self.options.lump:
-                self.ignored.append(
-                    f"joint {joint.name!r} mimics {joint.mimic.joint!r}: the simulator moves it freely "
-                    "(command it through ros2_control to follow)"
-                )
         return el
 
     # --- the model ---------------------------------------------------------------------------------------
