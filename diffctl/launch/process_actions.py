@@ -23,7 +23,7 @@ from diffctl.launch.context import join_namespace
 from diffctl.launch.parameters import ParameterFile, resolve_parameters
 from diffctl.launch.plan import OUTPUTS, AddHandler, Handler, RosNode, StartProcess, Step, TargetRef
 from diffctl.launch.registry import register
-from diffctl.launch.substitutions import SomeSubstitutions, Substitution, normalize, perform
+from diffctl.launch.substitutions import SomeSubstitutions, Substitution, TextSubstitution, normalize, perform
 
 if TYPE_CHECKING:
     from diffctl.launch.context import Scope
@@ -98,17 +98,55 @@ def _flag(value: Any, what: str) -> bool:
 
 
 class SplitArgs:
-    """A YAML `args:`/`cmd:` string: substituted first, then split like a shell would."""
+    """An `args`/`cmd` text split into arguments as launch splits it.
+
+    The written text is split like a shell would; what a substitution gives is never split (a
+    `$(find-pkg-share pkg)` under a folder with spaces stays one argument), but joins the text it touches.
+    Quotes that span a substitution (`'$(var a) b'`) cannot be split that way: then the whole text is
+    substituted first and split after.
+    """
 
     def __init__(self, text: SomeSubstitutions) -> None:
         self.text = normalize(text)
 
     def split(self, scope: Scope) -> list[str]:
-        value = perform(self.text, scope)
         try:
-            return shlex.split(value)
-        except ValueError as e:
-            raise LaunchError(f"cannot split {value!r} into arguments: {e}") from None
+            return self._split_parts(scope)
+        except ValueError:
+            value = perform(self.text, scope)
+            try:
+                return shlex.split(value)
+            except ValueError as e:
+                raise LaunchError(f"cannot split {value!r} into arguments: {e}") from None
+
+    def _split_parts(self, scope: Scope) -> list[str]:
+        args: list[str] = []
+        current: str | None = None  # the argument being built; None between arguments
+
+        def end() -> None:
+            nonlocal current
+            if current:  # a substitution that gave nothing adds no empty argument
+                args.append(current)
+            current = None
+
+        for part in self.text:
+            if not isinstance(part, TextSubstitution):
+                current = (current or "") + part.perform(scope)
+                continue
+            text = part.text
+            tokens = shlex.split(text)  # ValueError: a quote spans a substitution
+            if text and (text[0].isspace() or not tokens):
+                end()
+            if not tokens:
+                continue
+            current = (current or "") + tokens[0]
+            for token in tokens[1:]:
+                end()
+                current = token
+            if text[-1].isspace():
+                end()
+        end()
+        return args
 
 
 def _arguments(items: Iterable[Any], scope: Scope) -> list[str]:

@@ -25,7 +25,7 @@ def wait_for(pred, timeout_s: float = 30.0, what: str = "") -> None:
         time.sleep(0.05)
 
 
-def finish(p: subprocess.Popen, timeout_s: float = 60.0) -> tuple[int, str]:
+def finish(p: subprocess.Popen, timeout_s: float = 180.0) -> tuple[int, str]:
     out, _ = p.communicate(timeout=timeout_s)
     return p.returncode, out
 
@@ -55,7 +55,7 @@ def test_spawner_flags_on_a_named_manager(router, procs, tmp_path, monkeypatch) 
     node = Node("test_spawner_flags")
     node.create_publisher("/robot_description", "std_msgs/msg/String", latched=True).publish({"data": SDF.read_text()})
     cm = ManagerClient(node, "/my_ctrl_mgr")
-    cm.wait("list_controllers", 60.0)
+    cm.wait("list_controllers", 180.0)
 
     # A relative -c, a remap and a parameter for the controller's own node, as a launch file passes them.
     code, out = finish(
@@ -87,7 +87,7 @@ def test_spawner_flags_on_a_named_manager(router, procs, tmp_path, monkeypatch) 
         cmd.publish(twist)
         return len(odom_x) > 1 and odom_x[-1] > 0.05
 
-    wait_for(driven, 60.0, "odometry to move on /cmd_vel")
+    wait_for(driven, 180.0, "odometry to move on /cmd_vel")
     params = node.create_client("/diffbot_base_controller/get_parameters", "rcl_interfaces/srv/GetParameters")
     assert params.wait_for_service(timeout=10.0)
     (value,) = params.call({"names": ["cmd_vel_timeout"]}, timeout=10.0).values
@@ -104,7 +104,7 @@ def test_spawner_flags_on_a_named_manager(router, procs, tmp_path, monkeypatch) 
         "joint_state_broadcaster/JointStateBroadcaster",
         "--unload-on-kill",
     )
-    wait_for(lambda: cm.controller_state("jsb") == "active", 60.0, "jsb active")
+    wait_for(lambda: cm.controller_state("jsb") == "active", 180.0, "jsb active")
     jsb.send_signal(signal.SIGINT)
     code, out = finish(jsb)
     assert code == 0, out

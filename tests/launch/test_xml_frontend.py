@@ -541,3 +541,18 @@ def test_any_xml_is_a_plan_or_one_located_launch_error(tmp_path_factory, pieces:
         resolve(load(path), {}, str(path))
     except LaunchError as e:
         assert e.source == str(path) and "\n" not in e.message, str(e)
+
+
+def test_args_split_the_written_text_never_a_substitutions_value(tmp_path: Path) -> None:
+    # As launch's _parse_cmdline: a share directory under a folder with spaces stays one argument.
+    text = """
+        <launch>
+          <let name="dir" value="/path with space"/>
+          <let name="none" value=""/>
+          <executable cmd="echo -d $(var dir)/x.rviz 'two words' pre$(var dir)post $(var none) last" name="e"/>
+          <executable cmd="echo '$(var dir) quoted' tail" name="q"/>
+        </launch>
+    """
+    procs = processes(plan_of(tmp_path, text))
+    assert procs["e"].argv == ("echo", "-d", "/path with space/x.rviz", "two words", "pre/path with spacepost", "last")
+    assert procs["q"].argv == ("echo", "/path with space quoted", "tail")
