@@ -10,6 +10,7 @@ from __future__ import annotations
 import functools
 import math
 import threading
+from collections.abc import Callable
 from dataclasses import fields as dc_fields
 from typing import Any
 
@@ -17,7 +18,7 @@ import numpy as np
 from rosbags.typesys import Stores, get_typestore
 from rosbags.typesys.base import Nodetype
 
-from diffctl.bus import typedefs
+from diffctl.bus import cdr, typedefs
 from diffctl.errors import MessageError, suggest
 
 _lock = threading.RLock()
@@ -138,15 +139,54 @@ def from_dds_name(dds: str) -> str:
     return f"{pkg}/{kind}/{name[:-1] if name.endswith('_') else name}"
 
 
+# Per-type compiled (de)serializers (cdr.py), built on first use; a type cdr.py cannot compile keeps rosbags'.
+_encoders: dict[str, Callable[[Any], bytes]] = {}
+_decoders: dict[str, Callable[[bytes | bytearray | memoryview], Any]] = {}
+
+
+def encoder(typename: str) -> Callable[[Any], bytes]:
+    """`encode(msg) -> bytes` (CDR with its 4-byte header) for one type, cached: the publishers' hot path."""
+    enc = _encoders.get(typename)
+    if enc is None:
+        ts = _ensure(typename)
+        try:
+            enc = cdr.compile_encoder(ts, typename)
+        except cdr.Unsupported:
+            def enc(msg: Any, _ts: Any = ts) -> bytes:
+                return bytes(_ts.serialize_cdr(msg, typename))
+        _encoders[typename] = enc
+    return enc
+
+
+def decoder(typename: str) -> Callable[[bytes | bytearray | memoryview], Any]:
+    """`decode(raw) -> msg` for one type, cached; malformed data raises MessageError naming the type."""
+    dec = _decoders.get(typename)
+    if dec is None:
+        ts = _ensure(typename)
+        try:
+            inner = cdr.compile_decoder(ts, typename)
+        except cdr.Unsupported:
+            def inner(raw: bytes | bytearray | memoryview, _ts: Any = ts) -> Any:
+                return _ts.deserialize_cdr(raw, typename)
+
+        def dec(raw: bytes | bytearray | memoryview) -> Any:
+            try:
+                return inner(raw)
+            except Exception as e:  # truncated or foreign data raise assorted errors
+                raise MessageError(f"cannot decode {typename}: {type(e).__name__}: {e}") from None
+
+        _decoders[typename] = dec
+    return dec
+
+
 def serialize(msg: Any, typename: str) -> bytes:
-    return bytes(_ensure(typename).serialize_cdr(msg, typename))
+    enc = _encoders.get(typename)
+    return (enc or encoder(typename))(msg)
 
 
 def deserialize(raw: bytes | bytearray | memoryview, typename: str) -> Any:
-    try:
-        return _ensure(typename).deserialize_cdr(raw, typename)
-    except Exception as e:  # rosbags raises assorted errors on truncated or foreign data
-        raise MessageError(f"cannot decode {typename}: {type(e).__name__}: {e}") from None
+    dec = _decoders.get(typename)
+    return (dec or decoder(typename))(raw)
 
 
 # ----------------------------------------------------------------------------- dict ↔ message
