@@ -38,7 +38,11 @@ class BusControllerNode:
         return self._node.fqn
 
     def create_publisher(self, topic: str, type_name: str, latched: bool = False, depth: int = 10) -> Any:
-        return self._node.create_publisher(topic, type_name, latched=latched, depth=depth)
+        """A publisher for the control loop: serialized there, put on the bus by the publishing thread
+        (realtime_tools' RealtimePublisher, which ros2_controllers' controllers publish through)."""
+        from diffctl.control.realtime_publisher import RealtimePublisher
+
+        return RealtimePublisher(self._node.create_publisher(topic, type_name, latched=latched, depth=depth))
 
     def create_subscription(
         self, topic: str, type_name: str, callback: Callable[[Any], None], latched: bool = False, depth: int = 10
