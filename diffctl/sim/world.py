@@ -16,9 +16,11 @@ import pybullet as pb
 from diffctl.description.model import Box, Capsule, Cylinder, Mesh, Model, Physics, Plane, Sphere
 from diffctl.description.pose import Pose, Vec3
 from diffctl.errors import DescriptionError, RuntimeFailure
+from diffctl.sim import self_collision
 from diffctl.sim.body_plan import BodyPlan, LinkPlan, ShapeSpec, plan_model
 from diffctl.sim.entity import Entity
 from diffctl.sim.flat_planes import FlatPlane
+from diffctl.sim.link_gravity import GravityOff
 from diffctl.sim.mimic import Mimics
 
 # PyBullet defaults to 50; at 1 ms steps 10 give the same drive trajectories (to 0.1 mm over 6 s, measured)
@@ -70,7 +72,8 @@ class PhysicsWorld:
         self._planes: list[FlatPlane] = []
         self._no_visual = -1
         self.mimics: dict[str, Mimics] = {}
-        self._before_step: list[Callable[[], None]] = []  # only models that need work every step add to it
+        # (model, hook) run before every step; only models that need work every step add one.
+        self._before_step: list[tuple[str, Callable[[], None]]] = []
 
     # --- entities ------------------------------------------------------------------------------------
 
@@ -82,8 +85,9 @@ class PhysicsWorld:
         bodies: list[int] = []
         self._planes = []
         try:
-            for body_plan in plan.bodies:
-                bodies.append(self._build_body(body_plan, static=model.static))
+            for body_plan, flags in zip(plan.bodies, self_collision.body_flags(model, plan), strict=True):
+                bodies.append(self._build_body(body_plan, static=model.static, flags=flags))
+            self_collision.apply(self.client, model, plan, tuple(bodies))
         except Exception:
             for b in bodies:
                 pb.removeBody(b, physicsClientId=self.client)
@@ -98,7 +102,10 @@ class PhysicsWorld:
         self.entities[model.name] = entity
         self.mimics[model.name] = mimics
         if mimics.servos:
-            self._before_step.append(mimics.before_step)
+            self._before_step.append((model.name, mimics.before_step))
+        gravity_off = GravityOff(entity, self.physics.gravity)
+        if gravity_off.weights:
+            self._before_step.append((model.name, gravity_off.before_step))
         if self._planes:
             self.flat_planes[model.name] = self._planes
         return entity
@@ -110,10 +117,8 @@ class PhysicsWorld:
         entity = self.entities.pop(name, None)
         if entity is None:
             raise RuntimeFailure(f"no entity named {name!r}", hint=f"entities: {', '.join(self.entities) or 'none'}")
-        mimics = self.mimics.pop(name)
-        mimics.close()
-        if mimics.before_step in self._before_step:
-            self._before_step.remove(mimics.before_step)
+        self.mimics.pop(name).close()
+        self._before_step = [(m, hook) for m, hook in self._before_step if m != name]
         for b in entity.bodies:
             pb.removeBody(b, physicsClientId=self.client)
         self.flat_planes.pop(name, None)
@@ -124,7 +129,7 @@ class PhysicsWorld:
             self.mimics[e.name].reset()
 
     def step(self) -> None:
-        for hook in self._before_step:
+        for _, hook in self._before_step:
             hook()
         pb.stepSimulation(physicsClientId=self.client)
 
@@ -138,7 +143,7 @@ class PhysicsWorld:
 
     # --- building ------------------------------------------------------------------------------------
 
-    def _build_body(self, plan: BodyPlan, *, static: bool) -> int:
+    def _build_body(self, plan: BodyPlan, *, static: bool, flags: int = 0) -> int:
         cid = self.client
         base, links = plan.links[0], plan.links[1:]
         base_col = self._collision_shape(base.collisions, static or plan.static_base)
@@ -179,6 +184,7 @@ class PhysicsWorld:
             baseOrientation=base.frame_world.quat,
             baseInertialFramePosition=base.inertial_frame.xyz,
             baseInertialFrameOrientation=base.inertial_frame.quat,
+            flags=flags,
             physicsClientId=cid,
             **kw,
         )
