@@ -11,8 +11,10 @@ import pybullet as pb
 import pytest
 from sim_helpers import build, sdf_world
 
+from diffctl.control.robot_hardware import infos_from_blocks
 from diffctl.description.robot_files import parse_description
 from diffctl.sim.entity import Entity
+from diffctl.sim.plugins.gazebo_sim_system import GazeboSimSystem
 from diffctl.sim.world import PhysicsWorld
 
 INERTIA = '<inertia ixx="1e-4" iyy="1e-4" izz="1e-4" ixy="0" ixz="0" iyz="0"/>'
@@ -123,5 +125,37 @@ def test_a_leader_in_another_body_is_followed_by_a_servo() -> None:
             (ql, _, _), (qf, _, _) = pair.joint_states([lead, follow])
             worst = max(worst, abs(qf - (0.5 * ql + 0.01)))
         assert worst < 1e-4 and abs(ql) > 0.005
+    finally:
+        pw.close()
+
+
+def test_gz_ros2_control_drives_the_leader_and_leaves_the_follower_to_the_physics() -> None:
+    """ros2_control lists both fingers (the follower with state interfaces only, as gripper descriptions do):
+    the idle follower is not held at zero, so commanding the leader's position closes both fingers."""
+    block = """<ros2_control name="GripperSystem" type="system">
+    <hardware><plugin>gz_ros2_control/GazeboSimSystem</plugin></hardware>
+    <joint name="left_joint"><command_interface name="position"/><state_interface name="position"/></joint>
+    <joint name="right_joint"><state_interface name="position"/></joint>
+  </ros2_control>
+</robot>"""
+    pw, g = world_with(gripper_urdf().replace("</robot>", block))
+    try:
+        info = infos_from_blocks(g.model.ros2_control, "gripper.urdf")[0]
+        hw = GazeboSimSystem().bind(g, hold_joints=True, position_proportional_gain=0.1)
+        hw.update_rate = 100
+        hw.on_init(info)
+        hw.export_state_interfaces()
+        hw.export_command_interfaces()
+        hw.perform_command_mode_switch(["left_joint/position"], [])
+        hw.commands["left_joint/position"].value = 0.03
+        for i in range(2000):
+            if i % 10 == 0:
+                hw.write(0, 0.01)
+            hw.step()
+            pw.step()
+        hw.read(0, 0.01)
+        assert hw.states["left_joint/position"].value == pytest.approx(0.03, abs=1e-3)
+        assert hw.states["right_joint/position"].value == pytest.approx(MULTIPLIER * 0.03 + OFFSET, abs=1e-3)
+        assert error_m(g) < 1e-5
     finally:
         pw.close()

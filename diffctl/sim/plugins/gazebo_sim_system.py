@@ -169,7 +169,11 @@ class GazeboSimSystem(HardwareComponent):
         for joint, mode in self.mode.items():
             value = self._command(joint, mode)
             h = self.handles[joint]
-            if mode == "velocity" and value is not None:
+            if h.joint.mimic is not None:
+                # gz_ros2_control overwrites a mimic joint's command with its mimic servo; here the physics holds
+                # it to its leader (sim/mimic.py), so it is neither commanded nor held.
+                self.entity.release_joint(h)
+            elif mode == "velocity" and value is not None:
                 self.entity.set_joint_velocity(h, value)
             elif mode in ("position", "effort") and value is not None:
                 per_step.append(joint)
@@ -213,7 +217,7 @@ class GazeboSimSystem(HardwareComponent):
         for joint, mode in self.mode.items():
             if mode is None:
                 h = self.handles[joint]
-                if self.hold_joints:
+                if self.hold_joints and h.joint.mimic is None:
                     self.entity.set_joint_velocity(h, 0.0)
                 else:
                     self.entity.release_joint(h)
