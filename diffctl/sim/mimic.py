@@ -80,7 +80,8 @@ class Mimics:
         self.constraints: list[int] = []
         self.servos: list[tuple[MimicSpec, JointHandle, JointHandle]] = []
         cid = entity.client
-        for spec in mimic_specs(entity.model):
+        # A static model has no moving joints: nothing to relate.
+        for spec in [] if entity.model.static else mimic_specs(entity.model):
             follower, leader = self._handle(spec.follower), self._handle(spec.leader)
             # Start on the relation (joints spawn at zero): no first-step jolt to correct an offset.
             lead_pos = pb.getJointState(leader.body, leader.index, physicsClientId=cid)[0]
@@ -138,7 +139,7 @@ class Mimics:
     def reset(self) -> None:
         """After the entity's reset (joints at zero): followers back onto their relations."""
         cid = self.entity.client
-        for spec in mimic_specs(self.entity.model):
+        for spec in [] if self.entity.model.static else mimic_specs(self.entity.model):
             follower, leader = self.entity.joints[spec.follower], self.entity.joints[spec.leader]
             lead_pos = pb.getJointState(leader.body, leader.index, physicsClientId=cid)[0]
             pb.resetJointState(

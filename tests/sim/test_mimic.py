@@ -90,6 +90,16 @@ def test_a_blocked_follower_holds_the_leader_back() -> None:
         pw.close()
 
 
+def test_a_static_model_with_mimic_joints_spawns() -> None:
+    pw, _ = build(sdf_world(""))
+    try:
+        g = pw.add_model(parse_description(gripper_urdf(), name="gripper", static=True))
+        assert g.joints == {} and pw.mimics["gripper"].constraints == []
+        pw.reset()
+    finally:
+        pw.close()
+
+
 def test_reset_and_remove() -> None:
     pw, g = world_with(gripper_urdf())
     try:
