@@ -11,6 +11,7 @@ from __future__ import annotations
 import threading
 
 from rosbags.typesys import get_types_from_idl, get_types_from_msg
+from rosbags.typesys.base import Nodetype
 
 from diffctl.bus import types
 from diffctl.errors import ConfigError, MessageError
@@ -23,6 +24,18 @@ def ros2msg(typename: str) -> str:
     t = types.check(typename)
     text, _ = types.store().generate_msgdef(t, ros_version=2)
     return text
+
+
+def _referenced(defs: dict) -> set[str]:
+    """The message types the fields of `defs` (rosbags field definitions) refer to."""
+    out = set()
+    for _consts, fields in defs.values():
+        for _name, (kind, spec) in fields:
+            if kind in (Nodetype.ARRAY, Nodetype.SEQUENCE):
+                kind, spec = spec[0]
+            if kind == Nodetype.NAME:
+                out.add(spec)
+    return out
 
 
 def register_schema(typename: str, encoding: str, text: str, source: str) -> bool:
@@ -47,6 +60,9 @@ def register_schema(typename: str, encoding: str, text: str, source: str) -> boo
     with _lock:
         store = types.store()
         new = {k: v for k, v in found.items() if not types.exists(k)}
+        for known in _referenced(new) - new.keys():
+            if types.exists(known):
+                types.store_with(known)  # diffctl registers its own types on first use: the new ones refer to them
         if new:
             store.register(new)
     if not types.exists(typename):

@@ -86,6 +86,45 @@ def hash_of(description: dict[str, Any]) -> str:
     return "RIHS01_" + hashlib.sha256(json.dumps(dct).encode()).hexdigest()
 
 
+_BASE_OF_ID = {v: k for k, v in FIELD_TYPE_IDS.items()}
+_SCHEMA_SEPARATOR = "=" * 80
+
+
+def _msg_field_type(ft: dict[str, Any]) -> str:
+    """A FieldType as .msg text: `float64[3]`, `string<=10`, `geometry_msgs/Point[]`, `int32[<=5]`."""
+    tid, suffix = int(ft["type_id"]), ""
+    if tid > UNBOUNDED_SEQUENCE_OFFSET:
+        tid, suffix = tid - UNBOUNDED_SEQUENCE_OFFSET, "[]"
+    elif tid > BOUNDED_SEQUENCE_OFFSET:
+        tid, suffix = tid - BOUNDED_SEQUENCE_OFFSET, f"[<={ft['capacity']}]"
+    elif tid > ARRAY_OFFSET:
+        tid, suffix = tid - ARRAY_OFFSET, f"[{ft['capacity']}]"
+    base = _BASE_OF_ID.get(tid)
+    if base is None:
+        raise ValueError(f"unknown field type id {ft['type_id']}")
+    if base == "nested":
+        pkg, _, name = str(ft["nested_type_name"]).partition("/msg/")
+        base = f"{pkg}/{name}"
+    elif base.startswith("bounded_"):
+        base = f"{base.removeprefix('bounded_')}<={ft['string_capacity']}"
+    return base + suffix
+
+
+def ros2msg_text(description: dict[str, Any]) -> str:
+    """A TypeDescription (as plain data) as rosbag2's concatenated .msg text: the type, then each type it
+    references after a line of `=` and `MSG: pkg/Type` (what rosbags' `get_types_from_msg` reads)."""
+
+    def body(ind: dict[str, Any]) -> str:
+        fields = [f for f in ind["fields"] if f["name"] != "structure_needs_at_least_one_member"]
+        return "\n".join(f"{_msg_field_type(f['type'])} {f['name']}" for f in fields)
+
+    parts = [body(description["type_description"])]
+    for ref in description["referenced_type_descriptions"]:
+        pkg, _, name = str(ref["type_name"]).partition("/msg/")
+        parts.append(f"{_SCHEMA_SEPARATOR}\nMSG: {pkg}/{name}\n{body(ref)}")
+    return "\n".join(parts) + "\n"
+
+
 class TypeDescriptionService:
     """`~/get_type_description`: answers for the types this node's endpoints use, matched by hash as rcl does."""
 

@@ -69,22 +69,51 @@ def publisher_type(g: Graph, topic: str) -> str | None:
 
 
 def wait_for_type(g: Graph, topic: str, typename: str | None, timeout_s: float | None) -> str:
-    """The topic's type: given, or learnt from the graph (waiting for a publisher, saying so once)."""
-    if typename:
-        return types.check(typename)
-    t = publisher_type(g, topic)
-    if t:
-        return t
-    info(f"waiting for {topic} to be published…")
-    deadline = None if timeout_s is None else time.monotonic() + timeout_s
-    while True:
-        time.sleep(0.05)
-        t = publisher_type(g, topic)
-        if t:
-            return t
-        if deadline is not None and time.monotonic() > deadline:
-            raise ConfigError(f"no publisher on {topic} after {timeout_s:g} s and no TYPE given",
-                              hint="pass the type, e.g. geometry_msgs/msg/TwistStamped")
+    """The topic's type: given, or learnt from the graph (waiting for a publisher, saying so once). A type
+    this process does not know is learnt from a publisher's `~/get_type_description`."""
+    t = typename or publisher_type(g, topic)
+    if not t:
+        info(f"waiting for {topic} to be published…")
+        deadline = None if timeout_s is None else time.monotonic() + timeout_s
+        while not t:
+            time.sleep(0.05)
+            t = publisher_type(g, topic)
+            if not t and deadline is not None and time.monotonic() > deadline:
+                raise ConfigError(f"no publisher on {topic} after {timeout_s:g} s and no TYPE given",
+                                  hint="pass the type, e.g. geometry_msgs/msg/TwistStamped")
+    if not types.exists(t):
+        learn_type(g, topic, types.normalize(t))
+    return types.check(t)
+
+
+def learn_type(g: Graph, topic: str, typename: str) -> bool:
+    """Register `typename` from the description a publisher of `topic` serves (REP-2016's
+    `~/get_type_description`, as `ros2 topic echo` learns types it was not built with); False if none could."""
+    from diffctl.bag.msgdefs import register_schema
+    from diffctl.bus import Node
+    from diffctl.bus.type_description import SERVICE_TYPE, ros2msg_text
+
+    pubs = [e for e in g.publishers(topic) if types.normalize(e.type) == typename]
+    if not pubs:
+        return False
+    node = Node("diffctl_type_lookup")
+    try:
+        for e in pubs:
+            client = node.create_client(f"{e.node_fqn}/get_type_description", SERVICE_TYPE)
+            if not client.wait_for_service(3.0):
+                continue
+            try:
+                resp = client.call({"type_name": typename, "type_hash": e.type_hash}, timeout=5.0)
+            except Exception:
+                continue
+            if not resp.successful:
+                continue
+            text = ros2msg_text(types.to_dict(resp.type_description))
+            register_schema(typename, "ros2msg", text, f"{e.node_fqn}/get_type_description")
+            return True
+    finally:
+        node.close()
+    return False
 
 
 def is_latched(g: Graph, topic: str) -> bool:
