@@ -14,17 +14,17 @@ $(STAMP): pyproject.toml
 	@touch $@
 
 # Chromium (browser tests), Xvfb (the --gui screenshot test), openssl and iproute2 (the security tests'
-# certificates and network-namespace hosts) come from Debian's packages.
-# Idempotent: nothing is installed when all are already there.
+# certificates and network-namespace hosts) and cmake (the oracle of the workspace's install-rule index) come
+# from Debian's packages. Idempotent: nothing is installed when all are already there.
 system-deps:
 	@if ! command -v chromium >/dev/null || ! command -v Xvfb >/dev/null || ! command -v openssl >/dev/null \
-	    || ! command -v ip >/dev/null; then \
+	    || ! command -v ip >/dev/null || ! command -v cmake >/dev/null; then \
 	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
-	    echo "installing chromium, xvfb, openssl and iproute2 from Debian packages"; \
+	    echo "installing chromium, xvfb, openssl, iproute2 and cmake from Debian packages"; \
 	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium xvfb openssl \
-	      iproute2 >/dev/null; \
+	      iproute2 cmake >/dev/null; \
 	  else \
-	    echo "chromium/xvfb/openssl/iproute2 missing and cannot apt-get install them: their tests will say so"; \
+	    echo "chromium/xvfb/openssl/iproute2/cmake missing and cannot apt-get install them: their tests will say so"; \
 	  fi; \
 	fi
 
