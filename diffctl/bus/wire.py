@@ -8,6 +8,7 @@ attachment = zenoh-ext serialized (int64 seq, int64 source_timestamp_ns, uint8[1
 from __future__ import annotations
 
 import struct
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import xxhash
@@ -45,6 +46,18 @@ def service_key(domain: int, name: str, srv_typename: str) -> str:
 
 def pack_attachment(seq: int, timestamp_ns: int, gid: bytes) -> bytes:
     return _ATT.pack(seq, timestamp_ns, 16, gid)
+
+
+def attachment_packer(gid: bytes) -> Callable[[int, int], bytes]:
+    """`pack(seq, timestamp_ns)` for one endpoint, its GID bound once (a publisher's per-message call)."""
+    if len(gid) != 16:
+        raise ValueError(f"a GID has 16 bytes, got {len(gid)}")
+    att = _ATT.pack
+
+    def pack(seq: int, timestamp_ns: int) -> bytes:
+        return att(seq, timestamp_ns, 16, gid)
+
+    return pack
 
 
 def unpack_attachment(raw: bytes) -> tuple[int, int, bytes]:
