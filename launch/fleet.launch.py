@@ -1,6 +1,6 @@
 """Several tutorial cars in one simulated world, each in its own namespace with its own controller manager.
 
-    diffctl launch fleet robots:=3 [rtf:=1] [spacing:=1.5] [gui:=false]
+    diffctl launch fleet robots:=3 [rtf:=1] [viz:=true] [spacing:=1.5] [gui:=false]
 
 Written as a ROS 2 user writes a multi-robot gz_ros2_control launch file, with public launch features only:
 an OpaqueFunction reads `robots`, and for every robot K a GroupAction with PushRosNamespace("robotK") holds
@@ -11,18 +11,28 @@ gz_ros2_control plugin (so the simulator hosts /robotK/controller_manager and it
 /robotK/diffbot_base_controller/odom and TF robotK/odom → robotK/base_footprint), and every sensor `<topic>`
 prefixed with "robotK/": Gazebo publishes a `<topic>` as written (a relative one at the root), so two cars
 with `<topic>lidar</topic>` would share one topic. One bridge carries /clock and each robot's sensors
-(gz robotK/lidar → /robotK/scan, …) from one config written at launch time.
+(gz robotK/lidar → /robotK/scan, …) from one config written at launch time. One visualizer shows every car:
+its .rviz is config/diffbot.rviz with the topic displays repeated in a group per robot (topics under /robotK,
+RobotModel with TF Prefix robotK) and the fixed frame `world`; the teleop panel picks which car to drive.
 """
 
 import atexit
+import copy
 import math
 import os
 import tempfile
 import xml.etree.ElementTree as ET
 
 import yaml
-from launch.actions import DeclareLaunchArgument, GroupAction, IncludeLaunchDescription, OpaqueFunction
+from launch.actions import (
+    DeclareLaunchArgument,
+    GroupAction,
+    IncludeLaunchDescription,
+    OpaqueFunction,
+    RegisterEventHandler,
+)
 from launch.conditions import IfCondition, UnlessCondition
+from launch.event_handlers import OnProcessExit
 from launch.launch_description_sources import PythonLaunchDescriptionSource
 from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node, PushRosNamespace
@@ -83,6 +93,43 @@ def grid_xy(index: int, count: int, spacing_m: float) -> tuple[float, float]:
     return (index % columns) * spacing_m, (index // columns) * spacing_m
 
 
+def _topic_key(display: dict) -> str | None:
+    for key in ("Description Topic", "Topic"):
+        value = display.get(key)
+        if isinstance(value, dict):
+            value = value.get("Value")
+        if isinstance(value, str) and value.startswith("/"):
+            return key
+    return None
+
+
+def fleet_rviz(template_file: str, namespaces: list[str]) -> str:
+    """The .rviz text of the fleet: displays without a topic once, the others once per robot in a group."""
+    with open(template_file) as f:
+        config = yaml.safe_load(f)
+    manager = config["Visualization Manager"]
+    displays = manager.get("Displays") or []
+    shared = [d for d in displays if _topic_key(d) is None]
+    per_robot = [d for d in displays if _topic_key(d) is not None]
+    groups = []
+    for ns in namespaces:
+        children = []
+        for d in per_robot:
+            c = copy.deepcopy(d)
+            key = _topic_key(c)
+            if isinstance(c[key], dict):
+                c[key]["Value"] = f"/{ns}{c[key]['Value']}"
+            else:
+                c[key] = f"/{ns}{c[key]}"
+            if c.get("Class") == "rviz_default_plugins/RobotModel":
+                c["TF Prefix"] = ns
+            children.append(c)
+        groups.append({"Class": "rviz_common/Group", "Name": ns, "Enabled": True, "Displays": children})
+    manager["Displays"] = shared + groups
+    manager.setdefault("Global Options", {})["Fixed Frame"] = "world"
+    return yaml.safe_dump(config, sort_keys=False)
+
+
 def _written(text: str, suffix: str) -> str:
     fd, path = tempfile.mkstemp(prefix="diffctl_fleet_", suffix=suffix)
     with os.fdopen(fd, "w") as f:
@@ -93,6 +140,7 @@ def _written(text: str, suffix: str) -> str:
 
 def fleet(context):
     description_dir = get_package_share_directory("diffctl_demo_description")
+    share = get_package_share_directory("diffctl_demo")
     controllers = LaunchConfiguration("controllers_file").perform(context)
     count_text = LaunchConfiguration("robots").perform(context)
     spacing_text = LaunchConfiguration("spacing").perform(context)
@@ -131,11 +179,18 @@ def fleet(context):
             package="controller_manager",
             executable="spawner",
             name="spawner_diffbot_base_controller",
+            # Given here too: an event handler's actions run after the group's PushRosNamespace is gone.
+            namespace=ns,
             arguments=[
                 "diffbot_base_controller", "joint_state_broadcaster",
                 "-c", f"/{ns}/controller_manager", "--param-file", controllers,
-                "--controller-manager-timeout", "120",
             ],
+            output="screen",
+        )
+        create = Node(
+            package="ros_gz_sim",
+            executable="create",
+            arguments=["-topic", "robot_description", "-name", ns, "-x", str(x_m), "-y", str(y_m)],
             output="screen",
         )
         actions.append(
@@ -152,13 +207,10 @@ def fleet(context):
                         respawn=True,
                         respawn_delay=1.0,
                     ),
-                    Node(
-                        package="ros_gz_sim",
-                        executable="create",
-                        arguments=["-topic", "robot_description", "-name", ns, "-x", str(x_m), "-y", str(y_m)],
-                        output="screen",
-                    ),
-                    diff_spawner,
+                    create,
+                    # The spawner starts once its car is in the world: spawners take turns (a machine-wide
+                    # lock), and one waiting for a manager that does not exist yet would hold up the others.
+                    RegisterEventHandler(OnProcessExit(target_action=create, on_exit=[diff_spawner])),
                 ]
             )
         )
@@ -171,6 +223,22 @@ def fleet(context):
             output="screen",
             respawn=True,
             respawn_delay=1.0,
+        )
+    )
+    namespaces = [f"robot{k}" for k in range(1, count + 1)]
+    rviz_file = _written(fleet_rviz(os.path.join(share, "config", "diffbot.rviz"), namespaces), ".rviz")
+    actions.append(
+        Node(
+            package="rviz2",
+            executable="rviz2",
+            name="rviz2",
+            output="screen",
+            arguments=["-d", rviz_file, "--port", LaunchConfiguration("viz_port"),
+                       "--teleop-topic", "/robot1/diffbot_base_controller/cmd_vel"],
+            parameters=[{"use_sim_time": use_sim_time}],
+            respawn=True,
+            respawn_delay=1.0,
+            condition=IfCondition(LaunchConfiguration("viz")),
         )
     )
     return actions
@@ -190,6 +258,11 @@ def generate_launch_description():
                 "gui", default_value="false", choices=["true", "false"],
                 description="Open the PyBullet window (Gazebo's GUI)",
             ),
+            DeclareLaunchArgument(
+                "viz", default_value="true", choices=["true", "false"],
+                description="Start the browser visualizer (RViz2) showing every car",
+            ),
+            DeclareLaunchArgument("viz_port", default_value="8080", description="Port of the visualizer's web page"),
             DeclareLaunchArgument(
                 "world", default_value=os.path.join(share, "config", "worlds", "empty.world"),
                 description="SDF world file",

@@ -38,7 +38,7 @@ class BusFeed:
         sub("/tf_static", "tf2_msgs/msg/TFMessage", lambda m: scene.on_tf(m, static=True), latched=True)
         # Every display's topic, enabled or not: the page can switch a display on at any time.
         for topic in config.topics("robot_model", enabled_only=False):
-            sub(topic, "std_msgs/msg/String", lambda m: scene.set_robot_description(m.data), latched=True)
+            sub(topic, "std_msgs/msg/String", lambda m, t=topic: scene.set_robot_description(m.data, t), latched=True)
         for topic in config.topics("odometry", enabled_only=False):
             sub(topic, "nav_msgs/msg/Odometry", lambda m, t=topic: scene.on_odometry(t, m))
         for topic in config.topics("laser_scan", enabled_only=False):
@@ -46,18 +46,22 @@ class BusFeed:
         sub("/joint_states", "sensor_msgs/msg/JointState", scene.on_joint_states)
         sub("/clock", "rosgraph_msgs/msg/Clock", lambda m: scene.on_clock(m.clock.sec + m.clock.nanosec * 1e-9))
         # The simulator side, as Gazebo's own GUI reads it: ground truth and world statistics.
+        # A robot shown with a TF prefix is the simulated model of that name (a fleet's robotK): its ground
+        # truth places its own odom tree in the world.
         zs = node.session
+        models = dict.fromkeys([settings.ground_truth_model, *(p for _, p in config.robot_models() if p)])
         self._gz_subs = [
-            zs.declare_subscriber(gz.key(f"/model/{settings.ground_truth_model}/pose"), self._on_gz_pose),
+            *(zs.declare_subscriber(gz.key(f"/model/{m}/pose"), lambda s, m=m: self._on_gz_pose(s, m))
+              for m in models),
             zs.declare_subscriber(gz.key("/world/*/stats"), self._on_gz_stats),
         ]
 
     # ---- gz side ---------------------------------------------------------------------------------------
 
-    def _on_gz_pose(self, sample: Any) -> None:
+    def _on_gz_pose(self, sample: Any, model: str) -> None:
         try:
             _, fields = gz.decode(sample.payload.to_bytes(), "gz.msgs.Pose_V")
-            self.scene.on_ground_truth(fields)
+            self.scene.on_ground_truth(fields, model)
         except (MessageError, ValueError, TypeError):
             pass
 

@@ -56,6 +56,7 @@ class Display:
     point_size_m: float = 0.05  # LaserScan
     marker_scale: float = 1.0  # TF: axes are 0.1 m times this, as in RViz
     show_names: bool = True  # TF
+    tf_prefix: str = ""  # RobotModel: its links are the frames "<prefix>/<link>" (a namespaced robot's TF)
 
     def to_json(self) -> dict[str, Any]:
         return {
@@ -71,6 +72,7 @@ class Display:
             "point_size": self.point_size_m,
             "marker_scale": self.marker_scale,
             "show_names": self.show_names,
+            "tf_prefix": self.tf_prefix,
         }
 
 
@@ -90,6 +92,10 @@ class RvizConfig:
                 d.topic for d in self.displays if d.kind == kind and d.topic and (d.enabled or not enabled_only)
             )
         )
+
+    def robot_models(self) -> list[tuple[str, str]]:
+        """(description topic, TF prefix) of every RobotModel display, each pair once, in file order."""
+        return list(dict.fromkeys((d.topic, d.tf_prefix) for d in self.displays if d.kind == "robot_model" and d.topic))
 
     def to_json(self) -> dict[str, Any]:
         return {
@@ -241,6 +247,11 @@ def _display(r: _Reader, item: Any, path: str, ignored: list[str]) -> list[Displ
             kw["marker_scale"] = r.number(d["Marker Scale"], path + ".Marker Scale", low=1e-3, high=100)
         if "Show Names" in d:
             kw["show_names"] = r.boolean(d["Show Names"], path + ".Show Names")
+    if kind == "robot_model" and d.get("TF Prefix"):
+        prefix = r.text(d["TF Prefix"], path + ".TF Prefix").strip().strip("/")
+        if any(c.isspace() for c in prefix) or "//" in prefix:
+            raise r.fail(path + ".TF Prefix", f"must be a frame prefix such as robot1, got {d['TF Prefix']!r}")
+        kw["tf_prefix"] = prefix
     if kind == "laser_scan" and "Size (m)" in d:
         kw["point_size_m"] = r.number(d["Size (m)"], path + ".Size (m)", low=1e-4, high=10)
     return [Display(kind, name, enabled, topic, color, cls, **kw)]

@@ -21,6 +21,7 @@ from diffctl.viz.rates import RateMeter, RtfMeter
 from diffctl.viz.robot_model import RobotModel, parse_description
 from diffctl.viz.rviz_config import RvizConfig
 from diffctl.viz.settings import VizSettings
+from diffctl.viz.transforms import IDENTITY as IDENTITY_TF
 from diffctl.viz.transforms import TfBuffer, Transform, strip_frame
 
 STREAMS = ("robot", "frame", "scan", "paths", "status", "graph", "image")
@@ -67,6 +68,18 @@ class _Odom:
 
 
 @dataclass
+class _Robot:
+    """One RobotModel display's robot: its model once its description arrived, and its TF prefix."""
+
+    prefix: str
+    model: RobotModel | None = None
+    error: str | None = None
+
+    def frame(self, link: str) -> str:
+        return f"{self.prefix}/{link}" if self.prefix else link
+
+
+@dataclass
 class _Scan:
     frame_id: str  # as the message says
     anchor: str  # the frame `points_m` are expressed in: the TF root when the scan arrived
@@ -84,8 +97,11 @@ class Scene:
         self._lock = threading.Lock()
         self.versions = dict.fromkeys(STREAMS, 0)
         self.tf = TfBuffer()
-        self.robot: RobotModel | None = None
+        self.robot: RobotModel | None = None  # the first display's robot (the one a single-robot page shows)
         self.robot_error: str | None = None
+        # Per description topic; several robots (a fleet) are several RobotModel displays with TF prefixes.
+        self._robots: dict[str, _Robot] = {t: _Robot(prefix) for t, prefix in config.robot_models()}
+        self._gt_models: dict[str, Transform] = {}  # ground truth per simulated model name
         self._odom: dict[str, _Odom] = {}
         self._keep = {d.topic: d.keep for d in config.displays if d.kind == "odometry" and d.topic}
         self._scans: dict[str, _Scan] = {}
@@ -110,7 +126,7 @@ class Scene:
         with self._lock:
             self.rates.record(topic, time.monotonic())
 
-    def set_robot_description(self, sdf_text: str) -> None:
+    def set_robot_description(self, sdf_text: str, topic: str | None = None) -> None:
         try:
             robot, error = parse_description(sdf_text), None
         except DiffctlError as e:
@@ -118,7 +134,11 @@ class Scene:
         except Exception as e:  # a loader bug must not take the visualizer down with it
             robot, error = None, f"cannot read the robot description: {type(e).__name__}: {e}"
         with self._lock:
-            self.robot, self.robot_error = robot, error
+            topic = topic if topic is not None else next(iter(self._robots), "/robot_description")
+            entry = self._robots.setdefault(topic, _Robot(""))
+            entry.model, entry.error = robot, error
+            if topic == next(iter(self._robots)):
+                self.robot, self.robot_error = robot, error
             self._bump("robot", "frame")
 
     def on_tf(self, msg: Any, static: bool = False) -> None:
@@ -151,10 +171,12 @@ class Scene:
                 self._bump("paths")
             self._bump("frame", "status")
 
-    def on_ground_truth(self, fields: dict[str, Any]) -> None:
-        """gz.msgs.Pose_V from the simulator: the model's true pose in the world (Gazebo's GUI shows this)."""
+    def on_ground_truth(self, fields: dict[str, Any], model: str | None = None) -> None:
+        """gz.msgs.Pose_V from the simulator: the model's true pose in the world (Gazebo's GUI shows this).
+        `model` names the simulated model (default: the settings' ground_truth_model)."""
+        model = model or self.settings.ground_truth_model
         poses = fields.get("pose") or []
-        entry = next((p for p in poses if p.get("name") == self.settings.ground_truth_model), None)
+        entry = next((p for p in poses if p.get("name") == model), None)
         if entry is None and poses:
             entry = poses[0]
         if entry is None:
@@ -166,8 +188,10 @@ class Scene:
         )
         if tf.is_finite():
             with self._lock:
-                self._gt = tf
-                self._bump("frame")
+                self._gt_models[model] = tf
+                if model == self.settings.ground_truth_model:
+                    self._gt = tf
+                self._bump("frame", "paths", "scan")
 
     def on_scan(self, topic: str, msg: Any) -> None:
         ranges = np.asarray(msg.ranges, dtype=np.float64)
@@ -235,20 +259,51 @@ class Scene:
                 "links": r.links if r else [],
                 "skipped": list(r.skipped) if r else [],
                 "error": self.robot_error,
+                "robots": [
+                    {"topic": t, "prefix": e.prefix, "name": e.model.name if e.model else None, "error": e.error}
+                    for t, e in self._robots.items()
+                ],
             }
+
+    def _in_fixed(self, fixed: str) -> dict[str, Transform]:
+        """Every frame's pose in `fixed`: TF's, plus the trees of prefixed robots that TF does not connect to
+        `fixed`, placed by the simulator's ground truth of the model named like the prefix (each robot of a
+        fleet has its own odom, and nothing in TF says where one odom is relative to another)."""
+        known = self.tf.all_in(fixed)
+        world = IDENTITY_TF if fixed == "world" else known.get("world")
+        if world is None:
+            return known
+        for entry in self._robots.values():
+            gt = self._gt_models.get(entry.prefix) if entry.prefix else None
+            if gt is None or entry.model is None:
+                continue
+            link = next((a for a in entry.model.anchors if entry.frame(a) in self.tf.frames()), None)
+            if link is None or entry.frame(link) in known:
+                continue
+            root, link_in_root = self.tf.root_pose(entry.frame(link))
+            root_in_fixed = world.compose(gt).compose(entry.model.anchors[link]).compose(link_in_root.inverse())
+            for frame, pose in self.tf.all_in(root).items():
+                known.setdefault(frame, root_in_fixed.compose(pose))
+        return known
 
     def frame_view(self, fixed: str) -> dict[str, Any]:
         with self._lock:
-            known = self.tf.all_in(fixed)
+            known = self._in_fixed(fixed)
             frames = {
                 name: [_r(t.translation_m[0]), _r(t.translation_m[1]), _r(t.translation_m[2]), _r(t.yaw_rad)]
                 for name, t in known.items()
             }
             robot = []
-            if self.robot is not None:
-                for shape, o in self.robot.outlines(known):
+            for entry in self._robots.values():
+                if entry.model is None:
+                    continue
+                mine = known
+                if entry.prefix:
+                    head = entry.prefix + "/"
+                    mine = {f[len(head):]: t for f, t in known.items() if f.startswith(head)}
+                for shape, o in entry.model.outlines(mine):
                     pts = [_r(c) for p in o.points_xy_m for c in p]
-                    robot.append({"link": shape.link, "pts": pts, "color": _rgba_css(shape.rgba)})
+                    robot.append({"link": entry.frame(shape.link), "pts": pts, "color": _rgba_css(shape.rgba)})
             odom = []
             for topic, od in self._odom.items():
                 entry: dict[str, Any] = {
@@ -259,7 +314,7 @@ class Scene:
                     "w": _r(od.angular_radps),
                     "pose": None,
                 }
-                to_fixed = self.tf.lookup(fixed, od.frame_id) if od.frame_id else None
+                to_fixed = known.get(od.frame_id) if od.frame_id else None
                 if od.pose is not None and to_fixed is not None:
                     p = to_fixed.compose(od.pose)
                     entry["pose"] = [_r(p.translation_m[0]), _r(p.translation_m[1]), _r(p.yaw_rad)]
@@ -272,7 +327,7 @@ class Scene:
                 "type": "frame",
                 "fixed": fixed,
                 # RViz's "Fixed Frame [map] does not exist" once TF has frames, none of them this one.
-                "fixed_known": fixed in self.tf.frames() or not self.tf.frames(),
+                "fixed_known": fixed in self.tf.frames() or not self.tf.frames() or len(known) > 1,
                 "frames": frames,
                 "robot": robot,
                 "odom": odom,
@@ -293,8 +348,9 @@ class Scene:
     def paths_view(self, fixed: str) -> dict[str, Any]:
         with self._lock:
             paths = {}
+            known = self._in_fixed(fixed)
             for topic, od in self._odom.items():
-                to_fixed = self.tf.lookup(fixed, od.frame_id) if od.frame_id else None
+                to_fixed = known.get(od.frame_id) if od.frame_id else None
                 if to_fixed is None:
                     continue
                 pts: list[float] = []
@@ -307,8 +363,9 @@ class Scene:
     def scan_view(self, fixed: str) -> dict[str, Any]:
         with self._lock:
             scans = {}
+            known = self._in_fixed(fixed)
             for topic, s in self._scans.items():
-                to_fixed = self.tf.lookup(fixed, s.anchor)
+                to_fixed = known.get(s.anchor)
                 if to_fixed is None:
                     scans[topic] = {"frame": s.frame_id, "pts": [], "ok": False}
                     continue

@@ -68,6 +68,7 @@
       fillTable("topics", m.topics.map(t => [t.name, { text: t.types.join(", "), cls: t.types.length > 1 ? "err" : "" },
         t.publishers, t.subscribers, t.hz == null ? "—" : t.hz.toFixed(1)]));
     }
+    teleopTopics(m.topics);
     teleopTopicInfo(m.topics);
     const ctl = m.controllers;
     $("controllers-none").hidden = !!ctl;
@@ -125,6 +126,32 @@
       };
       box.append(" ", b);
     }
+  }
+
+  // Several robots (a fleet: /robot1/…/cmd_vel, /robot2/…/cmd_vel): every velocity topic someone subscribes
+  // to is offered by its robot's namespace; picking one drives that robot alone.
+  function teleopTopics(topics) {
+    const sel = $("teleop-robot");
+    const cmds = topics.filter(t => t.subscribers > 0 && t.types.some(ty => ty === TWIST || ty === STAMPED));
+    const names = cmds.map(t => t.name);
+    $("teleop-robot-row").hidden = cmds.length < 2;
+    if ([...sel.options].map(o => o.value).join() === names.join()) {
+      sel.value = $("teleop-topic").value.trim();
+      return;
+    }
+    sel.replaceChildren();
+    for (const t of cmds) {
+      const ns = t.name.split("/").filter(Boolean);
+      sel.add(new Option(ns.length > 2 ? `${ns[0]} — ${t.name}` : t.name, t.name));
+    }
+    sel.value = $("teleop-topic").value.trim();
+    sel.onchange = () => {
+      stopAll();
+      const t = cmds.find(c => c.name === sel.value);
+      $("teleop-topic").value = sel.value;
+      if (t) $("teleop-stamped").checked = t.types.includes(STAMPED);
+      teleopTopicInfo(topics);
+    };
   }
 
   function setupTeleop(t) {
