@@ -30,6 +30,7 @@ _CODE = {
 }
 _SIZE = {name: struct.calcsize(code) for name, code in _CODE.items()}
 _HEADER_LE = b"\x00\x01\x00\x00"
+_CDR_LE = _HEADER_LE[:2]
 
 
 class Unsupported(Exception):
@@ -244,7 +245,8 @@ def compile_decoder(ts: Any, typename: str) -> Callable[[bytes | bytearray | mem
     def decode(raw: bytes | bytearray | memoryview) -> Any:
         if type(raw) is not bytes:
             raw = bytes(raw)
-        if raw[:4] != _HEADER_LE:
+        # Only the representation (CDR little-endian) matters; the two option bytes may count padding.
+        if raw[:2] != _CDR_LE or len(raw) < 4:
             return fallback(raw, typename)
         blen = len(raw)
         msg, pos = inner(raw, 4, blen)

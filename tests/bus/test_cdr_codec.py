@@ -100,3 +100,6 @@ def test_big_endian_samples_still_decode() -> None:
     assert raw[:2] == b"\x00\x00"
     assert _same(types.deserialize(raw, typename), msg)
     assert _same(types.deserialize(memoryview(types.serialize(msg, typename)), typename), msg)
+    # Writers may count their end padding in the encapsulation options (XCDR); the body is read the same.
+    padded = types.serialize(msg, typename)
+    assert _same(types.deserialize(padded[:2] + b"\x00\x03" + padded[4:], typename), msg)
