@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 from typing import Any
@@ -124,6 +125,7 @@ def _choose_workspace(workspace_dir: Path | None) -> None:
 
 
 def _run(plan: Any, *, log_dir: Path | None, no_color: bool, no_router: bool) -> int:
+    from diffctl.launch.fork_server import is_component
     from diffctl.launch.loop import EventLoop
     from diffctl.launch.output import Output, default_log_dir, link_latest
     from diffctl.launch.readiness import ProbePoller
@@ -142,19 +144,25 @@ def _run(plan: Any, *, log_dir: Path | None, no_color: bool, no_router: bool) ->
         link_latest(run_dir)
     router = None
     poller = None
+    loop = None
     try:
         output.launcher("INFO", f"All log files can be found below {run_dir}")
+        # The fork server starts first: its imports run while the router opens.
+        loop = EventLoop(fork_components=any(is_component(spec.argv) for spec in plan.processes.values()))
         router = None if no_router else _ensure_router(output)
-        loop = EventLoop()
         if probes is not None:
             poller = ProbePoller(
                 {"topic": probes.topic_has_publisher, "service": probes.service_available}, notify=loop.wake
             )
-        supervisor = Supervisor(plan, spawner=loop.spawner, output=output, log_dir=run_dir, poller=poller)
+        # `diffctl bag record` without -o (and anything else that writes files) puts them next to the logs.
+        env = {**os.environ, "DIFFCTL_LOG_DIR": str(run_dir.resolve())}
+        supervisor = Supervisor(plan, spawner=loop.spawner, output=output, log_dir=run_dir, poller=poller, env=env)
         code = loop.run(supervisor)
         output.launcher("INFO", f"logs: {run_dir}")
         return code
     finally:
+        if loop is not None:
+            loop.spawner.close()  # the fork server too, when the router or anything before the run failed
         if poller is not None:
             poller.close()
         if probes is not None:

@@ -14,6 +14,8 @@ import sys
 from dataclasses import dataclass, field
 from typing import IO
 
+from diffctl.launch import fork_server
+from diffctl.launch.context import with_tool_path
 from diffctl.launch.spawner import PosixSpawner
 from diffctl.launch.supervisor import Supervisor
 
@@ -31,9 +33,14 @@ class _Pipe:
 
 
 class EventLoop:
-    def __init__(self, *, watch_stdin: bool = True) -> None:
+    def __init__(self, *, watch_stdin: bool = True, fork_components: bool = False) -> None:
+        """fork_components: start the fork server now, so its imports overlap whatever the caller does next."""
         self.selector = selectors.DefaultSelector()
         self.spawner = PosixSpawner(on_pipes=self._add_pipes)
+        if fork_components and fork_server.enabled(os.environ):
+            self.spawner.fork_server = fork_server.ForkServer(
+                with_tool_path(dict(os.environ)), preexec=self.spawner.preexec
+            )
         self.supervisor: Supervisor | None = None
         self._pipes: dict[int, list[_Pipe]] = {}
         self._wake_r, self._wake_w = os.pipe()

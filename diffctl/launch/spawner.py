@@ -6,6 +6,9 @@
   it and reaped here, not by init;
 - the guard process (guard.py) SIGKILLs every known group if the launcher dies, which catches grandchildren
   that PDEATHSIG does not reach.
+
+diffctl's own components are forked from the fork server (fork_server.py) when one is given: the same
+session, death signal, pipes, argv and environment, without paying the interpreter's imports again.
 """
 
 from __future__ import annotations
@@ -21,6 +24,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import IO
 
+from diffctl.launch.fork_server import ForkServer
 from diffctl.launch.process_state import Child
 
 PR_SET_PDEATHSIG = 1
@@ -37,12 +41,15 @@ def _libc() -> ctypes.CDLL | None:
 
 
 class PosixSpawner:
-    def __init__(self, on_pipes: PipesListener | None = None, *, guard: bool = True) -> None:
+    def __init__(
+        self, on_pipes: PipesListener | None = None, *, guard: bool = True, fork_server: ForkServer | None = None
+    ) -> None:
         self.on_pipes = on_pipes
+        self.fork_server = fork_server
         self._libc = _libc()
         self._prctl = self._libc.prctl if self._libc is not None and sys.platform.startswith("linux") else None
         self._parent = os.getpid()
-        self._children: dict[int, subprocess.Popen[bytes]] = {}
+        self._children: dict[int, subprocess.Popen[bytes] | None] = {}  # None: forked by the fork server
         self._groups: set[int] = set()
         self._guard_enabled = guard
         self._guard: subprocess.Popen[bytes] | None = None
@@ -72,7 +79,7 @@ class PosixSpawner:
 
     # ---- children ----------------------------------------------------------------------------------------------
 
-    def _preexec(self) -> None:
+    def preexec(self) -> None:
         # Runs in the child between fork and exec: keep it to the prctl and the race check.
         if self._prctl is not None:
             self._prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
@@ -80,6 +87,10 @@ class PosixSpawner:
                 os._exit(1)  # the launcher died before the death signal was armed
 
     def spawn(self, name: str, argv: list[str], env: dict[str, str], cwd: str | None, interactive: bool) -> Child:
+        if self.fork_server is not None and self.fork_server.accepts(argv, env, interactive):
+            pid = self._fork(name, argv, env, cwd)
+            if pid is not None:
+                return Child(pid, pid)
         proc = subprocess.Popen(
             argv,
             stdin=None if interactive else subprocess.DEVNULL,
@@ -88,7 +99,7 @@ class PosixSpawner:
             env=env,
             cwd=cwd,
             start_new_session=True,
-            preexec_fn=self._preexec,
+            preexec_fn=self.preexec,
             close_fds=True,
             bufsize=0,
         )
@@ -98,6 +109,32 @@ class PosixSpawner:
         if self.on_pipes is not None and proc.stdout is not None and proc.stderr is not None:
             self.on_pipes(name, proc.pid, proc.stdout, proc.stderr)
         return Child(proc.pid, proc.pid)
+
+    def _fork(self, name: str, argv: list[str], env: dict[str, str], cwd: str | None) -> int | None:
+        assert self.fork_server is not None
+        if cwd is not None and not os.path.isdir(cwd):
+            return None  # exec reports the error as it always has
+        out_r, out_w = os.pipe()
+        err_r, err_w = os.pipe()
+        try:
+            pid = self.fork_server.spawn(argv, env, cwd, out_w, err_w)
+        finally:
+            os.close(out_w)
+            os.close(err_w)
+        if pid is None:
+            os.close(out_r)
+            os.close(err_r)
+            return None
+        self._children[pid] = None
+        self._groups.add(pid)
+        self._tell_guard(f"+{pid}")
+        stdout, stderr = os.fdopen(out_r, "rb", buffering=0), os.fdopen(err_r, "rb", buffering=0)
+        if self.on_pipes is not None:
+            self.on_pipes(name, pid, stdout, stderr)
+        else:
+            stdout.close()
+            stderr.close()
+        return pid
 
     def signal_group(self, child: Child, sig: int) -> bool:
         try:
@@ -124,7 +161,8 @@ class PosixSpawner:
                 done, status = pid, 0
             if done:
                 code = os.waitstatus_to_exitcode(status)
-                proc.returncode = code
+                if proc is not None:
+                    proc.returncode = code
                 del self._children[pid]
                 ended.append((pid, code))
         if orphans:
@@ -139,6 +177,8 @@ class PosixSpawner:
                 continue
             for pid in pids:
                 if pid in self._children or (self._guard is not None and pid == self._guard.pid):
+                    continue
+                if self.fork_server is not None and pid == self.fork_server.pid:
                     continue
                 try:
                     if os.getpgid(pid) in self._groups:
@@ -161,7 +201,9 @@ class PosixSpawner:
             self.forget(Child(child_pid, child_pid))
 
     def close(self) -> None:
-        """The launcher ends normally: release the guard without it killing anything."""
+        """The launcher ends normally: end the fork server, release the guard without it killing anything."""
+        if self.fork_server is not None:
+            self.fork_server.close()
         if self._guard is not None:
             self._tell_guard("exit")
             try:

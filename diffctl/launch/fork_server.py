@@ -1,0 +1,110 @@
+"""The launcher's side of the fork server: start the zygote, ask it for diffctl components, fall back to exec.
+
+Every diffctl component is `python -m diffctl …`, and most of its start-up is importing the same modules
+(numpy, pybullet, zenoh, rosbags, lxml, diffctl's own). The zygote (zygote.py) imports them once, before any
+Zenoh session or thread exists, and forks each component from that state. Only commands that would run
+this very interpreter the same way are forked: `<this python> -m diffctl …`, not interactive, with the same
+interpreter-affecting environment (PYTHON*, LD_*) as the zygote; everything else, and every request the
+zygote cannot answer, is exec'd as before. DIFFCTL_FORK_SERVER=0 turns the server off.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+import socket
+import subprocess
+import sys
+from collections.abc import Callable, Mapping, Sequence
+
+from diffctl.launch.zygote import FD_ENV, MAX_MESSAGE
+
+ENABLE_ENV = "DIFFCTL_FORK_SERVER"
+# Variables the interpreter or the dynamic loader reads once at start-up: a forked component has the
+# zygote's, so a process that asks for other values is exec'd. PYTHONUNBUFFERED is set for every child.
+_STARTUP_PREFIXES = ("PYTHON", "LD_")
+_SAME_FOR_ALL = ("PYTHONUNBUFFERED",)
+REPLY_TIMEOUT_S = 60.0  # the first request waits for the zygote's imports, on a loaded machine too
+
+
+def enabled(env: Mapping[str, str]) -> bool:
+    return env.get(ENABLE_ENV, "1").strip().lower() not in ("0", "false", "no", "off")
+
+
+def is_component(argv: Sequence[str]) -> bool:
+    """`<this interpreter> -m diffctl …`: the command line of every diffctl component the launcher starts."""
+    return (
+        len(argv) >= 3
+        and os.path.abspath(argv[0]) == os.path.abspath(sys.executable)
+        and list(argv[1:3]) == ["-m", "diffctl"]
+    )
+
+
+def _startup_env(env: Mapping[str, str]) -> dict[str, str]:
+    return {
+        k: v for k, v in env.items() if k.startswith(_STARTUP_PREFIXES) and k not in _SAME_FOR_ALL and k != FD_ENV
+    }
+
+
+class ForkServer:
+    """One zygote per launch; `spawn` returns the component's pid, or None when it must be exec'd instead."""
+
+    def __init__(self, env: Mapping[str, str], preexec: Callable[[], None] | None = None) -> None:
+        self._env = dict(env)
+        self._startup = _startup_env(env)
+        ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
+        try:
+            self.process: subprocess.Popen[bytes] | None = subprocess.Popen(
+                [sys.executable, "-m", "diffctl.launch.zygote"],
+                stdin=subprocess.DEVNULL,
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
+                env={**self._env, FD_ENV: str(theirs.fileno()), "PYTHONUNBUFFERED": "1"},
+                pass_fds=(theirs.fileno(),),
+                start_new_session=True,
+                preexec_fn=preexec,
+            )
+        finally:
+            theirs.close()
+        self._sock: socket.socket | None = ours
+        ours.settimeout(REPLY_TIMEOUT_S)
+
+    @property
+    def pid(self) -> int | None:
+        return self.process.pid if self.process is not None else None
+
+    def accepts(self, argv: list[str], env: Mapping[str, str], interactive: bool) -> bool:
+        return self._sock is not None and not interactive and is_component(argv) and _startup_env(env) == self._startup
+
+    def spawn(
+        self, argv: list[str], env: Mapping[str, str], cwd: str | None, stdout_w: int, stderr_w: int
+    ) -> int | None:
+        """Fork `argv` from the zygote with these pipe ends as its stdout and stderr; None: exec it instead."""
+        if self._sock is None:
+            return None
+        message = json.dumps({"argv": argv, "env": dict(env), "cwd": cwd}).encode()
+        if len(message) > MAX_MESSAGE:
+            return None
+        try:
+            socket.send_fds(self._sock, [message], [stdout_w, stderr_w])
+            reply = json.loads(self._sock.recv(4096) or b"{}")
+        except (OSError, ValueError):
+            self.close()  # a zygote that does not answer serves nobody: exec from now on
+            return None
+        pid = reply.get("pid")
+        return pid if isinstance(pid, int) and pid > 0 else None
+
+    def close(self) -> None:
+        """Closing our end ends the zygote (its children are the launcher's, not its own)."""
+        if self._sock is not None:
+            self._sock.close()
+            self._sock = None
+        if self.process is not None:
+            try:
+                self.process.wait(timeout=2.0)
+            except subprocess.TimeoutExpired:
+                self.process.kill()
+                with contextlib.suppress(subprocess.TimeoutExpired):
+                    self.process.wait(timeout=2.0)
+            self.process = None

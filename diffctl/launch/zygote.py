@@ -1,0 +1,229 @@
+"""The fork server process (zygote): import diffctl's heavy modules once, then fork components from it.
+
+Started by the launcher (fork_server.py) as `python -m diffctl.launch.zygote` with one end of a socket pair.
+It imports numpy, pybullet, zenoh, rosbags, lxml and diffctl's component modules while it is still the only
+thread of a process that has opened no Zenoh session, then serves requests: argv, environment and working
+directory, with the child's stdout and stderr pipe ends passed as file descriptors. For each it forks twice,
+so the component is re-parented to the launcher (a child subreaper) and the launcher waits for it, signals
+its group and reaps it exactly as a process it had started itself. The component then takes its own
+session, arms PR_SET_PDEATHSIG once the launcher is its parent, puts its pipes on fds 1 and 2, closes every
+other descriptor, takes the requested environment and working directory, and runs `python -m diffctl`'s
+main as the interpreter would — uncaught exceptions, SystemExit, KeyboardInterrupt and atexit included.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import ctypes
+import importlib
+import json
+import os
+import runpy
+import shlex
+import signal
+import socket
+import sys
+import time
+from dataclasses import dataclass
+
+FD_ENV = "DIFFCTL_FORK_SERVER_FD"
+MAX_MESSAGE = 1 << 20
+PR_SET_PDEATHSIG = 1
+# What the sim_control graph's components import at start-up (measured with PYTHONPROFILEIMPORTTIME over a
+# whole launch): third-party libraries first, then diffctl's command and component modules. A module that
+# fails to import is left to the component, which then fails exactly as it would have without the server.
+PRELOAD: tuple[str, ...] = (
+    "numpy",
+    "yaml",
+    "lxml.etree",
+    "click",
+    "zenoh",
+    "rosbags.typesys",
+    "pybullet",
+    "diffctl.cli.main",
+    "diffctl.bus",
+    "diffctl.bus.types",
+    "diffctl.bus.graph",
+    "diffctl.bus.parameter_services",
+    "diffctl.description",
+    "diffctl.description.urdf",
+    "diffctl.sim.cli",
+    "diffctl.sim.runner",
+    "diffctl.sim.world",
+    "diffctl.sim.sensors",
+    "diffctl.sim.plugins",
+    "diffctl.sim.world_client",
+    "diffctl.control.manager",
+    "diffctl.control.controller_node",
+    "diffctl.control.cli",
+    "diffctl.control.spawner",
+    "diffctl.cli.spawn",
+    "diffctl.robot_state_publisher.cli",
+    "diffctl.robot_state_publisher.node",
+    "diffctl.bridge.cli",
+    "diffctl.bridge.bridge",
+    "diffctl.viz.cli",
+    "diffctl.viz.server",
+    "diffctl.viz.bus_feed",
+    "diffctl.bag.cli",
+)
+
+
+@dataclass(frozen=True)
+class Request:
+    argv: list[str]
+    env: dict[str, str]
+    cwd: str | None
+    stdout_fd: int
+    stderr_fd: int
+
+
+def preload() -> None:
+    # OpenBLAS starts a worker thread when numpy loads; a single-threaded BLAS keeps this process at one
+    # thread, so fork() copies no lock another thread holds. Components get their own environment back.
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+    for name in PRELOAD:
+        with contextlib.suppress(Exception):
+            importlib.import_module(name)
+    with contextlib.suppress(ImportError):
+        import setproctitle
+
+        setproctitle.getproctitle()  # claims argv's memory now, before a component replaces the environment
+    with contextlib.suppress(Exception):
+        from diffctl.bus import typedefs
+
+        typedefs.definitions()  # the message definitions every bus component registers its types from
+    if sys.platform.startswith("linux"):
+        # pybullet prints its build time with C stdio: flush it here, or every component would print it again
+        # when its copy of the buffer is flushed at exit.
+        ctypes.CDLL(None).fflush(None)
+
+
+def serve(sock: socket.socket, launcher_pid: int) -> Request | None:
+    """Answer requests until the launcher closes its end (None); in a forked component, its Request."""
+    while True:
+        try:
+            data, fds, _, _ = socket.recv_fds(sock, MAX_MESSAGE, 2)
+        except (OSError, ValueError):
+            return None
+        if not data:
+            return None
+        try:
+            message = json.loads(data)
+            if len(fds) != 2:
+                raise ValueError("expected the stdout and stderr descriptors")
+            request = Request(message["argv"], message["env"], message.get("cwd"), fds[0], fds[1])
+        except (ValueError, KeyError, TypeError) as e:
+            for fd in fds:
+                os.close(fd)
+            _reply(sock, {"error": f"bad request: {e}"})
+            continue
+        child = _fork_twice(sock, request, launcher_pid)
+        if isinstance(child, Request):
+            return child
+        os.close(request.stdout_fd)
+        os.close(request.stderr_fd)
+        _reply(sock, child)
+
+
+def _reply(sock: socket.socket, message: dict[str, object]) -> None:
+    with contextlib.suppress(OSError):
+        sock.send(json.dumps(message).encode())
+
+
+def _fork_twice(sock: socket.socket, request: Request, launcher_pid: int) -> Request | dict[str, object]:
+    """Fork an intermediate that forks the component and exits at once: the component is re-parented to the
+    launcher before its pid is reported, so the launcher's waitpid() never races the re-parenting."""
+    r, w = os.pipe()
+    try:
+        middle = os.fork()
+    except OSError as e:
+        os.close(r)
+        os.close(w)
+        return {"error": f"fork failed: {e.strerror}"}
+    if middle == 0:
+        os.close(r)
+        try:
+            pid = os.fork()
+        except OSError:
+            os._exit(1)
+        if pid == 0:
+            os.close(w)
+            sock.close()
+            _settle(launcher_pid)
+            return request
+        os.write(w, str(pid).encode())
+        os._exit(0)
+    os.close(w)
+    with os.fdopen(r, "rb") as pipe:
+        text = pipe.read()
+    os.waitpid(middle, 0)
+    return {"pid": int(text)} if text else {"error": "fork failed in the intermediate process"}
+
+
+def _settle(launcher_pid: int) -> None:
+    """In the component: its own session, then the launcher as parent before the death signal is armed
+    (a death signal armed earlier would fire when the intermediate exits)."""
+    os.setsid()
+    middle = os.getppid()
+    deadline = time.monotonic() + 10.0
+    while os.getppid() != launcher_pid:
+        if os.getppid() != middle or time.monotonic() > deadline:
+            os._exit(1)  # re-parented elsewhere: the launcher is gone
+        time.sleep(0.0002)
+    if sys.platform.startswith("linux"):
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+        if os.getppid() != launcher_pid:
+            os._exit(1)  # the launcher died before the death signal was armed
+
+
+def become(request: Request, start_cwd: str) -> None:
+    """Turn this forked process into `python -m diffctl ARGS…` with the request's pipes, env and cwd."""
+    devnull = os.open(os.devnull, os.O_RDONLY)
+    os.dup2(devnull, 0)
+    os.dup2(request.stdout_fd, 1)
+    os.dup2(request.stderr_fd, 2)
+    os.closerange(3, _max_fd())
+    for sig in (signal.SIGTERM, signal.SIGHUP, signal.SIGUSR1, signal.SIGCHLD):
+        signal.signal(sig, signal.SIG_DFL)
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    os.environ.clear()
+    os.environ.update(request.env)
+    if request.cwd:
+        os.chdir(request.cwd)
+    if sys.path and sys.path[0] == start_cwd:
+        sys.path[0] = os.getcwd()  # `python -m` puts the working directory first on the path
+    sys.argv = [request.argv[0], *request.argv[3:]]
+    with contextlib.suppress(AttributeError):
+        sys.orig_argv = list(request.argv)  # type: ignore[misc]
+    with contextlib.suppress(ImportError):
+        import setproctitle
+
+        # ps, pgrep and psutil show the component's command line, not the zygote's.
+        setproctitle.setproctitle(shlex.join(request.argv))
+    runpy.run_module("diffctl", run_name="__main__", alter_sys=True)
+
+
+def _max_fd() -> int:
+    try:
+        return int(os.sysconf("SC_OPEN_MAX"))
+    except (ValueError, OSError):
+        return 65536
+
+
+def main() -> None:
+    fd = int(os.environ.pop(FD_ENV))
+    launcher_pid = os.getppid()
+    start_cwd = os.getcwd()
+    sock = socket.socket(fileno=fd)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # only the launcher's close or its death ends the server
+    preload()
+    request = serve(sock, launcher_pid)
+    if request is None:
+        os._exit(0)  # the launcher is done: nothing of this process needs finalising
+    become(request, start_cwd)
+
+
+if __name__ == "__main__":
+    main()
