@@ -10,7 +10,8 @@ control SDF with the placeholder replaced, `<ros><namespace>/robotK</namespace><
 gz_ros2_control plugin (so the simulator hosts /robotK/controller_manager and its controllers publish
 /robotK/diffbot_base_controller/odom and TF robotK/odom → robotK/base_footprint), and every sensor `<topic>`
 prefixed with "robotK/": Gazebo publishes a `<topic>` as written (a relative one at the root), so two cars
-with `<topic>lidar</topic>` would share one topic. One bridge carries /clock and each robot's sensors
+with `<topic>lidar</topic>` would share one topic; `<gz_frame_id>`s get the same prefix as the TF frames.
+One bridge carries /clock and each robot's sensors
 (gz robotK/lidar → /robotK/scan, …) from one config written at launch time. One visualizer shows every car:
 its .rviz is config/diffbot.rviz with the topic displays repeated in a group per robot (topics under /robotK,
 RobotModel with TF Prefix robotK) and the fixed frame `world`; the teleop panel picks which car to drive.
@@ -65,6 +66,10 @@ def robot_description(template: str, namespace: str) -> tuple[str, list[dict]]:
             ns.text = "/" + namespace
     entries = []
     for sensor in root.iter("sensor"):
+        # A message's frame is <gz_frame_id> as written: prefixed like robot_state_publisher's TF frames.
+        frame = sensor.find("gz_frame_id")
+        if frame is not None and (frame.text or "").strip():
+            frame.text = f"{namespace}/{frame.text.strip()}"
         topic = sensor.find("topic")
         if topic is None or not (topic.text or "").strip():
             continue  # Gazebo's default topic already holds the model name

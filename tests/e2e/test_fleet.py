@@ -121,6 +121,7 @@ def test_three_cars_namespaced_driven_and_seeing_each_other(tmp_path: Path, stac
             assert (f"{r}/base_link", f"{r}/lidar_link") in watch.tf_pairs
         assert all(not child.startswith("/") and "/" in child for _, child in watch.tf_pairs), watch.tf_pairs
 
+        assert watch.scan.header.frame_id == "robot1/lidar_link"  # its TF frame, prefixed as robot_state_publisher's
         # robot2 stands in front of robot1 (+x) and robot3 to its left (+y): robot1's lidar sees both.
         stack.wait_sim(stack.clock_ns + SEC)
         ahead, left = expected_range(watch, "robot2", 0), expected_range(watch, "robot3", 1)
