@@ -5,14 +5,17 @@ Flow per controller (Jazzy tip): list_controllers; load unless already loaded (a
 activate with a STRICT switch unless --inactive (one switch for all with --activate-as-group).
 --controller-ros-args become `<name>.node_options_args` on the manager (the controller node's remaps and
 parameters), -t sets `<name>.type`, -n (deprecated) is the spawner's namespace for a relative -c.
-Concurrent spawners are serialised by a file lock under $ROS_HOME/locks. Exit code 0 on success, 1 with
-the reason on failure. With -u it stays up and, on Ctrl-C/SIGTERM, deactivates and unloads what it spawned.
+Concurrent spawners of one bus (router endpoints + ROS domain) are serialised by a file lock under
+$ROS_HOME/locks; stacks on other routers or domains of the same machine do not wait for each other.
+Exit code 0 on success, 1 with the reason on failure. With -u it stays up and, on Ctrl-C/SIGTERM,
+deactivates and unloads what it spawned.
 """
 
 from __future__ import annotations
 
 import contextlib
 import fcntl
+import hashlib
 import os
 import shlex
 import signal
@@ -32,9 +35,25 @@ from diffctl.errors import ParameterError, RuntimeFailure
 LOCK_NAME = "ros2-control-controller-spawner.lock"
 
 
-def lock_path() -> Path:
+def bus_scope() -> str:
+    """What makes two spawners talk to the same controller managers: the router endpoints their sessions
+    connect to and the ROS domain. Spawners of separate stacks never contend for a manager, so they need not
+    queue behind each other's lock (upstream's lock is per machine because ROS has no router to scope by)."""
+    from diffctl.bus import session
+
+    try:
+        endpoints = sorted(session.connect_endpoints(session.peer_config()))
+    except Exception:  # an unreadable session config: Node() reports it in one line right after
+        endpoints = [session.router_endpoint()]
+    return f"{','.join(endpoints)}|domain {os.environ.get('ROS_DOMAIN_ID', '0') or '0'}"
+
+
+def lock_path(scope: str | None = None) -> Path:
     home = os.environ.get("ROS_HOME") or os.path.join(os.path.expanduser("~"), ".ros")
-    return Path(home) / "locks" / LOCK_NAME
+    if scope is None:
+        return Path(home) / "locks" / LOCK_NAME
+    digest = hashlib.sha256(scope.encode()).hexdigest()[:16]
+    return Path(home) / "locks" / LOCK_NAME.replace(".lock", f"-{digest}.lock")
 
 
 def _try_lock(fh, wait_s: float) -> bool:
@@ -46,13 +65,13 @@ def _try_lock(fh, wait_s: float) -> bool:
         except BlockingIOError:
             if time.monotonic() >= deadline:
                 return False
-            time.sleep(0.05)
+            time.sleep(0.01)
 
 
 @contextlib.contextmanager
-def spawner_lock(log, attempts: int = 5, wait_s: float = 20.0) -> Iterator[None]:
-    """Serialise spawners on one machine, as controller_manager's spawner does (5 attempts × 20 s)."""
-    path = lock_path()
+def spawner_lock(log, attempts: int = 5, wait_s: float = 20.0, scope: str | None = None) -> Iterator[None]:
+    """Serialise spawners of one bus, as controller_manager's spawner does on a machine (5 attempts × 20 s)."""
+    path = lock_path(scope)
     path.parent.mkdir(parents=True, exist_ok=True)
     with open(path, "a") as fh:
         for k in range(1, attempts + 1):
@@ -136,7 +155,7 @@ def spawn(
 
     signal.signal(signal.SIGTERM, on_signal)
     try:
-        with spawner_lock(log):
+        with spawner_lock(log, scope=bus_scope()):
             cm.wait("list_controllers", manager_timeout_s, log.info, log.warn)
             for service in ("load_controller", "configure_controller", "switch_controller", "set_parameters"):
                 cm.wait(service, manager_timeout_s, None, log.warn)
