@@ -56,7 +56,7 @@ def measure(count: int) -> tuple[float, float, int]:
     os.environ["DIFFCTL_ROUTER"] = f"tcp/127.0.0.1:{free_port()}"
     with tempfile.TemporaryDirectory(prefix="diffctl-bench-fleet-") as tmp:
         proc = subprocess.Popen(
-            [sys.executable, "-m", "diffctl", "launch", "fleet", f"robots:={count}", "--log-dir", tmp],
+            [sys.executable, "-m", "diffctl", "launch", "fleet", f"robots:={count}", "viz_port:=0", "--log-dir", tmp],
             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True,
         )
         node = None
