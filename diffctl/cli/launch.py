@@ -129,7 +129,7 @@ def _run(plan: Any, *, log_dir: Path | None, no_color: bool, no_router: bool) ->
     from diffctl.launch.loop import EventLoop
     from diffctl.launch.output import Output, default_log_dir, link_latest
     from diffctl.launch.readiness import ProbePoller
-    from diffctl.launch.supervisor import Supervisor
+    from diffctl.launch.supervisor import Supervisor, default_child_env
 
     kinds = plan.uses_bus()
     probes = _bus_probes(kinds) if kinds else None
@@ -147,15 +147,16 @@ def _run(plan: Any, *, log_dir: Path | None, no_color: bool, no_router: bool) ->
     loop = None
     try:
         output.launcher("INFO", f"All log files can be found below {run_dir}")
+        # `diffctl bag record` without -o (and anything else that writes files) puts them next to the logs.
+        env = {**os.environ, "DIFFCTL_LOG_DIR": str(run_dir.resolve())}
         # The fork server starts first: its imports run while the router opens.
-        loop = EventLoop(fork_components=any(is_component(spec.argv) for spec in plan.processes.values()))
+        components = any(is_component(spec.argv) for spec in plan.processes.values())
+        loop = EventLoop(fork_env=default_child_env(env) if components else None)
         router = None if no_router else _ensure_router(output)
         if probes is not None:
             poller = ProbePoller(
                 {"topic": probes.topic_has_publisher, "service": probes.service_available}, notify=loop.wake
             )
-        # `diffctl bag record` without -o (and anything else that writes files) puts them next to the logs.
-        env = {**os.environ, "DIFFCTL_LOG_DIR": str(run_dir.resolve())}
         supervisor = Supervisor(plan, spawner=loop.spawner, output=output, log_dir=run_dir, poller=poller, env=env)
         code = loop.run(supervisor)
         output.launcher("INFO", f"logs: {run_dir}")

@@ -2,10 +2,12 @@
 
 Every diffctl component is `python -m diffctl …`, and most of its start-up is importing the same modules
 (numpy, pybullet, zenoh, rosbags, lxml, diffctl's own). The zygote (zygote.py) imports them once, before any
-Zenoh session or thread exists, and forks each component from that state. Only commands that would run
-this very interpreter the same way are forked: `<this python> -m diffctl …`, not interactive, with the same
-interpreter-affecting environment (PYTHON*, LD_*) as the zygote; everything else, and every request the
-zygote cannot answer, is exec'd as before. DIFFCTL_FORK_SERVER=0 turns the server off.
+Zenoh session or thread exists, and forks each component from that state. The zygote runs in the
+environment the launcher gives a process that sets nothing of its own, and only commands that exec would
+start identically are forked: `<this python> -m diffctl …`, not interactive, with exactly that environment
+(so a forked component's interpreter settings, PYTHON*, LD_*, and its /proc/PID/environ are what exec
+would have given it). Everything else, and every request the zygote cannot answer, is exec'd as before.
+DIFFCTL_FORK_SERVER=0 turns the server off.
 """
 
 from __future__ import annotations
@@ -18,13 +20,9 @@ import subprocess
 import sys
 from collections.abc import Callable, Mapping, Sequence
 
-from diffctl.launch.zygote import FD_ENV, MAX_MESSAGE
+from diffctl.launch.zygote import MAX_MESSAGE, TITLE_ROOM
 
 ENABLE_ENV = "DIFFCTL_FORK_SERVER"
-# Variables the interpreter or the dynamic loader reads once at start-up: a forked component has the
-# zygote's, so a process that asks for other values is exec'd. PYTHONUNBUFFERED is set for every child.
-_STARTUP_PREFIXES = ("PYTHON", "LD_")
-_SAME_FOR_ALL = ("PYTHONUNBUFFERED",)
 REPLY_TIMEOUT_S = 60.0  # the first request waits for the zygote's imports, on a loaded machine too
 
 
@@ -41,26 +39,20 @@ def is_component(argv: Sequence[str]) -> bool:
     )
 
 
-def _startup_env(env: Mapping[str, str]) -> dict[str, str]:
-    return {
-        k: v for k, v in env.items() if k.startswith(_STARTUP_PREFIXES) and k not in _SAME_FOR_ALL and k != FD_ENV
-    }
-
-
 class ForkServer:
     """One zygote per launch; `spawn` returns the component's pid, or None when it must be exec'd instead."""
 
     def __init__(self, env: Mapping[str, str], preexec: Callable[[], None] | None = None) -> None:
+        """env: what the launcher gives a child that sets no variables of its own."""
         self._env = dict(env)
-        self._startup = _startup_env(env)
         ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
         try:
             self.process: subprocess.Popen[bytes] | None = subprocess.Popen(
-                [sys.executable, "-m", "diffctl.launch.zygote"],
+                [sys.executable, "-m", "diffctl.launch.zygote", str(theirs.fileno()), " " * TITLE_ROOM],
                 stdin=subprocess.DEVNULL,
                 stdout=subprocess.DEVNULL,
                 stderr=subprocess.DEVNULL,
-                env={**self._env, FD_ENV: str(theirs.fileno()), "PYTHONUNBUFFERED": "1"},
+                env=self._env,
                 pass_fds=(theirs.fileno(),),
                 start_new_session=True,
                 preexec_fn=preexec,
@@ -75,7 +67,7 @@ class ForkServer:
         return self.process.pid if self.process is not None else None
 
     def accepts(self, argv: list[str], env: Mapping[str, str], interactive: bool) -> bool:
-        return self._sock is not None and not interactive and is_component(argv) and _startup_env(env) == self._startup
+        return self._sock is not None and not interactive and is_component(argv) and dict(env) == self._env
 
     def spawn(
         self, argv: list[str], env: Mapping[str, str], cwd: str | None, stdout_w: int, stderr_w: int

@@ -15,7 +15,6 @@ from dataclasses import dataclass, field
 from typing import IO
 
 from diffctl.launch import fork_server
-from diffctl.launch.context import with_tool_path
 from diffctl.launch.spawner import PosixSpawner
 from diffctl.launch.supervisor import Supervisor
 
@@ -33,14 +32,13 @@ class _Pipe:
 
 
 class EventLoop:
-    def __init__(self, *, watch_stdin: bool = True, fork_components: bool = False) -> None:
-        """fork_components: start the fork server now, so its imports overlap whatever the caller does next."""
+    def __init__(self, *, watch_stdin: bool = True, fork_env: dict[str, str] | None = None) -> None:
+        """fork_env: start the fork server now (its imports overlap whatever the caller does next), in the
+        environment of a child that sets nothing of its own."""
         self.selector = selectors.DefaultSelector()
         self.spawner = PosixSpawner(on_pipes=self._add_pipes)
-        if fork_components and fork_server.enabled(os.environ):
-            self.spawner.fork_server = fork_server.ForkServer(
-                with_tool_path(dict(os.environ)), preexec=self.spawner.preexec
-            )
+        if fork_env is not None and fork_server.enabled(fork_env):
+            self.spawner.fork_server = fork_server.ForkServer(fork_env, preexec=self.spawner.preexec)
         self.supervisor: Supervisor | None = None
         self._pipes: dict[int, list[_Pipe]] = {}
         self._wake_r, self._wake_w = os.pipe()

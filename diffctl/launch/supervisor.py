@@ -58,6 +58,16 @@ from diffctl.launch.status import ProcessRow, StatusView, awaited, process_rows
 STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
 
 
+def child_env(env: dict[str, str]) -> dict[str, str]:
+    """A child's final environment: line-buffered output from every Python child."""
+    return {**env, "PYTHONUNBUFFERED": "1"}
+
+
+def default_child_env(env: dict[str, str]) -> dict[str, str]:
+    """The environment of a child that sets no variables of its own, when the launcher runs in `env`."""
+    return child_env(with_tool_path(dict(env)))
+
+
 class Supervisor:
     def __init__(
         self,
@@ -76,7 +86,7 @@ class Supervisor:
         self.clock = clock or SystemClock()
         self.params_dir = (log_dir / "params") if log_dir else Path(tempfile.gettempdir()) / f"diffctl-{os.getpid()}"
         self.poller = poller
-        self.base_env = with_tool_path(dict(os.environ if env is None else env))
+        self.base_env = with_tool_path(dict(os.environ if env is None else env))  # as default_child_env
         self.states = {name: ProcessState(spec) for name, spec in plan.processes.items()}
         self.pid_names: dict[int, str] = {}
         self.handlers: list[Handler] = []
@@ -235,8 +245,7 @@ class Supervisor:
                 env.pop(key, None)
             else:
                 env[key] = value
-        env["PYTHONUNBUFFERED"] = "1"  # line-buffered output from every Python child
-        return env
+        return child_env(env)
 
     def _start(self, spec: ProcessSpec) -> None:
         st = self.states[spec.name]

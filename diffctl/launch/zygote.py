@@ -1,6 +1,9 @@
 """The fork server process (zygote): import diffctl's heavy modules once, then fork components from it.
 
-Started by the launcher (fork_server.py) as `python -m diffctl.launch.zygote` with one end of a socket pair.
+Started by the launcher (fork_server.py) as `python -m diffctl.launch.zygote FD ROOM` with one end of a socket
+pair as FD, in exactly the environment the launcher gives its children (so /proc/PID/environ of a forked
+component is what an exec'd one would show) and ROOM, blank space in argv that a component's command line
+is written over (so ps, pgrep and psutil show `python -m diffctl sim run …`, not the zygote).
 It imports numpy, pybullet, zenoh, rosbags, lxml and diffctl's component modules while it is still the only
 thread of a process that has opened no Zenoh session, then serves requests: argv, environment and working
 directory, with the child's stdout and stderr pipe ends passed as file descriptors. For each it forks twice,
@@ -19,14 +22,14 @@ import importlib
 import json
 import os
 import runpy
-import shlex
 import signal
 import socket
 import sys
 import time
 from dataclasses import dataclass
+from pathlib import Path
 
-FD_ENV = "DIFFCTL_FORK_SERVER_FD"
+TITLE_ROOM = 4096  # bytes of argv a component's command line may take in ps
 MAX_MESSAGE = 1 << 20
 PR_SET_PDEATHSIG = 1
 # What the sim_control graph's components import at start-up (measured with PYTHONPROFILEIMPORTTIME over a
@@ -90,10 +93,6 @@ def preload() -> None:
     for name in PRELOAD:
         with contextlib.suppress(Exception):
             importlib.import_module(name)
-    with contextlib.suppress(ImportError):
-        import setproctitle
-
-        setproctitle.getproctitle()  # claims argv's memory now, before a component replaces the environment
     with contextlib.suppress(Exception):
         from diffctl.bus import typedefs
 
@@ -202,12 +201,27 @@ def become(request: Request, start_cwd: str) -> None:
     sys.argv = [request.argv[0], *request.argv[3:]]
     with contextlib.suppress(AttributeError):
         sys.orig_argv = list(request.argv)  # type: ignore[misc]
-    with contextlib.suppress(ImportError):
-        import setproctitle
-
-        # ps, pgrep and psutil show the component's command line, not the zygote's.
-        setproctitle.setproctitle(shlex.join(request.argv))
+    retitle(request.argv)
     runpy.run_module("diffctl", run_name="__main__", alter_sys=True)
+
+
+def retitle(argv: list[str]) -> None:
+    """Write `argv` over this process's own argv memory, for /proc/PID/cmdline.
+
+    The words are joined by spaces and end in a NUL, and the last byte of the area is not a NUL: the kernel
+    then reads the command line up to that first NUL (its setproctitle rule), and ps and psutil split it
+    at the spaces. The environment block that follows argv is left alone."""
+    try:
+        fields = Path("/proc/self/stat").read_text().rsplit(")", 1)[1].split()
+        start, end = int(fields[45]), int(fields[46])  # arg_start, arg_end (fields 48 and 49 of proc(5))
+    except (OSError, IndexError, ValueError):
+        return
+    size = end - start
+    if size < 2:
+        return
+    text = " ".join(argv).encode()[: size - 2]
+    area = text + b"\0" * (size - len(text) - 1) + b" "
+    ctypes.memmove(start, area, size)
 
 
 def _max_fd() -> int:
@@ -218,7 +232,7 @@ def _max_fd() -> int:
 
 
 def main() -> None:
-    fd = int(os.environ.pop(FD_ENV))
+    fd = int(sys.argv[1])
     launcher_pid = os.getppid()
     start_cwd = os.getcwd()
     sock = socket.socket(fileno=fd)
