@@ -219,9 +219,24 @@ def _decoder_source(ts: Any, typename: str, ns: dict[str, Any]) -> str:
         return [*em.lines, f"return {expr}, pos"]
 
     top = _Decoder(ts, ns, helpers, pending)
-    lines = body(typename, top)
-    out.append("def decode(buf, pos, blen):")
-    out += [f"    {line}" for line in lines]
+    top_expr = top.value((Nodetype.NAME, typename))
+    top.flush()
+    # One frame per message: the header check, the body and the size check are all in `decode`.
+    out += [
+        "def decode(buf):",
+        "    if type(buf) is not bytes:",
+        "        buf = bytes(buf)",
+        "    if buf[:2] != CDR_LE or len(buf) < 4:  # big-endian or no header: rosbags decides",
+        "        return FALLBACK(buf, TYPENAME)",
+        "    blen = len(buf)",
+        "    pos = 4",
+    ]
+    out += [f"    {line}" for line in top.lines]
+    out += [
+        "    if pos + 3 < blen:  # CDR pads to 4 at most; more left over means a sample of another type",
+        "        raise ValueError(f'CDR message size mismatch for {TYPENAME!r}')",
+        f"    return {top_expr}",
+    ]
     while pending:
         name = pending.pop()
         em = _Decoder(ts, ns, helpers, pending)
@@ -233,28 +248,15 @@ def _decoder_source(ts: Any, typename: str, ns: dict[str, Any]) -> str:
 
 def compile_decoder(ts: Any, typename: str) -> Callable[[bytes | bytearray | memoryview], Any]:
     """`decode(raw)` for one type: raw is a whole CDR sample (header included). Raises ValueError,
-    struct.error or UnicodeDecodeError on malformed input; big-endian samples go through rosbags."""
+    struct.error or UnicodeDecodeError on malformed input; big-endian samples go through rosbags.
+    Only the representation bytes of the header are checked: the two option bytes may count padding."""
     ns: dict[str, Any] = {"U32": struct.Struct("<I").unpack_from, "frombuffer": numpy.frombuffer,
-                          "MAXSEQ": getattr(ts, "max_sequence_length", 2**32 - 1)}
+                          "MAXSEQ": getattr(ts, "max_sequence_length", 2**32 - 1), "CDR_LE": _CDR_LE,
+                          "FALLBACK": ts.deserialize_cdr, "TYPENAME": typename}
     src = _decoder_source(ts, typename, ns)
     ns = {k: v for k, v in ns.items() if isinstance(k, str)}
     exec(compile(src, f"<cdr decoder {typename}>", "exec"), ns)
-    inner = ns["decode"]
-    fallback = ts.deserialize_cdr
-
-    def decode(raw: bytes | bytearray | memoryview) -> Any:
-        if type(raw) is not bytes:
-            raw = bytes(raw)
-        # Only the representation (CDR little-endian) matters; the two option bytes may count padding.
-        if raw[:2] != _CDR_LE or len(raw) < 4:
-            return fallback(raw, typename)
-        blen = len(raw)
-        msg, pos = inner(raw, 4, blen)
-        if pos + 3 < blen:  # CDR pads to 4 at most; more left over means the sample is of another type
-            raise ValueError(f"CDR message size mismatch for {typename!r}")
-        return msg
-
-    return decode
+    return ns["decode"]
 
 
 # ----------------------------------------------------------------------------- encoder
