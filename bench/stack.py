@@ -5,10 +5,15 @@ defaults → both controllers active and the first /diffbot_base_controller/odom
 `stack_cmd_vel_to_wheel_ms` (TwistStamped published → the controller's wheel command for it, seen as the
 open-loop odometry's twist changing, wall time, p50/p99, at real time: at most one 50 ms control period plus
 transport), `stack_rtf` (the simulator's real-time factor once the running world is switched to
-as-fast-as-possible — rtf 0 — with its in-simulator controller manager at 20 Hz while driving),
+as-fast-as-possible — rtf 0 — with its in-simulator controller manager at 20 Hz while driving) and
+`stack_rtf_vs_bare` (that ÷ bare stepSimulation of bench/sim.py's bodies, measured right after, so the
+ratio holds on a busy machine too),
 `stack_ctrl_c_to_reaped_s` (SIGINT → the launcher has exited with every descendant reaped), `stack_rss_mb`
 (resident memory of the launcher and every descendant together, visualizer included, as the sum of
 PSS — shared pages counted once; `stack_rss_sum_mb` is the naive per-process RSS sum, for reference).
+
+`python -m bench.stack [--no-fork-server] [--runs N]` measures start-up and shutdown alone, N times (with
+DIFFCTL_FORK_SERVER=0 for the exec-every-process baseline), and prints each run's figures.
 """
 
 from __future__ import annotations
@@ -50,7 +55,7 @@ def _tree_memory_mb(pid: int) -> tuple[float, float]:
     return pss / 2**20, rss / 2**20
 
 
-def run() -> dict:
+def run(*, startup_only: bool = False) -> dict:
     from diffctl.bus import Node, gz
     from diffctl.bus.session import close_session
 
@@ -97,6 +102,20 @@ def run() -> dict:
                 time.sleep(0.02)
             odom.wait(30)
             ready_s = time.monotonic() - t_start
+            if startup_only:
+                pss_mb, rss_mb = _tree_memory_mb(proc.pid)
+                descendants = psutil.Process(proc.pid).children(recursive=True)
+                node.close()
+                close_session()
+                t0 = time.monotonic()
+                os.kill(proc.pid, signal.SIGINT)
+                proc.wait(30)
+                _, alive = psutil.wait_procs(descendants, timeout=5)
+                if alive:
+                    raise RuntimeError(f"left behind after Ctrl-C: {alive}")
+                return {"stack_launch_to_ready_s": round(ready_s, 3),
+                        "stack_ctrl_c_to_reaped_s": round(time.monotonic() - t0, 3),
+                        "stack_rss_mb": round(pss_mb, 1), "stack_processes": len(descendants) + 1}
 
             # Drive, and time each velocity change from the publish to the controller's wheel command.
             rtfs: list[float] = []
@@ -142,10 +161,16 @@ def run() -> dict:
             if proc.poll() is None:
                 os.killpg(proc.pid, signal.SIGKILL)
                 proc.wait()
+    from bench.sim import run_bare
+
+    bare_rtf = run_bare(5.0)[0]
+    stack_rtf = round(statistics.median(driving_rtf), 1) if driving_rtf else None
     return {
         "stack_launch_to_ready_s": round(ready_s, 3),
         "stack_ctrl_c_to_reaped_s": round(reaped_s, 3),
-        "stack_rtf": round(statistics.median(driving_rtf), 1) if driving_rtf else None,
+        "stack_rtf": stack_rtf,
+        "stack_rtf_vs_bare": round(stack_rtf / bare_rtf, 3) if stack_rtf else None,
+        "stack_bare_step_rtf": round(bare_rtf, 1),
         "stack_cmd_vel_to_wheel_ms": round(float(np.median(latencies)), 2) if latencies else None,
         "stack_cmd_vel_to_wheel_p99_ms": round(float(np.percentile(latencies, 99)), 2) if latencies else None,
         "stack_rss_mb": round(pss_mb, 1),
@@ -154,5 +179,13 @@ def run() -> dict:
     }
 
 
+def main(argv: list[str]) -> None:
+    if "--no-fork-server" in argv:
+        os.environ["DIFFCTL_FORK_SERVER"] = "0"
+    runs = int(argv[argv.index("--runs") + 1]) if "--runs" in argv else 1
+    for _ in range(runs):
+        print(run(startup_only=runs > 1 or "--startup" in argv), flush=True)
+
+
 if __name__ == "__main__":
-    print(run())
+    main(sys.argv[1:])
