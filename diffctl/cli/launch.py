@@ -90,30 +90,53 @@ def launch(
     from diffctl.console import make_console, warn
     from diffctl.launch import package_index
     from diffctl.launch.loader import load
+    from diffctl.launch.output import default_log_dir
     from diffctl.launch.render import ArgumentsView, PlanView
     from diffctl.launch.resolver import Resolver, declared_arguments
 
     positional, arguments = _split_targets(target)
     _choose_workspace(workspace_dir)
     path = package_index.find_launch_file(*positional)
-    description = load(path)
-    # Piped output is not cut to 80 columns: paths and commands must stay whole.
-    console = make_console(no_color=no_color, width=None if sys.stdout.isatty() else 200)
-    if show_args:
-        console.print(ArgumentsView(declared_arguments(description, str(path))))
-        return
-    plan = Resolver().resolve(description, arguments, str(path))
-    declared = [a.name for a in plan.arguments]
-    for name in arguments:
-        if name not in declared:
-            warn(f"argument {name!r} is not declared by the launch file{suggest(name, declared)}")
-    for message in plan.warnings:
-        warn(message)
-    if print_plan:
-        console.print(PlanView(plan))
-        return
+    # Launching: the fork server starts now, so its imports run while the launch file is read and resolved.
+    run_dir = None if show_args or print_plan else log_dir or default_log_dir()
+    loop = None if run_dir is None else _event_loop(run_dir)
+    try:
+        description = load(path)
+        # Piped output is not cut to 80 columns: paths and commands must stay whole.
+        console = make_console(no_color=no_color, width=None if sys.stdout.isatty() else 200)
+        if show_args:
+            console.print(ArgumentsView(declared_arguments(description, str(path))))
+            return
+        plan = Resolver().resolve(description, arguments, str(path))
+        declared = [a.name for a in plan.arguments]
+        for name in arguments:
+            if name not in declared:
+                warn(f"argument {name!r} is not declared by the launch file{suggest(name, declared)}")
+        for message in plan.warnings:
+            warn(message)
+        if print_plan:
+            console.print(PlanView(plan))
+            return
+    except BaseException:
+        if loop is not None:
+            loop.spawner.close(kill_fork_server=True)
+        raise
+    assert loop is not None and run_dir is not None
     # SystemExit, not ctx.exit: the entry point runs click with standalone_mode=False, which drops exit codes.
-    raise SystemExit(_run(plan, log_dir=log_dir, no_color=no_color, no_router=no_router))
+    raise SystemExit(_run(plan, loop, run_dir, log_given=log_dir is not None, no_color=no_color, no_router=no_router))
+
+
+def _event_loop(run_dir: Path) -> Any:
+    """The launcher's event loop, with a fork server running in the environment its children will get."""
+    from diffctl.launch.loop import EventLoop
+    from diffctl.launch.supervisor import default_child_env
+
+    return EventLoop(fork_env=default_child_env(_children_env(run_dir)))
+
+
+def _children_env(run_dir: Path) -> dict[str, str]:
+    # `diffctl bag record` without -o (and anything else that writes files) puts them next to the logs.
+    return {**os.environ, "DIFFCTL_LOG_DIR": str(run_dir.resolve())}
 
 
 def _choose_workspace(workspace_dir: Path | None) -> None:
@@ -124,34 +147,31 @@ def _choose_workspace(workspace_dir: Path | None) -> None:
     use_in_children(find_workspace(explicit=workspace_dir))
 
 
-def _run(plan: Any, *, log_dir: Path | None, no_color: bool, no_router: bool) -> int:
+def _run(plan: Any, loop: Any, run_dir: Path, *, log_given: bool, no_color: bool, no_router: bool) -> int:
     from diffctl.launch.fork_server import is_component
-    from diffctl.launch.loop import EventLoop
-    from diffctl.launch.output import Output, default_log_dir, link_latest
+    from diffctl.launch.output import Output, link_latest
     from diffctl.launch.readiness import ProbePoller
-    from diffctl.launch.supervisor import Supervisor, default_child_env
+    from diffctl.launch.supervisor import Supervisor
 
-    kinds = plan.uses_bus()
-    probes = _bus_probes(kinds) if kinds else None
-    run_dir = log_dir or default_log_dir()
-    try:
-        output = Output(log_dir=run_dir, no_color=no_color)
-    except OSError as e:
-        raise LaunchError(
-            f"cannot create the log directory {run_dir}: {e.strerror}", hint="pass --log-dir DIR"
-        ) from None
-    if log_dir is None:
-        link_latest(run_dir)
+    if not any(is_component(spec.argv) for spec in plan.processes.values()):
+        loop.spawner.drop_fork_server()  # nothing of diffctl's to fork: its imports would only take CPU
+    probes = None
+    output = None
     router = None
     poller = None
-    loop = None
     try:
+        kinds = plan.uses_bus()
+        probes = _bus_probes(kinds) if kinds else None
+        try:
+            output = Output(log_dir=run_dir, no_color=no_color)
+        except OSError as e:
+            raise LaunchError(
+                f"cannot create the log directory {run_dir}: {e.strerror}", hint="pass --log-dir DIR"
+            ) from None
+        if not log_given:
+            link_latest(run_dir)
         output.launcher("INFO", f"All log files can be found below {run_dir}")
-        # `diffctl bag record` without -o (and anything else that writes files) puts them next to the logs.
-        env = {**os.environ, "DIFFCTL_LOG_DIR": str(run_dir.resolve())}
-        # The fork server starts first: its imports run while the router opens.
-        components = any(is_component(spec.argv) for spec in plan.processes.values())
-        loop = EventLoop(fork_env=default_child_env(env) if components else None)
+        env = _children_env(run_dir)
         router = None if no_router else _ensure_router(output)
         if probes is not None:
             poller = ProbePoller(
@@ -162,12 +182,12 @@ def _run(plan: Any, *, log_dir: Path | None, no_color: bool, no_router: bool) ->
         output.launcher("INFO", f"logs: {run_dir}")
         return code
     finally:
-        if loop is not None:
-            loop.spawner.close()  # the fork server too, when the router or anything before the run failed
+        loop.spawner.close()  # the fork server too, when the router or anything before the run failed
         if poller is not None:
             poller.close()
         if probes is not None:
             probes.close()
         if router is not None:
             router.close()
-        output.close()
+        if output is not None:
+            output.close()

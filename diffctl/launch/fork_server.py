@@ -87,12 +87,15 @@ class ForkServer:
         pid = reply.get("pid")
         return pid if isinstance(pid, int) and pid > 0 else None
 
-    def close(self) -> None:
-        """Closing our end ends the zygote (its children are the launcher's, not its own)."""
+    def close(self, *, kill: bool = False) -> None:
+        """Closing our end ends the zygote once it has imported everything (its children are the launcher's,
+        not its own); kill=True ends it now."""
         if self._sock is not None:
             self._sock.close()
             self._sock = None
         if self.process is not None:
+            if kill:
+                self.process.kill()
             try:
                 self.process.wait(timeout=2.0)
             except subprocess.TimeoutExpired:

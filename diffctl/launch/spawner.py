@@ -200,10 +200,16 @@ class PosixSpawner:
         for child_pid in list(self._groups):
             self.forget(Child(child_pid, child_pid))
 
-    def close(self) -> None:
+    def drop_fork_server(self) -> None:
+        """No process will be forked: stop the fork server at once, its imports unfinished."""
+        if self.fork_server is not None:
+            self.fork_server.close(kill=True)
+            self.fork_server = None
+
+    def close(self, *, kill_fork_server: bool = False) -> None:
         """The launcher ends normally: end the fork server, release the guard without it killing anything."""
         if self.fork_server is not None:
-            self.fork_server.close()
+            self.fork_server.close(kill=kill_fork_server)
         if self._guard is not None:
             self._tell_guard("exit")
             try:
