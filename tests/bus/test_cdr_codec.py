@@ -66,6 +66,7 @@ def test_bytes_and_messages_equal_rosbags(typename: str) -> None:
         assert types.serialize(msg, typename) == theirs
         ours, oracle = types.deserialize(theirs, typename), ts.deserialize_cdr(theirs, typename)
         assert _same(ours, oracle)
+        assert list(vars(ours)) == list(vars(oracle))  # the same instance state, as if built by __init__
         # Primitive arrays come back as numpy arrays of rosbags' dtypes, not lists.
         for name, _ in ts.fielddefs[typename][1]:
             a, b = getattr(ours, name), getattr(oracle, name)
