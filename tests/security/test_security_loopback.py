@@ -26,11 +26,11 @@ HERE = Path(__file__).resolve().parent
 URL_RE = r"open http://([^\s/:]+|\[[^\]]+\]):(\d+)/\?token=(\S+)"
 CMD_VEL = "/diffbot_base_controller/cmd_vel"
 PROBE_TOPIC = "/security_probe/cmd"
-# The processes of sim_control that stay up (spawners and `create` exit once done).
+# The processes of sim_control that stay up (spawners and `create` exit once done; the controller manager
+# lives inside the simulator).
 RESIDENT = (
     "diffctl robot-state-publisher",
     "diffctl sim run",
-    "diffctl control manager",
     "diffctl bridge",
     "diffctl viz",
 )
