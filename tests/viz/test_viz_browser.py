@@ -225,7 +225,11 @@ def test_full_sim_control_stack_driven_from_the_page(launch_sim_control, browser
     time.sleep(2.0)
     page.keyboard.up("ArrowLeft")
     page.keyboard.up("ArrowUp")
-    time.sleep(0.6)
+    # Released: the page's zero command brakes the car through the controller's 1 m/s² limit (0.5 s from
+    # 0.5 m/s, plus however long this loaded machine takes to deliver the key-up).
+    deadline = time.monotonic() + 5.0
+    while abs(odom.snapshot()[-1].twist.twist.linear.x) >= 0.05 and time.monotonic() < deadline:
+        time.sleep(0.05)
     last = odom.snapshot()[-1]
     # diff_drive_controller's acceleration limits make the start gentle; the car still covers a good part
     # of 0.5 m/s × 2 s, turning left (positive yaw) as asked.
