@@ -3,8 +3,9 @@
 rosbags generates one function per type too, but each primitive is its own `unpack_from` call, each nested
 message a `get_msgdef` lookup and a call, and the message is built from a list. Here a type's whole tree is
 inlined into one function: neighbouring fixed-size fields (across nested messages) become a single
-precompiled `struct.Struct`, and the message is constructed in one expression. Only sequences and arrays
-of messages call a helper per element.
+precompiled `struct.Struct`, and each message object is filled attribute by attribute exactly as its
+dataclass `__init__` would, without the call (most of a small message's cost on Python 3.11). Only
+sequences and arrays of messages call a helper per element.
 
 Alignment is XCDR1's, as ROS 2 uses it: every primitive aligns to its own size, relative to the byte after
 the 4-byte encapsulation header; structs add no alignment of their own, so alignment is tracked
