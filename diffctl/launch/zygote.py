@@ -208,6 +208,8 @@ def become(request: Request, start_cwd: str) -> None:
     with contextlib.suppress(AttributeError):
         sys.orig_argv = list(request.argv)  # type: ignore[misc]
     retitle(request.argv)
+    if "numpy.random" in sys.modules:
+        sys.modules["numpy.random"].seed()  # numpy's global generator was seeded once, in the zygote
     runpy.run_module("diffctl", run_name="__main__", alter_sys=True)
 
 
