@@ -23,6 +23,7 @@ import importlib
 import json
 import os
 import runpy
+import select
 import signal
 import socket
 import sys
@@ -71,6 +72,10 @@ PRELOAD: tuple[str, ...] = (
     "diffctl.robot_state_publisher.node",
     "diffctl.bridge.cli",
     "diffctl.bridge.bridge",
+)
+# Components a launch usually starts only once the robot is up (the visualizer after the spawners, a
+# recorder): imported while the server has no request waiting, so they stay off the start-up's critical path.
+PRELOAD_LATER: tuple[str, ...] = (
     "diffctl.viz.cli",
     "diffctl.viz.server",
     "diffctl.viz.bus_feed",
@@ -92,8 +97,7 @@ def preload() -> None:
     # thread, so fork() copies no lock another thread holds. Components get their own environment back.
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     for name in PRELOAD:
-        with contextlib.suppress(Exception):
-            importlib.import_module(name)
+        _import(name)
     with contextlib.suppress(Exception):
         from diffctl.bus import typedefs
 
@@ -101,17 +105,32 @@ def preload() -> None:
     # What is imported now lives as long as every component: out of the collector's sight, a component's
     # collections (and its final one at exit, which otherwise walks every module object for a good part of a
     # second on a busy machine) skip it, and its pages stay shared instead of being dirtied by the scans.
-    gc.collect()
-    gc.freeze()
+    _freeze()
     if sys.platform.startswith("linux"):
         # pybullet prints its build time with C stdio: flush it here, or every component would print it again
         # when its copy of the buffer is flushed at exit.
         ctypes.CDLL(None).fflush(None)
 
 
+def _import(name: str) -> None:
+    with contextlib.suppress(Exception):
+        importlib.import_module(name)
+
+
+def _freeze() -> None:
+    gc.collect()
+    gc.freeze()
+
+
 def serve(sock: socket.socket, launcher_pid: int) -> Request | None:
     """Answer requests until the launcher closes its end (None); in a forked component, its Request."""
+    later = list(PRELOAD_LATER)
     while True:
+        if later and not select.select([sock], [], [], 0)[0]:
+            _import(later.pop(0))  # nothing asked for: import one more of the later components
+            if not later:
+                _freeze()
+            continue
         try:
             data, fds, _, _ = socket.recv_fds(sock, MAX_MESSAGE, 2)
         except (OSError, ValueError):
