@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import gc
 import os
 import sys
 from pathlib import Path
@@ -178,6 +179,10 @@ def _run(plan: Any, loop: Any, run_dir: Path, *, log_given: bool, no_color: bool
                 {"topic": probes.topic_has_publisher, "service": probes.service_available}, notify=loop.wake
             )
         supervisor = Supervisor(plan, spawner=loop.spawner, output=output, log_dir=run_dir, poller=poller, env=env)
+        # What is loaded by now lives until the launcher exits: kept out of the collector, the exit after a
+        # Ctrl-C does not walk it all again in the interpreter's final collection.
+        gc.collect()
+        gc.freeze()
         code = loop.run(supervisor)
         output.launcher("INFO", f"logs: {run_dir}")
         return code
