@@ -2,12 +2,12 @@
 
 Each car carries the tutorial's lidar (360 rays, 10 Hz) and IMU (100 Hz), both bridged to ROS (the bridge
 subscribes, so both are computed), its controller manager in the simulator at 20 Hz with both controllers
-active, and its own robot_state_publisher. Per N: `fleet_rtf_<N>` (median of the world's own
-real_time_factor over a few seconds at rtf 0, switched to once every controller is active: the world runs at
-real time while the cars are spawned, so a world stepping flat out does not starve the starting processes of
-CPU) and `fleet_rss_mb_<N>` (PSS of the
-launcher and all its descendants: shared pages counted once). Derived: `fleet_rtf_ratio_10` (ten cars' RTF
-over one car's; target ≥ 0.2) and `fleet_rss_mb_per_car` (memory per added car from 1 to 10; target ≤ 40 MB).
+active, and its own robot_state_publisher; one bridge and one visualizer serve them all. Per N:
+`fleet_rtf_<N>` (median of the world's own real_time_factor over a few seconds at rtf 0, switched to once
+every controller is active: the world runs at real time while the cars are spawned, so a world stepping flat
+out does not starve the starting processes of CPU) and `fleet_rss_mb_<N>` (PSS of the launcher and all its
+descendants: shared pages counted once). Derived: `fleet_rtf_ratio_10` (ten cars' RTF over one car's; target
+≥ 0.2) and `fleet_rss_mb_per_car` (memory per added car from 1 to 10; target ≤ 40 MB).
 Run: `python -m bench fleet`.
 """
 
@@ -21,6 +21,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from pathlib import Path
 
 import psutil
 
@@ -31,6 +32,14 @@ COUNTS = (1, 2, 5, 10)
 READY = ("diffbot_base_controller", "joint_state_broadcaster")
 MEASURE_S = 6.0
 READY_TIMEOUT_S = 600.0
+
+
+def _log_tail(log_dir: str) -> str:
+    try:
+        lines = (Path(log_dir) / "launch.log").read_text().splitlines()
+    except OSError:
+        return ""
+    return ":\n" + "\n".join(lines[-8:])
 
 
 def _all_active(node, count: int, clients: dict) -> bool:
@@ -67,12 +76,13 @@ def measure(count: int) -> tuple[float, float, int]:
                     node = Node("bench_fleet")
                 except Exception:
                     if time.monotonic() > deadline or proc.poll() is not None:
-                        raise RuntimeError(f"fleet of {count}: the launch never brought up its router") from None
+                        raise RuntimeError(f"fleet of {count}: the launch never brought up its router"
+                                           f"{_log_tail(tmp)}") from None
                     time.sleep(0.05)
             clients: dict = {}
             while not _all_active(node, count, clients):
                 if proc.poll() is not None:
-                    raise RuntimeError(f"fleet of {count}: the launch exited with {proc.returncode}")
+                    raise RuntimeError(f"fleet of {count}: the launch exited with {proc.returncode}{_log_tail(tmp)}")
                 if time.monotonic() > deadline:
                     raise RuntimeError(f"fleet of {count}: controllers not all active in {READY_TIMEOUT_S:.0f} s")
                 time.sleep(0.2)

@@ -185,7 +185,7 @@ def fleet(context):
             executable="spawner",
             name="spawner_diffbot_base_controller",
             # Given here too: an event handler's actions run after the group's PushRosNamespace is gone.
-            namespace=ns,
+            namespace=f"/{ns}",
             arguments=[
                 "diffbot_base_controller", "joint_state_broadcaster",
                 "-c", f"/{ns}/controller_manager", "--param-file", controllers,
