@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import os
-import signal
 import threading
 import time
 from pathlib import Path
@@ -12,15 +11,9 @@ import click
 
 from diffctl.console import console, info
 from diffctl.errors import ConfigError
+from diffctl.signals import stop_on_signals
 
 CHUNK_PRESETS = {"": "none", "fastwrite": "none", "zstd_fast": "zstd", "zstd_small": "zstd", "lz4": "lz4"}
-
-
-def _stop_event() -> threading.Event:
-    stop = threading.Event()
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(sig, lambda *_: stop.set())
-    return stop
 
 
 @click.group()
@@ -89,7 +82,7 @@ def record(topic_args: tuple[str, ...], all_: bool, all_topics: bool, topics_opt
     out = output or default_output()
     if out.exists():
         raise ConfigError(f"output folder {out} already exists", hint="choose another -o or remove it")
-    stop = _stop_event()
+    stop = stop_on_signals()
     node = Node("rosbag2_recorder")
     writer = BagWriter(out, options)
     recorder = Recorder(node, writer, selection, say=lambda s: info(s))
@@ -161,7 +154,7 @@ def play(bag_path: Path, rate: float, loop: bool, clock_hz: float, start_offset:
         played = plan_topics(b, topics, remaps, {"/clock"} if clock_hz else set())
         if not played:
             raise ConfigError(f"{bag_path}: nothing to play", hint="the bag has no messages on the chosen topics")
-        stop = _stop_event()
+        stop = stop_on_signals()
         node = Node("rosbag2_player")
         pubs = make_publishers(node, played)
         clock_pub = node.create_publisher("/clock", "rosgraph_msgs/msg/Clock") if clock_hz else None

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import itertools
 import math
-import signal
 import statistics
 import sys
 import threading
@@ -19,13 +18,7 @@ from diffctl.bus import Node, types, wire
 from diffctl.cli import bus_common as bc
 from diffctl.console import console, info, warn
 from diffctl.errors import ConfigError
-
-
-def _stop_event() -> threading.Event:
-    stop = threading.Event()
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(sig, lambda *_: stop.set())
-    return stop
+from diffctl.signals import stop_on_signals
 
 
 @click.group()
@@ -111,7 +104,7 @@ def echo(topic_name: str, typename: str | None, once: bool, field: str | None, n
     name = bc.resolve_name(g, topic_name, list(g.topics()))
     t = bc.wait_for_type(g, name, typename, timeout)
     node = Node(f"diffctl_echo_{_pid()}")
-    stop = _stop_event()
+    stop = stop_on_signals()
     got = threading.Event()
     lock = threading.Lock()
 
@@ -201,7 +194,7 @@ def pub(topic_name: str, args: tuple[str, ...], rate: float | None, once: bool, 
     count = 1 if once else times
     if wait_subs is None and count is not None:
         wait_subs = 1
-    stop = _stop_event()
+    stop = stop_on_signals()
     if wait_subs:
         deadline = time.monotonic() + 5.0
         while publisher.subscription_count < wait_subs and not stop.is_set():
@@ -259,7 +252,7 @@ def hz(topic_name: str, window: int, reports: int | None) -> None:
             stamps.append(time.monotonic())
 
     node.create_subscription(name, t, on_msg, raw=True)
-    stop = _stop_event()
+    stop = stop_on_signals()
     done = 0
     while not stop.wait(1.0):
         with lock:
