@@ -36,8 +36,9 @@ class ManagerServices:
             "set_hardware_component_state": ("SetHardwareComponentState", self.set_hardware_component_state),
             "reload_controller_libraries": ("ReloadControllerLibraries", self.reload_controller_libraries),
         }
-        self.services = [node.create_service(f"~/{name}", CM + srv, h) for name, (srv, h) in handlers.items()]
+        # Parameters first: a spawner sets `<controller>.type` the moment it sees the services.
         self._declare_parameters()
+        self.services = [node.create_service(f"~/{name}", CM + srv, h) for name, (srv, h) in handlers.items()]
 
     def close(self) -> None:
         for s in self.services:
