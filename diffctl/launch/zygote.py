@@ -196,8 +196,11 @@ def _settle(launcher_pid: int) -> None:
     os.setsid()
     middle = os.getppid()
     deadline = time.monotonic() + 10.0
-    while os.getppid() != launcher_pid:
-        if os.getppid() != middle or time.monotonic() > deadline:
+    while True:
+        parent = os.getppid()  # read once: the intermediate may exit between two reads
+        if parent == launcher_pid:
+            break
+        if parent != middle or time.monotonic() > deadline:
             os._exit(1)  # re-parented elsewhere: the launcher is gone
         time.sleep(0.0002)
     if sys.platform.startswith("linux"):
