@@ -74,7 +74,11 @@ def check_stack(stack: Stack, odom_topic: str, cmd_topic: str, cmd_type: str, st
     g0, g1 = w.truth[0], w.at(w.truth, b.t_ns)
     truth_moved = math.hypot(g1.value[0] - g0.value[0], g1.value[1] - g0.value[1])
     odom_moved = math.hypot(b.value[0], b.value[1])
-    assert abs(truth_moved - odom_moved) < 0.03, f"ground truth {truth_moved:.4f} m vs odometry {odom_moved:.4f} m"
+    # Open-loop odometry drifts with the distance (wheel slip on the ramps): 3 cm over the ~1.2 m of one try,
+    # proportionally more when a starved test process made drive_steady measure again.
+    assert abs(truth_moved - odom_moved) < max(0.03, 0.025 * odom_moved), (
+        f"ground truth {truth_moved:.4f} m vs odometry {odom_moved:.4f} m"
+    )
 
     # --- turn in place: 0.5 rad/s for 2 s → 1.0 rad ± 5 %
     t0, t1 = drive_steady(stack, cmd_topic, cmd_type, cmd(0.0, 0.5), (4, 0.5))
