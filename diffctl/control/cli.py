@@ -45,8 +45,9 @@ def _timeout_option(f: Any) -> Any:
 @contextmanager
 def _client(manager: str, wait_s: float, service: str) -> Iterator[Any]:
     from diffctl.bus import Node
-    from diffctl.control.cm_client import ManagerClient
+    from diffctl.control.cm_client import ManagerClient, manager_fqn
 
+    manager_fqn(manager)  # a bad -c is bad input (exit 2), told before the bus is asked anything
     node = Node(f"_diffctl_control_{os.getpid()}")
     try:
         cm = ManagerClient(node, manager)
