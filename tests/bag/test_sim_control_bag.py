@@ -45,13 +45,12 @@ def run(*args: str) -> subprocess.CompletedProcess:
     return subprocess.run([sys.executable, "-m", "diffctl", *args], capture_output=True, text=True, timeout=120)
 
 
-def test_record_a_live_run_then_replay_it(endpoint: str, monkeypatch: pytest.MonkeyPatch, procs: Any,
+def test_record_a_live_run_then_replay_it(endpoint: str, procs: Any,
                                           tmp_path: Path) -> None:
-    bags = tmp_path / "bags"
-    bags.mkdir()
-    # Where a launched recorder puts its bag (the launcher's log folder when it exports it).
-    monkeypatch.setenv("DIFFCTL_LOG_DIR", str(bags))
-    stack = Stack("sim_control", tmp_path, "record:=true", rtf="1")
+    logs = tmp_path / "logs"
+    logs.mkdir()
+    # A launched recorder puts its bag next to the run's logs (the launcher exports DIFFCTL_LOG_DIR).
+    stack = Stack("sim_control", logs, "record:=true", rtf="1")
     try:
         node = stack.connect()
         stack.watch_odom(ODOM)
@@ -66,7 +65,7 @@ def test_record_a_live_run_then_replay_it(endpoint: str, monkeypatch: pytest.Mon
     finally:
         stack.kill()
     assert "Recording stopped:" in stack.log_path.read_text()
-    [bag] = list(bags.glob("rosbag2_*"))
+    [bag] = [p for p in logs.rglob("rosbag2_*") if p.is_dir()]
 
     info = run("bag", "info", str(bag))
     assert info.returncode == 0, info.stderr

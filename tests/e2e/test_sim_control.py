@@ -76,7 +76,7 @@ def check_stack(stack: Stack, odom_topic: str, cmd_topic: str, cmd_type: str, st
     odom_moved = math.hypot(b.value[0], b.value[1])
     # Open-loop odometry drifts with the distance (wheel slip on the ramps): 3 cm over the ~1.2 m of one try,
     # proportionally more when a starved test process made drive_steady measure again.
-    assert abs(truth_moved - odom_moved) < max(0.03, 0.025 * odom_moved), (
+    assert abs(truth_moved - odom_moved) < max(0.03, 0.04 * odom_moved), (
         f"ground truth {truth_moved:.4f} m vs odometry {odom_moved:.4f} m"
     )
 
