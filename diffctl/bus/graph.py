@@ -10,6 +10,7 @@ import threading
 import time
 from collections import defaultdict
 from collections.abc import Callable
+from typing import Any
 
 import zenoh
 
@@ -57,16 +58,28 @@ class Graph:
                 pass
 
     def refresh(self, timeout_s: float = 1.0) -> None:
-        """Query current tokens (the router answers for everyone) and merge them into the cache."""
+        """Query current tokens (the router answers for everyone) and merge them into the cache.
+
+        Replies arrive on a callback and the wait has a wall-clock bound: with many processes starting at once
+        a blocking reply iterator was seen never to end (the query's final reply lost), hanging the caller."""
+        done = threading.Event()
+
+        def on_reply(r: Any) -> None:
+            if r.ok is None:
+                return
+            key = str(r.ok.key_expr)
+            ent = wire.parse_token(key)
+            if ent is not None:
+                with self._lock:
+                    self._entities.setdefault(key, ent)
+
         try:
-            replies = self._session.liveliness().get(f"{wire.LV_PREFIX}/{self._domain}/**", timeout=timeout_s)
-            for r in replies:
-                if r.ok is not None:
-                    key = str(r.ok.key_expr)
-                    ent = wire.parse_token(key)
-                    if ent is not None:
-                        with self._lock:
-                            self._entities.setdefault(key, ent)
+            self._session.liveliness().get(
+                f"{wire.LV_PREFIX}/{self._domain}/**",
+                handler=zenoh.handlers.Callback(on_reply, done.set),
+                timeout=timeout_s,
+            )
+            done.wait(timeout_s + 0.5)
         except zenoh.ZError:
             pass
         self._ready.set()
