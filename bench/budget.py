@@ -18,6 +18,8 @@ BUDGET: dict[str, tuple[str, float, str]] = {
     "launch_50_all_started_s": ("<=", 0.5, "launch 50 processes: all started"),
     "launch_50_all_reaped_s": ("<=", 0.5, "launch 50 processes: all reaped"),
     "launcher_rss_mb": ("<=", 80.0, "launcher resident memory"),
+    "fleet_rtf_ratio_10": (">=", 0.2, "ten cars in one world: RTF ÷ one car's"),
+    "fleet_rss_mb_per_car": ("<=", 40.0, "memory per added car"),
 }
 
 
