@@ -51,7 +51,7 @@ FLOOD = textwrap.dedent(f"""
 """)
 
 
-def _percentile(values: list[float], q: float) -> float:
+def percentile(values: list[float], q: float) -> float:
     s = sorted(values)
     return s[min(len(s) - 1, int(q * len(s)))]
 
@@ -114,7 +114,7 @@ def run() -> dict:
         node.close()
         result = {
             "bus_rtt_p50_us": round(statistics.median(rtts), 1),
-            "bus_rtt_p99_us": round(_percentile(rtts, 0.99), 1),
+            "bus_rtt_p99_us": round(percentile(rtts, 0.99), 1),
             "bus_rtt_samples": len(rtts),
             "bus_throughput_msgs_s": round(received / elapsed),
             # What the publisher got out; the rest was dropped (reliable keep-last 10 drops under congestion).

@@ -28,6 +28,8 @@ from cyclonedds.sub import DataReader
 from cyclonedds.topic import Topic
 from cyclonedds.util import duration
 
+from bench.bus import percentile
+
 SAMPLES = 5000
 WARMUP = 500
 
@@ -133,11 +135,6 @@ def _flood(domain: int, duration_s: float) -> None:
     print(f"sent {sent}", flush=True)
 
 
-def _percentile(values: list[float], q: float) -> float:
-    s = sorted(values)
-    return s[min(len(s) - 1, int(q * len(s)))]
-
-
 def run() -> dict:
     domain = random.randint(100, 220)  # a domain of this run's own: concurrent runs do not see each other
     ep = _Endpoints(domain)
@@ -197,7 +194,7 @@ def run() -> dict:
         return {
             "cyclonedds_sent_msgs_s": round(sent / duration),
             "cyclonedds_rtt_p50_us": round(statistics.median(rtts), 1),
-            "cyclonedds_rtt_p99_us": round(_percentile(rtts, 0.99), 1),
+            "cyclonedds_rtt_p99_us": round(percentile(rtts, 0.99), 1),
             "cyclonedds_rtt_samples": len(rtts),
             "cyclonedds_throughput_msgs_s": round(received / elapsed),
         }
