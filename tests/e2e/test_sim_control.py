@@ -138,11 +138,18 @@ def spawn_third_controller_at_runtime(stack: Stack) -> None:
     assert "wheel_velocity_controller" in listing.stdout, listing.stdout
     # Both wheels at 5 rad/s x 0.04 m: the car rolls straight at 0.2 m/s (ground truth; odometry is off now).
     w = stack.watch
-    start = w.last(w.truth)
+    before = w.last(w.truth)
     stack.command("/wheel_velocity_controller/commands", "std_msgs/msg/Float64MultiArray", {"data": [5.0, 5.0]})
+    # Measured from when the car is under way: the command's delivery took a moment of sim time.
+    deadline = time.monotonic() + 30
+    while math.hypot(w.last(w.truth).value[0] - before.value[0], w.last(w.truth).value[1] - before.value[1]) < 0.02:
+        assert time.monotonic() < deadline, "the forward command controller never moved the car"
+        stack.wait_sim(stack.clock_ns + SEC // 20)
+    stack.wait_sim(stack.clock_ns + SEC // 2)  # past the wheels' spin-up
+    start = w.last(w.truth)
     stack.wait_sim(stack.clock_ns + 2 * SEC)
-    stack.command("/wheel_velocity_controller/commands", "std_msgs/msg/Float64MultiArray", None)
     end = w.last(w.truth)
+    stack.command("/wheel_velocity_controller/commands", "std_msgs/msg/Float64MultiArray", None)
     speed = math.hypot(end.value[0] - start.value[0], end.value[1] - start.value[1]) / ((end.t_ns - start.t_ns) / SEC)
     assert 0.12 < speed < 0.21, f"ground truth speed {speed:.3f} m/s under the forward command controller"
 

@@ -1,6 +1,6 @@
 """Garbage on the wire: malformed, truncated, wrong-type, empty, attachment-less and oversized payloads published
 raw (zenoh, rmw_zenoh keys and attachment) on every topic the nodes of a running sim_control subscribe to, found
-from the graph, plus the simulator-side keys (bridged gz topics, the ros2_control command key) and every
+from the graph, plus the simulator-side keys (bridged gz topics) and every
 service. Each is dropped with a rate-limited warning; every node keeps running and keeps doing its job.
 """
 
@@ -159,11 +159,16 @@ def test_garbage_on_every_subscribed_topic_is_dropped_and_every_node_keeps_worki
         stack.wait_sim(stack.clock_ns + SEC)
         with w.lock:
             odom = [s.value for s in w.odom if s.t_ns > t]
-            truth = [s.value for s in w.truth if s.t_ns > t]
+            truth_samples = [s for s in w.truth if s.t_ns > t]
+        truth = [s.value for s in truth_samples]
         assert odom and truth
         assert all(math.isfinite(x) for sample in odom + truth for x in sample), "non-finite odometry or pose"
         assert max(abs(o[3]) for o in odom) <= 1.0 + 1e-6 and max(abs(o[4]) for o in odom) <= 1.0 + 1e-6
-        assert max(moved_m(a, b) for a, b in itertools.pairwise(truth)) < 0.1, "the car jumped"
+        # Never faster than the limits allow (with slack for the wheels' slip): a jump would show as a huge speed
+        # between two poses, however many samples this busy process missed between them.
+        speeds = [moved_m(a.value, b.value) / ((b.t_ns - a.t_ns) / SEC)
+                  for a, b in itertools.pairwise(truth_samples) if b.t_ns > a.t_ns]
+        assert max(speeds) < 1.5, f"the car jumped: {max(speeds):.2f} m/s between two poses"
 
         assert stack.stop(signal.SIGINT) == 0, stack.output()
         assert not stack.survivors()
