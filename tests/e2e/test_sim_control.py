@@ -64,6 +64,12 @@ def check_stack(stack: Stack, odom_topic: str, cmd_topic: str, cmd_type: str, st
         return {"twist": twist} if stamped else twist
 
     stack.wait_sim(stack.clock_ns + SEC // 2)
+    # Ground truth is compared from the spawn point: have it before the car moves (the simulator publishes poses
+    # only once it sees this test's subscription).
+    deadline = time.monotonic() + 30
+    while w.last(w.truth) is None:
+        assert time.monotonic() < deadline, "no ground truth from the simulator"
+        stack.wait_sim(stack.clock_ns + SEC // 20)
     # --- straight: 0.5 m/s for 2 s of sim time → 1.0 m ± 5 %
     t0, t1 = drive_steady(stack, cmd_topic, cmd_type, cmd(0.5, 0.0), (3, 0.5))
     a, b = w.at(w.odom, t0), w.at(w.odom, t1)
