@@ -76,13 +76,7 @@ def parse_commands(text: str, source: str) -> list[Command]:
         elif c.isspace():
             i += 1
         elif c == "#":
-            if _BRACKET_OPEN.match(text, i + 1):
-                _, j = _bracket_end(text, i + 1, source, line)
-                line += text.count("\n", i, j)
-                i = j
-            else:
-                j = text.find("\n", i)
-                i = n if j < 0 else j
+            i, line = _skip_comment(text, i, source, line)
         else:
             m = _IDENT.match(text, i)
             if not m:
@@ -96,6 +90,15 @@ def parse_commands(text: str, source: str) -> list[Command]:
             args, i, line = _parse_args(text, i + 1, source, line)
             commands.append(Command(name, tuple(args), start_line))
     return commands
+
+
+def _skip_comment(text: str, i: int, source: str, line: int) -> tuple[int, int]:
+    """Past a `#` line comment or `#[[…]]` bracket comment starting at `i`: (next index, line there)."""
+    if _BRACKET_OPEN.match(text, i + 1):
+        _, j = _bracket_end(text, i + 1, source, line)
+        return j, line + text.count("\n", i, j)
+    j = text.find("\n", i)
+    return (len(text) if j < 0 else j), line
 
 
 def _parse_args(text: str, i: int, source: str, line: int) -> tuple[list[Argument], int, int]:
@@ -117,13 +120,7 @@ def _parse_args(text: str, i: int, source: str, line: int) -> tuple[list[Argumen
             depth -= 1
             i += 1
         elif c == "#":
-            if _BRACKET_OPEN.match(text, i + 1):
-                _, j = _bracket_end(text, i + 1, source, line)
-                line += text.count("\n", i, j)
-                i = j
-            else:
-                j = text.find("\n", i)
-                i = n if j < 0 else j
+            i, line = _skip_comment(text, i, source, line)
         elif c == '"':
             value, i, line = _quoted(text, i + 1, source, line)
             args.append(Argument(value, True))
