@@ -51,6 +51,11 @@ class Watch:
         with self.lock:
             return min(series, key=lambda s: abs(s.t_ns - t_ns))
 
+    def reached_ns(self, topic: str) -> int:
+        """The latest sim time stamped on `topic` so far (0: nothing yet)."""
+        with self.lock:
+            return max((t for t, _, _ in self.stamps.get(topic, [])), default=0)
+
     def recent_rate_hz(self, topic: str, span_s: float = 2.0) -> float:
         """`rate_hz` over the last `span_s` of sim time this topic has reached (bridged topics trail others)."""
         with self.lock:
@@ -189,6 +194,15 @@ class Stack:
         deadline = time.monotonic() + timeout_s
         while self.clock_ns < until_ns:
             assert time.monotonic() < deadline, f"sim time stuck at {self.clock_ns / 1e9:.3f} s"
+            assert self.proc.poll() is None, f"the launch ended:\n{self.output()}"
+            time.sleep(0.002)
+
+    def wait_topic(self, topic: str, until_ns: int, timeout_s: float = 60.0) -> None:
+        """Wait until samples stamped `until_ns` or later arrived on `topic`: each publisher's samples trail the
+        simulator by their own delay (a publishing thread, the bridge), so /clock alone does not say they came."""
+        deadline = time.monotonic() + timeout_s
+        while self.watch.reached_ns(topic) < until_ns:
+            assert time.monotonic() < deadline, f"{topic} stuck at {self.watch.reached_ns(topic) / 1e9:.3f} s"
             assert self.proc.poll() is None, f"the launch ended:\n{self.output()}"
             time.sleep(0.002)
 
