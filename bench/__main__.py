@@ -32,6 +32,23 @@ def machine() -> dict:
             "python": platform.python_version(), "kernel": platform.release()}
 
 
+def _merged(doc: dict, names: list[str]) -> dict:
+    """A partial run (`python -m bench sim`) keeps the other benchmarks' figures of the previous run: its own
+    replace theirs, and the file says which keys came from which run."""
+    try:
+        old = json.loads((RESULTS / "latest.json").read_text())
+    except (OSError, ValueError):
+        return doc
+    if not isinstance(old, dict) or not isinstance(old.get("results"), dict):
+        return doc
+    kept = {k: v for k, v in old["results"].items() if k not in doc["results"]}
+    runs = dict(old.get("partial_runs") or {})
+    for name in names:
+        runs[name] = doc["when"]
+    errors = {k: v for k, v in (old.get("errors") or {}).items() if k not in names} | doc["errors"]
+    return doc | {"results": kept | doc["results"], "errors": errors, "partial_runs": runs}
+
+
 def main(argv: list[str]) -> int:
     from diffctl.console import make_console, table
 
@@ -57,6 +74,8 @@ def main(argv: list[str]) -> int:
     RESULTS.mkdir(parents=True, exist_ok=True)
     doc = {"when": time.strftime("%Y-%m-%dT%H:%M:%S%z"), "machine": machine(), "results": results,
            "errors": errors}
+    if argv:
+        doc = _merged(doc, names)
     (RESULTS / "latest.json").write_text(json.dumps(doc, indent=2) + "\n")
     rows = []
     for key, (op, limit, label) in BUDGET.items():
