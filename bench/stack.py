@@ -3,9 +3,10 @@
 Metrics (budget in bench/budget.py): `stack_launch_to_ready_s` (exec of `diffctl launch sim_control` with its
 defaults → both controllers active and the first /diffbot_base_controller/odom received),
 `stack_cmd_vel_to_wheel_ms` (TwistStamped published → the controller's wheel command for it, seen as the
-open-loop odometry's twist changing, wall time, p50/p99, at real time: at most one 50 ms control period plus
-transport), `stack_rtf` (the simulator's real-time factor once the running world is switched to
-as-fast-as-possible — rtf 0 — with its in-simulator controller manager at 20 Hz while driving) and
+open-loop odometry's twist reaching the commanded speed, wall time, p50/p99, at real time: at most one 50 ms
+control period plus transport; see `_cmd_vel_latencies`), `stack_rtf` (the simulator's real-time factor
+once the running world is switched to as-fast-as-possible — rtf 0 — with its in-simulator controller manager
+at 20 Hz while driving) and
 `stack_rtf_vs_bare` (that ÷ bare stepSimulation of bench/sim.py's bodies, measured right after, so the
 ratio holds on a busy machine too),
 `stack_ctrl_c_to_reaped_s` (SIGINT → the launcher has exited with every descendant reaped), `stack_rss_mb`
@@ -19,7 +20,9 @@ DIFFCTL_FORK_SERVER=0 for the exec-every-process baseline), and prints each run'
 from __future__ import annotations
 
 import json
+import math
 import os
+import random
 import signal
 import statistics
 import subprocess
@@ -27,6 +30,7 @@ import sys
 import tempfile
 import threading
 import time
+from typing import Any
 
 import numpy as np
 import psutil
@@ -55,6 +59,46 @@ def _tree_memory_mb(pid: int) -> tuple[float, float]:
     return pss / 2**20, rss / 2**20
 
 
+# Two speeds closer together than the controller's acceleration limit allows per control period (1.0 m/s² ×
+# 50 ms in config/diff_drive_controller.yaml): each command is reached in the first cycle that sees it. With
+# speeds further apart the ramp towards one command can pass through the next one (0.1 on the way from 0.1 to
+# 0.3 ...), and a command equal to the current speed changes nothing until cmd_vel_timeout brakes — that is
+# what the old 0.3/0.1 alternation measured as its ~550 ms "tail".
+CMD_SPEEDS_MPS = (0.30, 0.26)
+CMD_SAMPLES = 200  # p99 of 40 samples was their maximum: one hiccup of the shared machine decided it
+
+
+def _cmd_vel_latencies(
+    pub: Any, want: dict[str, float], reached: threading.Event, samples: int = CMD_SAMPLES
+) -> list[float]:
+    """Publish → the odometry's twist equal to the published speed, in ms, one sample per command.
+
+    The car is first brought to a steady speed, so that each sample is a step the controller takes in one
+    cycle because of that very command (never the end of an earlier ramp). The pause between samples is drawn
+    at random (seeded): a fixed one would lock every publish to the same point of the 50 ms control period."""
+    rng = random.Random(13)
+    speed = CMD_SPEEDS_MPS[0]
+    want["v"] = speed
+    reached.clear()
+    t_end = time.monotonic() + 10.0
+    while not reached.is_set() and time.monotonic() < t_end:  # the ramp from rest, then a steady speed
+        pub.publish({"twist": {"linear": {"x": speed}}})
+        reached.wait(0.05)
+    latencies: list[float] = []
+    for i in range(samples):
+        speed = CMD_SPEEDS_MPS[(i + 1) % 2]
+        reached.clear()
+        want["v"] = speed
+        t0 = time.perf_counter()
+        pub.publish({"twist": {"linear": {"x": speed}}})
+        # A command whose speed is never seen counts as the whole wait, so a lost one shows in the p99.
+        reached.wait(1.0)
+        latencies.append((time.perf_counter() - t0) * 1e3)
+        # Well inside cmd_vel_timeout (0.5 s), so the controller never brakes between samples.
+        time.sleep(rng.uniform(0.02, 0.07))
+    return latencies
+
+
 def run(*, startup_only: bool = False) -> dict:
     from diffctl.bus import Node, gz
     from diffctl.bus.session import close_session
@@ -74,17 +118,15 @@ def run(*, startup_only: bool = False) -> dict:
                 except Exception:
                     time.sleep(0.01)
             odom = threading.Event()
-            changed = threading.Event()
-            last_cmd = {"v": None}
+            reached = threading.Event()
+            want = {"v": math.nan}
 
             def on_odom(msg) -> None:
                 # open_loop odometry integrates the velocity the controller commands in that very cycle: its
-                # twist changing is the wheel command changing.
+                # twist is the wheel command.
                 odom.set()
-                v = float(msg.twist.twist.linear.x)
-                if last_cmd["v"] is not None and abs(v - last_cmd["v"]) > 1e-9:
-                    changed.set()
-                last_cmd["v"] = v
+                if abs(float(msg.twist.twist.linear.x) - want["v"]) < 1e-6:
+                    reached.set()
 
             node.create_subscription("/diffbot_base_controller/odom", "nav_msgs/msg/Odometry", on_odom)
             cli = node.create_client("/controller_manager/list_controllers",
@@ -124,15 +166,7 @@ def run(*, startup_only: bool = False) -> dict:
                 lambda s: rtfs.append(float(gz.decode(s.payload.to_bytes())[1].get("real_time_factor", 0.0))))
             pub = node.create_publisher("/diffbot_base_controller/cmd_vel", "geometry_msgs/msg/TwistStamped")
             time.sleep(0.3)
-            latencies: list[float] = []
-            for i in range(40):
-                vx = 0.3 if i % 2 == 0 else 0.1
-                changed.clear()
-                t0 = time.perf_counter()
-                pub.publish({"twist": {"linear": {"x": vx}}})
-                if changed.wait(1.0):
-                    latencies.append((time.perf_counter() - t0) * 1e3)
-                time.sleep(0.05)
+            latencies = _cmd_vel_latencies(pub, want, reached)
             pss_mb, rss_mb = _tree_memory_mb(proc.pid)
             # As fast as possible, still driving: the world's own stats say how fast.
             replies = list(node.session.get("gz/world/empty/control", payload=json.dumps({"rtf": 0}).encode(),
