@@ -5,83 +5,178 @@ Python launch files use these names, as in ROS 2's `launch` / `launch_ros`:
     from diffctl.launch import LaunchDescription, Node, RegisterEventHandler, OnProcessExit
 
 The engine knows processes, not robots: it imports nothing of diffctl but errors and console.
+The names are imported on first use (PEP 562): the fork server (`python -m diffctl.launch.zygote`) and the
+forked components import this package but none of the engine, which costs 0.2-0.3 s to import.
 """
 
-from diffctl.launch.actions import (
-    AppendEnvironmentVariable,
-    DeclareLaunchArgument,
-    GroupAction,
-    LaunchDescription,
-    LogInfo,
-    PushROSNamespace,
-    PushRosNamespace,
-    ResetEnvironment,
-    ResetLaunchConfigurations,
-    SetEnvironmentVariable,
-    SetLaunchConfiguration,
-    Shutdown,
-    TimerAction,
-    UnsetEnvironmentVariable,
-)
-from diffctl.launch.conditions import (
-    IfCondition,
-    LaunchConfigurationEquals,
-    LaunchConfigurationNotEquals,
-    UnlessCondition,
-)
-from diffctl.launch.event_actions import EmitEvent, OpaqueFunction
-from diffctl.launch.event_handlers import (
-    OnProcessExit,
-    OnProcessIO,
-    OnProcessStart,
-    OnShutdown,
-    RegisterEventHandler,
-)
-from diffctl.launch.include_action import (
-    AnyLaunchDescriptionSource,
-    FrontendLaunchDescriptionSource,
-    IncludeLaunchDescription,
-    LaunchDescriptionSource,
-    PythonLaunchDescriptionSource,
-    XMLLaunchDescriptionSource,
-    YAMLLaunchDescriptionSource,
-)
-from diffctl.launch.logic_substitutions import (
-    AllSubstitution,
-    AndSubstitution,
-    AnySubstitution,
-    EqualsSubstitution,
-    IfElseSubstitution,
-    NotEqualsSubstitution,
-    NotSubstitution,
-    OrSubstitution,
-)
-from diffctl.launch.package_index import (
-    PackageNotFoundError,
-    get_package_prefix,
-    get_package_share_directory,
-    get_package_share_path,
-)
-from diffctl.launch.parameters import ParameterFile, ParameterValue
-from diffctl.launch.process_actions import ExecuteProcess, Node
-from diffctl.launch.readiness import WaitFor
-from diffctl.launch.ros_actions import SetParameter, SetParametersFromFile, SetRemap, SetUseSimTime
-from diffctl.launch.substitutions import (
-    AnonName,
-    Command,
-    EnvironmentVariable,
-    ExecutableInPackage,
-    FileContent,
-    FindExecutable,
-    FindPackagePrefix,
-    FindPackageShare,
-    LaunchConfiguration,
-    PathJoinSubstitution,
-    PythonExpression,
-    TextSubstitution,
-    ThisLaunchFile,
-    ThisLaunchFileDir,
-)
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from diffctl.launch.actions import (
+        AppendEnvironmentVariable,
+        DeclareLaunchArgument,
+        GroupAction,
+        LaunchDescription,
+        LogInfo,
+        PushROSNamespace,
+        PushRosNamespace,
+        ResetEnvironment,
+        ResetLaunchConfigurations,
+        SetEnvironmentVariable,
+        SetLaunchConfiguration,
+        Shutdown,
+        TimerAction,
+        UnsetEnvironmentVariable,
+    )
+    from diffctl.launch.conditions import (
+        IfCondition,
+        LaunchConfigurationEquals,
+        LaunchConfigurationNotEquals,
+        UnlessCondition,
+    )
+    from diffctl.launch.event_actions import (
+        EmitEvent,
+        OpaqueFunction,
+    )
+    from diffctl.launch.event_handlers import (
+        OnProcessExit,
+        OnProcessIO,
+        OnProcessStart,
+        OnShutdown,
+        RegisterEventHandler,
+    )
+    from diffctl.launch.include_action import (
+        AnyLaunchDescriptionSource,
+        FrontendLaunchDescriptionSource,
+        IncludeLaunchDescription,
+        LaunchDescriptionSource,
+        PythonLaunchDescriptionSource,
+        XMLLaunchDescriptionSource,
+        YAMLLaunchDescriptionSource,
+    )
+    from diffctl.launch.logic_substitutions import (
+        AllSubstitution,
+        AndSubstitution,
+        AnySubstitution,
+        EqualsSubstitution,
+        IfElseSubstitution,
+        NotEqualsSubstitution,
+        NotSubstitution,
+        OrSubstitution,
+    )
+    from diffctl.launch.package_index import (
+        PackageNotFoundError,
+        get_package_prefix,
+        get_package_share_directory,
+        get_package_share_path,
+    )
+    from diffctl.launch.parameters import (
+        ParameterFile,
+        ParameterValue,
+    )
+    from diffctl.launch.process_actions import (
+        ExecuteProcess,
+        Node,
+    )
+    from diffctl.launch.readiness import (
+        WaitFor,
+    )
+    from diffctl.launch.ros_actions import (
+        SetParameter,
+        SetParametersFromFile,
+        SetRemap,
+        SetUseSimTime,
+    )
+    from diffctl.launch.substitutions import (
+        AnonName,
+        Command,
+        EnvironmentVariable,
+        ExecutableInPackage,
+        FileContent,
+        FindExecutable,
+        FindPackagePrefix,
+        FindPackageShare,
+        LaunchConfiguration,
+        PathJoinSubstitution,
+        PythonExpression,
+        TextSubstitution,
+        ThisLaunchFile,
+        ThisLaunchFileDir,
+    )
+
+# Public name → the module that defines it.
+_ORIGIN: dict[str, str] = {
+    "AppendEnvironmentVariable": "diffctl.launch.actions",
+    "DeclareLaunchArgument": "diffctl.launch.actions",
+    "GroupAction": "diffctl.launch.actions",
+    "LaunchDescription": "diffctl.launch.actions",
+    "LogInfo": "diffctl.launch.actions",
+    "PushROSNamespace": "diffctl.launch.actions",
+    "PushRosNamespace": "diffctl.launch.actions",
+    "ResetEnvironment": "diffctl.launch.actions",
+    "ResetLaunchConfigurations": "diffctl.launch.actions",
+    "SetEnvironmentVariable": "diffctl.launch.actions",
+    "SetLaunchConfiguration": "diffctl.launch.actions",
+    "Shutdown": "diffctl.launch.actions",
+    "TimerAction": "diffctl.launch.actions",
+    "UnsetEnvironmentVariable": "diffctl.launch.actions",
+    "IfCondition": "diffctl.launch.conditions",
+    "LaunchConfigurationEquals": "diffctl.launch.conditions",
+    "LaunchConfigurationNotEquals": "diffctl.launch.conditions",
+    "UnlessCondition": "diffctl.launch.conditions",
+    "EmitEvent": "diffctl.launch.event_actions",
+    "OpaqueFunction": "diffctl.launch.event_actions",
+    "OnProcessExit": "diffctl.launch.event_handlers",
+    "OnProcessIO": "diffctl.launch.event_handlers",
+    "OnProcessStart": "diffctl.launch.event_handlers",
+    "OnShutdown": "diffctl.launch.event_handlers",
+    "RegisterEventHandler": "diffctl.launch.event_handlers",
+    "AnyLaunchDescriptionSource": "diffctl.launch.include_action",
+    "FrontendLaunchDescriptionSource": "diffctl.launch.include_action",
+    "IncludeLaunchDescription": "diffctl.launch.include_action",
+    "LaunchDescriptionSource": "diffctl.launch.include_action",
+    "PythonLaunchDescriptionSource": "diffctl.launch.include_action",
+    "XMLLaunchDescriptionSource": "diffctl.launch.include_action",
+    "YAMLLaunchDescriptionSource": "diffctl.launch.include_action",
+    "AllSubstitution": "diffctl.launch.logic_substitutions",
+    "AndSubstitution": "diffctl.launch.logic_substitutions",
+    "AnySubstitution": "diffctl.launch.logic_substitutions",
+    "EqualsSubstitution": "diffctl.launch.logic_substitutions",
+    "IfElseSubstitution": "diffctl.launch.logic_substitutions",
+    "NotEqualsSubstitution": "diffctl.launch.logic_substitutions",
+    "NotSubstitution": "diffctl.launch.logic_substitutions",
+    "OrSubstitution": "diffctl.launch.logic_substitutions",
+    "PackageNotFoundError": "diffctl.launch.package_index",
+    "get_package_prefix": "diffctl.launch.package_index",
+    "get_package_share_directory": "diffctl.launch.package_index",
+    "get_package_share_path": "diffctl.launch.package_index",
+    "ParameterFile": "diffctl.launch.parameters",
+    "ParameterValue": "diffctl.launch.parameters",
+    "ExecuteProcess": "diffctl.launch.process_actions",
+    "Node": "diffctl.launch.process_actions",
+    "WaitFor": "diffctl.launch.readiness",
+    "SetParameter": "diffctl.launch.ros_actions",
+    "SetParametersFromFile": "diffctl.launch.ros_actions",
+    "SetRemap": "diffctl.launch.ros_actions",
+    "SetUseSimTime": "diffctl.launch.ros_actions",
+    "AnonName": "diffctl.launch.substitutions",
+    "Command": "diffctl.launch.substitutions",
+    "EnvironmentVariable": "diffctl.launch.substitutions",
+    "ExecutableInPackage": "diffctl.launch.substitutions",
+    "FileContent": "diffctl.launch.substitutions",
+    "FindExecutable": "diffctl.launch.substitutions",
+    "FindPackagePrefix": "diffctl.launch.substitutions",
+    "FindPackageShare": "diffctl.launch.substitutions",
+    "LaunchConfiguration": "diffctl.launch.substitutions",
+    "PathJoinSubstitution": "diffctl.launch.substitutions",
+    "PythonExpression": "diffctl.launch.substitutions",
+    "TextSubstitution": "diffctl.launch.substitutions",
+    "ThisLaunchFile": "diffctl.launch.substitutions",
+    "ThisLaunchFileDir": "diffctl.launch.substitutions",
+}
 
 __all__ = [
     "AllSubstitution",
@@ -152,3 +247,16 @@ __all__ = [
     "get_package_share_directory",
     "get_package_share_path",
 ]
+
+
+def __getattr__(name: str) -> object:
+    origin = _ORIGIN.get(name)
+    if origin is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(origin), name)
+    globals()[name] = value  # once imported, a plain module attribute
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)

@@ -64,7 +64,8 @@ class RosAliasModule(types.ModuleType):
 
 
 def missing(module: str, name: str) -> MissingName:
-    provided = sorted(k for k in vars(sys.modules.get(module, types.ModuleType(module))) if not k.startswith("_"))
+    # dir(), not vars(): diffctl.launch imports its names on first use and lists them all in __dir__.
+    provided = sorted(k for k in dir(sys.modules.get(module, types.ModuleType(module))) if not k.startswith("_"))
     return MissingName(
         f"{module}.{name} is not supported by diffctl", hint=f"{module} here provides: " + ", ".join(provided)
     )
