@@ -88,20 +88,22 @@ def launch(
       diffctl launch diffctl_demo sim_control.launch.py
       diffctl launch ./my_robot.yaml --show-args
     """
-    from diffctl.console import make_console, warn
-    from diffctl.launch import package_index
-    from diffctl.launch.loader import load
-    from diffctl.launch.output import default_log_dir
-    from diffctl.launch.render import ArgumentsView, PlanView
-    from diffctl.launch.resolver import Resolver, declared_arguments
+    from diffctl.launch.environment import default_log_dir
 
     positional, arguments = _split_targets(target)
     _choose_workspace(workspace_dir)
-    path = package_index.find_launch_file(*positional)
-    # Launching: the fork server starts now, so its imports run while the launch file is read and resolved.
+    # Launching: the fork server starts before the launcher imports its engine, so the server's imports run
+    # while the launcher's own do and the launch file is read and resolved (its first component waits for them).
     run_dir = None if show_args or print_plan else log_dir or default_log_dir()
-    loop = None if run_dir is None else _event_loop(run_dir)
+    server = None if run_dir is None else _start_fork_server(run_dir)
     try:
+        from diffctl.console import make_console, warn
+        from diffctl.launch import package_index
+        from diffctl.launch.loader import load
+        from diffctl.launch.render import ArgumentsView, PlanView
+        from diffctl.launch.resolver import Resolver, declared_arguments
+
+        path = package_index.find_launch_file(*positional)
         description = load(path)
         # Piped output is not cut to 80 columns: paths and commands must stay whole.
         console = make_console(no_color=no_color, width=None if sys.stdout.isatty() else 200)
@@ -118,21 +120,34 @@ def launch(
         if print_plan:
             console.print(PlanView(plan))
             return
+        loop = _event_loop(server)
     except BaseException:
-        if loop is not None:
-            loop.spawner.close(kill_fork_server=True)
+        if server is not None:
+            server.close(kill=True)
         raise
-    assert loop is not None and run_dir is not None
+    assert run_dir is not None
     # SystemExit, not ctx.exit: the entry point runs click with standalone_mode=False, which drops exit codes.
     raise SystemExit(_run(plan, loop, run_dir, log_given=log_dir is not None, no_color=no_color, no_router=no_router))
 
 
-def _event_loop(run_dir: Path) -> Any:
-    """The launcher's event loop, with a fork server running in the environment its children will get."""
-    from diffctl.launch.loop import EventLoop
-    from diffctl.launch.supervisor import default_child_env
+def _start_fork_server(run_dir: Path) -> Any:
+    """The fork server, started in the environment the launch's children will get (None when turned off).
+    Only light modules are imported on the way: everything the launcher imports before it delays the
+    launch's first component."""
+    from diffctl.launch import fork_server
+    from diffctl.launch.environment import default_child_env
 
-    return EventLoop(fork_env=default_child_env(_children_env(run_dir)))
+    env = default_child_env(_children_env(run_dir))
+    if not fork_server.enabled(env):
+        return None
+    return fork_server.ForkServer(env, preexec=fork_server.dies_with_launcher())
+
+
+def _event_loop(server: Any) -> Any:
+    """The launcher's event loop, its spawner forking diffctl's components from `server` (if any)."""
+    from diffctl.launch.loop import EventLoop
+
+    return EventLoop(server=server)
 
 
 def _children_env(run_dir: Path) -> dict[str, str]:

@@ -7,11 +7,10 @@ from __future__ import annotations
 
 import os
 import secrets
-import sys
 from dataclasses import dataclass, field, replace
-from pathlib import Path
 from typing import Any
 
+from diffctl.launch.environment import with_tool_path
 from diffctl.launch.plan import Gate
 
 
@@ -102,16 +101,3 @@ def join_namespace(base: str, ns: str) -> str:
     full = ns if ns.startswith("/") else (base.rstrip("/") + "/" + ns)
     full = "/" + "/".join(p for p in full.split("/") if p)
     return full
-
-
-def with_tool_path(env: dict[str, str]) -> dict[str, str]:
-    """`env` with this interpreter's bin directory first on PATH.
-
-    `$(command 'xacro …')`, `$(find-exec)` and the children find the venv's `xacro` and `diffctl` even when
-    the venv is not activated (the launcher was started as .venv/bin/diffctl).
-    """
-    tools = str(Path(sys.executable).parent)
-    parts = [p for p in env.get("PATH", "").split(os.pathsep) if p]
-    if tools not in parts:
-        env["PATH"] = os.pathsep.join([tools, *parts])
-    return env

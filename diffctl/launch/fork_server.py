@@ -13,14 +13,16 @@ DIFFCTL_FORK_SERVER=0 turns the server off.
 from __future__ import annotations
 
 import contextlib
+import ctypes
 import json
 import os
+import signal
 import socket
 import subprocess
 import sys
 from collections.abc import Callable, Mapping, Sequence
 
-from diffctl.launch.zygote import MAX_MESSAGE, TITLE_ROOM
+from diffctl.launch.zygote import MAX_MESSAGE, PR_SET_PDEATHSIG, TITLE_ROOM
 
 ENABLE_ENV = "DIFFCTL_FORK_SERVER"
 REPLY_TIMEOUT_S = 60.0  # the first request waits for the zygote's imports, on a loaded machine too
@@ -37,6 +39,25 @@ def is_component(argv: Sequence[str]) -> bool:
         and os.path.abspath(argv[0]) == os.path.abspath(sys.executable)
         and list(argv[1:3]) == ["-m", "diffctl"]
     )
+
+
+def dies_with_launcher() -> Callable[[], None] | None:
+    """A preexec_fn arming PR_SET_PDEATHSIG=SIGKILL, for a fork server started before the launcher's spawner
+    exists (which arms the same for every child it execs); None off Linux."""
+    if not sys.platform.startswith("linux"):
+        return None
+    try:
+        prctl = ctypes.CDLL(None, use_errno=True).prctl
+    except OSError:
+        return None
+    parent = os.getpid()
+
+    def preexec() -> None:
+        prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+        if os.getppid() != parent:
+            os._exit(1)  # the launcher died before the death signal was armed
+
+    return preexec
 
 
 class ForkServer:

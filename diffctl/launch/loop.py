@@ -32,12 +32,20 @@ class _Pipe:
 
 
 class EventLoop:
-    def __init__(self, *, watch_stdin: bool = True, fork_env: dict[str, str] | None = None) -> None:
+    def __init__(
+        self,
+        *,
+        watch_stdin: bool = True,
+        fork_env: dict[str, str] | None = None,
+        server: fork_server.ForkServer | None = None,
+    ) -> None:
         """fork_env: start the fork server now (its imports overlap whatever the caller does next), in the
-        environment of a child that sets nothing of its own."""
+        environment of a child that sets nothing of its own; server: one the caller started already."""
         self.selector = selectors.DefaultSelector()
         self.spawner = PosixSpawner(on_pipes=self._add_pipes)
-        if fork_env is not None and fork_server.enabled(fork_env):
+        if server is not None:
+            self.spawner.fork_server = server
+        elif fork_env is not None and fork_server.enabled(fork_env):
             self.spawner.fork_server = fork_server.ForkServer(fork_env, preexec=self.spawner.preexec)
         self.supervisor: Supervisor | None = None
         self._pipes: dict[int, list[_Pipe]] = {}

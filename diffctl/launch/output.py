@@ -7,7 +7,6 @@ up and what is still awaited; it is cleared before any other line is printed and
 
 from __future__ import annotations
 
-import os
 import shutil
 import sys
 import time
@@ -131,15 +130,6 @@ class Output:
         if self._launch_log is not None:
             self._launch_log.close()
             self._launch_log = None
-
-
-def default_log_dir() -> Path:
-    """ROS's layout: $ROS_LOG_DIR, else $ROS_HOME/log, else ~/.ros/log; one directory per run."""
-    base = os.environ.get("ROS_LOG_DIR")
-    root = Path(base) if base else Path(os.environ.get("ROS_HOME") or Path.home() / ".ros") / "log"
-    stamp = time.strftime("%Y-%m-%d-%H-%M-%S") + f"-{int(time.time() * 1e6) % 1000000:06d}"
-    host = os.uname().nodename.split(".")[0]
-    return root / f"{stamp}-{host}-{os.getpid()}"
 
 
 def link_latest(log_dir: Path) -> None:

@@ -255,7 +255,7 @@ class Command(Substitution):
         policy = perform(self.on_stderr, scope)
         if policy not in ("fail", "warn", "ignore", "capture"):
             raise LaunchError(f"$(command) stderr policy {policy!r} is not valid", hint="valid: fail, warn, ignore")
-        from diffctl.launch.context import with_tool_path
+        from diffctl.launch.environment import with_tool_path
 
         try:
             argv = shlex.split(text)
@@ -329,7 +329,7 @@ class FindExecutable(Substitution):
     def perform(self, scope: Scope) -> str:
         import shutil
 
-        from diffctl.launch.context import with_tool_path
+        from diffctl.launch.environment import with_tool_path
 
         name = perform(self.name, scope)
         found = shutil.which(name, path=with_tool_path(dict(scope.env)).get("PATH", ""))

@@ -22,7 +22,7 @@ from pathlib import Path
 
 from diffctl.errors import LaunchError
 from diffctl.launch import commandline
-from diffctl.launch.context import with_tool_path
+from diffctl.launch.environment import child_env, with_tool_path
 from diffctl.launch.output import Output
 from diffctl.launch.plan import (
     AddHandler,
@@ -56,16 +56,6 @@ from diffctl.launch.readiness import ProbePoller
 from diffctl.launch.status import ProcessRow, StatusView, awaited, process_rows
 
 STOP_SIGNALS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
-
-
-def child_env(env: dict[str, str]) -> dict[str, str]:
-    """A child's final environment: line-buffered output from every Python child."""
-    return {**env, "PYTHONUNBUFFERED": "1"}
-
-
-def default_child_env(env: dict[str, str]) -> dict[str, str]:
-    """The environment of a child that sets no variables of its own, when the launcher runs in `env`."""
-    return child_env(with_tool_path(dict(env)))
 
 
 class Supervisor:

@@ -17,10 +17,10 @@ import psutil
 import pytest
 
 from bench.ports import free_port, wait_port
+from diffctl.launch.environment import default_child_env
 from diffctl.launch.fork_server import ForkServer
 from diffctl.launch.process_state import Child
 from diffctl.launch.spawner import PosixSpawner
-from diffctl.launch.supervisor import default_child_env
 
 
 def _environ(pid: int) -> dict[str, str]:
