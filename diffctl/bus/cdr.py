@@ -32,7 +32,6 @@ _CODE = {
 }
 _SIZE = {name: struct.calcsize(code) for name, code in _CODE.items()}
 _HEADER_LE = b"\x00\x01\x00\x00"
-_CDR_LE = _HEADER_LE[:2]
 
 
 class Unsupported(Exception):
@@ -140,31 +139,30 @@ class _Decoder(_Emitter):
         self.run_size += size
         return v
 
-    def string(self) -> str:
+    def _length(self) -> str:
+        """A string's or sequence's uint32 length, read by the run before it (a Header's stamp and its
+        frame_id's length are one unpack), or by a run of its own; `pos` is left just after it."""
+        n = self.primitive("uint32")
         self.flush()
-        self._align(4)
-        n, v = self.var("n"), self.var("s")
+        return n
+
+    def string(self) -> str:
+        n, v = self._length(), self.var("s")
         self.lines += [
-            f"{n} = U32(buf, pos)[0]",
-            f"if {n} < 1 or pos + 4 + {n} > blen or buf[pos + 3 + {n}] != 0:",
-            f"    raise ValueError(f'invalid string length {{{n}}} at offset {{pos - 4}}')",
-            f"{v} = buf[pos + 4:pos + 3 + {n}].decode()",
-            f"pos += 4 + {n}",
+            f"if {n} < 1 or pos + {n} > blen or buf[pos + {n} - 1] != 0:",
+            f"    raise ValueError(f'invalid string length {{{n}}} at offset {{pos - 8}}')",
+            f"{v} = buf[pos:pos + {n} - 1].decode()",
+            f"pos += {n}",
         ]
         self.known = 1
         return v
 
     def count(self, minimum: int) -> str:
-        self.flush()
-        self._align(4)
-        n = self.var("n")
+        n = self._length()
         self.lines += [
-            f"{n} = U32(buf, pos)[0]",
-            "pos += 4",
             f"if pos + {n} * {minimum} > blen or {n} > MAXSEQ:",
             f"    raise ValueError(f'invalid sequence length {{{n}}} at offset {{pos - 8}}')",
         ]
-        self.known = 4
         return n
 
     def value(self, desc: tuple) -> str:
@@ -242,7 +240,7 @@ class _Decoder(_Emitter):
         return v
 
 
-def _decoder_source(ts: Any, typename: str, ns: dict[str, Any]) -> str:
+def _decoder_source(ts: Any, typename: str, ns: dict[str, Any], wrap: bool = False) -> str:
     helpers: dict[str, str] = {}
     pending: list[str] = []
     out: list[str] = []
@@ -256,22 +254,27 @@ def _decoder_source(ts: Any, typename: str, ns: dict[str, Any]) -> str:
     top_expr = top.value((Nodetype.NAME, typename))
     top.flush()
     # One frame per message: the header check, the body and the size check are all in `decode`.
-    out += [
-        "def decode(buf):",
-        "    if type(buf) is not bytes:",
-        "        buf = bytes(buf)",
-        "    if buf[:2] != CDR_LE or len(buf) < 4:  # big-endian or no header: rosbags decides",
-        "        return FALLBACK(buf, TYPENAME)",
-        "    blen = len(buf)",
-        "    pos = 4",
+    top_body = [
+        "if type(buf) is not bytes:",
+        "    buf = bytes(buf)",
+        "blen = len(buf)",
+        # The representation identifier 00 01 (CDR_LE) as two byte reads: cheaper than slicing and comparing.
+        "if blen < 4 or buf[1] != 1 or buf[0]:  # big-endian or no header: rosbags decides",
+        "    return FALLBACK(buf, TYPENAME)",
+        "pos = 4",
+        *top.lines,
+        "if pos + 3 < blen:  # CDR pads to 4 at most; more left over means a sample of another type",
+        "    raise ValueError(f'CDR message size mismatch for {TYPENAME!r}')",
+        *top.builds,
+        f"return {top_expr}",
     ]
-    out += [f"    {line}" for line in top.lines]
-    out += [
-        "    if pos + 3 < blen:  # CDR pads to 4 at most; more left over means a sample of another type",
-        "        raise ValueError(f'CDR message size mismatch for {TYPENAME!r}')",
-        *[f"    {line}" for line in top.builds],
-        f"    return {top_expr}",
-    ]
+    out.append("def decode(buf):")
+    if wrap:
+        # The caller's error type raised from this very frame: no wrapper call per sample.
+        out += ["    try:", *[f"        {line}" for line in top_body], "    except Exception as e:",
+                "        raise ERROR(f'cannot decode {TYPENAME}: {type(e).__name__}: {e}') from None"]
+    else:
+        out += [f"    {line}" for line in top_body]
     while pending:
         name = pending.pop()
         em = _Decoder(ts, ns, helpers, pending)
@@ -281,14 +284,17 @@ def _decoder_source(ts: Any, typename: str, ns: dict[str, Any]) -> str:
     return "\n".join(out) + "\n"
 
 
-def compile_decoder(ts: Any, typename: str) -> Callable[[bytes | bytearray | memoryview], Any]:
+def compile_decoder(
+    ts: Any, typename: str, error: type[Exception] | None = None
+) -> Callable[[bytes | bytearray | memoryview], Any]:
     """`decode(raw)` for one type: raw is a whole CDR sample (header included). Raises ValueError,
-    struct.error or UnicodeDecodeError on malformed input; big-endian samples go through rosbags.
+    struct.error or UnicodeDecodeError on malformed input — or, given `error`, that type with the type name
+    and the cause in its message; big-endian samples go through rosbags.
     Only the representation bytes of the header are checked: the two option bytes may count padding."""
     ns: dict[str, Any] = {"U32": struct.Struct("<I").unpack_from, "frombuffer": numpy.frombuffer, "NEW": object.__new__,
-                          "MAXSEQ": getattr(ts, "max_sequence_length", 2**32 - 1), "CDR_LE": _CDR_LE,
-                          "FALLBACK": ts.deserialize_cdr, "TYPENAME": typename}
-    src = _decoder_source(ts, typename, ns)
+                          "MAXSEQ": getattr(ts, "max_sequence_length", 2**32 - 1),
+                          "FALLBACK": ts.deserialize_cdr, "TYPENAME": typename, "ERROR": error}
+    src = _decoder_source(ts, typename, ns, wrap=error is not None)
     ns = {k: v for k, v in ns.items() if isinstance(k, str)}
     exec(compile(src, f"<cdr decoder {typename}>", "exec"), ns)
     return ns["decode"]

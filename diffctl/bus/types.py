@@ -164,16 +164,14 @@ def decoder(typename: str) -> Callable[[bytes | bytearray | memoryview], Any]:
     if dec is None:
         ts = _ensure(typename)
         try:
-            inner = cdr.compile_decoder(ts, typename)
+            # Raises MessageError itself: a wrapper's call would cost every sample a frame.
+            dec = cdr.compile_decoder(ts, typename, MessageError)
         except cdr.Unsupported:
-            def inner(raw: bytes | bytearray | memoryview, _ts: Any = ts) -> Any:
-                return _ts.deserialize_cdr(raw, typename)
-
-        def dec(raw: bytes | bytearray | memoryview) -> Any:
-            try:
-                return inner(raw)
-            except Exception as e:  # truncated or foreign data raise assorted errors
-                raise MessageError(f"cannot decode {typename}: {type(e).__name__}: {e}") from None
+            def dec(raw: bytes | bytearray | memoryview, _ts: Any = ts) -> Any:
+                try:
+                    return _ts.deserialize_cdr(raw, typename)
+                except Exception as e:  # truncated or foreign data raise assorted errors
+                    raise MessageError(f"cannot decode {typename}: {type(e).__name__}: {e}") from None
 
         _decoders[typename] = dec
     return dec
