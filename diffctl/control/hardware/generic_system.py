@@ -21,12 +21,14 @@ from __future__ import annotations
 
 import math
 import time
+from typing import Any
 
 from diffctl.control.controller_interface import CommandInterface, ReturnType, StateInterface
 from diffctl.control.hardware_interface import HardwareComponent, HardwareInfo
 from diffctl.errors import ParameterError
 
 _MODES = ("position", "velocity", "acceleration")
+_INF, _NEG_INF = math.inf, -math.inf
 _BOOL = {"true": True, "false": False, "1": True, "0": False}
 
 
@@ -67,6 +69,7 @@ class GenericSystem(HardwareComponent):
         self.offset = _float_param(info, "position_state_following_offset")
         self.custom_offset_interface = info.hardware_parameters.get("custom_interface_with_following_offset", "")
         self._mode: dict[str, str | None] = {j.name: None for j in info.joints}
+        self._cached_plan: _Plan | None = None
         self._last_warn = 0.0
         for j in info.joints:
             names = [c.name for c in j.command_interfaces]
@@ -119,12 +122,14 @@ class GenericSystem(HardwareComponent):
                     if name not in self.commands:
                         self.commands[name] = CommandInterface(name, math.nan)
                         out.append(self.commands[name])
+        self._cached_plan = None
         return out
 
     def export_state_interfaces(self) -> list[StateInterface]:
         out = super().export_state_interfaces()
         for it in out:
             it.value = self._initial.get(it.name, 0.0)
+        self._cached_plan = None
         return out
 
     def on_configure(self) -> None:
@@ -156,9 +161,17 @@ class GenericSystem(HardwareComponent):
             joint, _, iface = name.rpartition("/")
             if joint in self._mode and iface in _MODES:
                 self._mode[joint] = iface
+        self._cached_plan = None
         return True
 
     # --- real-time ---------------------------------------------------------------------------------------
+    def _plan(self) -> _Plan:
+        """The handles read() walks, resolved from names once: rebuilt when the handles or the modes change."""
+        plan = self._cached_plan
+        if plan is None:
+            plan = self._cached_plan = _Plan(self)
+        return plan
+
     def read(self, time_ns: int, period_s: float) -> ReturnType:
         if self.disable_commands:
             now = time.monotonic()
@@ -166,56 +179,38 @@ class GenericSystem(HardwareComponent):
                 self._last_warn = now
                 self.log.warn(f"{self.name}: Command propagation is disabled - no values will be returned!")
             return ReturnType.OK
-        states, commands = self.states, self.commands
-        for name, cmd in commands.items():
-            if math.isinf(cmd.value):
-                if self.log is not None:
-                    self.log.error(f"{self.name}: command {name} is {cmd.value}")
-                return ReturnType.ERROR
-        # The position offset goes to the custom interface when one is named, else to the position state.
-        position_offset = 0.0 if self.custom_offset_interface else self.offset
-        if self.calculate_dynamics:
-            self._integrate(period_s, position_offset)
-        for name, cmd in commands.items():
+        plan = self._cached_plan or self._plan()
+        values = [c.value for c in plan.commands]
+        if _INF in values or _NEG_INF in values:
+            for name, cmd in self.commands.items():
+                if math.isinf(cmd.value):
+                    if self.log is not None:
+                        self.log.error(f"{self.name}: command {name} is {cmd.value}")
+                    return ReturnType.ERROR
+        if plan.integrate:
+            self._integrate(period_s, plan.position_offset)
+        # Commands mirrored to the state of the same name (a NaN command is no command), in the commands' order.
+        for cmd, st, offset in plan.mirror:
             v = cmd.value
-            if v != v:  # NaN: no command
-                continue
-            joint, _, iface = name.rpartition("/")
-            if iface in (_MODES if self.calculate_dynamics else ("position",)) and joint in self._mode:
-                if iface == "position" and not self.calculate_dynamics:
-                    st = states.get(name)
-                    if st is not None:
-                        st.value = v + position_offset
-                continue
-            st = states.get(name)
-            if st is not None:
-                st.value = v
-        if self.custom_offset_interface:
-            for joint in self._mode:
-                cmd = commands.get(f"{joint}/position")
-                target = states.get(f"{joint}/{self.custom_offset_interface}")
-                if cmd is not None and target is not None and cmd.value == cmd.value:
-                    target.value = cmd.value + self.offset
-        for joint, mimicked, multiplier in self._mimics:
-            for iface in self._joint_interfaces[joint]:
-                src = states.get(f"{mimicked}/{iface}")
-                if src is not None:
-                    states[f"{joint}/{iface}"].value = multiplier * src.value
+            if v == v:
+                st.value = v if offset is None else v + offset
+        for cmd, target in plan.custom_offset:
+            v = cmd.value
+            if v == v:
+                target.value = v + self.offset
+        for dst, src, multiplier in plan.mimics:
+            dst.value = multiplier * src.value
         return ReturnType.OK
 
     def _integrate(self, dt: float, position_offset: float) -> None:
         """One step of the mock's dynamics (backward integration: position advances by the previous velocity)."""
         if not dt > 0.0:
             return
-        states, commands = self.states, self.commands
-        for joint, mode in self._mode.items():
-            if mode is None:
-                continue
-            cmd = commands[f"{joint}/{mode}"].value
-            pos_s, vel_s, acc_s = (states.get(f"{joint}/{k}") for k in _MODES)
-            pos = pos_s.value if pos_s is not None else 0.0
-            vel = vel_s.value if vel_s is not None else 0.0
-            acc = acc_s.value if acc_s is not None else 0.0
+        for mode, command, pos_s, vel_s, acc_s in (self._cached_plan or self._plan()).integrate:
+            cmd = command.value
+            pos = pos_s.value
+            vel = vel_s.value
+            acc = acc_s.value
             if mode == "acceleration":
                 pos += vel * dt + position_offset
                 vel += acc * dt
@@ -231,9 +226,69 @@ class GenericSystem(HardwareComponent):
                 new_vel = (new_pos - pos) / dt
                 acc = (new_vel - vel) / dt
                 pos, vel = new_pos, new_vel
-            for s, v in ((pos_s, pos), (vel_s, vel), (acc_s, acc)):
-                if s is not None:
-                    s.value = v
+            pos_s.value = pos
+            vel_s.value = vel
+            acc_s.value = acc
 
     def write(self, time_ns: int, period_s: float) -> ReturnType:
         return ReturnType.OK
+
+
+class _Missing:
+    """Stands in for a state interface a joint does not have: reads 0.0, ignores writes (as upstream)."""
+
+    __slots__ = ()
+
+    @property
+    def value(self) -> float:
+        return 0.0
+
+    @value.setter
+    def value(self, _v: float) -> None:
+        pass
+
+
+_MISSING = _Missing()
+
+
+class _Plan:
+    """GenericSystem.read()'s work as lists of handles, so a cycle builds no names and looks up no tables."""
+
+    def __init__(self, hw: GenericSystem) -> None:
+        states, commands = hw.states, hw.commands
+        calc = hw.calculate_dynamics
+        self.commands = list(commands.values())
+        # The position offset goes to the custom interface when one is named, else to the position state.
+        self.position_offset = 0.0 if hw.custom_offset_interface else hw.offset
+        self.integrate: list[tuple[str, CommandInterface, Any, Any, Any]] = []
+        if calc:
+            for joint, mode in hw._mode.items():
+                if mode is None:
+                    continue
+                pos_s, vel_s, acc_s = (states.get(f"{joint}/{k}") or _MISSING for k in _MODES)
+                self.integrate.append((mode, commands[f"{joint}/{mode}"], pos_s, vel_s, acc_s))
+        # (command, state, offset added or None): a joint's mode interfaces (with calculate_dynamics) are the
+        # integrator's, a position command without it sets the position state plus the offset.
+        self.mirror: list[tuple[CommandInterface, StateInterface, float | None]] = []
+        for name, cmd in commands.items():
+            joint, _, iface = name.rpartition("/")
+            st = states.get(name)
+            if iface in (_MODES if calc else ("position",)) and joint in hw._mode:
+                if iface == "position" and not calc and st is not None:
+                    self.mirror.append((cmd, st, self.position_offset))
+                continue
+            if st is not None:
+                self.mirror.append((cmd, st, None))
+        self.custom_offset: list[tuple[CommandInterface, StateInterface]] = []
+        if hw.custom_offset_interface:
+            for joint in hw._mode:
+                cmd = commands.get(f"{joint}/position")
+                target = states.get(f"{joint}/{hw.custom_offset_interface}")
+                if cmd is not None and target is not None:
+                    self.custom_offset.append((cmd, target))
+        self.mimics: list[tuple[StateInterface, StateInterface, float]] = []
+        for joint, mimicked, multiplier in hw._mimics:
+            for iface in hw._joint_interfaces[joint]:
+                src = states.get(f"{mimicked}/{iface}")
+                if src is not None:
+                    self.mimics.append((states[f"{joint}/{iface}"], src, multiplier))
