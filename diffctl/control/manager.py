@@ -26,6 +26,8 @@ from diffctl.control.hardware_interface import HardwareComponent, HardwareInfo
 from diffctl.control.lifecycle import ManagedController, State, TransitionError, hook_message
 from diffctl.control.params import ManagerParams, controller_node_params, node_options, with_controller_param
 from diffctl.control.plugin_registry import controller_class
+from diffctl.control.realtime_publisher import hold as hold_publishing
+from diffctl.control.realtime_publisher import release as release_publishing
 from diffctl.control.resource_manager import ResourceManager
 from diffctl.control.switching import STRICT, ControllerView, SwitchPlan, chain_order, plan_switch
 from diffctl.errors import ConfigError, ParameterError
@@ -330,13 +332,29 @@ class ControllerManager:
     # ---------------------------------------------------------------------------------------------- real time
     def read(self, time_ns: int, period_s: float) -> None:
         with self._lock:
-            failed = self.rm.read(time_ns, period_s, self.update_rate)
+            failed = self.rm.read(time_ns, period_s, self.params.update_rate)
             if failed:
                 self._hardware_failed(failed)
 
     def write(self, time_ns: int, period_s: float) -> None:
         with self._lock:
-            failed = self.rm.write(time_ns, period_s, self.update_rate)
+            failed = self.rm.write(time_ns, period_s, self.params.update_rate)
+            if failed:
+                self._hardware_failed(failed)
+
+    def cycle(self, time_ns: int, period_s: float) -> None:
+        """read → update → write, as the real-time loop runs them, under one acquisition of the lock."""
+        with self._lock:
+            rate = self.params.update_rate
+            failed = self.rm.read(time_ns, period_s, rate)
+            if failed:
+                self._hardware_failed(failed)
+            held = hold_publishing()
+            try:
+                self._update(time_ns, period_s, rate)
+            finally:
+                release_publishing(held)
+            failed = self.rm.write(time_ns, period_s, rate)
             if failed:
                 self._hardware_failed(failed)
 
@@ -357,34 +375,42 @@ class ControllerManager:
 
     def update(self, time_ns: int, period_s: float) -> None:
         with self._lock:
-            self.cycle_count += 1
-            rate = self.update_rate
-            failed: list[tuple[ManagedController, str]] = []
-            for mc in self._active:
-                period = period_s
-                if mc.update_rate and mc.update_rate < rate and mc.last_update_ns is not None:
-                    # ros2_control: run on the cycle whose elapsed time is closest to the controller's period.
-                    actual = (time_ns - mc.last_update_ns) * 1e-9
-                    r = mc.update_rate
-                    if abs(actual * r - 1.0) > abs((actual + 1.0 / rate) * r - 1.0):
-                        continue
-                    period = actual
-                try:
-                    ret = mc.instance.update(time_ns, period)
-                    reason = "update() returned ERROR"
-                except Exception as e:
-                    if not self.params.handle_exceptions:
-                        raise
-                    ret, reason = ReturnType.ERROR, f"update() raised {hook_message(e)}"
-                mc.last_update_ns = time_ns
-                mc.update_count += 1
-                if ret is not ReturnType.OK:
-                    failed.append((mc, reason))
-            if failed:
-                self._controllers_failed(failed)
-            if self._pending is not None:
-                pending, self._pending = self._pending, None
-                self._execute(pending)
+            held = hold_publishing()
+            try:
+                self._update(time_ns, period_s, self.params.update_rate)
+            finally:
+                release_publishing(held)
+
+    def _update(self, time_ns: int, period_s: float, rate: int) -> None:
+        """The controllers' updates (`_lock` held, publishing held: what they publish reaches the publishing
+        thread once they all ran; woken in the middle of them, it would take the GIL from this loop)."""
+        self.cycle_count += 1
+        failed: list[tuple[ManagedController, str]] = []
+        for mc in self._active:
+            period = period_s
+            if mc.update_rate and mc.update_rate < rate and mc.last_update_ns is not None:
+                # ros2_control: run on the cycle whose elapsed time is closest to the controller's period.
+                actual = (time_ns - mc.last_update_ns) * 1e-9
+                r = mc.update_rate
+                if abs(actual * r - 1.0) > abs((actual + 1.0 / rate) * r - 1.0):
+                    continue
+                period = actual
+            try:
+                ret = mc.instance.update(time_ns, period)
+                reason = "update() returned ERROR"
+            except Exception as e:
+                if not self.params.handle_exceptions:
+                    raise
+                ret, reason = ReturnType.ERROR, f"update() raised {hook_message(e)}"
+            mc.last_update_ns = time_ns
+            mc.update_count += 1
+            if ret is not ReturnType.OK:
+                failed.append((mc, reason))
+        if failed:
+            self._controllers_failed(failed)
+        if self._pending is not None:
+            pending, self._pending = self._pending, None
+            self._execute(pending)
 
     def _controllers_failed(self, failed: list[tuple[ManagedController, str]]) -> None:
         fallbacks: list[str] = []

@@ -5,15 +5,22 @@ their message objects from cycle to cycle, so the bytes must be taken now — an
 thread per process, which does the Zenoh put (the costly part: ~100 µs and more on a busy machine). Samples of
 one publisher leave in order. When the publishing thread falls far behind, the oldest waiting samples are
 dropped and counted, as realtime_tools skips a cycle whose previous message is still being sent.
+
+Inside `held()` (the controller manager's update: every controller of one cycle) samples are kept on the
+calling thread and handed over together when it ends: the publishing thread is woken once per cycle, after
+the controllers ran, instead of once per message in the middle of them, where it would take the GIL (and the
+CPU) from the loop. Outside `held()` a sample is handed over at once.
+
+This module imports nothing of the bus until a message has to be serialized, so the manager can use it.
 """
 
 from __future__ import annotations
 
 import collections
 import threading
+from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import Any
-
-from diffctl.bus import types
 
 # Waiting samples across all publishers of the process before the oldest are dropped: generous, since a put is
 # fast when the machine is not starved and a burst (start-up, a stall) should not lose data.
@@ -26,25 +33,49 @@ class PublishingThread:
     def __init__(self, capacity: int = CAPACITY) -> None:
         self._queue: collections.deque[tuple[Any, bytes]] = collections.deque()
         self._capacity = capacity
-        self._wake = threading.Condition()
+        # A binary semaphore: unlocked = "samples may be waiting". A plain lock rather than a Condition, whose
+        # notify is Python code that the control loop would run (cold) every cycle; deque operations are atomic.
+        self._signal = threading.Lock()
+        self._signal.acquire()
         self.dropped = 0
         self._thread = threading.Thread(target=self._run, name="realtime_publisher", daemon=True)
         self._thread.start()
 
     def submit(self, publisher: Any, cdr: bytes) -> None:
-        with self._wake:
-            if len(self._queue) >= self._capacity:
-                self._queue.popleft()
-                self.dropped += 1
-            self._queue.append((publisher, cdr))
-            self._wake.notify()
+        held = _hold.pending
+        if held is not None:  # inside hold(): handed over at release()
+            held.append((self, publisher, cdr))
+            return
+        self.submit_many(((publisher, cdr),))
+
+    def submit_many(self, samples: Any) -> None:
+        """Queue (publisher, cdr) samples in order and wake the thread once."""
+        queue = self._queue
+        queue.extend(samples)
+        excess = len(queue) - self._capacity
+        while excess > 0:  # fallen far behind: the oldest go
+            try:
+                queue.popleft()
+            except IndexError:
+                break
+            self.dropped += 1
+            excess -= 1
+        self._wake()
+
+    def _wake(self) -> None:
+        try:
+            self._signal.release()
+        except RuntimeError:  # already signalled, not yet taken
+            pass
 
     def _run(self) -> None:
+        queue = self._queue
         while True:
-            with self._wake:
-                while not self._queue:
-                    self._wake.wait()
-                publisher, cdr = self._queue.popleft()
+            try:
+                publisher, cdr = queue.popleft()
+            except IndexError:
+                self._signal.acquire()  # until a producer appends and signals (or signalled meanwhile)
+                continue
             if getattr(publisher, "closed", False):
                 continue
             try:
@@ -55,10 +86,8 @@ class PublishingThread:
     def flush(self, timeout_s: float = 1.0) -> bool:
         """Wait until everything queued so far has been put (tests, shutdown)."""
         done = threading.Event()
-        marker = _Marker(done)
-        with self._wake:
-            self._queue.append((marker, b""))
-            self._wake.notify()
+        self._queue.append((_Marker(done), b""))
+        self._wake()
         return done.wait(timeout_s)
 
 
@@ -68,6 +97,54 @@ class _Marker:
 
     def publish_raw(self, _cdr: bytes) -> None:
         self._done.set()
+
+
+class _Hold(threading.local):
+    pending: list[tuple[PublishingThread, Any, bytes]] | None = None
+
+
+_hold = _Hold()
+
+
+def hold() -> list[tuple[PublishingThread, Any, bytes]] | None:
+    """Start keeping this thread's samples; pass the result to `release`. Nested holds hand over at the
+    outermost release. (Plain functions rather than a context manager: this runs on every control cycle.)"""
+    if _hold.pending is not None:
+        return None
+    pending: list[tuple[PublishingThread, Any, bytes]] = []
+    _hold.pending = pending
+    return pending
+
+
+def release(pending: list[tuple[PublishingThread, Any, bytes]] | None) -> None:
+    """End a `hold`: hand the kept samples over, one wake-up per publishing thread."""
+    if pending is None:
+        return
+    _hold.pending = None
+    if pending:
+        _hand_over(pending)
+
+
+@contextmanager
+def held() -> Iterator[None]:
+    """`hold` … `release` around a block."""
+    pending = hold()
+    try:
+        yield
+    finally:
+        release(pending)
+
+
+def _hand_over(pending: list[tuple[PublishingThread, Any, bytes]]) -> None:
+    first = pending[0][0]
+    if all(t is first for t, _, _ in pending):  # the usual case: the process's one publishing thread
+        first.submit_many([(p, c) for _, p, c in pending])
+        return
+    by_thread: dict[PublishingThread, list[tuple[Any, bytes]]] = {}
+    for t, p, c in pending:
+        by_thread.setdefault(t, []).append((p, c))
+    for t, samples in by_thread.items():
+        t.submit_many(samples)
 
 
 _thread: PublishingThread | None = None
@@ -86,13 +163,22 @@ class RealtimePublisher:
     """A bus publisher whose `publish` returns as soon as the message is serialized."""
 
     def __init__(self, publisher: Any, thread: PublishingThread | None = None) -> None:
+        from diffctl.bus import types
+
         self._pub = publisher
         self._thread = thread or publishing_thread()
+        self._types = types
+        self._type = publisher.type
 
     def publish(self, msg: Any) -> None:
+        types = self._types
         if isinstance(msg, dict):
-            msg = types.new(self._pub.type, msg)
-        self._thread.submit(self._pub, types.serialize(msg, self._pub.type))
+            msg = types.new(self._type, msg)
+        self._thread.submit(self._pub, types.serialize(msg, self._type))
+
+    def publish_cdr(self, cdr: bytes) -> None:
+        """Publish bytes the caller serialized itself (a fresh object: it is sent later, as it is)."""
+        self._thread.submit(self._pub, cdr)
 
     def close(self) -> None:
         self._pub.close()

@@ -55,6 +55,7 @@ class ResourceManager:
         self._warn = log or (lambda _t: None)
         self._active: tuple[HardwareHandle, ...] = ()
         self._readable: tuple[HardwareHandle, ...] = ()
+        self._slow_active = self._slow_readable = False
 
     # --- loading ---------------------------------------------------------------------------------------
     def load(
@@ -142,6 +143,9 @@ class ResourceManager:
         comps = list(self.components.values())
         self._active = tuple(h for h in comps if h.state is State.ACTIVE)
         self._readable = tuple(h for h in comps if h.state in (State.ACTIVE, State.INACTIVE))
+        # A component with its own (slower) rw_rate needs _rw's bookkeeping; the others are called directly.
+        self._slow_active = any(h.rw_rate for h in self._active)
+        self._slow_readable = any(h.rw_rate for h in self._readable)
 
     # --- availability and claims -------------------------------------------------------------------------
     def state_available(self, name: str) -> bool:
@@ -276,11 +280,34 @@ class ResourceManager:
                 failed.append((h.name, f"{'write' if write else 'read'} {reason}"))
         return failed
 
-    def read(self, time_ns: int, period_s: float, cm_rate: int = 0) -> list[tuple[str, str]]:
-        return self._rw(self._readable, False, time_ns, period_s, cm_rate)
+    def read(self, time_ns: int, period_s: float, cm_rate: int = 0) -> list[tuple[str, str]] | None:
+        """Failed components as (name, reason), or None when none failed."""
+        if self._slow_readable or len(self._readable) != 1:
+            return self._rw(self._readable, False, time_ns, period_s, cm_rate) or None
+        # One component at the manager's rate (the usual robot): no per-component bookkeeping.
+        h = self._readable[0]
+        try:
+            if h.component.read(time_ns, period_s) is ReturnType.OK:
+                return None
+            reason = "returned ERROR"
+        except Exception as e:
+            reason = f"raised {hook_message(e)}"
+        h.read_errors += 1
+        return [(h.name, f"read {reason}")]
 
-    def write(self, time_ns: int, period_s: float, cm_rate: int = 0) -> list[tuple[str, str]]:
-        return self._rw(self._active, True, time_ns, period_s, cm_rate)
+    def write(self, time_ns: int, period_s: float, cm_rate: int = 0) -> list[tuple[str, str]] | None:
+        """Failed components as (name, reason), or None when none failed."""
+        if self._slow_active or len(self._active) != 1:
+            return self._rw(self._active, True, time_ns, period_s, cm_rate) or None
+        h = self._active[0]
+        try:
+            if h.component.write(time_ns, period_s) is ReturnType.OK:
+                return None
+            reason = "returned ERROR"
+        except Exception as e:
+            reason = f"raised {hook_message(e)}"
+        h.write_errors += 1
+        return [(h.name, f"write {reason}")]
 
     def fail_component(self, name: str) -> None:
         """After a read/write error: the component goes to unconfigured and its interfaces become unavailable."""

@@ -156,19 +156,13 @@ class ControlNode:
     def _loop(self) -> None:
         assert self.cm is not None and self.ticker is not None
         cm = self.cm
-
-        def cycle(t_ns: int, period_s: float) -> None:
-            cm.read(t_ns, period_s)
-            cm.update(t_ns, period_s)
-            cm.write(t_ns, period_s)
-
         why_not = configure_sched_fifo(cm.params.thread_priority)
         if why_not:
             self.log.warn(f"{why_not}; the control loop runs at normal priority")
         else:
             self.log.info(f"control loop on SCHED_FIFO priority {cm.params.thread_priority}")
         try:
-            run(cycle, self.ticker, self.stop, self.stats, self._on_cycle_time)
+            run(cm.cycle, self.ticker, self.stop, self.stats, self._on_cycle_time)  # read → update → write
         except Exception as e:  # the loop dying silently would freeze the robot with no word
             self.log.error(f"the control loop stopped: {type(e).__name__}: {e}")
             self.node.request_shutdown()
