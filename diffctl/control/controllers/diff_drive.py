@@ -35,6 +35,7 @@ import math
 from typing import Any
 
 from diffctl.bus import types
+from diffctl.control.cdr_template import CdrTemplate
 from diffctl.control.controller_interface import (
     ChainableControllerInterface,
     CommandInterface,
@@ -81,6 +82,9 @@ class DiffDriveController(ChainableControllerInterface):
         self._odom_pub: Any = None
         self._tf_pub: Any = None
         self._cmd_out_pub: Any = None
+        self._odom_cdr: CdrTemplate | None = None  # set at configure when the publishers take bytes
+        self._tf_cdr: CdrTemplate | None = None
+        self._cmd_out_cdr: CdrTemplate | None = None
         self._left_commands: list[CommandInterface] = []
         self._right_commands: list[CommandInterface] = []
         self._left_feedback: list[StateInterface] = []
@@ -209,6 +213,26 @@ class DiffDriveController(ChainableControllerInterface):
         self._cmd_out_pub = None
         if p.publish_limited_velocity:
             self._cmd_out_pub = self._endpoints.keep(self.node.create_publisher("~/cmd_vel_out", TWIST_STAMPED))
+        # Bus publishers take bytes: each message's fixed layout becomes a template into which a cycle packs
+        # the stamp and the numbers that change (frames, covariances and zeros stay as built above).
+        stamp = [("header.stamp.sec", "i"), ("header.stamp.nanosec", "I")]
+        self._odom_cdr = self._tf_cdr = self._cmd_out_cdr = None
+        pubs = (self._odom_pub, self._tf_pub, self._cmd_out_pub)
+        if all(hasattr(pub, "publish_cdr") for pub in pubs if pub is not None):
+            self._odom_cdr = CdrTemplate(self._odom_msg, ODOMETRY, [
+                *stamp, *_leaves("pose.pose.position", "x", "y"), *_leaves("pose.pose.orientation", "z", "w"),
+                *_leaves("twist.twist.linear", "x"), *_leaves("twist.twist.angular", "z"),
+            ])  # fmt: skip
+        if self._odom_cdr is not None and self._tf_pub is not None:
+            self._tf_cdr = CdrTemplate(self._tf_msg, TF_MESSAGE, [
+                *[(f"transforms[0].{path}", code) for path, code in stamp],
+                *_leaves("transforms[0].transform.translation", "x", "y"),
+                *_leaves("transforms[0].transform.rotation", "z", "w"),
+            ])  # fmt: skip
+        if self._odom_cdr is not None and self._cmd_out_pub is not None:
+            self._cmd_out_cdr = CdrTemplate(self._cmd_out_msg, TWIST_STAMPED, [
+                *stamp, *_leaves("twist.linear", "x"), *_leaves("twist.angular", "z"),
+            ])  # fmt: skip
         self._log = ThrottledLog(self.node.log)
         self._endpoints.keep(self.node.create_subscription("~/cmd_vel", TWIST_STAMPED, self._on_cmd_vel))
         self.export_reference_interfaces()
@@ -398,10 +422,14 @@ class DiffDriveController(ChainableControllerInterface):
 
     def _publish(self, time_ns: int, v: float, w: float) -> None:
         if self._cmd_out_pub is not None:
-            msg = self._cmd_out_msg
-            _set_stamp(msg.header.stamp, time_ns)
-            msg.twist.linear.x, msg.twist.angular.z = v, w
-            self._cmd_out_pub.publish(msg)
+            if self._cmd_out_cdr is not None:
+                sec, nanosec = divmod(time_ns, _NS)
+                self._cmd_out_pub.publish_cdr(self._cmd_out_cdr.encode((sec, nanosec, v, w)))
+            else:
+                msg = self._cmd_out_msg
+                _set_stamp(msg.header.stamp, time_ns)
+                msg.twist.linear.x, msg.twist.angular.z = v, w
+                self._cmd_out_pub.publish(msg)
 
         last = self._last_publish_ns
         period = self._publish_period_ns
@@ -413,10 +441,19 @@ class DiffDriveController(ChainableControllerInterface):
             return
         odom = self.odometry
         _, _, qz, qw = heading_quaternion(odom.heading_rad)
+        x, y = odom.x_m, odom.y_m
+        if self._odom_cdr is not None:
+            sec, nanosec = divmod(time_ns, _NS)
+            self._odom_pub.publish_cdr(
+                self._odom_cdr.encode((sec, nanosec, x, y, qz, qw, odom.linear_mps, odom.angular_radps))
+            )
+            if self._tf_cdr is not None:
+                self._tf_pub.publish_cdr(self._tf_cdr.encode((sec, nanosec, x, y, qz, qw)))
+            return
         msg = self._odom_msg
         _set_stamp(msg.header.stamp, time_ns)
         pose = msg.pose.pose
-        pose.position.x, pose.position.y = odom.x_m, odom.y_m
+        pose.position.x, pose.position.y = x, y
         pose.orientation.z, pose.orientation.w = qz, qw
         twist = msg.twist.twist
         twist.linear.x, twist.angular.z = odom.linear_mps, odom.angular_radps
@@ -425,6 +462,11 @@ class DiffDriveController(ChainableControllerInterface):
         if self._tf_pub is not None:
             tf = self._tf
             _set_stamp(tf.header.stamp, time_ns)
-            tf.transform.translation.x, tf.transform.translation.y = odom.x_m, odom.y_m
+            tf.transform.translation.x, tf.transform.translation.y = x, y
             tf.transform.rotation.z, tf.transform.rotation.w = qz, qw
             self._tf_pub.publish(self._tf_msg)
+
+
+def _leaves(parent: str, *fields: str) -> list[tuple[str, str]]:
+    """float64 leaves `parent.field` of a message template."""
+    return [(f"{parent}.{f}", "d") for f in fields]

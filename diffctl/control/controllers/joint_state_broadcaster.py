@@ -14,6 +14,7 @@ such as sensors); otherwise the order of the interfaces.
 from __future__ import annotations
 
 import math
+import operator
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -21,6 +22,7 @@ from typing import Any
 import numpy as np
 
 from diffctl.bus import types
+from diffctl.control.cdr_template import CdrTemplate
 from diffctl.control.controller_interface import ControllerInterface, InterfaceConfiguration, ReturnType
 from diffctl.control.controllers.owned_endpoints import OwnedEndpoints
 from diffctl.control.controllers.param_decl import (
@@ -38,6 +40,7 @@ JOINT_STATE = "sensor_msgs/msg/JointState"
 DYNAMIC_JOINT_STATE = "control_msgs/msg/DynamicJointState"
 _FIELDS = ("position", "velocity", "effort")
 _NS = 1_000_000_000
+_VALUE = operator.attrgetter("value")  # a handle's value, read in C by map()
 _NAME = (Check("not_empty", ()),)
 _UNIQUE = (Check("unique", ()),)
 
@@ -129,6 +132,7 @@ class JointStateBroadcaster(ControllerInterface):
         self._js_pub: Any = None
         self._djs_pub: Any = None
         self._plan: list[tuple[np.ndarray, int, Any]] = []
+        self._fast: list[tuple[Any, CdrTemplate, list[Any]]] = []  # (publisher, template, handles of its leaves)
         self.joint_names: list[str] = []
 
     def on_init(self) -> None:
@@ -181,11 +185,13 @@ class JointStateBroadcaster(ControllerInterface):
             arrays[f][len(published) :] = 0.0
             setattr(js, f, arrays[f])
         plan: list[tuple[np.ndarray, int, Any]] = []
+        js_leaves: list[tuple[str, int, Any]] = []  # (field, index, handle)
         for index, joint in enumerate(published):
             for si in by_joint[joint]:
                 field = fields.get(si.interface_name)
                 if field is not None:
                     plan.append((arrays[field], index, si))
+                    js_leaves.append((field, index, si))
 
         djs = types.new(DYNAMIC_JOINT_STATE, {"header": {"frame_id": p.frame_id}})
         djs.joint_names = [*by_joint, *extra]
@@ -199,9 +205,24 @@ class JointStateBroadcaster(ControllerInterface):
 
         self._joint_state, self._dynamic_joint_state, self._plan = js, djs, plan
         self.joint_names = published + extra
+        self._fast = []
+        if all(hasattr(pub, "publish_cdr") for pub in (self._js_pub, self._djs_pub) if pub is not None):
+            # Bus publishers take bytes: each message's fixed layout becomes a template into which a cycle
+            # packs the stamp and the state values (the arrays above are then left as activated).
+            stamp = [("header.stamp.sec", "i"), ("header.stamp.nanosec", "I")]
+            js_leaves.sort(key=lambda leaf: (_FIELDS.index(leaf[0]), leaf[1]))  # the message's byte order
+            template = CdrTemplate(js, JOINT_STATE, stamp + [(f"{f}[{i}]", "d") for f, i, _ in js_leaves])
+            if self._js_pub is not None:
+                self._fast.append((self._js_pub, template, [si for _, _, si in js_leaves]))
+            if self._djs_pub is not None:
+                leaves = [f"interface_values[{j}].values[{k}]" for j, sis in enumerate(by_joint.values())
+                          for k in range(len(sis))]  # fmt: skip
+                template = CdrTemplate(djs, DYNAMIC_JOINT_STATE, stamp + [(leaf, "d") for leaf in leaves])
+                self._fast.append((self._djs_pub, template, [si for sis in by_joint.values() for si in sis]))
 
     def on_deactivate(self) -> None:
         self._plan = []
+        self._fast = []
 
     def on_cleanup(self) -> None:
         self._close_endpoints()
@@ -210,9 +231,13 @@ class JointStateBroadcaster(ControllerInterface):
         self._close_endpoints()
 
     def update(self, time_ns: int, period_s: float) -> ReturnType:
+        sec, nanosec = divmod(time_ns, _NS)
+        if self._fast:
+            for pub, template, handles in self._fast:
+                pub.publish_cdr(template.encode([sec, nanosec, *map(_VALUE, handles)]))
+            return ReturnType.OK
         for array, index, handle in self._plan:
             array[index] = handle.get_value()
-        sec, nanosec = divmod(time_ns, _NS)
         stamp = self._joint_state.header.stamp
         stamp.sec, stamp.nanosec = sec, nanosec
         if self._js_pub is not None:
