@@ -44,6 +44,12 @@ from diffctl.sim.transport import GzPublisher, SimTransport
 from diffctl.sim.world import PhysicsWorld
 
 CLOCK_PERIOD_NS = 10_000_000
+# /clock ticks every 10 ms of sim time, but faster than real time no more often than every 4 ms of wall time
+# (≤ 250 Hz): every sim-time node receives each tick, and Zenoh's transport costs each receiver tens of µs
+# per sample whatever it does with it, so at 20× real time 2 kHz of ticks would cost every such node a good
+# part of a core. (Gazebo classic's /clock was throttled by wall time too.) A paused world or a reset
+# publishes its time at once.
+CLOCK_MIN_WALL_NS = 4_000_000
 POSE_RATE_HZ = 50.0
 DEFAULT_LIGHT_DIRECTION = (-0.5, 0.1, -0.9)
 # Model names become Zenoh key chunks.
@@ -110,7 +116,9 @@ class Simulation:
         self.light_direction = lights[0].direction if lights else DEFAULT_LIGHT_DIRECTION
         self.wall_start_s = time.time()
         self._clock_pub = self.transport.publisher("/clock", "gz.msgs.Clock") if self.transport else None
+        self._clock_sent = (-1, 0)  # (sim ns, monotonic wall ns) of the last /clock sample
         self.stepper.add_task("clock", CLOCK_PERIOD_NS, self._publish_clock)
+        self.stepper.idle_hooks.append(self._flush_clock)
         try:
             for m in world.models:
                 self.spawn(m)
@@ -303,10 +311,23 @@ class Simulation:
 
     def _publish_clock(self, sim_time_ns: int) -> None:
         pub = self._clock_pub
-        if pub is not None and pub.matched:
-            wall_ns = time.time_ns()
-            real_ns = max(0, wall_ns - int(self.wall_start_s * 1e9))
-            pub.put_raw(gz.clock(sim_time_ns, real_ns, wall_ns))
+        if pub is None or not pub.matched:
+            return
+        mono_ns = time.monotonic_ns()
+        last_sim_ns, last_mono_ns = self._clock_sent
+        if last_sim_ns <= sim_time_ns and mono_ns - last_mono_ns < CLOCK_MIN_WALL_NS:
+            return
+        self._clock_sent = (sim_time_ns, mono_ns)
+        wall_ns = time.time_ns()
+        real_ns = max(0, wall_ns - int(self.wall_start_s * 1e9))
+        pub.put_raw(gz.clock(sim_time_ns, real_ns, wall_ns))
+
+    def _flush_clock(self) -> None:
+        """While paused: the time a throttled tick left unsent goes out now."""
+        now = self.stepper.sim_time_ns
+        if self._clock_sent[0] != now:
+            self._clock_sent = (now - 1, 0)
+            self._publish_clock(now)
 
     def _report_ignored(self, world: World) -> None:
         lines = []

@@ -2,7 +2,8 @@
 
 Subscriptions are a short callback set into `Scene`. Topic rates for the topics panel come from plain
 Zenoh subscribers on the topics' keys (no ROS subscriber appears in the graph, so lazy bridges stay lazy);
-image topics are left out unless the camera panel is open, because counting them means receiving them.
+they exist only while a page is open, and image topics are left out unless the camera panel is open, because
+counting them means receiving them.
 """
 
 from __future__ import annotations
@@ -74,7 +75,11 @@ class BusFeed:
 
     # ---- polled (from the server's worker thread, about once a second) --------------------------------
 
-    def poll_graph(self) -> None:
+    def poll_graph(self, count_rates: bool = True) -> None:
+        """The graph for the topics panel; with `count_rates`, a counting subscriber on every published topic.
+
+        Counting means receiving every sample (Zenoh's transport costs tens of µs per sample here, whatever the
+        callback does), so the counters exist only while a page is open to show them."""
         graph = self.node.graph
         topics = []
         wanted: set[tuple[str, str]] = set()
@@ -88,7 +93,7 @@ class BusFeed:
                     "subscribers": len([s for s in subs if s.node_fqn != self.node.fqn]),
                 }
             )
-            for t in type_names:
+            for t in type_names if count_rates else ():
                 if any(p.type == t for p in pubs) and (t not in HEAVY_TYPES or name in self._image_subs):
                     wanted.add((name, t))
         with self._lock:

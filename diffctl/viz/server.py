@@ -372,7 +372,7 @@ class VizServer:
     async def _poll_loop(self) -> None:
         while True:
             with contextlib.suppress(Exception):
-                await asyncio.to_thread(self.feed.poll_graph)
+                await asyncio.to_thread(self.feed.poll_graph, bool(self.pages))
                 await asyncio.to_thread(self.feed.poll_controllers)
             await asyncio.sleep(1.0)
 

@@ -7,33 +7,59 @@ sign, plus white Gaussian noise; all from the sensor's own seeded numpy Generato
 from __future__ import annotations
 
 import numpy as np
+import pybullet as pb
 
 from diffctl.bus import gz
 from diffctl.description.model import Noise, Sensor
-from diffctl.description.pose import Pose, Vec3
+from diffctl.description.pose import Quat, Vec3, quat_multiply, quat_normalize, quat_rotate
 from diffctl.sim.entity import Entity
 from diffctl.sim.sensors.common import frame_id
+
+
+class NormalStream:
+    """Standard normal draws from a numpy Generator, taken in blocks: the same values in the same order as one
+    `standard_normal(3)` per axis triple, without numpy's per-call cost at every IMU sample."""
+
+    BLOCK = 768
+
+    def __init__(self, rng: np.random.Generator) -> None:
+        self.rng = rng
+        self._buf: list[float] = []
+        self._i = 0
+
+    def take3(self) -> tuple[float, float, float]:
+        i = self._i
+        if i + 3 > len(self._buf):
+            self._buf = self.rng.standard_normal(self.BLOCK).tolist()
+            i = 0
+        self._i = i + 3
+        b = self._buf
+        return b[i], b[i + 1], b[i + 2]
 
 
 class ImuNoise:
     """Gazebo's IMU noise on three axes: a constant bias per axis (drawn once, random sign) plus white noise."""
 
-    def __init__(self, noises: tuple[Noise, Noise, Noise], rng: np.random.Generator) -> None:
+    def __init__(self, noises: tuple[Noise, Noise, Noise], rng: np.random.Generator,
+                 normals: NormalStream | None = None) -> None:
         self.active = any(n.active for n in noises)
-        self.mean = np.array([n.mean if n.active else 0.0 for n in noises])
-        self.stddev = np.array([n.stddev if n.active else 0.0 for n in noises])
+        mean = [n.mean if n.active else 0.0 for n in noises]
+        self.stddev = tuple(n.stddev if n.active else 0.0 for n in noises)
         bias = []
         for n in noises:
             b = rng.normal(n.bias_mean, n.bias_stddev) if n.bias_stddev > 0 else n.bias_mean
             bias.append((b if rng.random() < 0.5 else -b) if n.active else 0.0)
-        self.bias = np.array(bias)
-        self.rng = rng
+        self.bias = tuple(float(b) for b in bias)
+        # bias + mean, added to every sample
+        self._offset = tuple(b + m for b, m in zip(self.bias, mean, strict=True))
+        self.normals = normals or NormalStream(rng)
 
     def apply(self, v: Vec3) -> Vec3:
         if not self.active:
             return v
-        out = np.array(v) + self.bias + self.mean + self.stddev * self.rng.standard_normal(3)
-        return (float(out[0]), float(out[1]), float(out[2]))
+        z0, z1, z2 = self.normals.take3()
+        o, sd = self._offset, self.stddev
+        return (v[0] + o[0] + sd[0] * z0, v[1] + o[1] + sd[1] * z1, v[2] + o[2] + sd[2] * z2)
 
 
 def specific_force(accel_world: Vec3, gravity: Vec3) -> Vec3:
@@ -61,8 +87,10 @@ class Imu:
         assert spec is not None
         self.entity, self.sensor, self.gravity = entity, sensor, gravity
         self.frame_id = frame_id(entity.name, sensor)
-        self.gyro_noise = ImuNoise(spec.angular_velocity_noise, rng)
-        self.accel_noise = ImuNoise(spec.linear_acceleration_noise, rng)
+        # One stream for both, drawn in the order samples use it (acceleration, then angular velocity).
+        normals = NormalStream(rng)
+        self.gyro_noise = ImuNoise(spec.angular_velocity_noise, rng, normals)
+        self.accel_noise = ImuNoise(spec.linear_acceleration_noise, rng, normals)
         self.body, self.link, offset = entity.link_frame(sensor.link)
         # The sensor frame in the centre-of-mass frame PyBullet reports, composed once.
         self._in_com = entity.inertial_frame(self.body, self.link).inverse().compose(offset).compose(sensor.pose_link)
@@ -71,28 +99,35 @@ class Imu:
     def reset(self) -> None:
         self._prev = None
 
-    def _state(self) -> tuple[Pose, Vec3, Vec3]:
-        com, lin, ang = self.entity.com_state(self.body, self.link)
-        pose = com.compose(self._in_com)
-        r = (pose.xyz[0] - com.xyz[0], pose.xyz[1] - com.xyz[1], pose.xyz[2] - com.xyz[2])
-        return pose, point_velocity(lin, ang, r), ang
+    def _com(self) -> tuple[Quat, Vec3, Vec3, Vec3]:
+        """(orientation of the centre-of-mass frame, velocity of the sensor point, angular velocity, sensor
+        offset from the centre of mass), all in world axes: PyBullet's numbers with no Pose built per call."""
+        cid, body, link = self.entity.client, self.body, self.link
+        if link < 0:
+            _, orn = pb.getBasePositionAndOrientation(body, physicsClientId=cid)
+            lin, ang = pb.getBaseVelocity(body, physicsClientId=cid)
+        else:
+            st = pb.getLinkState(body, link, computeLinkVelocity=1, computeForwardKinematics=1, physicsClientId=cid)
+            orn, lin, ang = st[1], st[6], st[7]
+        r = quat_rotate(orn, self._in_com.xyz)
+        return orn, point_velocity(lin, ang, r), ang, r
 
     def remember(self, sim_time_ns: int) -> None:
         """Record the sensor point's velocity now, for the acceleration of the next sample (one step later)."""
-        self._prev = (sim_time_ns, self._state()[1])
+        self._prev = (sim_time_ns, self._com()[1])
 
     def sample(self, sim_time_ns: int) -> dict:
-        pose, v, w = self._state()
+        orn, v, w, _ = self._com()
         accel: Vec3 = (0.0, 0.0, 0.0)
         if self._prev is not None and sim_time_ns > self._prev[0]:
             dt = (sim_time_ns - self._prev[0]) * 1e-9
             pv = self._prev[1]
             accel = ((v[0] - pv[0]) / dt, (v[1] - pv[1]) / dt, (v[2] - pv[2]) / dt)
         self._prev = (sim_time_ns, v)
-        inv = pose.inverse()
-        f = self.accel_noise.apply(inv.rotate(specific_force(accel, self.gravity)))
-        g = self.gyro_noise.apply(inv.rotate(w))
-        q = pose.quat
+        q = quat_normalize(quat_multiply(orn, self._in_com.quat))
+        to_sensor = (-q[0], -q[1], -q[2], q[3])
+        f = self.accel_noise.apply(quat_rotate(to_sensor, specific_force(accel, self.gravity)))
+        g = self.gyro_noise.apply(quat_rotate(to_sensor, w))
         return {
             "header": gz.header(sim_time_ns, self.frame_id),
             "entity_name": self.frame_id,
