@@ -13,6 +13,7 @@ parameters go file > string > topic. Waits for the simulator and the description
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import threading
@@ -24,7 +25,7 @@ from typing import Any
 import click
 
 from diffctl.errors import ConfigError, RuntimeFailure
-from diffctl.sim.world_client import call, wait_for_world
+from diffctl.sim.world_client import call, running_worlds, wait_for_world
 
 DEFAULT_TIMEOUT_S = 30.0
 NODE_NAME = "ros_gz_sim"
@@ -207,23 +208,32 @@ def spawn_entity(ctx: click.Context, remove_name: str | None, timeout: float, **
     """
     from diffctl import ros_args
     from diffctl.bus import open_session
-    from diffctl.console import warn
 
     if not (math.isfinite(timeout) and timeout > 0):
         raise click.BadParameter(f"{timeout!r} must be a positive number of seconds", param_hint="--timeout")
-    for note in ctx.meta.get("gflags_notes", []):
-        warn(note)
+    if ctx.meta.get("gflags_notes"):
+        from diffctl.console import warn  # rich: 0.15 s of a launch's critical path when imported for nothing
+
+        for note in ctx.meta["gflags_notes"]:
+            warn(note)
     req = None
     if remove_name is None:
         req = build_request(flags, dict(ros_args.current(NODE_NAME).params))
     model_file = resolve_model_file(req.value, Path.cwd()) if req is not None and req.source == "file" else None
     deadline = time.monotonic() + timeout
     session = open_session()
-    target = wait_for_world(session, None if req is None else req.world, deadline)
-    if req is None:
-        call(session, target, "remove", {"name": remove_name}, deadline)
-        click.echo(f"removed {remove_name!r} from world {target!r}")
-        return
+    # The description is subscribed to before the world is waited for: the two waits overlap.
+    description = _Description(req.value) if req is not None and req.source == "topic" and model_file is None else None
+    try:
+        target = _wait_for_world(session, None if req is None else req.world, deadline)
+        if req is None:
+            call(session, target, "remove", {"name": remove_name}, deadline)
+            click.echo(f"removed {remove_name!r} from world {target!r}")
+            return
+        sdf = description.wait(deadline) if description is not None else None
+    finally:
+        if description is not None:
+            description.close()
     body: dict[str, Any] = {"allow_renaming": req.allow_renaming, "base_dir": os.getcwd()}
     if req.name:
         body["name"] = req.name
@@ -234,32 +244,67 @@ def spawn_entity(ctx: click.Context, remove_name: str | None, timeout: float, **
     elif req.source == "string":
         body["sdf"] = req.value
     else:
-        body["sdf"] = _wait_for_description(req.value, deadline)
+        body["sdf"] = sdf
     reply = call(session, target, "create", body, deadline)
     click.echo(f"spawned {reply.get('name')!r} into world {target!r}")
 
 
-def _wait_for_description(topic: str, deadline: float) -> str:
-    from diffctl.bus import Node
+def _wait_for_world(session: Any, world: str | None, deadline: float) -> str:
+    """world_client.wait_for_world, woken by the simulator's presence token as it appears instead of
+    querying every 0.1 s (the simulator usually comes up while `create` waits for it)."""
+    from diffctl.sim.world_keys import SIM_TOKEN_PATTERN, sim_token_key
 
-    got: list[str] = []
-    event = threading.Event()
-
-    def on_msg(msg: Any) -> None:
-        got.append(str(msg.data))
-        event.set()
-
-    node = Node.from_ros_args(NODE_NAME)
+    appeared = threading.Event()
     try:
-        resolved = node.resolve(topic)
-        node.create_subscription(topic, "std_msgs/msg/String", on_msg, latched=True)
-        if not event.wait(max(0.0, deadline - time.monotonic())):
+        sub = session.liveliness().declare_subscriber(
+            sim_token_key(world) if world else SIM_TOKEN_PATTERN, lambda _sample: appeared.set(), history=True
+        )
+    except Exception:  # no liveliness subscriber: poll as world_client does
+        return wait_for_world(session, world, deadline)
+    try:
+        while time.monotonic() <= deadline:
+            appeared.clear()
+            worlds = running_worlds(session, world)
+            if len(worlds) == 1:
+                return worlds[0]
+            if worlds:
+                break
+            appeared.wait(min(1.0, max(0.0, deadline - time.monotonic())))
+    finally:
+        with contextlib.suppress(Exception):
+            sub.undeclare()
+    return wait_for_world(session, world, deadline)  # several worlds or none in time: its error, as always
+
+
+class _Description:
+    """The latched description topic, subscribed to at once; `wait` returns its text."""
+
+    def __init__(self, topic: str) -> None:
+        from diffctl.bus import Node
+
+        self._got: list[str] = []
+        self._event = threading.Event()
+        self._node = Node.from_ros_args(NODE_NAME)
+        try:
+            self.resolved = self._node.resolve(topic)
+            self._node.create_subscription(topic, "std_msgs/msg/String", self._on_msg, latched=True)
+        except BaseException:
+            self._node.close()
+            raise
+
+    def _on_msg(self, msg: Any) -> None:
+        self._got.append(str(msg.data))
+        self._event.set()
+
+    def wait(self, deadline: float) -> str:
+        if not self._event.wait(max(0.0, deadline - time.monotonic())):
             raise RuntimeFailure(
-                f"no description arrived on {resolved} in time",
+                f"no description arrived on {self.resolved} in time",
                 hint="is robot_state_publisher running with a robot_description parameter?",
             )
-    finally:
-        node.close()
-    if not got[0].strip():
-        raise RuntimeFailure(f"the description on {resolved} is empty")
-    return got[0]
+        if not self._got[0].strip():
+            raise RuntimeFailure(f"the description on {self.resolved} is empty")
+        return self._got[0]
+
+    def close(self) -> None:
+        self._node.close()
