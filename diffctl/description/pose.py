@@ -133,11 +133,11 @@ class Pose:
     def compose(self, other: Pose) -> Pose:
         """self ∘ other: `other` is expressed in self's frame; the result is in self's parent frame."""
         t = quat_rotate(self.quat, other.xyz)
-        q = quat_multiply(self.quat, other.quat)
-        n = math.sqrt(sum(c * c for c in q))
+        x, y, z, w = quat_multiply(self.quat, other.quat)
+        n = math.sqrt(x * x + y * y + z * z + w * w)  # hot: TF, sensors; no generator
         return Pose(
             (self.xyz[0] + t[0], self.xyz[1] + t[1], self.xyz[2] + t[2]),
-            (q[0] / n, q[1] / n, q[2] / n, q[3] / n),
+            (x / n, y / n, z / n, w / n),
         )
 
     __mul__ = compose

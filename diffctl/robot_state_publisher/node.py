@@ -8,6 +8,7 @@ a second per joint unless `ignore_timestamp`. Frames are link names with `frame_
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -76,6 +77,29 @@ def load_description(params: RspParams, base_dir: Path | None = None) -> Model:
     )
 
 
+@functools.cache
+def _classes(*typenames: str) -> tuple[Any, ...]:
+    from diffctl.bus import types
+
+    return tuple(types.get_class(t) for t in typenames)
+
+
+def transform_msg(parent: str, child: str, pose: Pose, stamp_ns: int) -> Any:
+    """geometry_msgs/TransformStamped built from the message classes: the per-joint_states path, where the
+    checked dict conversion (`types.new`) cost ~100 µs a transform."""
+    ts, header, time_, transform, vector3, quaternion = _classes(
+        "geometry_msgs/msg/TransformStamped", "std_msgs/msg/Header", "builtin_interfaces/msg/Time",
+        "geometry_msgs/msg/Transform", "geometry_msgs/msg/Vector3", "geometry_msgs/msg/Quaternion")
+    x, y, z = pose.xyz
+    qx, qy, qz, qw = pose.quat
+    return ts(
+        header=header(stamp=time_(sec=stamp_ns // 1_000_000_000, nanosec=stamp_ns % 1_000_000_000), frame_id=parent),
+        child_frame_id=child,
+        transform=transform(translation=vector3(x=float(x), y=float(y), z=float(z)),
+                            rotation=quaternion(x=float(qx), y=float(qy), z=float(qz), w=float(qw))),
+    )
+
+
 def transform_dict(parent: str, child: str, pose: Pose, stamp_ns: int) -> dict[str, Any]:
     x, y, z = pose.xyz
     qx, qy, qz, qw = pose.quat
@@ -103,6 +127,7 @@ class RobotStatePublisher:
         self.pub_description = node.create_publisher("robot_description", "std_msgs/msg/String", latched=True)
         self.pub_static = node.create_publisher("/tf_static", "tf2_msgs/msg/TFMessage", latched=True)
         self.pub_tf = node.create_publisher("/tf", "tf2_msgs/msg/TFMessage", depth=100)
+        (self._tf_message,) = _classes("tf2_msgs/msg/TFMessage")
         node.create_subscription("joint_states", "sensor_msgs/msg/JointState", self.on_joint_states)
         self.pub_description.publish({"data": params.robot_description})
         fixed = list(self.tree.fixed())
@@ -145,10 +170,11 @@ class RobotStatePublisher:
                 self._warn_once(name, f"joint {name!r} position is {q}: not published")
                 continue
             seg = self.moving[name]
-            transforms.append(self._tf(seg, seg.transform(q), stamp_ns))
+            transforms.append(transform_msg(self._frame(seg.parent), self._frame(seg.child), seg.transform(q),
+                                            stamp_ns))
             self._last_ns[name] = stamp_ns
         if transforms:
-            self.pub_tf.publish({"transforms": transforms})
+            self.pub_tf.publish(self._tf_message(transforms=transforms))
 
 
 def run(params: dict[str, Any], *, description_file: Path | None = None) -> None:

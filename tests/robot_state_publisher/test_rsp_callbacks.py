@@ -21,8 +21,8 @@ class Recorder:
     def __init__(self, topic: str) -> None:
         self.topic, self.sent = topic, []
 
-    def publish(self, msg: dict[str, Any]) -> None:
-        self.sent.append(msg)
+    def publish(self, msg: Any) -> None:
+        self.sent.append(msg if isinstance(msg, dict) else types.to_dict(msg))
 
 
 class Log:
