@@ -6,10 +6,10 @@ thread per process, which does the Zenoh put (the costly part: ~100 µs and more
 one publisher leave in order. When the publishing thread falls far behind, the oldest waiting samples are
 dropped and counted, as realtime_tools skips a cycle whose previous message is still being sent.
 
-Inside `held()` (the controller manager's update: every controller of one cycle) samples are kept on the
-calling thread and handed over together when it ends: the publishing thread is woken once per cycle, after
-the controllers ran, instead of once per message in the middle of them, where it would take the GIL (and the
-CPU) from the loop. Outside `held()` a sample is handed over at once.
+While the controller manager runs its controllers (`hold()` … `release()`, once per cycle), samples are
+queued without waking the publishing thread; `release` wakes it once, after the controllers ran, instead of
+once per message in the middle of them, where it would take the GIL (and the CPU) from the loop. Samples
+from any other thread wake it at once.
 
 This module imports nothing of the bus until a message has to be serialized, so the manager can use it.
 """
@@ -20,6 +20,7 @@ import collections
 import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
+from threading import get_ident as _get_ident
 from typing import Any
 
 # Waiting samples across all publishers of the process before the oldest are dropped: generous, since a put is
@@ -38,20 +39,20 @@ class PublishingThread:
         self._signal = threading.Lock()
         self._signal.acquire()
         self.dropped = 0
+        self._holder: int | None = None  # the thread whose samples wait for its release()
         self._thread = threading.Thread(target=self._run, name="realtime_publisher", daemon=True)
         self._thread.start()
 
     def submit(self, publisher: Any, cdr: bytes) -> None:
-        held = _hold.pending
-        if held is not None:  # inside hold(): handed over at release()
-            held.append((self, publisher, cdr))
-            return
-        self.submit_many(((publisher, cdr),))
-
-    def submit_many(self, samples: Any) -> None:
-        """Queue (publisher, cdr) samples in order and wake the thread once."""
         queue = self._queue
-        queue.extend(samples)
+        queue.append((publisher, cdr))
+        if len(queue) > self._capacity:
+            self._drop_oldest()
+        if self._holder != _get_ident():  # the holding thread wakes it once, at release()
+            self._wake()
+
+    def _drop_oldest(self) -> None:
+        queue = self._queue
         excess = len(queue) - self._capacity
         while excess > 0:  # fallen far behind: the oldest go
             try:
@@ -60,7 +61,6 @@ class PublishingThread:
                 break
             self.dropped += 1
             excess -= 1
-        self._wake()
 
     def _wake(self) -> None:
         try:
@@ -99,52 +99,34 @@ class _Marker:
         self._done.set()
 
 
-class _Hold(threading.local):
-    pending: list[tuple[PublishingThread, Any, bytes]] | None = None
-
-
-_hold = _Hold()
-
-
-def hold() -> list[tuple[PublishingThread, Any, bytes]] | None:
-    """Start keeping this thread's samples; pass the result to `release`. Nested holds hand over at the
-    outermost release. (Plain functions rather than a context manager: this runs on every control cycle.)"""
-    if _hold.pending is not None:
+def hold() -> PublishingThread | None:
+    """Queue this thread's samples without waking the process's publishing thread until `release(…)` of
+    the value returned (None: nothing to hold, or held already). Plain functions, not a context manager:
+    this runs on every control cycle."""
+    t = _thread
+    if t is None or t._holder is not None:
         return None
-    pending: list[tuple[PublishingThread, Any, bytes]] = []
-    _hold.pending = pending
-    return pending
+    t._holder = _get_ident()
+    return t
 
 
-def release(pending: list[tuple[PublishingThread, Any, bytes]] | None) -> None:
-    """End a `hold`: hand the kept samples over, one wake-up per publishing thread."""
-    if pending is None:
+def release(t: PublishingThread | None) -> None:
+    """End a `hold`: wake the publishing thread if samples wait."""
+    if t is None:
         return
-    _hold.pending = None
-    if pending:
-        _hand_over(pending)
+    t._holder = None
+    if t._queue:
+        t._wake()
 
 
 @contextmanager
 def held() -> Iterator[None]:
     """`hold` … `release` around a block."""
-    pending = hold()
+    t = hold()
     try:
         yield
     finally:
-        release(pending)
-
-
-def _hand_over(pending: list[tuple[PublishingThread, Any, bytes]]) -> None:
-    first = pending[0][0]
-    if all(t is first for t, _, _ in pending):  # the usual case: the process's one publishing thread
-        first.submit_many([(p, c) for _, p, c in pending])
-        return
-    by_thread: dict[PublishingThread, list[tuple[Any, bytes]]] = {}
-    for t, p, c in pending:
-        by_thread.setdefault(t, []).append((p, c))
-    for t, samples in by_thread.items():
-        t.submit_many(samples)
+        release(t)
 
 
 _thread: PublishingThread | None = None

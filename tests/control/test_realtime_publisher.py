@@ -44,3 +44,40 @@ def test_when_the_network_stalls_the_oldest_samples_are_dropped_and_counted() ->
     sink.release.set()
     assert thread.flush(5)
     assert sink.sent[-3:] == [7.0, 8.0, 9.0] and thread.dropped >= 6
+
+
+class Sink:
+    type = "std_msgs/msg/Float64"
+
+    def __init__(self) -> None:
+        self.sent: list[float] = []
+        self.got = threading.Event()
+
+    def publish_raw(self, cdr: bytes) -> None:
+        self.sent.append(types.deserialize(cdr, self.type).data)
+        self.got.set()
+
+
+def test_a_held_cycle_hands_its_samples_over_at_release_and_other_threads_at_once(monkeypatch) -> None:
+    from diffctl.control import realtime_publisher
+
+    thread = PublishingThread()
+    monkeypatch.setattr(realtime_publisher, "_thread", thread)
+    sink = Sink()
+    pub = RealtimePublisher(sink, thread)
+    held = realtime_publisher.hold()
+    assert held is thread and realtime_publisher.hold() is None  # nested: the outer release wakes
+    pub.publish({"data": 1.0})
+    pub.publish_cdr(types.serialize(types.new(sink.type, {"data": 2.0}), sink.type))
+    assert not sink.got.wait(0.2) and sink.sent == []  # queued, the publishing thread not woken
+    realtime_publisher.release(held)
+    assert sink.got.wait(5) and thread.flush(5)
+    assert sink.sent == [1.0, 2.0]
+
+    held = realtime_publisher.hold()
+    sink.got.clear()
+    other = threading.Thread(target=pub.publish, args=({"data": 3.0},))
+    other.start()
+    other.join()
+    assert sink.got.wait(5) and sink.sent == [1.0, 2.0, 3.0]  # not the holder's: woken at once
+    realtime_publisher.release(held)
