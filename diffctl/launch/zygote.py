@@ -110,11 +110,7 @@ WARM_MESSAGES: tuple[str, ...] = (
     "nav_msgs/msg/Odometry",
     "geometry_msgs/msg/TwistStamped",
     "control_msgs/msg/DynamicJointState",
-    "sensor_msgs/msg/Imu",
-    "sensor_msgs/msg/LaserScan",
-    "sensor_msgs/msg/CameraInfo",
-    "sensor_msgs/msg/Image",
-)
+)  # the bridge's sensor types (Imu, LaserScan, Image, CameraInfo: 25 ms) it compiles itself, off the critical path
 # Components a launch usually starts only once the robot is up (the visualizer after the spawners, a
 # recorder): imported while the server has no request waiting, so they stay off the start-up's critical path.
 PRELOAD_LATER: tuple[str, ...] = (
