@@ -33,6 +33,7 @@ from diffctl.control.switching import STRICT, ControllerView, SwitchPlan, chain_
 from diffctl.errors import ConfigError, ParameterError
 
 NodeFactory = Callable[[str, dict[str, Any]], ControllerNode]
+_OK = ReturnType.OK
 
 
 @dataclass
@@ -404,7 +405,7 @@ class ControllerManager:
                 ret, reason = ReturnType.ERROR, f"update() raised {hook_message(e)}"
             mc.last_update_ns = time_ns
             mc.update_count += 1
-            if ret is not ReturnType.OK:
+            if ret is not _OK:
                 failed.append((mc, reason))
         if failed:
             self._controllers_failed(failed)

@@ -48,12 +48,14 @@ from diffctl.control.controllers.diff_drive_params import DECLS, RUNTIME, DiffDr
 from diffctl.control.controllers.owned_endpoints import OwnedEndpoints
 from diffctl.control.controllers.param_decl import declare_all, read_declared
 from diffctl.control.controllers.throttled_log import ThrottledLog
-from diffctl.control.math.kinematics import heading_quaternion, wheel_velocities_radps
+from diffctl.control.math.kinematics import wheel_velocities_radps
 from diffctl.control.math.odometry import Odometry
 from diffctl.control.math.speed_limiter import SpeedLimiter
 from diffctl.errors import ParameterError, RuntimeFailure
 
 NAN = math.nan
+_OK = ReturnType.OK
+_isfinite, _sin, _cos = math.isfinite, math.sin, math.cos
 _NS = 1_000_000_000
 TWIST_STAMPED = "geometry_msgs/msg/TwistStamped"
 ODOMETRY = "nav_msgs/msg/Odometry"
@@ -343,7 +345,7 @@ class DiffDriveController(ChainableControllerInterface):
             if real and self._braking_logged_for != stamp_ns:  # a received command expired
                 self._braking_logged_for = stamp_ns
                 self.node.log.warn("Velocity command timed out. Braking.")
-        elif math.isfinite(linear) and math.isfinite(angular):
+        elif _isfinite(linear) and _isfinite(angular):
             ref_linear.value, ref_angular.value = linear, angular
         elif real:
             self._log.warn(
@@ -359,8 +361,8 @@ class DiffDriveController(ChainableControllerInterface):
         if not self._chained_mode:
             self._update_reference_from_subscribers(time_ns, ref_linear_handle, ref_angular_handle)
         ref_linear, ref_angular = ref_linear_handle.value, ref_angular_handle.value
-        if not (math.isfinite(ref_linear) and math.isfinite(ref_angular)):
-            return ReturnType.OK  # no command yet (or a chained controller wrote none)
+        if not (_isfinite(ref_linear) and _isfinite(ref_angular)):
+            return _OK  # no command yet (or a chained controller wrote none)
 
         last, second = self._previous_linear
         v = self._limiter_linear.limit(ref_linear, last, second, period_s)
@@ -378,10 +380,10 @@ class DiffDriveController(ChainableControllerInterface):
             v, w, p.effective_wheel_separation_m, p.left_wheel_radius_m, p.right_wheel_radius_m
         )
         for handle in self._left_commands:
-            handle.set_value(left)
+            handle.value = left  # set_value(), without the call
         for handle in self._right_commands:
-            handle.set_value(right)
-        return ReturnType.OK
+            handle.value = right
+        return _OK
 
     def _update_odometry(self, v: float, w: float, time_ns: int, period_s: float) -> bool:
         odom = self.odometry
@@ -440,7 +442,8 @@ class DiffDriveController(ChainableControllerInterface):
         else:
             return
         odom = self.odometry
-        _, _, qz, qw = heading_quaternion(odom.heading_rad)
+        half = odom.heading_rad * 0.5
+        qz, qw = _sin(half), _cos(half)  # heading_quaternion(heading)'s z and w, without the call
         x, y = odom.x_m, odom.y_m
         if self._odom_cdr is not None:
             sec, nanosec = divmod(time_ns, _NS)

@@ -41,6 +41,7 @@ DYNAMIC_JOINT_STATE = "control_msgs/msg/DynamicJointState"
 _FIELDS = ("position", "velocity", "effort")
 _NS = 1_000_000_000
 _VALUE = operator.attrgetter("value")  # a handle's value, read in C by map()
+_OK = ReturnType.OK
 _NAME = (Check("not_empty", ()),)
 _UNIQUE = (Check("unique", ()),)
 
@@ -235,7 +236,7 @@ class JointStateBroadcaster(ControllerInterface):
         if self._fast:
             for pub, template, handles in self._fast:
                 pub.publish_cdr(template.encode([sec, nanosec, *map(_VALUE, handles)]))
-            return ReturnType.OK
+            return _OK
         for array, index, handle in self._plan:
             array[index] = handle.get_value()
         stamp = self._joint_state.header.stamp

@@ -19,6 +19,7 @@ from diffctl.control.math.rolling_mean import RollingMean
 
 _MIN_DT_S = 0.0001  # the reference's "too close to the previous update" threshold
 _RK2_BELOW_RAD = 1e-6
+_sin, _cos = math.sin, math.cos
 
 
 class Odometry:
@@ -118,14 +119,18 @@ class Odometry:
     # --- integration ----------------------------------------------------------------------------------------
     def integrate_exact(self, linear_m: float, angular_rad: float) -> None:
         """Move along the arc of length `linear_m` that turns the heading by `angular_rad`."""
-        if abs(angular_rad) < _RK2_BELOW_RAD:
-            self.integrate_runge_kutta2(linear_m, angular_rad)
+        if -_RK2_BELOW_RAD < angular_rad < _RK2_BELOW_RAD:
+            # integrate_runge_kutta2, written out (every control cycle of a car driving straight)
+            direction = self.heading_rad + angular_rad * 0.5
+            self.x_m += linear_m * _cos(direction)
+            self.y_m += linear_m * _sin(direction)
+            self.heading_rad += angular_rad
             return
         heading_old = self.heading_rad
         radius_m = linear_m / angular_rad
         self.heading_rad += angular_rad
-        self.x_m += radius_m * (math.sin(self.heading_rad) - math.sin(heading_old))
-        self.y_m += -radius_m * (math.cos(self.heading_rad) - math.cos(heading_old))
+        self.x_m += radius_m * (_sin(self.heading_rad) - _sin(heading_old))
+        self.y_m += -radius_m * (_cos(self.heading_rad) - _cos(heading_old))
 
     def integrate_runge_kutta2(self, linear_m: float, angular_rad: float) -> None:
         direction = self.heading_rad + angular_rad * 0.5

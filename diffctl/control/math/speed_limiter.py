@@ -127,12 +127,23 @@ class SpeedLimiter:
 
     def limit(self, v: float, v0: float, v1: float, dt: float) -> float:
         """`v` limited in jerk, acceleration and velocity, given the last two limited commands v0, v1."""
+        # limit_acceleration and the velocity clamp written out: this runs twice in every control cycle.
         if self.has_jerk_limits:
             v = self.limit_jerk(v, v0, v1, dt)
         if self.has_acceleration_limits:
-            v = self.limit_acceleration(v, v0, dt)
+            if v0 > 0.0:
+                lo, hi = self.min_accel_pos, self.max_accel_pos
+            elif v0 < 0.0:
+                lo, hi = self.min_accel_neg, self.max_accel_neg
+            else:
+                lo, hi = self.min_accel_neg, self.max_accel_pos
+            dv = v - v0
+            lo *= dt
+            hi *= dt
+            v = v0 + (lo if dv < lo else hi if hi < dv else dv)  # _clamp(dv, lo, hi)
         if self.has_velocity_limits:
-            v = _clamp(v, self.min_velocity, self.max_velocity)
+            lo, hi = self.min_velocity, self.max_velocity
+            v = lo if v < lo else hi if hi < v else v  # _clamp(v, lo, hi)
         return v
 
     def limit_velocity(self, v: float) -> float:
