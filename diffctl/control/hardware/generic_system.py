@@ -28,7 +28,7 @@ from diffctl.control.hardware_interface import HardwareComponent, HardwareInfo
 from diffctl.errors import ParameterError
 
 _MODES = ("position", "velocity", "acceleration")
-_INF, _NEG_INF = math.inf, -math.inf
+_INFINITE = (math.inf, -math.inf)
 _BOOL = {"true": True, "false": False, "1": True, "0": False}
 
 
@@ -180,15 +180,39 @@ class GenericSystem(HardwareComponent):
                 self.log.warn(f"{self.name}: Command propagation is disabled - no values will be returned!")
             return ReturnType.OK
         plan = self._cached_plan or self._plan()
-        values = [c.value for c in plan.commands]
-        if _INF in values or _NEG_INF in values:
-            for name, cmd in self.commands.items():
-                if math.isinf(cmd.value):
-                    if self.log is not None:
-                        self.log.error(f"{self.name}: command {name} is {cmd.value}")
-                    return ReturnType.ERROR
-        if plan.integrate:
-            self._integrate(period_s, plan.position_offset)
+        for c in plan.commands:
+            v = c.value
+            if v in _INFINITE:
+                if self.log is not None:
+                    self.log.error(f"{self.name}: command {c.name} is {v}")
+                return ReturnType.ERROR
+        dt = period_s
+        if plan.integrate and dt > 0.0:
+            # One step of the mock's dynamics (backward integration: position advances by the previous velocity).
+            position_offset = plan.position_offset
+            for mode, command, pos_s, vel_s, acc_s in plan.integrate:
+                cmd = command.value
+                pos = pos_s.value
+                vel = vel_s.value
+                acc = acc_s.value
+                if mode == "acceleration":
+                    pos += vel * dt + position_offset
+                    vel += acc * dt
+                    if cmd == cmd:
+                        acc = cmd
+                elif mode == "velocity":
+                    pos += vel * dt + position_offset
+                    if cmd == cmd:
+                        acc = (cmd - vel) / dt
+                        vel = cmd
+                elif cmd == cmd:  # position
+                    new_pos = cmd + position_offset
+                    new_vel = (new_pos - pos) / dt
+                    acc = (new_vel - vel) / dt
+                    pos, vel = new_pos, new_vel
+                pos_s.value = pos
+                vel_s.value = vel
+                acc_s.value = acc
         # Commands mirrored to the state of the same name (a NaN command is no command), in the commands' order.
         for cmd, st, offset in plan.mirror:
             v = cmd.value
@@ -201,34 +225,6 @@ class GenericSystem(HardwareComponent):
         for dst, src, multiplier in plan.mimics:
             dst.value = multiplier * src.value
         return ReturnType.OK
-
-    def _integrate(self, dt: float, position_offset: float) -> None:
-        """One step of the mock's dynamics (backward integration: position advances by the previous velocity)."""
-        if not dt > 0.0:
-            return
-        for mode, command, pos_s, vel_s, acc_s in (self._cached_plan or self._plan()).integrate:
-            cmd = command.value
-            pos = pos_s.value
-            vel = vel_s.value
-            acc = acc_s.value
-            if mode == "acceleration":
-                pos += vel * dt + position_offset
-                vel += acc * dt
-                if cmd == cmd:
-                    acc = cmd
-            elif mode == "velocity":
-                pos += vel * dt + position_offset
-                if cmd == cmd:
-                    acc = (cmd - vel) / dt
-                    vel = cmd
-            elif cmd == cmd:  # position
-                new_pos = cmd + position_offset
-                new_vel = (new_pos - pos) / dt
-                acc = (new_vel - vel) / dt
-                pos, vel = new_pos, new_vel
-            pos_s.value = pos
-            vel_s.value = vel
-            acc_s.value = acc
 
     def write(self, time_ns: int, period_s: float) -> ReturnType:
         return ReturnType.OK
