@@ -85,6 +85,8 @@ class DiffDriveController(ChainableControllerInterface):
         self._tf_pub: Any = None
         self._cmd_out_pub: Any = None
         self._odom_cdr: CdrTemplate | None = None  # set at configure when the publishers take bytes
+        # (params, wheel separation, left radius, right radius): the derived values of these parameters
+        self._geometry: tuple[Any, float, float, float] = (None, NAN, NAN, NAN)
         self._tf_cdr: CdrTemplate | None = None
         self._cmd_out_cdr: CdrTemplate | None = None
         self._left_commands: list[CommandInterface] = []
@@ -375,10 +377,12 @@ class DiffDriveController(ChainableControllerInterface):
             return ReturnType.ERROR
         self._publish(time_ns, v, w)
 
-        p = self.params
-        left, right = wheel_velocities_radps(
-            v, w, p.effective_wheel_separation_m, p.left_wheel_radius_m, p.right_wheel_radius_m
-        )
+        geometry = self._geometry
+        if geometry[0] is not self.params:  # the (frozen) parameters were replaced: derive the wheels again
+            p = self.params
+            geometry = (p, p.effective_wheel_separation_m, p.left_wheel_radius_m, p.right_wheel_radius_m)
+            self._geometry = geometry
+        left, right = wheel_velocities_radps(v, w, geometry[1], geometry[2], geometry[3])
         for handle in self._left_commands:
             handle.value = left  # set_value(), without the call
         for handle in self._right_commands:
