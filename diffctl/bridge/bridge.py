@@ -13,6 +13,7 @@ Semantics follow ros_gz_bridge's parameter_bridge:
 
 from __future__ import annotations
 
+import contextlib
 import threading
 import time
 from typing import Any
@@ -62,6 +63,16 @@ class GzToRos:
             latched=bridge.latched(entry.ros_topic),
             reliable=entry.qos.reliable,
         )
+        # Nobody subscribed on the ROS side: a sample would be converted and put for no one, so it is only
+        # counted (a latched topic keeps every sample for late joiners). Zenoh tells when that changes.
+        self._heard = True
+        self._matching = None
+        if not self.pub.latched:
+            self._heard = self.pub.matching
+            self._matching = self.pub.on_matching(self._on_matching)
+
+    def _on_matching(self, matching: bool) -> None:
+        self._heard = matching
 
     @property
     def active(self) -> bool:
@@ -91,6 +102,9 @@ class GzToRos:
         e = self.entry
         if self._closed:
             return
+        if not self._heard:
+            self.count += 1
+            return
         try:
             _, fields = gz.decode(sample.payload.to_bytes(), e.gz_type)
             msg = e.pair.convert_to_ros(fields)
@@ -109,6 +123,9 @@ class GzToRos:
     def close(self) -> None:
         self._closed = True
         self.set_active(False)
+        if self._matching is not None:
+            with contextlib.suppress(Exception):
+                self._matching.undeclare()
 
 
 class RosToGz:

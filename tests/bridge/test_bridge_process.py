@@ -334,3 +334,29 @@ def test_malformed_gz_samples_are_dropped_with_one_warning_and_the_bridge_goes_o
     out = bridge.stdout.read()
     assert "dropped a sample on gz /camera" in out and "Traceback" not in out
     assert out.count("dropped a sample on gz /camera") < 5  # throttled, not one line per sample
+
+
+def test_a_non_lazy_entry_keeps_its_gz_side_and_converts_only_while_ros_listens(router: str, procs) -> None:
+    """ros_gz_bridge's default (not lazy): the gz subscription stays whether or not anyone listens on the ROS
+    side. What nobody would receive is not converted or put: the first sample a late subscriber gets is the
+    publisher's first (sequence number 1), although many passed through before."""
+    bridge = procs.diffctl("bridge", "/imu@sensor_msgs/msg/Imu[gz.msgs.IMU")
+    node = Node("unheard_probe")
+    imu_pub = node.session.declare_publisher(gz.key("/imu"))
+    fields = GZ_SAMPLES[("sensor_msgs/msg/Imu", "gz.msgs.IMU")]
+    sample = gz.encode("gz.msgs.IMU", fields)
+    try:
+        assert wait_for(lambda: imu_pub.matching_status.matching, 10.0), output_of(procs, bridge)
+        for _ in range(50):
+            imu_pub.put(sample)
+        time.sleep(0.3)
+        assert imu_pub.matching_status.matching  # still subscribed on the gz side
+        got: list[tuple[object, object]] = []
+        node.create_subscription("/imu", "sensor_msgs/msg/Imu", lambda m, i: got.append((m, i)), with_info=True)
+        assert wait_for(lambda: bool(got), 10.0, lambda: imu_pub.put(sample))
+        msg, info = got[0]
+        assert info.sequence_number == 1, info
+        assert msg.linear_acceleration.z == fields["linear_acceleration"]["z"]
+    finally:
+        node.close()
+    assert procs.stop(bridge) == 0
