@@ -25,7 +25,7 @@ from diffctl.errors import DescriptionError, RuntimeFailure
 from diffctl.sim.entity import Entity
 from diffctl.sim.plugins.base import PluginContext, SystemPlugin, rate_period_ns
 from diffctl.sim.plugins.diff_drive import DiffDrive, DiffDriveParams
-from diffctl.sim.plugins.gz_ros2_control import GzRos2Control
+from diffctl.sim.plugins.gz_ros2_control import GzRos2Control, PreparedManager
 from diffctl.sim.plugins.joint_state_publisher import JointStatePublisher
 from diffctl.sim.sensors import (
     AirPressure,
@@ -67,7 +67,8 @@ NATIVE_SYSTEMS = {
     "contact",
     "pose-publisher",
 }
-MODEL_SYSTEMS = {"diff-drive", "joint-state-publisher", "gz_ros2_control", "ign_ros2_control"}
+CONTROL_SYSTEMS = ("gz_ros2_control", "ign_ros2_control")
+MODEL_SYSTEMS = {"diff-drive", "joint-state-publisher", *CONTROL_SYSTEMS}
 
 
 def system_name(filename: str) -> str:
@@ -129,9 +130,11 @@ class Simulation:
 
     # --- models ----------------------------------------------------------------------------------------
 
-    def spawn(self, model: Model, description: str = "") -> Entity:
+    def spawn(self, model: Model, description: str = "", prepared: PreparedManager | None = None) -> Entity:
         """Add `model` (already at its spawn pose) with its sensors and systems; sim thread only.
-        `description` is the text it came from (the robot_description its controller manager gets)."""
+        `description` is the text it came from (the robot_description its controller manager gets);
+        `prepared`, its controller manager built off the sim thread (`prepare_manager`), adopted here. The
+        caller closes a prepared manager this raised before adopting."""
         if not _NAME_RE.match(model.name):
             raise DescriptionError(
                 f"model name {model.name!r} may hold only letters, digits, '_', '-' and '.'", field="name"
@@ -142,7 +145,7 @@ class Simulation:
         rt = ModelRuntime(entity)
         self.models[model.name] = rt
         try:
-            self._add_systems(rt, description)
+            self._add_systems(rt, description, prepared)
             self._add_sensors(rt)
             if not model.static and self.transport is not None:
                 pub = self.transport.publisher(f"/model/{model.name}/pose", "gz.msgs.Pose_V")
@@ -170,7 +173,16 @@ class Simulation:
         self.physics.remove(name)
         self.stepper.reschedule()
 
-    def _add_systems(self, rt: ModelRuntime, description: str = "") -> None:
+    def prepare_manager(self, model: Model, description: str = "") -> PreparedManager | None:
+        """The controller manager of `model` (one gz_ros2_control plugin), built from any thread: its node,
+        parameters and manager take tens of milliseconds that need not stop the simulation loop. None when the
+        model has no such plugin, or more than one (the spawn reports that)."""
+        plugins = [p for p in model.plugins if system_name(p.filename) in CONTROL_SYSTEMS]
+        if len(plugins) != 1 or self.transport is None:
+            return None
+        return PreparedManager(self.ctx, model, plugins[0], description)
+
+    def _add_systems(self, rt: ModelRuntime, description: str = "", prepared: PreparedManager | None = None) -> None:
         model = rt.entity.model
         for plugin in model.plugins:
             kind = system_name(plugin.filename)
@@ -180,14 +192,14 @@ class Simulation:
                 rt.plugins.append(DiffDrive(self.ctx, rt.entity, params))
             elif kind == "joint-state-publisher":
                 rt.plugins.append(JointStatePublisher(self.ctx, rt.entity, plugin))
-            elif kind in ("gz_ros2_control", "ign_ros2_control"):
+            elif kind in CONTROL_SYSTEMS:
                 if rt.control is not None:
                     raise DescriptionError(
                         f"model {model.name!r} has the gz_ros2_control plugin twice",
                         source=model.source or None,
                         field=f"plugin {plugin.filename}",
                     )
-                rt.control = GzRos2Control(self.ctx, rt.entity, plugin, description)
+                rt.control = GzRos2Control(self.ctx, rt.entity, plugin, description, prepared)
                 rt.plugins.append(rt.control)
 
     def _add_sensors(self, rt: ModelRuntime) -> None:

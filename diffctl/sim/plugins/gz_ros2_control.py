@@ -107,25 +107,33 @@ def wants_controller_manager(model: Model) -> list[Plugin]:
     return [p for p in model.plugins if p.system == "gz_ros2_control"]
 
 
-class GzRos2Control(SystemPlugin):
-    """One model's controller manager, stepped by the simulator."""
+def warn_skipped(ctx: PluginContext, model_name: str, blocks: list[Any]) -> None:
+    for b in blocks:
+        ctx.log.warn(
+            f"model {model_name!r}: <ros2_control name={b.name!r}> asks for {b.hardware_plugin}; inside the "
+            f"simulator only {PLUGIN_ALIASES[0]} exists (as with gz_ros2_control): block skipped"
+        )
 
-    def __init__(self, ctx: PluginContext, entity: Entity, plugin: Plugin, description: str = "") -> None:
+
+class PreparedManager:
+    """A model's controller manager before its model is in the physics: parameters, node and manager, built
+    off the sim thread (a `create` request's thread), so the simulation loop does not stop while a node comes
+    up. `GzRos2Control` adopts it and adds what needs the model (hardware, services, the control task);
+    `close` releases one that was never adopted (the spawn failed first)."""
+
+    def __init__(self, ctx: PluginContext, model: Model, plugin: Plugin, description: str = "") -> None:
         from diffctl.bus import Node
 
-        self.ctx, self.entity = ctx, entity
-        source = entity.model.source or ""
+        self.plugin = plugin
+        self.adopted = False
+        source = model.source or ""
         self.params = GzRos2ControlParams.from_plugin(plugin, source)
-        blocks = [b for b in entity.model.ros2_control if b.hardware_plugin in PLUGIN_ALIASES]
-        skipped = [b for b in entity.model.ros2_control if b.hardware_plugin not in PLUGIN_ALIASES]
-        for b in skipped:
-            ctx.log.warn(
-                f"model {entity.name!r}: <ros2_control name={b.name!r}> asks for {b.hardware_plugin}; inside the "
-                f"simulator only {PLUGIN_ALIASES[0]} exists (as with gz_ros2_control): block skipped"
-            )
+        blocks = [b for b in model.ros2_control if b.hardware_plugin in PLUGIN_ALIASES]
+        self.skipped = [b for b in model.ros2_control if b.hardware_plugin not in PLUGIN_ALIASES]
         if not blocks:
+            warn_skipped(ctx, model.name, self.skipped)
             raise DescriptionError(
-                f"model {entity.name!r} has the gz_ros2_control plugin but no <ros2_control> block with "
+                f"model {model.name!r} has the gz_ros2_control plugin but no <ros2_control> block with "
                 f"{PLUGIN_ALIASES[0]} hardware",
                 source=source or None,
                 field=f"plugin {plugin.filename}",
@@ -136,16 +144,12 @@ class GzRos2Control(SystemPlugin):
         flat = {**load_manager_files(self.params.parameters, name), "use_sim_time": True}
         cm_params = manager_params(flat, source=f"{name} parameters", params_files=self.params.parameters)
         self.stop = threading.Event()
-        self.systems: list[GazeboSimSystem] = []
         self.node: Any = None
         self.cm: ControllerManager | None = None
-        self.services: ManagerServices | None = None
-        self._task = None
-        self._last_ns: int | None = None
         if ctx.transport is None:
             raise ConfigError("the gz_ros2_control plugin needs the bus (the simulator runs without one)")
+        self.node = Node(name, self.params.namespace, remaps=remaps, params=dict(flat), use_sim_time=False)
         try:
-            self.node = Node(name, self.params.namespace, remaps=remaps, params=dict(flat), use_sim_time=False)
             self.node.clock.use_sim_time = True
             self.node.clock.set_sim_ns(ctx.stepper.sim_time_ns)
             namespace = self.node.namespace
@@ -164,6 +168,51 @@ class GzRos2Control(SystemPlugin):
                 cm_params, log=self.node.log, node_factory=controller_node, robot_description=description,
                 cancel=self.stop,
             )
+        except Exception:
+            self.close()
+            raise
+
+    def close(self) -> None:
+        """Release a manager that no model adopted."""
+        if self.adopted:
+            return
+        self.stop.set()
+        if self.node is not None:
+            self.node.close()
+            self.node = None
+        self.cm = None
+
+
+class GzRos2Control(SystemPlugin):
+    """One model's controller manager, stepped by the simulator."""
+
+    def __init__(
+        self,
+        ctx: PluginContext,
+        entity: Entity,
+        plugin: Plugin,
+        description: str = "",
+        prepared: PreparedManager | None = None,
+    ) -> None:
+        self.ctx, self.entity = ctx, entity
+        self.systems: list[GazeboSimSystem] = []
+        self.node: Any = None
+        self.cm: ControllerManager | None = None
+        self.services: ManagerServices | None = None
+        self._task = None
+        self._last_ns: int | None = None
+        self.stop = threading.Event()
+        if prepared is None or prepared.plugin is not plugin:
+            if prepared is not None:
+                prepared.close()
+            prepared = PreparedManager(ctx, entity.model, plugin, description)
+        prepared.adopted = True
+        self.params, self.infos, self.stop = prepared.params, prepared.infos, prepared.stop
+        self.node, self.cm = prepared.node, prepared.cm
+        self.node.clock.set_sim_ns(ctx.stepper.sim_time_ns)  # sim time went on while it was prepared
+        warn_skipped(ctx, entity.name, prepared.skipped)
+        try:
+            assert self.cm is not None
             self.cm.load_hardware(self.infos, self._hardware)
             self.services = ManagerServices(self.node, self.cm)
             self.cm.loop_running = True
