@@ -19,8 +19,6 @@ from __future__ import annotations
 import collections
 import functools
 import threading
-from collections.abc import Iterator
-from contextlib import contextmanager
 from threading import get_ident as _get_ident
 from typing import Any
 
@@ -118,16 +116,6 @@ def release(t: PublishingThread | None) -> None:
     t._holder = None
     if t._queue:
         t._wake()
-
-
-@contextmanager
-def held() -> Iterator[None]:
-    """`hold` … `release` around a block."""
-    t = hold()
-    try:
-        yield
-    finally:
-        release(t)
 
 
 _thread: PublishingThread | None = None
