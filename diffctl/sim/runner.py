@@ -110,6 +110,8 @@ class Simulation:
         target_rtf = world.physics.real_time_factor if rtf is None else rtf
         self.stepper = Stepper(self.physics.step, self.physics.step_ns, rtf=target_rtf, paused=paused)
         self.transport = SimTransport(session, self.stepper.call_soon, self.log) if session is not None else None
+        if self.transport is not None:
+            self.stepper.batch_hooks.append((self.transport.outbox.hold, self.transport.outbox.release))
         self.ctx = PluginContext(self.stepper, self.transport, self.log, world.name)
         self.seed = seed
         self.models: dict[str, ModelRuntime] = {}

@@ -56,6 +56,8 @@ class Stepper:
         self.tasks: list[Task] = []
         self.step_hooks: list[Callable[[], None]] = []
         self.idle_hooks: list[Callable[[], None]] = []
+        # Around each batch of due tasks: the outbox holds its wake-up until the batch has queued everything.
+        self.batch_hooks: list[tuple[Callable[[], None], Callable[[], None]]] = []
         self._inbox: collections.deque[Callable[[], None]] = collections.deque()
         self._wake = threading.Event()
         self._pending_steps = 0
@@ -133,6 +135,19 @@ class Stepper:
         due = []
         while heap and heap[0][0] <= now:
             due.append(heapq.heappop(heap)[2])
+        for begin, _ in self.batch_hooks:
+            begin()
+        try:
+            self._run_tasks(due, now)
+        finally:
+            for _, end in self.batch_hooks:
+                end()
+        while heap and not heap[0][2].live:
+            heapq.heappop(heap)
+        self._next_due = heap[0][0] if heap else 1 << 62
+
+    def _run_tasks(self, due: list[Task], now: int) -> None:
+        heap = self._heap
         for task in due:
             if not task.live:
                 continue
@@ -144,9 +159,6 @@ class Stepper:
             if task.next_ns <= now:
                 task.next_ns = now + task.period_ns
             heapq.heappush(heap, (task.next_ns, task.seq, task))
-        while heap and not heap[0][2].live:
-            heapq.heappop(heap)
-        self._next_due = heap[0][0] if heap else 1 << 62
 
     def reschedule(self) -> None:
         """Rebuild the schedule from the tasks' due times (after they were changed wholesale)."""

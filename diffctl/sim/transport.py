@@ -43,6 +43,7 @@ class Outbox:
         self.dropped = 0
         self._wake = threading.Event()
         self._stopping = False
+        self._holding = False
         self._thread = threading.Thread(target=self._run, name="sim-outbox", daemon=True)
         self._thread.start()
 
@@ -57,8 +58,18 @@ class Outbox:
                 self._bytes -= len(items.popleft()[1])
                 self.dropped += 1
             first = len(items) == 1
-        if first:
+        if first and not self._holding:
             # Only the first of a batch wakes the thread: it drains whatever arrives meanwhile.
+            self._wake.set()
+
+    def hold(self) -> None:
+        """Queue without waking the thread until `release` (the sim thread around one step's tasks): each wake
+        is an Event.set plus a thread that then asks for the GIL, which ten cars' samples paid one by one."""
+        self._holding = True
+
+    def release(self) -> None:
+        self._holding = False
+        if self._items:
             self._wake.set()
 
     def _drop_large(self) -> None:
