@@ -100,7 +100,7 @@ def _cmd_vel_latencies(
 
 
 def run(*, startup_only: bool = False) -> dict:
-    from diffctl.bus import Node, gz
+    from diffctl.bus import Node, gz, types
     from diffctl.bus.session import close_session
 
     os.environ["DIFFCTL_ROUTER"] = f"tcp/127.0.0.1:{free_port()}"
@@ -121,10 +121,13 @@ def run(*, startup_only: bool = False) -> dict:
             reached = threading.Event()
             want = {"v": math.nan}
 
+            sim_ns = {"t": 0}
+
             def on_odom(msg) -> None:
                 # open_loop odometry integrates the velocity the controller commands in that very cycle: its
                 # twist is the wheel command.
                 odom.set()
+                sim_ns["t"] = msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
                 if abs(float(msg.twist.twist.linear.x) - want["v"]) < 1e-6:
                     reached.set()
 
@@ -174,10 +177,17 @@ def run(*, startup_only: bool = False) -> dict:
             if not any(r.ok is not None and json.loads(r.ok.payload.to_bytes()).get("ok") for r in replies):
                 raise RuntimeError("the simulator did not switch to rtf 0")
             rtfs.clear()
+            # Commands paced by sim time, as a teleop at real time would send them (every 0.1 s of sim time,
+            # within cmd_vel_timeout), not by wall time: a wall-clock flood would be the harness's own load.
+            drive = types.new("geometry_msgs/msg/TwistStamped",
+                              {"twist": {"linear": {"x": 0.3}, "angular": {"z": 0.2}}})
+            sent_ns = -1
             t_end = time.monotonic() + 3.0
             while time.monotonic() < t_end:
-                pub.publish({"twist": {"linear": {"x": 0.3}, "angular": {"z": 0.2}}})
-                time.sleep(0.002)
+                if sim_ns["t"] - sent_ns >= 100_000_000 or sim_ns["t"] < sent_ns:
+                    pub.publish(drive)
+                    sent_ns = sim_ns["t"]
+                time.sleep(0.001)
             driving_rtf = [r for r in rtfs[2:] if r > 0]
             descendants = psutil.Process(proc.pid).children(recursive=True)
             stats_sub.undeclare()
