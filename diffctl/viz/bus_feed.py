@@ -8,6 +8,7 @@ counting them means receiving them.
 
 from __future__ import annotations
 
+import contextlib
 import threading
 from typing import Any
 
@@ -49,15 +50,30 @@ class BusFeed:
         # The simulator side, as Gazebo's own GUI reads it: ground truth and world statistics.
         # A robot shown with a TF prefix is the simulated model of that name (a fleet's robotK): its ground
         # truth places its own odom tree in the world.
+        # Ground truth is not a ROS subscription (nothing in the graph changes) and the simulator computes it
+        # only while someone listens: it is taken only while a page is open to draw it.
         zs = node.session
-        models = dict.fromkeys([settings.ground_truth_model, *(p for _, p in config.robot_models() if p)])
-        self._gz_subs = [
-            *(zs.declare_subscriber(gz.key(f"/model/{m}/pose"), lambda s, m=m: self._on_gz_pose(s, m))
-              for m in models),
-            zs.declare_subscriber(gz.key("/world/*/stats"), self._on_gz_stats),
-        ]
+        self._truth_models = list(dict.fromkeys([settings.ground_truth_model,
+                                                 *(p for _, p in config.robot_models() if p)]))
+        self._truth_subs: list[Any] = []
+        self._gz_subs = [zs.declare_subscriber(gz.key("/world/*/stats"), self._on_gz_stats)]
 
     # ---- gz side ---------------------------------------------------------------------------------------
+
+    def watch_ground_truth(self, on: bool) -> None:
+        """Subscribe to the models' ground-truth poses (on) or drop them (off): while pages are open."""
+        with self._lock:
+            if on and not self._truth_subs:
+                self._truth_subs = [
+                    self.node.session.declare_subscriber(gz.key(f"/model/{m}/pose"),
+                                                         lambda s, m=m: self._on_gz_pose(s, m))
+                    for m in self._truth_models
+                ]
+            elif not on:
+                subs, self._truth_subs = self._truth_subs, []
+                for sub in subs:
+                    with contextlib.suppress(Exception):
+                        sub.undeclare()
 
     def _on_gz_pose(self, sample: Any, model: str) -> None:
         try:
@@ -167,6 +183,7 @@ class BusFeed:
         self._publisher(job.topic, job.type_name).publish(types.new(job.type_name, fields))
 
     def close(self) -> None:
+        self.watch_ground_truth(False)
         for s in self._gz_subs:
             try:
                 s.undeclare()

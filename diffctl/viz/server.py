@@ -186,6 +186,7 @@ class VizServer:
         authorized = token_matches(query_token(ws.request.path if ws.request else ""), self.token)
         page = _Page(ws, authorized, self.fixed_default)
         self.pages.add(page)
+        self.feed.watch_ground_truth(True)
         self.log.info(f"page connected from {ws.remote_address[0]} ({'can' if authorized else 'cannot'} drive)")
         try:
             await ws.send(to_json(self._hello(page)))
@@ -195,6 +196,8 @@ class VizServer:
             pass
         finally:
             self.pages.discard(page)
+            if not self.pages:
+                self.feed.watch_ground_truth(False)
             self._release(page, "page closed")
             self._update_image_watch()
 
