@@ -140,7 +140,8 @@ class CdrTemplate:
             raise TemplateError(f"{self.typename}: the template's leaves do not match the serializer's")
 
     def encode(self, values: Sequence[Any]) -> bytes:
-        """The message's bytes with the leaves set to `values` (in the order given at build time)."""
-        args = self._args
+        """The message's bytes with the leaves set to `values` (in the order given at build time); safe to
+        call from several threads (the controllers' publishing thread packs, tests compare)."""
+        args = self._args.copy()
         args[1::2] = values
         return self._struct.pack(*args)

@@ -2,9 +2,12 @@
 
 A controller's `publish(msg)` serializes the message on the calling (real-time) thread — controllers reuse
 their message objects from cycle to cycle, so the bytes must be taken now — and hands them to one publishing
-thread per process, which does the Zenoh put (the costly part: ~100 µs and more on a busy machine). Samples of
-one publisher leave in order. When the publishing thread falls far behind, the oldest waiting samples are
-dropped and counted, as realtime_tools skips a cycle whose previous message is still being sent.
+thread per process, which does the Zenoh put (the costly part: ~100 µs and more on a busy machine). A
+controller that publishes from a CDR template (`publish_values(template, values)`) hands over the values
+instead, already a snapshot, and the publishing thread packs them (as realtime_tools copies the message in the
+loop and serializes it in its publishing thread). Samples of one publisher leave in order. When the
+publishing thread falls far behind, the oldest waiting samples are dropped and counted, as realtime_tools
+skips a cycle whose previous message is still being sent.
 
 While the controller manager runs its controllers (`hold()` … `release()`, once per cycle), samples are
 queued without waking the publishing thread; `release` wakes it once, after the controllers ran, instead of
@@ -19,6 +22,7 @@ from __future__ import annotations
 import collections
 import functools
 import threading
+from collections.abc import Sequence
 from threading import get_ident as _get_ident
 from typing import Any
 
@@ -31,7 +35,8 @@ class PublishingThread:
     """Puts queued samples on the bus, in order, off the control loop's thread."""
 
     def __init__(self, capacity: int = CAPACITY) -> None:
-        self._queue: collections.deque[tuple[Any, bytes]] = collections.deque()
+        # (publisher, template or None, its leaf values or the serialized bytes)
+        self._queue: collections.deque[tuple[Any, Any, Any]] = collections.deque()
         self._capacity = capacity
         # A binary semaphore: unlocked = "samples may be waiting". A plain lock rather than a Condition, whose
         # notify is Python code that the control loop would run (cold) every cycle; deque operations are atomic.
@@ -42,9 +47,10 @@ class PublishingThread:
         self._thread = threading.Thread(target=self._run, name="realtime_publisher", daemon=True)
         self._thread.start()
 
-    def submit(self, publisher: Any, cdr: bytes) -> None:
+    def submit(self, publisher: Any, template: Any, data: Any) -> None:
+        """Queue bytes (`template` None) or a CdrTemplate and the leaf values it is to be packed with."""
         queue = self._queue
-        queue.append((publisher, cdr))
+        queue.append((publisher, template, data))
         if len(queue) > self._capacity:
             self._drop_oldest()
         if self._holder != _get_ident():  # the holding thread wakes it once, at release()
@@ -71,21 +77,21 @@ class PublishingThread:
         queue = self._queue
         while True:
             try:
-                publisher, cdr = queue.popleft()
+                publisher, template, data = queue.popleft()
             except IndexError:
                 self._signal.acquire()  # until a producer appends and signals (or signalled meanwhile)
                 continue
             if getattr(publisher, "closed", False):
                 continue
             try:
-                publisher.publish_raw(cdr)
+                publisher.publish_raw(data if template is None else template.encode(data))
             except Exception:  # a publisher closed meanwhile (controller unloaded, shutdown): nothing to send to
                 pass
 
     def flush(self, timeout_s: float = 1.0) -> bool:
         """Wait until everything queued so far has been put (tests, shutdown)."""
         done = threading.Event()
-        self._queue.append((_Marker(done), b""))
+        self._queue.append((_Marker(done), None, b""))
         self._wake()
         return done.wait(timeout_s)
 
@@ -140,19 +146,21 @@ class RealtimePublisher:
         self._thread = thread or publishing_thread()
         self._types = types
         self._type = publisher.type
-        # publish_cdr(cdr) is thread.submit(publisher, cdr): bound here so a cycle's call is one frame, not two.
-        self.publish_cdr = functools.partial(self._thread.submit, publisher)
+        # publish_values(template, values) is thread.submit(publisher, template, values): bound here so a
+        # cycle's call is one frame, not two.
+        self.publish_values = functools.partial(self._thread.submit, publisher)
 
     def publish(self, msg: Any) -> None:
         types = self._types
         if isinstance(msg, dict):
             msg = types.new(self._type, msg)
-        self._thread.submit(self._pub, types.serialize(msg, self._type))
+        self._thread.submit(self._pub, None, types.serialize(msg, self._type))
 
-    def publish_cdr(self, cdr: bytes) -> None:
-        """Publish bytes the caller serialized itself (a fresh object: it is sent later, as it is).
-        (Replaced per instance by a partial of the thread's submit, which does the same.)"""
-        self._thread.submit(self._pub, cdr)
+    def publish_values(self, template: Any, values: Sequence[Any]) -> None:
+        """Publish the message `template` (a CdrTemplate) describes with its leaves set to `values`, which
+        must not change afterwards (a fresh list or tuple); packed on the publishing thread. (Replaced per
+        instance by a partial of the thread's submit, which does the same.)"""
+        self._thread.submit(self._pub, template, values)
 
     def close(self) -> None:
         self._pub.close()

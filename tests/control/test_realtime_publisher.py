@@ -5,6 +5,7 @@ from __future__ import annotations
 import threading
 
 from diffctl.bus import types
+from diffctl.control.cdr_template import CdrTemplate
 from diffctl.control.realtime_publisher import PublishingThread, RealtimePublisher
 
 
@@ -68,7 +69,7 @@ def test_a_held_cycle_hands_its_samples_over_at_release_and_other_threads_at_onc
     held = realtime_publisher.hold()
     assert held is thread and realtime_publisher.hold() is None  # nested: the outer release wakes
     pub.publish({"data": 1.0})
-    pub.publish_cdr(types.serialize(types.new(sink.type, {"data": 2.0}), sink.type))
+    pub.publish_values(CdrTemplate(types.new(sink.type, {"data": 0.0}), sink.type, [("data", "d")]), (2.0,))
     assert not sink.got.wait(0.2) and sink.sent == []  # queued, the publishing thread not woken
     realtime_publisher.release(held)
     assert sink.got.wait(5) and thread.flush(5)

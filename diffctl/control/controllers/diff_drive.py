@@ -84,7 +84,7 @@ class DiffDriveController(ChainableControllerInterface):
         self._odom_pub: Any = None
         self._tf_pub: Any = None
         self._cmd_out_pub: Any = None
-        self._odom_cdr: CdrTemplate | None = None  # set at configure when the publishers take bytes
+        self._odom_cdr: CdrTemplate | None = None  # set at configure when the publishers take template values
         # (params, wheel separation, left radius, right radius): the derived values of these parameters
         self._geometry: tuple[Any, float, float, float] = (None, NAN, NAN, NAN)
         self._tf_cdr: CdrTemplate | None = None
@@ -217,12 +217,13 @@ class DiffDriveController(ChainableControllerInterface):
         self._cmd_out_pub = None
         if p.publish_limited_velocity:
             self._cmd_out_pub = self._endpoints.keep(self.node.create_publisher("~/cmd_vel_out", TWIST_STAMPED))
-        # Bus publishers take bytes: each message's fixed layout becomes a template into which a cycle packs
-        # the stamp and the numbers that change (frames, covariances and zeros stay as built above).
+        # The controllers' bus publishers take a template's values: each message's fixed layout becomes a
+        # template, and a cycle hands over the stamp and the numbers that change (packed by the publishing
+        # thread; frames, covariances and zeros stay as built above).
         stamp = [("header.stamp.sec", "i"), ("header.stamp.nanosec", "I")]
         self._odom_cdr = self._tf_cdr = self._cmd_out_cdr = None
         pubs = (self._odom_pub, self._tf_pub, self._cmd_out_pub)
-        if all(hasattr(pub, "publish_cdr") for pub in pubs if pub is not None):
+        if all(hasattr(pub, "publish_values") for pub in pubs if pub is not None):
             self._odom_cdr = CdrTemplate(self._odom_msg, ODOMETRY, [
                 *stamp, *_leaves("pose.pose.position", "x", "y"), *_leaves("pose.pose.orientation", "z", "w"),
                 *_leaves("twist.twist.linear", "x"), *_leaves("twist.twist.angular", "z"),
@@ -430,7 +431,7 @@ class DiffDriveController(ChainableControllerInterface):
         if self._cmd_out_pub is not None:
             if self._cmd_out_cdr is not None:
                 sec, nanosec = divmod(time_ns, _NS)
-                self._cmd_out_pub.publish_cdr(self._cmd_out_cdr.encode((sec, nanosec, v, w)))
+                self._cmd_out_pub.publish_values(self._cmd_out_cdr, (sec, nanosec, v, w))
             else:
                 msg = self._cmd_out_msg
                 _set_stamp(msg.header.stamp, time_ns)
@@ -451,11 +452,11 @@ class DiffDriveController(ChainableControllerInterface):
         x, y = odom.x_m, odom.y_m
         if self._odom_cdr is not None:
             sec, nanosec = divmod(time_ns, _NS)
-            self._odom_pub.publish_cdr(
-                self._odom_cdr.encode((sec, nanosec, x, y, qz, qw, odom.linear_mps, odom.angular_radps))
+            self._odom_pub.publish_values(
+                self._odom_cdr, (sec, nanosec, x, y, qz, qw, odom.linear_mps, odom.angular_radps)
             )
             if self._tf_cdr is not None:
-                self._tf_pub.publish_cdr(self._tf_cdr.encode((sec, nanosec, x, y, qz, qw)))
+                self._tf_pub.publish_values(self._tf_cdr, (sec, nanosec, x, y, qz, qw))
             return
         msg = self._odom_msg
         _set_stamp(msg.header.stamp, time_ns)

@@ -207,9 +207,10 @@ class JointStateBroadcaster(ControllerInterface):
         self._joint_state, self._dynamic_joint_state, self._plan = js, djs, plan
         self.joint_names = published + extra
         self._fast = []
-        if all(hasattr(pub, "publish_cdr") for pub in (self._js_pub, self._djs_pub) if pub is not None):
-            # Bus publishers take bytes: each message's fixed layout becomes a template into which a cycle
-            # packs the stamp and the state values (the arrays above are then left as activated).
+        if all(hasattr(pub, "publish_values") for pub in (self._js_pub, self._djs_pub) if pub is not None):
+            # The controllers' bus publishers take a template's values: each message's fixed layout becomes a
+            # template, and a cycle hands over the stamp and the state values (packed by the publishing
+            # thread; the arrays above are then left as activated).
             stamp = [("header.stamp.sec", "i"), ("header.stamp.nanosec", "I")]
             js_leaves.sort(key=lambda leaf: (_FIELDS.index(leaf[0]), leaf[1]))  # the message's byte order
             template = CdrTemplate(js, JOINT_STATE, stamp + [(f"{f}[{i}]", "d") for f, i, _ in js_leaves])
@@ -235,7 +236,7 @@ class JointStateBroadcaster(ControllerInterface):
         sec, nanosec = divmod(time_ns, _NS)
         if self._fast:
             for pub, template, handles in self._fast:
-                pub.publish_cdr(template.encode([sec, nanosec, *map(_VALUE, handles)]))
+                pub.publish_values(template, [sec, nanosec, *map(_VALUE, handles)])
             return _OK
         for array, index, handle in self._plan:
             array[index] = handle.get_value()

@@ -1,6 +1,7 @@
-"""Controllers publishing bytes from a message template give exactly what serializing their message gives:
+"""Controllers publishing through a message template give exactly what serializing their message gives:
 the template itself against the bus serializer, and each controller run twice on the same inputs, once
-through a publisher that takes messages and once through one that takes bytes (as the bus's does)."""
+through a publisher that takes messages and once through one that takes a template's values (as the
+controllers' RealtimePublisher does), packed only after the run: what was handed over must not change later."""
 
 from __future__ import annotations
 
@@ -58,16 +59,21 @@ class MessageOut:
     def publish(self, msg: object) -> None:
         self.sent.append(types.serialize(msg, self.type_name))
 
+    def packets(self) -> list[bytes]:
+        return self.sent
+
     def close(self) -> None:
         pass
 
 
-class BytesOut(MessageOut):
-    """Also takes bytes, as the controllers' RealtimePublisher does."""
+class ValuesOut(MessageOut):
+    """Also takes a template's values, as the controllers' RealtimePublisher does (packed when asked)."""
 
-    def publish_cdr(self, cdr: bytes) -> None:
-        assert isinstance(cdr, bytes)
-        self.sent.append(cdr)
+    def publish_values(self, template: CdrTemplate, values: list | tuple) -> None:
+        self.sent.append((template, values))
+
+    def packets(self) -> list[bytes]:
+        return [template.encode(values) for template, values in self.sent]
 
 
 class Node(FakeNode):
@@ -90,7 +96,7 @@ def _controller(cls: type, name: str, params: dict, out: type[MessageOut]):
 
 
 def _sent(c) -> dict[str, list[bytes]]:
-    return {topic: pub.sent for topic, pub in c.node.publishers.items()}
+    return {topic: pub.packets() for topic, pub in c.node.publishers.items()}
 
 
 @pytest.mark.parametrize("params", [{}, {"publish_limited_velocity": True, "enable_odom_tf": False},
@@ -99,10 +105,10 @@ def test_diff_drive_publishes_the_same_bytes_either_way(params: dict) -> None:
     base = {"left_wheel_names": ["l"], "right_wheel_names": ["r"], "wheel_separation": 0.3, "wheel_radius": 0.04,
             "publish_rate": 50.0, "pose_covariance_diagonal": [0.001, 0.001, 0, 0, 0, 0.01], **params}  # fmt: skip
     runs = []
-    for out in (MessageOut, BytesOut):
+    for out in (MessageOut, ValuesOut):
         c = _controller(DiffDriveController, "dd", base, out)
         c.on_configure()
-        assert (c._odom_cdr is not None) == (out is BytesOut)
+        assert (c._odom_cdr is not None) == (out is ValuesOut)
         cmd, state = hand_interfaces(c)
         c.on_activate()
         t = c.node.time_ns
@@ -124,13 +130,13 @@ def test_diff_drive_publishes_the_same_bytes_either_way(params: dict) -> None:
 def test_joint_state_broadcaster_publishes_the_same_bytes_either_way() -> None:
     hw = {"b/position": 1.5, "b/velocity": 2.0, "imu/orientation.x": 0.1, "a/position": -0.5, "a/effort": 3.0}
     runs = []
-    for out in (MessageOut, BytesOut):
+    for out in (MessageOut, ValuesOut):
         c = _controller(JointStateBroadcaster, "jsb", {"extra_joints": ["x"]}, out)
         c.on_configure()
         handles = [StateInterface(n, v) for n, v in hw.items()]
         c.state_interfaces, c.command_interfaces = handles, []
         c.on_activate()
-        assert bool(c._fast) == (out is BytesOut)
+        assert bool(c._fast) == (out is ValuesOut)
         for k in range(5):
             for i, h in enumerate(handles):
                 h.value = math.nan if (k + i) % 4 == 0 else k * 0.5 - i
