@@ -257,9 +257,7 @@ class GzRos2Control(SystemPlugin):
         self._last_ns = sim_time_ns
         self.node.clock.set_sim_ns(sim_time_ns)
         try:
-            cm.read(sim_time_ns, period_s)
-            cm.update(sim_time_ns, period_s)
-            cm.write(sim_time_ns, period_s)
+            cm.cycle(sim_time_ns, period_s)  # read → update → write under one lock, as the real-time loop
         except Exception as e:  # the simulation goes on; the manager already deactivated what it could
             self.ctx.log.throttled(
                 f"cm:{self.entity.name}", f"controller manager of {self.entity.name!r}: {type(e).__name__}: {e}"
