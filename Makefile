@@ -5,13 +5,19 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: run test test-fast bench lint soak system-deps clean
+.PHONY: run test test-fast bench lint soak system-deps bytecode clean
 
 $(STAMP): pyproject.toml
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install -q --upgrade pip
 	$(BIN)/python -m pip install -q -e '.[test]'
 	@touch $@
+
+# Bytecode for diffctl's own modules (the editable install leaves none, and where PYTHONDONTWRITEBYTECODE is set
+# no run ever writes it): every component would compile its imports from source at each start, 0.3 s of the
+# fork server's start-up alone. compileall skips what is up to date, so this is cheap when nothing changed.
+bytecode: $(STAMP)
+	@$(BIN)/python -m compileall -q -j 0 diffctl ament_index_python bench >/dev/null
 
 # Chromium (browser tests), Xvfb (the --gui screenshot test), openssl and iproute2 (the security tests'
 # certificates and network-namespace hosts) and cmake (the oracle of the workspace's install-rule index) come
@@ -28,22 +34,22 @@ system-deps:
 	  fi; \
 	fi
 
-run: $(STAMP)
+run: $(STAMP) bytecode
 	$(BIN)/diffctl launch sim_control
 
-test: $(STAMP) system-deps
+test: $(STAMP) bytecode system-deps
 	$(BIN)/python -m pytest -p no:cacheprovider
 
-test-fast: $(STAMP)
+test-fast: $(STAMP) bytecode
 	$(BIN)/python -m pytest -p no:cacheprovider -m "not slow and not browser"
 
-bench: $(STAMP)
+bench: $(STAMP) bytecode
 	$(BIN)/python -m bench
 
 lint: $(STAMP)
 	$(BIN)/ruff check diffctl tests bench
 
-soak: $(STAMP)
+soak: $(STAMP) bytecode
 	$(BIN)/python -m bench.soak
 
 clean:

@@ -134,6 +134,11 @@ def run(*, startup_only: bool = False) -> dict:
                     reached.set()
 
             node.create_subscription("/diffbot_base_controller/odom", "nav_msgs/msg/Odometry", on_odom)
+            # The tutorial's bridged sensors reach a ROS subscriber, as RViz or a recorder would take them (the
+            # visualizer takes /scan itself): otherwise the bridge has no one to convert /imu for.
+            imu_samples = [0]
+            node.create_subscription("/imu", "sensor_msgs/msg/Imu",
+                                     lambda _m: imu_samples.__setitem__(0, imu_samples[0] + 1), raw=True)
             cli = node.create_client("/controller_manager/list_controllers",
                                      "controller_manager_msgs/srv/ListControllers")
             while True:
@@ -227,6 +232,7 @@ def run(*, startup_only: bool = False) -> dict:
         "stack_rss_mb": round(pss_mb, 1),
         "stack_rss_sum_mb": round(rss_mb, 1),
         "stack_processes": len(descendants) + 1,
+        "stack_imu_samples_received": imu_samples[0],
     }
 
 
