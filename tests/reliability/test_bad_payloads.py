@@ -129,10 +129,13 @@ def test_garbage_on_every_subscribed_topic_is_dropped_and_every_node_keeps_worki
         t = stack.clock_ns
         stack.wait_sim(t + 3 * SEC)
         time.sleep(0.5)  # bridged samples trail the controller's
-        for topic in (ODOM, "/joint_states", "/tf", "/clock"):
+        # In sim time: 20–50 Hz topics, and /clock, which at rtf 0 is thinned to ≤ 250 Hz of wall time (a few Hz
+        # of sim time at this machine's real-time factor), so for it "flowing" is a lower bar.
+        for topic, min_hz in ((ODOM, 15), ("/joint_states", 15), ("/tf", 15), ("/clock", 2)):
             with w.lock:
                 last = sorted(w.stamps.get(topic, []))[-3:]
-            assert w.rate_hz(topic, t, t + 2 * SEC) > 15, f"{topic} stopped flowing after the garbage: {last}, {t}"
+            rate = w.rate_hz(topic, t, t + 2 * SEC)
+            assert rate > min_hz, f"{topic} stopped flowing after the garbage: {rate:.1f} Hz, {last}, {t}"
         states = stack.controllers()
         assert all(states.get(c) == "active" for c in CONTROLLERS), states
         with urllib.request.urlopen(f"http://127.0.0.1:{viz_port}/", timeout=5) as r:
