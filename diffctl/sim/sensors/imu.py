@@ -99,9 +99,9 @@ class Imu:
     def reset(self) -> None:
         self._prev = None
 
-    def _com(self) -> tuple[Quat, Vec3, Vec3, Vec3]:
-        """(orientation of the centre-of-mass frame, velocity of the sensor point, angular velocity, sensor
-        offset from the centre of mass), all in world axes: PyBullet's numbers with no Pose built per call."""
+    def _com(self) -> tuple[Quat, Vec3, Vec3]:
+        """(orientation of the centre-of-mass frame, velocity of the sensor point, angular velocity), in world
+        axes: PyBullet's numbers with no Pose built per call."""
         cid, body, link = self.entity.client, self.body, self.link
         if link < 0:
             _, orn = pb.getBasePositionAndOrientation(body, physicsClientId=cid)
@@ -109,15 +109,15 @@ class Imu:
         else:
             st = pb.getLinkState(body, link, computeLinkVelocity=1, computeForwardKinematics=1, physicsClientId=cid)
             orn, lin, ang = st[1], st[6], st[7]
-        r = quat_rotate(orn, self._in_com.xyz)
-        return orn, point_velocity(lin, ang, r), ang, r
+        r = quat_rotate(orn, self._in_com.xyz)  # the sensor point from the centre of mass
+        return orn, point_velocity(lin, ang, r), ang
 
     def remember(self, sim_time_ns: int) -> None:
         """Record the sensor point's velocity now, for the acceleration of the next sample (one step later)."""
         self._prev = (sim_time_ns, self._com()[1])
 
     def sample(self, sim_time_ns: int) -> dict:
-        orn, v, w, _ = self._com()
+        orn, v, w = self._com()
         accel: Vec3 = (0.0, 0.0, 0.0)
         if self._prev is not None and sim_time_ns > self._prev[0]:
             dt = (sim_time_ns - self._prev[0]) * 1e-9
