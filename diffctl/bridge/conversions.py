@@ -8,7 +8,6 @@ touches the bus: messages are built from the message classes of `diffctl.bus.typ
 
 from __future__ import annotations
 
-import functools
 import math
 from typing import Any
 
@@ -20,14 +19,8 @@ from diffctl.errors import MessageError
 GzDict = dict[str, Any]
 
 
-@functools.cache
-def _message_class(typename: str) -> Any:
-    return types.get_class(typename)
-
-
 def make_msg(typename: str, **fields: Any) -> Any:
-    # The class lookup is cached: every converted sample builds several messages (IMU: 30 → 12 µs).
-    return _message_class(typename)(**fields)
+    return types.get_class(typename)(**fields)
 
 
 # --- building blocks -------------------------------------------------------------------------------------

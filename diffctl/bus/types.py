@@ -117,8 +117,16 @@ def check_service(typename: str) -> str:
     return t
 
 
+_classes: dict[str, Any] = {}
+
+
 def get_class(typename: str):
-    return store().types[check(typename)]
+    """The message class of `typename` (any accepted spelling); looked up once per spelling, since hot paths
+    (the bridge's conversions, robot_state_publisher's TF) build several messages per sample."""
+    cls = _classes.get(typename)
+    if cls is None:
+        cls = _classes[typename] = store().types[check(typename)]
+    return cls
 
 
 @functools.cache

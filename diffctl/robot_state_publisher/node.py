@@ -8,7 +8,6 @@ a second per joint unless `ignore_timestamp`. Frames are link names with `frame_
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -77,7 +76,6 @@ def load_description(params: RspParams, base_dir: Path | None = None) -> Model:
     )
 
 
-@functools.cache
 def _classes(*typenames: str) -> tuple[Any, ...]:
     from diffctl.bus import types
 
