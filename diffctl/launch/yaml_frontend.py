@@ -50,6 +50,12 @@ def _construct_map(loader: _Loader, node: yaml.MappingNode) -> MarkedDict:
     out = MarkedDict()
     out.mark = node.start_mark
     for key_node, value_node in node.value:
+        if not isinstance(key_node, yaml.ScalarNode):
+            m = key_node.start_mark
+            raise LaunchError(
+                "a mapping key must be a plain name or value, not a mapping or list (a stray ':' after one?)",
+                line=m.line + 1, column=m.column + 1,
+            )
         key = loader.construct_object(key_node, deep=True)
         if key in out:
             m = key_node.start_mark

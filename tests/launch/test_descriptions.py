@@ -220,6 +220,10 @@ BAD_YAML = [
     ),
     ("launch:\n- include: {file: nowhere.yaml}\n", r"included launch file .*nowhere\.yaml does not exist"),
     ("launch:\n- executable: {cmd: sleep 1, if: maybe}\n", r"if maybe: 'maybe' is not a boolean \(valid: true, false"),
+    (
+        "launch:\n- node:\n    param:\n    - {name: a, value: b}:\n",
+        r"t\.yaml:4:7: a mapping key must be a plain name or value, not a mapping or list",
+    ),
 ]
 
 
