@@ -206,6 +206,15 @@ class Stack:
             assert self.proc.poll() is None, f"the launch ended:\n{self.output()}"
             time.sleep(0.002)
 
+    def wait_truth(self, until_ns: int, timeout_s: float = 30.0) -> None:
+        """Wait until ground truth stamped `until_ns` or later arrived (it leaves the simulator by its own
+        thread, so it may trail the controller's odometry)."""
+        deadline = time.monotonic() + timeout_s
+        while (last := self.watch.last(self.watch.truth)) is None or last.t_ns < until_ns:
+            assert time.monotonic() < deadline, f"ground truth stuck at {last.t_ns / 1e9 if last else None} s"
+            assert self.proc.poll() is None, f"the launch ended:\n{self.output()}"
+            time.sleep(0.002)
+
     def controllers(self) -> dict[str, str]:
         assert self.node is not None
         cli = self.node.create_client("/controller_manager/list_controllers",

@@ -77,6 +77,7 @@ def check_stack(stack: Stack, odom_topic: str, cmd_topic: str, cmd_type: str, st
     travelled = math.hypot(b.value[0] - a.value[0], b.value[1] - a.value[1]) * 2 * SEC / (b.t_ns - a.t_ns)
     assert travelled == pytest.approx(1.0, rel=0.05), f"odometry travelled {travelled:.4f} m in 2 s at 0.5 m/s"
     # ground truth and odometry agree (both measured from the spawn point)
+    stack.wait_truth(b.t_ns)
     g0, g1 = w.truth[0], w.at(w.truth, b.t_ns)
     truth_moved = math.hypot(g1.value[0] - g0.value[0], g1.value[1] - g0.value[1])
     odom_moved = math.hypot(b.value[0], b.value[1])
@@ -91,6 +92,7 @@ def check_stack(stack: Stack, odom_topic: str, cmd_topic: str, cmd_type: str, st
     a, b = w.at(w.odom, t0), w.at(w.odom, t1)
     turned = math.remainder(b.value[2] - a.value[2], math.tau) * 2 * SEC / (b.t_ns - a.t_ns)
     assert turned == pytest.approx(1.0, rel=0.05), f"odometry turned {turned:.4f} rad in 2 s at 0.5 rad/s"
+    stack.wait_truth(b.t_ns)
     ga, gb = w.at(w.truth, a.t_ns), w.at(w.truth, b.t_ns)
     gt_turned = math.remainder(gb.value[2] - ga.value[2], math.tau) * 2 * SEC / (gb.t_ns - ga.t_ns)
     assert gt_turned == pytest.approx(turned, abs=0.05)
