@@ -6,6 +6,7 @@ tokens, the graph cache, a small executor for service handlers, type-mismatch re
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import os
 import signal
@@ -260,6 +261,13 @@ class Node:
                             qos: wire.QoS | None = None) -> Subscription:
         return self._keep(Subscription(self, topic, typename, callback, latched=latched, depth=depth, raw=raw,
                                        ignore_local=ignore_local, with_info=with_info, reliable=reliable, qos=qos))
+
+    def destroy_subscription(self, sub: Subscription) -> None:
+        """Close `sub` and forget it (rclpy's destroy_subscription): a node that subscribes on demand does not
+        keep every closed subscription until it closes."""
+        sub.close()
+        with contextlib.suppress(ValueError):
+            self._closables.remove(sub)
 
     def create_service(self, name: str, srv_type: str, handler: Callable[[Any], Any], *,
                        qos: wire.QoS | None = None) -> Service:

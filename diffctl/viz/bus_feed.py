@@ -1,9 +1,13 @@
 """The visualizer's bus side: subscriptions that feed the scene, graph and controller polling, publishers.
 
-Subscriptions are a short callback set into `Scene`. Topic rates for the topics panel come from plain
-Zenoh subscribers on the topics' keys (no ROS subscriber appears in the graph, so lazy bridges stay lazy);
-they exist only while a page is open, and image topics are left out unless the camera panel is open, because
-counting them means receiving them.
+Subscriptions are a short callback set into `Scene`. The streams a page draws (/tf, odometry, scans, joint
+states, /clock, ground truth) are subscribed only while a page is open, as foxglove_bridge subscribes for its
+clients: with no one looking, decoding them cost a sixth of a core at rtf 0 and the simulator its share of it.
+The latched topics (/tf_static, robot descriptions) and world statistics stay subscribed, so a page opens
+onto the robot's model and frames at once and the moving parts follow within one period of each stream.
+Topic rates for the topics panel come from plain Zenoh subscribers on the topics' keys (no ROS subscriber
+appears in the graph, so lazy bridges stay lazy); they too exist only while a page is open, and image topics
+are left out unless the camera panel is open, because counting them means receiving them.
 """
 
 from __future__ import annotations
@@ -36,17 +40,21 @@ class BusFeed:
         self._controllers_client: Any = None
 
         sub = node.create_subscription
-        sub("/tf", "tf2_msgs/msg/TFMessage", scene.on_tf)
         sub("/tf_static", "tf2_msgs/msg/TFMessage", lambda m: scene.on_tf(m, static=True), latched=True)
         # Every display's topic, enabled or not: the page can switch a display on at any time.
         for topic in config.topics("robot_model", enabled_only=False):
             sub(topic, "std_msgs/msg/String", lambda m, t=topic: scene.set_robot_description(m.data, t), latched=True)
+        # (topic, type, callback) of the streams taken while a page is open.
+        self._live_specs: list[tuple[str, str, Any]] = [("/tf", "tf2_msgs/msg/TFMessage", scene.on_tf)]
         for topic in config.topics("odometry", enabled_only=False):
-            sub(topic, "nav_msgs/msg/Odometry", lambda m, t=topic: scene.on_odometry(t, m))
+            self._live_specs.append((topic, "nav_msgs/msg/Odometry", lambda m, t=topic: scene.on_odometry(t, m)))
         for topic in config.topics("laser_scan", enabled_only=False):
-            sub(topic, "sensor_msgs/msg/LaserScan", lambda m, t=topic: scene.on_scan(t, m))
-        sub("/joint_states", "sensor_msgs/msg/JointState", scene.on_joint_states)
-        sub("/clock", "rosgraph_msgs/msg/Clock", lambda m: scene.on_clock(m.clock.sec + m.clock.nanosec * 1e-9))
+            self._live_specs.append((topic, "sensor_msgs/msg/LaserScan", lambda m, t=topic: scene.on_scan(t, m)))
+        self._live_specs += [
+            ("/joint_states", "sensor_msgs/msg/JointState", scene.on_joint_states),
+            ("/clock", "rosgraph_msgs/msg/Clock", lambda m: scene.on_clock(m.clock.sec + m.clock.nanosec * 1e-9)),
+        ]
+        self._live_subs: list[Any] = []
         # The simulator side, as Gazebo's own GUI reads it: ground truth and world statistics.
         # A robot shown with a TF prefix is the simulated model of that name (a fleet's robotK): its ground
         # truth places its own odom tree in the world.
@@ -58,22 +66,28 @@ class BusFeed:
         self._truth_subs: list[Any] = []
         self._gz_subs = [zs.declare_subscriber(gz.key("/world/*/stats"), self._on_gz_stats)]
 
-    # ---- gz side ---------------------------------------------------------------------------------------
-
-    def watch_ground_truth(self, on: bool) -> None:
-        """Subscribe to the models' ground-truth poses (on) or drop them (off): while pages are open."""
+    def watch_live(self, on: bool) -> None:
+        """Take the streams a page draws and the models' ground truth (on), or drop them (off): called as the
+        first page opens and the last one closes."""
         with self._lock:
-            if on and not self._truth_subs:
+            if on and not self._live_subs:
+                self._live_subs = [self.node.create_subscription(t, ty, cb) for t, ty, cb in self._live_specs]
                 self._truth_subs = [
                     self.node.session.declare_subscriber(gz.key(f"/model/{m}/pose"),
                                                          lambda s, m=m: self._on_gz_pose(s, m))
                     for m in self._truth_models
                 ]
             elif not on:
-                subs, self._truth_subs = self._truth_subs, []
-                for sub in subs:
+                live, self._live_subs = self._live_subs, []
+                truth, self._truth_subs = self._truth_subs, []
+                for s in live:
+                    with contextlib.suppress(Exception):
+                        self.node.destroy_subscription(s)
+                for sub in truth:
                     with contextlib.suppress(Exception):
                         sub.undeclare()
+
+    # ---- gz side ---------------------------------------------------------------------------------------
 
     def _on_gz_pose(self, sample: Any, model: str) -> None:
         try:
@@ -153,7 +167,7 @@ class BusFeed:
                     topic, "sensor_msgs/msg/Image", lambda m, t=topic: self._on_image(t, m), depth=1
                 )
             elif not on and topic in self._image_subs:
-                self._image_subs.pop(topic).close()
+                self.node.destroy_subscription(self._image_subs.pop(topic))
 
     def _on_image(self, topic: str, msg: Any) -> None:
         self.scene.count(topic)
@@ -183,7 +197,7 @@ class BusFeed:
         self._publisher(job.topic, job.type_name).publish(types.new(job.type_name, fields))
 
     def close(self) -> None:
-        self.watch_ground_truth(False)
+        self.watch_live(False)
         for s in self._gz_subs:
             try:
                 s.undeclare()

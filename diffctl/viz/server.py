@@ -186,7 +186,7 @@ class VizServer:
         authorized = token_matches(query_token(ws.request.path if ws.request else ""), self.token)
         page = _Page(ws, authorized, self.fixed_default)
         self.pages.add(page)
-        self.feed.watch_ground_truth(True)
+        self.feed.watch_live(True)
         self.log.info(f"page connected from {ws.remote_address[0]} ({'can' if authorized else 'cannot'} drive)")
         try:
             await ws.send(to_json(self._hello(page)))
@@ -197,7 +197,7 @@ class VizServer:
         finally:
             self.pages.discard(page)
             if not self.pages:
-                self.feed.watch_ground_truth(False)
+                self.feed.watch_live(False)
             self._release(page, "page closed")
             self._update_image_watch()
 

@@ -17,6 +17,7 @@ from collections import Counter
 from pathlib import Path
 
 import pytest
+from websockets.sync.client import connect as ws_connect
 
 from diffctl.bus import gz, types, wire
 from diffctl.bus.session import domain_id
@@ -41,6 +42,14 @@ OVERSIZED = 4 * 1024 * 1024
 CDR_HEADER = b"\x00\x01\x00\x00"
 
 
+def _page_answers(port: int) -> bool:
+    try:
+        with urllib.request.urlopen(f"http://127.0.0.1:{port}/", timeout=1) as r:
+            return r.status == 200
+    except OSError:
+        return False
+
+
 def payloads(typename: str | None) -> dict[str, bytes]:
     rnd = os.urandom
     out = {
@@ -63,14 +72,18 @@ def test_garbage_on_every_subscribed_topic_is_dropped_and_every_node_keeps_worki
 ) -> None:
     viz_port = free_port()
     stack = start_stack(tmp_path, "viz:=true", f"viz_port:={viz_port}")
+    page = None
     try:
         w = stack.watch
         wait_until(lambda: "rviz2" in pids(stack), 30, "the visualizer started", stack)
         node = stack.node
         assert node is not None
+        # The visualizer takes the streams it draws while a page is open: open one for the whole test.
+        wait_until(lambda: _page_answers(viz_port), 30, "the visualizer's page answers", stack)
+        page = ws_connect(f"ws://127.0.0.1:{viz_port}/ws", open_timeout=10, ping_interval=None)
         # Every (topic, type) some process of the launch subscribes to, from the graph.
         wait_until(
-            lambda: any(e.node == "rviz2" for t in node.graph.topics() for e in node.graph.subscribers(t)),
+            lambda: any(e.node == "rviz2" for e in node.graph.subscribers("/tf")),
             30,
             "the visualizer's subscriptions in the graph",
             stack,
@@ -176,4 +189,6 @@ def test_garbage_on_every_subscribed_topic_is_dropped_and_every_node_keeps_worki
         assert stack.stop(signal.SIGINT) == 0, stack.output()
         assert not stack.survivors()
     finally:
+        if page is not None:
+            page.close()
         stack.kill()

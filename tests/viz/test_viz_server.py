@@ -114,6 +114,41 @@ def test_streams_follow_the_robot_and_teleop_drives_it(fake_robot, viz) -> None:
 
 
 @pytest.mark.slow
+def test_streams_are_taken_only_while_a_page_is_open(viz) -> None:
+    """As foxglove_bridge subscribes for its clients: without a page the visualizer decodes no /tf, odometry,
+    scans, joint states or /clock (the latched /tf_static and description stay); the first page takes them,
+    the last one to close drops them."""
+    node = Node("viz_graph_probe")
+    live = {"/tf", "/joint_states", "/clock", "/diffbot_base_controller/odom", "/scan"}
+
+    def viz_subscribed() -> set[str]:
+        viz_nodes = {e.node for e in node.graph.subscribers("/tf_static") if e.node != node.name}
+        return {t for t in node.graph.topics() for e in node.graph.subscribers(t) if e.node in viz_nodes}
+
+    def settle(pred, what: str) -> set[str]:
+        deadline = time.monotonic() + 10
+        while time.monotonic() < deadline:
+            got = viz_subscribed()
+            if pred(got):
+                return got
+            time.sleep(0.05)
+        raise AssertionError(f"{what}: the visualizer subscribes {sorted(viz_subscribed())}")
+
+    async def page() -> None:
+        async with websockets.connect(f"{viz.ws_url}?token={viz.token}") as ws:
+            await recv_until(ws, lambda m: m["type"] == "hello")
+            got = await asyncio.to_thread(settle, lambda g: live <= g, "with a page open")
+            assert "/tf_static" in got
+
+    try:
+        got = settle(lambda g: "/tf_static" in g, "before any page")
+        assert not live & got
+        asyncio.run(page())
+        settle(lambda g: not live & g and "/tf_static" in g, "after the page closed")
+    finally:
+        node.close()
+
+
 def test_wrong_token_foreign_origin_and_publisher_panel(viz) -> None:
     node = Node("viz_test_listener")
     cmds = Recorder(node, CMD_TOPIC, "geometry_msgs/msg/TwistStamped")
