@@ -49,8 +49,11 @@ def alive(pid: int) -> bool:
         return False
 
 
-def start_stack(tmp_path: Path, *args: str) -> Stack:
-    stack = Stack("sim_control", tmp_path, *args)
+def start_stack(tmp_path: Path, *args: str, rtf: str = "8") -> Stack:
+    """sim_control at a bounded real-time factor: these tests steer the car with a command per odometry sample,
+    and a zero-stamped command expires after cmd_vel_timeout (0.5 s) of sim time. At rtf 0 on a fast machine
+    that is ~15 ms of wall time, which this test process (decoding every topic) cannot promise on two cores."""
+    stack = Stack("sim_control", tmp_path, *args, rtf=rtf)
     stack.connect()
     stack.watch_odom(ODOM)
     stack.wait_controllers_active(CONTROLLERS)

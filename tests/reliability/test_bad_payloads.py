@@ -6,6 +6,7 @@ service. Each is dropped with a rate-limited warning; every node keeps running a
 
 from __future__ import annotations
 
+import contextlib
 import itertools
 import math
 import os
@@ -72,15 +73,15 @@ def test_garbage_on_every_subscribed_topic_is_dropped_and_every_node_keeps_worki
 ) -> None:
     viz_port = free_port()
     stack = start_stack(tmp_path, "viz:=true", f"viz_port:={viz_port}")
-    page = None
-    try:
+    with contextlib.ExitStack() as cleanup:
+        cleanup.callback(stack.kill)
         w = stack.watch
         wait_until(lambda: "rviz2" in pids(stack), 30, "the visualizer started", stack)
         node = stack.node
         assert node is not None
         # The visualizer takes the streams it draws while a page is open: open one for the whole test.
         wait_until(lambda: _page_answers(viz_port), 30, "the visualizer's page answers", stack)
-        page = ws_connect(f"ws://127.0.0.1:{viz_port}/ws", open_timeout=10, ping_interval=None)
+        cleanup.enter_context(ws_connect(f"ws://127.0.0.1:{viz_port}/ws", open_timeout=10, ping_interval=None))
         # Every (topic, type) some process of the launch subscribes to, from the graph.
         wait_until(
             lambda: any(e.node == "rviz2" for e in node.graph.subscribers("/tf")),
@@ -182,13 +183,12 @@ def test_garbage_on_every_subscribed_topic_is_dropped_and_every_node_keeps_worki
         assert max(abs(o[3]) for o in odom) <= 1.0 + 1e-6 and max(abs(o[4]) for o in odom) <= 1.0 + 1e-6
         # Never faster than the limits allow (with slack for the wheels' slip): a jump would show as a huge speed
         # between two poses, however many samples this busy process missed between them.
-        speeds = [moved_m(a.value, b.value) / ((b.t_ns - a.t_ns) / SEC)
-                  for a, b in itertools.pairwise(truth_samples) if b.t_ns > a.t_ns]
+        speeds = [
+            moved_m(a.value, b.value) / ((b.t_ns - a.t_ns) / SEC)
+            for a, b in itertools.pairwise(truth_samples)
+            if b.t_ns > a.t_ns
+        ]
         assert max(speeds) < 1.5, f"the car jumped: {max(speeds):.2f} m/s between two poses"
 
         assert stack.stop(signal.SIGINT) == 0, stack.output()
         assert not stack.survivors()
-    finally:
-        if page is not None:
-            page.close()
-        stack.kill()

@@ -69,7 +69,7 @@ def test_relays_respawn_mid_drive_and_a_dead_teleop_brakes_the_car(stack_env: st
     viz_port = free_port()
     # rtf:=1: cmd_vel_timeout (0.5 s) is then half a second of wall time too, so a hiccup of this busy test
     # process while a relay restarts cannot starve the controller of commands (at rtf:=0 it is ~20 ms).
-    stack = start_stack(tmp_path, "viz:=true", f"viz_port:={viz_port}", "rtf:=1")
+    stack = start_stack(tmp_path, "viz:=true", f"viz_port:={viz_port}", rtf="1")
     procs = Procs()
     try:
         wait_until(lambda: "rviz2" in pids(stack), 30, "the visualizer started", stack)
@@ -242,7 +242,7 @@ def test_flooding_publisher_and_slow_subscriber_leave_the_control_loop_on_period
     that sleeps 0.2 s in every callback on the busiest topics."""
     from diffctl.bus import gz
 
-    stack = start_stack(tmp_path, "rtf:=1")
+    stack = start_stack(tmp_path, rtf="1")
     procs = Procs()
     stats: list[dict] = []
     try:
