@@ -248,12 +248,7 @@ class Client:
         return any(e.type == self.type for e in self.node.graph.servers(self.name))
 
     def wait_for_service(self, timeout: float | None = 5.0) -> bool:
-        deadline = None if timeout is None else time.monotonic() + timeout
-        while not self.service_is_ready():
-            if deadline is not None and time.monotonic() >= deadline:
-                return False
-            time.sleep(0.02)
-        return True
+        return self.node.graph.wait_for(self.service_is_ready, timeout)
 
     def call(self, request: Any = None, timeout: float = 5.0) -> Any:
         if request is None or isinstance(request, dict):

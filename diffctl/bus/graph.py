@@ -29,6 +29,9 @@ class Graph:
         self._listeners: list[Listener] = []
         self._ready = threading.Event()
         self._last_event = time.monotonic()
+        # Bumped on every change, so a waiter (wait_for) wakes when the graph changes instead of polling it.
+        self._generation = 0
+        self._changed = threading.Condition(threading.Lock())
         self._sub = session.liveliness().declare_subscriber(
             f"{wire.LV_PREFIX}/{self._domain}/**", self._on_token, history=True
         )
@@ -51,6 +54,7 @@ class Graph:
                 self._entities[key] = ent
                 listeners = list(self._listeners)
             event = "put"
+        self._bump()
         for cb in listeners:
             try:
                 cb(event, ent)
@@ -83,6 +87,28 @@ class Graph:
         except zenoh.ZError:
             pass
         self._ready.set()
+        self._bump()
+
+    def _bump(self) -> None:
+        with self._changed:
+            self._generation += 1
+            self._changed.notify_all()
+
+    def wait_for(self, condition: Callable[[], bool], timeout_s: float | None) -> bool:
+        """Wait until `condition()` (a question about the graph) holds, re-asking it on each change; False
+        after `timeout_s` (None: no limit)."""
+        deadline = None if timeout_s is None else time.monotonic() + timeout_s
+        while True:
+            with self._changed:
+                generation = self._generation
+            if condition():
+                return True
+            remaining = None if deadline is None else deadline - time.monotonic()
+            if remaining is not None and remaining <= 0:
+                return False
+            with self._changed:
+                if self._generation == generation:
+                    self._changed.wait(remaining)
 
     def settle(self, quiet_s: float = 0.05, max_s: float = 0.4) -> None:
         """Wait until tokens stop arriving for `quiet_s` (at most `max_s`): a one-shot tool's full picture."""

@@ -77,6 +77,27 @@ def test_services_answer_fail_and_time_out(router: str) -> None:
         missing.call({}, timeout=2.0)
 
 
+def test_a_client_waiting_for_its_service_wakes_when_the_server_appears(router: str) -> None:
+    """wait_for_service waits on graph changes (no polling): a server that comes later is found, one that never
+    comes is not, and a wait without limit ends as soon as the server is there."""
+    caller = Node("waiter")
+    cli = caller.create_client("/late/trigger", "std_srvs/srv/Trigger")
+    assert not cli.wait_for_service(0.1)
+    found: list[bool] = []
+    waiter = threading.Thread(target=lambda: found.append(cli.wait_for_service(None)))
+    waiter.start()
+    time.sleep(0.2)
+    assert not found
+    late = Node("late")
+    late.create_service("~/trigger", "std_srvs/srv/Trigger", lambda _r: {"success": True})
+    waiter.join(10)
+    assert found == [True]
+    assert cli.call({}).success is True
+    late.close()
+    assert caller.graph.wait_for(lambda: not cli.service_is_ready(), 10)
+    caller.close()
+
+
 def test_graph_lists_what_exists_and_forgets_what_died(router: str, procs) -> None:
     child = python_child(
         procs,
