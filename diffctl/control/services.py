@@ -171,6 +171,7 @@ class ManagerServices:
             if mc.state is State.ACTIVE:
                 self.cm.switch_controller([], [name], 2)
             self.cm.unload_controller(name)
+        plugin_registry.rescan()
         return {"ok": True}
 
     # --- the manager's own parameters (served by the node's parameter services, as every node's) --------

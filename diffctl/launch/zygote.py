@@ -143,6 +143,11 @@ def preload() -> None:
         _import(name)
     with contextlib.suppress(Exception):
         warm_bus_types()
+    with contextlib.suppress(Exception):
+        from diffctl.control import plugin_registry
+
+        plugin_registry.controller_types()  # scan the installed plugins once, for every controller manager
+        plugin_registry.hardware_plugins()
     # What is imported now lives as long as every component: out of the collector's sight, a component's
     # collections (and its final one at exit, which otherwise walks every module object for a good part of a
     # second on a busy machine) skip it, and its pages stay shared instead of being dirtied by the scans.
