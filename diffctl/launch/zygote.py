@@ -148,6 +148,10 @@ def preload() -> None:
 
         plugin_registry.controller_types()  # scan the installed plugins once, for every controller manager
         plugin_registry.hardware_plugins()
+    with contextlib.suppress(Exception):
+        from diffctl.sim import world
+
+        world.reserve_client()  # the simulator's PyBullet client, connected (no thread, nothing loaded)
     # What is imported now lives as long as every component: out of the collector's sight, a component's
     # collections (and its final one at exit, which otherwise walks every module object for a good part of a
     # second on a busy machine) skip it, and its pages stay shared instead of being dirtied by the scans.
