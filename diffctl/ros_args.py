@@ -12,8 +12,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import yaml
-
 from diffctl.errors import ConfigError, yaml_error
 
 _current: list[str] = []
@@ -57,6 +55,8 @@ def set_current(ros_argv: list[str]) -> None:
 
 def parse_value(text: str) -> Any:
     """A `-p name:=value` value, typed as ROS does (YAML scalar rules: 1 → int, true → bool, [..] → list)."""
+    import yaml  # here, not at the top: every `diffctl` command imports this module, most never parse YAML
+
     try:
         return yaml.safe_load(text) if text != "" else ""
     except yaml.YAMLError:
@@ -67,6 +67,8 @@ def _load_yaml(text: str) -> Any:
     """PyYAML's safe loading on libyaml's parser when PyYAML has it (8× faster on a controllers file: every
     node and controller reads its file at start-up); the error of bad input is the pure-Python parser's, the
     one with the line and column every other file of diffctl reports."""
+    import yaml
+
     loader = getattr(yaml, "CSafeLoader", None)
     if loader is not None:
         try:
@@ -78,6 +80,8 @@ def _load_yaml(text: str) -> Any:
 
 def load_params_file(path: str | Path, node_name: str | None) -> dict[str, Any]:
     """Parameters for `node_name` from a ROS params file (`/**`, `name`, `/ns/name` sections, ros__parameters)."""
+    import yaml
+
     p = Path(path)
     try:
         data = _load_yaml(p.read_text()) or {}
@@ -188,6 +192,8 @@ def build(
         out += ["-r", f"__ns:={namespace}"]
     for f in params_files or []:
         out += ["--params-file", str(f)]
+    import yaml
+
     for k, v in (params or {}).items():
         out += ["-p", f"{k}:={v if isinstance(v, str) else yaml.safe_dump(v, default_flow_style=True).strip()}"]
     for k, v in (remaps or {}).items():
