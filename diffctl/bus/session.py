@@ -120,6 +120,11 @@ def peer_config(endpoint: str | None = None) -> zenoh.Config:
     cfg.insert_json5("transport/shared_memory/enabled", "false")
     cfg.insert_json5("connect/timeout_ms", str(CONNECT_TIMEOUT_MS))
     cfg.insert_json5("connect/exit_on_failure", "true")
+    # A session opened while its router is still starting (a tool started with the launch) tries again after
+    # 0.1 s, not Zenoh's default 1 s: with that, it connected a second after the router was up.
+    # A user's config file keeps its own.
+    if json.loads(cfg.get_json("connect/retry")) is None:
+        cfg.insert_json5("connect/retry", "{period_init_ms: 100, period_max_ms: 1000, period_increase_factor: 2}")
     # Advanced (latched) publishers need timestamps, as rmw_zenoh enables them.
     cfg.insert_json5("timestamping/enabled", "true")
     _apply_overrides(cfg)

@@ -52,13 +52,18 @@ def test_config_files_get_loopback_defaults(tmp_path: Path, monkeypatch: pytest.
     assert value(peer, "connect/endpoints") == ["tls/[::1]:7448"]
     assert value(peer, "scouting/multicast/enabled") is False
     assert value(peer, "transport/auth/usrpwd/user") == "u"  # what the file says is kept
+    # A router still starting is asked again after 0.1 s (Zenoh's default waits a whole second) …
+    assert value(peer, "connect/retry")["period_init_ms"] == 100
     assert session.parse_tcp_endpoint("tls/[::1]:7448") == ("::1", 7448)
 
     explicit = tmp_path / "explicit.json5"
-    explicit.write_text('{ mode: "client", connect: { endpoints: ["tls/10.0.0.1:7448"] } }')
+    explicit.write_text(
+        '{ mode: "client", connect: { endpoints: ["tls/10.0.0.1:7448"], retry: { period_init_ms: 2500 } } }'
+    )
     monkeypatch.setenv("ZENOH_SESSION_CONFIG_URI", str(explicit))
     client = session.peer_config(session.router_endpoint())
     assert value(client, "connect/endpoints") == ["tls/10.0.0.1:7448"]
+    assert value(client, "connect/retry")["period_init_ms"] == 2500  # … unless the file says otherwise
     assert value(client, "listen/endpoints") == []
 
     router = session.router_config(config_file=str(sparse))
