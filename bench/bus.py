@@ -2,7 +2,9 @@
 
 Metrics (budget): `bus_rtt_p50_us` (≤ 150), `bus_rtt_p99_us` (≤ 300), `bus_throughput_msgs_s` (≥ 100,000,
 one-way, every message deserialized by the receiver). The same harness then runs on Cyclone DDS's Python
-binding (bench/bus_dds.py, `cyclonedds_*` keys) so that both are measured in the same run, on the same load.
+binding (bench/bus_dds.py, `cyclonedds_*` keys) so that both are measured in the same run, on the same load,
+and on bare zenoh-python with the same session configuration (bench/bus_zenoh.py, `zenoh_raw_rtt_*`): the
+transport's floor under the bus.
 """
 
 from __future__ import annotations
@@ -110,6 +112,9 @@ def run() -> dict:
         time.sleep(0.2)
         received = count[0] - start_count
         node.close()
+        from bench import bus_zenoh
+
+        raw = bus_zenoh.run(types.serialize(msg, TYPE), SAMPLES, percentile)
         result = {
             "bus_rtt_p50_us": round(statistics.median(rtts), 1),
             "bus_rtt_p99_us": round(percentile(rtts, 0.99), 1),
@@ -118,6 +123,7 @@ def run() -> dict:
             # What the publisher got out; the rest was dropped (reliable keep-last 10 drops under congestion).
             "bus_flood_sent_msgs_s": round(int(sent_line[1]) / duration) if len(sent_line) == 2 else 0,
             "bus_load_avg_1min": round(os.getloadavg()[0], 2),  # the machine is shared: say how busy it was
+            **raw,
         }
     finally:
         close_session()
