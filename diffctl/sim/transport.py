@@ -35,6 +35,11 @@ class Outbox:
     MAX_QUEUED = 512
     MAX_BYTES = 48 * 1024 * 1024
     LARGE_BYTES = 64 * 1024
+    # More than this waiting when the sim thread ends a batch: the thread is starved, not the network. A sim
+    # running flat out (rtf 0) holds the GIL but for the interpreter's forced switches, and a thread that gives
+    # the GIL up in every put gets it back only at the next one (5 ms): it moved ~200 samples a second and the
+    # rest were dropped. The sim thread then puts the backlog itself.
+    INLINE_BACKLOG = 16
 
     def __init__(self) -> None:
         self._items: collections.deque[tuple[Any, bytes]] = collections.deque()
@@ -42,6 +47,8 @@ class Outbox:
         self._bytes = 0
         self.dropped = 0
         self._wake = threading.Event()
+        # Held from taking a sample to its put's return, by whichever thread puts: samples leave in order.
+        self._put_lock = threading.Lock()
         self._stopping = False
         self._holding = False
         self._thread = threading.Thread(target=self._run, name="sim-outbox", daemon=True)
@@ -69,8 +76,15 @@ class Outbox:
 
     def release(self) -> None:
         self._holding = False
-        if self._items:
+        if len(self._items) > self.INLINE_BACKLOG:
+            self.drain()
+        elif self._items:
             self._wake.set()
+
+    def drain(self) -> None:
+        """Put everything waiting, on the calling thread."""
+        while self._put_next():
+            pass
 
     def _drop_large(self) -> None:
         # Oldest large samples first; small ones (clock, IMU, scans) stay. Runs only over budget, under the lock.
@@ -91,15 +105,23 @@ class Outbox:
             self._bytes -= len(item[1])
             return item
 
+    def _put_next(self) -> bool:
+        with self._put_lock:
+            item = self._next()
+            if item is None:
+                return False
+            try:
+                item[0].put(item[1])
+            except Exception:
+                pass  # undeclared while queued: nobody to deliver to
+            return True
+
     def _run(self) -> None:
         while True:
             self._wake.wait()
             self._wake.clear()
-            while (item := self._next()) is not None:
-                try:
-                    item[0].put(item[1])
-                except Exception:
-                    pass  # undeclared while queued: nobody to deliver to
+            while self._put_next():
+                pass
             if self._stopping:
                 return
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import threading
+import time
 
 import numpy as np
 import pytest
@@ -81,3 +82,45 @@ def test_outbox_under_a_frame_burst_drops_old_frames_never_the_clock() -> None:
     assert [p for p in link.sent if p != frame] == clocks  # every clock, in order
     frames = sum(p == frame for p in link.sent)
     assert 0 < frames <= Outbox.MAX_BYTES // len(frame) and outbox.dropped == 59 - frames
+
+
+class _GilReleasingLink:
+    """A publisher whose put gives up the GIL, as zenoh-python's does, and records what it got."""
+
+    def __init__(self) -> None:
+        self.sent: list[bytes] = []
+
+    def put(self, payload: bytes) -> None:
+        time.sleep(0)
+        self.sent.append(payload)
+
+
+def _physics_step(seconds: float) -> None:
+    """CPU work that keeps the GIL but for the interpreter's forced switches, like `stepSimulation` in a loop."""
+    end = time.perf_counter() + seconds
+    while time.perf_counter() < end:
+        pass
+
+
+def test_outbox_loses_nothing_behind_a_sim_thread_running_flat_out() -> None:
+    """At rtf 0 the sim thread never sleeps: a putting thread gets the GIL back only at the next forced switch
+    (5 ms), so it cannot keep up on its own (with INLINE_BACKLOG out of reach, this test saw most samples
+    dropped). The sim thread then puts the backlog itself, and every sample arrives, in order."""
+    from diffctl.sim.transport import Outbox
+
+    outbox = Outbox()
+    link = _GilReleasingLink()
+    expected = []
+    try:
+        for step in range(1500):
+            outbox.hold()
+            for k in range(3):  # a step's due samples: clock, IMU, joint states
+                payload = f"{step}:{k}".encode()
+                outbox.put(link, payload)
+                expected.append(payload)
+            outbox.release()
+            _physics_step(50e-6)
+        assert wait_for(lambda: len(link.sent) + outbox.dropped == len(expected), 10.0)
+    finally:
+        outbox.close()
+    assert outbox.dropped == 0 and link.sent == expected
