@@ -17,7 +17,7 @@ $(STAMP): pyproject.toml
 # no run ever writes it): every component would compile its imports from source at each start, 0.3 s of the
 # fork server's start-up alone. compileall skips what is up to date, so this is cheap when nothing changed.
 bytecode: $(STAMP)
-	@$(BIN)/python -m compileall -q -j 0 diffctl ament_index_python bench >/dev/null
+	@$(BIN)/python -m compileall -q -j 0 diffctl bench >/dev/null
 
 # Chromium (browser tests), Xvfb (the --gui screenshot test), openssl and iproute2 (the security tests'
 # certificates and network-namespace hosts) and cmake (the oracle of the workspace's install-rule index) come

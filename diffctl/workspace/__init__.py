@@ -33,8 +33,8 @@ __all__ = [
     "use_in_children",
 ]
 
-# Holds a top-level `ament_index_python` answering from this package, for child processes.
-PYTHON_PATH = Path(__file__).resolve().parent / "python_path"
+# The one overlay of ROS-named modules (ament_index_python, rclpy, launch, …), for child processes.
+PYTHON_PATH = Path(__file__).resolve().parent.parent / "overlay"
 
 
 def share_dir(package: str) -> Path:
