@@ -53,6 +53,11 @@ def set_current(ros_argv: list[str]) -> None:
     _current = list(ros_argv)
 
 
+def current_argv() -> list[str]:
+    """This process's `--ros-args` as given (for a command that passes them on, as `diffctl run` does)."""
+    return list(_current)
+
+
 def parse_value(text: str) -> Any:
     """A `-p name:=value` value, typed as ROS does (YAML scalar rules: 1 → int, true → bool, [..] → list)."""
     import yaml  # here, not at the top: every `diffctl` command imports this module, most never parse YAML

@@ -31,6 +31,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "bridge": ("diffctl.bridge.cli:bridge", "Bridge simulator topics to ROS topics (ros_gz_bridge)."),
     "viz": ("diffctl.viz.cli:viz", "Browser visualizer (rviz2)."),
     "teleop": ("diffctl.teleop.cli:teleop", "Drive the robot from a keyboard or a game pad."),
+    "run": ("diffctl.cli.run:run", "Run a package's executable: the user's Python nodes from sources (ros2 run)."),
     "pkg": ("diffctl.cli.pkg:pkg", "List packages and where they were found (ros2 pkg)."),
     "joint-state-publisher": (
         "diffctl.joint_state_publisher.cli:joint_state_publisher",

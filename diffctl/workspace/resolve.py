@@ -82,7 +82,9 @@ def _workspace_package(scan: WorkspaceScan, name: str) -> Package:
         raise ConfigError(f"package {name!r} is defined twice in workspace {scan.root}: {paths}")
     manifest = scan.manifests[name]
     index = install_index(manifest)
-    prefix = materialize(workspace_cache(scan.root) / name, name, manifest.path.parent, index)
+    prefix = materialize(
+        workspace_cache(scan.root) / name, name, manifest.path.parent, index, python_sources(scan, name)
+    )
     return Package(
         name,
         ORIGIN_WORKSPACE,
@@ -92,6 +94,21 @@ def _workspace_package(scan: WorkspaceScan, name: str) -> Package:
         manifest.build_type,
         tuple(index.problems),
     )
+
+
+def python_sources(scan: WorkspaceScan, first: str) -> list[Path]:
+    """The source folders of the workspace's Python packages, `first`'s own ahead: what its programs
+    import from (colcon would have installed each into site-packages). A folder counts when it holds
+    `<name>/__init__.py` (ament_python, ament_cmake_python) or a setup.py; `first`'s always does."""
+    found: list[Path] = []
+    for name in [first, *sorted(n for n in scan.manifests if n != first)]:
+        manifest = scan.manifests.get(name)
+        if manifest is None:
+            continue
+        folder = manifest.path.parent
+        if name == first or (folder / name / "__init__.py").is_file() or (folder / "setup.py").is_file():
+            found.append(folder.resolve())
+    return found
 
 
 def find_package(name: str, workspace: Path | None = None) -> Package:

@@ -3,7 +3,8 @@
 setup.py is read with `ast` and only a safe subset is evaluated: literals, module-level names, `+`,
 `%`, f-strings, `os.path.join`, `glob`, `str.format`, `sorted`/`list`, and comprehensions over those.
 Each data file installs to `<dest>/<basename>` (nothing recurses, as setuptools does); console scripts
-install to `lib/<pkg>`. An entry that needs the script to run is reported, not guessed.
+and `scripts=` files install to `lib/<pkg>` (ament_python's setup.cfg sets `install_scripts` there).
+An entry that needs the script to run is reported, not guessed.
 """
 
 from __future__ import annotations
@@ -208,7 +209,21 @@ def _console_scripts(index: InstallIndex, entry_points: Any) -> None:
                 index.console_scripts[name] = target
 
 
-def _read_setup_cfg(index: InstallIndex, package_dir: Path) -> None:
+def _add_scripts(index: InstallIndex, package_dir: Path, package_name: str, scripts: Any, where: str) -> None:
+    if isinstance(scripts, str):
+        scripts = scripts.split()
+    if not isinstance(scripts, (list, tuple)):
+        index.problems.append(f"{where}: scripts is not a list of files")
+        return
+    for f in scripts:
+        path = package_dir / str(f)
+        if not path.is_file():
+            index.problems.append(f"{where}: script {f} does not exist")
+        else:
+            index.add(f"lib/{package_name}/{path.name}", path, program=True)
+
+
+def _read_setup_cfg(index: InstallIndex, package_dir: Path, package_name: str) -> None:
     cfg_path = package_dir / "setup.cfg"
     if not cfg_path.is_file():
         return
@@ -228,6 +243,8 @@ def _read_setup_cfg(index: InstallIndex, package_dir: Path) -> None:
                     files.extend(g(item) if any(c in item for c in "*?[") else [item])
             entries.append((dest, files))
         _add_data_files(index, package_dir, entries, "setup.cfg [options.data_files]")
+    if cfg.has_option("options", "scripts"):
+        _add_scripts(index, package_dir, package_name, cfg.get("options", "scripts"), "setup.cfg [options] scripts")
     if cfg.has_section("options.entry_points") and cfg.has_option("options.entry_points", "console_scripts"):
         _console_scripts(index, {"console_scripts": cfg.get("options.entry_points", "console_scripts")})
 
@@ -235,7 +252,7 @@ def _read_setup_cfg(index: InstallIndex, package_dir: Path) -> None:
 def python_install_index(package_dir: Path, package_name: str) -> InstallIndex:
     """The files `setup.py install` (or colcon's symlink_data) would put under the prefix."""
     index = InstallIndex()
-    _read_setup_cfg(index, package_dir)
+    _read_setup_cfg(index, package_dir, package_name)
     setup_py = package_dir / "setup.py"
     if setup_py.is_file():
         try:
@@ -248,7 +265,7 @@ def python_install_index(package_dir: Path, package_name: str) -> InstallIndex:
             ev = _Evaluator(package_dir)
             _module_names(tree, ev)
             for kw in call.keywords:
-                if kw.arg not in ("data_files", "entry_points"):
+                if kw.arg not in ("data_files", "entry_points", "scripts"):
                     continue
                 # A literal list is read entry by entry, so one entry built by code loses only itself.
                 literal = kw.arg == "data_files" and isinstance(kw.value, (ast.List, ast.Tuple))
@@ -263,6 +280,8 @@ def python_install_index(package_dir: Path, package_name: str) -> InstallIndex:
                         continue
                     if kw.arg == "entry_points":
                         _console_scripts(index, value)
+                    elif kw.arg == "scripts":
+                        _add_scripts(index, package_dir, package_name, value, f"setup.py:{node.lineno}")
                     else:
                         _add_data_files(index, package_dir, [value] if literal else value, f"setup.py:{node.lineno}")
     # colcon installs package.xml and the index marker itself when data_files leaves them out.
