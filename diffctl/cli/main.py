@@ -40,6 +40,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "bag": ("diffctl.bag.cli:bag", "Record and replay rosbag2 MCAP bags (ros2 bag)."),
     "foxglove-bridge": ("diffctl.foxglove.cli:foxglove_bridge", "Foxglove WebSocket server (foxglove_bridge)."),
     "description": ("diffctl.cli.description:description", "Show what the simulator makes of a URDF/xacro/SDF."),
+    "fuel": ("diffctl.fuel.cli:fuel", "Download Gazebo Fuel models into Gazebo's cache (gz fuel)."),
 }
 
 

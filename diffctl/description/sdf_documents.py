@@ -11,6 +11,7 @@ from pathlib import Path
 
 from lxml import etree
 
+from diffctl.description.lenient_xml import parse_lenient
 from diffctl.description.pose import Pose
 from diffctl.description.resources import is_remote, model_file_in, resolve_uri, search_path_for
 from diffctl.description.sdf_values import (
@@ -18,7 +19,6 @@ from diffctl.description.sdf_values import (
     Element,
     child,
     child_text,
-    children,
     fail,
     parse_bool,
     pose_child,
@@ -35,7 +35,7 @@ def doc_from_bytes(
     data: bytes, source: str, base_dir: Path, search_path: tuple[Path, ...], check_files: bool
 ) -> tuple[Element, Doc]:
     try:
-        root = etree.fromstring(data, parser=etree.XMLParser(remove_comments=True, resolve_entities=False))
+        root = parse_lenient(data)
     except etree.XMLSyntaxError as e:
         raise DescriptionError(f"malformed XML: {e.msg}", source=source, line=e.lineno) from None
     placeholder = Doc(source, base_dir, (1, 11), search_path, check_files)
@@ -90,38 +90,81 @@ def stack_key(doc: Doc) -> str:
 @dataclass
 class Include:
     doc: Doc
-    model_el: Element
+    model_el: Element  # the included <model>, or <light> (a Fuel "Sun"): exactly one of them per file
     name: str
     pose: Pose | None
     pose_rel: str | None
     pose_el: Element | None
     static: bool | None
     placement: str | None
+    merge: bool = False
+    uri: str = ""
+
+    @property
+    def is_light(self) -> bool:
+        return self.model_el.tag == "light"
 
 
-def read_include(doc: Doc, inc: Element, stack: tuple[str, ...]) -> Include:
-    uri_el = child(inc, "uri")
-    uri = (uri_el.text or "").strip() if uri_el is not None else ""
-    if not uri:
-        fail(doc, inc, "<include> needs a <uri>", hint="e.g. <uri>model://my_model</uri> or a relative path")
+_skipped: set[str] = set()  # Fuel models left out with $DIFFCTL_FUEL_SKIP_MISSING, reported once per process
+
+
+def _include_target(doc: Doc, uri: str, uri_el: Element) -> Path | None:
+    """The file an include's URI names; None for a Fuel model the user chose to load the world without."""
     if is_remote(uri):
-        fail(
-            doc, uri_el, f"cannot include remote {uri!r}", hint="download the model and put it on GZ_SIM_RESOURCE_PATH"
-        )
-    target = resolve_uri(uri, doc.base_dir, doc.search_path)
+        from diffctl.fuel.resolve import FuelModelUnavailable, resolve_fuel, skip_missing
+
+        try:
+            target = resolve_fuel(uri)
+        except FuelModelUnavailable as e:
+            if skip_missing():
+                if uri not in _skipped:
+                    _skipped.add(uri)
+                    from diffctl.console import warn
+
+                    warn(f"{doc.source}:{uri_el.sourceline}: left out: {e.message}")
+                return None
+            fail(doc, uri_el, e.message, hint=e.hint)
+        except DescriptionError as e:
+            fail(doc, uri_el, e.message, hint=e.hint)
+        if target is None:
+            fail(
+                doc,
+                uri_el,
+                f"cannot include {uri!r}: only Fuel model URLs are fetched over the network",
+                hint="e.g. https://fuel.gazebosim.org/1.0/<owner>/models/<name>[/<version>], a model:// URI or a path",
+            )
+    else:
+        target = resolve_uri(uri, doc.base_dir, doc.search_path)
     if target is not None and target.is_dir():
         target = model_file_in(target)
     if target is None:
         searched = ", ".join(str(d) for d in doc.search_path)
         fail(doc, uri_el, f"included model {uri!r} not found", hint=f"searched {searched}; set GZ_SIM_RESOURCE_PATH")
+    return target
+
+
+def read_include(doc: Doc, inc: Element, stack: tuple[str, ...]) -> Include | None:
+    """The included model (or light); None when it is a missing Fuel model the user chose to skip."""
+    uri_el = child(inc, "uri")
+    uri = (uri_el.text or "").strip() if uri_el is not None else ""
+    if not uri:
+        fail(doc, inc, "<include> needs a <uri>", hint="e.g. <uri>model://my_model</uri> or a relative path")
+    target = _include_target(doc, uri, uri_el)
+    if target is None:
+        return None
     key = str(target.resolve())
     if key in stack:
         fail(doc, uri_el, f"include cycle: {' → '.join([*stack, key])}")
     root, inc_doc = read_file(target, doc.search_path, doc.check_files)
-    models = children(root, "model")
-    if len(models) != 1:
-        fail(inc_doc, root, f"an included file must hold exactly one <model>, found {len(models)}")
-    model_el = models[0]
+    tops = [c for c in root if c.tag in ("model", "light", "actor")]
+    if len(tops) != 1:
+        fail(inc_doc, root, f"an included file must hold exactly one <model> or <light>, found {len(tops)}")
+    model_el = tops[0]
+    if model_el.tag == "actor":
+        fail(inc_doc, model_el, "included <actor>s are not simulated by diffctl", hint="include a <model> or <light>")
+    merge = (inc.get("merge") or "").strip().lower() in ("true", "1")
+    if merge and model_el.tag != "model":
+        fail(doc, inc, f'<include merge="true"> needs a <model>, but {uri!r} holds a <{model_el.tag}>')
     pose_el = child(inc, "pose")
     pose, rel = (None, None)
     if pose_el is not None:
@@ -130,4 +173,4 @@ def read_include(doc: Doc, inc: Element, stack: tuple[str, ...]) -> Include:
     static = parse_bool(doc, static_el, static_el.text or "") if static_el is not None else None
     name = child_text(inc, "name") or required_attr(inc_doc, model_el, "name")
     placement = child_text(inc, "placement_frame") or None
-    return Include(inc_doc, model_el, name, pose, rel, pose_el, static, placement)
+    return Include(inc_doc, model_el, name, pose, rel, pose_el, static, placement, merge, uri)

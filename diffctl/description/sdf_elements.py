@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from pathlib import Path
 
 from lxml import etree
 
@@ -53,12 +54,13 @@ from diffctl.description.sdf_values import (
     required_attr,
     vec3_value,
 )
-from diffctl.errors import suggest
+from diffctl.errors import DescriptionError, suggest
 
 ToLink = Callable[[Pose, str | None, Element | None], Pose]
 
 GEOMETRY_TAGS = ("box", "cylinder", "sphere", "capsule", "plane", "mesh")
 MESH_SUFFIXES = (".obj", ".stl")  # what PyBullet turns into collision and visual shapes
+CONVERTED_SUFFIXES = (".dae",)  # converted once to OBJ (urdf/meshes.py), as for URDF meshes
 LIDAR_SENSOR_TYPES = ("gpu_lidar", "lidar", "gpu_ray", "ray")
 CAMERA_SENSOR_TYPES = {
     "camera": "camera",
@@ -119,11 +121,7 @@ def _parse_mesh(doc: Doc, shape: Element) -> Mesh:
     scale = vec3_value(doc, shape, "scale", (1.0, 1.0, 1.0))
     if not all(s > 0 for s in scale):
         fail(doc, child(shape, "scale"), f"<scale> of a mesh must be positive, got {scale}")
-    if is_remote(uri):
-        if doc.check_files:
-            fail(doc, uri_el, f"mesh {uri!r} is remote", hint="download it and refer to the local file")
-        return Mesh("", uri, scale)
-    path = resolve_uri(uri, doc.base_dir, doc.search_path)
+    path = _fuel_file(doc, uri, uri_el) if is_remote(uri) else resolve_uri(uri, doc.base_dir, doc.search_path)
     if path is None or not path.is_file():
         if doc.check_files:
             fail(
@@ -135,12 +133,41 @@ def _parse_mesh(doc: Doc, shape: Element) -> Mesh:
                 + "; set GZ_SIM_RESOURCE_PATH",
             )
         return Mesh("", uri, scale)
-    if path.suffix.lower() not in MESH_SUFFIXES:
+    suffix = path.suffix.lower()
+    if suffix in CONVERTED_SUFFIXES:
+        if not doc.check_files:
+            return Mesh("", uri, scale)  # TF and outlines do not need the mesh itself: no conversion
+        from diffctl.description.urdf.meshes import convert_to_obj
+
+        try:  # the same COLLADA → OBJ path URDF meshes take
+            return Mesh(str(convert_to_obj(path)), uri, scale)
+        except DescriptionError as e:
+            why = e.message.rpartition("cannot be read: ")[2]
+            fail(doc, uri_el, f"mesh {uri!r} ({path}) cannot be read: {why}")
+    if suffix not in MESH_SUFFIXES:
         if doc.check_files:
-            hint = "supported: " + ", ".join(MESH_SUFFIXES) + " (convert it, e.g. with Blender or meshlab)"
+            hint = "supported: " + ", ".join(MESH_SUFFIXES + CONVERTED_SUFFIXES) + " (convert it, e.g. with Blender)"
             fail(doc, uri_el, f"mesh {uri!r} has format {path.suffix!r}", hint=hint)
         return Mesh("", uri, scale)  # TF and outlines do not need the mesh itself
     return Mesh(str(path), uri, scale)
+
+
+def _fuel_file(doc: Doc, uri: str, uri_el: Element) -> Path | None:
+    """A mesh given as a Fuel file URL (what a downloaded model's FixPaths wrote), from the Fuel cache."""
+    from diffctl.fuel.resolve import FuelModelUnavailable, resolve_fuel
+
+    try:
+        path = resolve_fuel(uri)
+    except DescriptionError as e:
+        if not doc.check_files:
+            return None
+        what = e.message if isinstance(e, FuelModelUnavailable) else f"mesh {uri!r}: {e.message}"
+        fail(doc, uri_el, what, hint=e.hint)
+    if path is None and doc.check_files:
+        fail(
+            doc, uri_el, f"mesh {uri!r} is remote", hint="only Fuel model file URLs are fetched; refer to a local file"
+        )
+    return path
 
 
 def parse_surface(doc: Doc, collision: Element) -> Surface:

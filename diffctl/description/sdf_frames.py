@@ -38,6 +38,13 @@ class Scope:
     names: dict[str, str] = field(default_factory=dict)  # local name → node key
     children: dict[str, Scope] = field(default_factory=dict)
     canonical: str | None = None  # link key
+    merged: list[Scope] = field(default_factory=list)  # views of this scope for `<include merge="true">`d models
+
+    def merged_view(self, proxy_key: str) -> Scope:
+        """This scope's namespace, seen from a merged-in model: its `__model__` is the proxy frame."""
+        view = Scope(prefix=self.prefix, model_key=proxy_key, names=self.names, children=self.children)
+        self.merged.append(view)
+        return view
 
     def lookup(self, ref: str) -> str | None:
         if ref == MODEL_FRAME:

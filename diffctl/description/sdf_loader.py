@@ -8,9 +8,10 @@ names. Any problem raises DescriptionError naming the file, the line and the ele
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
-from diffctl.description.model import Model, World
+from diffctl.description.model import Light, Model, World
 from diffctl.description.pose import Pose
 from diffctl.description.resources import search_path_for
 from diffctl.description.sdf_documents import Include, read_file, read_include, stack_key, text_doc
@@ -42,6 +43,13 @@ def _model_from_root(root: Element, doc: Doc, name: str | None, pose: Pose | Non
     )
 
 
+def included_light(inc: Include) -> Light:
+    """A <light> from an included file (Fuel's "Sun"), with the include's <name> and <pose> applied."""
+    light = parse_light(inc.doc, inc.model_el, Pose())
+    pose = inc.pose if inc.pose is not None else light.pose_world
+    return replace(light, name=inc.name, pose_world=pose)
+
+
 def _world_from_root(root: Element, doc: Doc) -> World:
     worlds = children(root, "world")
     if not worlds:
@@ -54,25 +62,49 @@ def _world_from_root(root: Element, doc: Doc) -> World:
     # World-level frames: models, <frame>s and "world"; a model's pose may be relative_to another of them.
     entries: dict[str, tuple[Pose, str | None, Doc, Element]] = {}
     pending: list[tuple[str, Doc, Element, Include | None]] = []
-    for c in w:
-        if c.tag in ("model", "include", "frame"):
-            if c.tag == "include":
-                inc = read_include(doc, c, (stack_key(doc),))
-                nm, pose, rel, d = inc.name, inc.pose or Pose(), inc.pose_rel, doc
-                if inc.pose is None:
-                    pose, rel, _ = pose_child(inc.doc, inc.model_el)
-            else:
-                inc = None
-                nm = required_attr(doc, c, "name")
-                pose, rel, _ = pose_child(doc, c)
-                if c.tag == "frame" and rel is None:
-                    rel = (c.get("attached_to") or "").strip() or None
-                d = doc
-            if nm in entries or nm == "world":
-                fail(doc, c, f"name {nm!r} is used twice in world {world_name!r}")
-            entries[nm] = (pose, rel, d, c)
-            if c.tag != "frame":
-                pending.append((nm, d, c, inc))
+    lights = []
+    plugins = [parse_plugin(doc, p) for p in children(w, "plugin")]
+    # (document, element, offset): a merged include's models sit in the frame its <pose> gives.
+    todo: list[tuple[Doc, Element, Pose | None]] = [(doc, c, None) for c in w]
+    while todo:
+        d, c, offset = todo.pop(0)
+        if c.tag not in ("model", "include", "frame"):
+            if offset is not None and c.tag == "plugin":
+                plugins.append(parse_plugin(d, c))
+            elif offset is not None and c.tag in ("link", "joint", "gripper"):
+                fail(d, c, f"a <{c.tag}> cannot be merged into a world", hint='merge="true" into a world takes models')
+            continue
+        if c.tag == "include":
+            inc = read_include(d, c, (stack_key(doc),))
+            if inc is None:
+                continue  # a missing Fuel model the user chose to do without (reported once)
+            if inc.is_light:
+                lights.append(included_light(inc))
+                continue
+            nm, pose, rel = inc.name, inc.pose or Pose(), inc.pose_rel
+            if inc.pose is None:
+                pose, rel, _ = pose_child(inc.doc, inc.model_el)
+            if inc.merge:
+                if rel is not None:
+                    fail(d, c, 'relative_to on a world\'s <include merge="true"> is not supported by diffctl')
+                base = offset.compose(pose) if offset is not None else pose
+                todo[:0] = [(inc.doc, e, base) for e in inc.model_el] + [(d, p, base) for p in children(c, "plugin")]
+                continue
+        else:
+            inc = None
+            nm = required_attr(d, c, "name")
+            pose, rel, _ = pose_child(d, c)
+            if c.tag == "frame" and rel is None:
+                rel = (c.get("attached_to") or "").strip() or None
+        if offset is not None:
+            if rel is not None:
+                fail(d, c, 'relative_to inside a world\'s <include merge="true"> is not supported by diffctl')
+            pose = offset.compose(pose)
+        if nm in entries or nm == "world":
+            fail(d, c, f"name {nm!r} is used twice in world {world_name!r}")
+        entries[nm] = (pose, rel, d, c)
+        if c.tag != "frame":
+            pending.append((nm, d, c, inc))
     resolved: dict[str, Pose] = {"world": Pose()}
 
     def world_pose(nm: str, trail: tuple[str, ...]) -> Pose:
@@ -107,14 +139,20 @@ def _world_from_root(root: Element, doc: Doc) -> World:
                     stack=(stack_key(doc), stack_key(inc.doc)),
                     pose_override=pose,
                     placement=inc.placement,
+                    extra_plugins=tuple((d, p) for p in children(c, "plugin")),
                 )
             )
         else:
-            models.append(build_model(d, c, name=nm, parent_world=parent, static=None, stack=(stack_key(doc),)))
+            models.append(
+                build_model(
+                    d, c, name=nm, parent_world=parent, static=None, stack=(stack_key(doc),), pose_override=pose
+                )
+            )
         resolved[nm] = models[-1].pose_world  # placement frames can move it: later references see the result
-    lights = tuple(parse_light(doc, c, Pose()) for c in children(w, "light"))
-    plugins = tuple(parse_plugin(doc, p) for p in children(w, "plugin"))
-    return World(world_name, physics, tuple(models), lights, plugins, doc.source, parse_spherical_coordinates(doc, w))
+    lights = tuple(parse_light(doc, c, Pose()) for c in children(w, "light")) + tuple(lights)
+    return World(
+        world_name, physics, tuple(models), lights, tuple(plugins), doc.source, parse_spherical_coordinates(doc, w)
+    )
 
 
 def load_world(path: str | Path, *, search_path: tuple[str | Path, ...] = (), check_files: bool = True) -> World:

@@ -97,6 +97,12 @@ class _Builder:
                 self._nested(doc, c, scope, required_attr(doc, c, "name"), stack, None)
             elif tag == "include":
                 inc = read_include(doc, c, stack)
+                if inc is None or inc.is_light:
+                    continue  # a skipped missing Fuel model; lights are the world's business
+                self.plugins.extend((doc, p) for p in children(c, "plugin"))  # appended to the included model
+                if inc.merge:
+                    self._merge(doc, c, scope, inc, (*stack, stack_key(inc.doc)))
+                    continue
                 self._nested(
                     inc.doc,
                     inc.model_el,
@@ -120,6 +126,8 @@ class _Builder:
                 scope.canonical = key
             else:
                 first = next((k for k, s in self.links if s is scope), None)
+                if first is None:
+                    first = next((s.canonical for s in scope.merged if s.canonical), None)
                 if first is None:
                     first = next((s.canonical for s in scope.children.values() if s.canonical), None)
                 if first is None:
@@ -164,6 +172,27 @@ class _Builder:
         node.attached_to = sub.canonical
         if placement is not None:
             node.placement = self.graph.resolve_ref(sub, placement, node_doc, node_el, "placement_frame")
+
+    def _merge(self, doc: Doc, include_el: Element, scope: Scope, inc: Include, stack: tuple[str, ...]) -> None:
+        """`<include merge="true">` (SDF 1.9, sdformat's insertIncludedElement): the included model's links,
+        joints, frames, nested models and plugins join `scope` under their own names; what referred to its
+        `__model__` now refers to the proxy frame `_merged__<name>__model__`, attached to its canonical link
+        and posed where the include puts the model."""
+        if inc.pose is not None:
+            pose, rel, pose_el = inc.pose, inc.pose_rel, inc.pose_el
+        else:
+            pose, rel, pose_el = pose_child(inc.doc, inc.model_el)
+        proxy_name = f"_merged__{inc.name}__model__"
+        proxy = Node(scope.prefix + proxy_name, "frame", pose, doc, include_el, relative_ref=rel, pose_el=pose_el)
+        self.graph.add(proxy, scope, proxy_name)
+        self.pose_refs.append(_Ref(proxy, scope, rel, scope.model_key))
+        self.frames.append((proxy.key, scope))
+        view = scope.merged_view(proxy.key)
+        self.collect(inc.doc, inc.model_el, view, stack)
+        proxy.attached_to = view.canonical
+        placement = inc.placement or (inc.model_el.get("placement_frame") or "").strip() or None
+        if placement is not None:
+            proxy.placement = self.graph.resolve_ref(view, placement, doc, include_el, "placement_frame")
 
     def resolve(self, top: Scope) -> None:
         g = self.graph
@@ -410,10 +439,13 @@ def build_model(
     stack: tuple[str, ...],
     pose_override: Pose | None = None,
     placement: str | None = None,
+    extra_plugins: tuple[tuple[Doc, Element], ...] = (),
 ) -> Model:
+    """`extra_plugins`: the <plugin>s of the <include> that brought the model in (sdformat appends them)."""
     b = _Builder(name)
     top = Scope(prefix="", model_key=MODEL_FRAME)
     b.collect(doc, el, top, stack)
+    b.plugins.extend(extra_plugins)
     b.graph.nodes[MODEL_FRAME] = Node(MODEL_FRAME, "model", Pose(), doc, el, attached_to=top.canonical)
     b.resolve(top)
     is_static = static if static is not None else bool_value(doc, el, "static", False)

@@ -188,10 +188,16 @@ def test_missing_files_and_includes(tmp_path: Path) -> None:
     # a description sent over the bus may carry paths of another machine: opt out of file checks
     assert load_model(mesh, check_files=False).links[0].visuals[0].geometry.path == ""
     (tmp_path / "meshes").mkdir()
-    (tmp_path / "meshes" / "x.dae").write_text("<COLLADA/>")
-    mesh.write_text(mesh.read_text().replace("x.stl", "x.dae"))
-    with pytest.raises(DescriptionError, match=r"format '\.dae'.*supported: \.obj, \.stl"):
+    (tmp_path / "meshes" / "x.ply").write_text("ply")
+    mesh.write_text(mesh.read_text().replace("x.stl", "x.ply"))
+    with pytest.raises(DescriptionError, match=r"format '\.ply'.*supported: \.obj, \.stl, \.dae"):
         load_model(mesh)
+    # COLLADA is read (converted as URDF meshes are); a broken one is reported at the SDF line naming it
+    (tmp_path / "meshes" / "x.dae").write_text("<COLLADA/>")
+    mesh.write_text(mesh.read_text().replace("x.ply", "x.dae"))
+    with pytest.raises(DescriptionError, match=r"m\.sdf:3: .*mesh 'meshes/x\.dae'.*cannot be read") as e:
+        load_model(mesh)
+    assert e.value.line == 3
     loop = tmp_path / "loop.sdf"
     loop.write_text('<sdf version="1.8"><model name="m"><include><uri>loop.sdf</uri></include></model></sdf>')
     with pytest.raises(DescriptionError, match="include cycle"):
