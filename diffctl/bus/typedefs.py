@@ -30,6 +30,7 @@ def _cache_file() -> Path:
     h = hashlib.sha256()
     h.update(f"{FORMAT}/{metadata.version('rosbags')}/".encode())
     h.update(Path(interfaces.__file__).read_bytes())
+    h.update(repr((interfaces.MSGS, interfaces.SRVS)).encode())  # the texts read from interface_texts/
     base = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "diffctl"
     return base / f"typedefs-jazzy-{h.hexdigest()[:16]}.json"
 

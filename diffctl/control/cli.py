@@ -237,8 +237,8 @@ def list_hardware_components(manager: str, wait_s: float, verbose: bool) -> None
         row = [c.name, c.type, c.plugin_name, _styled(c.state.label), f"{c.rw_rate} Hz"]
         if verbose:
             row += [
-                "\n".join(f"{i.name} [{_flags(i, True)}]" for i in c.command_interfaces) or "-",
-                "\n".join(f"{i.name} [{_flags(i, False)}]" for i in c.state_interfaces) or "-",
+                "\n".join(f"{i.name} [{i.data_type}] [{_flags(i, True)}]" for i in c.command_interfaces) or "-",
+                "\n".join(f"{i.name} [{i.data_type}] [{_flags(i, False)}]" for i in c.state_interfaces) or "-",
             ]
         rows.append(row)
     _print(table(None, cols, rows))
@@ -247,12 +247,13 @@ def list_hardware_components(manager: str, wait_s: float, verbose: bool) -> None
 @control.command("list_hardware_interfaces")
 @_cm_option
 @_timeout_option
-def list_hardware_interfaces(manager: str, wait_s: float) -> None:
-    """List command and state interfaces with their availability and claims.
+@click.option("-v", "--verbose", is_flag=True, help="Also show each interface's data type.")
+def list_hardware_interfaces(manager: str, wait_s: float, verbose: bool) -> None:
+    """List command and state interfaces with their availability and claims (and data types with -v).
 
     \b
     Example:
-      diffctl control list_hardware_interfaces
+      diffctl control list_hardware_interfaces -v
     """
     from diffctl.console import table
 
@@ -267,9 +268,10 @@ def list_hardware_interfaces(manager: str, wait_s: float) -> None:
                     kind,
                     "yes" if i.is_available else "no",
                     ("yes" if i.is_claimed else "no") if kind == "command" else "-",
+                    *([i.data_type] if verbose else []),
                 ]
             )
-    _print(table(None, ["interface", "kind", "available", "claimed"], rows))
+    _print(table(None, ["interface", "kind", "available", "claimed", *(["data type"] if verbose else [])], rows))
 
 
 def _check(ok: bool, what: str, reason: str = "") -> None:

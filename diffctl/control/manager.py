@@ -67,6 +67,16 @@ class ControllerManager:
         self._active: tuple[ManagedController, ...] = ()
         self._pending: _PendingSwitch | None = None
         self.cycle_count = 0
+        # Called whenever the controllers or the hardware components change state (the node's ~/activity
+        # publisher, as controller_manager's publish_activity).
+        self.on_activity: Callable[[], None] | None = None
+
+    def _activity(self) -> None:
+        if self.on_activity is not None:
+            try:
+                self.on_activity()
+            except Exception as e:  # a failed publish must not fail the transition that caused it
+                self.log.warn(f"could not publish the activity: {hook_message(e)}")
 
     @property
     def update_rate(self) -> int:
@@ -107,7 +117,10 @@ class ControllerManager:
                 self.log.warn(f"deactivating controller '{mc.name}': hardware '{name}' goes to {target.value}")
                 self._deactivate(mc)
             self._refresh_active()
-            return self.rm.set_state(name, target)
+            try:
+                return self.rm.set_state(name, target)
+            finally:
+                self._activity()
 
     # ---------------------------------------------------------------------------------------------- loading
     def set_controller_param(self, name: str, key: str, value: Any) -> None:
@@ -147,6 +160,7 @@ class ControllerManager:
             with self._lock:
                 self.controllers[name] = mc
             self.log.info(f"loaded controller '{name}' ({ctype})")
+            self._activity()
             return mc
 
     def _get(self, name: str) -> ManagedController:
@@ -159,7 +173,10 @@ class ControllerManager:
     def configure_controller(self, name: str) -> None:
         with self._admin:
             mc = self._get(name)
-            mc.configure()
+            try:
+                mc.configure()
+            finally:
+                self._activity()
             if getattr(mc.instance, "is_chainable", False):  # its references become claimable command interfaces
                 with self._lock:
                     self.rm.import_reference_interfaces(name, mc.instance.reference_interfaces)
@@ -186,6 +203,7 @@ class ControllerManager:
                     del self.controllers[name]
                     self.rm.remove_reference_interfaces(name)
                 _close(mc.instance.node)
+                self._activity()
             self.log.info(f"unloaded controller '{name}'")
 
     def _resolve(self, cfg: InterfaceConfiguration, *, command: bool) -> list[str]:
@@ -228,6 +246,7 @@ class ControllerManager:
             if not self.loop_running:
                 with self._lock:
                     self._execute(pending)
+                self._activity()
                 return pending.ok, pending.message
             with self._lock:
                 self._pending = pending
@@ -239,6 +258,7 @@ class ControllerManager:
                         msg = f"Switch controller timed out after {timeout:g} seconds!"
                         self.log.error(msg)
                         return False, msg
+            self._activity()
             return pending.ok, pending.message
 
     def _plan(self, activate: Sequence[str], deactivate: Sequence[str], strictness: int) -> SwitchPlan:
@@ -373,6 +393,7 @@ class ControllerManager:
                 self._deactivate(mc)
             self.rm.fail_component(comp)
         self._refresh_active()
+        self._activity()
 
     def update(self, time_ns: int, period_s: float) -> None:
         with self._lock:
@@ -432,6 +453,7 @@ class ControllerManager:
                 self._execute(_PendingSwitch(plan))
             elif not plan.ok:
                 self.log.error(f"fallback controllers could not be activated: {plan.message}")
+        self._activity()  # the failed controllers' and the fallbacks' new states
 
     # ---------------------------------------------------------------------------------------------- shutdown
     def shutdown(self) -> None:

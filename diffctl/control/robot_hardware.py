@@ -25,6 +25,7 @@ def _iface(it: Ros2ControlInterface) -> InterfaceInfo:
         min=-math.inf if it.min is None else it.min,
         max=math.inf if it.max is None else it.max,
         initial_value=it.initial_value,
+        data_type=it.data_type,
         parameters=dict(it.params),
     )
 

@@ -15,6 +15,7 @@ from diffctl.control.manager import ControllerManager
 from diffctl.errors import DiffctlError
 
 CM = "controller_manager_msgs/srv/"
+ACTIVITY_TYPE = "controller_manager_msgs/msg/ControllerManagerActivity"
 
 class ManagerServices:
     """Registers every service of the manager node on `node` (a bus Node named controller_manager)."""
@@ -39,10 +40,30 @@ class ManagerServices:
         # Parameters first: a spawner sets `<controller>.type` the moment it sees the services.
         self._declare_parameters()
         self.services = [node.create_service(f"~/{name}", CM + srv, h) for name, (srv, h) in handlers.items()]
+        # controller_manager: QoS(1).reliable().transient_local(), published on every change of a controller's
+        # or a hardware component's state; a late subscriber gets the last one.
+        self.activity = node.create_publisher("~/activity", ACTIVITY_TYPE, latched=True, depth=1, reliable=True)
+        cm.on_activity = self.publish_activity
+        self.publish_activity()  # the hardware brought up before the publisher existed
 
     def close(self) -> None:
+        self.cm.on_activity = None
         for s in self.services:
             s.close()
+
+    def publish_activity(self) -> None:
+        """controller_manager_msgs/ControllerManagerActivity: every controller's and component's lifecycle state."""
+        t_ns = self.node.clock.now_ns()
+        with self.cm._lock:
+            controllers = [{"name": n, "state": {"id": mc.state.id, "label": mc.state.value}}
+                           for n, mc in self.cm.controllers.items()]
+            components = [{"name": n, "state": {"id": h.state.id, "label": h.state.value}}
+                          for n, h in self.cm.rm.components.items()]
+        self.activity.publish({
+            "header": {"stamp": {"sec": t_ns // 1_000_000_000, "nanosec": t_ns % 1_000_000_000}, "frame_id": ""},
+            "controllers": controllers,
+            "hardware_components": components,
+        })
 
     # --- controller_manager_msgs ------------------------------------------------------------------------
     def _simple(self, fn: Callable[[str], Any]) -> Callable[[Any], dict[str, Any]]:
@@ -94,11 +115,15 @@ class ManagerServices:
     def _interfaces(self, names: list[str], command: bool) -> list[dict[str, Any]]:
         rm = self.cm.rm
         out = []
+        table = rm.command_interfaces if command else rm.state_interfaces
         for n in names:
             avail = rm.command_available(n) if command else rm.state_available(n)
+            handle = table.get(n)
             out.append(
                 {
                     "name": n,
+                    # the handle's type, as the hardware declared it (ros2_control's default: double)
+                    "data_type": handle.data_type if handle is not None else "double",
                     "is_available": avail,
                     "is_claimed": command and n in rm.claimed,
                 }

@@ -335,6 +335,7 @@ class Ros2ControlInterface:
     params: tuple[tuple[str, str], ...] = ()  # <param name="min">-1</param>, … (min/max/initial_value excluded)
     min: float | None = None
     max: float | None = None
+    data_type: str = "double"  # the element's data_type attribute, as ros2_control's component parser reads it
 
 
 @dataclass(frozen=True)

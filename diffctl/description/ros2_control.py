@@ -15,6 +15,8 @@ from diffctl.description.model import Model, Ros2Control, Ros2ControlInterface, 
 from diffctl.errors import DescriptionError
 
 HARDWARE_TYPES = ("system", "actuator", "sensor")
+# hardware_interface::HandleDataType (ros2_control 4.46): a handle of any other type fails to construct
+DATA_TYPES = ("double", "bool", "float32", "uint8", "int8", "uint16", "int16", "uint32", "int32")
 GZ_ROS2_CONTROL_FILENAMES = ("gz_ros2_control-system", "libgz_ros2_control-system", "ign_ros2_control-system")
 
 
@@ -47,13 +49,21 @@ def _interface(el: etree._Element, source: str) -> Ros2ControlInterface:
     name = (el.get("name") or "").strip()
     if not name:
         _fail(el, source, f"<{el.tag}> needs a name attribute", 'e.g. name="velocity"')
+    data_type = (el.get("data_type") or "double").strip()
+    if data_type not in DATA_TYPES:
+        _fail(el, source, f"<{el.tag} name={name!r}> has data_type {data_type!r}",
+              f"one of {', '.join(DATA_TYPES)} (double when absent)")
     values: dict[str, float | None] = {"initial_value": None, "min": None, "max": None}
     for p in el.findall("param"):
         pname = (p.get("name") or "").strip()
         if pname in values:
-            values[pname] = _number(p, source, pname, (p.text or "").strip())
+            text = (p.text or "").strip()
+            if data_type == "bool" and text.lower() in ("true", "false"):
+                text = "1" if text.lower() == "true" else "0"  # a bool handle's initial_value is true/false
+            values[pname] = _number(p, source, pname, text)
     return Ros2ControlInterface(
-        name, values["initial_value"], _params(el, source, skip=tuple(values)), values["min"], values["max"]
+        name, values["initial_value"], _params(el, source, skip=tuple(values)), values["min"], values["max"],
+        data_type,
     )
 
 

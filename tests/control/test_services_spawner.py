@@ -64,6 +64,17 @@ def test_services_appear_with_the_description_and_serve_every_verb(router, procs
     desc = node.create_publisher("/robot_description", "std_msgs/msg/String", latched=True)
     desc.publish({"data": SDF.read_text()})
     cm.wait("list_controllers", 10.0)
+    # ~/activity: transient local, so this late subscriber still gets the state the manager came up with.
+    activity: list = []
+    node.create_subscription("/controller_manager/activity", "controller_manager_msgs/msg/ControllerManagerActivity",
+                             activity.append, latched=True)
+
+    def last_activity() -> tuple[dict[str, str], dict[str, str]]:
+        a = activity[-1]
+        return ({c.name: c.state.label for c in a.controllers}, {h.name: h.state.label for h in a.hardware_components})
+
+    wait_for(lambda: activity)
+    assert last_activity() == ({}, {"robot": "active"})
 
     types_ = cm.call("list_controller_types")
     assert "diff_drive_controller/DiffDriveController" in types_.types
@@ -77,6 +88,7 @@ def test_services_appear_with_the_description_and_serve_every_verb(router, procs
         "base_link_to_right_wheel/velocity",
     ]
     assert len(ifaces.state_interfaces) == 4 and all(i.is_available for i in ifaces.state_interfaces)
+    assert {i.data_type for i in [*ifaces.command_interfaces, *ifaces.state_interfaces]} == {"double"}
 
     # Spawner: type and params_file come from --param-file; exit 0; a second run skips the load and still exits 0.
     rc, out = run(procs, "spawn", "controller", "diffbot_base_controller", "-p", str(CONFIG))
@@ -86,6 +98,7 @@ def test_services_appear_with_the_description_and_serve_every_verb(router, procs
     (ctrl,) = cm.list_controllers()
     assert (ctrl.state, ctrl.type, ctrl.update_rate) == ("active", "diff_drive_controller/DiffDriveController", 50)
     assert sorted(ctrl.claimed_interfaces) == ["base_link_to_left_wheel/velocity", "base_link_to_right_wheel/velocity"]
+    wait_for(lambda: last_activity()[0] == {"diffbot_base_controller": "active"})
 
     # Failures exit 1 with the reason.
     rc, out = run(procs, "spawn", "controller", "no_such_controller")
@@ -131,8 +144,9 @@ def test_services_appear_with_the_description_and_serve_every_verb(router, procs
     assert rc == 0, out
     rc, out = run(procs, "control", "set_hardware_component_state", "robot", "inactive")
     assert rc == 0, out
-    rc, out = run(procs, "control", "list_hardware_interfaces")
-    assert rc == 0 and "no" in out
+    wait_for(lambda: last_activity()[1] == {"robot": "inactive"})
+    rc, out = run(procs, "control", "list_hardware_interfaces", "-v")
+    assert rc == 0 and "no" in out and "double" in out
     rc, out = run(procs, "control", "set_controller_state", "diffbot_base_controller", "active")
     assert rc == 1 and "not available" in out
     rc, out = run(procs, "control", "set_hardware_component_state", "robot", "active")

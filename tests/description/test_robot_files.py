@@ -192,6 +192,12 @@ def test_ros2_control_block_alone_with_parameters_and_errors() -> None:
     assert (j1.command_interfaces[0].min, j1.command_interfaces[0].max) == (-1.0, 1.0)
     assert j1.state_interfaces[0].initial_value == 0.5 and j1.params == (("mimic", "j0"),)
     assert rc.sensors[0].state_interfaces[0].name == "orientation.x" and rc.gpios[0].name == "io"
+    # ros2_control's component parser: the element's data_type attribute, double when absent
+    assert [i.data_type for i in (*j1.command_interfaces, *j1.state_interfaces)] == ["double", "double"]
+    flag = parse_ros2_control("""<ros2_control name="m" type="system"><hardware><plugin>p</plugin></hardware>
+      <gpio name="io"><state_interface name="flag" data_type="bool"><param name="initial_value">true</param>
+      </state_interface></gpio></ros2_control>""").gpios[0].state_interfaces[0]
+    assert (flag.data_type, flag.initial_value) == ("bool", 1.0)
     bad = [
         ('<ros2_control name="r" type="robot"><hardware><plugin>x</plugin></hardware></ros2_control>', "type 'robot'"),
         ('<ros2_control name="r" type="system"><hardware/></ros2_control>', "<hardware><plugin>"),
@@ -202,6 +208,11 @@ def test_ros2_control_block_alone_with_parameters_and_errors() -> None:
             "'initial_value' must be a number",
         ),
         ("<ros2_control", "malformed XML"),
+        (
+            '<ros2_control name="r" type="system"><hardware><plugin>x</plugin></hardware>\n<gpio name="g">'
+            '<state_interface name="s" data_type="float64"/></gpio></ros2_control>',
+            "data_type 'float64'",
+        ),
     ]
     for text, needle in bad:
         with pytest.raises(DescriptionError) as info:

@@ -20,7 +20,10 @@ JAZZY_WHEELS = {
     "ros-std-msgs": "5.3.6", "ros-geometry-msgs": "5.3.6", "ros-sensor-msgs": "5.3.6", "ros-nav-msgs": "5.3.6",
     "ros-std-srvs": "5.3.6", "ros-visualization-msgs": "5.3.6", "ros-builtin-interfaces": "2.0.3",
     "ros-rcl-interfaces": "2.0.3", "ros-rosgraph-msgs": "2.0.3", "ros-lifecycle-msgs": "2.0.3",
-    "ros-service-msgs": "2.0.3", "ros-type-description-interfaces": "2.0.3",
+    "ros-service-msgs": "2.0.3", "ros-type-description-interfaces": "2.0.3", "ros-action-msgs": "2.0.3",
+    "ros-shape-msgs": "5.3.6", "ros-trajectory-msgs": "5.3.6", "ros-actionlib-msgs": "5.3.6",
+    "ros-diagnostic-msgs": "5.3.6", "ros-stereo-msgs": "5.3.6", "ros-unique-identifier-msgs": "2.5.0",
+    "ros-rmw-dds-common": "3.1.0",
 }
 
 

@@ -66,14 +66,3 @@ def test_project_defined_types_of_jazzy_packages_are_all_checked(oracle: dict) -
         if t.split("/")[0] in covered:
             assert t in oracle, f"{t} (defined in interfaces.py) does not exist in Jazzy"
 
-
-def test_controller_manager_types_match_rosidls_jazzy_build() -> None:
-    # controller_manager_msgs has no wheel; these are the hashes rosidl_generator_c wrote into a Jazzy build
-    # (hardware_component_state__description.c of ros-controls/ros2_control, jazzy branch), where
-    # HardwareComponentState still has the deprecated class_type and HardwareInterface has no data_type.
-    assert types.type_hash("controller_manager_msgs/msg/HardwareComponentState") == (
-        "RIHS01_0ed49e3b2669d3a540536dd4806a301612d0daf93a25bb1eebfd55817416026d")
-    assert types.type_hash("controller_manager_msgs/msg/HardwareInterface") == (
-        "RIHS01_c24ddd0364686a74c1cedc2d015b58a9b7eb107b8644c14a63cd5ed67818145f")
-    assert types.type_hash("lifecycle_msgs/msg/State") == (
-        "RIHS01_dd2d02b82f3ebc858e53c431b1e6e91f3ffc71436fc81d0715214ac6ee2107a0")

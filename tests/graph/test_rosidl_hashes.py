@@ -1,0 +1,43 @@
+"""Types no Jazzy wheel carries, checked against rosidl's own hash of their upstream Jazzy texts.
+
+controller_manager_msgs (ros2_control 4.46, with HardwareInterface.data_type and ControllerManagerActivity),
+control_msgs, tf2_msgs, statistics_msgs and rosbag2_interfaces: rosidl_adapter turns the upstream .msg/.srv
+files (tests/graph/upstream_interfaces) into .idl, rosidl_parser reads them and
+rosidl_generator_type_description hashes them, in a child interpreter (see rosidl_oracle.py). Every hash
+diffctl computes for these packages — a service's request, response and event included — must be that one.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from diffctl.bus import typedefs, types
+from tests.graph import rosidl_oracle
+
+
+@pytest.fixture(scope="module")
+def rosidl_hashes() -> dict[str, str]:
+    return rosidl_oracle.upstream_hashes()
+
+
+def test_every_type_of_these_packages_hashes_as_rosidl_does(rosidl_hashes: dict[str, str]) -> None:
+    pkgs = set(rosidl_oracle.packages())
+    ours = sorted(n for n in typedefs.definitions() if n.split("/")[0] in pkgs)
+    wrong = [f"{t}: {types.type_hash(t)} != rosidl {rosidl_hashes.get(t)}" for t in ours
+             if types.type_hash(t) != rosidl_hashes.get(t)]
+    assert not wrong, "\n".join(wrong)
+    assert len(ours) >= 55, ours
+
+
+def test_every_controller_manager_type_of_jazzy_is_defined(rosidl_hashes: dict[str, str]) -> None:
+    defined = set(typedefs.definitions())
+    upstream = {t for t in rosidl_hashes if t.startswith("controller_manager_msgs/")}
+    assert upstream - defined == set()
+    assert "controller_manager_msgs/msg/ControllerManagerActivity" in defined
+
+
+
+def test_hardware_interface_carries_data_type() -> None:
+    # ros2_control's jazzy branch added data_type in 4.31; without it list_hardware_* have another Zenoh key.
+    _consts, fields = typedefs.definitions()["controller_manager_msgs/msg/HardwareInterface"]
+    assert [f[0] for f in fields] == ["name", "data_type", "is_available", "is_claimed"]
