@@ -52,8 +52,12 @@ def package_prefix(package: str) -> Path:
 
 def use_in_children(workspace: Path | None, env: MutableMapping[str, str] = os.environ) -> None:
     """Make processes started with `env` resolve packages as this one does: the workspace in
-    $DIFFCTL_WORKSPACE, diffctl's ament_index_python first on PYTHONPATH (xacro's `$(find)`)."""
+    $DIFFCTL_WORKSPACE, diffctl's ament_index_python first on PYTHONPATH (xacro's `$(find)`), and the
+    workspace packages' environment hooks applied (GZ_SIM_RESOURCE_PATH …), as sourcing its setup.bash would."""
     if workspace is not None:
         env[WORKSPACE_ENV] = str(workspace)
+        from diffctl.workspace.env_hooks import apply_workspace_hooks
+
+        apply_workspace_hooks(env, workspace)
     parts = [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p and p != str(PYTHON_PATH)]
     env["PYTHONPATH"] = os.pathsep.join([str(PYTHON_PATH), *parts])

@@ -19,15 +19,42 @@ from pathlib import Path
 from diffctl.workspace.cmake_script import PREFIX_SENTINEL, Call, Script
 
 # Keywords that end the list of sources of install(FILES|PROGRAMS|DIRECTORY …).
-_FILE_KEYWORDS = {"DESTINATION", "TYPE", "PERMISSIONS", "CONFIGURATIONS", "COMPONENT", "RENAME", "OPTIONAL",
-                  "EXCLUDE_FROM_ALL"}
-_DIR_KEYWORDS = {"DESTINATION", "TYPE", "FILE_PERMISSIONS", "DIRECTORY_PERMISSIONS", "USE_SOURCE_PERMISSIONS",
-                 "OPTIONAL", "MESSAGE_NEVER", "CONFIGURATIONS", "COMPONENT", "EXCLUDE_FROM_ALL", "FILES_MATCHING",
-                 "PATTERN", "REGEX"}
+_FILE_KEYWORDS = {
+    "DESTINATION",
+    "TYPE",
+    "PERMISSIONS",
+    "CONFIGURATIONS",
+    "COMPONENT",
+    "RENAME",
+    "OPTIONAL",
+    "EXCLUDE_FROM_ALL",
+}
+_DIR_KEYWORDS = {
+    "DESTINATION",
+    "TYPE",
+    "FILE_PERMISSIONS",
+    "DIRECTORY_PERMISSIONS",
+    "USE_SOURCE_PERMISSIONS",
+    "OPTIONAL",
+    "MESSAGE_NEVER",
+    "CONFIGURATIONS",
+    "COMPONENT",
+    "EXCLUDE_FROM_ALL",
+    "FILES_MATCHING",
+    "PATTERN",
+    "REGEX",
+}
 _AMENT_AUTO_KEYWORDS = {"INSTALL_TO_PATH", "INSTALL_TO_SHARE", "CONFIG_EXTRAS", "USE_SCOPED_HEADER_INSTALL_DIR"}
 # install(… TYPE X) without DESTINATION: CMake's default directories.
-_TYPE_DESTINATIONS = {"BIN": "bin", "SBIN": "sbin", "LIB": "lib", "INCLUDE": "include", "SYSCONF": "etc",
-                      "DATA": "share", "DOC": "share/doc"}
+_TYPE_DESTINATIONS = {
+    "BIN": "bin",
+    "SBIN": "sbin",
+    "LIB": "lib",
+    "INCLUDE": "include",
+    "SYSCONF": "etc",
+    "DATA": "share",
+    "DOC": "share/doc",
+}
 
 
 @dataclass(frozen=True)

@@ -16,6 +16,8 @@ from diffctl.errors import ConfigError
 
 # ament_index_python's rule for a valid resource name.
 NAME_RE = re.compile(r"^[a-zA-Z0-9][a-zA-Z0-9_-]+$")
+# colcon-ros' run dependencies: build_export + buildtool_export + exec (and `depend`, which is all of them).
+RUN_DEPEND_TAGS = ("depend", "build_export_depend", "buildtool_export_depend", "exec_depend", "run_depend")
 
 
 @dataclass(frozen=True)
@@ -27,6 +29,8 @@ class PackageManifest:
     path: Path = Path()
     # <export><gazebo_ros gazebo_model_path="…" plugin_path="…"/>: attribute → value, as gz_sim.launch.py reads them
     gazebo_exports: dict[str, str] = field(default_factory=dict)
+    # what colcon-ros records as run dependencies (share/colcon-core/packages/<name>): the order hooks apply in
+    run_depends: tuple[str, ...] = ()
 
 
 def _text(root: etree._Element, tag: str) -> str:
@@ -85,8 +89,14 @@ def _parse_manifest(path: Path) -> PackageManifest:
         gz = export.find("gazebo_ros")
         if gz is not None:
             gazebo = {k: v for k, v in gz.attrib.items() if isinstance(k, str)}
+    run_depends = tuple(
+        dict.fromkeys(
+            (el.text or "").strip() for tag in RUN_DEPEND_TAGS for el in root.findall(tag) if (el.text or "").strip()
+        )
+    )
     return PackageManifest(
         name=name,
+        run_depends=run_depends,
         build_type=build_type,
         version=_text(root, "version"),
         description=" ".join(_text(root, "description").split()),

@@ -1,0 +1,160 @@
+"""Package environment hooks: dsv semantics against colcon-core's own prefix scripts (the oracle), and a
+workspace's `ament_environment_hooks()` applied as sourcing its setup.bash would."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+from pathlib import Path
+
+import pytest
+
+from diffctl.errors import ConfigError
+from diffctl.workspace.env_hooks import HookEnv, apply_install_tree, configure, order_packages, process_dsv
+from tests.workspace.conftest import package_xml, write_tree
+
+colcon_shell = pytest.importorskip("colcon_core.shell.sh", reason="colcon-core is the oracle")
+from colcon_core.shell.dsv import DsvShell  # noqa: E402
+from colcon_core.shell.sh import ShShell  # noqa: E402
+
+
+def _install_package(install: Path, name: str, deps: list[str], files: dict[str, str]) -> Path:
+    """One package of an isolated colcon install tree, its package.dsv written by colcon itself."""
+    prefix = install / name
+    write_tree(prefix, {f"share/colcon-core/packages/{name}": os.pathsep.join(deps), **files})
+    hooks = [(f"share/{name}/local_setup.{ext}", ()) for ext in ("bash", "dsv", "sh", "zsh")]
+    DsvShell().create_package_script(prefix, name, hooks)
+    return prefix
+
+
+def _sourced_by_colcon(install: Path, env: dict[str, str]) -> dict[str, str]:
+    ShShell().create_prefix_script(install, False)  # local_setup.sh + _local_setup_util_sh.py
+    out = subprocess.run(
+        ["sh", "-c", f'. "{install}/local_setup.sh" && env -0'], env=env, capture_output=True, check=True, timeout=60
+    )
+    return dict(item.split("=", 1) for item in out.stdout.decode().split("\0") if "=" in item)
+
+
+def test_dsv_semantics_and_order_match_colcons_prefix_scripts(tmp_path: Path) -> None:
+    install = tmp_path / "install"
+    _install_package(
+        install,
+        "robot_description",
+        [],
+        {
+            "share/robot_description/models/robot/model.config": "<model/>",
+            "share/robot_description/local_setup.dsv": "source;share/robot_description/environment/models.dsv\n"
+            "source;share/robot_description/environment/models.sh\n",
+            # the .dsv sibling wins: this .sh must not run
+            "share/robot_description/environment/models.sh": "export WRONG=1\n",
+            "share/robot_description/environment/models.dsv": "prepend-non-duplicate;GZ_SIM_RESOURCE_PATH;"
+            "share/robot_description/models;share\n"
+            "prepend-non-duplicate-if-exists;GZ_SIM_RESOURCE_PATH;share/robot_description/nowhere\n"
+            "append-non-duplicate;SDF_PATH;share/robot_description/models\n"
+            "set;ROBOT_HOME;share/robot_description\n"
+            "set;ROBOT_MODE;literal-value\n"
+            "set-if-unset;ALREADY;ignored\n"
+            "set-if-unset;FRESH;fresh\n"
+            "# a comment\n",
+        },
+    )
+    _install_package(
+        install,
+        "robot_gazebo",
+        ["robot_description", "not_in_this_tree"],
+        {
+            "share/robot_gazebo/worlds/w.sdf": "<sdf/>",
+            "share/robot_gazebo/local_setup.dsv": "source;share/robot_gazebo/environment/paths.dsv\n"
+            "source;share/robot_gazebo/environment/shell_only.sh\n",
+            "share/robot_gazebo/environment/paths.dsv": "prepend-non-duplicate;GZ_SIM_RESOURCE_PATH;"
+            "share/robot_gazebo/worlds;share\n",
+            "share/robot_gazebo/environment/shell_only.sh": 'export GAZEBO_WORLDS_DIR="$COLCON_CURRENT_PREFIX/w"\n',
+        },
+    )
+    _install_package(
+        install,
+        "another",
+        [],
+        {
+            "share/another/local_setup.dsv": "source;share/another/environment/a.dsv\n",
+            "share/another/environment/a.dsv": "prepend-non-duplicate;GZ_SIM_RESOURCE_PATH;share\n",
+        },
+    )
+    base = {"PATH": os.environ["PATH"], "HOME": str(tmp_path), "GZ_SIM_RESOURCE_PATH": "/usr/share/x", "ALREADY": "1"}
+    expected = _sourced_by_colcon(install, dict(base))
+    env = dict(base)
+    changed = apply_install_tree(env, install)
+    for name in ("GZ_SIM_RESOURCE_PATH", "SDF_PATH", "ROBOT_HOME", "ROBOT_MODE", "ALREADY", "FRESH"):
+        assert env.get(name) == expected.get(name), name
+    assert env["GAZEBO_WORLDS_DIR"] == expected["GAZEBO_WORLDS_DIR"] == f"{install}/robot_gazebo/w"
+    assert "WRONG" not in env and "WRONG" not in expected
+    assert env["GZ_SIM_RESOURCE_PATH"].split(":")[:2] == [
+        f"{install}/robot_gazebo/share",
+        f"{install}/robot_gazebo/share/robot_gazebo/worlds",
+    ]  # dependents end up first: robot_gazebo is sourced after robot_description and prepends
+    assert "GZ_SIM_RESOURCE_PATH" in changed
+
+
+def test_unknown_hook_type_is_one_located_error(tmp_path: Path) -> None:
+    hook = tmp_path / "x.dsv"
+    hook.write_text("prepend-non-duplicate;A;b\nprepend-unique;GZ_SIM_RESOURCE_PATH;share\n")
+    with pytest.raises(ConfigError) as e:
+        process_dsv(HookEnv({}), str(hook), str(tmp_path))
+    assert e.value.line == 2 and "prepend-unique" in str(e.value) and "prepend-non-duplicate" in str(e.value)
+
+
+def test_order_is_topological_then_alphabetical() -> None:
+    assert order_packages({"c": set(), "b": {"a"}, "a": {"c"}, "d": set()}) == ["c", "a", "b", "d"]
+    with pytest.raises(ConfigError, match="circular"):
+        order_packages({"a": {"b"}, "b": {"a"}})
+
+
+def test_configure_substitutes_at_variables_only() -> None:
+    text = "prepend-non-duplicate;GZ_SIM_RESOURCE_PATH;@CMAKE_INSTALL_PREFIX@/share/@PROJECT_NAME@/${X}@NOPE@"
+    assert configure(text, {"PROJECT_NAME": "p", "CMAKE_INSTALL_PREFIX": "/i"}) == (
+        "prepend-non-duplicate;GZ_SIM_RESOURCE_PATH;/i/share/p/${X}"
+    )
+
+
+def test_workspace_hooks_from_cmakelists_reach_the_environment(tmp_path: Path, monkeypatch) -> None:
+    from diffctl.workspace import use_in_children
+
+    ws = tmp_path / "ws"
+    write_tree(
+        ws / "src" / "my_robot_gazebo",
+        {
+            "package.xml": package_xml("my_robot_gazebo").replace(
+                "<export>", "<exec_depend>my_robot_description</exec_depend><export>"
+            ),
+            "CMakeLists.txt": "cmake_minimum_required(VERSION 3.8)\nproject(my_robot_gazebo)\n"
+            "find_package(ament_cmake REQUIRED)\n"
+            "install(DIRECTORY worlds DESTINATION share/${PROJECT_NAME})\n"
+            'ament_environment_hooks("${CMAKE_CURRENT_SOURCE_DIR}/hooks/${PROJECT_NAME}.dsv.in")\n'
+            "ament_package()\n",
+            "hooks/my_robot_gazebo.dsv.in": "prepend-non-duplicate;GZ_SIM_RESOURCE_PATH;share/@PROJECT_NAME@/worlds\n",
+            "worlds/w.sdf": "<sdf/>",
+        },
+    )
+    write_tree(
+        ws / "src" / "my_robot_description",
+        {
+            "package.xml": package_xml("my_robot_description"),
+            "CMakeLists.txt": "project(my_robot_description)\n"
+            "install(DIRECTORY models DESTINATION share/${PROJECT_NAME})\n"
+            "ament_environment_hooks(hooks/models.sh.in)\n"
+            "ament_package()\n",
+            # a shell hook alone is sourced (with ament's helper functions defined, as its local_setup.sh does)
+            "hooks/models.sh.in": 'ament_prepend_unique_value GZ_SIM_RESOURCE_PATH "@CMAKE_INSTALL_PREFIX@/share"\n',
+            "models/robot/model.config": "<model/>",
+        },
+    )
+    env = {"PATH": os.environ["PATH"]}
+    use_in_children(ws, env)
+    paths = env["GZ_SIM_RESOURCE_PATH"].split(":")
+    assert len(paths) == 2
+    gazebo, description = Path(paths[0]), Path(paths[1])
+    assert (gazebo / "w.sdf").is_file()  # the dependent's entry comes first
+    assert (description / "my_robot_description" / "models" / "robot" / "model.config").is_file()
+    before = dict(env)
+    use_in_children(ws, env)  # idempotent, as sourcing twice is
+    assert env == before
