@@ -51,8 +51,12 @@ def _interface(el: etree._Element, source: str) -> Ros2ControlInterface:
         _fail(el, source, f"<{el.tag}> needs a name attribute", 'e.g. name="velocity"')
     data_type = (el.get("data_type") or "double").strip()
     if data_type not in DATA_TYPES:
-        _fail(el, source, f"<{el.tag} name={name!r}> has data_type {data_type!r}",
-              f"one of {', '.join(DATA_TYPES)} (double when absent)")
+        _fail(
+            el,
+            source,
+            f"<{el.tag} name={name!r}> has data_type {data_type!r}",
+            f"one of {', '.join(DATA_TYPES)} (double when absent)",
+        )
     values: dict[str, float | None] = {"initial_value": None, "min": None, "max": None}
     for p in el.findall("param"):
         pname = (p.get("name") or "").strip()
@@ -62,7 +66,11 @@ def _interface(el: etree._Element, source: str) -> Ros2ControlInterface:
                 text = "1" if text.lower() == "true" else "0"  # a bool handle's initial_value is true/false
             values[pname] = _number(p, source, pname, text)
     return Ros2ControlInterface(
-        name, values["initial_value"], _params(el, source, skip=tuple(values)), values["min"], values["max"],
+        name,
+        values["initial_value"],
+        _params(el, source, skip=tuple(values)),
+        values["min"],
+        values["max"],
         data_type,
     )
 

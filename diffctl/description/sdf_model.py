@@ -99,9 +99,9 @@ class _Builder:
                 inc = read_include(doc, c, stack)
                 if inc is None or inc.is_light:
                     continue  # a skipped missing Fuel model; lights are the world's business
-                self.plugins.extend((doc, p) for p in children(c, "plugin"))  # appended to the included model
                 if inc.merge:
                     self._merge(doc, c, scope, inc, (*stack, stack_key(inc.doc)))
+                    self.plugins.extend((doc, p) for p in children(c, "plugin"))  # appended to the included model
                     continue
                 self._nested(
                     inc.doc,
@@ -113,6 +113,7 @@ class _Builder:
                     include_el=c,
                     include_doc=doc,
                 )
+                self.plugins.extend((doc, p) for p in children(c, "plugin"))  # appended to the included model
             elif tag == "plugin":
                 self.plugins.append((doc, c))
             elif tag == "ros2_control":
