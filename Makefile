@@ -5,7 +5,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: run test test-fast bench lint soak system-deps bytecode clean
+.PHONY: run test test-fast bench lint soak system-deps bytecode clean jazzy-oracle
 
 $(STAMP): pyproject.toml
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -34,10 +34,24 @@ system-deps:
 	  fi; \
 	fi
 
+# The oracle of the client library's differential tests: ROS 2 Jazzy's real rclpy with Fast DDS and message
+# packages (cp311 wheels from PyPI) in a venv of their own, never in the project's venv, where they would
+# stand in for a sourced ROS. Idempotent; a failure is an error.
+JAZZY := .venv-jazzy
+JAZZY_REQS := tests/oracle/jazzy-requirements.txt
+
+$(JAZZY)/.installed: $(JAZZY_REQS)
+	@test -x $(JAZZY)/bin/python || $(PYTHON) -m venv $(JAZZY)
+	@$(JAZZY)/bin/python -c 'import sys; assert sys.version_info[:2] == (3, 11), "the ros-jazzy wheels are cp311: make $(JAZZY) with PYTHON=python3.11"'
+	$(JAZZY)/bin/python -m pip install -q -r $(JAZZY_REQS)
+	@touch $@
+
+jazzy-oracle: $(JAZZY)/.installed
+
 run: $(STAMP) bytecode
 	$(BIN)/diffctl launch sim_control
 
-test: $(STAMP) bytecode system-deps
+test: $(STAMP) bytecode system-deps jazzy-oracle
 	$(BIN)/python -m pytest -p no:cacheprovider
 
 test-fast: $(STAMP) bytecode
@@ -53,4 +67,4 @@ soak: $(STAMP) bytecode
 	$(BIN)/python -m bench.soak
 
 clean:
-	rm -rf $(VENV) dist build *.egg-info
+	rm -rf $(VENV) $(JAZZY) dist build *.egg-info

@@ -7,6 +7,11 @@ precompiled `struct.Struct`, and each message object is filled attribute by attr
 dataclass `__init__` would, without the call (most of a small message's cost on Python 3.11). Only
 sequences and arrays of messages call a helper per element.
 
+With `classes` given (a typename → class function), the code reads and builds rosidl-style classes
+instead (diffctl.client.messages): fields are read from and written to their slots (`_x`, no property
+call), `byte` is a 1-byte `bytes`, fixed numeric arrays are writable numpy arrays, numeric sequences
+`array.array`, and bool and byte collections lists, as rosidl_generator_py's C conversions give them.
+
 Alignment is XCDR1's, as ROS 2 uses it: every primitive aligns to its own size, relative to the byte after
 the 4-byte encapsulation header; structs add no alignment of their own, so alignment is tracked
 statically where the position is known modulo 8 and computed at run time only where it is not (after a
@@ -16,6 +21,7 @@ type of the store); big-endian input is left to rosbags.
 
 from __future__ import annotations
 
+import array
 import dataclasses
 import struct
 from collections.abc import Callable
@@ -31,7 +37,11 @@ _CODE = {
     "int32": "i", "uint32": "I", "int64": "q", "uint64": "Q", "float32": "f", "float64": "d",
 }
 _SIZE = {name: struct.calcsize(code) for name, code in _CODE.items()}
+# array.array type codes rosidl_generator_py uses for numeric sequences.
+_TYPECODE = {"int8": "b", "uint8": "B", "char": "B", "int16": "h", "uint16": "H", "int32": "i", "uint32": "I",
+             "int64": "q", "uint64": "Q", "float32": "f", "float64": "d"}
 _HEADER_LE = b"\x00\x01\x00\x00"
+_EMPTY = "structure_needs_at_least_one_member"
 
 
 class Unsupported(Exception):
@@ -98,9 +108,11 @@ def _plain_fields(cls: type, names: list[str]) -> list[tuple[str, Any]] | None:
 class _Decoder(_Emitter):
     """Emits `pos`-advancing code; positions are indices into the whole sample, aligned relative to byte 4."""
 
-    def __init__(self, ts: Any, ns: dict[str, Any], helpers: dict[str, str], pending: list[str]) -> None:
+    def __init__(self, ts: Any, ns: dict[str, Any], helpers: dict[str, str], pending: list[str],
+                 classes: Callable[[str], type] | None = None) -> None:
         super().__init__(ns)
         self.ts = ts
+        self.classes = classes
         self.helpers = helpers  # typename → helper function name
         self.pending = pending  # helper types still to generate
         # Messages are built after every field is read (runs are unpacked late), children first.
@@ -137,7 +149,7 @@ class _Decoder(_Emitter):
             self._align(size)
             self.run_base = self.known
         v = self.var()
-        self.run_fmt += _CODE[base]
+        self.run_fmt += "c" if base == "byte" and self.classes is not None else _CODE[base]
         self.run_vars.append(v)
         self.run_size += size
         return v
@@ -180,6 +192,13 @@ class _Decoder(_Emitter):
         if kind == Nodetype.NAME:
             names = [n for n, _ in _fields(self.ts, spec)]
             args = [self.value(d) for _, d in _fields(self.ts, spec)]
+            if self.classes is not None:
+                cls = self.classes(spec)
+                c, o = self.const(cls, "C"), self.var("o")
+                check = self.const(_check_fields_of(cls), "K")
+                self.builds += [f"{o} = NEW({c})", f"{o}._check_fields = {check}"]
+                self.builds += [f"{o}._{n} = {a}" for n, a in zip(names, args, strict=True) if n != _EMPTY]
+                return o
             cls = self.ts.types[spec]
             c, o = self.const(cls, "C"), self.var("o")
             extra = _plain_fields(cls, names)
@@ -193,6 +212,18 @@ class _Decoder(_Emitter):
             return o
         sub, length = spec
         fixed = kind == Nodetype.ARRAY
+        if self.classes is not None and sub[0] == Nodetype.BASE and sub[1][0] in ("bool", "byte"):
+            # rosidl keeps these as lists: of bools, and of 1-byte bytes
+            n = str(length) if fixed else self.count(1)
+            self.flush()
+            v = self.var("l")
+            if sub[1][0] == "bool":
+                self.lines.append(f"{v} = list(map(bool, buf[pos:pos + {n}]))")
+            else:
+                self.lines.append(f"{v} = [buf[i_:i_ + 1] for i_ in range(pos, pos + {n})]")
+            self.lines.append(f"pos += {n}")
+            self.known = 1
+            return v
         if sub[0] == Nodetype.BASE and sub[1][0] in _CODE:
             size = _SIZE[sub[1][0]]
             dtype = self.const(numpy.dtype(ndtype(sub[1][0])), "D")
@@ -207,7 +238,14 @@ class _Decoder(_Emitter):
                 if not fixed:
                     self.lines.append(f"if {n}:")
                 self.lines.append(f"{guard}pos = ((pos + {size - 5}) & -{size}) + 4")
-            self.lines += [f"{v} = frombuffer(buf, dtype={dtype}, count={n}, offset=pos)", f"pos += {n} * {size}"]
+            if self.classes is None:
+                self.lines.append(f"{v} = frombuffer(buf, dtype={dtype}, count={n}, offset=pos)")
+            elif fixed:
+                self.lines.append(f"{v} = frombuffer(buf, dtype={dtype}, count={n}, offset=pos).copy()")
+            else:
+                code = self.const(_TYPECODE[sub[1][0]], "T")
+                self.lines.append(f"{v} = ARRAY({code}, buf[pos:pos + {n} * {size}])")
+            self.lines.append(f"pos += {n} * {size}")
             if fixed and length:
                 nbytes = length * size
                 self.known = min(max(self.known, size), nbytes & -nbytes)
@@ -243,7 +281,16 @@ class _Decoder(_Emitter):
         return v
 
 
-def _decoder_source(ts: Any, typename: str, ns: dict[str, Any], wrap: bool = False) -> str:
+def _check_fields_of(cls: type) -> bool:
+    """What a rosidl class's constructor sets `_check_fields` to: its module's ROS_PYTHON_CHECK_FIELDS."""
+    import sys
+
+    module = sys.modules.get(cls.__module__)
+    return getattr(module, "ros_python_check_fields", "") == "1"
+
+
+def _decoder_source(ts: Any, typename: str, ns: dict[str, Any], wrap: bool = False,
+                    classes: Callable[[str], type] | None = None) -> str:
     helpers: dict[str, str] = {}
     pending: list[str] = []
     out: list[str] = []
@@ -253,7 +300,7 @@ def _decoder_source(ts: Any, typename: str, ns: dict[str, Any], wrap: bool = Fal
         em.flush()
         return [*em.lines, *em.builds, f"return {expr}, pos"]
 
-    top = _Decoder(ts, ns, helpers, pending)
+    top = _Decoder(ts, ns, helpers, pending, classes)
     top_expr = top.value((Nodetype.NAME, typename))
     top.flush()
     # One frame per message: the header check, the body and the size check are all in `decode`.
@@ -266,8 +313,9 @@ def _decoder_source(ts: Any, typename: str, ns: dict[str, Any], wrap: bool = Fal
         "    return FALLBACK(buf, TYPENAME)",
         "pos = 4",
         *top.lines,
-        "if pos + 3 < blen:  # CDR pads to 4 at most; more left over means a sample of another type",
-        "    raise ValueError(f'CDR message size mismatch for {TYPENAME!r}')",
+        *([] if classes is not None else [
+            "if pos + 3 < blen:  # CDR pads to 4 at most; more left over means a sample of another type",
+            "    raise ValueError(f'CDR message size mismatch for {TYPENAME!r}')"]),
         *top.builds,
         f"return {top_expr}",
     ]
@@ -280,7 +328,7 @@ def _decoder_source(ts: Any, typename: str, ns: dict[str, Any], wrap: bool = Fal
         out += [f"    {line}" for line in top_body]
     while pending:
         name = pending.pop()
-        em = _Decoder(ts, ns, helpers, pending)
+        em = _Decoder(ts, ns, helpers, pending, classes)
         em.known = 1  # elements of a sequence start wherever the previous one ended
         out.append(f"def {helpers[name]}(buf, pos, blen):")
         out += [f"    {line}" for line in body(name, em)]
@@ -288,19 +336,28 @@ def _decoder_source(ts: Any, typename: str, ns: dict[str, Any], wrap: bool = Fal
 
 
 def compile_decoder(
-    ts: Any, typename: str, error: type[Exception] | None = None
+    ts: Any, typename: str, error: type[Exception] | None = None, classes: Callable[[str], type] | None = None
 ) -> Callable[[bytes | bytearray | memoryview], Any]:
-    """`decode(raw)` for one type: raw is a whole CDR sample (header included). Raises ValueError,
+    """`decode(raw)` for one type: raw is a whole CDR sample (header included). With `classes`, bytes left
+    over are ignored, as rclpy's deserialize_message ignores them (Fast DDS's serialize_message leaves up to
+    7 bytes of padding per empty sequence at the end). Raises ValueError,
     struct.error or UnicodeDecodeError on malformed input — or, given `error`, that type with the type name
     and the cause in its message; big-endian samples go through rosbags.
     Only the representation bytes of the header are checked: the two option bytes may count padding."""
     ns: dict[str, Any] = {"U32": struct.Struct("<I").unpack_from, "frombuffer": numpy.frombuffer, "NEW": object.__new__,
                           "MAXSEQ": getattr(ts, "max_sequence_length", 2**32 - 1),
-                          "FALLBACK": ts.deserialize_cdr, "TYPENAME": typename, "ERROR": error}
-    src = _decoder_source(ts, typename, ns, wrap=error is not None)
+                          "FALLBACK": ts.deserialize_cdr, "TYPENAME": typename, "ERROR": error,
+                          "ARRAY": array.array}
+    if classes is not None:
+        ns["FALLBACK"] = _big_endian_unsupported
+    src = _decoder_source(ts, typename, ns, wrap=error is not None, classes=classes)
     ns = {k: v for k, v in ns.items() if isinstance(k, str)}
     exec(compile(src, f"<cdr decoder {typename}>", "exec"), ns)
     return ns["decode"]
+
+
+def _big_endian_unsupported(buf: bytes, typename: str) -> Any:
+    raise ValueError(f"not a little-endian CDR sample (header {bytes(buf[:4])!r})")
 
 
 # ----------------------------------------------------------------------------- encoder
@@ -309,9 +366,11 @@ def compile_decoder(
 class _Encoder(_Emitter):
     """Emits code appending to `parts`; `pos` is the offset in the payload (after the header)."""
 
-    def __init__(self, ts: Any, ns: dict[str, Any], helpers: dict[str, str], pending: list[str]) -> None:
+    def __init__(self, ts: Any, ns: dict[str, Any], helpers: dict[str, str], pending: list[str],
+                 prefix: str = "") -> None:
         super().__init__(ns)
         self.ts = ts
+        self.prefix = prefix  # attribute prefix: "_" reads rosidl classes' slots
         self.helpers = helpers
         self.pending = pending
         self.known = 8
@@ -344,7 +403,7 @@ class _Encoder(_Emitter):
             self.flush()
             self._align(size)
             self.run_base = self.known
-        self.run_fmt += _CODE[base]
+        self.run_fmt += "c" if base == "byte" and self.prefix else _CODE[base]
         self.run_exprs.append(expr)
         self.run_size += size
 
@@ -370,7 +429,8 @@ class _Encoder(_Emitter):
             m = self.var("m")
             self.lines.append(f"{m} = {expr}")  # evaluated now: the run packs it later, when `m` is still bound
             for fname, d in _fields(self.ts, spec):
-                self.value(d, f"{m}.{fname}")
+                # rosidl classes of empty messages have no slot for the placeholder byte IDL requires
+                self.value(d, "0" if self.prefix and fname == _EMPTY else f"{m}.{self.prefix}{fname}")
             return
         sub, length = spec
         fixed = kind == Nodetype.ARRAY
@@ -385,7 +445,9 @@ class _Encoder(_Emitter):
             self.lines += [f"parts.append(U32(len({v})))", "pos += 4"]
             self.known = 4
             n = f"len({v})"
-        if sub[0] == Nodetype.BASE and sub[1][0] in _CODE:
+        if self.prefix and sub[0] == Nodetype.BASE and sub[1][0] == "byte":
+            self.lines += [f"parts.append({v} if {v}.__class__ in BYTESLIKE else b''.join({v}))", f"pos += {n}"]
+        elif sub[0] == Nodetype.BASE and sub[1][0] in _CODE:
             size = _SIZE[sub[1][0]]
             dtype = self.const(numpy.dtype(ndtype(sub[1][0])), "D")
             if size > self.known:
@@ -407,17 +469,17 @@ class _Encoder(_Emitter):
         self.known = 1
 
 
-def _encoder_source(ts: Any, typename: str, ns: dict[str, Any]) -> str:
+def _encoder_source(ts: Any, typename: str, ns: dict[str, Any], prefix: str = "") -> str:
     helpers: dict[str, str] = {}
     pending: list[str] = []
     out = ["def encode(msg, parts, pos):"]
-    top = _Encoder(ts, ns, helpers, pending)
+    top = _Encoder(ts, ns, helpers, pending, prefix)
     top.value((Nodetype.NAME, typename), "msg")
     top.flush()
     out += [f"    {line}" for line in [*top.lines, "return pos"]]
     while pending:
         name = pending.pop()
-        em = _Encoder(ts, ns, helpers, pending)
+        em = _Encoder(ts, ns, helpers, pending, prefix)
         em.known = 1
         em.value((Nodetype.NAME, name), "msg")
         em.flush()
@@ -426,11 +488,12 @@ def _encoder_source(ts: Any, typename: str, ns: dict[str, Any]) -> str:
     return "\n".join(out) + "\n"
 
 
-def compile_encoder(ts: Any, typename: str) -> Callable[[Any], bytes]:
-    """`encode(msg) -> bytes`: the little-endian CDR sample, header included, padded as rosbags pads it."""
+def compile_encoder(ts: Any, typename: str, rosidl: bool = False) -> Callable[[Any], bytes]:
+    """`encode(msg) -> bytes`: the little-endian CDR sample, header included, padded as rosbags pads it.
+    `rosidl`: the message is of a rosidl-style class (fields read from their `_name` slots)."""
     ns: dict[str, Any] = {"U32": struct.Struct("<I").pack, "NUL": b"\x00", "asarray": numpy.asarray,
-                          "ZEROS": tuple(bytes(i) for i in range(8))}
-    src = _encoder_source(ts, typename, ns)
+                          "ZEROS": tuple(bytes(i) for i in range(8)), "BYTESLIKE": (bytes, bytearray)}
+    src = _encoder_source(ts, typename, ns, "_" if rosidl else "")
     ns = {k: v for k, v in ns.items() if isinstance(k, str)}
     exec(compile(src, f"<cdr encoder {typename}>", "exec"), ns)
     inner = ns["encode"]

@@ -88,6 +88,12 @@ def store_with(typename: str):
     return _ensure(typename)
 
 
+def store_described(typename: str):
+    """The typestore with the definitions of `typename` and what it references (enough for hashes and the
+    compiled codecs of classes built elsewhere, e.g. diffctl.client.messages'), no rosbags classes generated."""
+    return _ensure_described(typename)
+
+
 def _all_names() -> list[str]:
     return list(typedefs.definitions())
 

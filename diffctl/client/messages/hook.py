@@ -1,0 +1,116 @@
+"""The meta-path hook that makes interface packages importable: installed at interpreter start, cheap.
+
+`diffctl-interfaces.pth` (in the venv's site-packages, from the editable install or the wheel) imports this
+module; so does `diffctl.client.messages`. It appends one finder to `sys.meta_path`, AFTER the normal path
+finder, so modules on sys.path (a sourced ROS 2's message packages) always win. The finder answers only
+`<pkg>`, `<pkg>.msg|srv|action` and `<pkg>.<kind>._<module>`; for a top-level name it first checks, with
+the standard library only, whether the name can be an interface package (one of diffctl's, a folder of the
+workspace's src/, an install tree's share/<pkg>/msg|srv|action, or named like one), so other failed
+imports cost next to nothing; only then is `finder.py` (the registry, the workspace reader) imported.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import sys
+
+# diffctl's own interface packages (the bus's typestore and the shipped Jazzy texts; a test keeps this in
+# step with the registry): checked without importing the registry.
+KNOWN = frozenset({
+    "action_msgs", "actionlib_msgs", "builtin_interfaces", "control_msgs", "controller_manager_msgs",
+    "diagnostic_msgs", "example_interfaces", "geometry_msgs", "lifecycle_msgs", "nav_msgs", "rcl_interfaces",
+    "rmw_dds_common", "rosbag2_interfaces", "rosgraph_msgs", "sensor_msgs", "service_msgs", "shape_msgs",
+    "statistics_msgs", "std_msgs", "std_srvs", "stereo_msgs", "tf2_msgs", "trajectory_msgs",
+    "type_description_interfaces", "unique_identifier_msgs", "visualization_msgs",
+})
+_SUFFIXES = ("_msgs", "_srvs", "_interfaces", "_actions", "_msg", "_srv", "_action")
+_KINDS = ("msg", "srv", "action")
+_workspace_dirs: dict[str, frozenset[str]] = {}
+_NAME = re.compile(r"<name>([^<]+)</name>")
+
+
+def _workspace_root() -> str | None:
+    env = os.environ.get("DIFFCTL_WORKSPACE")
+    if env:
+        return env
+    try:
+        here = os.getcwd()
+    except OSError:
+        return None
+    while True:
+        if os.path.isdir(os.path.join(here, "src")):
+            return here
+        parent = os.path.dirname(here)
+        if parent == here:
+            return None
+        here = parent
+
+
+def _in_workspace(name: str) -> bool:
+    root = _workspace_root()
+    if root is None:
+        return False
+    dirs = _workspace_dirs.get(root)
+    if dirs is None:
+        found = set()
+        for dirpath, dirnames, filenames in os.walk(os.path.join(root, "src"), followlinks=True):
+            if "package.xml" in filenames:
+                found.add(os.path.basename(dirpath))
+                try:
+                    with open(os.path.join(dirpath, "package.xml"), encoding="utf-8", errors="replace") as f:
+                        m = _NAME.search(f.read())
+                except OSError:
+                    m = None
+                if m:
+                    found.add(m.group(1).strip())
+                dirnames[:] = []
+            else:
+                dirnames[:] = [d for d in dirnames if not d.startswith(".")]
+        dirs = _workspace_dirs[root] = frozenset(found)
+    return name in dirs
+
+
+def _in_install_trees(name: str) -> bool:
+    for var in ("AMENT_PREFIX_PATH", "COLCON_PREFIX_PATH"):
+        for prefix in os.environ.get(var, "").split(os.pathsep):
+            if prefix and any(os.path.isdir(os.path.join(prefix, "share", name, k)) for k in _KINDS):
+                return True
+            if var == "COLCON_PREFIX_PATH" and prefix and os.path.isdir(os.path.join(prefix, name, "share")):
+                return True
+    return False
+
+
+def may_be_interface_package(name: str) -> bool:
+    if name in KNOWN or name.endswith(_SUFFIXES):
+        return True
+    if name in sys.stdlib_module_names or name.startswith("_"):
+        return False
+    return _in_install_trees(name) or _in_workspace(name)
+
+
+class InterfaceFinder:
+    """Finds `<pkg>[.msg|.srv|.action[._module]]` of interface packages nothing earlier on sys.path has."""
+
+    def find_spec(self, fullname: str, path: object = None, target: object = None) -> object:
+        top, _, rest = fullname.partition(".")
+        if rest:
+            parts = rest.split(".")
+            if parts[0] not in _KINDS or len(parts) > 2:
+                return None
+        elif not may_be_interface_package(top):
+            return None
+        from diffctl.client.messages import finder
+
+        return finder.find_spec(fullname)
+
+    def invalidate_caches(self) -> None:
+        _workspace_dirs.clear()
+
+
+def install() -> None:
+    if not any(type(f).__name__ == "InterfaceFinder" for f in sys.meta_path):
+        sys.meta_path.append(InterfaceFinder())
+
+
+install()

@@ -1,0 +1,186 @@
+"""Which interface packages exist and what they define, in ROS's order: workspace, install trees, diffctl's.
+
+diffctl's own types are the bus's (rosbags' Jazzy store and the project's definitions, `diffctl.bus.typedefs`)
+plus the Jazzy texts shipped beside this module (`jazzy/`: services, actions, example_interfaces, and the
+messages whose fields have .msg defaults, which rosbags does not keep). The user's workspace packages
+(`rosidl_generate_interfaces` in their CMakeLists) and install trees' `share/<pkg>/{msg,srv,action}` come
+first: a package is taken whole from the first place that has it. Every definition served is also entered
+in the bus's definitions, so the bus declares, hashes and (de)serializes those types like its own.
+"""
+
+from __future__ import annotations
+
+import threading
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from rosbags.typesys.base import Nodetype
+
+from diffctl.bus import typedefs
+from diffctl.client.messages import idl
+from diffctl.client.messages.idl import InterfaceError, TypeDef
+
+JAZZY = Path(__file__).resolve().parent / "jazzy"
+KINDS = ("msg", "srv", "action")
+_EXT = {"msg": ".msg", "srv": ".srv", "action": ".action"}
+
+
+@dataclass
+class InterfacePackage:
+    name: str
+    origin: str  # "workspace", "AMENT_PREFIX_PATH", "COLCON_PREFIX_PATH" or "diffctl"
+    where: str  # the folder (or "diffctl") it was read from
+    interfaces: dict[str, list[str]] = field(default_factory=dict)  # kind → interface names, sorted
+    files: dict[str, Path] = field(default_factory=dict)  # pkg/kind/Name → its file (not for rosbags' types)
+
+
+_lock = threading.RLock()
+_packages: dict[str, InterfacePackage | None] = {}
+_types: dict[str, TypeDef] = {}
+_diffctl_index: dict[str, InterfacePackage] | None = None
+
+
+def diffctl_packages() -> dict[str, InterfacePackage]:
+    """diffctl's own interface packages: the bus's definitions and the shipped Jazzy texts."""
+    global _diffctl_index
+    if _diffctl_index is None:
+        index: dict[str, InterfacePackage] = {}
+        for name in typedefs.definitions():
+            pkg, kind, short = name.split("/")
+            if kind == "srv":
+                if not short.endswith("_Request"):
+                    continue
+                short = short[: -len("_Request")]
+            p = index.setdefault(pkg, InterfacePackage(pkg, "diffctl", "diffctl"))
+            p.interfaces.setdefault(kind, []).append(short)
+        for path in sorted(JAZZY.glob("*/*/*.*")):
+            pkg, kind = path.parent.parent.name, path.parent.name
+            p = index.setdefault(pkg, InterfacePackage(pkg, "diffctl", "diffctl"))
+            names = p.interfaces.setdefault(kind, [])
+            if path.stem not in names:
+                names.append(path.stem)
+            p.files[f"{pkg}/{kind}/{path.stem}"] = path
+        for p in index.values():
+            p.interfaces = {k: sorted(v) for k, v in p.interfaces.items()}
+        _diffctl_index = index
+    return _diffctl_index
+
+
+def _scan_share(share: Path, name: str, origin: str) -> InterfacePackage | None:
+    p = InterfacePackage(name, origin, str(share))
+    for kind in KINDS:
+        d = share / kind
+        if d.is_dir():
+            files = sorted(d.glob("*" + _EXT[kind]))
+            if files:
+                p.interfaces[kind] = [f.stem for f in files]
+                p.files.update({f"{name}/{kind}/{f.stem}": f for f in files})
+    return p if p.interfaces else None
+
+
+def _install_tree_package(name: str) -> InterfacePackage | None:
+    from diffctl.workspace.prefixes import install_prefixes
+
+    for prefix in install_prefixes():
+        found = _scan_share(prefix.path / "share" / name, name, prefix.origin)
+        if found is not None:
+            return found
+    return None
+
+
+def package(name: str) -> InterfacePackage | None:
+    """The interface package `name` from the first place that has it (None: nowhere), its types loaded."""
+    with _lock:
+        if name in _packages:
+            return _packages[name]
+        from diffctl.client.messages import workspace
+
+        found = workspace.interface_package(name) or _install_tree_package(name) or diffctl_packages().get(name)
+        _packages[name] = found
+        if found is not None:
+            _load(found)
+        return found
+
+
+def _load(p: InterfacePackage) -> None:
+    defs = typedefs.definitions()
+    loaded: list[TypeDef] = []
+    if p.origin == "diffctl":
+        for kind, names in p.interfaces.items():
+            for short in names:
+                full = f"{p.name}/{kind}/{short}"
+                path = p.files.get(full)
+                if path is not None:
+                    loaded += idl.interface_defs(full, path.read_text(encoding="utf-8"), str(path))
+                elif kind == "srv":
+                    parts = [f"{full}_Request", f"{full}_Response", f"{full}_Event", full]
+                    loaded += [TypeDef(n, *map(list, defs[n])) for n in parts]
+                else:
+                    loaded.append(TypeDef(full, *map(list, defs[full])))
+    else:
+        for full, path in p.files.items():
+            try:
+                text = path.read_text(encoding="utf-8")
+            except OSError as e:
+                raise InterfaceError(f"cannot read: {e.strerror}", source=str(path)) from None
+            loaded += idl.interface_defs(full, text, str(path))
+    for td in loaded:
+        _types[td.name] = td
+    # What they reference from other packages must be known before the bus can hash or encode them.
+    for td in loaded:
+        for dep in referenced_packages(td):
+            if dep != p.name and package(dep) is None:
+                where = p.files.get(td.name.rsplit("_", 1)[0]) or p.files.get(td.name)
+                raise InterfaceError(
+                    f"{td.name} uses a type of package {dep!r}, which is nowhere: {searched(dep)}",
+                    source=str(where) if where else p.where)
+    for td in loaded:
+        defs[td.name] = (td.constants, td.fields)
+
+
+def referenced_packages(td: TypeDef) -> set[str]:
+    out = set()
+    for _, desc in td.fields:
+        while desc[0] in (Nodetype.ARRAY, Nodetype.SEQUENCE):
+            desc = desc[1][0]
+        if desc[0] == Nodetype.NAME:
+            out.add(desc[1].split("/")[0])
+    return out
+
+
+def lookup(typename: str) -> TypeDef | None:
+    """The definition of one message type (`pkg/msg/T`, `pkg/srv/T_Request`, `pkg/action/T_Goal`, …)."""
+    td = _types.get(typename)
+    if td is None and package(typename.split("/")[0]) is not None:
+        td = _types.get(typename)
+    return td
+
+
+def searched(name: str) -> str:
+    """Where a package was looked for, for the error that says it is nowhere."""
+    from diffctl.client.messages import workspace
+    from diffctl.workspace.prefixes import install_prefixes
+
+    places = [workspace.describe()]
+    prefixes = install_prefixes()
+    if prefixes:
+        places.append("install trees " + ", ".join(f"{p.path}/share/{name}" for p in prefixes))
+    else:
+        places.append("install trees (AMENT_PREFIX_PATH and COLCON_PREFIX_PATH are empty)")
+    places.append(f"diffctl's types ({len(diffctl_packages())} packages)")
+    return "; ".join(places)
+
+
+def all_package_names() -> list[str]:
+    from diffctl.client.messages import workspace
+
+    return sorted({*diffctl_packages(), *workspace.interface_package_names()})
+
+
+def reset() -> None:
+    """Forget what was loaded (tests that build workspaces)."""
+    global _diffctl_index
+    with _lock:
+        _packages.clear()
+        _types.clear()
+        _diffctl_index = None
