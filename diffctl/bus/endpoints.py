@@ -181,8 +181,12 @@ class Subscription:
 
 class Service:
     def __init__(self, node: Node, name: str, srv_type: str, handler: Callable[[Any], Any], *,
-                 qos: wire.QoS | None = None) -> None:
+                 qos: wire.QoS | None = None, raw: bool = False) -> None:
+        """`raw`: `handler(query)` gets each zenoh Query on Zenoh's thread and answers later with `reply`
+        (the client library queues requests for its executor); otherwise `handler(request) -> response`
+        runs on the session's service threads."""
         self.node = node
+        self.raw = raw
         self.name = node.resolve(name)
         self.type = types.check_service(srv_type)
         self.handler = handler
@@ -199,6 +203,9 @@ class Service:
         self._token = node.session.liveliness().declare_token(token)
 
     def _on_query(self, query: zenoh.Query) -> None:
+        if self.raw:
+            self.handler(query)
+            return
         # Handlers may block (a controller switch waits for the control loop): run them off the zenoh thread.
         self.node.context.executor_submit(self._handle, query)
 
@@ -226,6 +233,16 @@ class Service:
             self.node.log.error(f"service {self.name} failed: {type(e).__name__}: {e}")
             query.reply_err(f"{type(e).__name__}: {e}")
             return
+        query.reply(query.key_expr, data, attachment=wire.pack_attachment(seq, time.time_ns(), gid))
+
+    def reply(self, query: zenoh.Query, data: bytes) -> None:
+        """Answer a query taken in raw mode with a serialized response (the request's id echoed back)."""
+        seq, gid = 0, self._gid
+        if query.attachment is not None:
+            try:
+                seq, _, gid = wire.unpack_attachment(query.attachment.to_bytes())
+            except MessageError:
+                pass
         query.reply(query.key_expr, data, attachment=wire.pack_attachment(seq, time.time_ns(), gid))
 
     def close(self) -> None:
@@ -286,7 +303,54 @@ class Client:
                                hint="`diffctl service list` shows the services that exist")
             time.sleep(0.02)
 
+    def call_raw_async(self, data: bytes, on_reply: Callable[[bytes | None, str | None], None], *,
+                       timeout_s: float = 3600.0) -> int:
+        """Send a serialized request; `on_reply(response_bytes, None)` or `on_reply(None, error)` later, on a
+        Zenoh thread. A request that found no queryable while the graph shows a server (its route not yet
+        propagated) is sent again for up to 2 s; with no server at all it stays unanswered, as in ROS."""
+        with self._lock:
+            seq = next(self._seq)
+        attachment = wire.pack_attachment(seq, time.time_ns(), self._gid)
+        first = time.monotonic()
+
+        def send() -> None:
+            answered = False
+
+            def got(r: Any) -> None:
+                nonlocal answered
+                if r.ok is not None:
+                    answered = True
+                    on_reply(r.ok.payload.to_bytes(), None)
+                    return
+                err = r.err.payload.to_string()
+                if err.strip().lower() != "timeout":
+                    answered = True
+                    on_reply(None, err)
+
+            def done() -> None:
+                if answered or self.closed:
+                    return
+                if time.monotonic() - first < 2.0 and self.service_is_ready():
+                    t = threading.Timer(0.02, send)
+                    t.daemon = True
+                    t.start()
+
+            try:
+                self.node.session.get(
+                    self._key, handler=zenoh.handlers.Callback(got, done), payload=data, attachment=attachment,
+                    target=zenoh.QueryTarget.ALL_COMPLETE, consolidation=zenoh.ConsolidationMode.NONE,
+                    timeout=timeout_s,
+                )
+            except zenoh.ZError as e:
+                on_reply(None, str(e))
+
+        send()
+        return seq
+
+    closed = False
+
     def close(self) -> None:
+        self.closed = True
         try:
             self._token.undeclare()
         except Exception:

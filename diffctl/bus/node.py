@@ -124,14 +124,21 @@ class Node:
         params: dict[str, Any] | None = None,
         session: zenoh.Session | None = None,
         allow_undeclared_parameters: bool = True,
+        parameter_store: ParameterStore | None = None,
+        rosout: bool = True,
+        parameter_services: bool = True,
     ) -> None:
+        """`parameter_store` replaces the default store (the client library's, with rclpy's semantics);
+        `rosout` and `parameter_services` False leave those standard endpoints out (rclpy's enable_rosout and
+        start_parameter_services)."""
         self.name = validate_name(name)
         self.namespace = "/" + namespace.strip("/") if namespace and namespace != "/" else "/"
         self.params: dict[str, Any] = dict(params or {})
         if "use_sim_time" in self.params:
             # Launch files pass it as text ("true") as often as a bool; ROS reads both.
             self.params["use_sim_time"] = _as_bool(self.params["use_sim_time"])
-        self.parameters = ParameterStore(self.params, allow_undeclared=allow_undeclared_parameters)
+        self.parameters = parameter_store if parameter_store is not None else ParameterStore(
+            self.params, allow_undeclared=allow_undeclared_parameters)
         self.session = session or open_session()
         self.context = _context(self.session)
         self.domain = self.context.domain
@@ -145,9 +152,10 @@ class Node:
         )
         # Every ROS node's standard endpoints: /rosout, parameter services and events, type descriptions.
         self._builtin_services: dict[str, Service] = {}
-        self._rosout = self._keep(Rosout(self))
-        self._parameter_services = self._keep(ParameterServices(self))
-        self._builtin_services.update(self._parameter_services.services)
+        self._rosout = self._keep(Rosout(self)) if rosout else None
+        self._parameter_services = self._keep(ParameterServices(self)) if parameter_services else None
+        if self._parameter_services is not None:
+            self._builtin_services.update(self._parameter_services.services)
         self.clock = Clock(False)
         # The parameter says what the node was told; the constructor argument may still keep its clock on wall
         # time (a controller runs on its manager's clock, not its own /clock subscription).
@@ -160,8 +168,12 @@ class Node:
                                   ParameterDescriptor(type="bool", read_only=True)):
             self._type_descriptions = self._keep(TypeDescriptionService(self))
             self._builtin_services[self._type_descriptions.service.name] = self._type_descriptions.service
-            for ep in [*self._parameter_services.services.values(), self._parameter_services.events,
-                       self._rosout.pub, self._type_descriptions.service]:
+            builtin: list[Any] = [self._type_descriptions.service]
+            if self._parameter_services is not None:
+                builtin += [*self._parameter_services.services.values(), self._parameter_services.events]
+            if self._rosout is not None:
+                builtin.append(self._rosout.pub)
+            for ep in builtin:
                 self._type_descriptions.use(ep.type)
         sim = sim_param if use_sim_time is None else use_sim_time
         self.clock = Clock(_as_bool(sim))
@@ -265,19 +277,23 @@ class Node:
     def destroy_subscription(self, sub: Subscription) -> None:
         """Close `sub` and forget it (rclpy's destroy_subscription): a node that subscribes on demand does not
         keep every closed subscription until it closes."""
-        sub.close()
+        self.destroy(sub)
+
+    def destroy(self, endpoint: Any) -> None:
+        """Close any endpoint or timer of this node now and forget it."""
+        (endpoint.cancel if isinstance(endpoint, Timer) else endpoint.close)()
         with contextlib.suppress(ValueError):
-            self._closables.remove(sub)
+            self._closables.remove(endpoint)
 
     def create_service(self, name: str, srv_type: str, handler: Callable[[Any], Any], *,
-                       qos: wire.QoS | None = None) -> Service:
+                       qos: wire.QoS | None = None, raw: bool = False) -> Service:
         full = self.resolve(name)
         builtin = self._builtin_services.pop(full, None)
         if builtin is not None:
             # A component serving one of the node's standard services itself (the controller manager's own
             # set_parameters, kept while it moves onto declared parameters) replaces the built-in one.
             builtin.close()
-        return self._keep(Service(self, name, srv_type, handler, qos=qos))
+        return self._keep(Service(self, name, srv_type, handler, qos=qos, raw=raw))
 
     def create_client(self, name: str, srv_type: str, *, qos: wire.QoS | None = None) -> Client:
         return self._keep(Client(self, name, srv_type, qos=qos))

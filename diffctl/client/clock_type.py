@@ -1,0 +1,12 @@
+"""rclpy.clock_type.ClockType, with rcl's values."""
+
+from __future__ import annotations
+
+import enum
+
+
+class ClockType(enum.IntEnum):
+    UNINITIALIZED = 0
+    ROS_TIME = 1
+    SYSTEM_TIME = 2
+    STEADY_TIME = 3

@@ -1,0 +1,124 @@
+"""rclpy's exception types, with the messages rclpy gives them."""
+
+from __future__ import annotations
+
+from typing import Any
+
+
+class NotInitializedException(Exception):
+    """Raised when the rclpy context is used before init() or after shutdown()."""
+
+    def __init__(self, *args: Any) -> None:
+        Exception.__init__(self, "rclpy.init() has not been called", *args)
+
+
+class NoTypeSupportImportedException(Exception):
+    def __init__(self, *args: Any) -> None:
+        Exception.__init__(self, "no type_support imported", *args)
+
+
+class NameValidationException(Exception):
+    """A node, namespace or topic name that ROS's validators reject."""
+
+    def __init__(self, name_type: str, name: str, error_msg: str, invalid_index: int) -> None:
+        self.name_type = name_type
+        self.name = name
+        self.error_msg = error_msg
+        self.invalid_index = invalid_index
+        Exception.__init__(
+            self, f"Invalid {name_type}: {error_msg}:\n  '{name}'\n   {' ' * invalid_index}^"
+        )
+
+
+class InvalidNodeNameException(NameValidationException):
+    def __init__(self, name: str, error_msg: str, invalid_index: int, *args: Any) -> None:
+        NameValidationException.__init__(self, "node name", name, error_msg, invalid_index)
+
+
+class InvalidNamespaceException(NameValidationException):
+    def __init__(self, name: str, error_msg: str, invalid_index: int, *args: Any) -> None:
+        NameValidationException.__init__(self, "namespace", name, error_msg, invalid_index)
+
+
+class InvalidTopicNameException(NameValidationException):
+    def __init__(self, name: str, error_msg: str, invalid_index: int, *args: Any) -> None:
+        NameValidationException.__init__(self, "topic name", name, error_msg, invalid_index)
+
+
+class InvalidServiceNameException(NameValidationException):
+    def __init__(self, name: str, error_msg: str, invalid_index: int, *args: Any) -> None:
+        NameValidationException.__init__(self, "service name", name, error_msg, invalid_index)
+
+
+class ParameterException(Exception):
+    """Base of the parameter errors; the names involved end the message, as in rclpy."""
+
+    def __init__(self, error_msg: str, parameters: Any, *args: Any) -> None:
+        Exception.__init__(self, f"{error_msg}: {parameters}")
+
+
+class ParameterNotDeclaredException(ParameterException):
+    def __init__(self, parameters: Any, *args: Any) -> None:
+        ParameterException.__init__(self, "Invalid access to undeclared parameter(s)", parameters, *args)
+
+
+class ParameterAlreadyDeclaredException(ParameterException):
+    def __init__(self, parameters: Any, *args: Any) -> None:
+        ParameterException.__init__(self, "Parameter(s) already declared", parameters, *args)
+
+
+class InvalidParameterException(ParameterException):
+    def __init__(self, parameter: Any, *args: Any) -> None:
+        ParameterException.__init__(self, "Invalid parameter name", parameter, *args)
+
+
+class InvalidParameterValueException(ParameterException):
+    def __init__(self, parameter: Any, value: Any, reason: str, *args: Any) -> None:
+        Exception.__init__(
+            self, f"Invalid parameter value ({value}) for parameter. Reason: {reason}: {parameter}"
+        )
+
+
+class InvalidParameterTypeException(ParameterException):
+    def __init__(self, desired_parameter: Any, expected_type: str, *args: Any) -> None:
+        Exception.__init__(
+            self,
+            f"Trying to set parameter '{desired_parameter._name}' to '{desired_parameter._value}' of type "
+            f"'{desired_parameter._type_.name}', expecting type '{expected_type}': {desired_parameter._name}",
+        )
+
+
+class ParameterImmutableException(ParameterException):
+    def __init__(self, parameter: Any, *args: Any) -> None:
+        ParameterException.__init__(self, "Attempted to modify read-only parameter", parameter, *args)
+
+
+class ParameterUninitializedException(ParameterException):
+    def __init__(self, parameter: Any, *args: Any) -> None:
+        ParameterException.__init__(self, "Attempted to get uninitialized parameter", parameter, *args)
+
+
+class ROSInterruptException(Exception):
+    def __init__(self, *args: Any) -> None:
+        Exception.__init__(self, "rclpy.shutdown() has been called", *args)
+
+
+class InvalidHandle(Exception):
+    pass
+
+
+class InvalidQoSProfileException(Exception):
+    def __init__(self, *args: Any) -> None:
+        Exception.__init__(self, "Invalid QoSProfile", *args)
+
+
+class UnsupportedEventTypeError(Exception):
+    pass
+
+
+class RCLError(RuntimeError):
+    """rclpy's RCLError (a RuntimeError): a failure the rcl layer would report."""
+
+
+class InvalidQosOverridesError(Exception):
+    pass

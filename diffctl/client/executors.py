@@ -1,0 +1,398 @@
+"""rclpy.executors: Single- and MultiThreadedExecutor with rclpy's scheduling.
+
+One wait yields, in order: tasks in progress (newest first), ready waitables, then node by node its ready
+timers, subscriptions, guard conditions, clients and services — one callback per ready entity per wait, so
+a busy subscription cannot starve a timer. An entity handed out is left out of the next waits until its
+handler has taken its work (`_executor_event`); callback groups decide whether a handler may begin. The wait
+itself is `waiting.SIGNAL`: Zenoh threads, timers' due times, guards, tasks and shutdown end it.
+"""
+
+from __future__ import annotations
+
+import os
+import threading
+import time
+import warnings
+from collections.abc import Callable, Generator
+from concurrent.futures import ThreadPoolExecutor
+from typing import Any
+
+from diffctl.client import waiting
+from diffctl.client.context import Context, get_default_context
+from diffctl.client.task import Future, Task
+
+
+class ExternalShutdownException(Exception):
+    """The context was shut down (rclpy.shutdown() or a signal) while an executor was waiting."""
+
+
+class ShutdownException(Exception):
+    """The executor itself was shut down."""
+
+
+class TimeoutException(Exception):
+    """No work became ready within the timeout."""
+
+
+class ConditionReachedException(Exception):
+    """The wait condition became true."""
+
+
+class TimeoutObject:
+    """A timeout that spin_until_future_complete shortens as time passes."""
+
+    def __init__(self, timeout: float) -> None:
+        self.timeout = timeout
+
+
+class _WorkTracker:
+    def __init__(self) -> None:
+        self._num_work_executing = 0
+        self._cond = threading.Condition()
+
+    def __enter__(self) -> None:
+        with self._cond:
+            self._num_work_executing += 1
+
+    def __exit__(self, *exc: Any) -> None:
+        with self._cond:
+            self._num_work_executing -= 1
+            self._cond.notify_all()
+
+    def wait(self, timeout_sec: float | None = None) -> bool:
+        if timeout_sec is not None and timeout_sec < 0:
+            timeout_sec = None
+        with self._cond:
+            return self._cond.wait_for(lambda: self._num_work_executing == 0, timeout_sec)
+
+
+def _timeout_s(timeout_sec: Any) -> float | None:
+    t = timeout_sec.timeout if isinstance(timeout_sec, TimeoutObject) else timeout_sec
+    if t is None or t < 0:
+        return None
+    return float(t)
+
+
+class Executor:
+    """The base: nodes, tasks and the wait; subclasses decide which thread runs a handler."""
+
+    _notify_on_handler = False
+
+    def __init__(self, *, context: Context | None = None) -> None:
+        self._context = get_default_context() if context is None else context
+        self._nodes: set[Any] = set()
+        self._nodes_lock = threading.RLock()
+        self._tasks: list[tuple[Task, Any, Any]] = []
+        self._tasks_lock = threading.Lock()
+        self._is_shutdown = False
+        self._work_tracker = _WorkTracker()
+        self._shutdown_lock = threading.Lock()
+        self._cb_iter: Generator[tuple[Task, Any, Any], None, None] | None = None
+        self._last_args: Any = None
+        self._last_kwargs: Any = None
+        self._context.on_shutdown(self.wake)
+
+    @property
+    def context(self) -> Context:
+        return self._context
+
+    def __enter__(self) -> Executor:
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.shutdown()
+
+    def create_task(self, callback: Callable[..., Any], *args: Any, **kwargs: Any) -> Task:
+        task = Task(callback, args, kwargs, executor=self)
+        with self._tasks_lock:
+            self._tasks.append((task, None, None))
+        waiting.notify()
+        return task
+
+    def shutdown(self, timeout_sec: float | None = None) -> bool:
+        with self._shutdown_lock:
+            if not self._is_shutdown:
+                self._is_shutdown = True
+                waiting.notify()
+        if not self._work_tracker.wait(timeout_sec):
+            return False
+        with self._nodes_lock:
+            self._nodes = set()
+        self._cb_iter = None
+        self._last_args = None
+        self._last_kwargs = None
+        return True
+
+    def add_node(self, node: Any) -> bool:
+        with self._nodes_lock:
+            if node not in self._nodes:
+                self._nodes.add(node)
+                node.executor = self
+                waiting.notify()
+                return True
+            return False
+
+    def remove_node(self, node: Any) -> None:
+        with self._nodes_lock:
+            if node in self._nodes:
+                self._nodes.remove(node)
+                waiting.notify()
+
+    def wake(self) -> None:
+        waiting.notify()
+
+    def get_nodes(self) -> list[Any]:
+        with self._nodes_lock:
+            return list(self._nodes)
+
+    def spin(self) -> None:
+        while self._context.ok() and not self._is_shutdown:
+            self.spin_once()
+
+    def spin_until_future_complete(self, future: Future, timeout_sec: float | None = None) -> None:
+        future.add_done_callback(lambda _f: self.wake())
+        if timeout_sec is None or timeout_sec < 0:
+            while self._context.ok() and not future.done() and not self._is_shutdown:
+                self.spin_once_until_future_complete(future, timeout_sec)
+            return
+        end = time.monotonic() + timeout_sec
+        left = TimeoutObject(timeout_sec)
+        while self._context.ok() and not future.done() and not self._is_shutdown:
+            self.spin_once_until_future_complete(future, left)
+            now = time.monotonic()
+            if now >= end:
+                return
+            left.timeout = end - now
+
+    def spin_once(self, timeout_sec: float | None = None) -> None:
+        raise NotImplementedError()
+
+    def spin_once_until_future_complete(self, future: Future, timeout_sec: Any = None) -> None:
+        raise NotImplementedError()
+
+    # ------------------------------------------------------------------ handlers
+    def _make_handler(self, entity: Any, node: Any, take: Callable[[Any], Any]) -> Task:
+        entity._executor_event = True
+        notify = self._notify_on_handler
+
+        async def handler(entity: Any, is_shutdown: bool, work_tracker: _WorkTracker) -> None:
+            if is_shutdown or not entity.callback_group.beginning_execution(entity):
+                entity._executor_event = False
+                waiting.notify()
+                return
+            with work_tracker:
+                call_coroutine = take(entity)
+                entity._executor_event = False
+                if notify:
+                    waiting.notify()
+                try:
+                    if call_coroutine is not None:
+                        await call_coroutine()
+                finally:
+                    entity.callback_group.ending_execution(entity)
+                    if notify:
+                        waiting.notify()
+
+        task = Task(handler, (entity, self._is_shutdown, self._work_tracker), executor=self)
+        with self._tasks_lock:
+            self._tasks.append((task, entity, node))
+        return task
+
+    def _take_plain(self, entity: Any) -> Any:
+        return entity._take()
+
+    def _take_client(self, client: Any) -> Any:
+        return client._take(self)
+
+    def _take_waitable(self, waitable: Any) -> Any:
+        data = waitable.take_data()
+
+        async def _execute() -> None:
+            for future in waitable._futures:
+                future._set_executor(self)
+            await waitable.execute(data)
+
+        return _execute
+
+    def can_execute(self, entity: Any) -> bool:
+        return not entity._executor_event and entity.callback_group.can_execute(entity)
+
+    # ------------------------------------------------------------------ the wait
+    def _wait_for_ready_callbacks(self, timeout_sec: Any = None, nodes: list[Any] | None = None,
+                                  condition: Callable[[], bool] = lambda: False,
+                                  ) -> Generator[tuple[Task, Any, Any], None, None]:
+        timeout = _timeout_s(timeout_sec)
+        deadline = None if timeout is None else time.monotonic() + timeout
+        signal = waiting.SIGNAL
+        yielded_work = False
+        while not yielded_work and not self._is_shutdown and not condition():
+            nodes_to_use = self.get_nodes() if nodes is None else nodes
+
+            with self._tasks_lock:
+                tasks = list(self._tasks)
+            if tasks:
+                for task, entity, node in reversed(tasks):
+                    if not task.executing() and not task.done() and (node is None or node in nodes_to_use):
+                        yielded_work = True
+                        yield task, entity, node
+                with self._tasks_lock:
+                    self._tasks = [t for t in self._tasks if not t[0].done()]
+
+            generation = signal.generation
+            subs: list[Any] = []
+            timers: list[Any] = []
+            clients: list[Any] = []
+            services: list[Any] = []
+            guards: list[Any] = []
+            waitables: list[Any] = []
+            can = self.can_execute
+            for node in nodes_to_use:
+                subs.extend(e for e in node._subscriptions if can(e))
+                timers.extend(e for e in node._timers if can(e))
+                clients.extend(e for e in node._clients if can(e))
+                services.extend(e for e in node._services if can(e))
+                guards.extend(e for e in node._guards if can(e))
+                waitables.extend(e for e in node._waitables if can(e))
+
+            if not _any_ready(subs, timers, guards, clients, services, waitables):
+                wait_s = None if deadline is None else max(0.0, deadline - time.monotonic())
+                for e in (*timers, *waitables):
+                    due = e._due_in_s()
+                    if due is not None and (wait_s is None or due < wait_s):
+                        wait_s = due
+                if wait_s is None or wait_s > 0:
+                    signal.wait(generation, wait_s)
+            if self._is_shutdown:
+                raise ShutdownException()
+            if not self._context.ok():
+                raise ExternalShutdownException()
+
+            timers_ready = {id(e) for e in timers if e.is_ready()}
+            subs_ready = {id(e) for e in subs if e._ready()}
+            clients_ready = {id(e) for e in clients if e._ready()}
+            services_ready = {id(e) for e in services if e._ready()}
+            guard_ids = {id(e) for e in guards}
+            waitable_ids = {id(e) for e in waitables}
+
+            for node in nodes_to_use:
+                for wt in list(node._waitables):
+                    if id(wt) in waitable_ids and wt.is_ready(None) and wt.callback_group.can_execute(wt):
+                        yielded_work = True
+                        yield self._make_handler(wt, node, self._take_waitable), wt, node
+            for node in nodes_to_use:
+                for tmr in list(node._timers):
+                    if id(tmr) in timers_ready and tmr.is_ready() and tmr.callback_group.can_execute(tmr):
+                        yielded_work = True
+                        yield self._make_handler(tmr, node, self._take_plain), tmr, node
+                for sub in list(node._subscriptions):
+                    if id(sub) in subs_ready and sub.callback_group.can_execute(sub):
+                        yielded_work = True
+                        yield self._make_handler(sub, node, self._take_plain), sub, node
+                for gc in list(node._guards):
+                    if id(gc) in guard_ids and gc._executor_triggered and gc.callback_group.can_execute(gc):
+                        yielded_work = True
+                        yield self._make_handler(gc, node, self._take_plain), gc, node
+                for cli in list(node._clients):
+                    if id(cli) in clients_ready and cli.callback_group.can_execute(cli):
+                        yielded_work = True
+                        yield self._make_handler(cli, node, self._take_client), cli, node
+                for srv in list(node._services):
+                    if id(srv) in services_ready and srv.callback_group.can_execute(srv):
+                        yielded_work = True
+                        yield self._make_handler(srv, node, self._take_plain), srv, node
+
+            if timeout == 0 or (deadline is not None and time.monotonic() >= deadline):
+                raise TimeoutException()
+        if self._is_shutdown:
+            raise ShutdownException()
+        if condition():
+            raise ConditionReachedException()
+
+    def wait_for_ready_callbacks(self, *args: Any, **kwargs: Any) -> tuple[Task, Any, Any]:
+        while True:
+            if self._cb_iter is None or self._last_args != args or self._last_kwargs != kwargs:
+                self._last_args = args
+                self._last_kwargs = kwargs
+                self._cb_iter = self._wait_for_ready_callbacks(*args, **kwargs)
+            try:
+                return next(self._cb_iter)
+            except StopIteration:
+                self._cb_iter = None
+
+
+def _any_ready(subs: list[Any], timers: list[Any], guards: list[Any], clients: list[Any], services: list[Any],
+               waitables: list[Any]) -> bool:
+    return (any(e._ready() for e in subs) or any(e.is_ready() for e in timers) or any(e._ready() for e in guards)
+            or any(e._ready() for e in clients) or any(e._ready() for e in services)
+            or any(w.is_ready(None) for w in waitables))
+
+
+class SingleThreadedExecutor(Executor):
+    """Runs callbacks in the thread that calls spin; a callback's exception propagates out of spin."""
+
+    def _spin_once_impl(self, timeout_sec: Any = None, wait_condition: Callable[[], bool] = lambda: False) -> None:
+        try:
+            handler, _entity, _node = self.wait_for_ready_callbacks(timeout_sec, None, wait_condition)
+        except (ShutdownException, TimeoutException, ConditionReachedException):
+            self._cb_iter = None
+            return
+        except BaseException:
+            self._cb_iter = None
+            raise
+        handler()
+        exc = handler.exception()
+        if exc is not None:
+            raise exc
+        handler.result()
+
+    def spin_once(self, timeout_sec: float | None = None) -> None:
+        self._spin_once_impl(timeout_sec)
+
+    def spin_once_until_future_complete(self, future: Future, timeout_sec: Any = None) -> None:
+        future.add_done_callback(lambda _f: self.wake())
+        self._spin_once_impl(timeout_sec, future.done)
+
+
+class MultiThreadedExecutor(Executor):
+    """Runs callbacks on a pool of `num_threads` threads (default: the CPUs this process may use)."""
+
+    _notify_on_handler = True
+
+    def __init__(self, num_threads: int | None = None, *, context: Context | None = None) -> None:
+        super().__init__(context=context)
+        if num_threads is None:
+            num_threads = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+            num_threads = num_threads or 2
+        if num_threads == 1:
+            warnings.warn("MultiThreadedExecutor is used with a single thread.\n"
+                          "Use the SingleThreadedExecutor instead.", stacklevel=2)
+        self._futures: list[Any] = []
+        self._executor = ThreadPoolExecutor(num_threads)
+
+    def _spin_once_impl(self, timeout_sec: Any = None, wait_condition: Callable[[], bool] = lambda: False) -> None:
+        try:
+            handler, _entity, _node = self.wait_for_ready_callbacks(timeout_sec, None, wait_condition)
+        except (ExternalShutdownException, ShutdownException, TimeoutException, ConditionReachedException):
+            self._cb_iter = None
+        except BaseException:
+            self._cb_iter = None
+            raise
+        else:
+            self._executor.submit(handler)
+            self._futures.append(handler)
+        for future in self._futures[:]:
+            if future.done():
+                self._futures.remove(future)
+                future.result()
+
+    def spin_once(self, timeout_sec: float | None = None) -> None:
+        self._spin_once_impl(timeout_sec)
+
+    def spin_once_until_future_complete(self, future: Future, timeout_sec: Any = None) -> None:
+        future.add_done_callback(lambda _f: self.wake())
+        self._spin_once_impl(timeout_sec, future.done)
+
+    def shutdown(self, timeout_sec: float | None = None) -> bool:
+        ok = super().shutdown(timeout_sec)
+        self._executor.shutdown(wait=True)
+        return ok

@@ -1,0 +1,643 @@
+"""rclpy.node.Node on a bus node: the same ROS 2 node on the wire as diffctl's own (liveliness token,
+parameter services and events, /rosout, type descriptions), with rclpy's API and its executor model.
+
+Names, remaps, parameter overrides and the node's name and namespace come from --ros-args through
+diffctl.ros_args (global arguments first, then `cli_args`, then `parameter_overrides=`).
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Callable, Iterator
+from typing import Any
+
+from diffctl import ros_args
+from diffctl.bus import wire
+from diffctl.client import qos as _qos
+from diffctl.client import waiting
+from diffctl.client.callback_groups import CallbackGroup, MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
+from diffctl.client.client import Client
+from diffctl.client.clock import Clock, ROSClock
+from diffctl.client.context import Context, get_default_context
+from diffctl.client.event_handler import PublisherEventCallbacks, SubscriptionEventCallbacks
+from diffctl.client.exceptions import NotInitializedException
+from diffctl.client.guard_condition import GuardCondition
+from diffctl.client.interfaces import check_message_type, cls, type_name
+from diffctl.client.names import (
+    expand_topic_name,
+    normalize_namespace,
+    validate_namespace,
+    validate_node_name,
+    validate_topic_name,
+)
+from diffctl.client.node_parameters import NodeParameters
+from diffctl.client.parameter import Parameter, from_python_value
+from diffctl.client.publisher import Publisher
+from diffctl.client.ros_logging import RcutilsLogger, attach_rosout, detach_rosout, get_logger
+from diffctl.client.ros_time import Time
+from diffctl.client.service import Service
+from diffctl.client.subscription import Subscription
+from diffctl.client.timer import Rate, Timer
+from diffctl.client.topic_endpoint_info import TopicEndpointInfo, TopicEndpointTypeEnum
+
+_LOGGING_FLAGS = {"--log-config-file": 1, "--enable-rosout-logs": 0, "--disable-rosout-logs": 0,
+                  "--enable-stdout-logs": 0, "--disable-stdout-logs": 0, "--enable-external-lib-logs": 0,
+                  "--disable-external-lib-logs": 0}
+
+
+def _node_ros_args(argv: list[str], node_name: str) -> list[str]:
+    """The --ros-args of `argv` that apply to this node: logging flags dropped (rcl reads them at init) and
+    node-prefixed rules (`talker:__ns:=/x`, `-p talker:rate:=2`) kept only for this node, unprefixed."""
+    _, ros = ros_args.split_argv(list(argv))
+    out: list[str] = []
+    i = 0
+    while i < len(ros):
+        a = ros[i]
+        if a in _LOGGING_FLAGS:
+            i += 1 + _LOGGING_FLAGS[a]
+            continue
+        if a == "--log-level":
+            i += 2
+            continue
+        if a in ("-r", "--remap", "-p", "--param") and i + 1 < len(ros):
+            rule = ros[i + 1]
+            head, sep, _ = rule.partition(":=")
+            if sep and ":" in head:
+                prefix, _, rest = head.partition(":")
+                if prefix != node_name:
+                    i += 2
+                    continue
+                rule = rest + rule[len(head):]
+            out += [a, rule]
+            i += 2
+            continue
+        out.append(a)
+        i += 1
+    return out
+
+
+class TimeSource:
+    """use_sim_time: the node's ROS clocks follow /clock (best effort, depth 1) while it is true."""
+
+    def __init__(self, node: Node) -> None:
+        self._node = node
+        self._clocks: list[ROSClock] = []
+        self._active = False
+        self._sub: Any = None
+        self._last_ns = 0
+        p = node.get_parameter("use_sim_time")
+        if p.type_ == Parameter.Type.BOOL:
+            self.ros_time_is_active = p.value
+        node.add_on_set_parameters_callback(self._on_parameters)
+
+    @property
+    def ros_time_is_active(self) -> bool:
+        return self._active
+
+    @ros_time_is_active.setter
+    def ros_time_is_active(self, enabled: bool) -> None:
+        if enabled == self._active:
+            return
+        self._active = enabled
+        for c in self._clocks:
+            c._set_ros_time_is_active(enabled)
+        bus = self._node._bus
+        if enabled and self._sub is None:
+            self._sub = bus.create_subscription("/clock", "rosgraph_msgs/msg/Clock", self._on_clock, raw=True,
+                                                qos=wire.QoS(reliable=False, depth=1))
+        elif not enabled and self._sub is not None:
+            bus.destroy(self._sub)
+            self._sub = None
+
+    def _on_clock(self, data: bytes) -> None:
+        from diffctl.bus import types
+
+        msg = types.deserialize(data, "rosgraph_msgs/msg/Clock")
+        ns = int(msg.clock.sec) * 1_000_000_000 + int(msg.clock.nanosec)
+        self._last_ns = ns
+        for c in self._clocks:
+            c._set_override_ns(ns)
+
+    def attach_clock(self, clock: ROSClock) -> None:
+        if not isinstance(clock, ROSClock):
+            raise ValueError("Only clocks with type ROS_TIME can be attached.")
+        clock._set_override_ns(self._last_ns)
+        clock._set_ros_time_is_active(self._active)
+        self._clocks.append(clock)
+
+    def _on_parameters(self, parameter_list: list[Parameter]) -> Any:
+        ok, reason = True, ""
+        for p in parameter_list:
+            if p.name == "use_sim_time":
+                if p.type_ == Parameter.Type.BOOL:
+                    self.ros_time_is_active = p.value
+                else:
+                    ok, reason = False, "use_sim_time parameter set to something besides a bool"
+                    self._node.get_logger().error(reason)
+                break
+        return cls("rcl_interfaces/msg/SetParametersResult")(successful=ok, reason=reason)
+
+
+class Node:
+    PARAM_REL_TOL = 1e-6
+
+    def __init__(self, node_name: str, *, context: Context | None = None, cli_args: list[str] | None = None,
+                 namespace: str | None = None, use_global_arguments: bool = True, enable_rosout: bool = True,
+                 start_parameter_services: bool = True, parameter_overrides: list[Parameter] | None = None,
+                 allow_undeclared_parameters: bool = False,
+                 automatically_declare_parameters_from_overrides: bool = False,
+                 enable_logger_service: bool = False) -> None:
+        self._context = get_default_context() if context is None else context
+        self._publishers: list[Publisher] = []
+        self._subscriptions: list[Subscription] = []
+        self._clients: list[Client] = []
+        self._services: list[Service] = []
+        self._timers: list[Timer] = []
+        self._guards: list[GuardCondition] = []
+        self._waitables: list[Any] = []
+        self._default_callback_group = MutuallyExclusiveCallbackGroup()
+        self._rate_group = ReentrantCallbackGroup()
+        self._executor_ref: Any = None
+        self._destroyed = False
+        if not self._context.ok():
+            raise NotInitializedException("cannot create node")
+        validate_node_name(node_name)
+        namespace = normalize_namespace(namespace)
+        validate_namespace(namespace)
+
+        argv: list[str] = []
+        if use_global_arguments:
+            argv += _node_ros_args(self._context.args, node_name)
+        if cli_args:
+            argv += _node_ros_args(list(cli_args), node_name)
+        ra = ros_args.parse(argv, node_name)
+        name = ra.node_name or node_name
+        if ra.namespace:
+            namespace = normalize_namespace(ra.namespace)
+        validate_node_name(name)
+        validate_namespace(namespace)
+        overrides = {k: from_python_value(k, v) for k, v in ra.params.items()}
+        if parameter_overrides is not None:
+            overrides.update({p.name: p for p in parameter_overrides})
+        self._parameter_overrides = overrides
+        self._params = NodeParameters(overrides=overrides, allow_undeclared=allow_undeclared_parameters)
+        if automatically_declare_parameters_from_overrides:
+            desc = cls("rcl_interfaces/msg/ParameterDescriptor")
+            self.declare_parameters("", [(n, p.value, desc()) for n, p in overrides.items()], ignore_override=True)
+
+        from diffctl.bus.node import Node as BusNode
+        from diffctl.errors import NoRouterError
+
+        try:
+            self._bus = BusNode(name, namespace, use_sim_time=False, remaps=ra.remaps, params={},
+                                allow_undeclared_parameters=allow_undeclared_parameters, parameter_store=self._params,
+                                rosout=enable_rosout, parameter_services=start_parameter_services)
+        except NoRouterError as e:
+            print(f"error: {e}", file=sys.stderr)
+            raise SystemExit(2) from None
+        self._logger_name = self._bus.log.name
+        self._logger = get_logger(self._logger_name)
+        self._rosout_sink = None
+        rosout = getattr(self._bus, "_rosout", None)
+        if rosout is not None:
+            self._rosout_sink = rosout._sink
+            attach_rosout(self._logger_name, self._rosout_sink)
+        self._clock = ROSClock()
+        self._time_source = TimeSource(self)
+        self._time_source.attach_clock(self._clock)
+        self._context.track_node(self)
+
+    # ------------------------------------------------------------------ identity
+    @property
+    def publishers(self) -> Iterator[Publisher]:
+        yield from self._publishers
+
+    @property
+    def subscriptions(self) -> Iterator[Subscription]:
+        yield from self._subscriptions
+
+    @property
+    def clients(self) -> Iterator[Client]:
+        yield from self._clients
+
+    @property
+    def services(self) -> Iterator[Service]:
+        yield from self._services
+
+    @property
+    def timers(self) -> Iterator[Timer]:
+        yield from self._timers
+
+    @property
+    def guards(self) -> Iterator[GuardCondition]:
+        yield from self._guards
+
+    @property
+    def waitables(self) -> Iterator[Any]:
+        yield from self._waitables
+
+    @property
+    def executor(self) -> Any:
+        return self._executor_ref() if self._executor_ref is not None else None
+
+    @executor.setter
+    def executor(self, new_executor: Any) -> None:
+        import weakref
+
+        current = self.executor
+        if current is new_executor:
+            return
+        if current is not None:
+            current.remove_node(self)
+        if new_executor is None:
+            self._executor_ref = None
+        elif new_executor.add_node(self):
+            self._executor_ref = weakref.ref(new_executor)
+
+    def _wake_executor(self) -> None:
+        waiting.notify()
+
+    @property
+    def context(self) -> Context:
+        return self._context
+
+    @property
+    def default_callback_group(self) -> CallbackGroup:
+        return self._default_callback_group
+
+    @property
+    def handle(self) -> Node:
+        return self
+
+    def __enter__(self) -> Node:
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.destroy_node()
+
+    @property
+    def bus_node(self) -> Any:
+        """The diffctl.bus.Node under this node (its session, graph, resolve)."""
+        return self._bus
+
+    def get_name(self) -> str:
+        return self._bus.name
+
+    def get_namespace(self) -> str:
+        return self._bus.namespace
+
+    def get_fully_qualified_name(self) -> str:
+        return self._bus.fqn
+
+    def get_clock(self) -> Clock:
+        return self._clock
+
+    def get_logger(self) -> RcutilsLogger:
+        return self._logger
+
+    # ------------------------------------------------------------------ parameters
+    def declare_parameter(self, name: str, value: Any = None, descriptor: Any = None,
+                          ignore_override: bool = False) -> Parameter:
+        if value is None and descriptor is None:
+            args: tuple = (name,)
+        else:
+            args = (name, value, cls("rcl_interfaces/msg/ParameterDescriptor")() if descriptor is None else descriptor)
+        return self.declare_parameters("", [args], ignore_override)[0]
+
+    def declare_parameters(self, namespace: str, parameters: list[tuple], ignore_override: bool = False
+                           ) -> list[Parameter]:
+        return self._params.declare_parameters(namespace, parameters, ignore_override)
+
+    def undeclare_parameter(self, name: str) -> None:
+        self._params.undeclare_parameter(name)
+
+    def has_parameter(self, name: str) -> bool:
+        return name in self._params.parameters
+
+    def get_parameter_types(self, names: list[str]) -> list[Any]:
+        if not all(isinstance(n, str) for n in names):
+            raise TypeError("All names must be instances of type str")
+        return [self.get_parameter_type(n) for n in names]
+
+    def get_parameter_type(self, name: str) -> Any:
+        return self._params.get_parameter_type(name)
+
+    def get_parameters(self, names: list[str]) -> list[Parameter]:
+        if not all(isinstance(n, str) for n in names):
+            raise TypeError("All names must be instances of type str")
+        return [self.get_parameter(n) for n in names]
+
+    def get_parameter(self, name: str) -> Parameter:
+        return self._params.get_parameter(name)
+
+    def get_parameter_or(self, name: str, alternative_value: Parameter | None = None) -> Parameter:
+        return self._params.get_parameter_or(name, alternative_value)
+
+    def get_parameters_by_prefix(self, prefix: str) -> dict[str, Parameter]:
+        return self._params.get_parameters_by_prefix(prefix)
+
+    def set_parameters(self, parameter_list: list[Parameter]) -> list[Any]:
+        return self._params.set_parameters(parameter_list)
+
+    def set_parameters_atomically(self, parameter_list: list[Parameter]) -> Any:
+        return self._params.set_parameters_atomically(parameter_list)
+
+    def list_parameters(self, prefixes: list[str], depth: int) -> Any:
+        return self._params.list_parameters(prefixes, depth)
+
+    def describe_parameter(self, name: str) -> Any:
+        return self._params.describe_parameter(name)
+
+    def describe_parameters(self, names: list[str]) -> list[Any]:
+        return [self.describe_parameter(n) for n in names]
+
+    def set_descriptor(self, name: str, descriptor: Any, alternative_value: Any = None) -> Any:
+        return self._params.set_descriptor(name, descriptor, alternative_value)
+
+    def add_pre_set_parameters_callback(self, callback: Callable[[list[Parameter]], list[Parameter]]) -> None:
+        self._params.pre_set.insert(0, callback)
+
+    def add_on_set_parameters_callback(self, callback: Callable[[list[Parameter]], Any]) -> None:
+        self._params.on_set.insert(0, callback)
+
+    def add_post_set_parameters_callback(self, callback: Callable[[list[Parameter]], None]) -> None:
+        self._params.post_set.insert(0, callback)
+
+    def remove_pre_set_parameters_callback(self, callback: Callable[..., Any]) -> None:
+        self._params.pre_set.remove(callback)
+
+    def remove_on_set_parameters_callback(self, callback: Callable[..., Any]) -> None:
+        self._params.on_set.remove(callback)
+
+    def remove_post_set_parameters_callback(self, callback: Callable[..., Any]) -> None:
+        self._params.post_set.remove(callback)
+
+    # ------------------------------------------------------------------ names
+    def _validate_topic_or_service_name(self, name: str, *, is_service: bool = False) -> None:
+        validate_topic_name(name, is_service=is_service)
+
+    def resolve_topic_name(self, topic: str, *, only_expand: bool = False) -> str:
+        validate_topic_name(topic)
+        full = expand_topic_name(topic, self.get_name(), self.get_namespace())
+        return full if only_expand else self._bus.resolve(full)
+
+    def resolve_service_name(self, service: str, *, only_expand: bool = False) -> str:
+        validate_topic_name(service, is_service=True)
+        full = expand_topic_name(service, self.get_name(), self.get_namespace())
+        return full if only_expand else self._bus.resolve(full)
+
+    # ------------------------------------------------------------------ entities
+    def add_waitable(self, waitable: Any) -> None:
+        self._waitables.append(waitable)
+        self._wake_executor()
+
+    def remove_waitable(self, waitable: Any) -> None:
+        if waitable in self._waitables:
+            self._waitables.remove(waitable)
+            self._wake_executor()
+
+    def create_publisher(self, msg_type: Any, topic: str, qos_profile: Any, *,
+                         callback_group: CallbackGroup | None = None, event_callbacks: Any = None,
+                         qos_overriding_options: Any = None, publisher_class: type = Publisher) -> Publisher:
+        qos_profile = _qos.as_profile(qos_profile)
+        callback_group = callback_group or self.default_callback_group
+        full = self.resolve_topic_name(topic)
+        typename = check_message_type(msg_type)
+        bus_pub = self._bus.create_publisher(full, typename, qos=_qos.to_wire(qos_profile))
+        bus_pub.client_node = self
+        pub = publisher_class(bus_pub, msg_type, topic, qos_profile,
+                              event_callbacks=event_callbacks or PublisherEventCallbacks(),
+                              callback_group=callback_group)
+        self._publishers.append(pub)
+        self._wake_executor()
+        for h in pub.event_handlers:
+            self.add_waitable(h)
+        return pub
+
+    def create_subscription(self, msg_type: Any, topic: str, callback: Callable[..., Any], qos_profile: Any, *,
+                            callback_group: CallbackGroup | None = None, event_callbacks: Any = None,
+                            qos_overriding_options: Any = None, raw: bool = False) -> Subscription:
+        qos_profile = _qos.as_profile(qos_profile)
+        callback_group = callback_group or self.default_callback_group
+        full = self.resolve_topic_name(topic)
+        typename = check_message_type(msg_type)
+        sub = Subscription(self, msg_type, topic, callback, callback_group, qos_profile, raw,
+                           event_callbacks=event_callbacks or SubscriptionEventCallbacks())
+        bus_sub = self._bus.create_subscription(full, typename, sub._on_sample, raw=True, with_info=True,
+                                                qos=_qos.to_wire(qos_profile))
+        sub._attach(bus_sub)
+        callback_group.add_entity(sub)
+        self._subscriptions.append(sub)
+        self._wake_executor()
+        for h in sub.event_handlers:
+            self.add_waitable(h)
+        return sub
+
+    def create_client(self, srv_type: Any, srv_name: str, *, qos_profile: Any = None,
+                      callback_group: CallbackGroup | None = None) -> Client:
+        qos_profile = _qos.qos_profile_services_default if qos_profile is None else qos_profile
+        callback_group = callback_group or self.default_callback_group
+        full = self.resolve_service_name(srv_name)
+        client = Client(self, srv_type, srv_name, qos_profile, callback_group)
+        client._bus = self._bus.create_client(full, type_name(srv_type), qos=_qos.to_wire(qos_profile))
+        callback_group.add_entity(client)
+        self._clients.append(client)
+        self._wake_executor()
+        return client
+
+    def create_service(self, srv_type: Any, srv_name: str, callback: Callable[[Any, Any], Any], *,
+                       qos_profile: Any = None, callback_group: CallbackGroup | None = None) -> Service:
+        qos_profile = _qos.qos_profile_services_default if qos_profile is None else qos_profile
+        callback_group = callback_group or self.default_callback_group
+        full = self.resolve_service_name(srv_name)
+        service = Service(self, srv_type, srv_name, callback, callback_group, qos_profile)
+        service._bus = self._bus.create_service(full, type_name(srv_type), service._on_query,
+                                                qos=_qos.to_wire(qos_profile), raw=True)
+        callback_group.add_entity(service)
+        self._services.append(service)
+        self._wake_executor()
+        return service
+
+    def create_timer(self, timer_period_sec: float, callback: Callable[[], Any] | None,
+                     callback_group: CallbackGroup | None = None, clock: Clock | None = None,
+                     autostart: bool = True) -> Timer:
+        period_ns = int(float(timer_period_sec) * 1_000_000_000)
+        callback_group = callback_group or self.default_callback_group
+        timer = Timer(callback, callback_group, period_ns, clock or self._clock, context=self.context,
+                      autostart=autostart)
+        timer._node = self
+        callback_group.add_entity(timer)
+        self._timers.append(timer)
+        self._wake_executor()
+        return timer
+
+    def create_guard_condition(self, callback: Callable[[], Any],
+                               callback_group: CallbackGroup | None = None) -> GuardCondition:
+        callback_group = callback_group or self.default_callback_group
+        guard = GuardCondition(callback, callback_group, context=self.context)
+        guard._node = self
+        callback_group.add_entity(guard)
+        self._guards.append(guard)
+        self._wake_executor()
+        return guard
+
+    def create_rate(self, frequency: float, clock: Clock | None = None) -> Rate:
+        if frequency <= 0:
+            raise ValueError("frequency must be > 0")
+        timer = self.create_timer(1.0 / frequency, None, self._rate_group, clock)
+        return Rate(timer, context=self.context)
+
+    def _destroy_entity(self, entity: Any, table: list[Any]) -> bool:
+        if entity not in table:
+            return False
+        table.remove(entity)
+        entity._destroy()
+        self._wake_executor()
+        return True
+
+    def destroy_publisher(self, publisher: Publisher) -> bool:
+        for h in publisher.event_handlers:
+            self.remove_waitable(h)
+        return self._destroy_entity(publisher, self._publishers)
+
+    def destroy_subscription(self, subscription: Subscription) -> bool:
+        for h in subscription.event_handlers:
+            self.remove_waitable(h)
+        return self._destroy_entity(subscription, self._subscriptions)
+
+    def destroy_client(self, client: Client) -> bool:
+        return self._destroy_entity(client, self._clients)
+
+    def destroy_service(self, service: Service) -> bool:
+        return self._destroy_entity(service, self._services)
+
+    def destroy_timer(self, timer: Timer) -> bool:
+        return self._destroy_entity(timer, self._timers)
+
+    def destroy_guard_condition(self, guard: GuardCondition) -> bool:
+        if guard not in self._guards:
+            return False
+        self._guards.remove(guard)
+        guard._destroyed = True
+        return True
+
+    def destroy_rate(self, rate: Rate) -> bool:
+        ok = self.destroy_timer(rate._timer)
+        rate.destroy()
+        return ok
+
+    def destroy_node(self) -> None:
+        if self._destroyed:
+            return
+        for table, fn in ((self._publishers, self.destroy_publisher), (self._subscriptions, self.destroy_subscription),
+                          (self._clients, self.destroy_client), (self._services, self.destroy_service),
+                          (self._timers, self.destroy_timer), (self._guards, self.destroy_guard_condition)):
+            while table:
+                fn(table[0])
+        self._destroyed = True
+        if self._rosout_sink is not None:
+            detach_rosout(self._logger_name, self._rosout_sink)
+        self._bus.close()
+        self._context.untrack_node(self)
+        self._wake_executor()
+
+    # ------------------------------------------------------------------ graph
+    @property
+    def _graph(self) -> Any:
+        return self._bus.graph
+
+    def _expand(self, name: str) -> str:
+        return expand_topic_name(name, self.get_name(), self.get_namespace())
+
+    def _by_node(self, node_name: str, node_namespace: str, kinds: tuple[str, ...]) -> list[tuple[str, list[str]]]:
+        ns = normalize_namespace(node_namespace)
+        out: dict[str, set[str]] = {}
+        for e in self._graph.entities():
+            if e.kind in kinds and e.node == node_name and normalize_namespace(e.namespace) == ns:
+                out.setdefault(e.topic, set()).add(e.type)
+        return [(k, sorted(v)) for k, v in sorted(out.items())]
+
+    def _check_node_exists(self, node_name: str, node_namespace: str) -> None:
+        ns = normalize_namespace(node_namespace)
+        if (node_name, ns) not in self.get_node_names_and_namespaces():
+            from diffctl.client.exceptions import RCLError
+
+            raise RCLError(f"Node name not found: {ns.rstrip('/')}/{node_name}")
+
+    def get_publisher_names_and_types_by_node(self, node_name: str, node_namespace: str,
+                                              no_demangle: bool = False) -> list[tuple[str, list[str]]]:
+        self._check_node_exists(node_name, node_namespace)
+        return self._by_node(node_name, node_namespace, (wire.KIND_PUB,))
+
+    def get_subscriber_names_and_types_by_node(self, node_name: str, node_namespace: str,
+                                               no_demangle: bool = False) -> list[tuple[str, list[str]]]:
+        self._check_node_exists(node_name, node_namespace)
+        return self._by_node(node_name, node_namespace, (wire.KIND_SUB,))
+
+    def get_service_names_and_types_by_node(self, node_name: str, node_namespace: str
+                                            ) -> list[tuple[str, list[str]]]:
+        self._check_node_exists(node_name, node_namespace)
+        return self._by_node(node_name, node_namespace, (wire.KIND_SERVICE,))
+
+    def get_client_names_and_types_by_node(self, node_name: str, node_namespace: str
+                                           ) -> list[tuple[str, list[str]]]:
+        self._check_node_exists(node_name, node_namespace)
+        return self._by_node(node_name, node_namespace, (wire.KIND_CLIENT,))
+
+    def get_topic_names_and_types(self, no_demangle: bool = False) -> list[tuple[str, list[str]]]:
+        return list(self._graph.topics().items())
+
+    def get_service_names_and_types(self) -> list[tuple[str, list[str]]]:
+        return list(self._graph.services().items())
+
+    def get_node_names_and_namespaces(self) -> list[tuple[str, str]]:
+        seen: list[tuple[str, str]] = []
+        for e in self._graph.entities(wire.KIND_NODE):
+            item = (e.node, normalize_namespace(e.namespace))
+            if item not in seen:
+                seen.append(item)
+        return seen
+
+    def get_node_names_and_namespaces_with_enclaves(self) -> list[tuple[str, str, str]]:
+        return [(n, ns, "/") for n, ns in self.get_node_names_and_namespaces()]
+
+    def get_node_names(self) -> list[str]:
+        return [n for n, _ in self.get_node_names_and_namespaces()]
+
+    def get_fully_qualified_node_names(self) -> list[str]:
+        return [f"{ns.rstrip('/')}/{n}" for n, ns in self.get_node_names_and_namespaces()]
+
+    def count_publishers(self, topic_name: str) -> int:
+        return len(self._graph.publishers(self._expand(topic_name)))
+
+    def count_subscribers(self, topic_name: str) -> int:
+        return len(self._graph.subscribers(self._expand(topic_name)))
+
+    def count_clients(self, service_name: str) -> int:
+        name = self._expand(service_name)
+        return sum(1 for e in self._graph.entities(wire.KIND_CLIENT) if e.topic == name)
+
+    def count_services(self, service_name: str) -> int:
+        return len(self._graph.servers(self._expand(service_name)))
+
+    def _info_by_topic(self, topic_name: str, no_mangle: bool, kind: str) -> list[TopicEndpointInfo]:
+        name = topic_name if no_mangle else self.resolve_topic_name(topic_name)
+        ents = self._graph.publishers(name) if kind == wire.KIND_PUB else self._graph.subscribers(name)
+        return [TopicEndpointInfo.from_entity(e) for e in ents]
+
+    def get_publishers_info_by_topic(self, topic_name: str, no_mangle: bool = False) -> list[TopicEndpointInfo]:
+        return self._info_by_topic(topic_name, no_mangle, wire.KIND_PUB)
+
+    def get_subscriptions_info_by_topic(self, topic_name: str, no_mangle: bool = False) -> list[TopicEndpointInfo]:
+        return self._info_by_topic(topic_name, no_mangle, wire.KIND_SUB)
+
+    def wait_for_node(self, fully_qualified_node_name: str, timeout: float) -> bool:
+        name = fully_qualified_node_name if fully_qualified_node_name.startswith("/") \
+            else "/" + fully_qualified_node_name
+        return self._graph.wait_for(lambda: name in self.get_fully_qualified_node_names(), timeout)
+
+    def _now_msg(self) -> Any:
+        return Time(nanoseconds=self._clock.now_ns()).to_msg()
+
+
+TopicEndpointTypeEnum = TopicEndpointTypeEnum

@@ -1,0 +1,80 @@
+"""rclpy.service.Service: requests queued by Zenoh's thread, answered from the executor's callback."""
+
+from __future__ import annotations
+
+import collections
+import threading
+from collections.abc import Callable
+from typing import Any
+
+from diffctl.client import waiting
+from diffctl.client.interfaces import deserialize, serialize
+from diffctl.client.timer import await_or_execute
+
+
+class Service:
+    def __init__(self, node: Any, srv_type: Any, srv_name: str, callback: Callable[[Any, Any], Any],
+                 callback_group: Any, qos_profile: Any) -> None:
+        self._node = node
+        self.srv_type = srv_type
+        self.srv_name = srv_name
+        self.callback = callback
+        self.callback_group = callback_group
+        self.qos_profile = qos_profile
+        self._executor_event = False
+        self._queue: collections.deque[Any] = collections.deque()
+        self._lock = threading.Lock()
+        self._bus: Any = None
+        self._destroyed = False
+
+    def _on_query(self, query: Any) -> None:
+        with self._lock:
+            self._queue.append(query)
+        waiting.notify()
+
+    def _ready(self) -> bool:
+        return bool(self._queue)
+
+    def _take(self) -> Callable[[], Any] | None:
+        with self._lock:
+            if not self._queue:
+                return None
+            query = self._queue.popleft()
+        payload = query.payload.to_bytes() if query.payload is not None else b""
+        request = deserialize(payload, self.srv_type.Request)
+
+        async def _execute() -> None:
+            response = await await_or_execute(self.callback, request, self.srv_type.Response())
+            self.send_response(response, query)
+
+        return _execute
+
+    def send_response(self, response: Any, header: Any) -> None:
+        if not isinstance(response, self.srv_type.Response):
+            raise TypeError()
+        if self._destroyed:
+            return
+        self._bus.reply(header, serialize(response))
+
+    @property
+    def service_name(self) -> str:
+        return self._bus.name if self._bus is not None else self.srv_name
+
+    @property
+    def handle(self) -> Service:
+        return self
+
+    def __enter__(self) -> Service:
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        pass
+
+    def destroy(self) -> None:
+        self._node.destroy_service(self)
+
+    def _destroy(self) -> None:
+        if not self._destroyed:
+            self._destroyed = True
+            if self._bus is not None:
+                self._bus.close()

@@ -1,0 +1,120 @@
+"""rclpy.subscription.Subscription: samples queued by Zenoh's thread (KEEP_LAST depth), taken by an executor."""
+
+from __future__ import annotations
+
+import collections
+import enum
+import inspect
+import threading
+import time
+from collections.abc import Callable
+from typing import Any
+
+from diffctl.client import waiting
+from diffctl.client.interfaces import deserialize
+from diffctl.client.qos import HistoryPolicy
+from diffctl.client.timer import await_or_execute
+
+
+class Subscription:
+    class CallbackType(enum.Enum):
+        MessageOnly = 0
+        WithMessageInfo = 1
+
+    def __init__(self, node: Any, msg_type: Any, topic: str, callback: Callable[..., Any], callback_group: Any,
+                 qos_profile: Any, raw: bool, *, event_callbacks: Any) -> None:
+        self._node = node
+        self.msg_type = msg_type
+        self.topic = topic
+        self.callback_group = callback_group
+        self.qos_profile = qos_profile
+        self.raw = raw
+        self._executor_event = False
+        self.callback = callback
+        keep_all = qos_profile.history == HistoryPolicy.KEEP_ALL
+        depth = qos_profile.depth if qos_profile.depth > 0 else 42
+        self._queue: collections.deque[tuple[bytes, Any, int]] = collections.deque(
+            maxlen=None if keep_all else depth)
+        self._rx_seq = 0
+        self._lock = threading.Lock()
+        self._bus: Any = None
+        self._bus_topic = ""
+        self._destroyed = False
+        self._event_callbacks = event_callbacks
+        self.event_handlers: list[Any] = []
+
+    def _attach(self, bus_sub: Any) -> None:
+        self._bus = bus_sub
+        self._bus_topic = bus_sub.topic
+        self.event_handlers = self._event_callbacks.create_event_handlers(self.callback_group, self, self.topic)
+
+    def _on_sample(self, data: bytes, info: Any) -> None:
+        # Zenoh's thread: queue and wake; deserialization happens when an executor takes it.
+        with self._lock:
+            self._rx_seq += 1
+            self._queue.append((data, info, self._rx_seq))
+        waiting.notify()
+
+    @property
+    def callback(self) -> Callable[..., Any]:
+        return self._callback
+
+    @callback.setter
+    def callback(self, value: Callable[..., Any]) -> None:
+        self._callback = value
+        try:
+            inspect.signature(value).bind(object())
+            self._callback_type = Subscription.CallbackType.MessageOnly
+        except (TypeError, ValueError):
+            self._callback_type = Subscription.CallbackType.WithMessageInfo
+
+    def _ready(self) -> bool:
+        return bool(self._queue)
+
+    def _take(self) -> Callable[[], Any] | None:
+        with self._lock:
+            if not self._queue:
+                return None
+            data, info, rx = self._queue.popleft()
+        msg = data if self.raw else deserialize(data, self.msg_type)
+        callback = self._callback
+        if self._callback_type is Subscription.CallbackType.MessageOnly:
+            args: tuple[Any, ...] = (msg,)
+        else:
+            args = (msg, {
+                "source_timestamp": info.source_timestamp_ns, "received_timestamp": time.time_ns(),
+                "publication_sequence_number": info.sequence_number, "reception_sequence_number": rx,
+            })
+
+        async def _execute() -> None:
+            await await_or_execute(callback, *args)
+
+        return _execute
+
+    def get_publisher_count(self) -> int:
+        return sum(1 for e in self._node._bus.graph.publishers(self._bus_topic) if e.type == self._bus.type)
+
+    @property
+    def topic_name(self) -> str:
+        return self._bus_topic
+
+    @property
+    def handle(self) -> Subscription:
+        return self
+
+    def __enter__(self) -> Subscription:
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        pass
+
+    def destroy(self) -> None:
+        self._node.destroy_subscription(self)
+
+    def _destroy(self) -> None:
+        if not self._destroyed:
+            self._destroyed = True
+            for h in self.event_handlers:
+                h._watch.close()
+            if self._bus is not None:
+                self._node._bus.destroy_subscription(self._bus)

@@ -1,0 +1,162 @@
+"""rclpy.task: Future (not asyncio's) and Task, which runs a function or steps a coroutine.
+
+Semantics users rely on: `result()` is None while pending and raises a stored exception; `await future`
+yields until it is done; done callbacks become executor tasks when the future knows its executor, else
+run at once; an exception nobody fetched is printed when the future is collected.
+"""
+
+from __future__ import annotations
+
+import inspect
+import sys
+import threading
+import warnings
+import weakref
+from collections.abc import Callable, Generator
+from typing import Any
+
+
+def _no_executor() -> None:
+    return None
+
+
+class Future:
+    def __init__(self, *, executor: Any = None) -> None:
+        self._done = False
+        self._cancelled = False
+        self._result: Any = None
+        self._exception: BaseException | None = None
+        self._exception_fetched = False
+        self._callbacks: list[Callable[[Future], None]] = []
+        self._lock = threading.Lock()
+        self._executor: Callable[[], Any] = _no_executor
+        self._set_executor(executor)
+
+    def __del__(self) -> None:
+        if self._exception is not None and not self._exception_fetched:
+            print("The following exception was never retrieved: " + str(self._exception), file=sys.stderr)
+
+    def __await__(self) -> Generator[None, None, Any]:
+        while not self._done:
+            yield
+        return self.result()
+
+    def cancel(self) -> None:
+        with self._lock:
+            if not self._done:
+                self._cancelled = True
+        self._schedule_or_invoke_done_callbacks()
+
+    def cancelled(self) -> bool:
+        return self._cancelled
+
+    def done(self) -> bool:
+        return self._done
+
+    def result(self) -> Any:
+        exc = self.exception()
+        if exc:
+            raise exc
+        return self._result
+
+    def exception(self) -> BaseException | None:
+        self._exception_fetched = True
+        return self._exception
+
+    def set_result(self, result: Any) -> None:
+        with self._lock:
+            self._result = result
+            self._done = True
+            self._cancelled = False
+        self._schedule_or_invoke_done_callbacks()
+
+    def set_exception(self, exception: BaseException) -> None:
+        with self._lock:
+            self._exception = exception
+            self._exception_fetched = False
+            self._done = True
+            self._cancelled = False
+        self._schedule_or_invoke_done_callbacks()
+
+    def _schedule_or_invoke_done_callbacks(self) -> None:
+        with self._lock:
+            executor = self._executor()
+            callbacks, self._callbacks = self._callbacks, []
+        if executor is not None:
+            for cb in callbacks:
+                executor.create_task(cb, self)
+            return
+        for cb in callbacks:
+            try:
+                cb(self)
+            except Exception as e:  # one bad callback must not keep the others from running
+                warnings.warn(f"Unhandled exception in done callback: {e}", stacklevel=2)
+
+    def _set_executor(self, executor: Any) -> None:
+        with self._lock:
+            self._executor = _no_executor if executor is None else weakref.ref(executor)
+
+    def add_done_callback(self, callback: Callable[[Future], None]) -> None:
+        invoke = False
+        with self._lock:
+            if self._done:
+                executor = self._executor()
+                if executor is not None:
+                    executor.create_task(callback, self)
+                else:
+                    invoke = True
+            else:
+                self._callbacks.append(callback)
+        if invoke:
+            callback(self)
+
+
+class Task(Future):
+    """A function or coroutine run by an executor; its outcome is this future's."""
+
+    def __init__(self, handler: Callable[..., Any], args: Any = None, kwargs: Any = None,
+                 executor: Any = None) -> None:
+        super().__init__(executor=executor)
+        self._handler: Any = handler
+        self._args = list(args) if args is not None else []
+        self._kwargs = dict(kwargs) if kwargs is not None else {}
+        if inspect.iscoroutinefunction(handler):
+            self._handler = handler(*self._args, **self._kwargs)
+            self._args, self._kwargs = [], {}
+        self._executing = False
+        self._task_lock = threading.Lock()
+
+    def __call__(self) -> None:
+        """Run the function, or step the coroutine once (it resumes at the next call)."""
+        if self._done or self._executing or not self._task_lock.acquire(blocking=False):
+            return
+        try:
+            if self._done:
+                return
+            self._executing = True
+            if inspect.iscoroutine(self._handler):
+                try:
+                    self._handler.send(None)
+                except StopIteration as e:
+                    self._handler.close()
+                    self.set_result(e.value)
+                    self._complete()
+                except Exception as e:
+                    self.set_exception(e)
+                    self._complete()
+            else:
+                try:
+                    self.set_result(self._handler(*self._args, **self._kwargs))
+                except Exception as e:
+                    self.set_exception(e)
+                self._complete()
+            self._executing = False
+        finally:
+            self._task_lock.release()
+
+    def _complete(self) -> None:
+        self._handler = None
+        self._args, self._kwargs = [], {}
+
+    def executing(self) -> bool:
+        return self._executing

@@ -1,0 +1,180 @@
+"""rclpy.timer: Timer (ready when its clock reaches the next call; run by an executor) and Rate."""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Callable
+from typing import Any
+
+from diffctl.client import waiting
+from diffctl.client.clock import Clock
+from diffctl.client.exceptions import InvalidHandle, ROSInterruptException
+
+
+async def await_or_execute(callback: Callable[..., Any], *args: Any) -> Any:
+    """Run a callback, awaiting it when it is a coroutine function (rclpy's coroutine callbacks)."""
+    import inspect
+
+    if inspect.iscoroutinefunction(callback):
+        return await callback(*args)
+    return callback(*args)
+
+
+class Timer:
+    def __init__(self, callback: Callable[[], Any] | None, callback_group: Any, timer_period_ns: int, clock: Clock,
+                 *, context: Any = None, autostart: bool = True) -> None:
+        self._clock = clock
+        self._context = context
+        self.callback = callback
+        self.callback_group = callback_group
+        self._executor_event = False
+        self._period_ns = int(timer_period_ns)
+        self._lock = threading.Lock()
+        now = clock.now_ns()
+        self._last_call_ns = now
+        self._next_call_ns = now + self._period_ns
+        self._canceled = not autostart
+        self._destroyed = False
+        self._node: Any = None
+
+    @property
+    def handle(self) -> Timer:
+        if self._destroyed:
+            raise InvalidHandle("the timer has been destroyed")
+        return self
+
+    def __enter__(self) -> Timer:
+        return self.handle
+
+    def __exit__(self, *exc: Any) -> None:
+        pass
+
+    def __bool__(self) -> bool:
+        return not self._destroyed
+
+    @property
+    def clock(self) -> Clock:
+        return self._clock
+
+    @property
+    def timer_period_ns(self) -> int:
+        return self._period_ns
+
+    @timer_period_ns.setter
+    def timer_period_ns(self, value: int) -> None:
+        with self._lock:
+            self._next_call_ns = self._last_call_ns + int(value)
+            self._period_ns = int(value)
+        waiting.notify()
+
+    def is_ready(self) -> bool:
+        return not self._canceled and not self._destroyed and self._clock.now_ns() >= self._next_call_ns
+
+    _ready = is_ready
+
+    def _due_in_s(self) -> float | None:
+        """Seconds of wall time to wait before this timer may be ready (None: only a clock update tells)."""
+        if self._canceled or self._destroyed:
+            return None
+        if getattr(self._clock, "_ros_time_active", False):
+            return None
+        return max(0.0, (self._next_call_ns - self._clock.now_ns()) / 1e9)
+
+    def is_canceled(self) -> bool:
+        return self._canceled
+
+    def cancel(self) -> None:
+        self._canceled = True
+
+    def reset(self) -> None:
+        with self._lock:
+            now = self._clock.now_ns()
+            self._next_call_ns = now + self._period_ns
+            self._canceled = False
+        waiting.notify()
+
+    def time_since_last_call(self) -> int:
+        return self._clock.now_ns() - self._last_call_ns
+
+    def time_until_next_call(self) -> int | None:
+        if self._canceled:
+            return None
+        return self._next_call_ns - self._clock.now_ns()
+
+    def _call(self) -> None:
+        """rcl_timer_call: the next call a period on, skipping the periods already missed."""
+        with self._lock:
+            now = self._clock.now_ns()
+            self._last_call_ns = now
+            nxt = self._next_call_ns + self._period_ns
+            if nxt < now:
+                if self._period_ns == 0:
+                    nxt = now
+                else:
+                    ahead = now - nxt
+                    nxt += (1 + (ahead - 1) // self._period_ns) * self._period_ns
+            self._next_call_ns = nxt
+
+    def _take(self) -> Callable[[], Any] | None:
+        if self._destroyed:
+            return None
+        self._call()
+        callback = self.callback
+
+        async def _execute() -> None:
+            if callback is not None:
+                await await_or_execute(callback)
+
+        return _execute
+
+    def destroy(self) -> None:
+        if self._node is not None:
+            self._node.destroy_timer(self)
+        else:
+            self._destroy()
+
+    def _destroy(self) -> None:
+        self._destroyed = True
+
+
+class Rate:
+    """Sleeps until its timer fires; needs another thread spinning the node, as rclpy's Rate does."""
+
+    def __init__(self, timer: Timer, *, context: Any) -> None:
+        self._timer = timer
+        self._is_shutdown = False
+        self._is_destroyed = False
+        self._event = threading.Event()
+        self._lock = threading.Lock()
+        self._num_sleepers = 0
+        self._timer.callback = self._event.set
+        context.on_shutdown(self._on_shutdown)
+
+    def _on_shutdown(self) -> None:
+        self._is_shutdown = True
+        self.destroy()
+
+    def destroy(self) -> None:
+        self._is_destroyed = True
+        self._event.set()
+
+    def sleep(self) -> None:
+        if self._is_shutdown:
+            raise ROSInterruptException()
+        if self._is_destroyed:
+            raise RuntimeError("Rate cannot sleep because it has been destroyed")
+        if not self._timer:
+            self.destroy()
+            raise InvalidHandle("Rate cannot sleep because the timer has been destroyed")
+        with self._lock:
+            self._num_sleepers += 1
+        try:
+            self._event.wait()
+        finally:
+            with self._lock:
+                self._num_sleepers -= 1
+                if self._num_sleepers == 0:
+                    self._event.clear()
+            if self._is_shutdown:
+                self.destroy()
+                raise ROSInterruptException()

@@ -1,0 +1,43 @@
+"""The one wake-up signal of this process's executors: Zenoh threads, timers, guards and shutdown bump it.
+
+rclpy waits on an rcl wait set; here every entity keeps its own ready state (a queue, a trigger flag, a
+due time) and an executor sleeps on this condition until something changed or its timeout passed. A
+generation counter makes "did anything change since I looked" race-free.
+"""
+
+from __future__ import annotations
+
+import threading
+
+
+class WorkSignal:
+    def __init__(self) -> None:
+        self._cond = threading.Condition(threading.Lock())
+        self._generation = 0
+
+    @property
+    def generation(self) -> int:
+        return self._generation
+
+    def notify(self) -> None:
+        with self._cond:
+            self._generation += 1
+            self._cond.notify_all()
+
+    def wait(self, generation: int, timeout_s: float | None) -> bool:
+        """Sleep until the generation moves past `generation` (True) or `timeout_s` passes (False)."""
+        with self._cond:
+            if self._generation != generation:
+                return True
+            if timeout_s is not None and timeout_s <= 0:
+                return False
+            self._cond.wait(timeout_s)
+            return self._generation != generation
+
+
+SIGNAL = WorkSignal()
+
+
+def notify() -> None:
+    """Something an executor may be waiting for changed (data arrived, a guard fired, a node was added)."""
+    SIGNAL.notify()

@@ -1,0 +1,3 @@
+"""rclpy.clock_type (diffctl: diffctl.client.clock_type)."""
+
+from diffctl.client.clock_type import *  # noqa: F403

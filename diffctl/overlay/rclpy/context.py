@@ -1,0 +1,3 @@
+"""rclpy.context (diffctl: diffctl.client.context)."""
+
+from diffctl.client.context import *  # noqa: F403

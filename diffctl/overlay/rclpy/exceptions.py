@@ -1,0 +1,3 @@
+"""rclpy.exceptions (diffctl: diffctl.client.exceptions)."""
+
+from diffctl.client.exceptions import *  # noqa: F403

@@ -1,0 +1,3 @@
+"""rclpy.publisher (diffctl: diffctl.client.publisher)."""
+
+from diffctl.client.publisher import *  # noqa: F403

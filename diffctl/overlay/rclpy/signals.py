@@ -1,0 +1,3 @@
+"""rclpy.signals (diffctl: diffctl.client.signals)."""
+
+from diffctl.client.signals import *  # noqa: F403

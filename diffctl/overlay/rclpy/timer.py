@@ -1,0 +1,3 @@
+"""rclpy.timer (diffctl: diffctl.client.timer)."""
+
+from diffctl.client.timer import *  # noqa: F403

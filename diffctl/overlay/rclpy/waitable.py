@@ -1,0 +1,3 @@
+"""rclpy.waitable (diffctl: diffctl.client.waitable)."""
+
+from diffctl.client.waitable import *  # noqa: F403
