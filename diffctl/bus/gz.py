@@ -76,6 +76,23 @@ def topic_of(key_expr: str) -> str:
     return "/" + k[len(PREFIX) + 1 :] if k.startswith(PREFIX + "/") else "/" + k
 
 
+# Liveliness tokens of gz-side endpoints, so `gz topic -l/-i` can list them (gz-transport's discovery):
+# `gz_lv/<pub|sub>/<session zid>/<topic with / as %>/<gz type>`.
+ENDPOINT_TOKEN_PREFIX = "gz_lv"
+
+
+def endpoint_token(kind: str, zid: str, topic: str, gz_type: str) -> str:
+    return f"{ENDPOINT_TOKEN_PREFIX}/{kind}/{zid}/{key(topic)[len(PREFIX) + 1 :].replace('/', '%')}/{gz_type}"
+
+
+def parse_endpoint_token(token_key: str) -> tuple[str, str, str, str] | None:
+    """(kind, zid, topic, gz type) of an endpoint token key, or None."""
+    parts = str(token_key).split("/")
+    if len(parts) != 5 or parts[0] != ENDPOINT_TOKEN_PREFIX:
+        return None
+    return parts[1], parts[2], "/" + parts[3].replace("%", "/"), parts[4]
+
+
 def _default(obj: Any) -> Any:
     # Called by msgpack only for what it cannot pack natively.
     if isinstance(obj, np.ndarray):

@@ -53,7 +53,11 @@ def package_prefix(package: str) -> Path:
 def use_in_children(workspace: Path | None, env: MutableMapping[str, str] = os.environ) -> None:
     """Make processes started with `env` resolve packages as this one does: the workspace in
     $DIFFCTL_WORKSPACE, diffctl's ament_index_python first on PYTHONPATH (xacro's `$(find)`), and the
-    workspace packages' environment hooks applied (GZ_SIM_RESOURCE_PATH …), as sourcing its setup.bash would."""
+    workspace packages' environment hooks applied (GZ_SIM_RESOURCE_PATH …), as sourcing its setup.bash would,
+    and diffctl's `gz` first on PATH."""
+    from diffctl.gz.path import put_gz_on_path
+
+    put_gz_on_path(env)  # `ExecuteProcess(cmd=['gz', 'sim', …])` reaches diffctl's simulator
     if workspace is not None:
         env[WORKSPACE_ENV] = str(workspace)
         from diffctl.workspace.env_hooks import apply_workspace_hooks

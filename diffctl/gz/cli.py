@@ -1,0 +1,365 @@
+"""`gz`: Gazebo's command line for diffctl's simulator (`gz sim`, `gz topic`, `gz service`, `gz model`, `gz fuel`).
+
+Launch files run `ExecuteProcess(cmd=['gz', 'sim', '-r', 'empty.sdf'])` and users type `gz topic -e -t /clock`;
+both reach diffctl through this console script (on PATH in the venv and inside every launch). Flags and output
+follow gz-tools2 / gz-sim8 / gz-transport13: `gz sim` becomes `diffctl sim run` with the same arguments; topic
+payloads are printed and read in protobuf's text format.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import time
+from typing import Any
+
+from diffctl.errors import ConfigError, DiffctlError, RuntimeFailure
+
+USAGE = """Gazebo's command line, served by diffctl.
+
+Usage: gz <command> [options]
+
+  sim      Run a world: gz sim [-r] [-s] [-g] [-v N] [--iterations N] WORLD
+  topic    gz topic -l | -i -t T | -e -t T [-n N] [-d S] [--json-output] | -p TEXT -t T -m gz.msgs.X
+  service  gz service -l | -i -s S | -s S --reqtype A --reptype B [--timeout MS] --req TEXT
+  model    gz model --list | -m NAME [-p]
+  fuel     gz fuel download -u URL
+
+Options: -h, --help
+"""
+
+WORLD_SERVICES = {
+    "control": ("gz.msgs.WorldControl", "gz.msgs.Boolean"),
+    "create": ("gz.msgs.EntityFactory", "gz.msgs.Boolean"),
+    "remove": ("gz.msgs.Entity", "gz.msgs.Boolean"),
+    "state": ("gz.msgs.Empty", "gz.msgs.SerializedStepMap"),
+}
+
+
+def main(argv: list[str] | None = None) -> None:
+    args = list(sys.argv[1:] if argv is None else argv)
+    try:
+        code = dispatch(args)
+    except DiffctlError as e:
+        print(f"error: {e}", file=sys.stderr)
+        code = e.exit_code
+    except KeyboardInterrupt:
+        code = 130
+    finally:
+        session = sys.modules.get("diffctl.bus.session")
+        if session is not None:
+            session.close_session()
+    sys.exit(code)
+
+
+def dispatch(args: list[str]) -> int:
+    if not args or args[0] in ("-h", "--help", "help"):
+        print(USAGE, end="")
+        return 0 if args else 1
+    command, rest = args[0], args[1:]
+    if command in ("sim", "gazebo"):  # `ign gazebo` is the older spelling
+        return sim(rest)
+    if command == "topic":
+        return topic(rest)
+    if command == "service":
+        return service(rest)
+    if command == "model":
+        return model(rest)
+    if command == "fuel":
+        return fuel(rest)
+    from diffctl.errors import suggest
+
+    raise ConfigError(
+        f"gz: unknown command {command!r}{suggest(command, ['sim', 'topic', 'service', 'model', 'fuel'])}",
+        hint="diffctl serves: sim, topic, service, model, fuel",
+    )
+
+
+def sim(rest: list[str]) -> int:
+    """`gz sim …` is `diffctl sim run …`: exec'd, so a launch supervises the simulator itself."""
+    from diffctl.sim.cli import parse_gz_args
+
+    if any(a in ("-h", "--help") for a in rest):
+        print("Usage: gz sim [-r] [-s] [-g] [-v N] [--iterations N] [--seed N] WORLD  (diffctl sim run)")
+        return 0
+    parse_gz_args(rest)  # bad flags are reported here, before anything starts
+    os.execv(sys.executable, [sys.executable, "-m", "diffctl", "sim", "run", *rest])
+    return 0  # not reached
+
+
+def _parser(prog: str) -> argparse.ArgumentParser:
+    return argparse.ArgumentParser(prog=prog, add_help=True, allow_abbrev=False)
+
+
+def _parse(parser: argparse.ArgumentParser, rest: list[str]) -> argparse.Namespace:
+    try:
+        return parser.parse_args(rest)
+    except SystemExit as e:
+        if e.code == 0:
+            raise
+        usage = parser.format_usage().strip()
+        raise ConfigError(f"{parser.prog}: invalid arguments {' '.join(rest)!r}", hint=usage) from None
+
+
+def _session() -> Any:
+    from diffctl.bus import open_session
+    from diffctl.bus.session import use_client_mode
+
+    use_client_mode()  # one-shot tool: the router knows every token at once (a fresh peer may miss some)
+    return open_session()
+
+
+def _endpoints(session: Any) -> list[tuple[str, str, str, str]]:
+    from diffctl.bus import gz
+
+    found = []
+    for reply in session.liveliness().get(f"{gz.ENDPOINT_TOKEN_PREFIX}/**", timeout=1.0):
+        if reply.ok is not None:
+            parsed = gz.parse_endpoint_token(str(reply.ok.key_expr))
+            if parsed is not None:
+                found.append(parsed)
+    return found
+
+
+def topic(rest: list[str]) -> int:
+    p = _parser("gz topic")
+    p.add_argument("-l", "--list", action="store_true")
+    p.add_argument("-i", "--info", action="store_true")
+    p.add_argument("-e", "--echo", action="store_true")
+    p.add_argument("-p", "--pub", metavar="TEXT")
+    p.add_argument("-t", "--topic")
+    p.add_argument("-m", "--msgtype")
+    p.add_argument("-n", "--num", type=int, default=-1)
+    p.add_argument("-d", "--duration", type=float, default=-1.0)
+    p.add_argument("--json-output", action="store_true")
+    a = _parse(p, rest)
+    if a.list:
+        for name in sorted({t for _, _, t, _ in _endpoints(_session())}):
+            print(name)
+        return 0
+    if not a.topic:
+        raise ConfigError("gz topic: -t TOPIC is required", hint="e.g. gz topic -e -t /clock")
+    if a.info:
+        return _topic_info(a.topic)
+    if a.echo:
+        return _echo(a.topic, a.num, a.duration, a.json_output)
+    if a.pub is not None:
+        if not a.msgtype:
+            raise ConfigError("gz topic -p: -m MSGTYPE is required", hint="e.g. -m gz.msgs.Twist")
+        return _publish(a.topic, a.msgtype, a.pub)
+    raise ConfigError("gz topic: one of -l, -i, -e, -p is required")
+
+
+def _norm(topic_name: str) -> str:
+    return "/" + topic_name.strip("/")
+
+
+def _topic_info(name: str) -> int:
+    found = [e for e in _endpoints(_session()) if e[2] == _norm(name)]
+    for kind, title in (("pub", "Publishers"), ("sub", "Subscribers")):
+        mine = sorted({(zid, t) for k, zid, _, t in found if k == kind})
+        if mine:
+            print(f"{title} [Address, Message Type]:")
+            for zid, gz_type in mine:
+                print(f"  zenoh/{zid}, {gz_type}")
+        else:
+            print(f"No {title.lower()} on topic [{_norm(name)}]")
+    return 0
+
+
+def _echo(name: str, count: int, duration_s: float, as_json: bool) -> int:
+    import queue
+
+    from diffctl.bus import gz
+    from diffctl.gz.textproto import format_message
+
+    session = _session()
+    samples: queue.Queue[bytes] = queue.Queue()
+    sub = session.declare_subscriber(gz.key(name), lambda s: samples.put(s.payload.to_bytes()))
+    end = time.monotonic() + duration_s if duration_s >= 0 else None
+    printed = 0
+    try:
+        while count < 0 or printed < count:
+            timeout = None if end is None else end - time.monotonic()
+            if timeout is not None and timeout <= 0:
+                break
+            try:
+                payload = samples.get(timeout=0.2 if timeout is None else min(timeout, 0.2))
+            except queue.Empty:
+                continue
+            _, fields = gz.decode(payload)
+            if as_json:
+                print(json.dumps(fields, default=_json_default), flush=True)
+            else:
+                print(format_message(fields), flush=True)
+            printed += 1
+    finally:
+        sub.undeclare()
+    return 0
+
+
+def _json_default(obj: Any) -> Any:
+    import base64
+
+    import numpy as np
+
+    if isinstance(obj, np.ndarray):
+        return obj.tolist()
+    if isinstance(obj, bytes | bytearray):
+        return base64.b64encode(bytes(obj)).decode()
+    return str(obj)
+
+
+def _publish(name: str, gz_type: str, text: str) -> int:
+    from diffctl.bus import gz
+    from diffctl.gz.textproto import parse_message
+
+    if not gz_type.startswith(("gz.msgs.", "ignition.msgs.")):
+        raise ConfigError(f"gz topic -p: message type {gz_type!r} is not a gz.msgs type", hint="e.g. gz.msgs.Twist")
+    fields = parse_message(text)
+    gz_type = "gz.msgs." + gz_type.split(".msgs.", 1)[1]
+    session = _session()
+    pub = session.declare_publisher(gz.key(name))
+    token = session.liveliness().declare_token(gz.endpoint_token("pub", str(session.zid()), name, gz_type))
+    time.sleep(0.8)  # as gz-transport's `gz topic -p`: give subscribers time to discover the publisher
+    pub.put(gz.encode(gz_type, fields))
+    time.sleep(0.1)
+    token.undeclare()
+    pub.undeclare()
+    return 0
+
+
+def _worlds(session: Any) -> list[str]:
+    from diffctl.sim.world_client import running_worlds
+
+    return running_worlds(session)
+
+
+def service(rest: list[str]) -> int:
+    p = _parser("gz service")
+    p.add_argument("-l", "--list", action="store_true")
+    p.add_argument("-i", "--info", action="store_true")
+    p.add_argument("-s", "--service")
+    p.add_argument("--reqtype")
+    p.add_argument("--reptype")
+    p.add_argument("--timeout", type=int, default=1000)
+    p.add_argument("-r", "--req", default="")
+    a = _parse(p, rest)
+    session = _session()
+    worlds = _worlds(session)
+    services = {"/gazebo/worlds": ("gz.msgs.Empty", "gz.msgs.StringMsg_V")}
+    for w in worlds:
+        for leaf, types in WORLD_SERVICES.items():
+            services[f"/world/{w}/{leaf}"] = types
+    if a.list:
+        for name in sorted(services):
+            print(name)
+        return 0
+    if not a.service:
+        raise ConfigError("gz service: -s SERVICE is required", hint="e.g. gz service -l")
+    name = _norm(a.service)
+    if a.info:
+        if name not in services:
+            print(f"No service providers on service [{name}]")
+            return 0
+        print("Service providers [Address, Request Message Type, Response Message Type]:")
+        print(f"  zenoh, {services[name][0]}, {services[name][1]}")
+        return 0
+    if name not in services:
+        print("Service call timed out")
+        return 1
+    return _call(session, name, a.req, a.timeout)
+
+
+def _call(session: Any, name: str, text: str, timeout_ms: int) -> int:
+    from diffctl.gz.textproto import format_message, parse_message
+    from diffctl.sim.world_client import call
+
+    req = parse_message(text) if text.strip() else {}
+    if name == "/gazebo/worlds":
+        print(format_message({"data": _worlds(session)}), end="")
+        return 0
+    _, _, world, leaf = name.split("/", 3)
+    body: dict[str, Any]
+    if leaf == "control":
+        body = {}
+        if "pause" in req:
+            body["pause"] = bool(req["pause"])
+        if req.get("multi_step"):
+            body["multi_step"] = int(req["multi_step"])
+        elif req.get("step"):
+            body["step"] = True
+        if isinstance(req.get("reset"), dict) and req["reset"].get("all"):
+            body["reset"] = {"all": True}
+    elif leaf == "create":
+        body = {k: req[k] for k in ("sdf", "sdf_filename", "name", "allow_renaming") if k in req}
+        pose = req.get("pose") or {}
+        pos, quat = pose.get("position") or {}, pose.get("orientation") or {}
+        if pos or quat:
+            from diffctl.description.pose import Pose
+
+            q = (float(quat.get("x", 0)), float(quat.get("y", 0)), float(quat.get("z", 0)), float(quat.get("w", 1)))
+            roll, pitch, yaw = Pose((0.0, 0.0, 0.0), q).rpy
+            body["pose"] = {"x": pos.get("x", 0), "y": pos.get("y", 0), "z": pos.get("z", 0)}
+            body["pose"].update(roll=roll, pitch=pitch, yaw=yaw)
+    elif leaf == "remove":
+        body = {"name": req.get("name", "")}
+    else:
+        body = {}
+    try:
+        reply = call(session, world, leaf, body, time.monotonic() + max(timeout_ms, 1) / 1000.0)
+    except RuntimeFailure as e:
+        print("Service call failed" if "failed" in e.message else "Service call timed out")
+        return 1
+    if leaf == "state":
+        print(json.dumps(reply, indent=2))
+    else:
+        print(format_message({"data": bool(reply.get("ok"))}), end="")
+    return 0
+
+
+def model(rest: list[str]) -> int:
+    p = _parser("gz model")
+    p.add_argument("--list", action="store_true")
+    p.add_argument("-m", "--model")
+    p.add_argument("-p", "--pose", action="store_true")
+    a = _parse(p, rest)
+    from diffctl.sim.world_client import call
+
+    session = _session()
+    worlds = _worlds(session)
+    if not worlds:
+        print("\nService call to [/gazebo/worlds] timed out\n", file=sys.stderr)
+        return 1
+    world = worlds[0]
+    print(f"\nRequesting state for world [{world}]...\n")
+    state = call(session, world, "state", {}, time.monotonic() + 5.0)
+    models = {m["name"]: m for m in state.get("models", [])}
+    if a.list or not a.model:
+        print("Available models:")
+        for name in models:
+            print(f"    - {name}")
+        return 0
+    m = models.get(a.model)
+    if m is None:
+        print(f"No model named <{a.model}> was found")
+        return 1
+    pose = m["pose"]
+    index = list(models).index(a.model) + 1
+    print(f"Model: [{index}]\n  - Name: {a.model}\n  - Pose [ XYZ (m) ] [ RPY (rad) ]:")
+    print(f"      [{pose['x']:.6f} {pose['y']:.6f} {pose['z']:.6f}]")
+    print(f"      [{pose['roll']:.6f} {pose['pitch']:.6f} {pose['yaw']:.6f}]")
+    return 0
+
+
+def fuel(rest: list[str]) -> int:
+    p = _parser("gz fuel")
+    p.add_argument("action", choices=["download"])
+    p.add_argument("-u", "--url", required=True)
+    a = _parse(p, rest)
+    from diffctl.cli.main import main as diffctl_main
+
+    diffctl_main(["fuel", a.action, a.url])
+    return 0
