@@ -172,6 +172,17 @@ class _Decoder(_Emitter):
         self.known = 1
         return v
 
+    def wstring(self) -> str:
+        n, v = self._length(), self.var("w")
+        self.lines += [
+            f"if pos + 4 * {n} > blen:",
+            f"    raise ValueError(f'invalid wstring length {{{n}}} at offset {{pos - 8}}')",
+            f"{v} = WDEC(buf, pos, {n})",
+            f"pos += 4 * {n}",
+        ]
+        self.known = 4
+        return v
+
     def count(self, minimum: int) -> str:
         n = self._length()
         self.lines += [
@@ -186,6 +197,8 @@ class _Decoder(_Emitter):
         if kind == Nodetype.BASE:
             if spec[0] == "string":
                 return self.string()
+            if spec[0] == "wstring":
+                return self.wstring()
             if spec[0] not in _CODE:
                 raise Unsupported(spec[0])
             return self.primitive(spec[0])
@@ -255,7 +268,18 @@ class _Decoder(_Emitter):
         n = str(length) if fixed else self.count(5 if sub[0] == Nodetype.BASE and sub[1][0] == "string" else 1)
         self.flush()
         v = self.var("l")
-        if sub[0] == Nodetype.BASE and sub[1][0] == "string":
+        if sub[0] == Nodetype.BASE and sub[1][0] == "wstring":
+            self.lines += [
+                f"{v} = []",
+                f"for _ in range({n}):",
+                "    pos = ((pos - 1) & -4) + 4",
+                "    n_ = U32(buf, pos)[0]",
+                "    if pos + 4 + 4 * n_ > blen:",
+                "        raise ValueError(f'invalid wstring length {n_} at offset {pos - 4}')",
+                f"    {v}.append(WDEC(buf, pos + 4, n_))",
+                "    pos += 4 + 4 * n_",
+            ]
+        elif sub[0] == Nodetype.BASE and sub[1][0] == "string":
             self.lines += [
                 f"{v} = []",
                 f"for _ in range({n}):",
@@ -347,13 +371,24 @@ def compile_decoder(
     ns: dict[str, Any] = {"U32": struct.Struct("<I").unpack_from, "frombuffer": numpy.frombuffer, "NEW": object.__new__,
                           "MAXSEQ": getattr(ts, "max_sequence_length", 2**32 - 1),
                           "FALLBACK": ts.deserialize_cdr, "TYPENAME": typename, "ERROR": error,
-                          "ARRAY": array.array}
+                          "ARRAY": array.array, "WDEC": _wstring_decode}
     if classes is not None:
         ns["FALLBACK"] = _big_endian_unsupported
     src = _decoder_source(ts, typename, ns, wrap=error is not None, classes=classes)
     ns = {k: v for k, v in ns.items() if isinstance(k, str)}
     exec(compile(src, f"<cdr decoder {typename}>", "exec"), ns)
     return ns["decode"]
+
+
+def _wstring_decode(buf: bytes, pos: int, n: int) -> str:
+    # rosidl's wstrings are UTF-16 code units, each sent as a 4-byte wchar (Fast CDR), with no terminator
+    return array.array("H", array.array("I", buf[pos:pos + 4 * n])).tobytes().decode("utf-16-le")
+
+
+def _wstring_encode(text: str) -> tuple[int, bytes]:
+    units = array.array("H")
+    units.frombytes(text.encode("utf-16-le"))
+    return len(units), array.array("I", units).tobytes()
 
 
 def _big_endian_unsupported(buf: bytes, typename: str) -> Any:
@@ -415,10 +450,20 @@ class _Encoder(_Emitter):
                        "parts.append(NUL)", f"pos += {b}.__len__() + 5"]
         self.known = 1
 
+    def wstring(self, expr: str) -> None:
+        self.flush()
+        self._align(4)
+        n, b = self.var("n"), self.var("b")
+        self.lines += [f"{n}, {b} = WENC({expr})", f"parts.append(U32({n}))", f"parts.append({b})",
+                       f"pos += 4 + 4 * {n}"]
+        self.known = 4
+
     def value(self, desc: tuple, expr: str) -> None:
         kind, spec = desc
         if kind == Nodetype.BASE:
-            if spec[0] == "string":
+            if spec[0] == "wstring":
+                self.wstring(expr)
+            elif spec[0] == "string":
                 self.string(expr)
             elif spec[0] in _CODE:
                 self.primitive(spec[0], expr)
@@ -454,6 +499,10 @@ class _Encoder(_Emitter):
                 self.lines.append(f"if {n}:")
                 self._align(size, "    ")
             self.lines += [f"parts.append(asarray({v}, dtype={dtype}).tobytes())", f"pos += {n} * {size}"]
+        elif sub[0] == Nodetype.BASE and sub[1][0] == "wstring":
+            self.lines += [f"for i_ in {v}:", "    p_ = -pos & 3", "    parts.append(ZEROS[p_])",
+                           "    n_, b_ = WENC(i_)", "    parts.append(U32(n_))", "    parts.append(b_)",
+                           "    pos += p_ + 4 + 4 * n_"]
         elif sub[0] == Nodetype.BASE and sub[1][0] == "string":
             self.lines += [f"for i_ in {v}:", "    p_ = -pos & 3", "    parts.append(ZEROS[p_])",
                            "    b_ = i_.encode()", "    parts.append(U32(b_.__len__() + 1))", "    parts.append(b_)",
@@ -492,7 +541,8 @@ def compile_encoder(ts: Any, typename: str, rosidl: bool = False) -> Callable[[A
     """`encode(msg) -> bytes`: the little-endian CDR sample, header included, padded as rosbags pads it.
     `rosidl`: the message is of a rosidl-style class (fields read from their `_name` slots)."""
     ns: dict[str, Any] = {"U32": struct.Struct("<I").pack, "NUL": b"\x00", "asarray": numpy.asarray,
-                          "ZEROS": tuple(bytes(i) for i in range(8)), "BYTESLIKE": (bytes, bytearray)}
+                          "ZEROS": tuple(bytes(i) for i in range(8)), "BYTESLIKE": (bytes, bytearray),
+                          "WENC": _wstring_encode}
     src = _encoder_source(ts, typename, ns, "_" if rosidl else "")
     ns = {k: v for k, v in ns.items() if isinstance(k, str)}
     exec(compile(src, f"<cdr encoder {typename}>", "exec"), ns)

@@ -54,7 +54,7 @@ def _field_type(desc: tuple) -> dict[str, Any]:
 
 def individual(typename: str) -> dict[str, Any]:
     """IndividualTypeDescription of one type (an empty message gets rosidl's placeholder member)."""
-    fields = types.store_with(typename).fielddefs[typename][1] or [
+    fields = types.store_described(typename).fielddefs[typename][1] or [
         ("structure_needs_at_least_one_member", (Nodetype.BASE, ("uint8", 0)))
     ]
     return {"type_name": typename,

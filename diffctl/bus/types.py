@@ -161,7 +161,13 @@ def get_class(typename: str):
 def type_hash(typename: str) -> str:
     """RIHS01 hash (REP-2016) of a message or service type."""
     with _lock:  # `_ensure` may swap a described type's definition for its registration meanwhile
-        return _ensure_described(typename).hash_rihs01(typename)
+        ts = _ensure_described(typename)
+        try:
+            return ts.hash_rihs01(typename)
+        except KeyError:  # rosbags hashes no wstring field; REP-2016's description itself covers them
+            from diffctl.bus import type_description
+
+            return type_description.hash_of(type_description.describe(typename))
 
 
 def dds_name(typename: str) -> str:

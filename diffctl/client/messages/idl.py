@@ -21,6 +21,7 @@ PRIMITIVES = ("bool", "byte", "char", "int8", "uint8", "int16", "uint16", "int32
               "float32", "float64", "string", "wstring")
 _INT_BITS = {"int8": 8, "uint8": 8, "int16": 16, "uint16": 16, "int32": 32, "uint32": 32, "int64": 64,
              "uint64": 64, "byte": 8}
+EMPTY_MEMBER = "structure_needs_at_least_one_member"
 _FIELD_NAME = re.compile(r"^[a-z][a-z0-9_]*$")
 _CONST_NAME = re.compile(r"^[A-Z][A-Z0-9_]*$")
 _TYPE = re.compile(r"^(?P<base>[A-Za-z][A-Za-z0-9_/]*)(?:<=(?P<sbound>\d+))?(?P<arr>\[(?P<abound><=)?(?P<n>\d*)\])?$")
@@ -223,6 +224,9 @@ def parse_message(text: str, typename: str, source: str | None = None, first_lin
         td.fields.append((name, desc))
         if default.strip():
             td.defaults[name] = parse_default(desc, default, where)
+    if not td.fields:
+        # IDL structures need a member: rosidl adds this byte (on the wire and in the type hash).
+        td.fields.append((EMPTY_MEMBER, (Nodetype.BASE, ("uint8", 0))))
     return td
 
 
