@@ -42,6 +42,7 @@ from diffctl.launch.plan import (
     walk,
 )
 from diffctl.launch.process_state import (
+    Child,
     Clock,
     Pending,
     ProcessState,
@@ -79,6 +80,7 @@ class Supervisor:
         self.base_env = with_tool_path(dict(os.environ if env is None else env))  # as default_child_env
         self.states = {name: ProcessState(spec) for name, spec in plan.processes.items()}
         self.pid_names: dict[int, str] = {}
+        self.started_at: dict[int, float] = {}  # pgid → when that start of the process began
         self.handlers: list[Handler] = []
         self.fired: set[int] = set()
         self.start_order: list[str] = []
@@ -121,7 +123,9 @@ class Supervisor:
             st.lingering = child
         elif child is not None:
             self.spawner.forget(child)
-        self._process_exited(st, code, pid)
+        self._process_exited(st, code, pid, self._ran(child))
+        if st.lingering is not child and child is not None:
+            self.started_at.pop(child.pgid, None)
         self._after_event()
 
     def on_line(self, name: str, stream: str, text: str) -> None:
@@ -159,9 +163,10 @@ class Supervisor:
                 timer.callback()
         for st in self.states.values():
             if st.lingering is not None and not self.spawner.group_alive(st.lingering):
-                self.spawner.forget(st.lingering)
-                st.lingering = None
-                self.output.launcher("INFO", f"[{st.spec.name}] the rest of its process group is gone{self._ran(st)}")
+                gone, st.lingering = st.lingering, None
+                self.spawner.forget(gone)
+                self.output.launcher("INFO", f"[{st.spec.name}] the rest of its process group is gone{self._ran(gone)}")
+                self.started_at.pop(gone.pgid, None)
         self._after_event()
 
     def next_deadline(self) -> float | None:
@@ -253,12 +258,12 @@ class Supervisor:
             self.output.launcher("ERROR", f"[{spec.name}] could not start: {e.strerror or e}")
             st.tail.append(f"could not start: {e.strerror or e}")
             st.exit_code = 127
-            self._process_exited(st, 127, None)
+            self._process_exited(st, 127, None, "")
             return
         st.child = child
         st.state = "running"
         st.starts += 1
-        st.started_at = self.now()
+        st.started_at = self.started_at[child.pgid] = self.now()
         self.pid_names[child.pid] = spec.name
         if spec.name not in self.start_order:
             self.start_order.append(spec.name)
@@ -267,12 +272,17 @@ class Supervisor:
         self.output.launcher("INFO", f"[{spec.name}] started (pid {child.pid})")
         self._fire("start", spec.name, None, EventInfo(spec.name, child.pid))
 
-    def _process_exited(self, st: ProcessState, code: int, pid: int | None) -> None:
+    def _process_exited(self, st: ProcessState, code: int, pid: int | None, ran: str) -> None:
         name = st.spec.name
-        where = f"pid {pid}{self._ran(st)}" if pid else "never started"
+        where = f"pid {pid}{ran}" if pid else "never started"
         if self.shutting_down:
             st.state = "stopped"
             self.output.launcher("INFO", f"[{name}] stopped ({describe_exit(code)}, {where})")
+            if st.lingering is not None:
+                # The leader went on SIGINT, the rest stayed: a non-interactive shell's background job ignores
+                # SIGINT, so waiting out sigterm_timeout for it would only delay the inevitable.
+                self.output.launcher("INFO", f"[{name}] left processes in its group; sending them SIGTERM")
+                self._stop(st, signal.SIGTERM, quiet=True)
             return
         if code == 0:
             st.state = "exited"
@@ -307,9 +317,11 @@ class Supervisor:
             self.output.launcher("WARN", f"[{name}] exited but left processes in its group; sending them SIGTERM")
             self._stop(st, signal.SIGTERM, quiet=True)
 
-    def _ran(self, st: ProcessState) -> str:
-        """', ran 3.2 s': since this start of the process (a respawn starts the count again)."""
-        return f", ran {self.now() - st.started_at:.1f} s" if st.started_at is not None else ""
+    def _ran(self, child: Child | None) -> str:
+        """', ran 3.2 s': since the start that made this group (kept per group, so a respawn, which starts the
+        count of its own group again, leaves the figure of the one before it intact)."""
+        started = self.started_at.get(child.pgid) if child is not None else None
+        return f", ran {self.now() - started:.1f} s" if started is not None else ""
 
     @property
     def _io_handlers(self) -> bool:

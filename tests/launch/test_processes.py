@@ -232,3 +232,33 @@ def test_children_and_command_substitutions_find_the_venvs_tools_without_activat
     assert run.wait(30) == 0, run.text()
     assert f"command: {bindir}/xacro" in run.text()
     assert f"[child] {bindir}/diffctl" in run.text()
+
+
+def test_ctrl_c_sends_sigterm_at_once_to_what_a_stopped_shell_left_and_counts_each_run(launch_run, tmp_path) -> None:
+    # The shell and its foreground sleep go on SIGINT; its background job ignores SIGINT (as every job of a
+    # non-interactive shell does) and would have outlived the default 5 s sigterm_timeout.
+    launch = tmp_path / "job.yaml"
+    launch.write_text(
+        "launch:\n"
+        "- executable: {cmd: \"sh -c 'sleep 1000 & sleep 1000'\", name: job}\n"
+        "- executable: {cmd: 'sleep 1000', name: plain}\n"
+    )
+    run = launch_run(str(launch), "--no-router")
+    run.wait_for(r"all 2 processes started", timeout_s=30)
+    deadline = time.monotonic() + 10
+    while sum(" ".join(p.cmdline()) == "sleep 1000" for p in run.leftovers()) < 3 and time.monotonic() < deadline:
+        time.sleep(0.05)
+    time.sleep(1.5)
+    t0 = time.monotonic()
+    run.signal(signal.SIGINT)
+    assert run.wait(10) == 0, run.text()
+    took = time.monotonic() - t0
+    text = run.text()
+    assert "[job] left processes in its group; sending them SIGTERM" in text
+    assert "still running" not in text  # no timeout was waited out
+    assert took < 1.0, (took, text)
+    for name in ("job", "plain"):
+        ran = float(run.wait_for(rf"\[{name}\] stopped \(killed by SIGINT, pid \d+, ran ([\d.]+) s\)").group(1))
+        assert ran >= 1.5, text  # counted from each one's start, not from the shutdown
+    assert float(run.wait_for(r"\[job\] the rest of its process group is gone, ran ([\d.]+) s").group(1)) >= 1.5
+    assert_nothing_left(run)
