@@ -251,7 +251,9 @@ class Node:
             current.remove_node(self)
         if new_executor is None:
             self._executor_ref = None
-        elif new_executor.add_node(self):
+        else:
+            # Executor.add_node sets this property while it adds the node (then add_node answers False).
+            new_executor.add_node(self)
             self._executor_ref = weakref.ref(new_executor)
 
     def _wake_executor(self) -> None:

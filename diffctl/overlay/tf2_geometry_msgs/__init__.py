@@ -1,0 +1,8 @@
+"""tf2_geometry_msgs: do_transform_* for geometry_msgs, registered with tf2_ros's Buffer.transform()."""
+
+from tf2_geometry_msgs.tf2_geometry_msgs import (  # noqa: F401
+    do_transform_point,
+    do_transform_pose,
+    do_transform_pose_stamped,
+    do_transform_vector3,
+)

@@ -1,0 +1,10 @@
+# ruff: noqa: I001  (written as the ROS 2 examples are)
+from launch import LaunchDescription
+from launch_ros.actions import Node
+
+
+def generate_launch_description():
+    return LaunchDescription([
+        Node(package='py_examples', executable='fibonacci_server', name='minimal_action_server'),
+        Node(package='py_examples', executable='fibonacci_client', parameters=[{'order': 6}]),
+    ])

@@ -1,0 +1,10 @@
+# ruff: noqa: I001  (written as the ROS 2 examples are)
+from launch import LaunchDescription
+from launch_ros.actions import Node
+
+
+def generate_launch_description():
+    return LaunchDescription([
+        Node(package='py_examples', executable='tf2_broadcaster'),
+        Node(package='py_examples', executable='tf2_listener', parameters=[{'target_frame': 'carrot1'}]),
+    ])
