@@ -12,6 +12,7 @@ import os
 from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[2]
+DATA = Path(__file__).resolve().parent / "data"
 
 PACKAGE_XML = """<?xml version="1.0"?>
 <?xml-model href="http://download.ros.org/schema/package_format3.xsd" schematypens="http://www.w3.org/2001/XMLSchema"?>
@@ -147,13 +148,10 @@ def generate_launch_description():
 
 
 def tutorial_launch_text() -> str:
-    """The tutorial's sim_control_gz.launch.py, as its text stands in the tutorial (shared/seed)."""
-    seed = REPO.parent / "shared" / "seed" / "000_1c7d0cba1e7df85e.txt"
-    text = seed.read_text()
-    start = text.index("from launch import LaunchDescription")
-    end = text.index("Comparing to the launch file in last tutorial")
+    """The tutorial's sim_control_gz.launch.py, as its text stands on the tutorial's page (data/: the page's code
+    block, copied verbatim)."""
     # The tutorial page lost its indentation; put Python's back from the structure of the code.
-    return _reindent(text[start:end])
+    return _reindent((DATA / "sim_control_gz.launch.txt").read_text())
 
 
 def _reindent(flat: str) -> str:
