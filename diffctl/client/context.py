@@ -71,7 +71,7 @@ class Context:
         with self._lock:
             if not self._ok:
                 if not self._init_called:
-                    raise RCLError("failed to shutdown: rcl_shutdown context is not initialized")
+                    raise RuntimeError("Context must be initialized before it can be shutdown")
                 raise RCLError("failed to shutdown: rcl_shutdown already called on the given context, "
                                "at ./src/rcl/init.c:241")
             self._ok = False

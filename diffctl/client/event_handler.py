@@ -66,8 +66,15 @@ class EventHandler(Waitable):
         return bool(self._pending)
 
     def take_data(self) -> Any:
+        # An rmw event is a status: what happened since the last take comes as one, its changes summed.
         with self._lock:
-            return self._pending.pop(0) if self._pending else None
+            pending, self._pending = self._pending, []
+        if not pending:
+            return None
+        last = pending[-1]
+        if hasattr(last, "total_count_change"):
+            last.total_count_change = sum(getattr(p, "total_count_change", 0) for p in pending)
+        return last
 
     async def execute(self, taken_data: Any) -> None:
         if taken_data is not None:

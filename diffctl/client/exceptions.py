@@ -8,8 +8,9 @@ from typing import Any
 class NotInitializedException(Exception):
     """Raised when the rclpy context is used before init() or after shutdown()."""
 
-    def __init__(self, *args: Any) -> None:
-        Exception.__init__(self, "rclpy.init() has not been called", *args)
+    def __init__(self, message: str | None = None) -> None:
+        Exception.__init__(self, f"rclpy.init() has not been called. msg:{message}" if message
+                           else "rclpy.init() has not been called.")
 
 
 class NoTypeSupportImportedException(Exception):
@@ -95,7 +96,7 @@ class ParameterImmutableException(ParameterException):
 
 class ParameterUninitializedException(ParameterException):
     def __init__(self, parameter: Any, *args: Any) -> None:
-        ParameterException.__init__(self, "Attempted to get uninitialized parameter", parameter, *args)
+        ParameterException.__init__(self, f"The parameter '{parameter}' is not initialized", parameter)
 
 
 class ROSInterruptException(Exception):

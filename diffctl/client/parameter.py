@@ -11,7 +11,9 @@ from diffctl.client.interfaces import cls
 PARAMETER_SEPARATOR_STRING = "."
 
 
-class _ParameterType(enum.Enum):
+class Type(enum.Enum):
+    """Parameter.Type (its str is `Type.INTEGER`, as rclpy's nested enum)."""
+
     NOT_SET = 0
     BOOL = 1
     INTEGER = 2
@@ -24,7 +26,7 @@ class _ParameterType(enum.Enum):
     STRING_ARRAY = 9
 
     @classmethod
-    def from_parameter_value(cls_, value: Any) -> _ParameterType:
+    def from_parameter_value(cls_, value: Any) -> Type:
         """The type of a Python value; `[]` is a BYTE_ARRAY, as in rclpy."""
         if value is None:
             return cls_.NOT_SET
@@ -51,7 +53,7 @@ class _ParameterType(enum.Enum):
         raise TypeError(f"The given value is not one of the allowed types '{value}'.")
 
     def check(self, value: Any) -> bool:
-        t = _ParameterType
+        t = Type
         seq = (list, tuple)
         if self is t.NOT_SET:
             return value is None
@@ -83,13 +85,13 @@ _FIELDS = {
 
 
 class Parameter:
-    Type = _ParameterType
+    Type = Type
 
-    def __init__(self, name: str, type_: _ParameterType | None = None, value: Any = None) -> None:
+    def __init__(self, name: str, type_: Type | None = None, value: Any = None) -> None:
         if type_ is None:
-            type_ = _ParameterType.from_parameter_value(value)
-        if not isinstance(type_, _ParameterType):
-            raise TypeError(f"type must be an instance of '{_ParameterType!r}'")
+            type_ = Type.from_parameter_value(value)
+        if not isinstance(type_, Type):
+            raise TypeError(f"type must be an instance of '{Type!r}'")
         if not type_.check(value):
             raise ValueError(f"Type '{type_}' and value '{value}' do not agree")
         self._type_ = type_
@@ -98,9 +100,9 @@ class Parameter:
 
     @classmethod
     def from_parameter_msg(cls_, param_msg: Any) -> Parameter:
-        type_ = _ParameterType(param_msg.value.type)
+        type_ = Type(param_msg.value.type)
         value = getattr(param_msg.value, _FIELDS[type_.value]) if type_.value in _FIELDS else None
-        if type_ is _ParameterType.BYTE_ARRAY:
+        if type_ is Type.BYTE_ARRAY:
             value = [v if isinstance(v, bytes) else bytes([v]) for v in value]
         return cls_(param_msg.name, type_, value)
 
@@ -109,7 +111,7 @@ class Parameter:
         return self._name
 
     @property
-    def type_(self) -> _ParameterType:
+    def type_(self) -> Type:
         return self._type_
 
     @property
@@ -121,7 +123,7 @@ class Parameter:
         field = _FIELDS.get(self._type_.value)
         if field is not None:
             value = self._value
-            if self._type_ is _ParameterType.DOUBLE_ARRAY or self._type_ is _ParameterType.INTEGER_ARRAY:
+            if self._type_ is Type.DOUBLE_ARRAY or self._type_ is Type.INTEGER_ARRAY:
                 value = list(value)
             setattr(pv, field, value)
         return pv
@@ -174,7 +176,7 @@ def parameter_value_to_python(parameter_value: Any) -> Any:
 
 def python_value(p: Parameter) -> Any:
     """A parameter's value as diffctl's bus stores it (bytes for a byte array, lists for arrays)."""
-    if p.type_ is _ParameterType.BYTE_ARRAY:
+    if p.type_ is Type.BYTE_ARRAY:
         return b"".join(p.value)
     if isinstance(p.value, (tuple, array.array)):
         return list(p.value)
@@ -184,7 +186,7 @@ def python_value(p: Parameter) -> Any:
 def from_python_value(name: str, value: Any) -> Parameter:
     """A Parameter from a bus value (bytes become rclpy's list of one-byte bytes)."""
     if isinstance(value, (bytes, bytearray)):
-        return Parameter(name, _ParameterType.BYTE_ARRAY, [bytes([b]) for b in value])
+        return Parameter(name, Type.BYTE_ARRAY, [bytes([b]) for b in value])
     if isinstance(value, tuple):
         value = list(value)
     if isinstance(value, list) and value and all(isinstance(v, (int, float)) and not isinstance(v, bool)

@@ -1,0 +1,120 @@
+# Executor and callback-group ordering, futures and coroutine callbacks, as a user observes them.
+import json
+import threading
+import time
+
+import rclpy
+from rclpy.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
+from rclpy.executors import MultiThreadedExecutor, SingleThreadedExecutor
+from rclpy.node import Node
+from rclpy.task import Future
+from std_msgs.msg import String
+
+out = []
+rclpy.init()
+node = Node("order_demo")
+events = []
+pub = node.create_publisher(String, "order_topic", 10)
+sub = node.create_subscription(String, "order_topic", lambda m: events.append("sub " + m.data), 10)
+ex = SingleThreadedExecutor()
+ex.add_node(node)
+deadline = time.monotonic() + 5
+while pub.get_subscription_count() < 1 and time.monotonic() < deadline:
+    ex.spin_once(timeout_sec=0.05)
+for i in range(3):
+    pub.publish(String(data=str(i)))
+time.sleep(0.5)  # every sample delivered, the timer due, before anything runs
+
+
+def on_timer():
+    events.append("timer")
+    tmr.cancel()
+
+
+tmr = node.create_timer(0.01, on_timer)
+gc = node.create_guard_condition(lambda: events.append("guard"))
+gc.trigger()
+time.sleep(0.05)
+ex.create_task(lambda: events.append("task"))
+for _ in range(6):
+    ex.spin_once(timeout_sec=0.5)
+out.append(["single-threaded order", events[:6]])
+
+# A coroutine callback awaiting a future that another callback completes.
+events.clear()
+fut = Future()
+
+
+async def waiter():
+    t1.cancel()
+    events.append("waiting")
+    value = await fut
+    events.append(f"resumed with {value}")
+
+
+t1 = node.create_timer(0.01, waiter, callback_group=ReentrantCallbackGroup())
+t2 = node.create_timer(0.05, lambda: (fut.set_result(7), t2.cancel()), callback_group=ReentrantCallbackGroup())
+end = time.monotonic() + 2
+while time.monotonic() < end and "resumed with 7" not in events:
+    ex.spin_once(timeout_sec=0.1)
+out.append(["coroutine", events[:2]])
+
+# spin_until_future_complete: a timeout returns quietly; a done future returns at once.
+never = Future()
+t0 = time.monotonic()
+ex.spin_until_future_complete(never, timeout_sec=0.3)
+out.append(["timeout returns", [never.done(), never.result(), round(time.monotonic() - t0, 1)]])
+done = Future()
+done.set_result("x")
+ex.spin_until_future_complete(done, timeout_sec=1)
+out.append(["done future", done.result()])
+c = Future()
+c.cancel()
+out.append(["cancelled future", [c.cancelled(), c.done(), c.result()]])
+
+# A callback that raises: spin_once propagates it.
+boom = node.create_timer(0.01, lambda: 1 / 0)
+try:
+    for _ in range(5):
+        ex.spin_once(timeout_sec=0.5)
+    out.append(["exception", "none"])
+except ZeroDivisionError as e:
+    out.append(["exception", type(e).__name__ + ": " + str(e)])
+node.destroy_timer(boom)
+ex.remove_node(node)
+
+
+def overlap(group_factory):
+    n = Node("overlap_demo")
+    state = {"now": 0, "max": 0, "calls": 0}
+    lock = threading.Lock()
+
+    def slow():
+        with lock:
+            state["now"] += 1
+            state["calls"] += 1
+            state["max"] = max(state["max"], state["now"])
+        time.sleep(0.15)
+        with lock:
+            state["now"] -= 1
+
+    group = group_factory()
+    timers = [n.create_timer(0.05, slow, callback_group=group) for _ in range(2)]
+    mt = MultiThreadedExecutor(num_threads=4)
+    mt.add_node(n)
+    end = time.monotonic() + 1.0
+    while time.monotonic() < end:
+        mt.spin_once(timeout_sec=0.05)
+    for t in timers:
+        t.cancel()
+    mt.shutdown()
+    n.destroy_node()
+    return state["max"]
+
+
+out.append(["mutually exclusive max overlap", overlap(MutuallyExclusiveCallbackGroup)])
+out.append(["reentrant callbacks overlap", overlap(ReentrantCallbackGroup) >= 2])
+out.append(["default group is exclusive", isinstance(node.default_callback_group, MutuallyExclusiveCallbackGroup)])
+node.destroy_node()
+rclpy.shutdown()
+print(json.dumps(out))

@@ -1,0 +1,51 @@
+# QoS as a user observes it: a transient-local late joiner gets the newest samples, a volatile one none;
+# incompatible QoS is reported (default warnings and a user callback).
+import json
+import time
+
+import rclpy
+from rclpy.event_handler import SubscriptionEventCallbacks
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.node import Node
+from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy, qos_policy_name_from_kind
+from std_msgs.msg import String
+
+out = []
+rclpy.init()
+node = Node("qos_demo")
+ex = SingleThreadedExecutor()
+ex.add_node(node)
+
+
+def spin_for(seconds):
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        ex.spin_once(timeout_sec=0.05)
+
+
+latched = QoSProfile(depth=2, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+pub = node.create_publisher(String, "latched_topic", latched)
+for word in ("a", "b", "c"):
+    pub.publish(String(data=word))
+spin_for(0.5)
+late, volatile = [], []
+node.create_subscription(String, "latched_topic", lambda m: late.append(m.data),
+                         QoSProfile(depth=5, durability=DurabilityPolicy.TRANSIENT_LOCAL))
+node.create_subscription(String, "latched_topic", lambda m: volatile.append(m.data), 5)
+spin_for(1.5)
+out.append(["transient local late joiner", late])
+out.append(["volatile late joiner", volatile])
+
+events = []
+node.create_publisher(String, "incompatible_topic", QoSProfile(depth=5, reliability=ReliabilityPolicy.BEST_EFFORT))
+node.create_subscription(
+    String, "incompatible_topic", lambda m: None, QoSProfile(depth=5, reliability=ReliabilityPolicy.RELIABLE),
+    event_callbacks=SubscriptionEventCallbacks(
+        incompatible_qos=lambda e: events.append(qos_policy_name_from_kind(e.last_policy_kind))))
+node.create_subscription(String, "incompatible_topic", lambda m: None,
+                         QoSProfile(depth=5, reliability=ReliabilityPolicy.RELIABLE))
+spin_for(1.5)
+out.append(["user incompatible qos callback", sorted(set(events))])
+node.destroy_node()
+rclpy.shutdown()
+print(json.dumps(out))
