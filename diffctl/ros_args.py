@@ -1,13 +1,29 @@
-"""ROS-style `--ros-args` on the command line of every component, as `ros2 launch` passes them.
+"""ROS-style `--ros-args` on the command line of every component, resolved as rcl and rclcpp resolve them.
 
 The launcher writes a node's parameters to a YAML file and starts it with
 `--ros-args -r __node:=NAME -r __ns:=/NS --params-file FILE -p name:=value -r from:=to`; components read
 them back with `current()`. `diffctl.cli.main` strips the `--ros-args ... [--]` span from argv before
 click parses the rest, so every command accepts it without declaring it.
+
+This module is the one resolution path of every node's name, namespace, remappings and parameter overrides
+(a process's own node, the controllers a manager hosts, the rclpy-compatible client):
+
+- `parse(argv, default_name, default_namespace, local_argv=…)` → `RosArgs` for one node. `local_argv` are a
+  node's own arguments (rclcpp's NodeOptions.arguments, a controller's `node_options_args`), `argv` the
+  process's (global) ones.
+- Parameters (rcl_arguments_get_param_overrides + rclcpp's parameter_map_from): `--params-file` files and
+  `-p [node:]name:=value` rules are read in command-line order into one table of node keys (`/**`,
+  `/robot1/controller_manager`, `talker`, …), each key kept at the place it first appeared and each value
+  overwritten in place; a node takes, in that key order, every key whose pattern matches its fully qualified
+  name (`/*` one name, `/**` any number, a key without a leading slash is `/key`). `-p name:=v` goes under
+  `/**`, `-p talker:name:=v` under `talker`. Local arguments override global ones.
+- Remapping (rcl_remap_*): the first matching rule wins, local rules before global ones; `talker:chatter:=x`
+  applies only to the node named talker (`talker:__node:=` / `talker:__ns:=` to the node created as talker).
 """
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -18,16 +34,93 @@ _current: list[str] = []
 
 
 @dataclass(frozen=True)
+class RemapRule:
+    """`-r [node:]match:=replacement`; `node` limits the rule to the node of that name."""
+
+    match: str
+    replacement: str
+    node: str | None = None
+
+    def applies_to(self, node_name: str | None) -> bool:
+        return self.node is None or self.node == node_name
+
+
+class ParameterOverrides:
+    """rcl's table of parameter overrides: node keys in the order they first appeared, each with its parameters
+    in the order they first appeared; a later file or `-p` overwrites a value in place."""
+
+    def __init__(self) -> None:
+        self.entries: dict[str, dict[str, Any]] = {}
+
+    def set(self, node_key: str, name: str, value: Any) -> None:
+        self.entries.setdefault(node_key, {})[name] = value
+
+    def add_file(self, path: str | Path) -> None:
+        for key, params in _file_sections(path):
+            entry = self.entries.setdefault(key, {})
+            entry.update(params)
+
+    def for_node(self, fqn: str) -> dict[str, Any]:
+        """The overrides of the node whose fully qualified name is `fqn` (rclcpp's parameter_map_from)."""
+        out: dict[str, Any] = {}
+        for key, params in self.entries.items():
+            if node_key_matches(key, fqn):
+                out.update(params)
+        return out
+
+
+@dataclass(frozen=True)
 class RosArgs:
+    """One node's view of `--ros-args`: its resolved name and namespace (None when not remapped), the
+    parameters that apply to it, and the remappings of its topics and services (first rule wins)."""
+
     node_name: str | None = None
     namespace: str | None = None
     params: dict[str, Any] = field(default_factory=dict)
     remaps: dict[str, str] = field(default_factory=dict)
     params_files: tuple[str, ...] = ()
     log_level: str | None = None
+    remap_rules: tuple[RemapRule, ...] = ()  # every rule, in order (local ones first), prefixed ones included
+    overrides: ParameterOverrides = field(default_factory=ParameterOverrides)  # global, then local layers merged
 
     def param(self, name: str, default: Any = None) -> Any:
         return self.params.get(name, default)
+
+
+_NAME_CHAR = "[A-Za-z0-9_]"
+
+
+def node_fqn(name: str, namespace: str | None = "/") -> str:
+    """`/ns/name` of a node (a name already starting with `/` is taken as fully qualified)."""
+    if name.startswith("/"):
+        return name
+    ns = (namespace or "/").rstrip("/")
+    if ns and not ns.startswith("/"):
+        ns = "/" + ns
+    return f"{ns}/{name}"
+
+
+def _key_regex(key: str) -> str:
+    # rclcpp: "/*" → one name, "/**" → any number of names; the rest literally
+    out, i = [], 0
+    while i < len(key):
+        if key.startswith("/**", i):
+            out.append(f"(/{_NAME_CHAR}+)*")
+            i += 3
+        elif key.startswith("/*", i):
+            out.append(f"(/{_NAME_CHAR}+)")
+            i += 2
+        else:
+            out.append(re.escape(key[i]))
+            i += 1
+    return "".join(out)
+
+
+def node_key_matches(key: str, fqn: str) -> bool:
+    """Whether a parameter file's node key (`/**`, `/*/talker`, `/ns/**`, `talker`, …) selects node `fqn`;
+    a key without a leading slash is rooted (`talker` is `/talker` only)."""
+    rooted = key if key.startswith("/") else "/" + key
+    return re.fullmatch(_key_regex(rooted), fqn) is not None
 
 
 def split_argv(argv: list[str]) -> tuple[list[str], list[str]]:
@@ -83,8 +176,7 @@ def _load_yaml(text: str) -> Any:
     return yaml.safe_load(text)
 
 
-def load_params_file(path: str | Path, node_name: str | None) -> dict[str, Any]:
-    """Parameters for `node_name` from a ROS params file (`/**`, `name`, `/ns/name` sections, ros__parameters)."""
+def _read_yaml_file(path: str | Path) -> Any:
     import yaml
 
     p = Path(path)
@@ -98,14 +190,39 @@ def load_params_file(path: str | Path, node_name: str | None) -> dict[str, Any]:
         raise yaml_error(e, str(p)) from None
     if not isinstance(data, dict):
         raise ConfigError("a parameter file must be a mapping of node names to ros__parameters", source=str(p))
-    out: dict[str, Any] = {}
-    for key, section in data.items():
-        if not isinstance(section, dict) or "ros__parameters" not in section:
-            continue
-        key = str(key)
-        if key in ("/**", "**") or node_name is None or key.lstrip("/").split("/")[-1] == node_name:
-            out.update(_flatten(section["ros__parameters"] or {}))
+    return data
+
+
+def _file_sections(path: str | Path) -> list[tuple[str, dict[str, Any]]]:
+    """(node key, flattened parameters) of every `ros__parameters` map in file order; keys nested above it
+    join with `/` (`robot1: {controller_manager: {ros__parameters: …}}` is `robot1/controller_manager`), as
+    rcl_yaml_param_parser reads them."""
+    out: list[tuple[str, dict[str, Any]]] = []
+
+    def walk(d: dict[Any, Any], parts: list[str]) -> None:
+        for key, value in d.items():
+            key = str(key)
+            if key == "ros__parameters":
+                if parts:
+                    out.append(("/".join(parts), _flatten(value or {}) if isinstance(value, dict) else {}))
+            elif isinstance(value, dict):
+                walk(value, [*parts, key])
+
+    walk(_read_yaml_file(path), [])
     return out
+
+
+def load_params_file(path: str | Path, node: str | None) -> dict[str, Any]:
+    """The parameters a ROS params file gives node `node` (its fully qualified name; a bare name is a node at
+    the root namespace), with rcl's key matching; every section's when `node` is None."""
+    table = ParameterOverrides()
+    table.add_file(path)
+    if node is None:
+        out: dict[str, Any] = {}
+        for params in table.entries.values():
+            out.update(params)
+        return out
+    return table.for_node(node_fqn(node))
 
 
 def _flatten(d: dict[str, Any], prefix: str = "") -> dict[str, Any]:
@@ -120,13 +237,29 @@ def _flatten(d: dict[str, Any], prefix: str = "") -> dict[str, Any]:
     return out
 
 
-def parse(ros_argv: list[str], default_node_name: str | None = None) -> RosArgs:
-    node_name = None
-    namespace = None
-    remaps: dict[str, str] = {}
-    inline: dict[str, Any] = {}
-    files: list[str] = []
-    log_level = None
+@dataclass
+class _Parsed:
+    rules: list[RemapRule] = field(default_factory=list)
+    files: list[str] = field(default_factory=list)
+    overrides: ParameterOverrides = field(default_factory=ParameterOverrides)
+    log_level: str | None = None
+
+
+def _split_rule(rule: str, what: str, example: str) -> tuple[str | None, str, str]:
+    """`[node:]lhs:=rhs` → (node, lhs, rhs)."""
+    if ":=" not in rule:
+        raise ConfigError(f"--ros-args: {what} {rule!r} must be {example}")
+    lhs, rhs = rule.split(":=", 1)
+    node = None
+    if ":" in lhs and not lhs.startswith("rosservice:") and not lhs.startswith("rostopic:"):
+        node, lhs = lhs.split(":", 1)
+    if not lhs:
+        raise ConfigError(f"--ros-args: {what} {rule!r} must be {example}")
+    return node, lhs, rhs
+
+
+def _parse_argv(ros_argv: list[str]) -> _Parsed:
+    out = _Parsed()
     i = 0
 
     def need(flag: str) -> str:
@@ -137,29 +270,20 @@ def parse(ros_argv: list[str], default_node_name: str | None = None) -> RosArgs:
     while i < len(ros_argv):
         a = ros_argv[i]
         if a in ("-r", "--remap"):
-            rule = need(a)
-            if ":=" not in rule:
-                raise ConfigError(f"--ros-args: remap {rule!r} must be FROM:=TO")
-            src, dst = rule.split(":=", 1)
-            if src == "__node" or src == "__name":
-                node_name = dst
-            elif src == "__ns":
-                namespace = dst
-            else:
-                remaps[src] = dst
+            node, src, dst = _split_rule(need(a), "remap", "[NODE:]FROM:=TO")
+            out.rules.append(RemapRule("__node" if src == "__name" else src, dst, node))
             i += 2
         elif a in ("-p", "--param"):
-            rule = need(a)
-            if ":=" not in rule:
-                raise ConfigError(f"--ros-args: parameter {rule!r} must be NAME:=VALUE")
-            k, v = rule.split(":=", 1)
-            inline[k] = parse_value(v)
+            node, k, v = _split_rule(need(a), "parameter", "[NODE:]NAME:=VALUE")
+            out.overrides.set(node if node is not None else "/**", k, parse_value(v))
             i += 2
         elif a == "--params-file":
-            files.append(need(a))
+            f = need(a)
+            out.files.append(f)
+            out.overrides.add_file(f)  # read here: its keys take their place among the -p rules around it
             i += 2
         elif a == "--log-level":
-            log_level = need(a)
+            out.log_level = need(a)
             i += 2
         elif a in ("-e", "--enclave"):
             i += 2
@@ -168,17 +292,57 @@ def parse(ros_argv: list[str], default_node_name: str | None = None) -> RosArgs:
                 f"--ros-args: unknown flag {a!r}",
                 hint="valid: -r FROM:=TO, -p NAME:=VALUE, --params-file FILE, --log-level LEVEL",
             )
+    return out
+
+
+def _first(rules: list[RemapRule], match: str, node_name: str | None) -> str | None:
+    for r in rules:
+        if r.match == match and r.applies_to(node_name):
+            return r.replacement
+    return None
+
+
+def parse(
+    ros_argv: list[str],
+    default_node_name: str | None = None,
+    default_namespace: str | None = None,
+    *,
+    local_argv: list[str] | None = None,
+) -> RosArgs:
+    """One node's `RosArgs` from the process's (global) `ros_argv` and the node's own `local_argv`.
+
+    `default_node_name` / `default_namespace` are the names the node is created with (`__node:=` and
+    `__ns:=` rules prefixed with that name apply to it); parameters are those whose node key matches the
+    node's fully qualified name after remapping. Without a default name, only unprefixed rules apply.
+    """
+    glob = _parse_argv(ros_argv)
+    local = _parse_argv(local_argv or [])
+    rules = [*local.rules, *glob.rules]  # rcl: local rules are tried first
+    node_name = _first(rules, "__node", default_node_name)
+    namespace = _first(rules, "__ns", default_node_name)
     name = node_name or default_node_name
+    remaps: dict[str, str] = {}
+    for r in rules:
+        if r.match not in ("__node", "__ns") and r.applies_to(name):
+            remaps.setdefault(r.match, r.replacement)
     params: dict[str, Any] = {}
-    for f in files:
-        params.update(load_params_file(f, name))
-    params.update(inline)
-    return RosArgs(name, namespace, params, remaps, tuple(files), log_level)
+    overrides = ParameterOverrides()
+    for layer in (glob.overrides, local.overrides):
+        for key, entry in layer.entries.items():
+            overrides.entries.setdefault(key, {}).update(entry)
+    if name is not None:
+        fqn = node_fqn(name, namespace or default_namespace or "/")
+        params = {**glob.overrides.for_node(fqn), **local.overrides.for_node(fqn)}
+    else:  # no node to match: every `/**` rule and section (a tool reading its own -p)
+        for layer in (glob.overrides, local.overrides):
+            params.update(layer.entries.get("/**", {}))
+    return RosArgs(node_name, namespace, params, remaps, tuple([*glob.files, *local.files]),
+                   local.log_level or glob.log_level, tuple(rules), overrides)
 
 
-def current(default_node_name: str | None = None) -> RosArgs:
-    """The `--ros-args` this process was started with, parsed for `default_node_name`."""
-    return parse(_current, default_node_name)
+def current(default_node_name: str | None = None, default_namespace: str | None = None) -> RosArgs:
+    """The `--ros-args` this process was started with, parsed for the node `default_node_name` creates."""
+    return parse(_current, default_node_name, default_namespace)
 
 
 def build(

@@ -276,8 +276,9 @@ def generate_launch_description():
                 "rtf", default_value="1", description="Real-time factor target; 0 runs as fast as possible"
             ),
             DeclareLaunchArgument(
-                "controllers_file", default_value=os.path.join(share, "config", "diff_drive_controller.yaml"),
-                description="ros2_control parameters of every car's controller manager and controllers",
+                "controllers_file", default_value=os.path.join(share, "config", "fleet_controllers.yaml"),
+                description="ros2_control parameters of every car's controller manager and controllers "
+                "(sections under /**/ or /robotK/: the cars' nodes are namespaced)",
             ),
             IncludeLaunchDescription(
                 PythonLaunchDescriptionSource(gazebo_launch_file),

@@ -144,7 +144,9 @@ class Node:
         self.domain = self.context.domain
         self.node_id = self.context.next_id()
         self.log = Logger(self.fqn[1:] if self.namespace == "/" else self.fqn[1:].replace("/", "."))
-        self._remaps = {self._expand(k): self._expand(v) for k, v in (remaps or {}).items()}
+        self._remaps: dict[str, str] = {}
+        for k, v in (remaps or {}).items():  # rcl: the first rule matching a name wins
+            self._remaps.setdefault(self._expand(k), self._expand(v))
         self._closables: list[Any] = []
         self._stop = threading.Event()
         self._token = self.session.liveliness().declare_token(
@@ -204,7 +206,7 @@ class Node:
     def from_ros_args(cls, default_name: str, namespace: str = "/", *, defaults: dict[str, Any] | None = None,
                       **kwargs: Any) -> Node:
         """A node named and parameterised by this process's `--ros-args` (defaults first, then the args)."""
-        ra = ros_args.current(default_name)
+        ra = ros_args.current(default_name, namespace)
         params = {**(defaults or {}), **ra.params, **kwargs.pop("params", {})}
         return cls(ra.node_name or default_name, ra.namespace or namespace, remaps=ra.remaps, params=params,
                    **kwargs)

@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from diffctl.errors import ParameterError, suggest
-from diffctl.ros_args import load_params_file
+from diffctl.ros_args import ParameterOverrides, node_fqn
 
 STRICTNESS = {"best_effort": 1, "strict": 2, "auto": 3, "force_auto": 4}
 
@@ -62,6 +62,7 @@ class ManagerParams:
     controllers: Mapping[str, ControllerSpec] = field(default_factory=dict)
     params_files: tuple[str, ...] = ()  # the manager's own files; controllers inherit them
     source: str = "controller_manager parameters"
+    namespace: str = "/"  # the manager's, and so its controllers' (whose file sections match /ns/<name>)
 
     @property
     def period_s(self) -> float:
@@ -98,7 +99,8 @@ def _rate(value: Any, key: str, source: str, *, allow_zero: bool = False) -> int
 
 
 def manager_params(
-    flat: Mapping[str, Any], *, source: str = "controller_manager parameters", params_files: tuple[str, ...] = ()
+    flat: Mapping[str, Any], *, source: str = "controller_manager parameters", params_files: tuple[str, ...] = (),
+    namespace: str = "/",
 ) -> ManagerParams:
     """Validate the manager node's flattened parameters into a `ManagerParams` (raises ParameterError)."""
     kw: dict[str, Any] = {}
@@ -139,7 +141,8 @@ def manager_params(
                 specs.setdefault(name, {})[sub] = value
             # Other dotted keys (a controller's own parameters written under the manager) are left to it.
     controllers = {name: controller_spec(name, d, source) for name, d in specs.items()}
-    return ManagerParams(**kw, controllers=controllers, params_files=params_files, source=source)
+    return ManagerParams(**kw, controllers=controllers, params_files=params_files, source=source,
+                         namespace=namespace)
 
 
 def controller_spec(name: str, d: Mapping[str, Any], source: str) -> ControllerSpec:
@@ -188,38 +191,71 @@ def with_controller_param(params: ManagerParams, name: str, key: str, value: Any
     return ManagerParams(**{**params.__dict__, "controllers": controllers})
 
 
-def load_manager_files(files: list[str] | tuple[str, ...], node_name: str = "controller_manager") -> dict[str, Any]:
-    """The manager's flattened parameters from its parameter files (later files win)."""
-    out: dict[str, Any] = {}
+def load_manager_files(files: list[str] | tuple[str, ...], node: str = "/controller_manager") -> dict[str, Any]:
+    """The manager's flattened parameters from its parameter files, as rcl reads them for the node whose fully
+    qualified name is `node` (a bare name is a node at the root)."""
+    table = ParameterOverrides()
     for f in files:
-        out.update(load_params_file(f, node_name))
-    return out
+        table.add_file(f)
+    return table.for_node(node_fqn(node))
 
 
 def controller_node_params(
     name: str, params: ManagerParams, extra_files: tuple[str, ...] = (), inherited: Mapping[str, Any] | None = None
 ) -> dict[str, Any]:
-    """A controller node's parameters: sections for `name` in the manager's files, then its params_files."""
+    """A controller node's parameters, as controller_manager builds its node: the manager's files are the
+    process's (global) arguments, the controller's `params_file`s its node's own (local) ones; each file's
+    sections are those whose key matches the controller's fully qualified name (`/ns/<name>`)."""
     out: dict[str, Any] = dict(inherited or {})
     spec = params.controllers.get(name, ControllerSpec(name))
-    for f in (*params.params_files, *spec.params_files, *extra_files):
-        if not Path(f).is_file():
-            raise ParameterError("parameter file not found", source=f, field=f"{name}.params_file")
-        out.update(load_params_file(f, name))
+    fqn = node_fqn(name, params.namespace)
+    for files in (params.params_files, (*spec.params_files, *extra_files)):
+        table = ParameterOverrides()
+        for f in files:
+            if not Path(f).is_file():
+                raise ParameterError("parameter file not found", source=f, field=f"{name}.params_file")
+            table.add_file(f)
+        out.update(table.for_node(fqn))
+    if params.use_sim_time:  # controller_manager appends `-p use_sim_time:=true` to the node's arguments
+        out["use_sim_time"] = True
     out.setdefault("use_sim_time", params.use_sim_time)
     if spec.update_rate is not None:
         out["update_rate"] = spec.update_rate
     return out
 
 
-def section_type(path: str, name: str) -> str | None:
-    """The `type` a parameter file gives controller `name` in its own section (what the spawner forwards)."""
-    flat = {k: v for k, v in _sections(path, name).items()}
-    t = flat.get("type")
-    return t if isinstance(t, str) else None
+def section_type(path: str, name: str, namespace: str = "/", fatal: Any = None) -> str | None:
+    """The `type` a parameter file gives controller `name` (what the spawner forwards to the manager), looked up
+    as controller_manager's spawner does (get_parameter_from_param_files): under `name`, `/ns/name`,
+    `/**/name` or `/**/ns/name`, or inside a `/**` section; a bare `name` while the spawner has a namespace
+    is refused with its "Missing namespace" message (`fatal`, a log function)."""
+    value = spawner_file_parameter(path, name, namespace, "type", fatal)
+    return value if isinstance(value, str) else None
 
 
-def _sections(path: str, name: str) -> dict[str, Any]:
+def spawner_file_parameter(path: str, name: str, namespace: str, parameter: str, fatal: Any = None) -> Any:
+    from diffctl.ros_args import _read_yaml_file
+
     if not Path(path).is_file():
         raise ParameterError("parameter file not found", source=path, hint="give an existing YAML file with -p")
-    return load_params_file(path, name)
+    data = _read_yaml_file(path)
+    namespaced = f"/{name}" if namespace in ("", "/") else f"{namespace}/{name}"
+    wildcard, ros_params = "/**", "ros__parameters"
+    found: Any = None
+    for key in (name, namespaced, f"{wildcard}/{name}", f"{wildcard}{namespaced}"):
+        if key in data:
+            if key == name and namespace not in ("", "/"):
+                if fatal is not None:
+                    fatal(f"Missing namespace : {namespace} or wildcard in parameter file for controller : {name}")
+                break
+            found = data[key]
+        elif isinstance(data.get(wildcard), dict) and key in data[wildcard]:
+            found = data[wildcard][key]
+        elif isinstance(data.get(wildcard), dict) and ros_params in data[wildcard]:
+            found = data[wildcard]
+        if found and (not isinstance(found, dict) or ros_params not in found):
+            raise ParameterError(f"not a valid ROS parameter file for controller node {namespaced}", source=path,
+                                 field=key, hint=f"give the section a {ros_params} map")
+        if found and isinstance(found[ros_params], dict) and parameter in found[ros_params]:
+            return found[ros_params][parameter]
+    return None

@@ -57,7 +57,8 @@ class ControlNode:
             if not Path(f).is_file():
                 raise ConfigError("parameter file not found", source=f, hint="--param-file takes an existing YAML")
         self.name = self.ra.node_name or "controller_manager"
-        self.base_flat = {**load_manager_files(opts.param_files, self.name), **self.ra.params}
+        self.fqn = ros_args.node_fqn(self.name, self.ra.namespace or "/")
+        self.base_flat = {**load_manager_files(opts.param_files, self.fqn), **self.ra.params}
         manager_params(self.base_flat, source="controller manager parameters")  # refuse bad values up front
         self.description: str | None = None
         self.description_source = "robot_description"
@@ -94,7 +95,7 @@ class ControlNode:
         self.description, self.description_source = text, source
 
     def _flat_params(self) -> dict[str, Any]:
-        return {**load_manager_files(self.gz_files, self.name), **self.base_flat}
+        return {**load_manager_files(self.gz_files, self.fqn), **self.base_flat}
 
     def now_ns(self) -> int:
         if self.cm is not None and self.cm.params.use_sim_time:
@@ -114,7 +115,8 @@ class ControlNode:
                 self.log.warn(p)
         flat = self._flat_params()
         files = tuple(self.gz_files) + tuple(self.opts.param_files) + tuple(self.ra.params_files)
-        params = manager_params(flat, source="controller manager parameters", params_files=files)
+        params = manager_params(flat, source="controller manager parameters", params_files=files,
+                                namespace=self.node.namespace)
         self.node.params.update(flat)
         if params.use_sim_time and not self.node.clock.use_sim_time:
             self.node.clock.use_sim_time = True

@@ -127,17 +127,6 @@ def spawn(
     for f in param_files:
         if not Path(f).is_file():
             raise RuntimeFailure(f"parameter file {f!r} does not exist", hint="--param-file takes an existing YAML")
-    types = {}
-    for name in names:
-        for f in param_files:
-            try:
-                t = section_type(f, name)
-            except ParameterError as e:
-                raise RuntimeFailure(str(e)) from None
-            if t:
-                types[name] = t
-        if controller_type:
-            types[name] = controller_type
     spawner_ns = ra.namespace or "/"
     if namespace is not None:
         if ra.namespace not in (None, "/"):
@@ -146,6 +135,18 @@ def spawn(
     options = controller_node_options(controller_ros_args or [])
     node = Node(ra.node_name or f"spawner_{names[0]}", spawner_ns, remaps=ra.remaps, params=ra.params)
     log = node.log
+    types = {}
+    for name in names:
+        for f in param_files:
+            try:
+                t = section_type(f, name, spawner_ns, log.fatal)
+            except ParameterError as e:
+                node.close()
+                raise RuntimeFailure(str(e)) from None
+            if t:
+                types[name] = t
+        if controller_type:
+            types[name] = controller_type
     if namespace is not None:
         log.warn("the -n/--namespace argument is deprecated; use --ros-args -r __ns:=<namespace>")
     cm = ManagerClient(node, manager, call_timeout_s)

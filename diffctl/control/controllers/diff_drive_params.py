@@ -10,9 +10,9 @@ Defaults are the reference's: base_frame_id "base_link", cmd_vel_timeout 0.5 s (
 50 Hz, every limit NaN (off). Read-only, as in the YAML: the wheel names, wheel_separation and wheel_radius.
 Deprecated keys load, as Jazzy loads them:
   - `<axis>.has_velocity_limits` / `has_acceleration_limits` / `has_jerk_limits` (default true): false switches
-    that group off, whatever numbers the group's limits hold (e.g. `max_jerk: 0.0`); true has no effect;
-  - `<axis>.min_acceleration`: the old symmetric lower bound on acceleration; it becomes
-    `max_acceleration_reverse` (which `max_deceleration` then defaults to) unless that is given.
+    that group off, whatever numbers the group's limits hold (e.g. `max_jerk: 0.0`), with Jazzy's
+    "[deprecated] … parameter is deprecated" warning; true is the default and says nothing;
+  - `<axis>.min_acceleration`: declared (default NaN) and never read, as in Jazzy — it is not a reverse limit.
 Keys removed before Jazzy (`wheels_per_side`, `use_stamped_vel`) are ignored with a warning saying why.
 """
 
@@ -80,9 +80,7 @@ def _axis_decls(axis: str) -> list[ParamDecl]:
             f"{axis}.min_acceleration",
             "double",
             NAN,
-            "[deprecated] use max_acceleration_reverse.",
-            False,
-            (Check("lt_eq", (0.0,)),),
+            "deprecated, use max_deceleration",
         )
     )
     return out
@@ -295,37 +293,15 @@ def _axis_limits(v: Mapping[str, Any], axis: str, controller: str, given: set[st
     units = _AXIS_UNITS[axis]
     values = {name: v[f"{axis}.{name}"] for name, _s, _u in _LIMIT_FIELDS}
 
-    old_min = v[f"{axis}.min_acceleration"]
-    if not math.isnan(old_min):
-        if math.isnan(values["max_acceleration_reverse"]):
-            values["max_acceleration_reverse"] = old_min
-            warnings.append(
-                f"[deprecated] {controller}.{axis}.min_acceleration = {old_min!r} is used as "
-                f"{axis}.max_acceleration_reverse (and max_deceleration when unset); rename it"
-            )
-        else:
-            warnings.append(
-                f"[deprecated] {controller}.{axis}.min_acceleration is ignored because "
-                f"{axis}.max_acceleration_reverse is set"
-            )
-
+    # `<axis>.min_acceleration` is declared and never read (Jazzy's on_configure does not look at it).
     # has_*: false switches its group off before any number of the group is looked at, as Jazzy's
-    # on_configure overwrites them with NaN.
-    no_effect = []
+    # on_configure overwrites them with NaN, warning with its own words; true (the default) says nothing.
     for flag, group in _GROUPS.items():
-        key = f"{axis}.{flag}"
-        if v[key]:
-            if key in given:
-                no_effect.append(flag)
+        if v[f"{axis}.{flag}"]:
             continue
-        warnings.append(f"[deprecated] {controller}.{key} = false switches these limits off: set them to .NAN")
+        warnings.append(f"[deprecated] {flag} parameter is deprecated, instead set the respective limits to NAN")
         for name in group:
             values[name] = NAN
-    if no_effect:
-        warnings.append(
-            f"[deprecated] {controller}.{axis}.{'/'.join(no_effect)}: true has no effect, a limit is on unless "
-            "it is .NAN"
-        )
 
     for name, sign, unit in _LIMIT_FIELDS:
         value, key = values[name], f"{controller}.{axis}.{name}"

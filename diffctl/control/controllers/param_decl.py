@@ -38,6 +38,10 @@ _ROS_TYPE = {
 MANAGER_KEYS = frozenset(
     {"type", "update_rate", "use_sim_time", "params_file", "is_async", "thread_priority", "fallback_controllers"}
 )
+# Declared by rclcpp on every node (node_parameters.cpp, node.cpp, the QoS overriding options): a file that
+# sets them for a controller is not setting an unknown controller parameter.
+NODE_KEYS = frozenset({"use_sim_time", "start_type_description_service"})
+NODE_KEY_PREFIXES = ("qos_overrides.",)
 _DOUBLE_MAX = sys.float_info.max
 _INT_MAX = 2**63 - 1
 
@@ -213,9 +217,11 @@ def unknown_key_warnings(
     decls: Mapping[str, ParamDecl], params: Mapping[str, Any], controller: str, also_known: Iterable[str] = ()
 ) -> list[str]:
     """One warning per key in `params` the table does not declare (and the manager does not own)."""
-    known = set(decls) | MANAGER_KEYS | set(also_known)
+    known = set(decls) | MANAGER_KEYS | NODE_KEYS | set(also_known)
     return [
-        f"unknown parameter '{controller}.{k}' is ignored{suggest(k, sorted(known))}" for k in params if k not in known
+        f"unknown parameter '{controller}.{k}' is ignored{suggest(k, sorted(known))}"
+        for k in params
+        if k not in known and not k.startswith(NODE_KEY_PREFIXES)
     ]
 
 

@@ -30,6 +30,7 @@ from diffctl.control.robot_hardware import PLACEHOLDER, infos_from_blocks
 from diffctl.control.services import ManagerServices
 from diffctl.description.model import Model, Plugin
 from diffctl.errors import ConfigError, DescriptionError
+from diffctl.ros_args import node_fqn
 from diffctl.sim.entity import Entity
 from diffctl.sim.plugins.base import PluginContext, SystemPlugin, bool_param, float_param
 from diffctl.sim.plugins.gazebo_sim_system import PLUGIN_ALIASES, GazeboSimSystem
@@ -141,8 +142,10 @@ class PreparedManager:
         self.infos = infos_from_blocks(blocks, source or None)
         name = self.params.controller_manager_name
         remaps = dict(self.params.remappings)
-        flat = {**load_manager_files(self.params.parameters, name), "use_sim_time": True}
-        cm_params = manager_params(flat, source=f"{name} parameters", params_files=self.params.parameters)
+        fqn = node_fqn(name, self.params.namespace)
+        flat = {**load_manager_files(self.params.parameters, fqn), "use_sim_time": True}
+        cm_params = manager_params(flat, source=f"{name} parameters", params_files=self.params.parameters,
+                                   namespace=self.params.namespace or "/")
         self.stop = threading.Event()
         self.node: Any = None
         self.cm: ControllerManager | None = None

@@ -67,7 +67,7 @@ def test_has_limits_false_disables_the_group_whatever_its_numbers(limit):
     params = {**BASE, "linear.x.has_jerk_limits": False, "linear.x.max_jerk": limit, "linear.x.min_jerk": -limit}
     c = make_controller(DiffDriveController, NAME, params)
     assert math.isnan(c.params.linear.max_jerk) and math.isnan(c.params.linear.min_jerk)
-    assert "has_jerk_limits = false switches these limits off" in c.node.log.text("WARN")
+    assert "[deprecated] has_jerk_limits parameter is deprecated" in c.node.log.text("WARN")
 
 
 def test_a_limit_changed_at_runtime_takes_effect_on_the_next_update():

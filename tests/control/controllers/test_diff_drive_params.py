@@ -32,11 +32,10 @@ def test_tutorial_yaml_loads_as_written():
     assert p.pose_covariance_diagonal == (0.001, 0.001, 0.0, 0.0, 0.0, 0.01)
     assert (p.linear.min_velocity, p.linear.max_velocity, p.linear.max_acceleration) == (-1.0, 1.0, 1.0)
     assert math.isnan(p.linear.max_jerk) and math.isnan(p.linear.min_jerk)
-    # the deprecated angular.z.min_acceleration becomes the reverse acceleration bound
-    assert p.angular.max_acceleration_reverse == -1.0
-    text = "\n".join(warnings)
-    assert "[deprecated]" in text and "angular.z.min_acceleration" in text and "has_velocity_limits" in text
-    assert "unknown" not in text  # `type` belongs to the manager
+    # Jazzy declares angular.z.min_acceleration and never reads it: the reverse bound stays unset (NaN, which
+    # the limiter takes as -max_acceleration); has_*_limits: true is the default; so no warning at all.
+    assert math.isnan(p.angular.max_acceleration_reverse)
+    assert warnings == []
     lim = SpeedLimiter(p.linear)
     assert lim.limit(5.0, 0.0, 0.0, 0.05) == pytest.approx(0.05)  # 1 m/s² at 20 Hz
 
@@ -50,6 +49,22 @@ def test_defaults_follow_the_reference_table():
     assert p.tf_frame_prefix_enable and p.tf_frame_prefix == ""
     assert all(math.isnan(getattr(p.linear, f)) for f in p.linear.__dataclass_fields__)
     assert p.feedback_interface == "position"
+
+
+def test_min_acceleration_is_accepted_and_ignored_as_in_jazzy():
+    p, warnings = build(**{"linear.x.min_acceleration": 1.5, "angular.z.min_acceleration": -0.5,
+                           "angular.z.max_acceleration": 2.0})
+    assert warnings == []
+    assert math.isnan(p.linear.max_acceleration_reverse) and math.isnan(p.angular.max_acceleration_reverse)
+    assert SpeedLimiter(p.angular).limit(-5.0, 0.0, 0.0, 0.1) == pytest.approx(-0.2)  # -max_acceleration
+
+
+def test_has_limits_warns_only_when_false():
+    _, warnings = build(**{"linear.x.has_velocity_limits": True, "angular.z.has_jerk_limits": True})
+    assert warnings == []
+    _, warnings = build(**{"angular.z.has_acceleration_limits": False})
+    assert warnings == ["[deprecated] has_acceleration_limits parameter is deprecated, instead set the respective "
+                        "limits to NAN"]
 
 
 def test_multipliers_give_the_effective_geometry():
@@ -70,7 +85,7 @@ def test_frame_prefix_rules():
 def test_has_limits_false_switches_a_group_off_with_a_warning():
     p, warnings = build(**{"linear.x.max_velocity": 1.0, "linear.x.has_velocity_limits": False})
     assert math.isnan(p.linear.max_velocity)
-    assert any("has_velocity_limits = false" in w for w in warnings)
+    assert any("has_velocity_limits parameter is deprecated" in w for w in warnings)
 
 
 def test_removed_and_unknown_keys_warn():
@@ -111,7 +126,6 @@ def test_removed_and_unknown_keys_warn():
         ({"linear.x.max_deceleration": 2.0}, "ddc.linear.x.max_deceleration", "2.0 must be ≤ 0"),
         ({"angular.z.max_acceleration_reverse": 1.0}, "ddc.angular.z.max_acceleration_reverse", "1.0 must be ≤ 0"),
         ({"angular.z.min_jerk": 0.5}, "ddc.angular.z.min_jerk", "0.5 must be ≤ 0"),
-        ({"angular.z.min_acceleration": 1.0}, "ddc.angular.z.min_acceleration", "1.0 must be ≤ 0.0"),
         ({"linear.x.has_jerk_limits": "no"}, "ddc.linear.x.has_jerk_limits", "'no' is not a bool"),
     ],
 )
