@@ -165,12 +165,11 @@ class Node:
         namespace = normalize_namespace(namespace)
         validate_namespace(namespace)
 
-        argv: list[str] = []
-        if use_global_arguments:
-            argv += _node_ros_args(self._context.args, node_name)
-        if cli_args:
-            argv += _node_ros_args(list(cli_args), node_name)
-        ra = ros_args.parse(argv, node_name)
+        # The process's arguments are global, cli_args the node's own (local: they win), as rcl has them; the
+        # namespace takes part in matching parameter-file keys (/ns/name, /**/name).
+        glob = _node_ros_args(self._context.args, node_name) if use_global_arguments else []
+        local = _node_ros_args(list(cli_args), node_name) if cli_args else []
+        ra = ros_args.parse(glob, node_name, namespace, local_argv=local)
         name = ra.node_name or node_name
         if ra.namespace:
             namespace = normalize_namespace(ra.namespace)
