@@ -56,6 +56,19 @@ def _ensure_router(output: Any) -> Any:
     help="Directory for this run's logs (default: ~/.ros/log/<time>-<host>-<pid>).",
 )
 @click.option("--no-color", is_flag=True, help="No colours in the output.")
+@click.option(
+    "--output-default",
+    type=click.Choice(["screen", "log"]),
+    default="screen",
+    help="Where processes without `output` write: screen (diffctl) or log (ros2 launch: stdout to the log only).",
+)
+@click.option(
+    "--exit-code",
+    "exit_code_mode",
+    type=click.Choice(["diffctl", "ros"]),
+    default="diffctl",
+    help="diffctl: 1 when a required process or readiness failed; ros: 1 only on an error in the launch itself.",
+)
 @click.option("--no-router", is_flag=True, help="Do not start the embedded Zenoh router.")
 @click.option(
     "--workspace",
@@ -70,6 +83,8 @@ def launch(
     print_plan: bool,
     log_dir: Path | None,
     no_color: bool,
+    output_default: str,
+    exit_code_mode: str,
     no_router: bool,
     workspace_dir: Path | None,
 ) -> None:
@@ -110,16 +125,21 @@ def launch(
         if show_args:
             console.print(ArgumentsView(declared_arguments(description, str(path))))
             return
-        plan = Resolver().resolve(description, arguments, str(path))
-        declared = [a.name for a in plan.arguments]
-        for name in arguments:
-            if name not in declared:
-                warn(f"argument {name!r} is not declared by the launch file{suggest(name, declared)}")
-        for message in plan.warnings:
-            warn(message)
         if print_plan:
+            # A dry run of the engine: what starts, with handlers and timers previewed as of now.
+            plan = Resolver().resolve(description, arguments, str(path))
+            declared = [a.name for a in plan.arguments]
+            for name in arguments:
+                if name not in declared:
+                    warn(f"argument {name!r} is not declared by the launch file{suggest(name, declared)}")
+            for message in plan.warnings:
+                warn(message)
             console.print(PlanView(plan))
             return
+        from diffctl.launch.plan import Plan
+
+        # The live run: the engine visits the description once, when the launch starts (see _run).
+        plan = Plan(str(path), [], (), {}, description=description, launch_arguments=arguments)
         loop = _event_loop(server)
     except BaseException:
         if server is not None:
@@ -127,7 +147,17 @@ def launch(
         raise
     assert run_dir is not None
     # SystemExit, not ctx.exit: the entry point runs click with standalone_mode=False, which drops exit codes.
-    raise SystemExit(_run(plan, loop, run_dir, log_given=log_dir is not None, no_color=no_color, no_router=no_router))
+    raise SystemExit(
+        _run(
+            plan,
+            loop,
+            run_dir,
+            log_given=log_dir is not None,
+            no_color=no_color,
+            no_router=no_router,
+            options={"output_default": output_default, "exit_code_mode": exit_code_mode},
+        )
+    )
 
 
 def _start_fork_server(run_dir: Path) -> Any:
@@ -163,37 +193,43 @@ def _choose_workspace(workspace_dir: Path | None) -> None:
     use_in_children(find_workspace(explicit=workspace_dir))
 
 
-def _run(plan: Any, loop: Any, run_dir: Path, *, log_given: bool, no_color: bool, no_router: bool) -> int:
+def _run(
+    plan: Any, loop: Any, run_dir: Path, *, log_given: bool, no_color: bool, no_router: bool, options: dict[str, Any]
+) -> int:
     from diffctl.launch.fork_server import is_component
     from diffctl.launch.output import Output, link_latest
     from diffctl.launch.readiness import ProbePoller
     from diffctl.launch.supervisor import Supervisor
 
-    if not any(is_component(spec.argv) for spec in plan.processes.values()):
-        loop.spawner.drop_fork_server()  # nothing of diffctl's to fork: its imports would only take CPU
     probes = None
     output = None
     router = None
     poller = None
     try:
-        kinds = plan.uses_bus()
-        probes = _bus_probes(kinds) if kinds else None
+        env = _children_env(run_dir)
+        supervisor = Supervisor(plan, spawner=loop.spawner, output=None, log_dir=run_dir, env=env, **options)
+        # The first visit of the description: a bad argument, file or substitution fails here, exit 2,
+        # before anything has started (not even the log directory).
+        supervisor.prepare()
         try:
-            output = Output(log_dir=run_dir, no_color=no_color)
+            output = supervisor.output = Output(log_dir=run_dir, no_color=no_color)
         except OSError as e:
             raise LaunchError(
                 f"cannot create the log directory {run_dir}: {e.strerror}", hint="pass --log-dir DIR"
             ) from None
+        if not supervisor.may_start_components(is_component):
+            loop.spawner.drop_fork_server()  # nothing of diffctl's to fork: its imports would only take CPU
         if not log_given:
             link_latest(run_dir)
         output.launcher("INFO", f"All log files can be found below {run_dir}")
-        env = _children_env(run_dir)
         router = None if no_router else _ensure_router(output)
+        kinds = supervisor.bus_waits()
+        probes = _bus_probes(kinds) if kinds else None
         if probes is not None:
             poller = ProbePoller(
                 {"topic": probes.topic_has_publisher, "service": probes.service_available}, notify=loop.wake
             )
-        supervisor = Supervisor(plan, spawner=loop.spawner, output=output, log_dir=run_dir, poller=poller, env=env)
+            supervisor.use_poller(poller)
         # What is loaded by now lives until the launcher exits: kept out of the collector, the exit after a
         # Ctrl-C does not walk it all again in the interpreter's final collection.
         gc.collect()

@@ -2,7 +2,8 @@
 
 Every frontend builds these objects: Python launch files construct them, the YAML and XML frontends build
 them with each class's `from_entity` (the entity's accessors hide which of the two it came from).
-`visit()` resolves an action in a scope into plan steps (see resolver.py).
+`execute(context)` does what the action does when the engine reaches it (engine.py) and returns the entities
+to visit next, as ros2/launch's `Action.execute`.
 Processes (ExecuteProcess, Node) live in process_actions.py, event handlers in event_handlers.py, includes in
 include_action.py, EmitEvent and OpaqueFunction in event_actions.py, launch_ros's scope actions in ros_actions.py.
 """
@@ -17,14 +18,13 @@ from typing import TYPE_CHECKING, Any, ClassVar
 
 from diffctl.errors import LaunchError
 from diffctl.launch.conditions import Condition
-from diffctl.launch.plan import Argument, LogMessage, RequestShutdown, StartTimer, Step, Where
+from diffctl.launch.plan import Argument, LogMessage, RequestShutdown, StartTimer, Unknown, Where
 from diffctl.launch.readiness import WaitFor, parse_timeout, parse_wait_for
 from diffctl.launch.registry import register
 from diffctl.launch.substitutions import FileContent, SomeSubstitutions, Substitution, normalize, perform
 
 if TYPE_CHECKING:
     from diffctl.launch.context import Scope
-    from diffctl.launch.resolver import Resolver
     from diffctl.launch.yaml_frontend import Entity
 
 _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
@@ -69,8 +69,11 @@ class Action(ABC):
         return self.frontend_tags[0] if self.frontend_tags else type(self).__name__
 
     @abstractmethod
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
-        """Resolve this action in `scope` into the steps the supervisor carries out."""
+    def execute(self, context: Scope) -> list[Action] | None:
+        """Do what the action does, now; return the entities to visit next."""
+
+    def describe_sub_entities(self) -> list[Action]:
+        return []
 
     @classmethod
     def from_entity(cls, e: Entity) -> Action:
@@ -93,8 +96,11 @@ class LaunchDescription(Action):
 
     add_entity = add_action
 
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
-        return r.visit_all(self.entities, scope)
+    def execute(self, context: Scope) -> list[Action] | None:
+        return list(self.entities)
+
+    def describe_sub_entities(self) -> list[Action]:
+        return list(self.entities)
 
 
 @register
@@ -122,22 +128,23 @@ class DeclareLaunchArgument(Action):
     def label(self) -> str:
         return f"arg {self.name}"
 
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+    def execute(self, context: Scope) -> list[Action] | None:
+        scope = context
         default = None if self.default_value is None else perform(self.default_value, scope)
-        if self.name in scope.configurations:
+        if self.name in scope.configurations:  # from anywhere: the command line, an include, a `let` (as ROS)
             value: str | None = scope.configurations[self.name]
         elif default is not None:
             value = default
             scope.configurations[self.name] = value
         else:
-            value = r.missing_argument(self.name, scope)
+            value = scope.engine.missing_argument(self.name)
         if self.choices is not None and value is not None and value not in self.choices:
             raise LaunchError(
                 f"argument {self.name!r} is {value!r}, not one of its choices",
                 hint="valid: " + ", ".join(self.choices),
             )
-        r.declare(Argument(self.name, value, default, self.description, self.choices, str(self.where)))
-        return []
+        scope.engine.declare(Argument(self.name, value, default, self.description, self.choices, str(self.where)))
+        return None
 
     @classmethod
     def from_entity(cls, e: Entity) -> Action:
@@ -167,9 +174,9 @@ class SetLaunchConfiguration(Action):
     def label(self) -> str:
         return f"let {describe(self.name)}"
 
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
-        scope.configurations[perform(self.name, scope)] = perform(self.value, scope)
-        return []
+    def execute(self, context: Scope) -> list[Action] | None:
+        context.configurations[perform(self.name, context)] = perform(self.value, context)
+        return None
 
     @classmethod
     def from_entity(cls, e: Entity) -> Action:
@@ -185,6 +192,51 @@ class SetLaunchConfiguration(Action):
         else:
             value = e.text("value")
         return cls(e.text("name", required=True), value)
+
+
+@register
+class UnsetLaunchConfiguration(Action):
+    frontend_tags = ("unset",)
+    frontend_attrs = ("name",)
+
+    def __init__(self, name: SomeSubstitutions, **kw: Any) -> None:
+        super().__init__(**kw)
+        self.name = normalize(name)
+
+    def label(self) -> str:
+        return f"unset {describe(self.name)}"
+
+    def execute(self, context: Scope) -> list[Action] | None:
+        context.configurations.pop(perform(self.name, context), None)
+        return None
+
+    @classmethod
+    def from_entity(cls, e: Entity) -> Action:
+        return cls(e.text("name", required=True))
+
+
+class PushLaunchConfigurations(Action):
+    def execute(self, context: Scope) -> list[Action] | None:
+        context.push_configurations()
+        return None
+
+
+class PopLaunchConfigurations(Action):
+    def execute(self, context: Scope) -> list[Action] | None:
+        context.pop_configurations()
+        return None
+
+
+class PushEnvironment(Action):
+    def execute(self, context: Scope) -> list[Action] | None:
+        context.push_environment()
+        return None
+
+
+class PopEnvironment(Action):
+    def execute(self, context: Scope) -> list[Action] | None:
+        context.pop_environment()
+        return None
 
 
 @register
@@ -211,13 +263,39 @@ class GroupAction(Action):
         self.launch_configurations = {k: normalize(v) for k, v in (launch_configurations or {}).items()}
         self.namespace = None if namespace is None else normalize(namespace)
 
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
-        inner = scope.child(forwarding=self.forwarding) if self.scoped else scope
-        for key, value in self.launch_configurations.items():
-            inner.configurations[key] = perform(value, scope)
+    def execute(self, context: Scope) -> list[Action] | None:
+        # As ros2/launch's GroupAction: scoping is Push/Pop actions around the group's actions.
+        sets: list[Action] = [SetLaunchConfiguration(k, v) for k, v in self.launch_configurations.items()]
         if self.namespace is not None:
-            inner.push_namespace(perform(self.namespace, scope))
-        return r.visit_all(self.actions, inner)
+            sets.append(PushRosNamespace(self.namespace))
+        for action in sets:
+            action.where = self.where
+        if not self.scoped:
+            return [*sets, *self.actions]
+        if self.forwarding:
+            return [
+                PushLaunchConfigurations(),
+                PushEnvironment(),
+                *sets,
+                *self.actions,
+                PopEnvironment(),
+                PopLaunchConfigurations(),
+            ]
+        keep = ResetLaunchConfigurations(self.launch_configurations)
+        extra = [PushRosNamespace(self.namespace)] if self.namespace is not None else []
+        return [
+            PushLaunchConfigurations(),
+            PushEnvironment(),
+            ResetEnvironment(),
+            keep,
+            *extra,
+            *self.actions,
+            PopEnvironment(),
+            PopLaunchConfigurations(),
+        ]
+
+    def describe_sub_entities(self) -> list[Action]:
+        return list(self.actions)
 
     @classmethod
     def from_entity(cls, e: Entity) -> Action:
@@ -242,9 +320,9 @@ class PushRosNamespace(Action):
         super().__init__(**kw)
         self.namespace = normalize(namespace)
 
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
-        scope.push_namespace(perform(self.namespace, scope))
-        return []
+    def execute(self, context: Scope) -> list[Action] | None:
+        context.push_namespace(perform(self.namespace, context))
+        return None
 
     @classmethod
     def from_entity(cls, e: Entity) -> Action:
@@ -264,9 +342,9 @@ class SetEnvironmentVariable(Action):
         self.name = normalize(name)
         self.value = normalize(value)
 
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
-        scope.set_env(perform(self.name, scope), perform(self.value, scope))
-        return []
+    def execute(self, context: Scope) -> list[Action] | None:
+        context.set_env(perform(self.name, context), perform(self.value, context))
+        return None
 
     @classmethod
     def from_entity(cls, e: Entity) -> Action:
@@ -293,13 +371,14 @@ class AppendEnvironmentVariable(Action):
         self.name, self.value = normalize(name), normalize(value)
         self.prepend, self.separator = prepend, separator
 
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+    def execute(self, context: Scope) -> list[Action] | None:
+        scope = context
         name, value = perform(self.name, scope), perform(self.value, scope)
         old = scope.env.get(name)
         if old:
             value = f"{value}{self.separator}{old}" if self.prepend else f"{old}{self.separator}{value}"
         scope.set_env(name, value)
-        return []
+        return None
 
     @classmethod
     def from_entity(cls, e: Entity) -> Action:
@@ -320,9 +399,9 @@ class UnsetEnvironmentVariable(Action):
         super().__init__(**kw)
         self.name = normalize(name)
 
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
-        scope.set_env(perform(self.name, scope), None)
-        return []
+    def execute(self, context: Scope) -> list[Action] | None:
+        context.set_env(perform(self.name, context), None)
+        return None
 
     @classmethod
     def from_entity(cls, e: Entity) -> Action:
@@ -335,11 +414,9 @@ class ResetEnvironment(Action):
 
     frontend_tags = ("reset_env",)
 
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
-        for name in set(scope.env) | set(scope.initial_env):
-            if scope.env.get(name) != scope.initial_env.get(name):
-                scope.set_env(name, scope.initial_env.get(name))
-        return []
+    def execute(self, context: Scope) -> list[Action] | None:
+        context.reset_environment()
+        return None
 
     @classmethod
     def from_entity(cls, e: Entity) -> Action:
@@ -357,11 +434,11 @@ class ResetLaunchConfigurations(Action):
         super().__init__(**kw)
         self.keep = {k: normalize(v) for k, v in (launch_configurations or {}).items()}
 
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
-        kept = {k: perform(v, scope) for k, v in self.keep.items()}
-        scope.configurations.clear()
-        scope.configurations.update(kept)
-        return []
+    def execute(self, context: Scope) -> list[Action] | None:
+        kept = {k: perform(v, context) for k, v in self.keep.items()}
+        context.configurations.clear()
+        context.configurations.update(kept)
+        return None
 
     @classmethod
     def from_entity(cls, e: Entity) -> Action:
@@ -402,10 +479,34 @@ class TimerAction(Action):
     def label(self) -> str:
         return f"timer {describe(self.period)} s"
 
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
-        period = seconds(perform(self.period, scope), "timer period")
-        steps = r.visit_all(self.actions, scope.child())
-        return [StartTimer(period_s=period, steps=tuple(steps), cancel_on_shutdown=self.cancel_on_shutdown)]
+    def execute(self, context: Scope) -> list[Action] | None:
+        engine = context.engine
+        if engine.dry:
+            # --print: the period and actions as they would be now; at run time both are evaluated when the
+            # timer starts and fires, after the enclosing group is gone (as Jazzy's TimerAction).
+            try:
+                period = seconds(perform(self.period, context), "timer period")
+            except LaunchError as e:
+                engine.effect(Unknown(what=self.label(), why=f"its period is known only at run time: {e}"))
+                period = float("nan")
+            steps = engine.preview(self.actions)
+            engine.effect(StartTimer(period_s=period, steps=steps, cancel_on_shutdown=self.cancel_on_shutdown))
+            return None
+        saved = context.get_locals_as_dict()
+
+        def start() -> None:
+            from diffctl.launch.events import TimerEvent
+
+            period = seconds(perform(self.period, context), "timer period")
+            engine.services.after(period, lambda: engine.emit(TimerEvent(timer_action=self, locals=saved)), "timer")
+
+        engine.defer(start)
+        return None
+
+    completes_later = True
+
+    def describe_sub_entities(self) -> list[Action]:
+        return list(self.actions)
 
     @classmethod
     def from_entity(cls, e: Entity) -> Action:
@@ -428,8 +529,9 @@ class LogInfo(Action):
     def label(self) -> str:
         return f"log {describe(self.msg)!r}"
 
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
-        return [LogMessage(message=perform(self.msg, scope))]
+    def execute(self, context: Scope) -> list[Action] | None:
+        context.engine.effect(LogMessage(message=perform(self.msg, context)))
+        return None
 
     @classmethod
     def from_entity(cls, e: Entity) -> Action:
@@ -450,9 +552,10 @@ class Shutdown(Action):
         super().__init__(**kw)
         self.reason = None if reason is None else normalize(reason)
 
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
-        reason = perform(self.reason, scope) if self.reason is not None else "shutdown requested by the launch file"
-        return [RequestShutdown(reason=reason)]
+    def execute(self, context: Scope) -> list[Action] | None:
+        reason = perform(self.reason, context) if self.reason is not None else "reason not given"
+        context.engine.effect(RequestShutdown(reason=reason))
+        return None
 
     @classmethod
     def from_entity(cls, e: Entity) -> Action:
@@ -463,3 +566,18 @@ def is_substitution_list(value: Any) -> bool:
     return isinstance(value, Substitution) or (
         isinstance(value, (list, tuple)) and any(isinstance(v, Substitution) for v in value)
     )
+
+
+def walk_entities(root: Any) -> Iterable[Any]:
+    """Every entity reachable without running anything: groups, includes' fixed parts, handlers', timers'."""
+    stack = [root]
+    seen: set[int] = set()
+    while stack:
+        entity = stack.pop()
+        if id(entity) in seen or not isinstance(entity, Action):
+            continue
+        seen.add(id(entity))
+        yield entity
+        stack.extend(entity.describe_sub_entities())
+        for extra in ("on_exit",):
+            stack.extend(getattr(entity, extra, None) or [])

@@ -11,7 +11,6 @@ from pathlib import Path
 
 import yaml
 
-from diffctl import ros_args
 from diffctl.launch.plan import ProcessSpec
 
 PRINT_PARAMS_DIR = Path("<log-dir>/params")
@@ -42,14 +41,28 @@ def params_files(spec: ProcessSpec, params_dir: Path, *, write: bool) -> list[st
     return files
 
 
+def ros_arguments(spec: ProcessSpec, params_dir: Path = PRINT_PARAMS_DIR, *, write: bool = False) -> list[str]:
+    """launch_ros's order: name, namespace, SetParameter/SetParametersFromFile ones, the node's own, remaps."""
+    node = spec.node
+    if node is None:
+        return []
+    out: list[str] = []
+    if node.node_name:
+        out += ["-r", f"__node:={node.node_name}"]
+    if node.namespace and node.namespace != "/":
+        out += ["-r", f"__ns:={node.namespace}"]
+    for entry in node.global_params:
+        if isinstance(entry, tuple):
+            out += ["-p", f"{entry[0]}:={entry[1]}"]
+        else:
+            out += ["--params-file", entry]
+    for path in params_files(spec, params_dir, write=write):
+        out += ["--params-file", path]
+    for src, dst in node.remaps:
+        out += ["-r", f"{src}:={dst}"]
+    return ["--ros-args", *out] if out else []
+
+
 def argv(spec: ProcessSpec, params_dir: Path = PRINT_PARAMS_DIR, *, write: bool = False) -> list[str]:
     """The command that starts `spec`; with write=True the parameter files are created in params_dir."""
-    out = list(spec.argv)
-    if spec.node is None:
-        return out
-    return out + ros_args.build(
-        node_name=spec.node.node_name,
-        namespace=spec.node.namespace,
-        params_files=params_files(spec, params_dir, write=write),
-        remaps=dict(spec.node.remaps),
-    )
+    return list(spec.argv) + ros_arguments(spec, params_dir, write=write)

@@ -1,17 +1,32 @@
-"""The resolve-time scope: launch configurations, environment, ROS namespace and the file being read.
+"""The launch context, as ros2/launch's LaunchContext: one live state that the engine's visits change.
 
-Scopes are copied when a scoped group or an include starts, so what is set inside does not leak out.
+Launch configurations are one dict (Push/PopLaunchConfigurations save and restore a shallow copy, so lists
+kept in it, `global_params` and `ros_remaps`, leak out of a scoped group as they do in Jazzy); the environment
+is one dict (the launch environment: what children and `$(env)` see) with its own push/pop; locals are a stack
+of frames, a frame per event handled, so what an include sets (the current launch file) is seen by the
+entities after it in the same visit. The ROS namespace, SetParameter's parameters and SetRemap's remappings are
+launch configurations named as launch_ros names them.
 """
 
 from __future__ import annotations
 
 import os
 import secrets
-from dataclasses import dataclass, field, replace
-from typing import Any
+from collections import deque
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
+from diffctl.errors import LaunchError
 from diffctl.launch.environment import with_tool_path
-from diffctl.launch.plan import Gate
+
+if TYPE_CHECKING:
+    from diffctl.launch.engine import Engine
+
+ROS_NAMESPACE = "ros_namespace"
+GLOBAL_PARAMS = "global_params"  # [(name, value) | parameter file path, …], as launch_ros keeps them
+ROS_REMAPS = "ros_remaps"  # [(from, to), …]
 
 
 @dataclass
@@ -26,53 +41,170 @@ class AnonNames:
         return self.names[base]
 
 
-@dataclass
-class Scope:
-    configurations: dict[str, str]
-    env: dict[str, str]
-    env_changes: dict[str, str | None] = field(default_factory=dict)  # None = unset, for --print
-    namespace: str = "/"
-    launch_file: str | None = None
-    includes: tuple[str, ...] = ()
-    gate: Gate | None = None
-    anon: AnonNames = field(default_factory=AnonNames)
-    initial_env: dict[str, str] = field(default_factory=dict)  # what ResetEnvironment goes back to
-    global_params: dict[str, Any] = field(default_factory=dict)  # SetParameter: for every node after it
-    remaps: list[tuple[str, str]] = field(default_factory=list)  # SetRemap: for every node after it
-    param_files: list[str] = field(default_factory=list)  # SetParametersFromFile: for every node after it
+class Locals:
+    """`context.locals.x`: read-only view of the current locals, with ROS's error for a missing name."""
+
+    def __init__(self, values: dict[str, Any]) -> None:
+        object.__setattr__(self, "_values", values)
+
+    def __getattr__(self, name: str) -> Any:
+        values = object.__getattribute__(self, "_values")
+        if name in values:
+            return values[name]
+        raise AttributeError(
+            f"context.locals does not contain attribute '{name}', it contains: [{', '.join(sorted(values))}]"
+        )
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        raise AttributeError("context.locals is read-only: use context.extend_locals()")
+
+
+class LaunchContext:
+    def __init__(
+        self,
+        arguments: dict[str, str] | None = None,
+        launch_file: str | None = None,
+        env: dict[str, str] | None = None,
+        engine: Engine | None = None,
+    ) -> None:
+        self.configurations: dict[str, Any] = dict(arguments or {})
+        self._config_stack: list[dict[str, Any]] = []
+        self.env: dict[str, str] = with_tool_path(dict(os.environ if env is None else env))
+        self.initial_env: dict[str, str] = dict(self.env)  # what ResetEnvironment goes back to
+        self._env_stack: list[dict[str, str]] = []
+        self._globals: dict[str, Any] = {}
+        self._frames: list[dict[str, Any]] = [{}]
+        self.handlers: deque[Any] = deque()  # newest first, as LaunchContext.register_event_handler
+        self.is_shutdown = False
+        self.anon = AnonNames()
+        self.engine = engine
+        self.argv: list[str] = [f"{k}:={v}" for k, v in (arguments or {}).items()]
+        if launch_file:
+            self.extend_locals({"current_launch_file_path": launch_file, "include_chain": (launch_file,)})
 
     @classmethod
-    def initial(cls, arguments: dict[str, str], launch_file: str | None, env: dict[str, str] | None = None) -> Scope:
-        start = with_tool_path(dict(os.environ if env is None else env))
-        return cls(
-            configurations=dict(arguments),
-            env=start,
-            initial_env=dict(start),
-            launch_file=launch_file,
-            includes=(launch_file,) if launch_file else (),
-        )
+    def initial(
+        cls, arguments: dict[str, str], launch_file: str | None, env: dict[str, str] | None = None
+    ) -> LaunchContext:
+        return cls(arguments, launch_file, env)
 
-    def child(self, *, forwarding: bool = True) -> Scope:
-        """A scope whose changes stay inside (scoped group, include)."""
-        return replace(
-            self,
-            configurations=dict(self.configurations) if forwarding else {},
-            env=dict(self.env),
-            env_changes=dict(self.env_changes),
-            global_params=dict(self.global_params) if forwarding else {},
-            remaps=list(self.remaps) if forwarding else [],
-            param_files=list(self.param_files) if forwarding else [],
-        )
-
-    # ---- as launch's LaunchContext, for OpaqueFunction and callable handlers ------------------------------------
+    # ---- launch configurations ---------------------------------------------------------------------------------
 
     @property
-    def launch_configurations(self) -> dict[str, str]:
+    def launch_configurations(self) -> dict[str, Any]:
         return self.configurations
+
+    def push_configurations(self) -> None:
+        self._config_stack.append(dict(self.configurations))
+
+    def pop_configurations(self) -> None:
+        if not self._config_stack:
+            raise LaunchError("PopLaunchConfigurations without a matching PushLaunchConfigurations")
+        self.configurations.clear()
+        self.configurations.update(self._config_stack.pop())
+
+    # ---- environment -------------------------------------------------------------------------------------------
 
     @property
     def environment(self) -> dict[str, str]:
         return self.env
+
+    def push_environment(self) -> None:
+        self._env_stack.append(dict(self.env))
+
+    def pop_environment(self) -> None:
+        if not self._env_stack:
+            raise LaunchError("PopEnvironment without a matching PushEnvironment")
+        self.env.clear()
+        self.env.update(self._env_stack.pop())
+
+    def reset_environment(self) -> None:
+        self.env.clear()
+        self.env.update(self.initial_env)
+
+    def set_env(self, name: str, value: str | None) -> None:
+        if value is None:
+            self.env.pop(name, None)
+        else:
+            self.env[name] = value
+
+    @property
+    def env_changes(self) -> dict[str, str | None]:
+        """How the launch environment differs from the one the launch started in (None: unset)."""
+        out: dict[str, str | None] = {k: v for k, v in self.env.items() if self.initial_env.get(k) != v}
+        out.update({k: None for k in self.initial_env if k not in self.env})
+        return out
+
+    # ---- locals ------------------------------------------------------------------------------------------------
+
+    def extend_locals(self, values: dict[str, Any]) -> None:
+        self._frames[-1].update(values)
+
+    def extend_globals(self, values: dict[str, Any]) -> None:
+        self._globals.update(values)
+
+    def get_locals_as_dict(self) -> dict[str, Any]:
+        return {**self._globals, **self._frames[-1]}
+
+    @property
+    def locals(self) -> Locals:
+        return Locals(self.get_locals_as_dict())
+
+    @contextmanager
+    def frame(self, values: dict[str, Any]) -> Iterator[None]:
+        """A fresh locals frame (globals + `values`) for one handler call, popped afterwards."""
+        self._frames.append(dict(values))
+        try:
+            yield
+        finally:
+            self._frames.pop()
+
+    @property
+    def launch_file(self) -> str | None:
+        return self.get_locals_as_dict().get("current_launch_file_path")
+
+    @property
+    def includes(self) -> tuple[str, ...]:
+        return self.get_locals_as_dict().get("include_chain", ())
+
+    # ---- event handlers ----------------------------------------------------------------------------------------
+
+    def register_event_handler(self, handler: Any, append: bool = False) -> None:
+        if self.engine is not None:
+            self.engine.register(handler, append=append)
+        elif append:
+            self.handlers.append(handler)
+        else:
+            self.handlers.appendleft(handler)
+
+    def unregister_event_handler(self, handler: Any) -> None:
+        self.handlers.remove(handler)  # ValueError for an unknown one, as in ROS
+
+    def emit_event_sync(self, event: Any) -> None:
+        if self.engine is None:
+            raise LaunchError("no launch is running to emit events to")
+        self.engine.emit(event)
+
+    emit_event = emit_event_sync
+
+    # ---- ROS (launch_ros keeps these in launch configurations) --------------------------------------------------
+
+    @property
+    def namespace(self) -> str:
+        return self.configurations.get(ROS_NAMESPACE) or "/"
+
+    def push_namespace(self, ns: str) -> None:
+        self.configurations[ROS_NAMESPACE] = join_namespace(self.namespace, ns)
+
+    @property
+    def global_params(self) -> list[Any]:
+        return self.configurations.setdefault(GLOBAL_PARAMS, [])
+
+    @property
+    def remaps(self) -> list[tuple[str, str]]:
+        return self.configurations.setdefault(ROS_REMAPS, [])
+
+    # ---- substitutions -----------------------------------------------------------------------------------------
 
     def perform_substitution(self, substitution: Any) -> str:
         from diffctl.launch.substitutions import perform
@@ -82,15 +214,21 @@ class Scope:
     def anon_name(self, base: str) -> str:
         return self.anon.get(base)
 
-    def set_env(self, name: str, value: str | None) -> None:
-        if value is None:
-            self.env.pop(name, None)
-        else:
-            self.env[name] = value
-        self.env_changes[name] = value
+    def snapshot(self) -> LaunchContext:
+        """A copy to preview what an event handler or timer would do (`--print`), without touching this one."""
+        import copy
 
-    def push_namespace(self, ns: str) -> None:
-        self.namespace = join_namespace(self.namespace, ns)
+        other = copy.copy(self)
+        other.configurations = copy.deepcopy(self.configurations)
+        other._config_stack = []
+        other.env = dict(self.env)
+        other._env_stack = []
+        other._frames = [dict(self.get_locals_as_dict())]
+        other.handlers = deque(self.handlers)
+        return other
+
+
+Scope = LaunchContext  # the name the engine's actions and substitutions type their context with
 
 
 def join_namespace(base: str, ns: str) -> str:

@@ -3,7 +3,7 @@
 `EmitEvent(event=Shutdown(...))` shuts the launch down; `EmitEvent(event=SignalProcess(signal_number=…,
 process_matcher=matches_action(node)))` signals a process's group; `ShutdownProcess` stops it as shutdown
 would. `OpaqueFunction(function=f, args=…, kwargs=…)` calls `f(context, *args, **kwargs)` while the
-description is resolved; `context.launch_configurations` and `Substitution.perform(context)` work as in ROS,
+engine reaches it; `context.launch_configurations` and `Substitution.perform(context)` work as in ROS,
 and the actions it returns are resolved in its place.
 """
 
@@ -16,12 +16,11 @@ from diffctl.errors import DiffctlError, LaunchError
 from diffctl.launch.actions import Action, Shutdown
 from diffctl.launch.events import Shutdown as ShutdownEvent
 from diffctl.launch.events import ShutdownProcess, SignalProcess
-from diffctl.launch.plan import RequestShutdown, SignalProcesses, Step, TargetRef
+from diffctl.launch.plan import RequestShutdown, SignalProcesses, TargetRef
 from diffctl.launch.substitutions import perform
 
 if TYPE_CHECKING:
     from diffctl.launch.context import Scope
-    from diffctl.launch.resolver import Resolver
 
 
 class EmitEvent(Action):
@@ -29,25 +28,35 @@ class EmitEvent(Action):
 
     def __init__(self, *, event: Any, **kw: Any) -> None:
         super().__init__(**kw)
-        if not isinstance(event, (ShutdownEvent, Shutdown, SignalProcess, ShutdownProcess)):
+        from diffctl.launch.events import Event
+
+        if not isinstance(event, (ShutdownEvent, Shutdown, SignalProcess, ShutdownProcess, Event)):
             raise LaunchError(
-                f"EmitEvent: {type(event).__name__} events are not supported",
-                hint="valid: events.Shutdown, events.process.SignalProcess, events.process.ShutdownProcess",
+                f"EmitEvent: {event!r} is not a launch event",
+                hint="valid: events.Shutdown, events.process.SignalProcess, events.process.ShutdownProcess, …",
             )
         self.event = event
 
     def label(self) -> str:
         return f"emit {type(self.event).__name__}"
 
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+    def execute(self, context: Scope) -> list[Action] | None:
+        engine = context.engine
         if isinstance(self.event, Shutdown):
-            return self.event.visit(r, scope)
+            return self.event.execute(context)
         if isinstance(self.event, ShutdownEvent):
-            return [RequestShutdown(reason=perform(self.event.reason, scope))]
+            engine.effect(RequestShutdown(reason=perform(self.event.reason, context)))
+            return None
+        if not isinstance(self.event, (SignalProcess, ShutdownProcess)):
+            if engine.dry:
+                return None
+            engine.emit(self.event)  # queued: handled after the current event, as EmitEvent does
+            return None
         m = self.event.matcher
-        ref = r.ref(m.action, scope) if m.action is not None else TargetRef(name=m.name, label=m.name or "")
+        ref = engine.ref(m.action) if m.action is not None else TargetRef(name=m.name, label=m.name or "")
         sig = int(self.event.signal) if isinstance(self.event, SignalProcess) else None
-        return [SignalProcesses(signal=sig, targets=(ref,))]
+        engine.effect(SignalProcesses(signal=sig, targets=(ref,)))
+        return None
 
 
 def returned_actions(result: Any, what: str) -> list[Action]:
@@ -96,7 +105,7 @@ class OpaqueFunction(Action):
     def label(self) -> str:
         return f"OpaqueFunction {getattr(self.function, '__name__', '?')}"
 
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+    def execute(self, context: Scope) -> list[Action] | None:
         what = f"OpaqueFunction {getattr(self.function, '__name__', '?')}"
-        result = call_user(self.function, what, scope, *self.args, **self.kwargs)
-        return r.visit_all(returned_actions(result, what), scope)
+        result = call_user(self.function, what, context, *self.args, **self.kwargs)
+        return returned_actions(result, what)

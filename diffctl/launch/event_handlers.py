@@ -1,4 +1,8 @@
-"""Event handlers: run actions when a process starts or exits, or when the launch shuts down.
+"""Event handlers, as ros2/launch's: registered in the context (newest first), each offered every event.
+
+A handler matches an event (its type, its target process, for OnProcessExit optionally its exit code) and
+returns the entities to visit then: its actions, or what its callable `(event, context)` returns when called
+at event time (OnProcessIO's callables get the event only, as in ROS).
 
 Python: `RegisterEventHandler(OnProcessExit(target_action=spawner, on_exit=[next_node]))`, or a callable
 `on_exit=lambda event, context: [...]` called when the event happens; `OnProcessIO(on_stdout=lambda event: …)`.
@@ -22,13 +26,11 @@ from diffctl.errors import LaunchError
 from diffctl.launch import events
 from diffctl.launch.actions import Action
 from diffctl.launch.event_actions import call_user, returned_actions
-from diffctl.launch.plan import AddHandler, EventInfo, Handler, Step, TargetRef
 from diffctl.launch.registry import register
-from diffctl.launch.substitutions import normalize, perform
+from diffctl.launch.substitutions import Substitution, normalize, perform
 
 if TYPE_CHECKING:
     from diffctl.launch.context import Scope
-    from diffctl.launch.resolver import Resolver
     from diffctl.launch.yaml_frontend import Entity
 
 
@@ -44,96 +46,171 @@ def _actions(value: Any, what: str) -> list[Action]:
     return items
 
 
-class EventHandler:
-    """Actions to run on an event, or a callable `(event, context)` returning actions (resolved when it fires)."""
+class YamlTarget:
+    """A process named by text in YAML (possibly with substitutions), resolved when the handler is registered."""
 
-    event = ""
+    def __init__(self, text: Any) -> None:
+        self.text = text
+
+
+class BaseEventHandler:
+    """A handler: `matches(event)` and `handle(event, context)` → entities (launch.EventHandler)."""
+
+    kind = ""
+    event_type: type | tuple[type, ...] = events.Event
+
+    def __init__(
+        self, *, matcher: Callable[[Any], bool] | None = None, entities: Any = None, handle_once: bool = False
+    ) -> None:
+        self.matcher = matcher
+        self.entities = _actions(entities, type(self).__name__)
+        self.callable: Callable[..., Any] | None = None
+        self.handle_once = handle_once
+        self.exit_code: int | None = None
+        self.streams: tuple[str, ...] = ()
+        self.launch_file: str | None = None
+        self.seq = 0
+
+    def matches(self, event: Any) -> bool:
+        if self.matcher is not None:
+            return bool(self.matcher(event))
+        return isinstance(event, self.event_type)
+
+    def handle(self, event: Any, context: Scope) -> list[Action] | None:
+        context.extend_locals({"event": event})
+        if self.handle_once:
+            context.unregister_event_handler(self)
+        if self.callable is not None:
+            what = f"{type(self).__name__} callable {getattr(self.callable, '__name__', '')}".rstrip()
+            return returned_actions(self.call(event, context), what)
+        return list(self.entities)
+
+    def call(self, event: Any, context: Scope) -> Any:
+        assert self.callable is not None
+        what = f"{type(self).__name__} callable {getattr(self.callable, '__name__', '')}".rstrip()
+        return call_user(self.callable, what, event, context)
+
+    def name_targets(self) -> list[Any]:
+        return []
+
+    def describe_callable(self) -> str:
+        return getattr(self.callable, "__name__", "a function") if self.callable is not None else ""
+
+    def resolve_names(self, context: Scope) -> None:
+        """Process names written as text are substituted when the handler is registered."""
+
+
+EventHandler = BaseEventHandler
+
+
+class OnActionEventBase(BaseEventHandler):
+    """A handler of one action's events: `target_action` an action, a process name, a predicate, or None (any)."""
 
     def __init__(
         self, target_action: Any = None, actions: Any = None, exit_code: int | None = None, handle_once: bool = False
     ) -> None:
-        self.targets = (
-            []
-            if target_action is None
-            else (list(target_action) if isinstance(target_action, (list, tuple)) else [target_action])
-        )
-        self.callback: Callable[..., Any] | None = None
-        if callable(actions) and not isinstance(actions, Action):
-            self.callback, actions = actions, None
-        self.actions = _actions(actions, type(self).__name__)
+        fn = actions if callable(actions) and not isinstance(actions, Action) else None
+        super().__init__(entities=None if fn is not None else actions, handle_once=handle_once)
+        self.callable = fn
+        if target_action is None:
+            self.targets: list[Any] = []
+        elif isinstance(target_action, (list, tuple)):
+            self.targets = list(target_action)
+        else:
+            self.targets = [target_action]
         if exit_code is not None and (isinstance(exit_code, bool) or not isinstance(exit_code, int)):
             raise LaunchError(f"exit_code {exit_code!r} must be an integer")
         self.exit_code = exit_code
-        self.handle_once = handle_once
+        self._names: set[str] = set()
 
-    def make_event(self, info: EventInfo, r: Resolver, scope: Scope) -> Any:
-        action = r.process_actions.get(info.name)
-        spec = r.processes.get(info.name)
-        common = {
-            "action": action,
-            "name": info.name,
-            "pid": info.pid,
-            "cmd": list(spec.argv) if spec else [],
-            "cwd": spec.cwd if spec else None,
-            "env": dict(scope.env),
-        }
-        if self.event == "exit":
-            return events.ProcessExited(**common, returncode=info.exit_code or 0)
-        if self.event == "start":
-            return events.ProcessStarted(**common)
-        return events.Shutdown(reason=info.text or "")
+    def resolve_names(self, context: Scope) -> None:
+        for t in self.targets:
+            if isinstance(t, YamlTarget):
+                self._names.add(perform(t.text, context))
+            elif isinstance(t, (str, Substitution, list, tuple)):
+                self._names.add(perform(t, context))
 
-    def call(self, info: EventInfo, r: Resolver, scope: Scope) -> tuple[Step, ...]:
-        assert self.callback is not None
-        what = f"{type(self).__name__} callable {getattr(self.callback, '__name__', '')}".rstrip()
-        result = call_user(self.callback, what, self.make_event(info, r, scope), scope)
-        return tuple(r.resolve_more(returned_actions(result, what), scope.child()))
+    def name_targets(self) -> list[Any]:
+        out: list[Any] = []
+        for t in self.targets:
+            if isinstance(t, Action):
+                out.append(t)
+            elif isinstance(t, YamlTarget):
+                out.append(t.text)
+            elif isinstance(t, (str, Substitution)):
+                out.append(t)
+        return out
 
-    def resolve(self, r: Resolver, scope: Scope) -> Handler:
-        refs = tuple(r.ref(t, scope) for t in self.targets)
-        steps = r.visit_all(self.actions, scope.child())
-        callback = None
-        if self.callback is not None:
-            inner = scope.child()
-            callback = lambda info: self.call(info, r, inner)  # noqa: E731
-        return Handler(
-            self.event,  # type: ignore[arg-type]
-            refs,
-            tuple(steps),
-            self.exit_code,
-            callback=callback,
-            describe_callback=getattr(self.callback, "__name__", "") if self.callback else "",
-            once=self.handle_once,
-        )
+    def target_matches(self, action: Any, name: str | None) -> bool:
+        if not self.targets:
+            return True
+        for t in self.targets:
+            if isinstance(t, Action):
+                if t is action:
+                    return True
+            elif callable(t) and not isinstance(t, (str, Substitution, YamlTarget)) and t(action):
+                return True
+        return name is not None and name in self._names
+
+    def matches(self, event: Any) -> bool:
+        if not isinstance(event, self.event_type):
+            return False
+        return self.target_matches(getattr(event, "action", None), getattr(event, "name", None))
 
 
-class OnProcessExit(EventHandler):
-    event = "exit"
+class OnProcessExit(OnActionEventBase):
+    kind = "exit"
+    event_type = events.ProcessExited
 
     def __init__(
         self, *, target_action: Any = None, on_exit: Any = None, exit_code: int | None = None, handle_once: bool = False
     ) -> None:
         super().__init__(target_action, on_exit, exit_code, handle_once)
 
+    def matches(self, event: Any) -> bool:
+        return super().matches(event) and (self.exit_code is None or event.returncode == self.exit_code)
 
-class OnProcessStart(EventHandler):
-    event = "start"
+
+class OnProcessStart(OnActionEventBase):
+    kind = "start"
+    event_type = events.ProcessStarted
 
     def __init__(self, *, target_action: Any = None, on_start: Any = None, handle_once: bool = False) -> None:
         super().__init__(target_action, on_start, None, handle_once)
 
 
-class OnShutdown(EventHandler):
-    event = "shutdown"
+class OnExecutionComplete(OnActionEventBase):
+    kind = "complete"
+    event_type = events.ExecutionComplete
+
+    def __init__(self, *, target_action: Any = None, on_completion: Any = None, handle_once: bool = False) -> None:
+        super().__init__(target_action, on_completion, None, handle_once)
+
+    def matches(self, event: Any) -> bool:
+        if not isinstance(event, events.ExecutionComplete):
+            return False
+        if not self.targets:
+            return True
+        return self.target_matches(event.action, None) or (
+            event.action is not None and getattr(event.action, "_process_name", None) in self._names
+        )
+
+
+class OnShutdown(BaseEventHandler):
+    kind = "shutdown"
+    event_type = events.Shutdown
 
     def __init__(self, *, on_shutdown: Any = None, handle_once: bool = False) -> None:
-        super().__init__(None, on_shutdown, None, handle_once)
+        fn = on_shutdown if callable(on_shutdown) and not isinstance(on_shutdown, Action) else None
+        super().__init__(entities=None if fn is not None else on_shutdown, handle_once=handle_once)
+        self.callable = fn
 
 
-class OnProcessIO(EventHandler):
-    """Callables on a process's output lines: `on_stdout(event)` / `on_stderr(event)`, `event.text` as bytes."""
+class OnProcessIO(OnActionEventBase):
+    """Callables on a process's output: `on_stdout(event)` / `on_stderr(event)`, `event.text` as bytes."""
 
-    event = "io"
+    kind = "io"
+    event_type = events.ProcessIO
 
     def __init__(
         self,
@@ -151,38 +228,22 @@ class OnProcessIO(EventHandler):
             if fn is not None and not callable(fn):
                 raise LaunchError(f"OnProcessIO {what} must be a callable taking the event")
         self.on_stdout, self.on_stderr = on_stdout, on_stderr
+        self.streams = tuple(s for s, fn in (("stdout", on_stdout), ("stderr", on_stderr)) if fn is not None)
+        self.callable = on_stdout or on_stderr
 
-    def call_io(self, info: EventInfo, r: Resolver, scope: Scope) -> tuple[Step, ...]:
-        fn = self.on_stdout if info.stream == "stdout" else self.on_stderr
+    def matches(self, event: Any) -> bool:
+        if not super().matches(event):
+            return False
+        return (self.on_stdout if event.fd == 1 else self.on_stderr if event.fd == 2 else None) is not None
+
+    def call(self, event: Any, context: Scope) -> Any:
+        fn = self.on_stdout if event.fd == 1 else self.on_stderr
         assert fn is not None
-        what = f"OnProcessIO {info.stream} callable {getattr(fn, '__name__', '')}".rstrip()
-        spec = r.processes.get(info.name)
-        event = events.ProcessIO(
-            action=r.process_actions.get(info.name),
-            name=info.name,
-            pid=info.pid,
-            cmd=list(spec.argv) if spec else [],
-            text=((info.text or "") + "\n").encode(),
-            fd=1 if info.stream == "stdout" else 2,
-        )
-        result = call_user(fn, what, event)
-        return tuple(r.resolve_more(returned_actions(result, what), scope.child()))
+        stream = "stdout" if event.fd == 1 else "stderr"
+        return call_user(fn, f"OnProcessIO {stream} callable {getattr(fn, '__name__', '')}".rstrip(), event)
 
-    def resolve(self, r: Resolver, scope: Scope) -> Handler:
-        refs = tuple(r.ref(t, scope) for t in self.targets)
-        streams = tuple(s for s, fn in (("stdout", self.on_stdout), ("stderr", self.on_stderr)) if fn is not None)
-        inner = scope.child()
-        return Handler(
-            "io",
-            refs,
-            (),
-            callback=lambda info: self.call_io(info, r, inner),
-            streams=streams,
-            describe_callback=", ".join(
-                getattr(fn, "__name__", "?") for fn in (self.on_stdout, self.on_stderr) if fn is not None
-            ),
-            once=self.handle_once,
-        )
+    def describe_callable(self) -> str:
+        return ", ".join(getattr(fn, "__name__", "?") for fn in (self.on_stdout, self.on_stderr) if fn is not None)
 
 
 @register
@@ -192,7 +253,7 @@ class RegisterEventHandler(Action):
 
     def __init__(self, event_handler: EventHandler, **kw: Any) -> None:
         super().__init__(**kw)
-        if not isinstance(event_handler, EventHandler):
+        if not isinstance(event_handler, BaseEventHandler):
             raise LaunchError(
                 f"RegisterEventHandler needs an event handler, got {event_handler!r}",
                 hint="valid: OnProcessExit, OnProcessStart, OnShutdown",
@@ -200,10 +261,15 @@ class RegisterEventHandler(Action):
         self.event_handler = event_handler
 
     def label(self) -> str:
-        return f"on_{self.event_handler.event}"
+        return f"on_{self.event_handler.kind}"
 
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
-        return [AddHandler(handler=self.event_handler.resolve(r, scope))]
+    def execute(self, context: Scope) -> list[Action] | None:
+        self.event_handler.resolve_names(context)
+        context.register_event_handler(self.event_handler)
+        return None
+
+    def describe_sub_entities(self) -> list[Action]:
+        return list(self.event_handler.entities)
 
     @classmethod
     def from_entity(cls, e: Entity) -> Action:
@@ -225,12 +291,12 @@ class RegisterEventHandler(Action):
         return cls(OnShutdown(on_shutdown=actions))
 
 
-class YamlTarget:
-    """A process named by text in YAML (possibly with substitutions)."""
+class UnregisterEventHandler(Action):
+    def __init__(self, event_handler: BaseEventHandler, **kw: Any) -> None:
+        super().__init__(**kw)
+        self.event_handler = event_handler
 
-    def __init__(self, text: Any) -> None:
-        self.text = text
-
-    def ref(self, scope: Scope) -> TargetRef:
-        name = perform(self.text, scope)
-        return TargetRef(name=name, label=name)
+    def execute(self, context: Scope) -> list[Action] | None:
+        if not context.engine.dry:
+            context.unregister_event_handler(self.event_handler)
+        return None

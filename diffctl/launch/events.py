@@ -15,8 +15,14 @@ from diffctl.errors import LaunchError
 from diffctl.launch.substitutions import SomeSubstitutions
 
 
-class Shutdown:
+class Event:
+    """Base of every event (launch.Event); non-process events name their type by `name`, as ROS's."""
+
+
+class Shutdown(Event):
     """Ask the launch to shut down, as `launch.events.Shutdown(reason=…)`."""
+
+    name = "launch.events.Shutdown"
 
     def __init__(
         self, *, reason: SomeSubstitutions = "shutdown event emitted by the launch file", due_to_sigint: bool = False
@@ -50,7 +56,7 @@ def _matcher(process_matcher: Any) -> ProcessMatcher:
     )
 
 
-class SignalProcess:
+class SignalProcess(Event):
     """Send a signal to the matched processes' groups (`signal_number` an int, a Signals or a name 'SIGINT')."""
 
     def __init__(self, *, signal_number: int | str, process_matcher: Any) -> None:
@@ -66,15 +72,34 @@ class SignalProcess:
         self.matcher = _matcher(process_matcher)
 
 
-class ShutdownProcess:
+class ShutdownProcess(Event):
     """Stop the matched processes as launch shutdown would: SIGINT, then SIGTERM, then SIGKILL."""
 
     def __init__(self, *, process_matcher: Any) -> None:
         self.matcher = _matcher(process_matcher)
 
 
+class ExecutionComplete(Event):
+    """An action's execution is complete (emitted only when some OnExecutionComplete handler would take it)."""
+
+    name = "launch.events.ExecutionComplete"
+
+    def __init__(self, *, action: Any) -> None:
+        self.action = action
+
+
+class TimerEvent(Event):
+    """A TimerAction's period has passed: its actions are visited now, with the locals it started with."""
+
+    name = "launch.events.TimerEvent"
+
+    def __init__(self, *, timer_action: Any, locals: dict[str, Any]) -> None:
+        self.timer_action = timer_action
+        self.locals = locals
+
+
 @dataclass
-class ProcessEvent:
+class ProcessEvent(Event):
     """What a callable handler receives about one process (the fields of launch's process events)."""
 
     action: Any
@@ -103,6 +128,10 @@ class ProcessExited(ProcessEvent):
 class ProcessIO(ProcessEvent):
     text: bytes = b""
     fd: int = 1
+
+    @property
+    def from_stdin(self) -> bool:
+        return self.fd == 0
 
     @property
     def from_stdout(self) -> bool:

@@ -1,7 +1,9 @@
 """IncludeLaunchDescription and the launch description sources (Python, YAML, XML or any, chosen by file name).
 
-Jazzy's include does not scope what the included file sets; diffctl keeps an include's configurations inside
-it (as a `<group>` around it would), which is what files written for ROS expect of their own arguments.
+As Jazzy's, an include is not scoped: its arguments become launch configurations of the including file, and
+what the included file declares, sets and changes in the environment stays visible after it (wrap it in a
+GroupAction to scope it). The included file becomes the current launch file for what follows in the same
+visit, as ROS's locals do.
 """
 
 from __future__ import annotations
@@ -17,16 +19,17 @@ from diffctl.launch.substitutions import SomeSubstitutions, normalize, perform
 
 if TYPE_CHECKING:
     from diffctl.launch.context import Scope
-    from diffctl.launch.plan import Step
-    from diffctl.launch.resolver import Resolver
     from diffctl.launch.yaml_frontend import Entity
 
 
 class LaunchDescriptionSource:
     """Where an included description comes from (Python, YAML or XML, chosen by the file's name)."""
 
-    def __init__(self, launch_file_path: SomeSubstitutions) -> None:
-        self.location = normalize(launch_file_path)
+    def __init__(self, launch_file_path: Any) -> None:
+        from diffctl.launch.actions import LaunchDescription
+
+        self.description = launch_file_path if isinstance(launch_file_path, LaunchDescription) else None
+        self.location = normalize("<script>" if self.description is not None else launch_file_path)
 
 
 PythonLaunchDescriptionSource = LaunchDescriptionSource
@@ -53,8 +56,14 @@ class IncludeLaunchDescription(Action):
         **kw: Any,
     ) -> None:
         super().__init__(**kw)
+        from diffctl.launch.actions import LaunchDescription
+
+        self.description: LaunchDescription | None = None
+        if isinstance(launch_description_source, LaunchDescription):
+            launch_description_source = LaunchDescriptionSource(launch_description_source)
         if isinstance(launch_description_source, LaunchDescriptionSource):
             self.location = launch_description_source.location
+            self.description = launch_description_source.description
         else:
             self.location = normalize(launch_description_source)
         pairs = launch_arguments.items() if isinstance(launch_arguments, Mapping) else (launch_arguments or [])
@@ -63,23 +72,34 @@ class IncludeLaunchDescription(Action):
     def label(self) -> str:
         return f"include {describe(self.location)}"
 
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
-        path = Path(perform(self.location, scope))
-        if not path.is_absolute() and scope.launch_file:
-            beside = Path(scope.launch_file).parent / path
-            path = beside if beside.exists() else path
-        path = path.resolve()
-        if str(path) in scope.includes:
-            chain = " → ".join(Path(p).name for p in (*scope.includes, str(path)))
-            raise LaunchError(f"include cycle: {chain}")
-        if not path.is_file():
-            raise LaunchError(f"included launch file {path} does not exist")
-        inner = scope.child()
-        inner.launch_file = str(path)
-        inner.includes = (*scope.includes, str(path))
+    def execute(self, context: Scope) -> list[Action] | None:
+        from diffctl.launch.actions import SetLaunchConfiguration
+
+        scope = context
+        if self.description is not None:
+            entities: list[Action] = list(self.description.entities)
+        else:
+            path = Path(perform(self.location, scope))
+            if not path.is_absolute() and scope.launch_file:
+                beside = Path(scope.launch_file).parent / path
+                path = beside if beside.exists() else path
+            path = path.resolve()
+            stack = scope.engine.include_stack
+            if str(path) in stack:
+                chain = " → ".join(Path(p).name for p in (*stack, str(path)))
+                raise LaunchError(f"include cycle: {chain}")
+            if not path.is_file():
+                raise LaunchError(f"included launch file {path} does not exist")
+            entities = scope.engine.include(path)
+            scope.extend_locals({"current_launch_file_path": str(path)})
+        given = [perform(k, scope) for k, _ in self.launch_arguments]
+        _check_required(entities, given)
+        sets: list[Action] = []
         for key, value in self.launch_arguments:
-            inner.configurations[perform(key, scope)] = perform(value, scope)
-        return r.include(path, inner)
+            action = SetLaunchConfiguration(key, value)
+            action.where = self.where
+            sets.append(action)
+        return [*sets, *entities]
 
     @classmethod
     def from_entity(cls, e: Entity) -> Action:
@@ -87,3 +107,32 @@ class IncludeLaunchDescription(Action):
             (a.text("name", required=True), a.text("value", required=True)) for a in e.items("arg", ("name", "value"))
         ]
         return cls(e.text("file", required=True), launch_arguments=args)
+
+
+def _check_required(entities: list[Any], given: list[str]) -> None:
+    """As Jazzy: every unconditional argument without a default must be passed by this include (or by an
+    include inside it), whatever the including file's own configurations hold."""
+    from diffctl.launch.actions import DeclareLaunchArgument, GroupAction, LaunchDescription
+
+    passed = set(given)
+    declared: list[DeclareLaunchArgument] = []
+
+    def walk(items: list[Any]) -> None:
+        for item in items:
+            if getattr(item, "condition", None) is not None:
+                continue
+            if isinstance(item, DeclareLaunchArgument):
+                declared.append(item)
+            elif isinstance(item, IncludeLaunchDescription):
+                passed.update(str(describe(k)) for k, _ in item.launch_arguments)
+            elif isinstance(item, (GroupAction, LaunchDescription)):
+                walk(item.describe_sub_entities())
+
+    walk(entities)
+    for arg in declared:
+        if arg.default_value is None and arg.name not in passed:
+            raise LaunchError(
+                f"Included launch description missing required argument {arg.name!r} "
+                f"(description: {arg.description!r}), given: [{', '.join(repr(g) for g in given)}]",
+                hint=f"pass it in the include: {arg.name}:=VALUE",
+            )

@@ -1,8 +1,9 @@
-"""The resolved launch plan: what `--print` shows and what the supervisor runs.
+"""Plan data: the steps the engine asks the supervisor for (start a process, log, shut down, signal) and
+what a dry run of the engine records for `--print`.
 
-Resolving a description (resolver.py) evaluates every condition and substitution once, so a plan is plain
-data: process specs with their final command lines, and the steps that start them, possibly behind a
-readiness gate, inside a timer or inside an event handler.
+A dry run (resolver.py) gives plain data: process specs with their final command lines, and the steps that
+start them, possibly behind a readiness gate, inside a timer or an event handler (those previewed as of the
+moment they are registered; at run time they are evaluated when they fire).
 """
 
 from __future__ import annotations
@@ -94,12 +95,17 @@ class Gate:
 
 @dataclass(frozen=True)
 class RosNode:
-    """What makes a process a ROS node: its name, namespace, parameters and remappings."""
+    """What makes a process a ROS node: its name, namespace, parameters and remappings.
+
+    `global_params` are SetParameter's `(name, value)` pairs (passed as `-p name:=value`) and
+    SetParametersFromFile's paths, before the node's own `params`, as launch_ros orders them.
+    """
 
     node_name: str | None
-    namespace: str
+    namespace: str | None
     params: tuple[str | Mapping[str, Any], ...] = ()  # parameter files and inline dicts, in order
     remaps: tuple[tuple[str, str], ...] = ()
+    global_params: tuple[tuple[str, str] | str, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -174,6 +180,14 @@ class SignalProcesses(Step):
     targets: tuple[TargetRef, ...]
 
 
+@dataclass(frozen=True, kw_only=True)
+class Unknown(Step):
+    """What `--print` cannot know before run time: a handler's or timer's actions that fail if evaluated now."""
+
+    what: str
+    why: str
+
+
 @dataclass(frozen=True)
 class EventInfo:
     """What happened, for a callable handler: the process, its pid, exit code or output line."""
@@ -226,6 +240,8 @@ class Plan:
     steps: tuple[Step, ...]
     processes: dict[str, ProcessSpec]
     warnings: list[str] = field(default_factory=list)
+    description: Any = None  # what the live engine visits again when the launch runs
+    launch_arguments: dict[str, str] = field(default_factory=dict)
 
     def uses_bus(self) -> set[str]:
         """Which bus probes ('topic', 'service') the plan's readiness conditions need."""

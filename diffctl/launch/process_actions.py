@@ -21,13 +21,12 @@ from diffctl.launch.actions import Action, Shutdown, describe, seconds
 from diffctl.launch.conditions import truth
 from diffctl.launch.context import join_namespace
 from diffctl.launch.parameters import ParameterFile, resolve_parameters
-from diffctl.launch.plan import OUTPUTS, AddHandler, Handler, RosNode, StartProcess, Step, TargetRef
+from diffctl.launch.plan import OUTPUTS, RosNode, StartProcess
 from diffctl.launch.registry import register
 from diffctl.launch.substitutions import SomeSubstitutions, Substitution, TextSubstitution, normalize, perform
 
 if TYPE_CHECKING:
     from diffctl.launch.context import Scope
-    from diffctl.launch.resolver import Resolver
     from diffctl.launch.yaml_frontend import Entity
 
 _NODE_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
@@ -235,12 +234,21 @@ class ExecuteProcess(Action):
     def ros_node(self, scope: Scope) -> tuple[RosNode | None, dict[str, str | None]]:
         return None, {}
 
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+    completes_later = True  # ExecutionComplete when the process has exited for good
+
+    def execute(self, context: Scope) -> list[Action] | None:
+        if context.is_shutdown:
+            return None  # as ExecuteProcess: nothing starts once the launch is shutting down
+        scope = context
+        engine = context.engine
         argv = self.command(scope)
         name = perform(self.name, scope) if self.name is not None else self.default_name(argv, scope)
         if self.prefix is not None:
             argv = shlex.split(perform(self.prefix, scope)) + argv
-        options = ProcessOptions.build({k: _option(v, scope) for k, v in self.options.items()})
+        raw = {k: _option(v, scope) for k, v in self.options.items()}
+        if raw.get("output") is None:
+            raw["output"] = engine.output_default
+        options = ProcessOptions.build(raw)
         env: dict[str, str | None] = {} if self.env is not None else dict(scope.env_changes)
         if self.env is not None:
             env.update({k: perform(v, scope) for k, v in self.env.items()})
@@ -253,7 +261,7 @@ class ExecuteProcess(Action):
         else:
             _check_executable(argv[0], env.get("PATH") or scope.env.get("PATH", ""), cwd)
         node, _ = self.ros_node(scope)
-        spec = r.add_process(
+        spec = engine.add_process(
             self,
             name,
             argv=tuple(argv),
@@ -272,18 +280,13 @@ class ExecuteProcess(Action):
             node=node,
             **self.index_names(scope),
         )
-        steps: list[Step] = []
-        if self.on_exit_callable is not None:
+        if self.on_exit_callable is not None or self.on_exit:
             from diffctl.launch.event_handlers import OnProcessExit
 
-            handler = OnProcessExit(target_action=self, on_exit=self.on_exit_callable).resolve(r, scope)
-            steps.append(AddHandler(handler=handler))
-        if self.on_exit:
-            handler_steps = r.visit_all(self.on_exit, scope.child())
-            ref = TargetRef(name=spec.name, label=spec.name)
-            steps.append(AddHandler(handler=Handler("exit", (ref,), tuple(handler_steps))))
-        steps.append(StartProcess(spec=spec))
-        return steps
+            handler = OnProcessExit(target_action=self, on_exit=self.on_exit_callable or self.on_exit)
+            context.register_event_handler(handler)
+        engine.effect(StartProcess(spec=spec))
+        return None
 
     def index_names(self, scope: Scope) -> dict[str, str]:
         return {}
@@ -428,13 +431,16 @@ class Node(ExecuteProcess):
                 f"node name {node_name!r} is not valid",
                 hint="letters, digits and underscores, not starting with a digit",
             )
-        # SetParameter / SetRemap of the scope come first, so the node's own win (launch_ros's order).
+        # SetParameter / SetParametersFromFile / SetRemap of the scope come first, so the node's own win
+        # (launch_ros's order); SetParameter's reach the node as `-p name:=value`.
         params = resolve_parameters(self.parameters, scope)
-        if scope.global_params:
-            params = (dict(scope.global_params), *params)
-        params = (*scope.param_files, *params)
         own = tuple((perform(a, scope), perform(b, scope)) for a, b in self.remappings)
-        return RosNode(node_name=node_name, namespace=namespace, params=params, remaps=(*scope.remaps, *own)), {}
+        glob = tuple(scope.configurations.get("global_params") or ())
+        remaps = tuple(scope.configurations.get("ros_remaps") or ())
+        node = RosNode(
+            node_name=node_name, namespace=namespace, params=params, remaps=(*remaps, *own), global_params=glob
+        )
+        return node, {}
 
     @classmethod
     def from_entity(cls, e: Entity) -> Action:

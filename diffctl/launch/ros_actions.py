@@ -1,8 +1,9 @@
 """ROS scope actions of launch_ros: SetParameter, SetParametersFromFile, SetRemap, SetUseSimTime (`set_parameter`,
 `set_parameters_from_file`, `set_remap`, `set_use_sim_time`).
 
-They change the scope, so every node started after them in the same scope gets the parameter or remapping
-(before its own), and a scoped group keeps them inside, as launch_ros does.
+They append to the launch configurations `global_params` / `ros_remaps` as launch_ros does, so every node
+started after them gets the parameter or remapping (before its own); a scoped group keeps them inside unless
+the list existed before the group (Jazzy's shallow copy lets additions leak out then, and so does diffctl).
 """
 
 from __future__ import annotations
@@ -18,8 +19,6 @@ from diffctl.launch.substitutions import SomeSubstitutions, normalize, perform
 
 if TYPE_CHECKING:
     from diffctl.launch.context import Scope
-    from diffctl.launch.plan import Step
-    from diffctl.launch.resolver import Resolver
     from diffctl.launch.yaml_frontend import Entity
 
 
@@ -38,9 +37,10 @@ class SetParameter(Action):
     def label(self) -> str:
         return f"set_parameter {describe(self.name)}"
 
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
-        scope.global_params[perform(self.name, scope)] = _param_value(self.value, scope)
-        return []
+    def execute(self, context: Scope) -> list[Action] | None:
+        value = _param_value(self.value, context)
+        context.global_params.append((perform(self.name, context), value if isinstance(value, str) else str(value)))
+        return None
 
     @classmethod
     def from_entity(cls, e: Entity) -> Action:
@@ -60,12 +60,12 @@ class SetUseSimTime(Action):
         super().__init__(**kw)
         self.value = value
 
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+    def execute(self, context: Scope) -> list[Action] | None:
         from diffctl.launch.conditions import truth
 
-        value = self.value if isinstance(self.value, bool) else truth(perform(self.value, scope), "use_sim_time")
-        scope.global_params["use_sim_time"] = value
-        return []
+        value = self.value if isinstance(self.value, bool) else truth(perform(self.value, context), "use_sim_time")
+        context.global_params.append(("use_sim_time", str(value)))
+        return None
 
     @classmethod
     def from_entity(cls, e: Entity) -> Action:
@@ -86,14 +86,15 @@ class SetParametersFromFile(Action):
     def label(self) -> str:
         return f"set_parameters_from_file {describe(self.filename)}"
 
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
+    def execute(self, context: Scope) -> list[Action] | None:
+        scope = context
         path = Path(perform(self.filename, scope))
         if not path.is_absolute() and scope.launch_file:
             path = Path(scope.launch_file).parent / path
         if not path.is_file():
             raise LaunchError(f"parameter file {path} does not exist")
-        scope.param_files.append(str(path.resolve()))
-        return []
+        scope.global_params.append(str(path.resolve()))
+        return None
 
     @classmethod
     def from_entity(cls, e: Entity) -> Action:
@@ -114,9 +115,9 @@ class SetRemap(Action):
     def label(self) -> str:
         return f"set_remap {describe(self.src)}:={describe(self.dst)}"
 
-    def visit(self, r: Resolver, scope: Scope) -> list[Step]:
-        scope.remaps.append((perform(self.src, scope), perform(self.dst, scope)))
-        return []
+    def execute(self, context: Scope) -> list[Action] | None:
+        context.remaps.append((perform(self.src, context), perform(self.dst, context)))
+        return None
 
     @classmethod
     def from_entity(cls, e: Entity) -> Action:

@@ -7,7 +7,6 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from diffctl.console import table
-from diffctl.launch.plan import StartProcess
 
 if TYPE_CHECKING:
     from diffctl.launch.supervisor import Supervisor
@@ -57,26 +56,50 @@ class StatusView:
 
 
 def awaited(sup: Supervisor) -> list[str]:
-    """What the launch still waits for: gated steps, and processes handlers will start (for the live line)."""
+    """What the launch still waits for: gated actions, and processes handlers will start (for the live line)."""
     waiting = []
     for p in sup.pending:
         _, w = sup._gate_state(p.gate)
-        what = p.step.spec.name if isinstance(p.step, StartProcess) else "step"
-        waiting.append(f"{what} ({w.describe() if w else '…'})")
-    for handler in sup.handlers:
-        starts = any(isinstance(s, StartProcess) for s in handler.steps)
+        waiting.append(f"{p.step.label} ({w.describe() if w else '…'})")
+    engine = sup.engine
+    for handler in engine.context.handlers:
         if (
-            starts
-            and handler.event in ("exit", "start")
-            and id(handler) not in sup.fired
-            and handler.exit_code in (None, 0)
-            and handler.targets
+            handler.kind not in ("exit", "start")
+            or getattr(handler, "fired", False)
+            or handler.exit_code not in (None, 0)
         ):
-            names = [t.name for t in handler.targets if t.name]
-            if any(sup.states[n].alive or sup.states[n].state == "not started" for n in names if n in sup.states):
-                started = [s.spec.name for s in handler.steps if isinstance(s, StartProcess)]
-                waiting.append(f"{', '.join(started)} (on {handler.event} of {', '.join(names)})")
+            continue
+        started = [n for n in (_static_name(e) for e in handler.entities) if n]
+        names = sorted(_target_names(handler, engine))
+        if not started or not names:
+            continue
+        if any(sup.states[n].alive or sup.states[n].state == "not started" for n in names if n in sup.states):
+            waiting.append(f"{', '.join(started)} (on {handler.kind} of {', '.join(names)})")
     return waiting
+
+
+def _target_names(handler: Any, engine: Any) -> set[str]:
+    names = set(getattr(handler, "_names", ()))
+    for t in getattr(handler, "targets", ()):
+        name = engine.origin_names.get(id(t))
+        if name:
+            names.add(name)
+    return names
+
+
+def _static_name(action: Any) -> str | None:
+    """The name a process action will get, when it is written as plain text."""
+    from diffctl.launch.process_actions import ExecuteProcess, Node
+    from diffctl.launch.substitutions import TextSubstitution
+
+    if not isinstance(action, ExecuteProcess):
+        return None
+    parts = action.name
+    if isinstance(action, Node) and parts is None:
+        parts = action.node_name if action.node_name is not None else action.executable
+    if parts and all(isinstance(p, TextSubstitution) for p in parts):
+        return "".join(p.text for p in parts)
+    return None
 
 
 def process_rows(sup: Supervisor) -> list[ProcessRow]:

@@ -1,12 +1,17 @@
-"""The supervisor: runs a plan's steps, starts and watches processes, fires handlers, gates, shuts down.
+"""The supervisor: the launch engine's services (processes, timers, readiness gates) and its event source.
 
 It is a state machine driven from outside: `start()`, then `on_exit(pid, code)`, `on_line(name, …)`,
-`on_signal(sig)` and `tick()` as things happen, until `done`. The clock and the process spawner are
-injected, so unit tests run it with fakes; loop.py drives it with real processes, pipes and signals.
+`on_signal(sig)` and `tick()` as things happen, until `done`. The engine (engine.py) visits the launch
+description when `prepare()`/`start()` is called and the entities of handlers and timers when their events
+(which the supervisor emits: process started / exited / output, shutdown, timer) are processed; what they
+do comes back here as effects (start a process, log, shut down, signal). The clock and the process spawner
+are injected, so unit tests run it with fakes; loop.py drives it with real processes, pipes and signals.
 
 Shutdown (Ctrl-C, SIGTERM, SIGHUP, a required process exiting, a `shutdown` action, or nothing left to
-do) sends SIGINT to every process group in reverse start order, SIGTERM after its `sigterm_timeout`,
-SIGKILL after its `sigkill_timeout`, each step logged; a second Ctrl-C sends SIGKILL at once.
+do) first offers a Shutdown event to the handlers (processes they start run only after a `shutdown` action or
+a required process's exit, as in Jazzy), then sends SIGINT to every process group in reverse start order,
+SIGTERM after its `sigterm_timeout`, SIGKILL after its `sigkill_timeout`, each step logged; a second Ctrl-C
+sends SIGKILL at once.
 """
 
 from __future__ import annotations
@@ -21,21 +26,18 @@ from collections.abc import Callable
 from pathlib import Path
 
 from diffctl.errors import LaunchError
-from diffctl.launch import commandline
+from diffctl.launch import commandline, events
+from diffctl.launch.engine import Engine
 from diffctl.launch.environment import child_env, with_tool_path
 from diffctl.launch.output import Output
 from diffctl.launch.plan import (
-    AddHandler,
-    EventInfo,
     Gate,
-    Handler,
     LogMessage,
     Plan,
     ProcessSpec,
     RequestShutdown,
     SignalProcesses,
     StartProcess,
-    StartTimer,
     Step,
     TargetRef,
     Wait,
@@ -65,24 +67,28 @@ class Supervisor:
         plan: Plan,
         *,
         spawner: Spawner,
-        output: Output,
+        output: Output | None,
         clock: Clock | None = None,
         log_dir: Path | None = None,
         poller: ProbePoller | None = None,
         env: dict[str, str] | None = None,
+        output_default: str = "screen",
+        exit_code_mode: str = "diffctl",
     ) -> None:
         self.plan = plan
+        self.exit_code_mode = exit_code_mode
         self.spawner = spawner
-        self.output = output
+        self.output: Output = output  # type: ignore[assignment]  # the CLI gives it after prepare()
         self.clock = clock or SystemClock()
         self.params_dir = (log_dir / "params") if log_dir else Path(tempfile.gettempdir()) / f"diffctl-{os.getpid()}"
         self.poller = poller
         self.base_env = with_tool_path(dict(os.environ if env is None else env))  # as default_child_env
+        # Known ahead from a dry run (--print's walk), when there was one: shown as "not started" until they are.
         self.states = {name: ProcessState(spec) for name, spec in plan.processes.items()}
         self.pid_names: dict[int, str] = {}
         self.started_at: dict[int, float] = {}  # pgid → when that start of the process began
-        self.handlers: list[Handler] = []
-        self.fired: set[int] = set()
+        self.engine = Engine(dict(plan.launch_arguments), plan.source, self, output_default=output_default)
+        self._held: list[Step] | None = None
         self.start_order: list[str] = []
         self.pending: list[Pending] = []
         self.failures: list[str] = []  # why the launch failed: required process, readiness, …
@@ -97,20 +103,104 @@ class Supervisor:
         self._t0 = 0.0
         self._shutdown_at: float | None = None
         self._patterns: dict[str, list[tuple[str, re.Pattern[str]]]] = {}
+        self._watched: set[tuple[str, str]] = set()
         for step in walk(plan.steps):
-            for w in step.gate.waits if step.gate else ():
-                if w.kind == "log" and isinstance(w.target, TargetRef) and w.target.name and w.pattern:
-                    self._patterns.setdefault(w.target.name, []).append((w.pattern, re.compile(w.pattern)))
+            if step.gate:
+                self._watch_patterns(step.gate)
 
     # ---- driving -----------------------------------------------------------------------------------------------
 
     def now(self) -> float:
         return self.clock.monotonic()
 
-    def start(self) -> None:
+    def prepare(self) -> None:
+        """Visit the launch description (errors raise, naming file and line); nothing starts before start()."""
+        if self._held is not None:
+            return
+        self._held = []
         self._t0 = self.now()
-        self.run_steps(self.plan.steps)
+        self.engine.run_description(self.plan.description, hold=self._held)
+
+    def may_start_components(self, is_component: Callable[[tuple[str, ...]], bool]) -> bool:
+        """Whether a process the first visit starts, or a handler or timer may start later, is a component."""
+        if self.engine.context.handlers or self.engine.queue:
+            return True
+        return any(isinstance(s, StartProcess) and is_component(s.spec.argv) for s in self._held or ())
+
+    def bus_waits(self) -> set[str]:
+        """The bus probes ('topic', 'service') readiness conditions anywhere in the description need."""
+        from diffctl.launch.actions import walk_entities
+
+        kinds = {w.kind for a in walk_entities(self.plan.description) for w in a.wait_for}
+        kinds |= {w.kind for p in self.pending for w in p.gate.waits}  # those of included files, visited now
+        return kinds & {"topic", "service"}
+
+    def use_poller(self, poller: ProbePoller) -> None:
+        self.poller = poller
+        for p in self.pending:
+            for w in p.gate.waits:
+                if w.kind in ("topic", "service"):
+                    poller.want(w.kind, str(w.target))
+
+    def start(self) -> None:
+        self.prepare()
+        declared = [a.name for a in self.engine.arguments]
+        for name in self.plan.launch_arguments:
+            if name not in declared and not self.plan.arguments:
+                from diffctl.errors import suggest
+
+                why = f"argument {name!r} is not declared by the launch file{suggest(name, declared)}"
+                self.output.launcher("WARN", why)
+        held, self._held = self._held or [], []
+        for step in held:
+            self.effect(step)
         self._after_event()
+
+    # ---- the engine's services ---------------------------------------------------------------------------------
+
+    def effect(self, step: Step) -> None:
+        if isinstance(step, LogMessage):
+            self.output.launcher("INFO", step.message)
+        elif isinstance(step, StartProcess):
+            self._start(step.spec)
+        elif isinstance(step, RequestShutdown):
+            self.shutdown(step.reason, by_action=True)
+        elif isinstance(step, SignalProcesses):
+            self._signal_processes(step)
+
+    def gated(self, gate: Gate, visit: Callable[[], None], label: str) -> None:
+        self._watch_patterns(gate)
+        pending = Pending(_Deferred(label, visit), gate, self.now())
+        if self._gate_state(gate)[0] is True:
+            self._run_deferred(pending.step)
+            return
+        self.pending.append(pending)
+        for w in gate.waits:
+            if w.kind in ("topic", "service") and self.poller is not None:
+                self.poller.want(w.kind, str(w.target))
+
+    def after(self, delay_s: float, callback: Callable[[], None], kind: str) -> Timer:
+        return self._after(delay_s, callback, kind)
+
+    def event_failed(self, message: str) -> None:
+        """An exception while handling an event, as ros2/launch: logged, the launch shuts down, exit code 1."""
+        self.failures.append(message)
+        self.output.launcher("ERROR", f"Caught exception in launch: {message}")
+        self.shutdown(message)
+
+    def _run_deferred(self, deferred: _Deferred) -> None:
+        try:
+            self.engine.visit_and_flush(deferred.visit)
+        except LaunchError as e:
+            self.event_failed(str(e))
+
+    def _watch_patterns(self, gate: Gate) -> None:
+        for w in gate.waits:
+            if w.kind == "log" and isinstance(w.target, TargetRef) and w.pattern:
+                name = self.engine.name_of(w.target) or w.target.name
+                if name and (w.pattern, name) not in self._watched:
+                    self._watched.add((w.pattern, name))
+                    self._patterns.setdefault(name, []).append((w.pattern, re.compile(w.pattern)))
 
     def on_exit(self, pid: int, code: int) -> None:
         name = self.pid_names.pop(pid, None)
@@ -133,16 +223,29 @@ class Supervisor:
         if st is None:
             return
         st.tail.append(text)
-        screen = st.spec.output in ("screen", "both") or stream == "stderr"
-        self.output.process_line(name, stream, text, screen=screen)
         if self._io_handlers:
+            # The process's own output handler is registered when it starts: handlers registered after it
+            # run before its line is printed, older ones after (ros2/launch's order, newest first).
             pid = st.child.pid if st.child else None
-            self._fire("io", name, None, EventInfo(name, pid, text=text, stream=stream))
+            event = self.engine.process_event(
+                "io", name, pid=pid, text=(text + "\n").encode(), fd=1 if stream == "stdout" else 2
+            )
+            event.print_seq = self.engine.io_seq.get(name, 0)
+            self.engine.emit(event)
             self._after_event()
+        else:
+            self.print_io(name, stream, text)
         for pattern, compiled in self._patterns.get(name, ()):
             if pattern not in st.seen_patterns and compiled.search(text):
                 st.seen_patterns.add(pattern)
                 self._after_event()
+
+    def print_io(self, name: str, stream: str, text: str) -> None:
+        st = self.states.get(name)
+        if st is None:
+            return
+        screen = st.spec.output in ("screen", "both") or stream == "stderr"
+        self.output.process_line(name, stream, text, screen=screen)
 
     def on_signal(self, sig: int) -> None:
         if sig == signal.SIGUSR1:
@@ -150,7 +253,10 @@ class Supervisor:
         elif sig in STOP_SIGNALS:
             name = signal.Signals(sig).name
             if not self.shutting_down:
-                self.shutdown("ctrl-c (SIGINT)" if sig == signal.SIGINT else f"{name} received")
+                self.shutdown(
+                    "ctrl-c (SIGINT)" if sig == signal.SIGINT else f"{name} received",
+                    due_to_sigint=sig == signal.SIGINT,
+                )
             else:
                 self._kill_all(f"{name} again")
             self._after_event()
@@ -183,41 +289,9 @@ class Supervisor:
 
     # ---- steps -------------------------------------------------------------------------------------------------
 
-    def run_steps(self, steps: tuple[Step, ...]) -> None:
-        # As in ros2 launch, where events are handled after the actions that caused them: a handler written
-        # after the process it watches still sees that process start.
-        steps = tuple(sorted(steps, key=lambda s: not (isinstance(s, AddHandler) and s.gate is None)))
-        for step in steps:
-            if step.gate is not None and self._gate_state(step.gate)[0] is not True:
-                self.pending.append(Pending(step, step.gate, self.now()))
-                for w in step.gate.waits:
-                    if w.kind in ("topic", "service") and self.poller is not None:
-                        self.poller.want(w.kind, str(w.target))
-                if isinstance(step, StartProcess):
-                    self.states[step.spec.name].state = "waiting"
-                continue
-            self._execute(step)
-
-    def _execute(self, step: Step) -> None:
-        if isinstance(step, LogMessage):
-            self.output.launcher("INFO", step.message)
-        elif self.shutting_down:
-            return  # nothing new starts once shutdown has begun
-        elif isinstance(step, StartProcess):
-            self._start(step.spec)
-        elif isinstance(step, StartTimer):
-            steps = step.steps
-            self._after(step.period_s, lambda: self.run_steps(steps), "timer")
-        elif isinstance(step, RequestShutdown):
-            self.shutdown(step.reason)
-        elif isinstance(step, AddHandler):
-            self.handlers.append(step.handler)
-        elif isinstance(step, SignalProcesses):
-            self._signal_processes(step)
-
     def _signal_processes(self, step: SignalProcesses) -> None:
         for ref in step.targets:
-            st = self.states.get(ref.name or "")
+            st = self.states.get(self.engine.name_of(ref) or ref.name or "")
             if st is None or not st.alive:
                 self.output.launcher("WARN", f"cannot signal [{ref}]: it is not running")
             elif step.signal is None:
@@ -243,7 +317,13 @@ class Supervisor:
         return child_env(env)
 
     def _start(self, spec: ProcessSpec) -> None:
-        st = self.states[spec.name]
+        st = self.states.get(spec.name)
+        if st is None:
+            st = self.states[spec.name] = ProcessState(spec)
+        elif spec is not st.spec and not st.alive:
+            st.spec = spec  # evaluated now, not as a dry run saw it
+        if spec.name not in self.plan.processes or self.plan.processes[spec.name] is not spec:
+            self.plan.processes[spec.name] = spec
         if st.alive:
             self.output.launcher(
                 "WARN",
@@ -270,11 +350,12 @@ class Supervisor:
         if self.started_all_at is None:
             self.output.live(self._live_text())  # this one is no longer awaited
         self.output.launcher("INFO", f"[{spec.name}] started (pid {child.pid})")
-        self._fire("start", spec.name, None, EventInfo(spec.name, child.pid))
+        self.engine.emit(self.engine.process_event("start", spec.name, pid=child.pid))
 
     def _process_exited(self, st: ProcessState, code: int, pid: int | None, ran: str) -> None:
         name = st.spec.name
         where = f"pid {pid}{ran}" if pid else "never started"
+        event = self.engine.process_event("exit", name, pid=pid, returncode=code)
         if self.shutting_down:
             st.state = "stopped"
             self.output.launcher("INFO", f"[{name}] stopped ({describe_exit(code)}, {where})")
@@ -283,6 +364,8 @@ class Supervisor:
                 # SIGINT, so waiting out sigterm_timeout for it would only delay the inevitable.
                 self.output.launcher("INFO", f"[{name}] left processes in its group; sending them SIGTERM")
                 self._stop(st, signal.SIGTERM, quiet=True)
+            self.engine.emit(event)  # handlers still hear of it, as in ros2/launch (nothing new starts)
+            self._complete(name)
             return
         if code == 0:
             st.state = "exited"
@@ -291,14 +374,13 @@ class Supervisor:
             st.state = "failed"
             last = f": {st.tail[-1]}" if st.tail else ""
             self.output.launcher("ERROR", f"[{name}] {died(code)} ({where}){last}")
-        self._fire("exit", name, code, EventInfo(name, pid, exit_code=code))
-        if self.shutting_down:
-            return
+        self.engine.emit(event)
         if st.spec.required:
             why = f"required process {name!r} {'finished' if code == 0 else died(code)}"
             if code != 0:
                 self.failures.append(why + (f" (last output: {st.tail[-1]!r})" if st.tail else ""))
-            self.shutdown(why)
+            self._complete(name)
+            self.shutdown(why, by_action=True)  # on_exit=Shutdown(): handlers' processes start, as in ROS
         elif st.respawns_left:
             st.restarts += 1
             st.state = "respawning"
@@ -309,8 +391,10 @@ class Supervisor:
                 f"(restart {st.restarts}{'' if limit < 0 else f' of {limit}'})",
             )
             self._after(st.spec.respawn_delay_s, lambda: self._start(st.spec), "respawn")
-        elif code != 0:
-            self.failed_processes.append(f"{name} ({describe_exit(code)})")
+        else:
+            if code != 0:
+                self.failed_processes.append(f"{name} ({describe_exit(code)})")
+            self._complete(name)
         if st.lingering is not None and not self.shutting_down:
             # What is left (a shell's background job) may well ignore SIGINT, as jobs of a non-interactive shell
             # do: waiting out sigterm_timeout for it would only delay the inevitable.
@@ -325,40 +409,19 @@ class Supervisor:
 
     @property
     def _io_handlers(self) -> bool:
-        return any(h.event == "io" for h in self.handlers)
+        return any(getattr(h, "kind", "") == "io" for h in self.engine.context.handlers)
 
-    def _fire(self, event: str, name: str, code: int | None, info: EventInfo | None = None) -> None:
-        for handler in list(self.handlers):
-            if handler.event != event or not handler.matches(name, code):
-                continue
-            if event == "io" and info is not None and info.stream not in handler.streams:
-                continue
-            self.fired.add(id(handler))
-            if handler.once:
-                self.handlers.remove(handler)
-            self.run_steps(handler.steps)
-            if handler.callback is not None:
-                self._call(handler, info or EventInfo(name, exit_code=code))
-
-    def _call(self, handler: Handler, info: EventInfo) -> None:
-        """A launch file's callable handler: what it returns is resolved now and run."""
-        try:
-            steps = handler.callback(info)  # type: ignore[misc]
-        except LaunchError as e:
-            self.failures.append(f"event handler {handler.describe_callback or ''} failed: {e}")
-            self.output.launcher("ERROR", str(e))
-            self.shutdown("an event handler failed")
-            return
-        for step in walk(steps):
-            if isinstance(step, StartProcess) and step.spec.name not in self.states:
-                self.states[step.spec.name] = ProcessState(step.spec)
-                self.plan.processes[step.spec.name] = step.spec
-        self.run_steps(steps)
+    def _complete(self, name: str) -> None:
+        action = self.engine.process_actions.get(name)
+        if action is not None:
+            self.engine.completed(action)
 
     # ---- readiness ---------------------------------------------------------------------------------------------
 
     def _wait_state(self, w: Wait) -> bool | str:
         """True when met, False while it may still be met, or the reason it never will be."""
+        if isinstance(w.target, TargetRef) and (self.engine.name_of(w.target) or "") not in self.states:
+            return False  # a process not reached yet (held back itself, or a handler or timer may start it)
         return wait_state(w, self.states, self.poller)
 
     def _gate_state(self, gate: Gate) -> tuple[bool | str, Wait | None]:
@@ -374,10 +437,10 @@ class Supervisor:
             progress = False
             for p in list(self.pending):
                 state, w = self._gate_state(p.gate)
-                what = p.step.spec.name if isinstance(p.step, StartProcess) else type(p.step).__name__
+                what = p.step.label
                 if state is True:
                     self.pending.remove(p)
-                    self._execute(p.step)
+                    self._run_deferred(p.step)
                     progress = True
                 elif isinstance(state, str):
                     self._readiness_failed(f"{what}: cannot wait for {w.describe() if w else '?'}: {state}")
@@ -395,21 +458,36 @@ class Supervisor:
 
     # ---- shutdown ----------------------------------------------------------------------------------------------
 
-    def shutdown(self, reason: str) -> None:
+    def shutdown(self, reason: str, *, by_action: bool = False, due_to_sigint: bool = False) -> None:
+        """Offer a Shutdown event to the handlers, then stop every process that was running before it.
+
+        As Jazzy: after a `shutdown` action (or a required process's exit) processes that OnShutdown handlers
+        start do start, are not signalled and are waited for; on idle, Ctrl-C or a signal they are skipped.
+        """
         if self.shutting_down:
             return
-        self.shutting_down = True  # from here on only log actions run, nothing new starts
+        self.shutting_down = True
         self._shutdown_at = self.now()
         self.output.live(None)
         self.output.launcher("WARN" if self.failures else "INFO", f"shutting down: {reason}")
-        self._fire("shutdown", "", None, EventInfo("", text=reason))
+        alive = [self.states[n] for n in reversed(self.start_order) if self.states[n].alive]
+        context = self.engine.context
+        if not by_action:
+            context.is_shutdown = True
+        self.engine.emit(events.Shutdown(reason=reason, due_to_sigint=due_to_sigint))
+        self.engine.defer(lambda: self._stop_all(alive))
+        self.engine.process_events()
+
+    def _stop_all(self, alive: list[ProcessState]) -> None:
+        self.engine.context.is_shutdown = True
         for _, _, timer in self._timers:
-            timer.cancelled = True
+            if timer.kind != "stop":
+                timer.cancelled = True
         for p in self.pending:
             if isinstance(p.step, StartProcess):
                 self.states[p.step.spec.name].state = "not started"
         self.pending.clear()
-        alive = [self.states[n] for n in reversed(self.start_order) if self.states[n].alive]
+        alive = [st for st in alive if st.alive]
         if alive:
             self.output.launcher("INFO", "sending SIGINT to " + ", ".join(st.spec.name for st in alive))
             for st in alive:
@@ -459,17 +537,29 @@ class Supervisor:
     def _after_event(self) -> None:
         if self.done:
             return
+        self.engine.process_events()
         self._check_gates()
+        self.engine.process_events()
         if not self.shutting_down and self._idle():
-            self.natural_end = True
-            self.shutdown("all processes have exited")
-        if self.shutting_down and not any(st.alive for st in self.states.values()):
+            if self.pending:
+                # Nothing runs and nothing is scheduled: what the gates wait for can never happen.
+                p = self.pending[0]
+                _, w = self._gate_state(p.gate)
+                self._readiness_failed(
+                    f"{p.step.label}: cannot wait for {w.describe() if w else '?'}: nothing left could bring it about"
+                )
+            else:
+                self.natural_end = True
+                self.shutdown("all processes have exited")
+        if self.shutting_down and not any(st.alive for st in self.states.values()) and not self.engine.queue:
             self._finish()
             return
         self._update_live()
 
     def _idle(self) -> bool:
-        if any(st.alive for st in self.states.values()) or self.pending:
+        if any(st.alive for st in self.states.values()) or self.engine.queue:
+            return False
+        if self.pending and any(w.kind in ("topic", "service") for p in self.pending for w in p.gate.waits):
             return False
         return not any(not t.cancelled and t.kind in ("timer", "respawn") for _, _, t in self._timers)
 
@@ -478,7 +568,10 @@ class Supervisor:
         took = self.now() - (self._shutdown_at or self.now())
         if self.natural_end and self.failed_processes and not self.failures:
             self.failures.append("failed: " + ", ".join(self.failed_processes))
-        self.exit_code = 1 if self.failures else 0
+        if self.exit_code_mode == "ros":
+            self.exit_code = 1 if self.engine.errors else 0  # ros2 launch: only an exception fails the launch
+        else:
+            self.exit_code = 1 if self.failures else 0
         if self.failures:
             self.output.launcher("ERROR", "launch failed: " + "; ".join(self.failures))
         else:
@@ -512,3 +605,11 @@ class Supervisor:
 
     def show_status(self) -> None:
         self.output.show(StatusView(self.rows()))
+
+
+class _Deferred:
+    """An action held back by its readiness gate: visited (with the locals it was reached with) once met."""
+
+    def __init__(self, label: str, visit: Callable[[], None]) -> None:
+        self.label = label
+        self.visit = visit

@@ -54,7 +54,8 @@ def _construct_map(loader: _Loader, node: yaml.MappingNode) -> MarkedDict:
             m = key_node.start_mark
             raise LaunchError(
                 "a mapping key must be a plain name or value, not a mapping or list (a stray ':' after one?)",
-                line=m.line + 1, column=m.column + 1,
+                line=m.line + 1,
+                column=m.column + 1,
             )
         key = loader.construct_object(key_node, deep=True)
         if key in out:

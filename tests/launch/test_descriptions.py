@@ -106,7 +106,7 @@ launch:
     assert (outer.node.namespace, outer.env) == ("/abs/sub", {})
 
 
-def test_include_passes_arguments_and_keeps_its_settings_inside(tmp_path: Path) -> None:
+def test_include_passes_arguments_and_is_not_scoped_as_in_jazzy(tmp_path: Path) -> None:
     (tmp_path / "inner.yaml").write_text("""
 launch:
 - arg: {name: exe}
@@ -118,11 +118,18 @@ launch:
         """
 launch:
 - include: {file: $(dirname)/inner.yaml, arg: [{name: exe, value: sleep}]}
-- executable: {cmd: "sleep $(var leaked 'no')", name: outer}
+- executable: {cmd: "sleep $(var leaked 'no') $(var exe)", name: outer}
+- group:
+    children:
+    - include: {file: $(dirname)/inner.yaml, arg: [{name: exe, value: sleep}, {name: leaked, value: scoped}]}
+- executable: {cmd: "sleep $(var leaked 'no')", name: after_group}
 """,
     )
     assert plan.processes["inner"].argv == ("sleep", "10")
-    assert plan.processes["outer"].argv == ("sleep", "no")
+    # Jazzy's IncludeLaunchDescription is not scoped: the child's `let` and the passed argument stay set.
+    assert plan.processes["outer"].argv == ("sleep", "yes", "sleep")
+    # A (scoped) group around an include keeps them inside.
+    assert plan.processes["after_group"].argv == ("sleep", "yes")
 
 
 def test_python_and_yaml_launch_files_include_each_other(tmp_path: Path) -> None:

@@ -160,9 +160,11 @@ def test_opaque_function_group_namespace_set_parameter_set_remap(tmp_path: Path)
     )
     p = procs(plan)
     assert [p[f"rsp{i}"].node.namespace for i in range(2)] == ["/robot0", "/robot1"]
-    assert p["rsp1"].node.params[0] == {"use_sim_time": True}
+    # launch_ros passes SetParameter's as `-p name:=value`, before the node's own parameters
+    assert p["rsp1"].node.global_params == (("use_sim_time", "True"),)
     assert p["rsp1"].node.remaps == (("cmd_vel", "/cmd_vel"), ("odom", "/odom"))
-    assert p["outside"].node.namespace == "/" and p["outside"].node.params == () and p["outside"].node.remaps == ()
+    assert p["outside"].node.namespace == "/" and p["outside"].node.global_params == ()
+    assert p["outside"].node.remaps == ()
 
 
 def test_conditions(tmp_path: Path) -> None:

@@ -18,6 +18,7 @@ from hypothesis import strategies as st
 from lxml import etree
 
 from diffctl.errors import LaunchError
+from diffctl.launch import commandline
 from diffctl.launch.loader import load
 from diffctl.launch.plan import AddHandler, LogMessage, RequestShutdown, Skipped, StartProcess, StartTimer
 from diffctl.launch.resolver import resolve
@@ -147,9 +148,24 @@ def test_param_from_a_file_and_set_parameter_come_before_the_nodes_own(tmp_path:
         </launch>
     """
     spec = processes(plan_of(tmp_path, text))["n"]
-    assert spec.node.params[0] == {"use_sim_time": True}
-    assert spec.node.params[1] == str(tmp_path / "p.yaml")
+    assert spec.node.global_params == (("use_sim_time", "True"),)
+    assert spec.node.params[0] == str(tmp_path / "p.yaml")
     assert spec.node.remaps == (("cmd_vel", "/cmd_vel"), ("odom", "/odom"))
+    # launch_ros's command line: -p for SetParameter's, then the node's files, then remaps
+    tail = commandline.argv(spec)[-11:]
+    assert tail == [
+        "--ros-args",
+        "-r",
+        "__node:=n",
+        "-p",
+        "use_sim_time:=True",
+        "--params-file",
+        str(tmp_path / "p.yaml"),
+        "-r",
+        "cmd_vel:=/cmd_vel",
+        "-r",
+        "odom:=/odom",
+    ]
     text = """
         <launch>
           <group>
@@ -161,8 +177,8 @@ def test_param_from_a_file_and_set_parameter_come_before_the_nodes_own(tmp_path:
         </launch>
     """
     procs = processes(plan_of(tmp_path, text))
-    assert procs["in"].node.params == (str(tmp_path / "p.yaml"), {"use_sim_time": True})
-    assert procs["out"].node.params == ()
+    assert procs["in"].node.global_params == (str(tmp_path / "p.yaml"), ("use_sim_time", "True"))
+    assert procs["out"].node.global_params == ()
 
 
 @pytest.mark.parametrize(

@@ -2,6 +2,7 @@
 
 import os
 
+from ament_index_python.packages import get_package_share_directory
 from launch.actions import (
     DeclareLaunchArgument,
     GroupAction,
@@ -16,7 +17,6 @@ from launch.event_handlers import OnProcessExit
 from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node, PushRosNamespace
 
-from ament_index_python.packages import get_package_share_directory
 from diffctl.launch import WaitFor
 from launch import LaunchDescription
 
