@@ -113,6 +113,11 @@ def executable_argv(package: str, executable: str) -> list[str]:
     program = _program(_lib_dir(package, workspace_only=True), executable)
     if program is not None:
         return [str(program)]
+    from diffctl.workspace.gui_tools import argv_for
+
+    gui = argv_for(package, executable)  # rqt_*, joint_state_publisher_gui …: a counterpart or a stand-in
+    if gui is not None:
+        return gui
     sub = COMPONENTS.get((package, executable))
     if sub is not None:
         return [sys.executable, "-m", "diffctl", *sub]

@@ -1,0 +1,31 @@
+"""GUI-only tools in launch files: a counterpart where diffctl has one, else a stand-in that warns once and
+idles until the launch stops it (so OnProcessExit handlers do not fire early)."""
+
+from __future__ import annotations
+
+import signal
+import subprocess
+
+from diffctl.launch.package_index import executable_argv
+from diffctl.workspace.gui_tools import argv_for
+
+
+def test_rqt_tools_get_a_stand_in_that_warns_once_and_waits(procs) -> None:
+    argv = executable_argv("rqt_plot", "rqt_plot")
+    assert argv == argv_for("rqt_plot", "rqt_plot")
+    p = procs.start([*argv, "--ros-args", "-r", "__node:=plot"], stderr=subprocess.PIPE, stdout=subprocess.PIPE)
+    line = p.stderr.readline()
+    assert "rqt_plot/rqt_plot is a GUI-only tool diffctl does not provide; skipped" in line
+    assert p.poll() is None  # still there: the launch decides when it ends
+    assert procs.stop(p, signal.SIGINT) == 0
+    assert p.stderr.read() == ""  # said once
+
+
+def test_counterparts_start_diffctls_component_with_the_launchs_arguments() -> None:
+    argv = executable_argv("joint_state_publisher_gui", "joint_state_publisher_gui")
+    out = subprocess.run([*argv, "--help"], capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0 and "Usage: diffctl joint-state-publisher" in out.stdout
+    assert "runs as diffctl's counterpart" in out.stderr
+    steering = executable_argv("rqt_robot_steering", "rqt_robot_steering")
+    assert steering[-4:] == ["viz", "--port", "0", "--"]
+    assert argv_for("robot_state_publisher", "robot_state_publisher") is None
