@@ -14,12 +14,12 @@ works after it even where the .pth file is not processed. Everything heavier is 
 
 from __future__ import annotations
 
-from typing import Any
-
 from diffctl.client.messages import hook as _hook  # noqa: F401  (installs the finder)
 
-_encoders: dict[type, Any] = {}
-_decoders: dict[type, Any] = {}
+# No module-level imports beyond the hook: this package is imported at every interpreter's start (the .pth).
+
+_encoders: dict[type, object] = {}
+_decoders: dict[type, object] = {}
 
 
 def get_interface(name: str) -> type:
@@ -34,7 +34,7 @@ def get_interface(name: str) -> type:
     return classes.interface_class("/".join(parts))
 
 
-def type_name(cls_or_msg: Any) -> str:
+def type_name(cls_or_msg: object) -> str:
     """`pkg/msg/T` of a class or message built here (service and action parts keep their suffix)."""
     from diffctl.client.messages.classes import NAMES
 
@@ -45,14 +45,14 @@ def type_name(cls_or_msg: Any) -> str:
         raise TypeError(f"{cls!r} is not an interface class of diffctl.client.messages") from None
 
 
-def type_hash(cls_or_msg: Any) -> str:
+def type_hash(cls_or_msg: object) -> str:
     """The RIHS01 type hash rosidl computes (REP-2016), as on the rmw_zenoh wire."""
     from diffctl.bus import types
 
     return types.type_hash(type_name(cls_or_msg))
 
 
-def serialize(msg: Any) -> bytes:
+def serialize(msg: object) -> bytes:
     """The message as a little-endian CDR sample with its encapsulation header."""
     enc = _encoders.get(msg.__class__)
     if enc is None:
@@ -62,7 +62,7 @@ def serialize(msg: Any) -> bytes:
     return enc(msg)
 
 
-def deserialize(data: bytes | bytearray | memoryview, cls: type) -> Any:
+def deserialize(data: bytes | bytearray | memoryview, cls: type) -> object:
     """A message of `cls` from a CDR sample (header included); MessageError on malformed data."""
     dec = _decoders.get(cls)
     if dec is None:

@@ -1,7 +1,9 @@
 """The meta-path hook that makes interface packages importable: installed at interpreter start, cheap.
 
-`diffctl-interfaces.pth` (in the venv's site-packages, from the editable install or the wheel) imports this
-module; so does `diffctl.client.messages`. It appends one finder to `sys.meta_path`, AFTER the normal path
+`diffctl-interfaces.pth` (in the venv's site-packages, from the editable install or the wheel) imports a copy
+of this module installed beside it as `diffctl_interfaces_hook`; `diffctl.client.messages` imports it too
+(one finder either way). It imports nothing of diffctl until a name may be an interface package.
+It appends one finder to `sys.meta_path`, AFTER the normal path
 finder, so modules on sys.path (a sourced ROS 2's message packages) always win. The finder answers only
 `<pkg>`, `<pkg>.msg|srv|action` and `<pkg>.<kind>._<module>`; for a top-level name it first checks, with
 the standard library only, whether the name can be an interface package (one of diffctl's, a folder of the
@@ -12,7 +14,6 @@ imports cost next to nothing; only then is `finder.py` (the registry, the worksp
 from __future__ import annotations
 
 import os
-import re
 import sys
 
 # diffctl's own interface packages (the bus's typestore and the shipped Jazzy texts; a test keeps this in
@@ -27,7 +28,7 @@ KNOWN = frozenset({
 _SUFFIXES = ("_msgs", "_srvs", "_interfaces", "_actions", "_msg", "_srv", "_action")
 _KINDS = ("msg", "srv", "action")
 _workspace_dirs: dict[str, frozenset[str]] = {}
-_NAME = re.compile(r"<name>([^<]+)</name>")
+
 
 
 def _workspace_root() -> str | None:
@@ -59,11 +60,13 @@ def _in_workspace(name: str) -> bool:
                 found.add(os.path.basename(dirpath))
                 try:
                     with open(os.path.join(dirpath, "package.xml"), encoding="utf-8", errors="replace") as f:
-                        m = _NAME.search(f.read())
+                        text = f.read()
                 except OSError:
-                    m = None
-                if m:
-                    found.add(m.group(1).strip())
+                    text = ""
+                start = text.find("<name>") + len("<name>")
+                end = text.find("</name>", start)
+                if start >= len("<name>") and end > start:
+                    found.add(text[start:end].strip())
                 dirnames[:] = []
             else:
                 dirnames[:] = [d for d in dirnames if not d.startswith(".")]

@@ -19,6 +19,7 @@ from rosbags.typesys.base import Nodetype
 from diffctl.bus import typedefs
 from diffctl.client.messages import idl
 from diffctl.client.messages.idl import InterfaceError, TypeDef
+from diffctl.errors import suggest
 
 JAZZY = Path(__file__).resolve().parent / "jazzy"
 KINDS = ("msg", "srv", "action")
@@ -134,18 +135,32 @@ def _load(p: InterfacePackage) -> None:
                 raise InterfaceError(
                     f"{td.name} uses a type of package {dep!r}, which is nowhere: {searched(dep)}",
                     source=str(where) if where else p.where)
+    own = {td.name for td in loaded}
+    for td in loaded:
+        for fname, ref in referenced_types(td):
+            if ref.split("/")[0] == p.name and ref not in own:
+                where = p.files.get(td.name.rsplit("_", 1)[0]) or p.files.get(td.name)
+                others = [n for n in defs if n.split("/")[2] == ref.split("/")[2]]
+                raise InterfaceError(
+                    f"{td.name}: field {fname!r} has type {ref}, which package {p.name} does not define"
+                    f"{suggest(ref, others) if others else ''}", source=str(where) if where else p.where)
     for td in loaded:
         defs[td.name] = (td.constants, td.fields)
 
 
-def referenced_packages(td: TypeDef) -> set[str]:
-    out = set()
-    for _, desc in td.fields:
+def referenced_types(td: TypeDef) -> list[tuple[str, str]]:
+    """(field, pkg/msg/Type) of every field of a message type (or of arrays of one)."""
+    out = []
+    for name, desc in td.fields:
         while desc[0] in (Nodetype.ARRAY, Nodetype.SEQUENCE):
             desc = desc[1][0]
         if desc[0] == Nodetype.NAME:
-            out.add(desc[1].split("/")[0])
+            out.append((name, desc[1]))
     return out
+
+
+def referenced_packages(td: TypeDef) -> set[str]:
+    return {ref.split("/")[0] for _, ref in referenced_types(td)}
 
 
 def lookup(typename: str) -> TypeDef | None:
