@@ -13,6 +13,7 @@ from typing import Any
 
 from diffctl import ros_args
 from diffctl.bus import wire
+from diffctl.bus.node import Node as BusNode
 from diffctl.client import qos as _qos
 from diffctl.client import waiting
 from diffctl.client.callback_groups import CallbackGroup, MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
@@ -39,6 +40,7 @@ from diffctl.client.service import Service
 from diffctl.client.subscription import Subscription
 from diffctl.client.timer import Rate, Timer
 from diffctl.client.topic_endpoint_info import TopicEndpointInfo, TopicEndpointTypeEnum
+from diffctl.errors import NoRouterError
 
 _LOGGING_FLAGS = {"--log-config-file": 1, "--enable-rosout-logs": 0, "--disable-rosout-logs": 0,
                   "--enable-stdout-logs": 0, "--disable-stdout-logs": 0, "--enable-external-lib-logs": 0,
@@ -183,9 +185,6 @@ class Node:
         if automatically_declare_parameters_from_overrides:
             desc = cls("rcl_interfaces/msg/ParameterDescriptor")
             self.declare_parameters("", [(n, p.value, desc()) for n, p in overrides.items()], ignore_override=True)
-
-        from diffctl.bus.node import Node as BusNode
-        from diffctl.errors import NoRouterError
 
         try:
             self._bus = BusNode(name, namespace, use_sim_time=False, remaps=ra.remaps, params={},

@@ -12,6 +12,7 @@ import math
 import threading
 import warnings
 from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
 from diffctl.bus.parameters import TYPE_NAMES, ParameterChange, ParameterStore
@@ -57,6 +58,16 @@ class NodeParameters(ParameterStore):
         self.on_set: list[Callable[[list[Parameter]], Any]] = []
         self.post_set: list[Callable[[list[Parameter]], None]] = []
         self.rlock = threading.RLock()
+        self._events: ThreadPoolExecutor | None = None
+
+    def _notify(self, changes: list[ParameterChange]) -> None:
+        # /parameter_events leave on one worker thread, in order: the set (and a node's start, which declares
+        # two parameters) does not wait for the event's first serialization.
+        if not self._listeners or not changes:
+            return
+        if self._events is None:
+            self._events = ThreadPoolExecutor(max_workers=1, thread_name_prefix="parameter_events")
+        self._events.submit(super()._notify, changes)
 
     # ------------------------------------------------------------------ rclpy's API
     def declare_parameters(self, namespace: str, parameters: list[tuple], ignore_override: bool = False
