@@ -13,8 +13,6 @@ from diffctl.console import console, info
 from diffctl.errors import ConfigError
 from diffctl.signals import stop_on_signals
 
-CHUNK_PRESETS = {"": "none", "fastwrite": "none", "zstd_fast": "zstd", "zstd_small": "zstd", "lz4": "lz4"}
-
 
 @click.group()
 def bag() -> None:
@@ -51,7 +49,7 @@ def default_output() -> Path:
 @click.option("--compression-mode", type=click.Choice(["none", "file", "message"]), default="none",
               help="Compress each closed file (file).")
 @click.option("--compression-format", default="", help="Compression format (zstd).")
-@click.option("--storage-preset-profile", default="", help="MCAP chunks: fastwrite, zstd_fast, zstd_small, lz4.")
+@click.option("--storage-preset-profile", default="", help="MCAP preset: none, fastwrite, zstd_fast, zstd_small.")
 def record(topic_args: tuple[str, ...], all_: bool, all_topics: bool, topics_opt: tuple[str, ...], regex: str,
            exclude: str, include_hidden_topics: bool, output: Path | None, storage: str, max_bag_size: int,
            max_bag_duration: float, compression_mode: str, compression_format: str,
@@ -63,22 +61,20 @@ def record(topic_args: tuple[str, ...], all_: bool, all_topics: bool, topics_opt
       diffctl bag record -a -o run1
       diffctl bag record /diffbot_base_controller/odom /tf --compression-mode file --compression-format zstd
     """
+    from diffctl.bag.presets import preset
     from diffctl.bag.recorder import Recorder, Selection
-    from diffctl.bag.writer import BagWriter, WriterOptions
+    from diffctl.bag.writer import BagWriter, preset_options
     from diffctl.bus import Node
 
     if storage != "mcap":
         raise ConfigError(f"--storage {storage!r} is not available", hint="valid: mcap")
-    if storage_preset_profile not in CHUNK_PRESETS:
-        raise ConfigError(f"--storage-preset-profile {storage_preset_profile!r} is not known",
-                          hint="valid: " + ", ".join(p for p in CHUNK_PRESETS if p))
+    chosen = preset(storage_preset_profile)
     topics = tuple("/" + t.lstrip("/") for t in (*topic_args, *topics_opt))
     selection = Selection(all_topics=all_ or all_topics, topics=topics, regex=regex, exclude_regex=exclude,
                           include_hidden=include_hidden_topics)
     mode = "" if compression_mode == "none" else compression_mode
-    options = WriterOptions(max_bag_size_bytes=max_bag_size, max_bag_duration_s=max_bag_duration,
-                            compression_mode=mode, compression_format=compression_format if mode else "",
-                            chunk_compression=CHUNK_PRESETS[storage_preset_profile])
+    options = preset_options(chosen, max_bag_size_bytes=max_bag_size, max_bag_duration_s=max_bag_duration,
+                             compression_mode=mode, compression_format=compression_format if mode else "")
     out = output or default_output()
     if out.exists():
         raise ConfigError(f"output folder {out} already exists", hint="choose another -o or remove it")

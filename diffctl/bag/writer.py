@@ -20,10 +20,11 @@ import zstandard
 from mcap.writer import CompressionType, Writer
 
 from diffctl.bag.metadata import BagMetadata, FileInfo, Qos, TopicInfo, qos_list_to_yaml
+from diffctl.bag.presets import MCAP_DEFAULT_CHUNK_BYTES, McapPreset
 from diffctl.errors import ConfigError
 
 CHUNK_COMPRESSION = {"none": CompressionType.NONE, "zstd": CompressionType.ZSTD, "lz4": CompressionType.LZ4}
-DEFAULT_CHUNK_BYTES = 768 * 1024  # rosbag2_storage_mcap's default chunk size
+DEFAULT_CHUNK_BYTES = MCAP_DEFAULT_CHUNK_BYTES
 
 
 @dataclass(frozen=True)
@@ -34,8 +35,12 @@ class WriterOptions:
     max_bag_duration_s: float = 0.0  # 0: never split by time
     compression_mode: str = ""  # "" or "file"
     compression_format: str = ""  # "" or "zstd"
-    chunk_compression: str = "none"  # MCAP chunk compression: none, zstd, lz4 (storage presets)
+    chunk_compression: str = "none"  # MCAP chunk compression: none, zstd (storage presets), lz4 (tests' readers)
     chunk_size_bytes: int = DEFAULT_CHUNK_BYTES
+    use_chunking: bool = True  # False: messages straight in the data section (the fastwrite preset)
+    # The mcap Writer has one switch for the CRCs of chunks and of the summary: on, rosbag2's presets but
+    # fastwrite get the summary CRC they ask for and chunk CRCs they leave out (a reader may check them or not).
+    crcs: bool = True
     ros_distro: str = "jazzy"
 
     def __post_init__(self) -> None:
@@ -50,6 +55,8 @@ class WriterOptions:
         if self.compression_mode and self.compression_format != "zstd":
             raise ConfigError(f"--compression-format {self.compression_format!r} is not available",
                               hint="valid: zstd")
+        if self.chunk_size_bytes <= 0:
+            raise ConfigError(f"chunk size {self.chunk_size_bytes} must be a positive byte count")
         if self.chunk_compression not in CHUNK_COMPRESSION:
             raise ConfigError(f"chunk compression {self.chunk_compression!r} is not available",
                               hint="valid: " + ", ".join(CHUNK_COMPRESSION))
@@ -119,8 +126,9 @@ class BagWriter:
         path = self.dir / f"{self.dir.name}_{self._index}.mcap"
         self._index += 1
         stream = open(path, "wb")  # noqa: SIM115 — closed in _close_file
-        writer = Writer(stream, chunk_size=self.options.chunk_size_bytes,
-                        compression=CHUNK_COMPRESSION[self.options.chunk_compression])
+        o = self.options
+        writer = Writer(stream, chunk_size=o.chunk_size_bytes, compression=CHUNK_COMPRESSION[o.chunk_compression],
+                        use_chunking=o.use_chunking, enable_crcs=o.crcs)
         writer.start(profile="ros2", library="diffctl")
         self._opened_at = time.monotonic()
         return _File(path, stream, writer, {})
@@ -204,3 +212,9 @@ class BagWriter:
             zstandard.ZstdCompressor().copy_stream(i, o)
         src.unlink()
         return replace(f, path=dst.name)
+
+
+def preset_options(preset: McapPreset, **options: object) -> WriterOptions:
+    """WriterOptions shaping the files as rosbag2's MCAP plugin does with this storage preset."""
+    return WriterOptions(chunk_compression=preset.compression, chunk_size_bytes=preset.chunk_size_bytes,
+                         use_chunking=preset.use_chunking, crcs=preset.summary_crc, **options)  # type: ignore[arg-type]

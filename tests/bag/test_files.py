@@ -248,3 +248,60 @@ def test_split_by_duration(tmp_path: Path) -> None:
     assert meta.relative_file_paths == ("dur_0.mcap", "dur_1.mcap")
     assert [f.message_count for f in meta.files] == [1, 1]
     assert topic_counts(run("bag", "info", str(bag)).stdout) == {"/odom": 2}
+
+
+STRING = "std_msgs/msg/String"
+
+
+@pytest.mark.parametrize("name", ["none", "fastwrite", "zstd_fast", "zstd_small"])
+def test_storage_presets_shape_the_file_as_rosbag2s_mcap_plugin(tmp_path: Path, name: str) -> None:
+    from mcap.records import Chunk, Footer, Message
+    from mcap.stream_reader import StreamReader
+
+    from diffctl.bag.presets import preset
+    from diffctl.bag.writer import preset_options
+
+    bag = tmp_path / name
+    w = BagWriter(bag, preset_options(preset(name)))
+    w.add_topic("/text", STRING, ros2msg(STRING), qos=[Qos(depth=10)], type_hash=types.type_hash(STRING))
+    n, size = 300, 8000  # 2.4 MB of text: several 768 KiB chunks, one 4 MiB chunk
+    for i in range(n):
+        text = (f"{i:06d} " * (size // 7 + 1))[:size]
+        w.write("/text", types.serialize(types.new(STRING, {"data": text}), STRING), T0 + i * 1000, T0 + i * 1000, i)
+    w.close()
+
+    # The file as the mcap package's own reader sees it, record by record.
+    with open(bag / f"{name}_0.mcap", "rb") as f:
+        records = list(StreamReader(f, emit_chunks=True, validate_crcs=True).records)
+    chunks = [r for r in records if isinstance(r, Chunk)]
+    footer = next(r for r in records if isinstance(r, Footer))
+    direct = [r for r in records if isinstance(r, Message)]
+    if name == "fastwrite":
+        assert chunks == [] and len(direct) == n  # no chunking: messages straight in the data section
+        assert footer.summary_crc == 0  # rosbag2: noSummaryCRC
+    else:
+        assert direct == [] and footer.summary_crc != 0
+        limit = 4 * 1024 * 1024 if name == "zstd_small" else 768 * 1024
+        assert all(c.uncompressed_size <= limit + size + 64 for c in chunks)
+        assert len(chunks) == (1 if name == "zstd_small" else 4)
+        want = "zstd" if name.startswith("zstd") else ""
+        assert {c.compression for c in chunks} == {want}
+        if want:
+            assert sum(len(c.data) for c in chunks) < n * size / 10  # repetitive text compresses
+    # …and read back through the summary by mcap's indexed reader, and by diffctl's own.
+    with open(bag / f"{name}_0.mcap", "rb") as f:
+        got = [m.sequence for _, _, m in make_reader(f).iter_messages()]
+    assert got == list(range(n))
+    b = Bag(bag)
+    assert [m.sequence for m in b.messages()] == list(range(n))
+    b.close()
+
+
+def test_an_unknown_storage_preset_is_refused_with_the_valid_ones(tmp_path: Path) -> None:
+    done = run("bag", "record", "-a", "-o", str(tmp_path / "b"), "--storage-preset-profile", "lz4")
+    assert done.returncode == 2
+    assert "'lz4' is not an MCAP storage preset" in done.stderr
+    assert "valid: none, fastwrite, zstd_fast, zstd_small" in done.stderr
+    assert not (tmp_path / "b").exists()
+    done = run("bag", "record", "-a", "-o", str(tmp_path / "b"), "--storage-preset-profile", "zstd_smal")
+    assert done.returncode == 2 and "did you mean 'zstd_small'?" in done.stderr
