@@ -20,6 +20,14 @@ from diffctl.sim.body_plan import ModelPlan
 DEFAULT_MAX_EFFORT = 1000.0
 # Without a <velocity> limit, commands are still capped: absurd values never reach the physics.
 DEFAULT_MAX_SPEED = 1000.0
+# A joint commanded to 0 rad/s is held where it came to rest. PyBullet's velocity motor alone leaves a small
+# constant residual velocity (its iterative solve never quite meets the contacts), which integrates into
+# creep: an idle car with wheels "held" this way crept 2.5 mm and 0.011 rad a minute. A weak position term
+# (rhs = gain * error / step: 1 rad/s per rad of error at 1 ms) bounds that error instead of integrating it,
+# as Gazebo's exact velocity servo does, and is too weak to be felt while settling.
+HOLD_POSITION_GAIN = 0.001
+# A held joint is anchored once it has (nearly) stopped, so a stop from speed does not spring back.
+HOLD_SETTLED_RAD_S = 1e-3
 
 
 @dataclass(frozen=True)
@@ -47,6 +55,9 @@ class Entity:
                 effort = lim.effort if math.isfinite(lim.effort) and lim.effort > 0 else DEFAULT_MAX_EFFORT
                 vmax = lim.velocity if math.isfinite(lim.velocity) and lim.velocity > 0 else DEFAULT_MAX_SPEED
                 self.joints[j.name] = JointHandle(j.name, bodies[body_no], index, j, effort, vmax)
+        # Joints commanded to 0: name → the position they are held at, or None until they have stopped.
+        self._held: dict[str, float | None] = {}
+        self.settling = False  # some held joint still awaits its anchor (PhysicsWorld.step calls settle_holds)
         # Spawn state, for world reset: base link frames and (zero) joint positions.
         self._initial = [(b, plan.bodies[i].links[0]) for i, b in enumerate(bodies)]
 
@@ -139,6 +150,13 @@ class Entity:
     def set_joint_velocity(self, h: JointHandle, velocity: float) -> None:
         """Drive a joint at `velocity` (clamped to its limit) until told otherwise; 0 holds it."""
         v = max(-h.max_velocity, min(h.max_velocity, velocity)) if math.isfinite(velocity) else 0.0
+        if v == 0.0:
+            if h.name in self._held:
+                return  # already held (a controller repeats its zero every cycle): keep the anchor
+            self._held[h.name] = None
+            self.settling = True
+        else:
+            self._held.pop(h.name, None)
         pb.setJointMotorControl2(
             h.body, h.index, pb.VELOCITY_CONTROL, targetVelocity=v, force=h.max_effort, physicsClientId=self.client
         )
@@ -146,12 +164,15 @@ class Entity:
     def set_joint_effort(self, h: JointHandle, effort: float) -> None:
         """Apply `effort` for the next step only (PyBullet clears applied torques after each step)."""
         e = max(-h.max_effort, min(h.max_effort, effort)) if math.isfinite(effort) else 0.0
+        self._held.pop(h.name, None)
         pb.setJointMotorControl2(h.body, h.index, pb.VELOCITY_CONTROL, force=0.0, physicsClientId=self.client)
         pb.setJointMotorControl2(h.body, h.index, pb.TORQUE_CONTROL, force=e, physicsClientId=self.client)
 
     def reset_joint(self, h: JointHandle, *, position: float | None = None, velocity: float | None = None) -> None:
         """Set a joint's position and/or velocity outright (gz's JointPositionReset / JointVelocityReset)."""
         pos, vel, _f, _t = pb.getJointState(h.body, h.index, physicsClientId=self.client)
+        if h.name in self._held:
+            self._unanchor(h)
         pb.resetJointState(
             h.body,
             h.index,
@@ -162,6 +183,7 @@ class Entity:
 
     def release_joint(self, h: JointHandle) -> None:
         """Back to a free joint with only its SDF friction."""
+        self._held.pop(h.name, None)
         pb.setJointMotorControl2(
             h.body,
             h.index,
@@ -169,6 +191,40 @@ class Entity:
             targetVelocity=0.0,
             force=h.joint.dynamics.friction,
             physicsClientId=self.client,
+        )
+
+    def settle_holds(self) -> None:
+        """Anchor each held joint that has stopped at the position it stopped at (called before a step)."""
+        cid = self.client
+        waiting = False
+        for name, anchor in self._held.items():
+            if anchor is not None:
+                continue
+            h = self.joints[name]
+            pos, vel, _f, _t = pb.getJointState(h.body, h.index, physicsClientId=cid)
+            if abs(vel) > HOLD_SETTLED_RAD_S:
+                waiting = True
+                continue
+            self._held[name] = pos
+            pb.setJointMotorControl2(
+                h.body,
+                h.index,
+                pb.POSITION_CONTROL,
+                targetPosition=pos,
+                targetVelocity=0.0,
+                positionGain=HOLD_POSITION_GAIN,
+                velocityGain=1.0,
+                force=h.max_effort,
+                physicsClientId=cid,
+            )
+        self.settling = waiting
+
+    def _unanchor(self, h: JointHandle) -> None:
+        # Moved outright: hold again by velocity until it has stopped, then anchor anew.
+        self._held[h.name] = None
+        self.settling = True
+        pb.setJointMotorControl2(
+            h.body, h.index, pb.VELOCITY_CONTROL, targetVelocity=0.0, force=h.max_effort, physicsClientId=self.client
         )
 
     # --- reset ---------------------------------------------------------------------------------------
@@ -185,3 +241,5 @@ class Entity:
                 pb.resetJointStateMultiDof(h.body, h.index, [0, 0, 0, 1], [0, 0, 0], physicsClientId=cid)
             else:
                 pb.resetJointState(h.body, h.index, 0.0, 0.0, physicsClientId=cid)
+            if h.name in self._held:
+                self._unanchor(h)

@@ -23,9 +23,16 @@ from diffctl.sim.flat_planes import FlatPlane
 from diffctl.sim.link_gravity import GravityOff
 from diffctl.sim.mimic import Mimics
 
-# PyBullet defaults to 50; at 1 ms steps 10 give the same drive trajectories (to 0.1 mm over 6 s, measured)
-# for a third of the cost, which is most of the step budget.
-SOLVER_ITERATIONS = 10
+# PyBullet defaults to 50. 10 gave the same drive trajectories (to 0.1 mm over 6 s) for a third of the cost,
+# but left held wheels slipping: a car standing on held wheels turned 0.002 rad a minute at 10, 0.00015 at 20
+# (with the two settings below; tests/sim/test_idle_creep.py).
+SOLVER_ITERATIONS = 20
+# Bullet stops iterating once the solve's residual is under 1e-7 (its default). At rest that leaves small
+# velocities every step which integrate: on free wheels next to a frictionless caster the residual fed back
+# through the contact points and an idle car rolled away (0.85 m in 20 s); everywhere else it crept ~0.1 mm
+# and 0.003 rad a minute. Converging fully costs nothing measurable while driving (the residual is never
+# that small then). (0 would read as "unset" and keep the default.)
+SOLVER_RESIDUAL_THRESHOLD = 1e-12
 # A visual plane is drawn as a thin box just under the collision plane.
 PLANE_VISUAL_THICKNESS_M = 0.002
 
@@ -84,6 +91,10 @@ class PhysicsWorld:
         pb.setPhysicsEngineParameter(
             numSubSteps=0,
             numSolverIterations=SOLVER_ITERATIONS,
+            solverResidualThreshold=SOLVER_RESIDUAL_THRESHOLD,
+            # Friction as ODE and DART solve it: a pyramid, limited by mu along each of the two directions,
+            # not Bullet's default cone (which also held wheels less firmly at rest).
+            enableConeFriction=0,
             deterministicOverlappingPairs=1,
             physicsClientId=cid,
         )
@@ -153,6 +164,9 @@ class PhysicsWorld:
     def step(self) -> None:
         for _, hook in self._before_step:
             hook()
+        for e in self.entities.values():
+            if e.settling:
+                e.settle_holds()
         pb.stepSimulation(physicsClientId=self.client)
 
     def close(self) -> None:
