@@ -1,0 +1,35 @@
+# A talker as the ROS 2 tutorials write it: a class deriving from Node, a timer, a publisher.
+# ruff: noqa: UP031  (written as the ROS 2 tutorials write it)
+import rclpy
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+from std_msgs.msg import String
+
+
+class MinimalPublisher(Node):
+
+    def __init__(self):
+        super().__init__('minimal_publisher')
+        self.publisher_ = self.create_publisher(String, 'topic', 10)
+        self.timer = self.create_timer(0.1, self.timer_callback)
+        self.i = 0
+
+    def timer_callback(self):
+        msg = String()
+        msg.data = 'Hello World: %d' % self.i
+        self.publisher_.publish(msg)
+        self.get_logger().info('Publishing: "%s"' % msg.data)
+        self.i += 1
+
+
+def main(args=None):
+    try:
+        with rclpy.init(args=args):
+            minimal_publisher = MinimalPublisher()
+            rclpy.spin(minimal_publisher)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+
+
+if __name__ == '__main__':
+    main()
