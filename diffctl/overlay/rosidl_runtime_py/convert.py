@@ -1,0 +1,8 @@
+"""rosidl_runtime_py.convert."""
+
+from diffctl.client.messages.runtime.convert import (  # noqa: F401
+    get_message_slot_types,
+    message_to_csv,
+    message_to_ordereddict,
+    message_to_yaml,
+)
