@@ -41,6 +41,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "foxglove-bridge": ("diffctl.foxglove.cli:foxglove_bridge", "Foxglove WebSocket server (foxglove_bridge)."),
     "description": ("diffctl.cli.description:description", "Show what the simulator makes of a URDF/xacro/SDF."),
     "fuel": ("diffctl.fuel.cli:fuel", "Download Gazebo Fuel models into Gazebo's cache (gz fuel)."),
+    "tf2": ("diffctl.tf2_tools.cli:tf2", "tf2_ros's static_transform_publisher and tf2_echo."),
 }
 
 

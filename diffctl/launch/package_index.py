@@ -28,6 +28,8 @@ COMPONENTS: dict[tuple[str, str], tuple[str, ...]] = {
     ("teleop_twist_joy", "teleop_node"): ("teleop", "joy"),
     ("teleop_twist_keyboard", "teleop_twist_keyboard"): ("teleop", "keyboard"),
     ("foxglove_bridge", "foxglove_bridge"): ("foxglove-bridge",),
+    ("tf2_ros", "static_transform_publisher"): ("tf2", "static_transform_publisher"),
+    ("tf2_ros", "tf2_echo"): ("tf2", "tf2_echo"),
     ("diffctl", "router"): ("router",),
 }
 

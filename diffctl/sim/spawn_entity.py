@@ -245,7 +245,12 @@ def spawn_entity(ctx: click.Context, remove_name: str | None, timeout: float, **
         body["sdf"] = req.value
     else:
         body["sdf"] = sdf
-    reply = call(session, target, "create", body, deadline)
+    try:
+        reply = call(session, target, "create", body, deadline)
+    except RuntimeFailure as e:
+        # ros_gz_sim's create: "Entity creation failed." and exit 1; the simulator's reason names file and line
+        reason = e.message.removeprefix("create failed: ")
+        raise RuntimeFailure(f"Entity creation failed: {reason}", hint=e.hint) from None
     click.echo(f"spawned {reply.get('name')!r} into world {target!r}")
 
 

@@ -187,6 +187,10 @@ def test_sim_control_drive_turn_brake_and_shutdown(launch_file: str, stack_env: 
         stack.watch_odom("/diffbot_base_controller/odom")
         stack.wait_controllers_active(("diffbot_base_controller", "joint_state_broadcaster"))
         check_stack(stack, "/diffbot_base_controller/odom", CMD, TWIST_STAMPED, stamped=True)
+        # `make run`: the tutorial brings up without a single warning (its controllers file loads as Jazzy loads
+        # it: has_*_limits true and min_acceleration say nothing, nor do rclcpp's own node parameters).
+        started = stack.output().split("processes started in")[0]
+        assert not [line for line in started.splitlines() if "WARN" in line], started
         if launch_file == "sim_control":
             spawn_third_controller_at_runtime(stack)
         stop_and_check_reaped(stack)

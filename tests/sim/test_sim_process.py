@@ -88,6 +88,12 @@ def test_spawn_entity_and_world_control(router: str, procs: Any, tmp_path: Path)
     bad.write_text(CAR.read_text().replace('type="continuous"', 'type="screw"', 1))
     r = run_cli("spawn", "entity", "--file", str(bad), "--name", "broken")
     assert r.returncode == 1 and "screw" in r.stderr and len(r.stderr.strip().splitlines()) == 1
+    # ros_gz_sim create's words and exit code; the simulator's reason names the file and the line
+    assert r.stderr.startswith(f"error: Entity creation failed: {bad}:"), r.stderr
+    malformed = tmp_path / "malformed.sdf"
+    malformed.write_text("<sdf version='1.8'>\n<model name='x'>\n<link name='a'>\n</model></sdf>\n")
+    r = run_cli("spawn", "entity", "-file", str(malformed), "-name", "broken")
+    assert r.returncode == 1 and r.stderr.startswith(f"error: Entity creation failed: {malformed}:4:"), r.stderr
     assert sim.poll() is None
 
     st = query(session, "gz/world/empty/state")
