@@ -1,0 +1,9 @@
+from launch import LaunchDescription
+from launch_ros.actions import Node
+
+
+def generate_launch_description():
+    return LaunchDescription([
+        Node(package='py_examples', executable='avoider', output='screen',
+             parameters=[{'use_sim_time': True, 'speed': 0.4}]),
+    ])
