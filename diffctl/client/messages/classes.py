@@ -98,7 +98,7 @@ def fill_interface_module(module: types.ModuleType, p: InterfacePackage, kind: s
         CLASSES[full] = cls
 
 
-def kind_getattr(p: InterfacePackage, kind: str) -> Any:
+def kind_getattr(kind_module: types.ModuleType, p: InterfacePackage, kind: str) -> Any:
     names = exported(p, kind)
 
     def __getattr__(name: str) -> Any:
@@ -106,7 +106,10 @@ def kind_getattr(p: InterfacePackage, kind: str) -> Any:
         if short is None:
             raise AttributeError(f"module '{p.name}.{kind}' has no attribute {name!r}")
         module = importlib.import_module(f"{p.name}.{kind}._{pysource.snake(short)}")
-        return getattr(module, name)
+        value = getattr(module, name)
+        # Kept in the module: the next `from pkg.msg import T` (every constructor has one) is a dict hit.
+        setattr(kind_module, name, value)
+        return value
 
     return __getattr__
 

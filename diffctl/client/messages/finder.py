@@ -30,7 +30,7 @@ class Loader(importlib.abc.Loader):
         elif what == "kind":
             names = classes.exported(p, kind)
             module.__all__ = sorted(names)  # type: ignore[attr-defined]
-            module.__getattr__ = classes.kind_getattr(p, kind)  # type: ignore[attr-defined]
+            module.__getattr__ = classes.kind_getattr(module, p, kind)  # type: ignore[attr-defined]
             module.__dir__ = lambda: sorted({*module.__dict__, *names})  # type: ignore[attr-defined]
         else:
             classes.fill_interface_module(module, p, kind, short)
