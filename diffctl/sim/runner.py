@@ -27,6 +27,8 @@ from diffctl.sim.plugins.base import PluginContext, SystemPlugin, rate_period_ns
 from diffctl.sim.plugins.diff_drive import DiffDrive, DiffDriveParams
 from diffctl.sim.plugins.gz_ros2_control import GzRos2Control, PreparedManager
 from diffctl.sim.plugins.joint_state_publisher import JointStatePublisher
+from diffctl.sim.plugins.odometry_publisher import OdometryPublisher
+from diffctl.sim.plugins.system_names import system_kind
 from diffctl.sim.sensors import (
     AirPressure,
     Camera,
@@ -65,19 +67,15 @@ NATIVE_SYSTEMS = {
     "air-pressure",
     "navsat",
     "contact",
-    "pose-publisher",
 }
 CONTROL_SYSTEMS = ("gz_ros2_control", "ign_ros2_control")
-MODEL_SYSTEMS = {"diff-drive", "joint-state-publisher", *CONTROL_SYSTEMS}
+MODEL_SYSTEMS = {"diff-drive", "joint-state-publisher", "odometry-publisher", *CONTROL_SYSTEMS}
 
 
-def system_name(filename: str) -> str:
-    """`libgz-sim-diff-drive-system.so` → `diff-drive`; `gz_ros2_control-system` → `gz_ros2_control`."""
-    n = filename.rsplit("/", 1)[-1]
-    n = n.removeprefix("lib").removesuffix(".so")
-    for prefix in ("gz-sim8-", "gz-sim7-", "gz-sim-", "ignition-gazebo-", "ignition-gazebo6-"):
-        n = n.removeprefix(prefix)
-    return n.removesuffix("-system")
+def system_name(filename: str, name: str = "") -> str:
+    """`libgz-sim-diff-drive-system.so` → `diff-drive`; `gz_ros2_control-system` → `gz_ros2_control` (see
+    plugins/system_names.py for the spellings)."""
+    return system_kind(filename, name)
 
 
 @dataclass
@@ -149,7 +147,8 @@ class Simulation:
         try:
             self._add_systems(rt, description, prepared)
             self._add_sensors(rt)
-            if not model.static and self.transport is not None:
+            owned = {t for p in rt.plugins for t in getattr(p, "topics", ())}
+            if not model.static and self.transport is not None and f"/model/{model.name}/pose" not in owned:
                 pub = self.transport.publisher(f"/model/{model.name}/pose", "gz.msgs.Pose_V")
                 rt.publishers.append(pub)
                 period = rate_period_ns(POSE_RATE_HZ, self.stepper.step_ns)
@@ -179,7 +178,7 @@ class Simulation:
         """The controller manager of `model` (one gz_ros2_control plugin), built from any thread: its node,
         parameters and manager take tens of milliseconds that need not stop the simulation loop. None when the
         model has no such plugin, or more than one (the spawn reports that)."""
-        plugins = [p for p in model.plugins if system_name(p.filename) in CONTROL_SYSTEMS]
+        plugins = [p for p in model.plugins if system_name(p.filename, p.name) in CONTROL_SYSTEMS]
         if len(plugins) != 1 or self.transport is None:
             return None
         return PreparedManager(self.ctx, model, plugins[0], description)
@@ -187,13 +186,16 @@ class Simulation:
     def _add_systems(self, rt: ModelRuntime, description: str = "", prepared: PreparedManager | None = None) -> None:
         model = rt.entity.model
         for plugin in model.plugins:
-            kind = system_name(plugin.filename)
+            kind = system_name(plugin.filename, plugin.name)
             if kind == "diff-drive":
                 canonical = model.canonical_link or model.root_link()
                 params = DiffDriveParams.from_plugin(plugin, model.name, canonical, model.source)
                 rt.plugins.append(DiffDrive(self.ctx, rt.entity, params))
             elif kind == "joint-state-publisher":
                 rt.plugins.append(JointStatePublisher(self.ctx, rt.entity, plugin))
+            elif kind == "odometry-publisher":
+                rng = self.sensor_rng(model.name, f"odometry_publisher:{plugin.name}")
+                rt.plugins.append(OdometryPublisher(self.ctx, rt.entity, plugin, rng))
             elif kind in CONTROL_SYSTEMS:
                 if rt.control is not None:
                     raise DescriptionError(
@@ -346,7 +348,7 @@ class Simulation:
     def _report_ignored(self, world: World) -> None:
         lines = []
         for model_name, plugin in world.all_plugins():
-            kind = system_name(plugin.filename)
+            kind = system_name(plugin.filename, plugin.name)
             if (model_name is None and kind not in NATIVE_SYSTEMS) or (
                 model_name is not None and kind not in MODEL_SYSTEMS | NATIVE_SYSTEMS
             ):
@@ -361,7 +363,7 @@ class Simulation:
         out = [
             f"plugin {p.filename} ({p.name})"
             for p in model.plugins
-            if system_name(p.filename) not in MODEL_SYSTEMS | NATIVE_SYSTEMS
+            if system_name(p.filename, p.name) not in MODEL_SYSTEMS | NATIVE_SYSTEMS
         ]
         return out + list(model.ignored)
 

@@ -125,9 +125,7 @@ class WorldServices:
             )
         elif req.get("sdf"):
             description = str(req["sdf"])
-            model = parse_description(
-                description, source="robot_description", name=name, pose=pose, base_dir=base_dir
-            )
+            model = parse_description(description, source="robot_description", name=name, pose=pose, base_dir=base_dir)
         else:
             return {"ok": False, "error": "give the model as 'sdf' (text) or 'sdf_filename' (a path)"}
         return model, description

@@ -115,7 +115,7 @@ def build_request(flags: dict[str, Any], params: dict[str, Any]) -> CreateReques
         if not isinstance(xml, str) or not xml.strip():
             raise ConfigError(
                 f"-param {flags['param']}: this node has no parameter {flags['param']!r} holding the model",
-                hint=f"pass it with --ros-args -p {flags['param']}:=\"$(cat FILE)\"",
+                hint=f'pass it with --ros-args -p {flags["param"]}:="$(cat FILE)"',
             )
         source = ("string", xml)
     if source is None and flags.get("string"):

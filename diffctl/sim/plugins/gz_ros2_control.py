@@ -144,8 +144,12 @@ class PreparedManager:
         remaps = dict(self.params.remappings)
         fqn = node_fqn(name, self.params.namespace)
         flat = {**load_manager_files(self.params.parameters, fqn), "use_sim_time": True}
-        cm_params = manager_params(flat, source=f"{name} parameters", params_files=self.params.parameters,
-                                   namespace=self.params.namespace or "/")
+        cm_params = manager_params(
+            flat,
+            source=f"{name} parameters",
+            params_files=self.params.parameters,
+            namespace=self.params.namespace or "/",
+        )
         self.stop = threading.Event()
         self.node: Any = None
         self.cm: ControllerManager | None = None
@@ -168,7 +172,10 @@ class PreparedManager:
                 return BusControllerNode(cname, namespace, p, lambda: stepper.sim_time_ns, remaps=own)
 
             self.cm = ControllerManager(
-                cm_params, log=self.node.log, node_factory=controller_node, robot_description=description,
+                cm_params,
+                log=self.node.log,
+                node_factory=controller_node,
+                robot_description=description,
                 cancel=self.stop,
             )
         except Exception:

@@ -40,8 +40,9 @@ class NormalStream:
 class ImuNoise:
     """Gazebo's IMU noise on three axes: a constant bias per axis (drawn once, random sign) plus white noise."""
 
-    def __init__(self, noises: tuple[Noise, Noise, Noise], rng: np.random.Generator,
-                 normals: NormalStream | None = None) -> None:
+    def __init__(
+        self, noises: tuple[Noise, Noise, Noise], rng: np.random.Generator, normals: NormalStream | None = None
+    ) -> None:
         self.active = any(n.active for n in noises)
         mean = [n.mean if n.active else 0.0 for n in noises]
         self.stddev = tuple(n.stddev if n.active else 0.0 for n in noises)
