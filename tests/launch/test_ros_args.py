@@ -6,7 +6,9 @@ data/rclpy_ros_args/rclpy_probe.py in a venv with the ros-jazzy-rclpy wheels fro
 wildcard keys (`/**`, `**`, `/*`, `/**/name`, `/ns/**`, `/ns/*/name`, nested `ns: {name: …}`), bare keys
 (`talker` is `/talker` only), the order of keys across files and `-p` (a key keeps its first place; `-p`
 does not beat a file's node-specific key), node-prefixed `-p`, and remapping (first rule wins; `talker:` rules
-for that node only, matched against its remapped name for topics and its given name for `__node`/`__ns`).
+for that node only, matched against its remapped name for topics and its given name for `__node`/`__ns`), and
+a node's own arguments (rclpy's cli_args) over the process's. The last test runs the cases through the real
+rclpy of the oracle venv again.
 """
 
 from __future__ import annotations
@@ -40,7 +42,8 @@ def test_resolution_matches_rclpy(case: dict) -> None:
     argv = [a.replace("{data}", str(DATA)) for a in case["ros_args"]]
     got = []
     for name, ns in case["nodes"]:
-        ra = ros_args.parse(argv, name, ns)
+        local = [a.replace("{data}", str(DATA)) for a in case.get("local", [])]
+        ra = ros_args.parse(argv, name, ns, local_argv=local)
         namespace = ra.namespace or ns
         got.append({"name": ra.node_name or name, "ns": namespace, "params": ra.params,
                     "chatter": _resolve_chatter(ra, namespace)})
@@ -74,3 +77,14 @@ def test_bad_rules_are_errors_naming_the_form() -> None:
 ])
 def test_node_key_patterns(key: str, fqn: str, matches: bool) -> None:
     assert ros_args.node_key_matches(key, fqn) is matches
+
+
+def test_the_recorded_cases_are_what_rclpy_does_now() -> None:
+    # The same cases run through the real rclpy of the oracle venv (`make jazzy-oracle`): the recorded results
+    # above are rclpy's, not a copy of diffctl's.
+    from tests.oracle import jazzy_venv
+
+    probe = (DATA / "rclpy_probe.py").read_text()
+    code = f"import sys; sys.argv = ['probe', {str(DATA / 'cases.json')!r}, {str(DATA)!r}]\n{probe}"
+    live = json.loads(jazzy_venv.run_python(code, timeout_s=120).stdout.strip().splitlines()[-1])
+    assert live == [c["rclpy"] for c in CASES]
