@@ -21,7 +21,8 @@ from diffctl.console import info
 def foxglove_bridge(port: int | None, address: str | None, bag_path: Path | None, rate: float) -> None:
     """Serve ROS topics to the Foxglove app over its WebSocket protocol (foxglove_bridge).
 
-    Every topic is advertised with its ros2msg schema and cdr encoding; clients may publish (cmd_vel).
+    Every topic is advertised with its ros2msg schema and cdr encoding; clients may publish (cmd_vel), call
+    the graph's services, get, set and watch the nodes' parameters, and fetch package:// assets (meshes).
     With --bag, the server plays a bag instead, under the app's play/pause/seek controls.
 
     \b
@@ -58,12 +59,20 @@ def foxglove_bridge(port: int | None, address: str | None, bag_path: Path | None
         bag.close()
         return
     from diffctl.bus import Node, types
+    from diffctl.foxglove.assets import DEFAULT_ALLOWLIST, AssetResolver
     from diffctl.foxglove.live import LiveBridge
+    from diffctl.foxglove.parameters import ParameterBridge
+    from diffctl.foxglove.services import ServiceBridge
 
+    caps = fg.check_capabilities(list(ra.params.get("capabilities", fg.CAPABILITIES)))
+    assets = AssetResolver(list(ra.params.get("asset_uri_allowlist", DEFAULT_ALLOWLIST))) if "assets" in caps else None
     node = Node.from_ros_args("foxglove_bridge")
     sim_time = node.clock.use_sim_time
     live = LiveBridge(node, context, say=info)
-    server = fg.start(address, port, live=live, context=context, sim_time=sim_time)
+    services = ServiceBridge(node, say=info) if "services" in caps else None
+    params = ParameterBridge(node, say=info) if caps & {"parameters", "parametersSubscribe"} else None
+    server = fg.start(address, port, live=live, context=context, sim_time=sim_time, services=services,
+                      params=params, assets=assets)
     if sim_time:
         node.create_subscription("/clock", "rosgraph_msgs/msg/Clock",
                                  lambda m: server.broadcast_time(types.time_ns(m.clock)))
@@ -72,4 +81,7 @@ def foxglove_bridge(port: int | None, address: str | None, bag_path: Path | None
     stop.wait()
     live.close()
     server.stop()
+    for part in (services, params):
+        if part is not None:
+            part.close()
     node.close()

@@ -45,6 +45,7 @@ class LiveBridge:
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._watch, name="foxglove-graph", daemon=True)
         self.server: Any = None
+        self.also_sync: list[Callable[[], None]] = []  # more of the server that follows the graph (services)
 
     def start(self) -> None:
         self._thread.start()
@@ -58,6 +59,8 @@ class LiveBridge:
             self._wake.clear()
             if not self._stop.is_set():
                 self.sync()
+                for follow in self.also_sync:
+                    follow()
 
     def sync(self) -> None:
         g = self.node.graph

@@ -14,8 +14,14 @@ import foxglove
 from foxglove.websocket import Capability, ServerListener
 
 from diffctl.errors import ConfigError
+from diffctl.foxglove.assets import AssetResolver
 from diffctl.foxglove.live import LiveBridge
+from diffctl.foxglove.parameters import ParameterBridge
 from diffctl.foxglove.playback import BagPlayback
+from diffctl.foxglove.services import ServiceBridge
+
+# foxglove_bridge's `capabilities` parameter: its default, and what each name turns on here.
+CAPABILITIES = ("clientPublish", "parameters", "parametersSubscribe", "services", "connectionGraph", "assets")
 
 
 def check_loopback(address: str) -> str:
@@ -39,10 +45,34 @@ def check_port(port: Any) -> int:
     return p
 
 
+def check_capabilities(names: list[str]) -> set[str]:
+    unknown = [n for n in names if n not in CAPABILITIES]
+    if unknown:
+        raise ConfigError(f"capabilities: {unknown[0]!r} is not a foxglove_bridge capability",
+                          field="capabilities", hint="valid: " + ", ".join(CAPABILITIES))
+    return set(names)
+
+
 class _Listener(ServerListener):
-    def __init__(self, live: LiveBridge | None, playback: BagPlayback | None) -> None:
+    def __init__(self, live: LiveBridge | None, playback: BagPlayback | None,
+                 params: ParameterBridge | None = None) -> None:
         self.live = live
         self.playback = playback
+        self.params = params
+
+    def on_get_parameters(self, client: Any, param_names: list[str], request_id: str | None = None) -> list[Any]:
+        return self.params.get(param_names) if self.params is not None else []
+
+    def on_set_parameters(self, client: Any, parameters: list[Any], request_id: str | None = None) -> list[Any]:
+        return self.params.set(parameters) if self.params is not None else []
+
+    def on_parameters_subscribe(self, param_names: list[str]) -> None:
+        if self.params is not None:
+            self.params.subscribe(param_names)
+
+    def on_parameters_unsubscribe(self, param_names: list[str]) -> None:
+        if self.params is not None:
+            self.params.unsubscribe(param_names)
 
     def on_subscribe(self, client: Any, channel: Any) -> None:
         if self.live is not None:
@@ -71,16 +101,22 @@ class _Listener(ServerListener):
 
 
 def start(host: str, port: int, *, live: LiveBridge | None = None, playback: BagPlayback | None = None,
-          context: foxglove.Context, sim_time: bool = False) -> Any:
+          context: foxglove.Context, sim_time: bool = False, services: ServiceBridge | None = None,
+          params: ParameterBridge | None = None, assets: AssetResolver | None = None) -> Any:
     """The running server (`.port` is the bound port). `sim_time`: the server announces its own time (from
-    /clock), as foxglove_bridge does under use_sim_time, so the app's timeline follows the simulation."""
-    listener = _Listener(live, playback)
+    /clock), as foxglove_bridge does under use_sim_time, so the app's timeline follows the simulation.
+    `services`, `params`, `assets`: the capabilities of the same names (live graph only)."""
+    listener = _Listener(live, playback, params)
     kw: dict[str, Any] = {}
     if playback is not None:
         caps = [Capability.Time]
         kw["playback_time_range"] = playback.time_range
     else:
-        caps = [Capability.ClientPublish, *([Capability.Time] if sim_time else [])]
+        caps = [*([Capability.ClientPublish] if live is not None else []), *([Capability.Time] if sim_time else []),
+                *([Capability.Services] if services is not None else []),
+                *([Capability.Parameters] if params is not None else [])]
+        if assets is not None:
+            kw["asset_handler"] = assets.fetch  # the SDK then advertises the assets capability
     try:
         server = foxglove.start_server(name="diffctl foxglove_bridge", host=check_loopback(host),
                                        port=check_port(port), capabilities=caps, server_listener=listener,
@@ -88,7 +124,11 @@ def start(host: str, port: int, *, live: LiveBridge | None = None, playback: Bag
     except RuntimeError as e:
         raise ConfigError(f"cannot serve Foxglove on {host}:{port}: {e}", hint="is the port in use? try --port 0") \
             from None
-    for part in (live, playback):
+    for part in (live, playback, services, params):
         if part is not None:
             part.server = server
+    if services is not None:
+        services.sync()
+        if live is not None:
+            live.also_sync.append(services.sync)
     return server

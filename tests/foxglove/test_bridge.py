@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+import os
 import struct
 import threading
 import time
@@ -162,5 +163,139 @@ def test_sim_time_is_the_servers_time(router: str, procs: Any) -> None:
 
     info, t = asyncio.run(client())
     assert "time" in info["capabilities"] and t == 42 * 10**9 + 5
+    procs.stop(bridge)
+    node.close()
+
+
+ASCII_STL = (b"solid wedge\n facet normal 0 0 1\n  outer loop\n   vertex 0 0 0\n   vertex 1 0 0\n   vertex 0 1 0\n"
+             b"  endloop\n endfacet\nendsolid wedge\n")
+
+
+def _asset_workspace(root: Path) -> Path:
+    """A user's workspace with one description package holding a mesh (found through the package index)."""
+    pkg = root / "ws" / "src" / "wedge_description"
+    (pkg / "meshes").mkdir(parents=True)
+    (pkg / "package.xml").write_text(
+        '<?xml version="1.0"?>\n<package format="3"><name>wedge_description</name><version>0.0.1</version>'
+        "<description>d</description><maintainer email=\"a@b.c\">a</maintainer><license>MIT</license>"
+        "<buildtool_depend>ament_cmake</buildtool_depend><export><build_type>ament_cmake</build_type></export>"
+        "</package>\n")
+    (pkg / "CMakeLists.txt").write_text(
+        "cmake_minimum_required(VERSION 3.8)\nproject(wedge_description)\nfind_package(ament_cmake REQUIRED)\n"
+        "install(DIRECTORY meshes DESTINATION share/${PROJECT_NAME})\nament_package()\n")
+    (pkg / "meshes" / "wedge.stl").write_bytes(ASCII_STL)
+    return root / "ws"
+
+
+def _cdr_of(schema_name: str, schema: str, values: dict[str, Any]) -> tuple[Any, bytes]:
+    """A message encoded with only what the server advertised (a fresh rosbags store, which files a type by a
+    msg-style name: `pkg/srv/T_Request` is registered as `pkg/msg/T_Request`)."""
+    name = schema_name.replace("/srv/", "/msg/")
+    ts = get_typestore(Stores.EMPTY)
+    ts.register(get_types_from_msg(schema, name))
+    return ts, ts.serialize_cdr(ts.types[name](**values), name)
+
+
+def test_services_parameters_and_assets_as_foxglove_bridge_serves_them(router: str, procs: Any, tmp_path: Path) -> None:
+    node = Node("fg_params")
+    node.declare_parameter("gain", 0.5)
+    node.declare_parameter("mode", "slow")
+    calls: list[bool] = []
+
+    def set_bool(req: Any) -> Any:
+        calls.append(bool(req.data))
+        return types.response("std_srvs/srv/SetBool", {"success": True, "message": f"was asked {req.data}"})
+
+    node.create_service("/fg_params/enable", "std_srvs/srv/SetBool", set_bool)
+    ws_root = _asset_workspace(tmp_path)
+    port = free_port()
+    bridge = procs.diffctl("foxglove-bridge", "--port", str(port),
+                           env={**os.environ, "DIFFCTL_WORKSPACE": str(ws_root)})
+    wait_port(port, 60)
+
+    async def client() -> dict[str, Any]:
+        out: dict[str, Any] = {}
+        async with websockets.connect(f"ws://127.0.0.1:{port}", subprotocols=[PROTOCOL], max_size=None) as ws:
+            info = json.loads(await _read_until(ws, lambda m: isinstance(m, str) and '"serverInfo"' in m))
+            out["capabilities"] = info["capabilities"]
+            services: dict[str, dict] = {}
+
+            def adv(m: Any) -> bool:
+                if isinstance(m, str) and json.loads(m)["op"] == "advertiseServices":
+                    services.update({s["name"]: s for s in json.loads(m)["services"]})
+                return "/fg_params/enable" in services
+
+            await _read_until(ws, adv)
+            svc = services["/fg_params/enable"]
+            out["service"] = svc
+            # serviceCallRequest (binary op 2): service id, call id, encoding, CDR payload.
+            req = svc["request"]
+            _, payload = _cdr_of(req["schemaName"], req["schema"], {"data": True})
+            await ws.send(struct.pack("<BIII", 2, svc["id"], 77, 3) + b"cdr" + payload)
+            reply = await _read_until(ws, lambda m: isinstance(m, bytes) and m[0] == 3)
+            sid, call_id, enc_len = struct.unpack_from("<III", reply, 1)
+            res = svc["response"]
+            ts, _ = _cdr_of(res["schemaName"], res["schema"], {"success": False, "message": ""})
+            out["call"] = (sid, call_id, reply[13:13 + enc_len].decode(),
+                           ts.deserialize_cdr(reply[13 + enc_len:], res["schemaName"].replace("/srv/", "/msg/")))
+            # A request in an encoding the ROS side cannot take is a call failure, not a crash.
+            await ws.send(struct.pack("<BIII", 2, svc["id"], 78, 4) + b"json" + b"{}")
+            out["failure"] = json.loads(await _read_until(
+                ws, lambda m: isinstance(m, str) and '"serviceCallFailure"' in m))
+
+            async def params(request: dict) -> dict:
+                await ws.send(json.dumps(request))
+                return json.loads(await _read_until(
+                    ws, lambda m: isinstance(m, str) and '"parameterValues"' in m and f'"{request["id"]}"' in m))
+
+            out["get"] = await params({"op": "getParameters", "parameterNames": ["/fg_params.gain",
+                                                                                  "/fg_params.mode"], "id": "g1"})
+            out["all"] = await params({"op": "getParameters", "parameterNames": [], "id": "g2"})
+            await ws.send(json.dumps({"op": "subscribeParameterUpdates", "parameterNames": ["/fg_params.gain"]}))
+            out["set"] = await params({"op": "setParameters", "id": "s1", "parameters": [
+                {"name": "/fg_params.gain", "value": 2, "type": "float64"}]})
+            out["node_after_set"] = node.get_parameter("gain")
+            node.set_parameters({"gain": 3.25})  # a change made on the ROS side reaches the watching client
+            update = await _read_until(ws, lambda m: isinstance(m, str) and '"parameterValues"' in m
+                                       and "3.25" in m)
+            out["update"] = json.loads(update)
+
+            async def asset(uri: str, rid: int) -> tuple[int, bytes]:
+                await ws.send(json.dumps({"op": "fetchAsset", "uri": uri, "requestId": rid}))
+                m = await _read_until(ws, lambda m: isinstance(m, bytes) and m[0] == 4
+                                      and struct.unpack_from("<I", m, 1)[0] == rid)
+                status, err_len = struct.unpack_from("<BI", m, 5)
+                return status, m[10:10 + err_len] if status else m[10 + err_len:]
+
+            out["mesh"] = await asset("package://wedge_description/meshes/wedge.stl", 1)
+            out["escape"] = await asset("package://wedge_description/../../../etc/passwd.stl", 2)
+            out["unknown"] = await asset("package://no_such_package/meshes/a.stl", 3)
+            out["not_listed"] = await asset("package://wedge_description/CMakeLists.txt", 4)
+        return out
+
+    out = asyncio.run(client())
+    assert {"services", "parameters", "parametersSubscribe", "assets", "clientPublish"} <= set(out["capabilities"])
+    svc = out["service"]
+    assert svc["type"] == "std_srvs/srv/SetBool"
+    assert (svc["request"]["schemaName"], svc["request"]["schemaEncoding"], svc["request"]["encoding"]) == (
+        "std_srvs/srv/SetBool_Request", "ros2msg", "cdr")
+    assert svc["response"]["schema"].split() == ["bool", "success", "string", "message"]
+    sid, call_id, encoding, response = out["call"]
+    assert (sid, call_id, encoding) == (svc["id"], 77, "cdr") and calls == [True]
+    assert response.success and response.message == "was asked True"
+    assert out["failure"]["callId"] == 78 and "encoding" in out["failure"]["message"].lower()
+    got = {p["name"]: p for p in out["get"]["parameters"]}
+    assert got["/fg_params.gain"]["value"] == 0.5 and got["/fg_params.gain"]["type"] == "float64"
+    assert got["/fg_params.mode"]["value"] == "slow" and "type" not in got["/fg_params.mode"]
+    every = {p["name"] for p in out["all"]["parameters"]}
+    assert {"/fg_params.gain", "/fg_params.mode", "/fg_params.use_sim_time"} <= every
+    assert not any(n.startswith("/foxglove_bridge.") for n in every)  # the bridge leaves itself out
+    assert out["set"]["parameters"] == [{"name": "/fg_params.gain", "value": 2, "type": "float64"}]
+    assert out["node_after_set"] == 2.0 and isinstance(out["node_after_set"], float)
+    assert {"name": "/fg_params.gain", "value": 3.25, "type": "float64"} in out["update"]["parameters"]
+    assert out["mesh"] == (0, ASCII_STL)
+    assert out["escape"][0] == 1 and b"not allowed" in out["escape"][1]
+    assert out["unknown"][0] == 1 and b"no_such_package" in out["unknown"][1]
+    assert out["not_listed"][0] == 1 and b"not allowed" in out["not_listed"][1]
     procs.stop(bridge)
     node.close()

@@ -1,0 +1,163 @@
+"""The parameters capability of `foxglove-bridge`: the nodes' ROS parameters as Foxglove parameters, read,
+set and watched through each node's parameter services, as foxglove_bridge's ParameterInterface does.
+
+A Foxglove parameter is named `<node fqn>.<parameter>` (`/controller_manager.update_rate`; the node name
+ends at the first dot, since node names have none). Asking for no names lists every parameter of every node
+that serves list_parameters and get_parameters (the bridge's own aside). Doubles carry the `float64` type
+hint (and double arrays `float64_array`), so 1.0 stays a double when the app sends it back. Watched
+parameters are updated from `/parameter_events` (its changed parameters), only while a client watches.
+"""
+
+from __future__ import annotations
+
+import threading
+from collections.abc import Callable, Iterable
+from typing import Any
+
+import foxglove
+from foxglove import ParameterType
+
+from diffctl.bus import parameter_msgs
+from diffctl.bus.parameters import type_of
+
+RCL = "rcl_interfaces/srv/"
+EVENTS = "/parameter_events"
+TIMEOUT_S = 5.0
+
+
+def split_name(full: str) -> tuple[str, str]:
+    """'/ns/node.a.b' → ('/ns/node', 'a.b')."""
+    node, _, param = full.partition(".")
+    return node, param
+
+
+def to_foxglove(name: str, value: Any) -> foxglove.Parameter:
+    kind = type_of(value) if value is not None else "not_set"
+    if kind == "not_set":
+        return foxglove.Parameter(name)
+    if kind == "double":
+        return foxglove.Parameter(name, value=float(value), type=ParameterType.Float64)
+    if kind == "double_array":
+        return foxglove.Parameter(name, value=[float(v) for v in value], type=ParameterType.Float64Array)
+    if kind == "byte_array":
+        return foxglove.Parameter(name, value=bytes(value), type=ParameterType.ByteArray)
+    return foxglove.Parameter(name, value=value)
+
+
+def from_foxglove(p: foxglove.Parameter) -> Any:
+    """The Python value a ROS node gets (None: unset), honouring the float hints."""
+    value = p.get_value()
+    if p.type == ParameterType.Float64 and isinstance(value, int | float) and not isinstance(value, bool):
+        return float(value)
+    if p.type == ParameterType.Float64Array and isinstance(value, list):
+        return [float(v) for v in value]
+    if p.type == ParameterType.ByteArray and isinstance(value, str | bytes):
+        return value if isinstance(value, bytes) else value.encode()
+    return value
+
+
+class ParameterBridge:
+    def __init__(self, node: Any, say: Callable[[str], None] = print) -> None:
+        self.node = node
+        self.say = say
+        self.server: Any = None
+        self._clients: dict[tuple[str, str], Any] = {}
+        self._watched: set[str] = set()
+        self._events: Any = None
+        self._lock = threading.Lock()
+
+    # ------------------------------------------------------------------ calls to one node
+    def _call(self, node_fqn: str, short: str, srv: str, request: dict[str, Any]) -> Any:
+        with self._lock:
+            client = self._clients.get((node_fqn, short))
+            if client is None:
+                client = self._clients[(node_fqn, short)] = self.node.create_client(f"{node_fqn}/{short}", RCL + srv)
+        if not client.wait_for_service(TIMEOUT_S):
+            raise RuntimeError(f"node {node_fqn} offers no {short} service")
+        return client.call(request, timeout=TIMEOUT_S)
+
+    def _parameter_nodes(self) -> list[str]:
+        services = self.node.graph.services()
+        return [n for n in self.node.graph.nodes() if n != self.node.fqn
+                and RCL + "ListParameters" in services.get(f"{n}/list_parameters", ())
+                and RCL + "GetParameters" in services.get(f"{n}/get_parameters", ())]
+
+    # ------------------------------------------------------------------ getParameters / setParameters
+    def get(self, names: Iterable[str]) -> list[foxglove.Parameter]:
+        wanted: dict[str, list[str]] = {}
+        names = list(names)
+        if names:
+            for full in names:
+                node, param = split_name(full)
+                wanted.setdefault(node, []).append(param)
+        else:
+            for node in self._parameter_nodes():
+                wanted[node] = []
+        out: list[foxglove.Parameter] = []
+        for node, params in wanted.items():
+            try:
+                if not params:
+                    params = sorted(str(n) for n in
+                                    self._call(node, "list_parameters", "ListParameters", {}).result.names)
+                values = self._call(node, "get_parameters", "GetParameters", {"names": params}).values
+            except Exception as e:  # one node that does not answer must not hide the others
+                self.say(f"parameters of {node} could not be read: {e}")
+                continue
+            # A node leaves out names it never declared (rclcpp answers them with no values at all).
+            pairs = zip(params, values, strict=False)
+            out += [to_foxglove(f"{node}.{p}", parameter_msgs.from_value(v)) for p, v in pairs]
+        return out
+
+    def set(self, parameters: list[foxglove.Parameter]) -> list[foxglove.Parameter]:
+        """Set each on its node; returns the values the nodes hold afterwards (a refused one keeps its value)."""
+        by_node: dict[str, list[dict[str, Any]]] = {}
+        for p in parameters:
+            node, param = split_name(p.name)
+            by_node.setdefault(node, []).append({"name": param, "value": parameter_msgs.to_value(from_foxglove(p))})
+        for node, params in by_node.items():
+            try:
+                results = self._call(node, "set_parameters", "SetParameters", {"parameters": params}).results
+            except Exception as e:
+                self._status(f"cannot set parameters of {node}: {e}")
+                continue
+            for p, r in zip(params, results, strict=False):
+                if not r.successful:
+                    self._status(f"{node}.{p['name']} was not set: {r.reason or 'refused'}")
+        return self.get([p.name for p in parameters])
+
+    def _status(self, text: str) -> None:
+        self.say(text)
+        if self.server is not None:
+            self.server.publish_status(text, foxglove.StatusLevel.Warning)
+
+    # ------------------------------------------------------------------ subscribeParameterUpdates
+    def subscribe(self, names: list[str]) -> None:
+        with self._lock:
+            self._watched.update(names)
+            if self._events is None and self._watched:
+                self._events = self.node.create_subscription(EVENTS, "rcl_interfaces/msg/ParameterEvent",
+                                                             self._on_event, depth=1000)
+
+    def unsubscribe(self, names: list[str]) -> None:
+        with self._lock:
+            self._watched.difference_update(names)
+            events, self._events = (self._events, None) if not self._watched else (None, self._events)
+        if events is not None:
+            self.node.destroy_subscription(events)
+
+    def _on_event(self, event: Any) -> None:
+        with self._lock:
+            changed = [to_foxglove(f"{event.node}.{p.name}", parameter_msgs.from_value(p.value))
+                       for p in event.changed_parameters if f"{event.node}.{p.name}" in self._watched]
+        if changed and self.server is not None:
+            self.server.publish_parameter_values(changed)
+
+    def close(self) -> None:
+        with self._lock:
+            clients = list(self._clients.values())
+            self._clients.clear()
+            events, self._events = self._events, None
+        if events is not None:
+            self.node.destroy_subscription(events)
+        for c in clients:
+            c.close()
