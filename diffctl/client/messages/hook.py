@@ -48,14 +48,18 @@ def _workspace_root() -> str | None:
         here = parent
 
 
-def _in_workspace(name: str) -> bool:
+def in_workspace(name: str) -> bool:
     root = _workspace_root()
     if root is None:
         return False
     dirs = _workspace_dirs.get(root)
     if dirs is None:
         found = set()
-        for dirpath, dirnames, filenames in os.walk(os.path.join(root, "src"), followlinks=True):
+        # A `src` that is no workspace (say ~/src full of other repositories) is walked once, and not far.
+        for visited, (dirpath, dirnames, filenames) in enumerate(
+                os.walk(os.path.join(root, "src"), followlinks=True)):
+            if visited > 20000:
+                break
             if "package.xml" in filenames:
                 found.add(os.path.basename(dirpath))
                 try:
@@ -74,7 +78,7 @@ def _in_workspace(name: str) -> bool:
     return name in dirs
 
 
-def _in_install_trees(name: str) -> bool:
+def in_install_trees(name: str) -> bool:
     for var in ("AMENT_PREFIX_PATH", "COLCON_PREFIX_PATH"):
         for prefix in os.environ.get(var, "").split(os.pathsep):
             if prefix and any(os.path.isdir(os.path.join(prefix, "share", name, k)) for k in _KINDS):
@@ -89,7 +93,7 @@ def may_be_interface_package(name: str) -> bool:
         return True
     if name in sys.stdlib_module_names or name.startswith("_"):
         return False
-    return _in_install_trees(name) or _in_workspace(name)
+    return in_install_trees(name) or in_workspace(name)
 
 
 class InterfaceFinder:

@@ -8,7 +8,6 @@ of the same package. Errors name the file, line and field, with what would be va
 
 from __future__ import annotations
 
-import ast
 import re
 from dataclasses import dataclass, field
 from typing import Any
@@ -99,6 +98,8 @@ def parse_type(text: str, pkg: str, where: dict[str, Any]) -> tuple:
 
 def _unquote(text: str) -> str:
     if len(text) >= 2 and text[0] == text[-1] and text[0] in "\"'":
+        import ast  # only quoted default values need it
+
         try:
             return str(ast.literal_eval(text))
         except (ValueError, SyntaxError):

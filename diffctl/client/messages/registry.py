@@ -94,9 +94,19 @@ def package(name: str) -> InterfacePackage | None:
     with _lock:
         if name in _packages:
             return _packages[name]
-        from diffctl.client.messages import workspace
+        from diffctl.client.messages import hook
 
-        found = workspace.interface_package(name) or _install_tree_package(name) or diffctl_packages().get(name)
+        # The hook's standard-library checks first: most processes have no workspace package or install tree
+        # of that name, and then never import the workspace reader (lxml, the CMake reader, …).
+        found = None
+        if hook.in_workspace(name):
+            from diffctl.client.messages import workspace
+
+            found = workspace.interface_package(name)
+        if found is None and hook.in_install_trees(name):
+            found = _install_tree_package(name)
+        if found is None:
+            found = diffctl_packages().get(name)
         _packages[name] = found
         if found is not None:
             _load(found)
