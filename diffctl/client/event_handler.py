@@ -149,15 +149,16 @@ def _create(cbs: Any, callback_group: Any, endpoint: Any, topic_name: str, *, is
     callback = cbs.incompatible_qos
     if callback is None and cbs.use_default_callbacks:
         if is_publisher:
-            def callback(event: Any) -> None:
+            def _default_incompatible_qos_callback(event: Any) -> None:
                 logger.warn(f"New subscription discovered on topic '{topic_name}', requesting incompatible QoS. "
                             "No messages will be sent to it. "
                             f"Last incompatible policy: {qos_policy_name_from_kind(event.last_policy_kind)}")
         else:
-            def callback(event: Any) -> None:
+            def _default_incompatible_qos_callback(event: Any) -> None:
                 logger.warn(f"New publisher discovered on topic '{topic_name}', offering incompatible QoS. "
                             "No messages will be received from it. "
                             f"Last incompatible policy: {qos_policy_name_from_kind(event.last_policy_kind)}")
+        callback = _default_incompatible_qos_callback
     handlers: list[EventHandler] = []
     if callback is not None:
         h = EventHandler(callback_group=callback_group, callback=callback)

@@ -232,8 +232,11 @@ class RcutilsLogger:
                     return False
                 ctx["logged_once"] = True
         if not isinstance(message, str):
-            raise TypeError(f"rclpy_logging_rcutils_log(): incompatible function arguments: message must be str, "
-                            f"not {type(message).__name__}")
+            raise TypeError(
+                "rclpy_logging_rcutils_log(): incompatible function arguments. The following argument types are "
+                "supported:\n    1. (arg0: typing.SupportsInt, arg1: str, arg2: str, arg3: str, arg4: str, "
+                "arg5: typing.SupportsInt) -> None\n\n"
+                f"Invoked with: {severity!r}, {name!r}, {message!r}, {function!r}, {file!r}, {line}")
         rcutils_log(severity, name, message, function, file, line)
         return True
 

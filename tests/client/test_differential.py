@@ -26,3 +26,11 @@ def test_qos_agrees(router: str) -> None:
     warnings = sorted(set(line for line in oracle.log_lines() if line.startswith("[WARN]")))
     assert warnings, oracle.stderr
     assert sorted(set(line for line in ours.log_lines() if line.startswith("[WARN]"))) == warnings
+
+
+def test_topics_graph_logging_agree(router: str) -> None:
+    assert_same(run_oracle("topics_misc.py"), run_ours("topics_misc.py", router))
+
+
+def test_sim_time_agrees(router: str) -> None:
+    assert_same(run_oracle("sim_time.py"), run_ours("sim_time.py", router))

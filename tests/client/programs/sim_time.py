@@ -1,0 +1,57 @@
+# use_sim_time: ROS time from /clock (zero before the first message), timers on it, Time/Duration arithmetic.
+import itertools
+import json
+import time
+
+import rclpy
+from rclpy.clock import Clock, ClockType
+from rclpy.duration import Duration
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.node import Node
+from rclpy.parameter import Parameter
+from rclpy.qos import QoSProfile, ReliabilityPolicy
+from rclpy.time import Time
+from rosgraph_msgs.msg import Clock as ClockMsg
+
+out = []
+rclpy.init()
+sim = Node("sim_demo", parameter_overrides=[Parameter("use_sim_time", value=True)])
+source = Node("clock_source")
+ex = SingleThreadedExecutor()
+ex.add_node(sim)
+ex.add_node(source)
+out.append(["before any clock", [sim.get_clock().now().nanoseconds, sim.get_clock().ros_time_is_active,
+                                 sim.get_clock().clock_type.name]])
+clock_pub = source.create_publisher(ClockMsg, "/clock", QoSProfile(depth=1, reliability=ReliabilityPolicy.BEST_EFFORT))
+fired = []
+sim.create_timer(1.0, lambda: fired.append(sim.get_clock().now().nanoseconds // 10**8))
+sim_seconds = [100.0]
+
+
+def tick():
+    sim_seconds[0] += 0.1
+    clock_pub.publish(ClockMsg(clock=Time(seconds=sim_seconds[0]).to_msg()))
+
+
+source.create_timer(0.01, tick, clock=Clock(clock_type=ClockType.STEADY_TIME))
+end = time.monotonic() + 3.0
+while time.monotonic() < end and len(fired) < 3:
+    ex.spin_once(timeout_sec=0.05)
+now = sim.get_clock().now()
+out.append(["follows /clock", [now.nanoseconds >= 100 * 10**9, now.clock_type.name]])
+out.append(["sim timer fired on sim time", [len(fired) >= 3, all(b - a == 10 for a, b in itertools.pairwise(fired))]])
+sim.set_parameters([Parameter("use_sim_time", value=False)])
+wall = sim.get_clock().now().nanoseconds
+out.append(["back to wall time", [abs(wall - time.time_ns()) < 10**9, sim.get_clock().ros_time_is_active]])
+t = Time(seconds=5, nanoseconds=5, clock_type=ClockType.ROS_TIME)
+out.append(["time math", [repr(t + Duration(seconds=1)), repr(t - Time(seconds=1, clock_type=ClockType.ROS_TIME)),
+                          repr(Time.from_msg(t.to_msg())), str(Duration(seconds=2.5)), t.seconds_nanoseconds()]])
+try:
+    Time(seconds=1) - Duration(seconds=2)
+    out.append(["negative time", "no error"])
+except ValueError as e:
+    out.append(["negative time", str(e)])
+sim.destroy_node()
+source.destroy_node()
+rclpy.shutdown()
+print(json.dumps(out))

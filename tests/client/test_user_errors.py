@@ -1,0 +1,48 @@
+"""What a user sees when their node fails: a callback's exception out of spin with their own file and line,
+exactly as under the real rclpy; a node started with no router says so in one line and exits 2."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+from bench.ports import free_port
+from tests.client.differential import PROGRAMS, REPO
+from tests.oracle import jazzy_venv
+
+
+def _user_frames(stderr: str) -> list[str]:
+    """The traceback's last line and the frames in the user's program (paths differ between the runs)."""
+    lines = stderr.splitlines()
+    frames = [ln.strip() for i, ln in enumerate(lines) if (ln.strip().startswith("File") and "raises.py" in ln)
+              or (i > 0 and "raises.py" in lines[i - 1] and ln.startswith("    ") and not ln.strip().startswith("^"))]
+    return [f.split(", ", 1)[-1] for f in frames] + lines[-1:]
+
+
+def test_callback_exception_propagates_with_the_users_traceback(router: str) -> None:
+    ours = subprocess.run([sys.executable, str(PROGRAMS / "raises.py")], capture_output=True, text=True, timeout=30,
+                          cwd=REPO)
+    assert ours.returncode == 1
+    assert ours.stderr.count("Traceback (most recent call last)") == 1
+    assert ours.stderr.strip().splitlines()[-1] == "KeyError: 'missing'"
+    # The real rclpy, the program run from a file of the same name: the same frames of the user's code.
+    real_dir = jazzy_venv.VENV.parent / "test-output" / "client_raises"
+    real_dir.mkdir(parents=True, exist_ok=True)
+    program = real_dir / "raises.py"
+    program.write_text((PROGRAMS / "raises.py").read_text())
+    real = subprocess.run([str(jazzy_venv.python()), "-I", str(program)], env=jazzy_venv.env(), capture_output=True,
+                          text=True, timeout=60)
+    assert real.returncode == 1
+    assert _user_frames(ours.stderr) == _user_frames(real.stderr)
+    assert any("line 8, in broken_callback" in f for f in _user_frames(ours.stderr))
+
+
+def test_no_router_is_one_line_and_exit_2() -> None:
+    endpoint = f"tcp/127.0.0.1:{free_port()}"  # nothing listens there
+    p = subprocess.run([sys.executable, str(PROGRAMS / "raises.py")], capture_output=True, text=True, timeout=30,
+                       env={**os.environ, "DIFFCTL_ROUTER": endpoint}, cwd=REPO)
+    assert p.returncode == 2
+    lines = p.stderr.strip().splitlines()
+    assert len(lines) == 1, p.stderr
+    assert endpoint in lines[0] and "diffctl router" in lines[0]
