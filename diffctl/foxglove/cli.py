@@ -72,7 +72,7 @@ def foxglove_bridge(port: int | None, address: str | None, bag_path: Path | None
     services = ServiceBridge(node, say=info) if "services" in caps else None
     params = ParameterBridge(node, say=info) if caps & {"parameters", "parametersSubscribe"} else None
     server = fg.start(address, port, live=live, context=context, sim_time=sim_time, services=services,
-                      params=params, assets=assets)
+                      params=params, assets=assets, client_publish="clientPublish" in caps)
     if sim_time:
         node.create_subscription("/clock", "rosgraph_msgs/msg/Clock",
                                  lambda m: server.broadcast_time(types.time_ns(m.clock)))

@@ -102,7 +102,8 @@ class _Listener(ServerListener):
 
 def start(host: str, port: int, *, live: LiveBridge | None = None, playback: BagPlayback | None = None,
           context: foxglove.Context, sim_time: bool = False, services: ServiceBridge | None = None,
-          params: ParameterBridge | None = None, assets: AssetResolver | None = None) -> Any:
+          params: ParameterBridge | None = None, assets: AssetResolver | None = None,
+          client_publish: bool = True) -> Any:
     """The running server (`.port` is the bound port). `sim_time`: the server announces its own time (from
     /clock), as foxglove_bridge does under use_sim_time, so the app's timeline follows the simulation.
     `services`, `params`, `assets`: the capabilities of the same names (live graph only)."""
@@ -112,7 +113,8 @@ def start(host: str, port: int, *, live: LiveBridge | None = None, playback: Bag
         caps = [Capability.Time]
         kw["playback_time_range"] = playback.time_range
     else:
-        caps = [*([Capability.ClientPublish] if live is not None else []), *([Capability.Time] if sim_time else []),
+        caps = [*([Capability.ClientPublish] if live is not None and client_publish else []),
+                *([Capability.Time] if sim_time else []),
                 *([Capability.Services] if services is not None else []),
                 *([Capability.Parameters] if params is not None else [])]
         if assets is not None:

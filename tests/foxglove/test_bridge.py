@@ -141,6 +141,12 @@ def test_non_loopback_address_is_refused() -> None:
     assert "loopback" in one_error_line(run("foxglove-bridge", "--address", "0.0.0.0", "--port", "0"))
 
 
+def test_an_unknown_capability_is_refused_with_the_valid_ones() -> None:
+    args = ("--port", "0", "--ros-args", "-p", "capabilities:=[services,sevrices]")
+    line = one_error_line(run("foxglove-bridge", *args))
+    assert "'sevrices' is not a foxglove_bridge capability" in line
+
+
 def test_sim_time_is_the_servers_time(router: str, procs: Any) -> None:
     node = Node("fg_clock")
     clock = node.create_publisher("/clock", "rosgraph_msgs/msg/Clock")
