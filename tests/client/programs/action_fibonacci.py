@@ -84,6 +84,9 @@ def main():
     print("accepted", handle.accepted, type(handle).__name__)
     result = wait(handle.get_result_async())
     print("result", result.status, list(result.result.sequence), type(result).__name__)
+    end = time.time() + 5  # feedback and result travel separately: the last feedback may trail the result
+    while len(feedback) < 4 and time.time() < end:
+        time.sleep(0.01)
     print("feedback", feedback)
     print("status after result", handle.status)
 

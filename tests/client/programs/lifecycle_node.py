@@ -63,6 +63,12 @@ def settle(seconds=0.3):
     time.sleep(seconds)
 
 
+def until(condition, timeout=10.0):
+    end = time.time() + timeout
+    while not condition() and time.time() < end:
+        time.sleep(0.01)
+
+
 def main():
     rclpy.init()
     talker, manager = Talker(), Node("lc_manager")
@@ -109,7 +115,7 @@ def main():
     print("activate by label", change(label="activate"), state())
     say("active 1")
     say("active 2")
-    settle()
+    until(lambda: len(heard) >= 2)
     print("deactivate", talker.trigger_deactivate(), state())
     say("inactive again")
     settle()
@@ -121,7 +127,7 @@ def main():
     print("bad label", change(label="fly"), state())
     print("cleanup", change(Transition.TRANSITION_CLEANUP), state())
     print("shutdown", talker.trigger_shutdown(), state())
-    settle()
+    until(lambda: len(events) >= 12)
     print("events", [(e.timestamp, e.transition.id, e.start_state.label, e.goal_state.label) for e in events])
     print("state consts", State.PRIMARY_STATE_ACTIVE, Transition.TRANSITION_ON_ERROR_FAILURE,
           int(TransitionCallbackReturn.ERROR))
