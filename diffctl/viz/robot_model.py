@@ -7,6 +7,7 @@ link or frame TF does know, so the car is drawn whole even before every joint st
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from diffctl.description import model as sdf
@@ -32,6 +33,8 @@ class RobotModel:
     shapes: tuple[LinkShape, ...]
     anchors: dict[str, Transform]  # link and frame names → pose in the model frame
     skipped: tuple[str, ...] = ()  # visuals that have no top-down outline (meshes, planes)
+    # joints a slider can move, as joint_state_publisher_gui offers them: (name, lower, upper) in rad or m
+    movable: tuple[tuple[str, float, float], ...] = ()
 
     @property
     def links(self) -> list[str]:
@@ -92,7 +95,20 @@ def from_model(model: sdf.Model) -> RobotModel:
             shapes.append(LinkShape(link.name, prim, _transform(v.pose_link), v.rgba or DEFAULT_RGBA))
     for fr in model.frames:
         anchors.setdefault(fr.name, _transform(fr.pose_model))
-    return RobotModel(model.name, tuple(shapes), anchors, tuple(skipped))
+    return RobotModel(model.name, tuple(shapes), anchors, tuple(skipped), _movable(model))
+
+
+def _movable(model: sdf.Model) -> tuple[tuple[str, float, float], ...]:
+    """Non-fixed, non-mimic joints with their slider range (joint_state_publisher_gui: ±π when unlimited)."""
+    out = []
+    for j in model.joints:
+        if j.type not in ("revolute", "continuous", "prismatic") or j.mimic is not None:
+            continue
+        lower, upper = j.limits.lower, j.limits.upper
+        if j.type == "continuous" or not (math.isfinite(lower) and math.isfinite(upper)) or upper - lower > 1e6:
+            lower, upper = -math.pi, math.pi
+        out.append((j.name, lower, upper))
+    return tuple(out)
 
 
 def parse_description(text: str, source: str = "/robot_description") -> RobotModel:

@@ -258,6 +258,7 @@ class Scene:
                 "name": r.name if r else None,
                 "links": r.links if r else [],
                 "skipped": list(r.skipped) if r else [],
+                "joints": [{"name": n, "lower": lo, "upper": hi} for n, lo, hi in r.movable] if r else [],
                 "error": self.robot_error,
                 "robots": [
                     {"topic": t, "prefix": e.prefix, "name": e.model.name if e.model else None, "error": e.error}

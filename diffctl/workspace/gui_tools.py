@@ -2,8 +2,8 @@
 
 A launch file that starts `rqt_graph` or `joint_state_publisher_gui` next to the robot must still bring the
 robot up. Tools with a counterpart start it (joint_state_publisher_gui → diffctl's joint_state_publisher,
-which publishes /joint_states as the GUI does before its sliders move, and whose `source_list` the
-visualizer's publisher panel can feed; rqt_robot_steering → the visualizer's teleop panel; rqt_topic → its
+which publishes /joint_states as the GUI does, its positions set by the visualizer's Joint Sliders panel
+through the `source_list` topic /joint_sliders; rqt_robot_steering → the visualizer's teleop panel; rqt_topic → its
 topics panel). Others are replaced by a stand-in process that says once what was skipped and then idles
 until the launch ends, so `OnProcessExit(target_action=rqt…, on_exit=Shutdown())` does not fire early.
 """
@@ -17,9 +17,9 @@ import sys
 # (package, executable) → (diffctl subcommand and arguments, what the user gets instead)
 MAPPED: dict[tuple[str, str], tuple[tuple[str, ...], str]] = {
     ("joint_state_publisher_gui", "joint_state_publisher_gui"): (
-        ("joint-state-publisher",),
-        "diffctl's joint_state_publisher publishes /joint_states (the sliders' start positions); set positions "
-        "from the visualizer's publisher panel on a source_list topic",
+        ("joint-state-publisher", "--ros-args", "-p", "source_list:=[/joint_sliders]"),
+        "diffctl's joint_state_publisher publishes /joint_states from the sliders of the visualizer's "
+        "Joint Sliders panel (topic /joint_sliders)",
     ),
     ("rqt_robot_steering", "rqt_robot_steering"): (
         ("viz", "--port", "0"),

@@ -54,6 +54,52 @@
     if ($("panel-camera").open) V.send({ op: "image", topic: sel.value });
   });
 
+  // ---------------------------------------------------------------- joint sliders (joint_state_publisher_gui)
+  const SLIDER_TOPIC = "/joint_sliders";
+  let sliderTimer = null;
+  function sliderValues() {
+    const inputs = Array.from(document.querySelectorAll("#sliders input"));
+    // rounded to 1e-6: the body is read as YAML, where an exponent without a dot ("5e-16") is a string
+    return { name: inputs.map(i => i.dataset.joint), position: inputs.map(i => Math.round(Number(i.value) * 1e6) / 1e6) };
+  }
+  function sendSliders() {
+    sliderTimer = null;
+    const v = sliderValues();
+    if (!v.name.length) return;
+    V.send({ op: "publish", id: "sliders", topic: SLIDER_TOPIC, type: "sensor_msgs/msg/JointState",
+             body: JSON.stringify({ header: "auto", name: v.name, position: v.position }), rate: 0 });
+  }
+  function slidersChanged() { if (!sliderTimer) sliderTimer = setTimeout(sendSliders, 100); }
+  V.on("robot", (m) => {
+    const box = $("sliders");
+    const joints = m.joints || [];
+    const have = Array.from(box.querySelectorAll("input")).map(i => i.dataset.joint).join(",");
+    if (have === joints.map(j => j.name).join(",")) return;
+    box.replaceChildren();
+    for (const j of joints) {
+      const row = document.createElement("div");
+      row.className = "row";
+      const label = document.createElement("label");
+      const input = document.createElement("input");
+      const value = document.createElement("span");
+      input.type = "range"; input.min = j.lower; input.max = j.upper; input.step = (j.upper - j.lower) / 1000;
+      input.value = Math.min(Math.max(0, j.lower), j.upper);  // as the GUI starts: 0 within the limits
+      input.dataset.joint = j.name; input.dataset.center = input.value;
+      value.textContent = Number(input.value).toFixed(3);
+      input.addEventListener("input", () => { value.textContent = Number(input.value).toFixed(3); slidersChanged(); });
+      label.append(j.name + " ", input, " ", value);
+      row.append(label);
+      box.append(row);
+    }
+  });
+  $("sliders-center").addEventListener("click", () => {
+    for (const i of document.querySelectorAll("#sliders input")) {
+      i.value = i.dataset.center;
+      i.dispatchEvent(new Event("input"));
+    }
+  });
+  V.on("error", (m) => { if (m.op === "publish" && m.id === "sliders") $("sliders-status").textContent = m.text; });
+
   // ---------------------------------------------------------------- tables
   V.on("status", (m) => {
     if (!$("panel-joints").open) return;
