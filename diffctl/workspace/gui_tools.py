@@ -11,13 +11,14 @@ until the launch ends, so `OnProcessExit(target_action=rqt…, on_exit=Shutdown(
 from __future__ import annotations
 
 import os
+import shlex
 import signal
 import sys
 
 # (package, executable) → (diffctl subcommand and arguments, what the user gets instead)
 MAPPED: dict[tuple[str, str], tuple[tuple[str, ...], str]] = {
     ("joint_state_publisher_gui", "joint_state_publisher_gui"): (
-        ("joint-state-publisher", "--ros-args", "-p", "source_list:=[/joint_sliders]"),
+        ("joint-state-publisher", "--ros-args", "-p", "source_list:=[/joint_sliders]", "--"),
         "diffctl's joint_state_publisher publishes /joint_states from the sliders of the visualizer's "
         "Joint Sliders panel (topic /joint_sliders)",
     ),
@@ -40,22 +41,31 @@ def argv_for(package: str, executable: str) -> list[str] | None:
     mapped = MAPPED.get((package, executable))
     if mapped is not None:
         sub, note = mapped
-        # `--` ends the stand-in's own words: what the launch appends (arguments, --ros-args …) follows it
-        return [sys.executable, "-m", "diffctl.workspace.gui_tools", "--run", package, executable, note, *sub, "--"]
+        # the counterpart's command is one word: what the launch appends (arguments, --ros-args …) follows it
+        return [
+            sys.executable,
+            "-m",
+            "diffctl.workspace.gui_tools",
+            "--run",
+            package,
+            executable,
+            note,
+            shlex.join(sub),
+        ]
     if is_gui_only(package):
         return [sys.executable, "-m", "diffctl.workspace.gui_tools", "--skip", package, executable]
     return None
 
 
 def _stand_in(package: str, executable: str) -> int:
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(sig, lambda *_: sys.exit(0))
     print(
         f"[WARN] {package}/{executable} is a GUI-only tool diffctl does not provide; skipped "
         "(the rest of the launch runs; `diffctl viz` shows the robot, TF, topics and a teleop panel)",
         file=sys.stderr,
         flush=True,
     )
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(sig, lambda *_: sys.exit(0))
     while True:
         signal.pause()
 
@@ -63,13 +73,12 @@ def _stand_in(package: str, executable: str) -> int:
 def main(argv: list[str]) -> int:
     if argv[:1] == ["--skip"] and len(argv) >= 3:
         return _stand_in(argv[1], argv[2])
-    if argv[:1] == ["--run"] and "--" in argv and len(argv) >= 6:
-        end = argv.index("--")
-        package, executable, note, *sub = argv[1:end]
+    if argv[:1] == ["--run"] and len(argv) >= 5:
+        package, executable, note, sub = argv[1:5]
         print(f"[INFO] {package}/{executable} runs as diffctl's counterpart: {note}", file=sys.stderr, flush=True)
         # exec: the process the launch watches becomes the counterpart itself
-        os.execv(sys.executable, [sys.executable, "-m", "diffctl", *sub, *argv[end + 1 :]])
-    print("usage: python -m diffctl.workspace.gui_tools --skip PKG EXE | --run PKG EXE NOTE SUBCOMMAND…")
+        os.execv(sys.executable, [sys.executable, "-m", "diffctl", *shlex.split(sub), *argv[5:]])
+    print("usage: python -m diffctl.workspace.gui_tools --skip PKG EXE | --run PKG EXE NOTE 'SUBCOMMAND …' [ARGS…]")
     return 2
 
 

@@ -18,7 +18,7 @@ pytestmark = [pytest.mark.browser, pytest.mark.slow]
 
 
 def test_joint_sliders_publish_what_joint_state_publisher_gui_would(fake_robot, start_viz, browser) -> None:  # noqa: F811
-    assert "source_list:=[/joint_sliders]" in argv_for("joint_state_publisher_gui", "joint_state_publisher_gui")
+    assert "source_list:=[/joint_sliders]" in argv_for("joint_state_publisher_gui", "joint_state_publisher_gui")[-1]
     viz = start_viz()
     node = Node("sliders_browser_test")
     sliders = Recorder(node, "/joint_sliders", "sensor_msgs/msg/JointState")
