@@ -6,6 +6,7 @@ oracle venv), and usable on the bus."""
 from __future__ import annotations
 
 import json
+import shutil
 import time
 from pathlib import Path
 
@@ -121,14 +122,23 @@ obs('action', lambda: (Drive.Goal(), Drive.Impl.FeedbackMessage(), Drive.Impl.Ge
     assert ours["array"][1] == "robot_interfaces.msg.ObstacleArray(obstacles=[], ids=[1, 2], flags=[False, False])"
 
 
-def test_shipped_example_interfaces_hash_as_rosidl(tmp_path: Path) -> None:
+def test_shipped_interfaces_hash_as_rosidl(tmp_path: Path) -> None:
+    """The interface texts diffctl ships that no Jazzy wheel here has (example_interfaces; tf2_msgs' service and
+    action, whose messages come from the graph tests' upstream texts) hashed by rosidl itself."""
     from diffctl.bus import types
     from diffctl.client.messages import registry
 
     src = Path(registry.JAZZY) / "example_interfaces"
     real = rosidl_hashes(src, "example_interfaces")
     assert "example_interfaces/action/Fibonacci_SendGoal" in real
+    tf2 = tmp_path / "tf2_msgs"
+    shutil.copytree(Path(registry.JAZZY) / "tf2_msgs", tf2)
+    shutil.copytree(Path(__file__).parents[2] / "graph" / "upstream_interfaces" / "tf2_msgs" / "msg", tf2 / "msg")
+    tf2_real = rosidl_hashes(tf2, "tf2_msgs")
+    assert "tf2_msgs/action/LookupTransform_FeedbackMessage" in tf2_real and "tf2_msgs/srv/FrameGraph" in tf2_real
+    real |= tf2_real
     registry.package("example_interfaces")
+    registry.package("tf2_msgs")
     assert {n: types.type_hash(n) for n in real} == real
 
 
