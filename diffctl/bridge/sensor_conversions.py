@@ -12,6 +12,7 @@ it with a warning instead of publishing something wrong.
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -389,4 +390,51 @@ def fluid_pressure_to_gz(msg: Any) -> GzDict:
         "header": header_to_gz(msg.header),
         "pressure": float(msg.fluid_pressure),
         "variance": float(msg.variance),
+    }
+
+
+# gz.msgs.BatteryState.PowerSupplyStatus names in sensor_msgs' POWER_SUPPLY_STATUS_* order (0..4).
+BATTERY_STATUSES = ("UNKNOWN", "CHARGING", "DISCHARGING", "NOT_CHARGING", "FULL")
+
+
+def battery_state_to_ros(m: GzDict) -> Any:
+    status = m.get("power_supply_status", "UNKNOWN")
+    if isinstance(status, int):
+        status = BATTERY_STATUSES[status] if 0 <= status < len(BATTERY_STATUSES) else "UNKNOWN"
+    if status not in BATTERY_STATUSES:
+        raise MessageError(f"BatteryState power_supply_status {status!r} is not one of {', '.join(BATTERY_STATUSES)}")
+    return make_msg(
+        "sensor_msgs/msg/BatteryState",
+        header=header_to_ros(m.get("header")),
+        voltage=float32_field(m, "voltage"),
+        temperature=0.0,  # the other fields keep the ROS message's defaults, as ros_gz_bridge leaves them
+        current=float32_field(m, "current"),
+        charge=float32_field(m, "charge"),
+        capacity=float32_field(m, "capacity"),
+        # ros_gz_bridge: the design capacity is not known on the gz side
+        design_capacity=math.nan,
+        percentage=float32_field(m, "percentage"),
+        power_supply_status=BATTERY_STATUSES.index(status),
+        power_supply_health=0,
+        power_supply_technology=0,
+        present=False,
+        cell_voltage=np.zeros(0, dtype=np.float32),
+        cell_temperature=np.zeros(0, dtype=np.float32),
+        location="",
+        serial_number="",
+    )
+
+
+def battery_state_to_gz(msg: Any) -> GzDict:
+    status = int(msg.power_supply_status)
+    if not 0 <= status < len(BATTERY_STATUSES):
+        raise MessageError(f"BatteryState power_supply_status {status} is not 0..{len(BATTERY_STATUSES) - 1}")
+    return {
+        "header": header_to_gz(msg.header),
+        "voltage": float(msg.voltage),
+        "current": float(msg.current),
+        "charge": float(msg.charge),
+        "capacity": float(msg.capacity),
+        "percentage": float(msg.percentage),
+        "power_supply_status": BATTERY_STATUSES[status],
     }

@@ -57,6 +57,7 @@ TYPE_PAIRS: tuple[TypePair, ...] = (
     TypePair(
         "sensor_msgs/msg/FluidPressure", "gz.msgs.FluidPressure", sc.fluid_pressure_to_ros, sc.fluid_pressure_to_gz
     ),
+    TypePair("sensor_msgs/msg/BatteryState", "gz.msgs.BatteryState", sc.battery_state_to_ros, sc.battery_state_to_gz),
     TypePair("geometry_msgs/msg/Pose", "gz.msgs.Pose", c.pose_to_ros, c.pose_to_gz),
     TypePair("geometry_msgs/msg/PoseStamped", "gz.msgs.Pose", c.pose_stamped_to_ros, c.pose_stamped_to_gz),
     TypePair("geometry_msgs/msg/PoseArray", "gz.msgs.Pose_V", g.pose_v_to_pose_array, g.pose_array_to_pose_v),

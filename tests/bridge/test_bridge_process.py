@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import yaml
 import zenoh
-from bridge_samples import GZ_SAMPLES, plain
+from bridge_samples import GZ_SAMPLES, plain, same
 
 from diffctl.bridge import type_pairs
 from diffctl.bus import Node, gz, types
@@ -77,7 +77,7 @@ def test_every_pair_both_directions(router: str, procs, tmp_path: Path) -> None:
         )
         for i, (ros_type, gz_type) in enumerate(pairs):
             pair = type_pairs.lookup(ros_type, gz_type)
-            assert types.to_dict(got_ros[i]) == types.to_dict(expected_ros[i]), ros_type
+            assert same(types.to_dict(got_ros[i]), types.to_dict(expected_ros[i])), ros_type
             assert plain(got_gz[i]) == plain(pair.convert_to_gz(expected_ros[i])), gz_type
     finally:
         node.close()
@@ -291,17 +291,17 @@ def test_unsupported_pair_is_one_line_naming_the_entry_and_the_supported_pairs(t
         "- topic_name: /clock\n  ros_type_name: rosgraph_msgs/msg/Clock\n  gz_type_name: gz.msgs.Clock\n"
         "  direction: GZ_TO_ROS\n"
         "- ros_topic_name: /battery\n  gz_topic_name: /model/robot/battery/state\n"
-        "  ros_type_name: sensor_msgs/msg/BatteryState\n  gz_type_name: gz.msgs.BatteryState\n"
+        "  ros_type_name: sensor_msgs/msg/Temperature\n  gz_type_name: gz.msgs.Double\n"
     )
     env = {**__import__("os").environ, "DIFFCTL_ROUTER": "tcp/127.0.0.1:9"}
-    for args in (["--config", str(cfg)], ["/battery@sensor_msgs/msg/BatteryState[gz.msgs.BatteryState"]):
+    for args in (["--config", str(cfg)], ["/battery@sensor_msgs/msg/Temperature[gz.msgs.Double"]):
         r = subprocess.run(
             [sys.executable, "-m", "diffctl", "bridge", *args], capture_output=True, text=True, timeout=30, env=env
         )
         assert r.returncode == 2, r.stderr
         lines = [ln for ln in r.stderr.splitlines() if ln.strip()]
         err = " ".join(r.stderr.split())
-        assert "unsupported type pair sensor_msgs/msg/BatteryState <-> gz.msgs.BatteryState" in err
+        assert "unsupported type pair sensor_msgs/msg/Temperature <-> gz.msgs.Double" in err
         assert "/battery" in err and "sensor_msgs/msg/CameraInfo<->gz.msgs.CameraInfo" in err
         assert "Traceback" not in r.stderr and len(lines) <= 2, r.stderr
 
