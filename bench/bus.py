@@ -1,10 +1,13 @@
 """Bus benchmark: TwistStamped round trip between two processes through the router, and decoded throughput.
 
 Metrics (budget): `bus_rtt_p50_us` (≤ 150), `bus_rtt_p99_us` (≤ 300), `bus_throughput_msgs_s` (≥ 100,000,
-one-way, every message deserialized by the receiver). The same harness then runs on Cyclone DDS's Python
-binding (bench/bus_dds.py, `cyclonedds_*` keys) so that both are measured in the same run, on the same load,
-and on bare zenoh-python with the same session configuration (bench/bus_zenoh.py, `zenoh_raw_rtt_*`): the
-transport's floor under the bus.
+one-way, every message deserialized by the receiver, over the window from the sender's start to the last
+message received: `bus_throughput_window_s`, `bus_flood_drain_s` of it after the sender stopped). Each ping
+carries its own stamp and only its own echo ends it; one with no echo within 1 s is counted
+(`bus_rtt_timeouts`), not dropped silently, and an echo that arrives after its timeout ends nothing. The same
+harness then runs on Cyclone DDS's Python binding (bench/bus_dds.py, `cyclonedds_*` keys) so that both are
+measured in the same run, on the same load, and on bare zenoh-python with the same session configuration
+(bench/bus_zenoh.py, `zenoh_raw_rtt_*`): the transport's floor under the bus.
 """
 
 from __future__ import annotations
@@ -17,6 +20,7 @@ import textwrap
 import threading
 import time
 
+from bench.drain import drained
 from bench.ports import free_port, wait_port
 
 BUDGET = {"bus_rtt_p50_us": ("<=", 150.0), "bus_rtt_p99_us": ("<=", 300.0),
@@ -75,18 +79,24 @@ def run() -> dict:
         assert pong.stdout.readline().strip() == "ready"
         node = Node("bench_ping")
         got = threading.Event()
-        node.create_subscription("/bench/pong", TYPE, lambda _m: got.set(), raw=True)
+        expect = [b""]
+        node.create_subscription("/bench/pong", TYPE, lambda d: got.set() if bytes(d) == expect[0] else None,
+                                 raw=True)
         pub = node.create_publisher("/bench/ping", TYPE)
         msg = types.new(TYPE, {"twist": {"linear": {"x": 0.5}}})
         while pub.subscription_count == 0:
             time.sleep(0.01)
         time.sleep(0.3)
         rtts: list[float] = []
+        timeouts = 0
         for i in range(SAMPLES + 500):
+            msg.header.stamp.sec = i  # this ping's own echo, told apart from a late one of an earlier ping
+            expect[0] = types.serialize(msg, TYPE)
             got.clear()
             t0 = time.perf_counter()
             pub.publish(msg)  # serialize + put, as a real publisher does
             if not got.wait(1.0):
+                timeouts += 1
                 continue
             if i >= 500:  # warm-up
                 rtts.append((time.perf_counter() - t0) * 1e6)
@@ -107,10 +117,11 @@ def run() -> dict:
         start_count = count[0]
         t0 = time.monotonic()
         sent_line = flood.stdout.readline().split()
-        elapsed = time.monotonic() - t0
+        t_sent = time.monotonic()
+        final, t_last = drained(lambda: count[0])
         flood.wait(10)
-        time.sleep(0.2)
-        received = count[0] - start_count
+        received = final - start_count
+        elapsed = max(t_last, t_sent) - t0
         node.close()
         from bench import bus_zenoh
 
@@ -119,7 +130,10 @@ def run() -> dict:
             "bus_rtt_p50_us": round(statistics.median(rtts), 1),
             "bus_rtt_p99_us": round(percentile(rtts, 0.99), 1),
             "bus_rtt_samples": len(rtts),
+            "bus_rtt_timeouts": timeouts,
             "bus_throughput_msgs_s": round(received / elapsed),
+            "bus_throughput_window_s": round(elapsed, 3),
+            "bus_flood_drain_s": round(max(0.0, t_last - t_sent), 3),
             # What the publisher got out; the rest was dropped (reliable keep-last 10 drops under congestion).
             "bus_flood_sent_msgs_s": round(int(sent_line[1]) / duration) if len(sent_line) == 2 else 0,
             "bus_load_avg_1min": round(os.getloadavg()[0], 2),  # the machine is shared: say how busy it was

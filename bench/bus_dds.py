@@ -29,6 +29,7 @@ from cyclonedds.topic import Topic
 from cyclonedds.util import duration
 
 from bench.bus import percentile
+from bench.drain import drained
 
 SAMPLES = 5000
 WARMUP = 500
@@ -146,10 +147,11 @@ def run() -> dict:
         procs.append(pong)
         ping_w = ep.writer("rt/bench/ping")
         got = threading.Event()
+        expect = [-1]
 
         def on_pong(r: DataReader) -> None:
-            r.take(N=100)
-            got.set()
+            if any(s.header.stamp.sec == expect[0] for s in r.take(N=100)):
+                got.set()
 
         ep.reader("rt/bench/pong", on_pong)
         if pong.stdout.readline().strip() != "ready":
@@ -157,11 +159,14 @@ def run() -> dict:
         ep.wait_matched(ping_w)
         time.sleep(0.3)
         rtts: list[float] = []
+        timeouts = 0
         for i in range(SAMPLES + WARMUP):
+            MSG.header.stamp.sec = expect[0] = i  # only this ping's own echo ends it
             got.clear()
             t0 = time.perf_counter()
             ping_w.write(MSG)  # serialize + write, as for the Zenoh row
             if not got.wait(1.0):
+                timeouts += 1
                 continue
             if i >= WARMUP:
                 rtts.append((time.perf_counter() - t0) * 1e6)
@@ -185,18 +190,20 @@ def run() -> dict:
             start_count = count[0]
         t0 = time.monotonic()
         sent_line = flood.stdout.readline().split()
-        elapsed = time.monotonic() - t0
+        t_sent = time.monotonic()
+        final, t_last = drained(lambda: count[0])
         flood.wait(10)
-        time.sleep(0.2)
-        with lock:
-            received = count[0] - start_count
+        received = final - start_count
+        elapsed = max(t_last, t_sent) - t0
         sent = int(sent_line[1]) if len(sent_line) == 2 else 0
         return {
             "cyclonedds_sent_msgs_s": round(sent / duration),
             "cyclonedds_rtt_p50_us": round(statistics.median(rtts), 1),
             "cyclonedds_rtt_p99_us": round(percentile(rtts, 0.99), 1),
             "cyclonedds_rtt_samples": len(rtts),
+            "cyclonedds_rtt_timeouts": timeouts,
             "cyclonedds_throughput_msgs_s": round(received / elapsed),
+            "cyclonedds_throughput_window_s": round(elapsed, 3),
         }
     finally:
         for p in reversed(procs):

@@ -9,9 +9,10 @@ open-loop odometry's twist reaching the commanded speed, wall time, p50/p99, at 
 control period plus transport; see `_cmd_vel_latencies`), `stack_rtf` (the simulator's real-time factor
 once the running world is switched to as-fast-as-possible — rtf 0 — with its in-simulator controller manager
 at 20 Hz while driving) and
-`stack_rtf_vs_bare` (that ÷ bare stepSimulation of bench/sim.py's bodies, measured right before and right
-after the stack, the faster of the two, so the ratio holds on a busy machine too and is never flattered by a
-slow moment),
+`stack_rtf_vs_bare` (that ÷ bare stepSimulation of the stack's own world and robot, wheels driven as the
+controller drives them, no sensors, no extra bodies — `run_bare_stack` — measured right before and right after
+the stack, the faster of the two, so the ratio holds on a busy machine too and is never flattered by a slow
+moment),
 `stack_ctrl_c_to_reaped_s` (SIGINT → the launcher has exited with every descendant reaped), `stack_rss_mb`
 (resident memory of the launcher and every descendant together, visualizer included, as the sum of
 PSS — shared pages counted once; `stack_rss_sum_mb` is the naive per-process RSS sum, for reference).
@@ -33,6 +34,7 @@ import sys
 import tempfile
 import threading
 import time
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -41,6 +43,48 @@ import psutil
 from bench.ports import free_port
 
 READY = ("diffbot_base_controller", "joint_state_broadcaster")
+REPO = Path(__file__).resolve().parent.parent
+# What `diffctl launch sim_control` runs with its defaults: its world, its robot (the description the launch
+# hands to robot_state_publisher and create, the controllers file put in place) and the controller's wheels.
+STACK_WORLD = REPO / "config" / "worlds" / "empty.world"
+STACK_ROBOT = REPO / "description" / "my_diff_car_control.sdf"
+STACK_CONTROLLERS = REPO / "config" / "diff_drive_controller.yaml"
+DRIVE_TWIST = (0.3, 0.2)  # m/s, rad/s: what the rtf phase below commands
+
+
+def run_bare_stack(sim_seconds: float) -> float:
+    """Real-time factor (wall time) of stepSimulation alone on the stack's own world and robot, spawned as
+    `create` spawns it, its wheels turning as diff_drive_controller turns them for DRIVE_TWIST: the reference
+    of `stack_rtf_vs_bare` (nothing in it the stack does not have, nothing of the stack's work but physics)."""
+    import yaml
+
+    from diffctl.description.sdf_loader import load_world, parse_model
+    from diffctl.sim.plugins.diff_drive_math import wheel_speeds_rad_s
+    from diffctl.sim.world import PhysicsWorld
+
+    ctl = yaml.safe_load(STACK_CONTROLLERS.read_text())["diffbot_base_controller"]["ros__parameters"]
+    text = STACK_ROBOT.read_text().replace("PARAMETERS_CONFIG_FILE_PLACEHOLDER", str(STACK_CONTROLLERS))
+    world = load_world(STACK_WORLD)
+    robot = parse_model(text, source=str(STACK_ROBOT), name="robot", base_dir=STACK_ROBOT.parent)
+    pw = PhysicsWorld(world.physics)
+    try:
+        for m in world.models:
+            pw.add_model(m)
+        car = pw.add_model(robot)
+        separation = ctl["wheel_separation"] * ctl.get("wheel_separation_multiplier", 1.0)
+        wl, wr = wheel_speeds_rad_s(*DRIVE_TWIST, separation, ctl["wheel_radius"])
+        for name in ctl["left_wheel_names"]:
+            car.set_joint_velocity(car.joint(name), wl)
+        for name in ctl["right_wheel_names"]:
+            car.set_joint_velocity(car.joint(name), wr)
+        step = pw.step
+        n = round(sim_seconds / pw.step_s)
+        t0 = time.perf_counter()
+        for _ in range(n):
+            step()
+        return sim_seconds / (time.perf_counter() - t0)
+    finally:
+        pw.close()
 
 
 def _tree_memory_mb(pid: int) -> tuple[float, float]:
@@ -103,13 +147,12 @@ def _cmd_vel_latencies(
 
 
 def run(*, startup_only: bool = False) -> dict:
-    from bench.sim import run_bare
     from diffctl.bus import Node, gz, types
     from diffctl.bus.session import close_session
 
     # Bare stepping is measured before the stack starts and after it is gone, and the faster of the two is
     # the reference: a machine that is slow for a moment must not flatter the ratio.
-    bare_before = 0.0 if startup_only else run_bare(5.0)[0]
+    bare_before = 0.0 if startup_only else run_bare_stack(5.0)
 
     os.environ["DIFFCTL_ROUTER"] = f"tcp/127.0.0.1:{free_port()}"
     with tempfile.TemporaryDirectory(prefix="diffctl-bench-stack-") as tmp:
@@ -197,7 +240,7 @@ def run(*, startup_only: bool = False) -> dict:
             # Commands paced by sim time, as a teleop at real time would send them (every 0.1 s of sim time,
             # within cmd_vel_timeout), not by wall time: a wall-clock flood would be the harness's own load.
             drive = types.new("geometry_msgs/msg/TwistStamped",
-                              {"twist": {"linear": {"x": 0.3}, "angular": {"z": 0.2}}})
+                              {"twist": {"linear": {"x": DRIVE_TWIST[0]}, "angular": {"z": DRIVE_TWIST[1]}}})
             sent_ns = -1
             t_end = time.monotonic() + 3.0
             while time.monotonic() < t_end:
@@ -222,7 +265,7 @@ def run(*, startup_only: bool = False) -> dict:
             if proc.poll() is None:
                 os.killpg(proc.pid, signal.SIGKILL)
                 proc.wait()
-    bare_rtf = max(bare_before, run_bare(5.0)[0])
+    bare_rtf = max(bare_before, run_bare_stack(5.0))
     stack_rtf = round(statistics.median(driving_rtf), 1) if driving_rtf else None
     return {
         "stack_launch_to_ready_s": round(ready_s, 3),
