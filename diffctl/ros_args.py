@@ -285,14 +285,20 @@ def _parse_argv(ros_argv: list[str]) -> _Parsed:
         elif a == "--log-level":
             out.log_level = need(a)
             i += 2
-        elif a in ("-e", "--enclave"):
+        elif a in ("-e", "--enclave", "--log-config-file"):
             i += 2
+        elif a in _LOGGING_SWITCHES:  # rcl's logging switches: the client library reads what it needs
+            i += 1
         else:
             raise ConfigError(
                 f"--ros-args: unknown flag {a!r}",
                 hint="valid: -r FROM:=TO, -p NAME:=VALUE, --params-file FILE, --log-level LEVEL",
             )
     return out
+
+
+_LOGGING_SWITCHES = ("--enable-rosout-logs", "--disable-rosout-logs", "--enable-stdout-logs", "--disable-stdout-logs",
+                     "--enable-external-lib-logs", "--disable-external-lib-logs")
 
 
 def _first(rules: list[RemapRule], match: str, node_name: str | None) -> str | None:

@@ -42,41 +42,6 @@ from diffctl.client.timer import Rate, Timer
 from diffctl.client.topic_endpoint_info import TopicEndpointInfo, TopicEndpointTypeEnum
 from diffctl.errors import NoRouterError
 
-_LOGGING_FLAGS = {"--log-config-file": 1, "--enable-rosout-logs": 0, "--disable-rosout-logs": 0,
-                  "--enable-stdout-logs": 0, "--disable-stdout-logs": 0, "--enable-external-lib-logs": 0,
-                  "--disable-external-lib-logs": 0}
-
-
-def _node_ros_args(argv: list[str], node_name: str) -> list[str]:
-    """The --ros-args of `argv` that apply to this node: logging flags dropped (rcl reads them at init) and
-    node-prefixed rules (`talker:__ns:=/x`, `-p talker:rate:=2`) kept only for this node, unprefixed."""
-    _, ros = ros_args.split_argv(list(argv))
-    out: list[str] = []
-    i = 0
-    while i < len(ros):
-        a = ros[i]
-        if a in _LOGGING_FLAGS:
-            i += 1 + _LOGGING_FLAGS[a]
-            continue
-        if a == "--log-level":
-            i += 2
-            continue
-        if a in ("-r", "--remap", "-p", "--param") and i + 1 < len(ros):
-            rule = ros[i + 1]
-            head, sep, _ = rule.partition(":=")
-            if sep and ":" in head:
-                prefix, _, rest = head.partition(":")
-                if prefix != node_name:
-                    i += 2
-                    continue
-                rule = rest + rule[len(head):]
-            out += [a, rule]
-            i += 2
-            continue
-        out.append(a)
-        i += 1
-    return out
-
 
 class TimeSource:
     """use_sim_time: the node's ROS clocks follow /clock (best effort, depth 1) while it is true."""
@@ -169,8 +134,8 @@ class Node:
 
         # The process's arguments are global, cli_args the node's own (local: they win), as rcl has them; the
         # namespace takes part in matching parameter-file keys (/ns/name, /**/name).
-        glob = _node_ros_args(self._context.args, node_name) if use_global_arguments else []
-        local = _node_ros_args(list(cli_args), node_name) if cli_args else []
+        glob = ros_args.split_argv(self._context.args)[1] if use_global_arguments else []
+        local = ros_args.split_argv(list(cli_args))[1] if cli_args else []
         ra = ros_args.parse(glob, node_name, namespace, local_argv=local)
         name = ra.node_name or node_name
         if ra.namespace:
@@ -535,6 +500,7 @@ class Node:
             while table:
                 fn(table[0])
         self._destroyed = True
+        self._params.flush()
         if self._rosout_sink is not None:
             detach_rosout(self._logger_name, self._rosout_sink)
         self._bus.close()

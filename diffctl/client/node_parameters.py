@@ -69,6 +69,12 @@ class NodeParameters(ParameterStore):
             self._events = ThreadPoolExecutor(max_workers=1, thread_name_prefix="parameter_events")
         self._events.submit(super()._notify, changes)
 
+    def flush(self) -> None:
+        """Wait until every parameter event has left (before the node's publisher closes)."""
+        if self._events is not None:
+            self._events.shutdown(wait=True)
+            self._events = None
+
     # ------------------------------------------------------------------ rclpy's API
     def declare_parameters(self, namespace: str, parameters: list[tuple], ignore_override: bool = False
                            ) -> list[Parameter]:

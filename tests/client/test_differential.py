@@ -34,3 +34,7 @@ def test_topics_graph_logging_agree(router: str) -> None:
 
 def test_sim_time_agrees(router: str) -> None:
     assert_same(run_oracle("sim_time.py"), run_ours("sim_time.py", router))
+
+
+def test_ros_args_agree(router: str) -> None:
+    assert_same(run_oracle("ros_args.py"), run_ours("ros_args.py", router))
