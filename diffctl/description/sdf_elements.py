@@ -58,7 +58,7 @@ from diffctl.errors import DescriptionError, suggest
 
 ToLink = Callable[[Pose, str | None, Element | None], Pose]
 
-GEOMETRY_TAGS = ("box", "cylinder", "sphere", "capsule", "plane", "mesh")
+GEOMETRY_TAGS = ("box", "cylinder", "sphere", "capsule", "ellipsoid", "plane", "mesh")
 MESH_SUFFIXES = (".obj", ".stl")  # what PyBullet turns into collision and visual shapes
 CONVERTED_SUFFIXES = (".dae",)  # converted once to OBJ (urdf/meshes.py), as for URDF meshes
 LIDAR_SENSOR_TYPES = ("gpu_lidar", "lidar", "gpu_ray", "ray")
@@ -98,6 +98,17 @@ def parse_geometry(doc: Doc, parent: Element) -> Geometry:
         return Cylinder(radius, length) if tag == "cylinder" else Capsule(radius, length)
     if tag == "sphere":
         return Sphere(float_value(doc, shape, "radius", positive=True))
+    if tag == "ellipsoid":
+        radii_el = child(shape, "radii")
+        if radii_el is None:
+            fail(doc, shape, "<ellipsoid> needs <radii>a b c</radii> (metres)")
+        radii = parse_floats(doc, radii_el, 3)
+        if not all(r > 0 for r in radii):
+            fail(doc, radii_el, f"<radii> of an ellipsoid must be three positive lengths, got {radii!r}")
+        from diffctl.description.generated_meshes import ellipsoid_obj
+
+        uri = "ellipsoid://" + " ".join(f"{r:g}" for r in radii)
+        return Mesh(str(ellipsoid_obj((radii[0], radii[1], radii[2]))) if doc.check_files else "", uri)
     if tag == "plane":
         normal = vec3_value(doc, shape, "normal", (0.0, 0.0, 1.0))
         n = math.sqrt(sum(c * c for c in normal))

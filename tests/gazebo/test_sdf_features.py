@@ -161,3 +161,24 @@ def test_xml_that_sdformat_rejects_stays_an_error_at_its_line(tmp_path: Path) ->
     with pytest.raises(DescriptionError, match="malformed XML") as e:
         load_world(path)
     assert e.value.line == 4
+
+
+def test_gazebos_shapes_world_by_name_settles_on_its_ground(tmp_path: Path, monkeypatch) -> None:
+    """`gz sim shapes.sdf` finds diffctl's copy; every shape, the ellipsoid (a mesh here) too, rests where
+    Gazebo's would: its lowest point on the ground plane after a second of real PyBullet physics."""
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    monkeypatch.delenv("GZ_SIM_RESOURCE_PATH", raising=False)
+    from diffctl.sim.cli import find_world
+    from diffctl.sim.world import PhysicsWorld
+
+    world = load_world(find_world("shapes.sdf"))
+    assert world.name == "shapes"
+    pw = PhysicsWorld(world.physics)
+    bodies = {m.name: pw.add_model(m) for m in world.models}
+    for _ in range(1000):
+        pw.step()
+    rest_z = {"box": 0.5, "cylinder": 0.5, "sphere": 0.5, "capsule": 0.5, "ellipsoid": 0.5}
+    for name, z in rest_z.items():
+        pose = bodies[name].pose()
+        assert pose.xyz[2] == pytest.approx(z, abs=0.02), name
+    assert bodies["ellipsoid"].pose().xyz[1] == pytest.approx(3.0, abs=0.01)
