@@ -44,16 +44,8 @@ class TypeDef:
 
 
 def _strip_comment(line: str) -> str:
-    quote = None
-    for i, ch in enumerate(line):
-        if quote:
-            if ch == quote:
-                quote = None
-        elif ch in "\"'":
-            quote = ch
-        elif ch == "#":
-            return line[:i]
-    return line
+    # rosidl_adapter cuts at the first '#', inside quotes too (a '#' cannot be part of a value)
+    return line.split("#", 1)[0]
 
 
 def _base_desc(base: str, sbound: str | None, pkg: str, where: dict[str, Any]) -> tuple:
@@ -97,13 +89,10 @@ def parse_type(text: str, pkg: str, where: dict[str, Any]) -> tuple:
 
 
 def _unquote(text: str) -> str:
-    if len(text) >= 2 and text[0] == text[-1] and text[0] in "\"'":
-        import ast  # only quoted default values need it
-
-        try:
-            return str(ast.literal_eval(text))
-        except (ValueError, SyntaxError):
-            return text[1:-1]
+    """rosidl_adapter's string values: outer quotes removed, escaped quotes of that kind unescaped."""
+    for quote in "\"'":
+        if len(text) >= 2 and text.startswith(quote) and text.endswith(quote):
+            return text[1:-1].replace("\\" + quote, quote)
     return text
 
 
@@ -186,7 +175,7 @@ def parse_message(text: str, typename: str, source: str | None = None, first_lin
     names: set[str] = set()
     for offset, raw in enumerate(text.splitlines()):
         where: dict[str, Any] = {"source": source, "line": first_line + offset}
-        line = _strip_comment(raw).strip()
+        line = _strip_comment(raw.replace("\t", " ")).strip()
         if not line:
             continue
         type_text, _, rest = line.partition(" ")
@@ -195,7 +184,7 @@ def parse_message(text: str, typename: str, source: str | None = None, first_lin
             raise InterfaceError(f"{line!r} is not 'type name', 'type name default' or 'type NAME=value'",
                                  **where)
         desc = parse_type(type_text, pkg, where)
-        if "=" in rest and (rest.index("=") < rest.find(" ") or " " not in rest.split("=")[0].strip()):
+        if "=" in rest:  # rosidl_adapter: any '=' makes the line a constant
             name, _, value = rest.partition("=")
             name = name.strip()
             where["field"] = name
@@ -208,10 +197,7 @@ def parse_message(text: str, typename: str, source: str | None = None, first_lin
                 raise InterfaceError(f"duplicate name {name!r}", **where)
             names.add(name)
             base = desc[1][0]
-            # A string constant is the rest of the line, as rosidl reads it (a '#' inside quotes stays).
-            value_text = value.strip() if base not in ("string", "wstring") else _strip_comment(
-                raw.split("=", 1)[1]).strip()
-            td.constants.append((name, base, parse_primitive(base, desc[1][1], value_text, where)))
+            td.constants.append((name, base, parse_primitive(base, desc[1][1], value.strip(), where)))
             continue
         name, _, default = rest.partition(" ")
         where["field"] = name

@@ -118,6 +118,14 @@ def star(module):
     exec(f'from {module} import *', ns)
     return sorted(n for n in ns if not n.startswith('__'))
 obs('import star', lambda: (star('std_srvs.srv'), star('lifecycle_msgs.msg')))
+import pickle
+obs('pickle', lambda: pickle.loads(pickle.dumps(PoseWithCovariance(covariance=[2.0] * 36))).covariance[:2])
+obs('pickle eq', lambda: pickle.loads(pickle.dumps(JointState(name=['a'], position=[1.0]))) ==
+    JointState(name=['a'], position=[1.0]))
+obs('doc', lambda: (GoalStatus.__doc__, Twist.__doc__, type(Twist).__doc__))
+obs('property doc', lambda: Twist.linear.__doc__)
+obs('import type support', lambda: (Twist.__import_type_support__(), Twist._TYPE_SUPPORT is not None))
+obs('srv import type support', lambda: (Trigger.__import_type_support__(), Trigger._TYPE_SUPPORT is not None))
 import importlib
 obs('module layout', lambda: (importlib.import_module('geometry_msgs.msg._twist').Twist is Twist,
                               importlib.import_module('sensor_msgs.msg._nav_sat_status').NavSatStatus.__name__,

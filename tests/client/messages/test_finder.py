@@ -105,3 +105,20 @@ def test_the_hooks_list_of_packages_is_the_registrys() -> None:
     from diffctl.client.messages import hook, registry
 
     assert set(registry.diffctl_packages()) == hook.KNOWN
+
+
+def test_install_trees_and_the_workspace_before_them(tmp_path: Path) -> None:
+    prefix = tmp_path / "install"
+    (prefix / "share" / "tree_msgs" / "msg").mkdir(parents=True)
+    (prefix / "share" / "tree_msgs" / "msg" / "Level.msg").write_text("float32 level 0.25\n")
+    (prefix / "share" / "my_msgs" / "msg").mkdir(parents=True)
+    (prefix / "share" / "my_msgs" / "msg" / "Level.msg").write_text("int8 installed\n")
+    ws = tmp_path / "ws"
+    pkg = ws / "src" / "my_msgs"
+    (pkg / "msg").mkdir(parents=True)
+    (pkg / "package.xml").write_text("<package><name>my_msgs</name></package>")
+    (pkg / "CMakeLists.txt").write_text('project(my_msgs)\nrosidl_generate_interfaces(${PROJECT_NAME} msg/Level.msg)\n')
+    (pkg / "msg" / "Level.msg").write_text("int8 from_source\n")
+    p = python("from tree_msgs.msg import Level; print(Level())\nfrom my_msgs.msg import Level; print(Level())",
+               {"AMENT_PREFIX_PATH": str(prefix), "DIFFCTL_WORKSPACE": str(ws)})
+    assert p.stdout.splitlines() == ["tree_msgs.msg.Level(level=0.25)", "my_msgs.msg.Level(from_source=0)"], p.stderr
