@@ -94,3 +94,15 @@ def expand_topic_name(name: str, node_name: str, namespace: str) -> str:
     elif not out.startswith("/"):
         out = f"{ns}/{out}"
     return out
+
+
+def validate_full_topic_name(name: str, *, is_service: bool = False) -> bool:
+    """A fully qualified name: absolute, no `~` or substitutions left."""
+    exc = InvalidServiceNameException if is_service else InvalidTopicNameException
+    what = "service name" if is_service else "topic name"
+    if not name.startswith("/"):
+        raise exc(name, f"{what} must be absolute, it must lead with a '/'", 0)
+    i = _bad_char(name, "_/")
+    if i >= 0:
+        raise exc(name, f"{what} must not contain characters other than alphanumerics, '_', or '/'", i)
+    return validate_topic_name(name, is_service=is_service)

@@ -34,6 +34,7 @@ from diffctl.client.names import (
 from diffctl.client.node_parameters import NodeParameters
 from diffctl.client.parameter import Parameter, from_python_value
 from diffctl.client.publisher import Publisher
+from diffctl.client.qos_overriding_options import declare_qos_parameters
 from diffctl.client.ros_logging import RcutilsLogger, attach_rosout, detach_rosout, get_logger
 from diffctl.client.ros_time import Time
 from diffctl.client.service import Service
@@ -367,6 +368,8 @@ class Node:
         qos_profile = _qos.as_profile(qos_profile)
         callback_group = callback_group or self.default_callback_group
         full = self.resolve_topic_name(topic)
+        if qos_overriding_options is not None:
+            declare_qos_parameters("publisher", self, full, qos_profile, qos_overriding_options)
         typename = check_message_type(msg_type)
         bus_pub = self._bus.create_publisher(full, typename, qos=_qos.to_wire(qos_profile))
         bus_pub.client_node = self
@@ -385,6 +388,8 @@ class Node:
         qos_profile = _qos.as_profile(qos_profile)
         callback_group = callback_group or self.default_callback_group
         full = self.resolve_topic_name(topic)
+        if qos_overriding_options is not None:
+            declare_qos_parameters("subscription", self, full, qos_profile, qos_overriding_options)
         typename = check_message_type(msg_type)
         sub = Subscription(self, msg_type, topic, callback, callback_group, qos_profile, raw,
                            event_callbacks=event_callbacks or SubscriptionEventCallbacks())

@@ -46,6 +46,28 @@ node.create_subscription(String, "incompatible_topic", lambda m: None,
                          QoSProfile(depth=5, reliability=ReliabilityPolicy.RELIABLE))
 spin_for(1.5)
 out.append(["user incompatible qos callback", sorted(set(events))])
+
+from rcl_interfaces.msg import SetParametersResult  # noqa: E402
+from rclpy.parameter import Parameter  # noqa: E402
+from rclpy.qos_overriding_options import InvalidQosOverridesError, QoSOverridingOptions  # noqa: E402
+
+tuned = Node("qos_override_demo", parameter_overrides=[
+    Parameter("qos_overrides./tuned.publisher.depth", value=3),
+    Parameter("qos_overrides./tuned.publisher.reliability", value="best_effort")])
+tuned_pub = tuned.create_publisher(String, "tuned", 10,
+                                   qos_overriding_options=QoSOverridingOptions.with_default_policies())
+out.append(["qos overrides applied", [tuned_pub.qos_profile.depth, tuned_pub.qos_profile.reliability.name,
+                                      tuned_pub.qos_profile.history.name]])
+out.append(["qos override parameters", sorted(tuned.get_parameters_by_prefix("qos_overrides"))])
+out.append(["qos override read only", tuned.set_parameters(
+    [Parameter("qos_overrides./tuned.publisher.depth", value=4)])[0].reason])
+try:
+    tuned.create_subscription(String, "tuned", lambda m: None, 10, qos_overriding_options=QoSOverridingOptions(
+        [], callback=lambda q: SetParametersResult(successful=False, reason="no thanks"), entity_id="mine"))
+    out.append(["qos override callback", "accepted"])
+except InvalidQosOverridesError as e:
+    out.append(["qos override callback", str(e)])
+tuned.destroy_node()
 node.destroy_node()
 rclpy.shutdown()
 print(json.dumps(out))

@@ -1,0 +1,100 @@
+"""rclpy.qos_overriding_options: a publisher's or subscription's QoS policies as read-only parameters.
+
+`qos_overrides./topic.publisher[_id].<policy>` is declared with the profile's value (policies by their short
+name, durations in nanoseconds); an override (`-p`, a params file) replaces the policy before the endpoint is
+created, and the user's callback may refuse the result.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable
+from typing import Any
+
+from diffctl.client.duration import Duration
+from diffctl.client.exceptions import InvalidQosOverridesError, ParameterAlreadyDeclaredException
+from diffctl.client.interfaces import cls
+from diffctl.client.qos import (
+    DurabilityPolicy,
+    HistoryPolicy,
+    LivelinessPolicy,
+    QoSPolicyKind,
+    QoSProfile,
+    ReliabilityPolicy,
+)
+
+_ENUMS = {QoSPolicyKind.HISTORY: HistoryPolicy, QoSPolicyKind.RELIABILITY: ReliabilityPolicy,
+          QoSPolicyKind.DURABILITY: DurabilityPolicy, QoSPolicyKind.LIVELINESS: LivelinessPolicy}
+_DURATIONS = (QoSPolicyKind.LIFESPAN, QoSPolicyKind.DEADLINE, QoSPolicyKind.LIVELINESS_LEASE_DURATION)
+
+
+class QoSOverridingOptions:
+    def __init__(self, policy_kinds: Iterable[QoSPolicyKind], *, callback: Callable[[QoSProfile], Any] | None = None,
+                 entity_id: str | None = None) -> None:
+        self._policy_kinds = policy_kinds
+        self._callback = callback
+        self._entity_id = entity_id
+
+    @property
+    def policy_kinds(self) -> Iterable[QoSPolicyKind]:
+        return self._policy_kinds
+
+    @property
+    def callback(self) -> Callable[[QoSProfile], Any] | None:
+        return self._callback
+
+    @property
+    def entity_id(self) -> str | None:
+        return self._entity_id
+
+    @classmethod
+    def with_default_policies(cls_, *, callback: Callable[[QoSProfile], Any] | None = None,
+                              entity_id: str | None = None) -> QoSOverridingOptions:
+        return cls_(policy_kinds=(QoSPolicyKind.HISTORY, QoSPolicyKind.DEPTH, QoSPolicyKind.RELIABILITY),
+                    callback=callback, entity_id=entity_id)
+
+
+def _policy_value(qos: QoSProfile, policy: QoSPolicyKind) -> Any:
+    value = getattr(qos, policy.name.lower())
+    if policy in _ENUMS:
+        text = value.name.lower()
+        if text == "unknown":
+            raise ValueError("User provided QoS profile is invalid")
+        return text
+    if isinstance(value, Duration):
+        return value.nanoseconds
+    return value
+
+
+def _apply(qos: QoSProfile, policy: QoSPolicyKind, value: Any) -> None:
+    if policy in _ENUMS:
+        try:
+            value = _ENUMS[policy][str(value).upper()]
+        except KeyError:
+            raise RuntimeError(f"Unexpected QoS override for policy `{policy.name.lower()}`: `{value}`") from None
+    elif policy in _DURATIONS:
+        value = Duration(nanoseconds=value)
+    setattr(qos, policy.name.lower(), value)
+
+
+def declare_qos_parameters(kind: str, node: Any, topic_name: str, qos: QoSProfile,
+                           options: QoSOverridingOptions) -> None:
+    """`kind` is "publisher" or "subscription"; `qos` is changed in place, as rclpy does."""
+    suffix = "" if options.entity_id is None else f"_{options.entity_id}"
+    name = f"qos_overrides.{topic_name}.{kind}{suffix}." + "{}"
+    description = "{}" + f" for {kind} `{topic_name}` with id `{options.entity_id}`"
+    for policy in options.policy_kinds:
+        if policy == QoSPolicyKind.INVALID or (kind == "subscription" and policy == QoSPolicyKind.LIFESPAN):
+            continue
+        policy_name = policy.name.lower()
+        descriptor = cls("rcl_interfaces/msg/ParameterDescriptor")(
+            description=description.format(policy_name), read_only=True)
+        try:
+            param = node.declare_parameter(name.format(policy_name), _policy_value(qos, policy), descriptor)
+        except ParameterAlreadyDeclaredException:
+            param = node.get_parameter(name.format(policy_name))
+        _apply(qos, policy, param.value)
+    if options.callback is not None:
+        result = options.callback(qos)
+        if not result.successful:
+            raise InvalidQosOverridesError(
+                f"{description.format('Provided QoS overrides')}, are not valid: {result.reason}")

@@ -1,0 +1,4 @@
+"""rclpy.qos_overriding_options (diffctl: diffctl.client.qos_overriding_options)."""
+
+from diffctl.client.exceptions import InvalidQosOverridesError  # noqa: F401
+from diffctl.client.qos_overriding_options import *  # noqa: F403

@@ -1,0 +1,3 @@
+"""rclpy.validate_topic_name (diffctl: diffctl.client.names)."""
+
+from diffctl.client.names import validate_topic_name  # noqa: F401
