@@ -439,7 +439,8 @@ class _Encoder(_Emitter):
             self._align(size)
             self.run_base = self.known
         self.run_fmt += "c" if base == "byte" and self.prefix else _CODE[base]
-        self.run_exprs.append(expr)
+        # rosidl's C conversion reads a bool field as `field == Py_True`: 1, "x" or numpy.True_ send false
+        self.run_exprs.append(f"({expr} is True)" if base == "bool" and self.prefix else expr)
         self.run_size += size
 
     def string(self, expr: str) -> None:

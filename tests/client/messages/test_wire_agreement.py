@@ -98,3 +98,36 @@ for k, m in msgs.items():
         assert same_wire(ours[k][1], oracle[k][1]), f"{k}: diffctl {ours[k][1]} != rosidl {oracle[k][1]}"
         assert ours[k + " repr"] == oracle[k + " repr"], k
         assert ours[k + " roundtrip"] == ["ok", True], k
+
+
+WRONG = r'''
+from geometry_msgs.msg import Twist, Polygon
+from std_msgs.msg import String, Int8, UInt8, Float64MultiArray, Bool, Int32MultiArray, UInt8MultiArray
+from sensor_msgs.msg import JointState
+cases = {"uint8 256": lambda: UInt8(data=256), "int8 -129": lambda: Int8(data=-129), "bool 1": lambda: Bool(data=1),
+         "bool str": lambda: Bool(data="x"), "float seq of ints": lambda: Float64MultiArray(data=[1, 2]),
+         "int32 seq overflow": lambda: Int32MultiArray(data=[2**32 + 1]),
+         "uint8 seq 300": lambda: UInt8MultiArray(data=[300]), "int in str": lambda: String(data=5),
+         "None in str": lambda: String(data=None), "int in string seq": lambda: JointState(name=[1]),
+         "int as message": lambda: Twist(linear=5), "int in message seq": lambda: Polygon(points=[5]),
+         "str in float seq": lambda: JointState(position=["a"])}
+'''
+
+
+def test_wrong_field_types_serialize_as_rosidl_reads_them() -> None:
+    """Field checks are off by default: what a publish of a wrongly typed field sends (or raises) is rosidl's."""
+    oracle = run_oracle(WRONG + r'''
+from rclpy.serialization import serialize_message
+for k, make in cases.items():
+    obs(k, lambda make=make: serialize_message(make()).hex())
+''')
+    ours = run_ours(WRONG + r'''
+from diffctl.client.messages import serialize
+for k, make in cases.items():
+    obs(k, lambda make=make: serialize(make()).hex())
+''')
+    for k, real in oracle.items():
+        if real[0] == "ok":
+            assert ours[k][0] == "ok" and same_wire(ours[k][1], real[1]), (k, ours[k], real)
+        else:
+            assert ours[k] == real, k
