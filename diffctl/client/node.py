@@ -169,6 +169,10 @@ class Node:
         self._clock = ROSClock()
         self._time_source = TimeSource(self)
         self._time_source.attach_clock(self._clock)
+        if enable_logger_service:
+            from diffctl.client.logging_service import LoggingService
+
+            self._logger_service = LoggingService(self)
         self._context.track_node(self)
 
     # ------------------------------------------------------------------ identity

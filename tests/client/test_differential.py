@@ -38,3 +38,7 @@ def test_sim_time_agrees(router: str) -> None:
 
 def test_ros_args_agree(router: str) -> None:
     assert_same(run_oracle("ros_args.py"), run_ours("ros_args.py", router))
+
+
+def test_parameter_events_and_logger_services_agree(router: str) -> None:
+    assert_same(run_oracle("param_events.py"), run_ours("param_events.py", router))
