@@ -110,6 +110,7 @@ WARM_MESSAGES: tuple[str, ...] = (
     "nav_msgs/msg/Odometry",
     "geometry_msgs/msg/TwistStamped",
     "control_msgs/msg/DynamicJointState",
+    "controller_manager_msgs/msg/ControllerManagerActivity",  # every manager publishes it as it comes up
 )  # the bridge's sensor types (Imu, LaserScan, Image, CameraInfo: 25 ms) it compiles itself, off the critical path
 # Components a launch usually starts only once the robot is up (the visualizer after the spawners, a
 # recorder): imported while the server has no request waiting, so they stay off the start-up's critical path.

@@ -70,7 +70,7 @@ _NAMES = (Check("not_empty", ()), Check("unique", ()))
 def _axis_decls(axis: str) -> list[ParamDecl]:
     units = _AXIS_UNITS[axis]
     out = [
-        ParamDecl(f"{axis}.{flag}", "bool", True, f"[deprecated] false switches the {flag[4:-7]} limits off.")
+        ParamDecl(f"{axis}.{flag}", "bool", True, "deprecated, set the respective limits to ``.NAN`` for deactivation")
         for flag in _GROUPS
     ]
     for name, _sign, unit in _LIMIT_FIELDS:
