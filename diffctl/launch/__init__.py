@@ -15,6 +15,23 @@ import importlib
 
 # Every public name and the module it lives in: the one list (`__all__` is derived from it).
 _ORIGIN: dict[str, str] = {
+    "UnsetLaunchConfiguration": "diffctl.launch.actions",
+    "PushLaunchConfigurations": "diffctl.launch.actions",
+    "PopLaunchConfigurations": "diffctl.launch.actions",
+    "PushEnvironment": "diffctl.launch.actions",
+    "PopEnvironment": "diffctl.launch.actions",
+    "Action": "diffctl.launch.actions",
+    "OnExecutionComplete": "diffctl.launch.event_handlers",
+    "OnActionEventBase": "diffctl.launch.event_handlers",
+    "EventHandler": "diffctl.launch.event_handlers",
+    "BaseEventHandler": "diffctl.launch.event_handlers",
+    "UnregisterEventHandler": "diffctl.launch.event_handlers",
+    "BooleanSubstitution": "diffctl.launch.logic_substitutions",
+    "PathSubstitution": "diffctl.launch.substitutions",
+    "LocalSubstitution": "diffctl.launch.substitutions",
+    "LaunchLogDir": "diffctl.launch.substitutions",
+    "Substitution": "diffctl.launch.substitutions",
+    "Condition": "diffctl.launch.conditions",
     "AppendEnvironmentVariable": "diffctl.launch.actions",
     "DeclareLaunchArgument": "diffctl.launch.actions",
     "GroupAction": "diffctl.launch.actions",

@@ -106,7 +106,7 @@ class LaunchDescription(Action):
 @register
 class DeclareLaunchArgument(Action):
     frontend_tags = ("arg",)
-    frontend_attrs = ("name", "default", "description", "choices")
+    frontend_attrs = ("name", "default", "description", "choice", "choices")
 
     def __init__(
         self,
@@ -148,14 +148,25 @@ class DeclareLaunchArgument(Action):
 
     @classmethod
     def from_entity(cls, e: Entity) -> Action:
-        choices = e.raw("choices")
-        if choices is not None and not isinstance(choices, list):
-            raise e.error("choices must be a list", key="choices")
+        # launch_yaml's form is `choice: [{value: a}, {value: b}]` (launch_xml's `<choice value=…/>`);
+        # diffctl's earlier `choices: [a, b]` stays as an alias.
+        if e.has("choice") and e.has("choices"):
+            raise e.error("give `choice` or `choices`, not both", key="choices")
+        choices: list[str] | None = None
+        if e.has("choice"):
+            choices = [c.plain("value", required=True) for c in e.items("choice", ("value",))]
+        elif e.raw("choices") is not None:
+            raw = e.raw("choices")
+            if not isinstance(raw, list):
+                raise e.error("choices must be a list", key="choices")
+            choices = [str(c) for c in raw]
+        if choices is not None and not choices:
+            raise e.error("an argument's choices cannot be empty", key="choice")
         return cls(
             e.plain("name", required=True),
             default_value=e.text("default"),
             description=e.plain("description") or "",
-            choices=[str(c) for c in choices] if choices is not None else None,
+            choices=choices,
         )
 
 

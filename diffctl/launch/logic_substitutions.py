@@ -124,3 +124,16 @@ class IfElseSubstitution(Substitution):
     def perform(self, scope: Scope) -> str:
         chosen = self.if_value if _bool(perform(self.condition, scope), "$(if)") else self.else_value
         return perform(chosen, scope)
+
+
+class BooleanSubstitution(Substitution):
+    """A value read as a boolean (YAML words, 1/0), given back as `true` / `false` (launch's BooleanSubstitution)."""
+
+    def __init__(self, value: SomeSubstitutions) -> None:
+        self.value = normalize(value)
+
+    def describe(self) -> str:
+        return f"$(bool {describe(self.value)})"
+
+    def perform(self, scope: Scope) -> str:
+        return str(_bool(perform(self.value, scope), "BooleanSubstitution")).lower()

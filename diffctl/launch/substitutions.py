@@ -7,7 +7,6 @@ Everything is evaluated against a `Scope` (see context.py) by `perform(value, sc
 
 from __future__ import annotations
 
-import builtins
 import os
 import shlex
 import subprocess
@@ -173,20 +172,12 @@ class ThisLaunchFile(Substitution):
         return scope.launch_file or ""
 
 
-# What `$(eval …)` may use: arithmetic, comparisons and a few pure builtins, plus `math`.
-_EVAL_BUILTINS: dict[str, Any] = {
-    name: getattr(builtins, name)
-    for name in (
-        *("abs", "min", "max", "round", "int", "float", "str", "bool", "len", "pow", "divmod", "sum"),
-        *("list", "tuple", "dict", "set", "sorted", "any", "all", "range", "zip", "enumerate", "reversed"),
-    )
-}
-
-
 class PythonExpression(Substitution):
-    """`$(eval expr [modules])`: a Python expression over basic builtins and `math` (or the modules named), as text.
+    """`$(eval expr [modules])`: a Python expression, as text (`str()` of its value, `True`/`False` capitalised).
 
-    As in ROS, the names of `math` are also usable bare (`pi`, `sqrt(2)`); other modules are used qualified.
+    As launch's: evaluated with empty globals, so every builtin is there (`map`, `format`, `isinstance`, …);
+    each module of `python_modules` (default `math`) is bound by its name, and `math`'s names also bare
+    (`pi`, `sqrt(2)`).
     """
 
     def __init__(self, expression: SomeSubstitutions, python_modules: SomeSubstitutions | None = None) -> None:
@@ -212,17 +203,18 @@ class PythonExpression(Substitution):
         import importlib
 
         text = perform(self.expression, scope)
-        namespace: dict[str, Any] = {"__builtins__": _EVAL_BUILTINS}
+        names: dict[str, Any] = {}
         for name in self._modules(scope):
             try:
                 module = importlib.import_module(name)
             except ImportError:
                 raise LaunchError(f"$(eval): python module {name!r} cannot be imported") from None
-            namespace[name.split(".")[0]] = importlib.import_module(name.split(".")[0])
-            if name == "math":
-                namespace.update({k: getattr(module, k) for k in dir(module) if not k.startswith("_")})
+            if module.__name__ == "math":
+                names.update(vars(module))
+            names[module.__name__] = module
+            names.setdefault(name.split(".")[0], importlib.import_module(name.split(".")[0]))
         try:
-            return str(eval(text, namespace))
+            return str(eval(text, {}, names))
         except Exception as e:
             raise LaunchError(f"$(eval {text}) failed: {type(e).__name__}: {e}") from None
 
@@ -375,3 +367,55 @@ def parse(text: str) -> tuple[Substitution, ...]:
     from diffctl.launch.substitution_syntax import parse as parse_syntax
 
     return parse_syntax(text)
+
+
+class PathSubstitution(Substitution):
+    """A path built with `/` from substitutions (`PathSubstitution(FindPackageShare('p')) / 'config' / 'x.yaml'`)."""
+
+    def __init__(self, path: SomeSubstitutions | os.PathLike[str]) -> None:
+        self.parts: list[tuple[Substitution, ...]] = [
+            normalize(os.fspath(path) if isinstance(path, os.PathLike) else path)
+        ]
+
+    def __truediv__(self, other: SomeSubstitutions | os.PathLike[str]) -> PathSubstitution:
+        out = PathSubstitution("")
+        out.parts = [*self.parts, normalize(os.fspath(other) if isinstance(other, os.PathLike) else other)]
+        return out
+
+    def describe(self) -> str:
+        return "/".join(describe(p) for p in self.parts)
+
+    def perform(self, scope: Scope) -> str:
+        return os.path.join(*[perform(p, scope) for p in self.parts])
+
+
+class LocalSubstitution(Substitution):
+    """A value of the context's locals (`LocalSubstitution('event.returncode')`), as launch's."""
+
+    def __init__(self, expression: str, description: str | None = None) -> None:
+        self.expression = expression
+        self.description = description
+
+    def describe(self) -> str:
+        return self.description or f"LocalVar('{self.expression}')"
+
+    def perform(self, scope: Scope) -> str:
+        values = scope.get_locals_as_dict()
+        try:
+            return str(eval(self.expression, {}, values))
+        except Exception as e:
+            raise LaunchError(f"LocalSubstitution {self.expression!r}: {type(e).__name__}: {e}") from None
+
+
+class LaunchLogDir(Substitution):
+    """`$(launch_log_dir)` / `$(log_dir)`: the directory of this launch's logs."""
+
+    def describe(self) -> str:
+        return "$(launch_log_dir)"
+
+    def perform(self, scope: Scope) -> str:
+        return (
+            scope.env.get("DIFFCTL_LOG_DIR")
+            or os.environ.get("DIFFCTL_LOG_DIR")
+            or os.path.join(os.path.expanduser("~"), ".ros", "log")
+        )

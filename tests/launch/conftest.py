@@ -142,6 +142,7 @@ class FakeSpawner:
         self.alive: set[int] = set()
         self.pids: dict[str, int] = {}
         self.spawned: list[tuple[float, str, list[str]]] = []
+        self.envs: dict[str, dict[str, str]] = {}
         self.signals: list[tuple[float, str, str]] = []
         self.names: dict[int, str] = {}
         self.cannot_start: set[str] = set()
@@ -159,6 +160,7 @@ class FakeSpawner:
         self.pids[name] = pid
         self.names[pid] = name
         self.spawned.append((self.clock.t if self.clock else 0.0, name, argv))
+        self.envs[name] = env
         return Child(pid, pid)
 
     def signal_group(self, child: Child, sig: int) -> bool:

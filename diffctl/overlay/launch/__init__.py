@@ -1,0 +1,19 @@
+"""`launch` on diffctl's launch engine (the names: diffctl/launch/ros_names.py)."""
+
+import importlib
+
+from diffctl.launch.ros_names import export as _export
+
+__getattr__ = _export(__name__, globals())
+
+# As ROS's package, importing it makes its submodules reachable as attributes.
+for _name in (
+    "actions",
+    "conditions",
+    "event_handlers",
+    "events",
+    "events.process",
+    "launch_description_sources",
+    "substitutions",
+):
+    importlib.import_module(f"{__name__}.{_name}")
