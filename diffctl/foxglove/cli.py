@@ -60,6 +60,7 @@ def foxglove_bridge(port: int | None, address: str | None, bag_path: Path | None
         return
     from diffctl.bus import Node, types
     from diffctl.foxglove.assets import DEFAULT_ALLOWLIST, AssetResolver
+    from diffctl.foxglove.graph import GraphBridge
     from diffctl.foxglove.live import LiveBridge
     from diffctl.foxglove.parameters import ParameterBridge
     from diffctl.foxglove.services import ServiceBridge
@@ -71,8 +72,9 @@ def foxglove_bridge(port: int | None, address: str | None, bag_path: Path | None
     live = LiveBridge(node, context, say=info)
     services = ServiceBridge(node, say=info) if "services" in caps else None
     params = ParameterBridge(node, say=info) if caps & {"parameters", "parametersSubscribe"} else None
+    graph = GraphBridge(node, live.wake) if "connectionGraph" in caps else None
     server = fg.start(address, port, live=live, context=context, sim_time=sim_time, services=services,
-                      params=params, assets=assets, client_publish="clientPublish" in caps)
+                      params=params, assets=assets, client_publish="clientPublish" in caps, graph=graph)
     if sim_time:
         node.create_subscription("/clock", "rosgraph_msgs/msg/Clock",
                                  lambda m: server.broadcast_time(types.time_ns(m.clock)))

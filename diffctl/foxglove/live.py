@@ -47,6 +47,10 @@ class LiveBridge:
         self.server: Any = None
         self.also_sync: list[Callable[[], None]] = []  # more of the server that follows the graph (services)
 
+    def wake(self) -> None:
+        """Have the graph thread look at the graph now (as a graph change does)."""
+        self._wake.set()
+
     def start(self) -> None:
         self._thread.start()
         self.node.graph.add_listener(lambda *_: self._wake.set())

@@ -15,6 +15,7 @@ from foxglove.websocket import Capability, ServerListener
 
 from diffctl.errors import ConfigError
 from diffctl.foxglove.assets import AssetResolver
+from diffctl.foxglove.graph import GraphBridge
 from diffctl.foxglove.live import LiveBridge
 from diffctl.foxglove.parameters import ParameterBridge
 from diffctl.foxglove.playback import BagPlayback
@@ -55,10 +56,19 @@ def check_capabilities(names: list[str]) -> set[str]:
 
 class _Listener(ServerListener):
     def __init__(self, live: LiveBridge | None, playback: BagPlayback | None,
-                 params: ParameterBridge | None = None) -> None:
+                 params: ParameterBridge | None = None, graph: GraphBridge | None = None) -> None:
         self.live = live
         self.playback = playback
         self.params = params
+        self.graph = graph
+
+    def on_connection_graph_subscribe(self) -> None:
+        if self.graph is not None:
+            self.graph.on_subscribe()
+
+    def on_connection_graph_unsubscribe(self) -> None:
+        if self.graph is not None:
+            self.graph.on_unsubscribe()
 
     def on_get_parameters(self, client: Any, param_names: list[str], request_id: str | None = None) -> list[Any]:
         return self.params.get(param_names) if self.params is not None else []
@@ -103,11 +113,11 @@ class _Listener(ServerListener):
 def start(host: str, port: int, *, live: LiveBridge | None = None, playback: BagPlayback | None = None,
           context: foxglove.Context, sim_time: bool = False, services: ServiceBridge | None = None,
           params: ParameterBridge | None = None, assets: AssetResolver | None = None,
-          client_publish: bool = True) -> Any:
+          client_publish: bool = True, graph: GraphBridge | None = None) -> Any:
     """The running server (`.port` is the bound port). `sim_time`: the server announces its own time (from
     /clock), as foxglove_bridge does under use_sim_time, so the app's timeline follows the simulation.
-    `services`, `params`, `assets`: the capabilities of the same names (live graph only)."""
-    listener = _Listener(live, playback, params)
+    `services`, `params`, `assets`, `graph` (connectionGraph): those capabilities (live graph only)."""
+    listener = _Listener(live, playback, params, graph)
     kw: dict[str, Any] = {}
     if playback is not None:
         caps = [Capability.Time]
@@ -116,7 +126,8 @@ def start(host: str, port: int, *, live: LiveBridge | None = None, playback: Bag
         caps = [*([Capability.ClientPublish] if live is not None and client_publish else []),
                 *([Capability.Time] if sim_time else []),
                 *([Capability.Services] if services is not None else []),
-                *([Capability.Parameters] if params is not None else [])]
+                *([Capability.Parameters] if params is not None else []),
+                *([Capability.ConnectionGraph] if graph is not None else [])]
         if assets is not None:
             kw["asset_handler"] = assets.fetch  # the SDK then advertises the assets capability
     try:
@@ -126,11 +137,11 @@ def start(host: str, port: int, *, live: LiveBridge | None = None, playback: Bag
     except RuntimeError as e:
         raise ConfigError(f"cannot serve Foxglove on {host}:{port}: {e}", hint="is the port in use? try --port 0") \
             from None
-    for part in (live, playback, services, params):
+    for part in (live, playback, services, params, graph):
         if part is not None:
             part.server = server
     if services is not None:
         services.sync()
-        if live is not None:
-            live.also_sync.append(services.sync)
+    if live is not None:
+        live.also_sync += [part.sync for part in (services, graph) if part is not None]
     return server

@@ -273,6 +273,9 @@ def test_services_parameters_and_assets_as_foxglove_bridge_serves_them(router: s
                 status, err_len = struct.unpack_from("<BI", m, 5)
                 return status, m[10:10 + err_len] if status else m[10 + err_len:]
 
+            await ws.send(json.dumps({"op": "subscribeConnectionGraph"}))
+            out["graph"] = json.loads(await _read_until(
+                ws, lambda m: isinstance(m, str) and '"connectionGraphUpdate"' in m and "/fg_params/enable" in m))
             out["mesh"] = await asset("package://wedge_description/meshes/wedge.stl", 1)
             out["escape"] = await asset("package://wedge_description/../../../etc/passwd.stl", 2)
             out["unknown"] = await asset("package://no_such_package/meshes/a.stl", 3)
@@ -299,6 +302,11 @@ def test_services_parameters_and_assets_as_foxglove_bridge_serves_them(router: s
     assert out["set"]["parameters"] == [{"name": "/fg_params.gain", "value": 2, "type": "float64"}]
     assert out["node_after_set"] == 2.0 and isinstance(out["node_after_set"], float)
     assert {"name": "/fg_params.gain", "value": 3.25, "type": "float64"} in out["update"]["parameters"]
+    graph = out["graph"]
+    assert {"name": "/fg_params/enable", "providerIds": ["/fg_params"]} in graph["advertisedServices"]
+    published = {t["name"]: t["publisherIds"] for t in graph["publishedTopics"]}
+    assert "/fg_params" in published["/parameter_events"] and "/fg_params" in published["/rosout"]
+    assert {"services", "connectionGraph"} <= set(out["capabilities"])
     assert out["mesh"] == (0, ASCII_STL)
     assert out["escape"][0] == 1 and b"not allowed" in out["escape"][1]
     assert out["unknown"][0] == 1 and b"no_such_package" in out["unknown"][1]
