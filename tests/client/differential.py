@@ -12,6 +12,7 @@ import os
 import re
 import subprocess
 import sys
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -52,6 +53,14 @@ def run_ours(name: str, router: str, timeout_s: float = 90, args: list[str] | No
     if p.returncode != 0:
         raise AssertionError(f"{name} failed under diffctl ({p.returncode}):\n{p.stdout}\n{p.stderr}")
     return Run(_parse(p.stdout, p.stderr), p.stderr)
+
+
+def run_both(name: str, router: str) -> tuple[Run, Run]:
+    """The oracle's run and ours at the same time (each program is mostly waiting on its middleware)."""
+    with ThreadPoolExecutor(max_workers=1) as pool:
+        oracle = pool.submit(run_oracle, name)
+        ours = run_ours(name, router)
+        return oracle.result(), ours
 
 
 def assert_same(oracle: Run, ours: Run) -> None:
