@@ -125,9 +125,21 @@ def exists(typename: str) -> bool:
         return False
 
 
+def _with_package_of(typename: str) -> None:
+    """Types of interface packages beyond diffctl's own definitions (the user's workspace, install trees, the
+    Jazzy texts shipped with the client library) are read by diffctl.client.messages' registry, which enters
+    them in `typedefs.definitions()`: asked only for a name not defined yet."""
+    if typename in typedefs.definitions():
+        return
+    from diffctl.client.messages import registry
+
+    registry.package(typename.split("/")[0])
+
+
 def check(typename: str) -> str:
     """The normalized name of a known type; MessageError with close matches otherwise."""
     t = normalize(typename)
+    _with_package_of(t)
     ts = _ensure(t)
     if t not in ts.types:
         raise MessageError(f"unknown message type {typename!r}{suggest(t, _all_names())}")
@@ -138,6 +150,7 @@ def check_service(typename: str) -> str:
     t = normalize(typename.replace("/msg/", "/srv/")) if "/msg/" not in typename else normalize(typename)
     if t.count("/") == 2 and t.split("/")[1] == "msg":
         t = t.replace("/msg/", "/srv/", 1)
+    _with_package_of(f"{t}_Request")
     if f"{t}_Request" not in typedefs.definitions():
         services = [k for k in _all_names() if k.endswith("_Request")]
         raise MessageError(f"unknown service type {typename!r}{suggest(t + '_Request', services)}")
@@ -160,6 +173,7 @@ def get_class(typename: str):
 @functools.cache
 def type_hash(typename: str) -> str:
     """RIHS01 hash (REP-2016) of a message or service type."""
+    _with_package_of(typename)
     with _lock:  # `_ensure` may swap a described type's definition for its registration meanwhile
         ts = _ensure_described(typename)
         try:
@@ -404,6 +418,7 @@ def _msg_text(typename: str) -> str:
 def definition(typename: str) -> str:
     """The .msg/.srv-like text of a type (for `diffctl interface show`)."""
     t = normalize(typename)
+    _with_package_of(t)
     if "/srv/" not in t and t in _ensure(t).types:
         return _msg_text(t) + "\n"
     s = check_service(t)

@@ -174,3 +174,19 @@ def test_user_package_on_the_bus(workspace: Path, router: str) -> None:
     finally:
         a.close()
         b.close()
+
+
+def test_user_package_in_diffctls_tools(workspace: Path) -> None:
+    """`diffctl interface show` (and every bus tool) knows the workspace's types without an import first."""
+    import os
+    import subprocess
+    import sys
+
+    env = {**os.environ, "DIFFCTL_WORKSPACE": str(workspace)}
+    p = subprocess.run([sys.executable, "-m", "diffctl", "interface", "show", "robot_interfaces/srv/SetSpeed"],
+                       env=env, capture_output=True, text=True, timeout=60)
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.split() == ["float64", "speed", "---", "bool", "ok", "string", "message"]
+    p = subprocess.run([sys.executable, "-m", "diffctl", "interface", "show", "robot_interfaces/msg/Obstacle"],
+                       env=env, capture_output=True, text=True, timeout=60)
+    assert "uint8 KIND_DYNAMIC=1" in p.stdout and "geometry_msgs/msg/Point position" in p.stdout, p.stdout + p.stderr
