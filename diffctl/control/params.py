@@ -63,6 +63,9 @@ class ManagerParams:
     params_files: tuple[str, ...] = ()  # the manager's own files; controllers inherit them
     source: str = "controller_manager parameters"
     namespace: str = "/"  # the manager's, and so its controllers' (whose file sections match /ns/<name>)
+    # The manager process's own arguments as rcl holds them (its files and -p rules in command-line order):
+    # they are every node's of the process, the controllers' too. None: the table of `params_files` alone.
+    overrides: ParameterOverrides | None = field(default=None, compare=False)
 
     @property
     def period_s(self) -> float:
@@ -100,7 +103,7 @@ def _rate(value: Any, key: str, source: str, *, allow_zero: bool = False) -> int
 
 def manager_params(
     flat: Mapping[str, Any], *, source: str = "controller_manager parameters", params_files: tuple[str, ...] = (),
-    namespace: str = "/",
+    namespace: str = "/", overrides: ParameterOverrides | None = None,
 ) -> ManagerParams:
     """Validate the manager node's flattened parameters into a `ManagerParams` (raises ParameterError)."""
     kw: dict[str, Any] = {}
@@ -142,7 +145,7 @@ def manager_params(
             # Other dotted keys (a controller's own parameters written under the manager) are left to it.
     controllers = {name: controller_spec(name, d, source) for name, d in specs.items()}
     return ManagerParams(**kw, controllers=controllers, params_files=params_files, source=source,
-                         namespace=namespace)
+                         namespace=namespace, overrides=overrides)
 
 
 def controller_spec(name: str, d: Mapping[str, Any], source: str) -> ControllerSpec:
@@ -209,7 +212,11 @@ def controller_node_params(
     out: dict[str, Any] = dict(inherited or {})
     spec = params.controllers.get(name, ControllerSpec(name))
     fqn = node_fqn(name, params.namespace)
-    for files in (params.params_files, (*spec.params_files, *extra_files)):
+    layers = (params.params_files, (*spec.params_files, *extra_files))
+    for i, files in enumerate(layers):
+        if i == 0 and params.overrides is not None:
+            out.update(params.overrides.for_node(fqn))
+            continue
         table = ParameterOverrides()
         for f in files:
             if not Path(f).is_file():

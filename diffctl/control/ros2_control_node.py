@@ -115,8 +115,15 @@ class ControlNode:
                 self.log.warn(p)
         flat = self._flat_params()
         files = tuple(self.gz_files) + tuple(self.opts.param_files) + tuple(self.ra.params_files)
+        # The process's arguments, every node's of it: diffctl's --param-file and the plugin's files first, then
+        # --ros-args' files and -p rules in their order (the controllers' global arguments, as in Jazzy).
+        process = ros_args.ParameterOverrides()
+        for f in (*self.gz_files, *self.opts.param_files):
+            process.add_file(f)
+        for key, entry in self.ra.overrides.entries.items():
+            process.entries.setdefault(key, {}).update(entry)
         params = manager_params(flat, source="controller manager parameters", params_files=files,
-                                namespace=self.node.namespace)
+                                namespace=self.node.namespace, overrides=process)
         self.node.params.update(flat)
         if params.use_sim_time and not self.node.clock.use_sim_time:
             self.node.clock.use_sim_time = True

@@ -53,3 +53,18 @@ def test_the_spawner_finds_a_type_as_jazzys_spawner_does() -> None:
     assert said == ["Missing namespace : /robot1 or wildcard in parameter file for controller : "
                     "diffbot_base_controller"]
     assert section_type(FLEET, "diffbot_base_controller", "/robot1") == "diff_drive_controller/DiffDriveController"
+
+
+def test_the_managers_own_arguments_reach_its_controllers(tmp_path: Path) -> None:
+    # rclcpp: the process's --ros-args are every node's; a controller's params_file is its own (local) layer.
+    from diffctl import ros_args
+
+    own = tmp_path / "own.yaml"
+    own.write_text("ctrl:\n  ros__parameters:\n    wheel_radius: 0.3\n")
+    process = ros_args.parse(["--params-file", FLEET, "-p", "ctrl:wheel_radius:=0.2", "-p", "publish_rate:=5.0"],
+                             "controller_manager").overrides
+    params = manager_params({"ctrl.params_file": [str(own)]}, params_files=(FLEET,), overrides=process)
+    got = controller_node_params("ctrl", params)
+    assert (got["wheel_radius"], got["publish_rate"]) == (0.3, 5.0)
+    bare = manager_params({}, params_files=(FLEET,), overrides=process)
+    assert controller_node_params("ctrl", bare)["wheel_radius"] == 0.2
