@@ -129,8 +129,15 @@ class ControlNode:
             self.node.clock.use_sim_time = True
             self.node.create_subscription("/clock", "rosgraph_msgs/msg/Clock", self.node.clock.on_clock)
 
+        process_argv = ros_args.current_argv()
+
         def factory(name: str, p: dict[str, Any], remaps: dict[str, str] | None = None) -> BusControllerNode:
-            return BusControllerNode(name, self.node.namespace, p, self.now_ns, remaps=remaps)
+            # The node's own rules (--controller-ros-args) first, then the process's that apply to it
+            # (unprefixed, or prefixed with its name: `diffbot_base_controller:~/cmd_vel:=/cmd_vel`).
+            own = dict(remaps or {})
+            for k, v in ros_args.parse(process_argv, name, self.node.namespace).remaps.items():
+                own.setdefault(k, v)
+            return BusControllerNode(name, self.node.namespace, p, self.now_ns, remaps=own)
 
         self.cm = ControllerManager(
             params, log=self.log, node_factory=factory, robot_description=self.description, cancel=self.stop

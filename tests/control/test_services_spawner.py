@@ -53,6 +53,9 @@ def test_services_appear_with_the_description_and_serve_every_verb(router, procs
         "use_sim_time:=false",
         "-p",
         "update_rate:=50",
+        # a rule of the manager's own command line, for one of the nodes it hosts (rcl's node-prefixed remap)
+        "-r",
+        "diffbot_base_controller:~/cmd_vel:=/remapped_cmd_vel",
         stdout=log.open("w"),
         stderr=subprocess.STDOUT,
     )
@@ -99,6 +102,8 @@ def test_services_appear_with_the_description_and_serve_every_verb(router, procs
     assert (ctrl.state, ctrl.type, ctrl.update_rate) == ("active", "diff_drive_controller/DiffDriveController", 50)
     assert sorted(ctrl.claimed_interfaces) == ["base_link_to_left_wheel/velocity", "base_link_to_right_wheel/velocity"]
     wait_for(lambda: last_activity()[0] == {"diffbot_base_controller": "active"})
+    wait_for(lambda: node.graph.subscribers("/remapped_cmd_vel"))
+    assert not node.graph.subscribers("/diffbot_base_controller/cmd_vel")
 
     # Failures exit 1 with the reason.
     rc, out = run(procs, "spawn", "controller", "no_such_controller")
