@@ -4,6 +4,7 @@ to rosidl_generate_interfaces the way test_msgs' CMakeLists does: globbed lists,
 from __future__ import annotations
 
 import shutil
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
@@ -48,6 +49,22 @@ rosidl_generate_interfaces(${PROJECT_NAME}
 )
 ament_package()
 """
+
+
+@pytest.fixture(autouse=True)
+def _bus_definitions_restored() -> Iterator[None]:
+    """Tests here load interface packages in this process, which enters their types in the bus's definitions:
+    taken out again afterwards, so later tests of the same run (tests/graph's oracle checks over every
+    defined type) see diffctl's own definitions only."""
+    from diffctl.bus import typedefs
+    from diffctl.client.messages import registry
+
+    defs = typedefs.definitions()
+    before = dict(defs)
+    yield
+    defs.clear()
+    defs.update(before)
+    registry.reset()
 
 
 @pytest.fixture(scope="session")
