@@ -21,6 +21,7 @@ from rosbags.typesys.base import Nodetype
 
 FORMAT = 2  # 2: every char is uint8, as rosidl has it
 _defs: dict[str, tuple[list, list]] | None = None
+_own: frozenset[str] = frozenset()
 _lock = threading.Lock()
 
 
@@ -109,18 +110,27 @@ def _decode(raw: dict[str, Any]) -> dict[str, tuple[list, list]]:
 
 
 def definitions() -> dict[str, tuple[list, list]]:
-    """Every known type's rosbags field definitions: from the cache, or built (and cached) once."""
-    global _defs
+    """Every known type's rosbags field definitions: from the cache, or built (and cached) once. Interface
+    packages read later (diffctl.client.messages' registry: a workspace's, install trees') are added here."""
+    global _defs, _own
     if _defs is None:
         with _lock:
             if _defs is None:
                 path = _cache_file()
                 try:
-                    _defs = _decode(json.loads(path.read_text()))
+                    defs = _decode(json.loads(path.read_text()))
                 except (OSError, ValueError, KeyError, IndexError, TypeError):
-                    _defs = _build()
-                    _write(path, _defs)
+                    defs = _build()
+                    _write(path, defs)
+                _own = frozenset(defs)
+                _defs = defs
     return _defs
+
+
+def own_names() -> frozenset[str]:
+    """The types diffctl defines itself (rosbags' Jazzy store and interfaces.py), not those added later."""
+    definitions()
+    return _own
 
 
 def _write(path: Path, defs: dict[str, Any]) -> None:

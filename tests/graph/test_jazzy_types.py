@@ -30,8 +30,7 @@ def _layout(desc: dict) -> dict:
 
 def _top_level_types() -> list[str]:
     # Messages and services; a service's _Request/_Response/_Event parts are checked through the service.
-    return sorted(n for n in typedefs.definitions()
-                  if not n.endswith(("_Request", "_Response", "_Event")))
+    return sorted(n for n in typedefs.own_names() if not n.endswith(("_Request", "_Response", "_Event")))
 
 
 def test_every_type_of_a_jazzy_package_matches_rosidl(oracle: dict) -> None:
