@@ -28,6 +28,7 @@ MAPPED: dict[tuple[str, str], tuple[tuple[str, ...], str]] = {
     ),
     ("rqt_topic", "rqt_topic"): (("viz", "--port", "0"), "topic monitor: the visualizer's topics panel"),
 }
+KEEP_ARGUMENTS = frozenset({"joint_state_publisher_gui"})
 # GUI-only packages without a counterpart: stood in for, with one warning.
 GUI_ONLY_PACKAGES = frozenset({"rqt", "rqt_gui", "plotjuggler", "rqt_gui_py", "rqt_gui_cpp"})
 
@@ -57,6 +58,20 @@ def argv_for(package: str, executable: str) -> list[str] | None:
     return None
 
 
+def ros_args_only(argv: list[str]) -> list[str]:
+    """The `--ros-args … [--]` spans of `argv` (remappings, parameters, the node name), nothing else."""
+    out: list[str] = []
+    inside = False
+    for word in argv:
+        if word == "--ros-args":
+            inside = True
+        elif inside and word == "--":
+            inside = False
+        if inside or word == "--ros-args":
+            out.append(word)
+    return out
+
+
 def _stand_in(package: str, executable: str) -> int:
     for sig in (signal.SIGINT, signal.SIGTERM):
         signal.signal(sig, lambda *_: sys.exit(0))
@@ -76,8 +91,11 @@ def main(argv: list[str]) -> int:
     if argv[:1] == ["--run"] and len(argv) >= 5:
         package, executable, note, sub = argv[1:5]
         print(f"[INFO] {package}/{executable} runs as diffctl's counterpart: {note}", file=sys.stderr, flush=True)
+        # The tool's own arguments (rqt_topic -t, …) mean nothing to the counterpart, except for
+        # joint_state_publisher_gui, whose description-file argument joint_state_publisher takes too.
+        rest = argv[5:] if package in KEEP_ARGUMENTS else ros_args_only(argv[5:])
         # exec: the process the launch watches becomes the counterpart itself
-        os.execv(sys.executable, [sys.executable, "-m", "diffctl", *shlex.split(sub), *argv[5:]])
+        os.execv(sys.executable, [sys.executable, "-m", "diffctl", *shlex.split(sub), *rest])
     print("usage: python -m diffctl.workspace.gui_tools --skip PKG EXE | --run PKG EXE NOTE 'SUBCOMMAND …' [ARGS…]")
     return 2
 

@@ -3,11 +3,13 @@ idles until the launch stops it (so OnProcessExit handlers do not fire early).""
 
 from __future__ import annotations
 
+import os
 import signal
 import subprocess
 
 from diffctl.launch.package_index import executable_argv
 from diffctl.workspace.gui_tools import argv_for
+from tests.conftest import free_port
 
 
 def test_rqt_tools_get_a_stand_in_that_warns_once_and_waits(procs) -> None:
@@ -29,3 +31,18 @@ def test_counterparts_start_diffctls_component_with_the_launchs_arguments() -> N
     steering = executable_argv("rqt_robot_steering", "rqt_robot_steering")
     assert steering[-1] == "viz --port 0"
     assert argv_for("robot_state_publisher", "robot_state_publisher") is None
+
+
+def test_a_tools_own_arguments_do_not_reach_a_counterpart_that_does_not_take_them() -> None:
+    from diffctl.workspace.gui_tools import ros_args_only
+
+    # ros_gz_sim_demos' imu.launch.py: Node(package='rqt_topic', executable='rqt_topic', arguments=['-t'])
+    assert ros_args_only(["-t", "--ros-args", "-r", "__node:=rqt_topic", "--", "x"]) == [
+        "--ros-args",
+        "-r",
+        "__node:=rqt_topic",
+    ]
+    argv = executable_argv("rqt_topic", "rqt_topic")
+    env = {**os.environ, "DIFFCTL_ROUTER": f"tcp/127.0.0.1:{free_port()}"}  # no router: it stops after parsing
+    out = subprocess.run([*argv, "-t"], capture_output=True, text=True, timeout=60, env=env)
+    assert "No such option" not in out.stderr and "visualizer fixed frame" in out.stderr, out.stderr
