@@ -4,6 +4,10 @@ PyBullet's `loadSDF` cannot read Gazebo SDF (reference/sim_viz.md §1.1), so bod
 parsed model with `createMultiBody`. Planning rules:
 - links joined by fixed joints merge into one PyBullet link (mass properties combined), unless their contact
   surfaces differ: PyBullet keeps one friction per link, so a frictionless caster stays a link of its own;
+- likewise one SDF link whose collisions have different surfaces (a URDF caster lumped into base_link with its
+  own <mu1>) is split: each further surface gets a PyBullet link on a fixed joint, appended after the others
+  (indices of the rest unchanged), carrying a share of the mass at the same centre of mass with the same
+  share of the inertia, so the sum is exactly the link's mass properties;
 - a moving joint's frame becomes the child PyBullet link's frame (URDF semantics: joint frame = link frame),
   and every SDF link keeps an offset from the PyBullet link it ended up in, for sensors and poses;
 - a static model becomes one massless PyBullet body; a joint to `world` pins the tree (a fixed one makes the
@@ -29,6 +33,11 @@ class ShapeSpec:
     geometry: Geometry
     pose: Pose  # in the PyBullet link frame
     rgba: tuple[float, float, float, float] = DEFAULT_RGBA
+    surface: Surface | None = None  # collisions only
+
+
+# The mass share each extra-surface PyBullet link takes from the link it was split from.
+SURFACE_SPLIT_MASS_SHARE = 0.1
 
 
 @dataclass(frozen=True)
@@ -46,6 +55,7 @@ class LinkPlan:
     collisions: tuple[ShapeSpec, ...]
     visuals: tuple[ShapeSpec, ...]
     surface: Surface
+    part_of: tuple[str, ...] = ()  # for a surface split: the SDF links whose collisions it carries
 
 
 @dataclass(frozen=True)
@@ -119,7 +129,7 @@ class _Planner:
             else:
                 groups.append(self._group([root], self.by_name[root].pose_world, -1, None, static=anchor is not None))
             self._grow(groups, len(groups) - 1, root)
-            links = tuple(self._finish(g) for g in groups)
+            links = _split_surfaces(tuple(self._finish(g) for g in groups))
             bodies.append(BodyPlan(links))
             for pb_index, g in enumerate(groups, start=-1):
                 for name in g["members"]:
@@ -216,4 +226,57 @@ class _Planner:
 
 def _shape(element: Collision | Visual, link_in_frame: Pose) -> ShapeSpec:
     rgba = getattr(element, "rgba", None) or DEFAULT_RGBA
-    return ShapeSpec(element.geometry, link_in_frame.compose(element.pose_link), rgba)
+    surface = element.surface if isinstance(element, Collision) else None
+    return ShapeSpec(element.geometry, link_in_frame.compose(element.pose_link), rgba, surface)
+
+
+def _split_surfaces(links: tuple[LinkPlan, ...]) -> tuple[LinkPlan, ...]:
+    """Each moving PyBullet link whose collisions have several surfaces keeps its first surface's shapes; the
+    others move to new links fixed to it (appended), sharing its mass properties exactly."""
+    out = list(links)
+    extra: list[LinkPlan] = []
+    for i, lp in enumerate(links):
+        by_surface: dict[Surface, list[ShapeSpec]] = {}
+        for c in lp.collisions:
+            by_surface.setdefault(c.surface or lp.surface, []).append(c)
+        if len(by_surface) < 2 or lp.mass_kg <= 0.0:
+            continue  # a static body has no mass to share: it keeps its first surface
+        parts = list(by_surface.items())
+        share = min(SURFACE_SPLIT_MASS_SHARE, 0.5 / (len(parts) - 1))
+        keep = 1.0 - share * (len(parts) - 1)
+        for surface, shapes in parts[1:]:
+            extra.append(
+                LinkPlan(
+                    members=(),
+                    frame_world=lp.frame_world,
+                    parent=i - 1,
+                    joint=None,
+                    axis=(0.0, 0.0, 1.0),
+                    mass_kg=lp.mass_kg * share,
+                    inertial_frame=lp.inertial_frame,
+                    inertia_diagonal=_scaled(lp.inertia_diagonal, share),
+                    collisions=tuple(shapes),
+                    visuals=(),
+                    surface=surface,
+                    part_of=lp.members or lp.part_of,
+                )
+            )
+        first_surface, first_shapes = parts[0]
+        out[i] = LinkPlan(
+            members=lp.members,
+            frame_world=lp.frame_world,
+            parent=lp.parent,
+            joint=lp.joint,
+            axis=lp.axis,
+            mass_kg=lp.mass_kg * keep,
+            inertial_frame=lp.inertial_frame,
+            inertia_diagonal=_scaled(lp.inertia_diagonal, keep),
+            collisions=tuple(first_shapes),
+            visuals=lp.visuals,
+            surface=first_surface,
+        )
+    return (*out, *extra)
+
+
+def _scaled(v: Vec3, k: float) -> Vec3:
+    return (v[0] * k, v[1] * k, v[2] * k)

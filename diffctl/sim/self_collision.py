@@ -29,7 +29,7 @@ def _colliding_links(model: Model, plan: ModelPlan) -> dict[PbLink, bool]:
     for body_no, body in enumerate(plan.bodies):
         for index, lp in enumerate(body.links, start=-1):
             if lp.collisions:
-                out[(body_no, index)] = any(wants[name] for name in lp.members)
+                out[(body_no, index)] = any(wants[name] for name in lp.members or lp.part_of)
     return out
 
 

@@ -208,3 +208,31 @@ def test_mesh_geometry_collides_at_its_scaled_size(tmp_path) -> None:
         assert ents["crate"].link_pose("l").xyz[2] == pytest.approx(0.2, abs=0.01)
     finally:
         pw.close()
+
+
+def test_one_link_with_two_surfaces_keeps_both_frictions_and_its_exact_mass() -> None:
+    # A URDF caster lumped into base_link keeps its own <mu1> 0.01 (Gazebo applies it per collision).
+    from diffctl.description.urdf.to_model import urdf_model
+    from tests.sim.idle_robots import urdf_with_caster
+
+    model = urdf_model(urdf_with_caster())
+    (body,) = plan_model(model).bodies
+    assert len(body.links) == 4  # base, two wheels, the caster's surface
+    base, split = body.links[0], body.links[3]
+    assert {base.surface.mu, split.surface.mu} == {1.0, 0.01}
+    assert split.parent == -1 and split.joint is None and split.part_of == ("base_footprint",)
+    assert [c.geometry.radius_m for c in split.collisions] == [0.025]
+    mass = sum(lk.mass_kg for lk in (base, split))
+    assert mass == pytest.approx(2.05)
+    assert base.inertial_frame == split.inertial_frame
+    assert [a + b for a, b in zip(base.inertia_diagonal, split.inertia_diagonal, strict=True)] == pytest.approx(
+        principal(combine([from_inertial(model.link("base_footprint").inertial, Pose())]))[1]
+    )
+    pw, _ = build(sdf_world(ground()))
+    try:
+        entity = pw.add_model(model)
+        cid, b = pw.client, entity.bodies[0]
+        frictions = sorted(pb.getDynamicsInfo(b, i, physicsClientId=cid)[1] for i in (-1, 2))
+        assert frictions == [0.01, 1.0]
+    finally:
+        pw.close()

@@ -46,10 +46,23 @@ def test_sources_follow_creates_precedence_and_parameters_win() -> None:
     req = build_request({**flags, "file": None, "param": "desc"}, {"desc": "<robot name='p'/>"})
     assert (req.source, req.value) == ("string", "<robot name='p'/>")
     # parameters: file > string > topic, and ahead of every flag; a non-zero pose parameter wins
-    req = build_request(flags, {"topic": "/other", "string": "<sdf version='1.8'/>", "name": "param_name", "x": 0,
-                                "Y": 2, "allow_renaming": True})
-    assert (req.source, req.value, req.name, req.allow_renaming) == ("string", "<sdf version='1.8'/>", "param_name",
-                                                                     True)
+    req = build_request(
+        flags,
+        {
+            "topic": "/other",
+            "string": "<sdf version='1.8'/>",
+            "name": "param_name",
+            "x": 0,
+            "Y": 2,
+            "allow_renaming": True,
+        },
+    )
+    assert (req.source, req.value, req.name, req.allow_renaming) == (
+        "string",
+        "<sdf version='1.8'/>",
+        "param_name",
+        True,
+    )
     assert (req.pose["x"], req.pose["yaw"]) == (1.0, 2.0)
     assert build_request({"topic": "robot_description"}, {}).pose is None
 
@@ -85,9 +98,11 @@ def test_model_files_are_found_as_gazebo_finds_them(tmp_path: Path, monkeypatch:
 def test_a_missing_file_exits_2_before_waiting_for_a_simulator(tmp_path: Path) -> None:
     r = run_cli("spawn", "entity", "-file", str(tmp_path / "nope.sdf"), "-name", "x", "--timeout", "600")
     assert r.returncode == 2
-    assert r.stderr.strip().splitlines() == [f"error: -file {tmp_path / 'nope.sdf'}: no such model file "
-                                             "(give a path, a model folder, or a model:// URI found on "
-                                             "GZ_SIM_RESOURCE_PATH)"]
+    assert r.stderr.strip().splitlines() == [
+        f"error: -file {tmp_path / 'nope.sdf'}: no such model file "
+        "(give a path, a model folder, or a model:// URI found on "
+        "GZ_SIM_RESOURCE_PATH)"
+    ]
 
 
 @pytest.mark.slow
@@ -100,8 +115,25 @@ def test_create_spawns_from_a_namespaced_topic_renames_and_places(router: str, p
         pub = node.create_publisher("robot_description", "std_msgs/msg/String", latched=True)
         pub.publish({"data": CAR.read_text()})
         # as a launch file passes them: relative topic, the node in namespace /r1, negative values, gflags bools
-        args = ["-topic", "robot_description", "-name", "car", "-allow_renaming", "true",
-                "-x", "-1.5", "-y=2", "-z", "0.25", "-R", "0", "-P", "0", "-Y", "-0.5"]
+        args = [
+            "-topic",
+            "robot_description",
+            "-name",
+            "car",
+            "-allow_renaming",
+            "true",
+            "-x",
+            "-1.5",
+            "-y=2",
+            "-z",
+            "0.25",
+            "-R",
+            "0",
+            "-P",
+            "0",
+            "-Y",
+            "-0.5",
+        ]
         r = run_cli("spawn", "entity", *args, "--ros-args", "-r", "__ns:=/r1")
         assert r.returncode == 0, r.stderr
         r = run_cli("spawn", "entity", *args, "--ros-args", "-r", "__ns:=/r1")

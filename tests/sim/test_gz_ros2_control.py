@@ -132,8 +132,10 @@ def test_position_and_effort_modes_are_applied_every_step() -> None:
 
 
 def test_plugin_elements_are_read_with_their_defaults_and_errors() -> None:
-    ns = "<ros><namespace>robot1</namespace><remapping>/a:=/b</remapping>" \
-         "<remapping>--ros-args -r c:=d</remapping></ros><controller_manager_name>cm</controller_manager_name>"
+    ns = (
+        "<ros><namespace>robot1</namespace><remapping>/a:=/b</remapping>"
+        "<remapping>--ros-args -r c:=d</remapping></ros><controller_manager_name>cm</controller_manager_name>"
+    )
     model = parse_model(control_text(extra_plugin_xml=ns), source="test")
     plugin = next(p for p in model.plugins if p.system == "gz_ros2_control")
     p = GzRos2ControlParams.from_plugin(plugin, "test")
@@ -188,8 +190,9 @@ def test_the_simulation_hosts_a_manager_that_drives_the_car(router: str) -> None
         cm = rt.control.cm
         assert [i.plugin_name for i in rt.control.infos] == ["gz_ros2_control/GazeboSimSystem"]
         # The manager's services answer over the bus, as the standalone manager's do.
-        listing = client.create_client("/controller_manager/list_hardware_components",
-                                        "controller_manager_msgs/srv/ListHardwareComponents")
+        listing = client.create_client(
+            "/controller_manager/list_hardware_components", "controller_manager_msgs/srv/ListHardwareComponents"
+        )
         assert listing.wait_for_service(10.0)
         comps = listing.call({}, timeout=10.0).component
         assert [(c.name, c.plugin_name, c.state.label) for c in comps] == [

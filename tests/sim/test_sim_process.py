@@ -15,7 +15,6 @@ from sim_helpers import CAR, CAR_CONTROL, EMPTY_WORLD, REPO
 CONTROLLERS = REPO / "config" / "diff_drive_controller.yaml"
 
 
-
 def run_cli(*args: str, timeout: float = 60) -> subprocess.CompletedProcess:
     return subprocess.run(
         [sys.executable, "-m", "diffctl", *args], capture_output=True, text=True, timeout=timeout, cwd=REPO
@@ -174,10 +173,19 @@ def _controlled_run(procs: Any, session: Any, tmp_path: Path, batches: list[int]
         # The manager answers while the world is paused: a spawner only waits for its services.
         r = run_cli("control", "list_hardware_components")
         assert r.returncode == 0 and "gz_ros2_control/GazeboSimSystem" in r.stdout, r.stdout + r.stderr
-        spawner = procs.diffctl("spawn", "controller", "diffbot_base_controller", "joint_state_broadcaster",
-                                "--param-file", str(CONTROLLERS), "--activate-as-group", cwd=REPO)
-        lister = node.create_client("/controller_manager/list_controllers",
-                                    "controller_manager_msgs/srv/ListControllers")
+        spawner = procs.diffctl(
+            "spawn",
+            "controller",
+            "diffbot_base_controller",
+            "joint_state_broadcaster",
+            "--param-file",
+            str(CONTROLLERS),
+            "--activate-as-group",
+            cwd=REPO,
+        )
+        lister = node.create_client(
+            "/controller_manager/list_controllers", "controller_manager_msgs/srv/ListControllers"
+        )
 
         def configured() -> bool:
             states = [c.state for c in lister.call({}, timeout=10.0).controller]
