@@ -151,13 +151,17 @@ class Executor:
 
     def spin_until_future_complete(self, future: Future, timeout_sec: float | None = None) -> None:
         future.add_done_callback(lambda _f: self.wake())
+        def waiting_for_it() -> bool:
+            return (self._context.ok() and not future.done() and not future.cancelled()
+                    and not self._is_shutdown)
+
         if timeout_sec is None or timeout_sec < 0:
-            while self._context.ok() and not future.done() and not self._is_shutdown:
+            while waiting_for_it():
                 self.spin_once_until_future_complete(future, timeout_sec)
             return
         end = time.monotonic() + timeout_sec
         left = TimeoutObject(timeout_sec)
-        while self._context.ok() and not future.done() and not self._is_shutdown:
+        while waiting_for_it():
             self.spin_once_until_future_complete(future, left)
             now = time.monotonic()
             if now >= end:
@@ -236,7 +240,7 @@ class Executor:
                         yielded_work = True
                         yield task, entity, node
                 with self._tasks_lock:
-                    self._tasks = [t for t in self._tasks if not t[0].done()]
+                    self._tasks = [t for t in self._tasks if not t[0].done() and not t[0].cancelled()]
 
             generation = signal.generation
             subs: list[Any] = []

@@ -328,9 +328,13 @@ class Node:
         self._params.pre_set.insert(0, callback)
 
     def add_on_set_parameters_callback(self, callback: Callable[[list[Parameter]], Any]) -> None:
+        if not callable(callback):
+            raise TypeError("Callback must be callable, got {}", type(callback))
         self._params.on_set.insert(0, callback)
 
     def add_post_set_parameters_callback(self, callback: Callable[[list[Parameter]], None]) -> None:
+        if not callable(callback):
+            raise TypeError("Callback must be callable, got {}", type(callback))
         self._params.post_set.insert(0, callback)
 
     def remove_pre_set_parameters_callback(self, callback: Callable[..., Any]) -> None:

@@ -292,8 +292,13 @@ class NodeParameters(ParameterStore):
                 r = self._apply_descriptor(p, table[p.name], descriptors is None)
                 if not r.successful:
                     return r
+        result_cls = cls("rcl_interfaces/msg/SetParametersResult")
         for cb in self.on_set:
             r = cb(plist)
+            if not isinstance(r, result_cls):
+                warnings.warn("Callback returned an invalid type, it should return SetParameterResult.",
+                              stacklevel=2)
+                r = _result(False, "Callback returned an invalid type")
             if not r.successful:
                 return r
         changes: list[ParameterChange] = []

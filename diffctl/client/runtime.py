@@ -98,11 +98,13 @@ def create_node(node_name: str, *, context: Context | None = None, cli_args: lis
 
 def spin_once(node: Any, *, executor: Any = None, timeout_sec: float | None = None) -> None:
     executor = get_global_executor() if executor is None else executor
+    added = False
     try:
-        executor.add_node(node)
+        added = executor.add_node(node)
         executor.spin_once(timeout_sec=timeout_sec)
     finally:
-        executor.remove_node(node)
+        if added:
+            executor.remove_node(node)
 
 
 def spin(node: Any, executor: Any = None) -> None:

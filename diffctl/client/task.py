@@ -1,5 +1,6 @@
 """rclpy.task: Future (not asyncio's) and Task, which runs a function or steps a coroutine.
 
+As Jazzy's current release (7.1.6): a future is pending, cancelled or finished; `done()` means finished.
 Semantics users rely on: `result()` is None while pending and raises a stored exception; `await future`
 yields until it is done; done callbacks become executor tasks when the future knows its executor, else
 run at once; an exception nobody fetched is printed when the future is collected.
@@ -7,6 +8,7 @@ run at once; an exception nobody fetched is printed when the future is collected
 
 from __future__ import annotations
 
+import enum
 import inspect
 import sys
 import threading
@@ -20,10 +22,15 @@ def _no_executor() -> None:
     return None
 
 
+class FutureState(enum.Enum):
+    PENDING = "PENDING"
+    CANCELLED = "CANCELLED"
+    FINISHED = "FINISHED"
+
+
 class Future:
     def __init__(self, *, executor: Any = None) -> None:
-        self._done = False
-        self._cancelled = False
+        self._state = FutureState.PENDING
         self._result: Any = None
         self._exception: BaseException | None = None
         self._exception_fetched = False
@@ -37,21 +44,25 @@ class Future:
             print("The following exception was never retrieved: " + str(self._exception), file=sys.stderr)
 
     def __await__(self) -> Generator[None, None, Any]:
-        while not self._done:
+        while self._state is FutureState.PENDING:
             yield
         return self.result()
 
+    def _pending(self) -> bool:
+        return self._state is FutureState.PENDING
+
     def cancel(self) -> None:
         with self._lock:
-            if not self._done:
-                self._cancelled = True
+            if self._state is not FutureState.PENDING:
+                return
+            self._state = FutureState.CANCELLED
         self._schedule_or_invoke_done_callbacks()
 
     def cancelled(self) -> bool:
-        return self._cancelled
+        return self._state is FutureState.CANCELLED
 
     def done(self) -> bool:
-        return self._done
+        return self._state is FutureState.FINISHED
 
     def result(self) -> Any:
         exc = self.exception()
@@ -66,16 +77,14 @@ class Future:
     def set_result(self, result: Any) -> None:
         with self._lock:
             self._result = result
-            self._done = True
-            self._cancelled = False
+            self._state = FutureState.FINISHED
         self._schedule_or_invoke_done_callbacks()
 
     def set_exception(self, exception: BaseException) -> None:
         with self._lock:
             self._exception = exception
             self._exception_fetched = False
-            self._done = True
-            self._cancelled = False
+            self._state = FutureState.FINISHED
         self._schedule_or_invoke_done_callbacks()
 
     def _schedule_or_invoke_done_callbacks(self) -> None:
@@ -99,7 +108,7 @@ class Future:
     def add_done_callback(self, callback: Callable[[Future], None]) -> None:
         invoke = False
         with self._lock:
-            if self._done:
+            if self._state is not FutureState.PENDING:
                 executor = self._executor()
                 if executor is not None:
                     executor.create_task(callback, self)
@@ -109,6 +118,15 @@ class Future:
                 self._callbacks.append(callback)
         if invoke:
             callback(self)
+
+    def remove_done_callback(self, callback: Callable[[Future], None]) -> bool:
+        """Forget a done callback; False if it was not there (or the future completed already)."""
+        with self._lock:
+            try:
+                self._callbacks.remove(callback)
+            except ValueError:
+                return False
+            return True
 
 
 class Task(Future):
@@ -128,17 +146,16 @@ class Task(Future):
 
     def __call__(self) -> None:
         """Run the function, or step the coroutine once (it resumes at the next call)."""
-        if self._done or self._executing or not self._task_lock.acquire(blocking=False):
+        if not self._pending() or self._executing or not self._task_lock.acquire(blocking=False):
             return
         try:
-            if self._done:
+            if not self._pending():
                 return
             self._executing = True
             if inspect.iscoroutine(self._handler):
                 try:
                     self._handler.send(None)
                 except StopIteration as e:
-                    self._handler.close()
                     self.set_result(e.value)
                     self._complete()
                 except Exception as e:
@@ -160,3 +177,8 @@ class Task(Future):
 
     def executing(self) -> bool:
         return self._executing
+
+    def cancel(self) -> None:
+        if self._pending() and inspect.iscoroutine(self._handler):
+            self._handler.close()
+        super().cancel()

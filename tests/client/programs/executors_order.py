@@ -69,8 +69,34 @@ done.set_result("x")
 ex.spin_until_future_complete(done, timeout_sec=1)
 out.append(["done future", done.result()])
 c = Future()
+called = []
+c.add_done_callback(lambda f: called.append("done callback"))
 c.cancel()
-out.append(["cancelled future", [c.cancelled(), c.done(), c.result()]])
+out.append(["cancelled future", [c.cancelled(), c.done(), c.result(), called]])
+c.cancel()
+c.set_result(1)
+out.append(["result after cancel", [c.cancelled(), c.done(), c.result()]])
+t0 = time.monotonic()
+pending = Future()
+threading.Timer(0.2, pending.cancel).start()
+ex.spin_until_future_complete(pending, timeout_sec=2)
+out.append(["spin ends on cancel", round(time.monotonic() - t0, 1) < 1.0])
+cb = Future()
+cb_hits = []
+hit = cb_hits.append
+cb.add_done_callback(hit)
+out.append(["remove done callback", [cb.remove_done_callback(hit), cb.remove_done_callback(hit)]])
+
+
+async def cancellable():
+    await Future()
+
+
+task = ex.create_task(cancellable)
+ex.spin_once(timeout_sec=0.1)
+task.cancel()
+ex.spin_once(timeout_sec=0.1)
+out.append(["cancelled task", [task.cancelled(), task.done(), task.executing()]])
 
 # A callback that raises: spin_once propagates it.
 boom = node.create_timer(0.01, lambda: 1 / 0)
