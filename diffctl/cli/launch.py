@@ -34,6 +34,13 @@ def _bus_probes(kinds: set[str]) -> Any:
     return BusProbes()
 
 
+def _lifecycle(post: Any) -> Any:
+    # The bus side of LifecycleNode, built when a launch first uses one: the engine itself imports no bus.
+    from diffctl.cli.launch_lifecycle import make
+
+    return make(post)
+
+
 def _ensure_router(output: Any) -> Any:
     from diffctl.bus.router import ensure_router
 
@@ -207,7 +214,9 @@ def _run(
     poller = None
     try:
         env = _children_env(run_dir)
-        supervisor = Supervisor(plan, spawner=loop.spawner, output=None, log_dir=run_dir, env=env, **options)
+        supervisor = Supervisor(
+            plan, spawner=loop.spawner, output=None, log_dir=run_dir, env=env, lifecycle=_lifecycle, **options
+        )
         # The first visit of the description: a bad argument, file or substitution fails here, exit 2,
         # before anything has started (not even the log directory).
         supervisor.prepare()

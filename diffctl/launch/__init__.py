@@ -15,6 +15,13 @@ import importlib
 
 # Every public name and the module it lives in: the one list (`__all__` is derived from it).
 _ORIGIN: dict[str, str] = {
+    "LifecycleNode": "diffctl.launch.lifecycle",
+    "OnStateTransition": "diffctl.launch.lifecycle",
+    "ChangeState": "diffctl.launch.lifecycle",
+    "StateTransition": "diffctl.launch.lifecycle",
+    "matches_node_name": "diffctl.launch.lifecycle",
+    "SetROSLogDir": "diffctl.launch.ros_actions",
+    "RosTimer": "diffctl.launch.ros_actions",
     "UnsetLaunchConfiguration": "diffctl.launch.actions",
     "PushLaunchConfigurations": "diffctl.launch.actions",
     "PopLaunchConfigurations": "diffctl.launch.actions",

@@ -249,6 +249,23 @@ class Engine:
             event.name, "stdout" if event.fd == 1 else "stderr", text[:-1] if text.endswith("\n") else text
         )
 
+    def lifecycle(self) -> Any:
+        """The bus side of managed nodes, when the launch was given one (None in a dry run)."""
+        get = getattr(self.services, "lifecycle_services", None)
+        if self.dry or get is None:
+            return None
+        try:
+            return get()
+        except Exception as e:  # the bus side failed to come up: a launch error, not a crash
+            raise LaunchError(f"lifecycle nodes need the bus, which failed: {type(e).__name__}: {e}") from None
+
+    def post_event(self, event: Any) -> None:
+        """From another thread (a bus callback): emit `event` on the launch's own thread."""
+        self.services.post(lambda: self.emit(event))  # type: ignore[attr-defined]
+
+    def post_log(self, level: str, message: str) -> None:
+        self.services.post(lambda: self.services.log(level, message))  # type: ignore[attr-defined]
+
     def failed(self, error: LaunchError) -> None:
         """An exception while handling an event: logged, and the launch shuts down with code 1 (as ROS)."""
         message = str(error)
@@ -326,6 +343,7 @@ class Engine:
             unique = f"{name}-{n}"
             n += 1
         self.origin_names[id(action)] = unique
+        action._process_name = unique
         spec = ProcessSpec(name=unique, where=str(action.where), origin=id(action), **fields)
         self.processes[unique] = spec
         self.process_actions[unique] = action

@@ -38,6 +38,12 @@ class ProcessMatcher:
     action: Any = None
     name: str | None = None
 
+    def __call__(self, action: Any) -> bool:
+        """As launch's matchers, a predicate on an action (ChangeState takes it so)."""
+        if self.action is not None:
+            return action is self.action
+        return getattr(action, "_process_name", None) == self.name
+
 
 def matches_action(target_action: Any) -> ProcessMatcher:
     return ProcessMatcher(action=target_action)

@@ -112,6 +112,7 @@ class EventLoop:
 
     def run(self, supervisor: Supervisor) -> int:
         self.supervisor = supervisor
+        supervisor.notify = self.wake  # work posted from other threads (bus callbacks) wakes the loop
         previous = {sig: signal.signal(sig, lambda *_: None) for sig in HANDLED_SIGNALS}
         old_wakeup = signal.set_wakeup_fd(self._wake_w, warn_on_full_buffer=False)
         if self._stdin and not any(s.spec.interactive for s in supervisor.states.values()):
@@ -142,6 +143,7 @@ class EventLoop:
             self.spawner.kill_all()
             raise
         finally:
+            supervisor.close()
             signal.set_wakeup_fd(old_wakeup)
             for sig, handler in previous.items():
                 signal.signal(sig, handler)

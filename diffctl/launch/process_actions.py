@@ -389,7 +389,8 @@ class Node(ExecuteProcess):
         # Without a package the executable is looked up on PATH, as launch_ros does.
         self.package = None if package is None else normalize(package)
         self.executable = normalize(executable)
-        self.node_name = None if name is None else normalize(name)
+        self.name_parts = None if name is None else normalize(name)
+        self._fqn: str | None = None
         self.name = None if exec_name is None else normalize(exec_name)
         self.namespace = None if namespace is None else normalize(namespace)
         self.parameters = list(parameters or [])
@@ -402,6 +403,13 @@ class Node(ExecuteProcess):
 
     def label(self) -> str:
         return f"node {describe(self.package) + '/' if self.package else ''}{describe(self.executable)}"
+
+    @property
+    def node_name(self) -> str:
+        """The fully qualified node name, once the node has been executed (as launch_ros's Node.node_name)."""
+        if self._fqn is None:
+            raise LaunchError("Node.node_name is known once the node has been executed (and was given a name)")
+        return self._fqn
 
     def command(self, scope: Scope) -> list[str]:
         if self.package is None:
@@ -419,13 +427,13 @@ class Node(ExecuteProcess):
         return {"package": perform(self.package, scope), "executable": perform(self.executable, scope)}
 
     def default_name(self, argv: list[str], scope: Scope) -> str:
-        return perform(self.node_name if self.node_name is not None else self.executable, scope)
+        return perform(self.name_parts if self.name_parts is not None else self.executable, scope)
 
     def ros_node(self, scope: Scope) -> tuple[RosNode | None, dict[str, str | None]]:
         namespace = scope.namespace
         if self.namespace is not None:
             namespace = join_namespace(scope.namespace, perform(self.namespace, scope))
-        node_name = perform(self.node_name, scope) if self.node_name is not None else None
+        node_name = perform(self.name_parts, scope) if self.name_parts is not None else None
         if node_name is not None and not _NODE_NAME.fullmatch(node_name):
             raise LaunchError(
                 f"node name {node_name!r} is not valid",
@@ -437,6 +445,8 @@ class Node(ExecuteProcess):
         own = tuple((perform(a, scope), perform(b, scope)) for a, b in self.remappings)
         glob = tuple(scope.configurations.get("global_params") or ())
         remaps = tuple(scope.configurations.get("ros_remaps") or ())
+        if node_name is not None:
+            self._fqn = namespace.rstrip("/") + "/" + node_name
         node = RosNode(
             node_name=node_name, namespace=namespace, params=params, remaps=(*remaps, *own), global_params=glob
         )

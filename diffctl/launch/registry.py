@@ -35,6 +35,7 @@ def actions() -> dict[str, type[Action]]:
     import diffctl.launch.event_actions
     import diffctl.launch.event_handlers
     import diffctl.launch.include_action
+    import diffctl.launch.lifecycle
     import diffctl.launch.process_actions
     import diffctl.launch.ros_actions  # noqa: F401
 

@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from diffctl.errors import LaunchError
-from diffctl.launch.actions import Action, describe
+from diffctl.launch.actions import Action, TimerAction, describe
 from diffctl.launch.parameters import ParameterValue, _param_value
 from diffctl.launch.registry import register
 from diffctl.launch.substitutions import SomeSubstitutions, normalize, perform
@@ -51,7 +51,8 @@ class SetParameter(Action):
 
 @register
 class SetUseSimTime(Action):
-    """`set_use_sim_time`: SetParameter('use_sim_time', value) for every node after it."""
+    """`set_use_sim_time`: as launch_ros's, it sets `use_sim_time` of launch's own ROS node (what RosTimer
+    would count on), not of the nodes it starts: use `set_parameter` for those."""
 
     frontend_tags = ("set_use_sim_time",)
     frontend_attrs = ("value",)
@@ -64,7 +65,7 @@ class SetUseSimTime(Action):
         from diffctl.launch.conditions import truth
 
         value = self.value if isinstance(self.value, bool) else truth(perform(self.value, context), "use_sim_time")
-        context.global_params.append(("use_sim_time", str(value)))
+        context.extend_globals({"use_sim_time": value})
         return None
 
     @classmethod
@@ -122,3 +123,38 @@ class SetRemap(Action):
     @classmethod
     def from_entity(cls, e: Entity) -> Action:
         return cls(e.text("from", required=True), e.text("to", required=True))
+
+
+@register
+class SetROSLogDir(Action):
+    """`set_ros_log_dir`: ROS_LOG_DIR for what starts after it; a relative directory is joined to the current one."""
+
+    frontend_tags = ("set_ros_log_dir",)
+    frontend_attrs = ("new_log_dir",)
+
+    def __init__(self, new_log_dir: SomeSubstitutions, **kw: Any) -> None:
+        super().__init__(**kw)
+        self.new_log_dir = normalize(new_log_dir)
+
+    def label(self) -> str:
+        return f"set_ros_log_dir {describe(self.new_log_dir)}"
+
+    def execute(self, context: Scope) -> list[Action] | None:
+        import os
+
+        env = context.env
+        ros_home = env.get("ROS_HOME") or os.path.join(os.path.expanduser("~"), ".ros")
+        current = env.get("ROS_LOG_DIR") or os.path.join(ros_home, "log")
+        context.set_env("ROS_LOG_DIR", os.path.join(current, perform(self.new_log_dir, context)))
+        return None
+
+    @classmethod
+    def from_entity(cls, e: Entity) -> Action:
+        return cls(e.text("new_log_dir", required=True))
+
+
+@register
+class RosTimer(TimerAction):
+    """`ros_timer`: a TimerAction (launch_ros counts it on its node's ROS clock; here on the wall clock)."""
+
+    frontend_tags = ("ros_timer",)

@@ -39,9 +39,11 @@ def _launch_names() -> dict[str, Any]:
 
 
 def _event_names() -> dict[str, Any]:
-    from diffctl.launch import events
+    from diffctl.launch import events, lifecycle
 
-    return {
+    extra = {k: getattr(lifecycle, k) for k in ("ChangeState", "StateTransition", "matches_node_name")}
+
+    return extra | {
         k: v for k, v in vars(events).items() if (not k.startswith("_") and k[0].isupper()) or k.startswith("matches_")
     }
 

@@ -96,7 +96,7 @@ def _static_name(action: Any) -> str | None:
         return None
     parts = action.name
     if isinstance(action, Node) and parts is None:
-        parts = action.node_name if action.node_name is not None else action.executable
+        parts = action.name_parts if action.name_parts is not None else action.executable
     if parts and all(isinstance(p, TextSubstitution) for p in parts):
         return "".join(p.text for p in parts)
     return None

@@ -22,8 +22,10 @@ import os
 import re
 import signal
 import tempfile
+from collections import deque
 from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 from diffctl.errors import LaunchError
 from diffctl.launch import commandline, events
@@ -74,7 +76,9 @@ class Supervisor:
         env: dict[str, str] | None = None,
         output_default: str = "screen",
         exit_code_mode: str = "diffctl",
+        lifecycle: Callable[[Callable[[], None]], Any] | None = None,
     ) -> None:
+        """lifecycle: makes the bus side of LifecycleNode (given a thread-safe `post`), on first use."""
         self.plan = plan
         self.exit_code_mode = exit_code_mode
         self.spawner = spawner
@@ -89,6 +93,10 @@ class Supervisor:
         self.started_at: dict[int, float] = {}  # pgid → when that start of the process began
         self.engine = Engine(dict(plan.launch_arguments), plan.source, self, output_default=output_default)
         self._held: list[Step] | None = None
+        self._inbox: deque[Callable[[], None]] = deque()  # work posted from other threads (bus callbacks)
+        self._make_lifecycle = lifecycle
+        self._lifecycle: Any = None
+        self.notify: Callable[[], None] = lambda: None  # wakes the event loop (set by loop.py)
         self.start_order: list[str] = []
         self.pending: list[Pending] = []
         self.failures: list[str] = []  # why the launch failed: required process, readiness, …
@@ -182,6 +190,23 @@ class Supervisor:
     def after(self, delay_s: float, callback: Callable[[], None], kind: str) -> Timer:
         return self._after(delay_s, callback, kind)
 
+    def post(self, work: Callable[[], None]) -> None:
+        """Thread-safe: run `work` on the launch's thread (deque appends are atomic)."""
+        self._inbox.append(work)
+        self.notify()
+
+    def log(self, level: str, message: str) -> None:
+        self.output.launcher(level, message)
+
+    def lifecycle_services(self) -> Any:
+        if self._lifecycle is None and self._make_lifecycle is not None:
+            self._lifecycle = self._make_lifecycle(self.post)
+        return self._lifecycle
+
+    def close(self) -> None:
+        if self._lifecycle is not None and hasattr(self._lifecycle, "close"):
+            self._lifecycle.close()
+
     def event_failed(self, message: str) -> None:
         """An exception while handling an event, as ros2/launch: logged, the launch shuts down, exit code 1."""
         self.failures.append(message)
@@ -262,6 +287,8 @@ class Supervisor:
             self._after_event()
 
     def tick(self) -> None:
+        while self._inbox:
+            self._inbox.popleft()()
         now = self.now()
         while self._timers and self._timers[0][0] <= now:
             _, _, timer = heapq.heappop(self._timers)

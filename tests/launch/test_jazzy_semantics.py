@@ -372,3 +372,15 @@ def generate_launch_description():
     run.advance(0.1)
     assert run.sup.done and run.sup.exit_code == 1
     assert any("Caught exception in launch" in m and "'x' is not set" in m for m in logs(run))
+
+
+@pytest.mark.slow
+def test_a_lifecycle_node_is_driven_by_change_state_events_and_its_transitions(router, launch_run) -> None:
+    data = Path(__file__).parent / "data" / "lifecycle"
+    run = launch_run(str(data / "managed.launch.py"), "--no-router")
+    assert run.wait(30) == 0, run.text()
+    text = run.text()
+    order = ["configuring", "now inactive", "activating", "now active", "shutting down: managed node is active"]
+    positions = [text.index(m) for m in order]
+    assert positions == sorted(positions), text
+    assert run.leftovers() == []

@@ -221,7 +221,7 @@ def test_a_missing_feature_fails_in_one_line_naming_it(tmp_path: Path) -> None:
     path.write_text(
         "import launch_ros.actions\nfrom launch import LaunchDescription\n\n"
         "def generate_launch_description():\n"
-        "    assert not hasattr(launch_ros.actions, 'LifecycleNode')\n"
+        "    assert not hasattr(launch_ros.actions, 'NoSuchAction')\n"
         "    return LaunchDescription([])\n"
     )
     assert load(path).entities == []
