@@ -108,6 +108,11 @@ class Subscription:
     def __exit__(self, *exc: Any) -> None:
         pass
 
+    @property
+    def logger_name(self) -> str:
+        """The logger name of the node this entity belongs to."""
+        return self._node.get_logger().name
+
     def destroy(self) -> None:
         self._node.destroy_subscription(self)
 

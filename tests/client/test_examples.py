@@ -45,6 +45,10 @@ def test_talker_and_listener(router: str, procs: Procs) -> None:
     listener, heard = _start(procs, "minimal_subscriber.py")
     talker, said = _start(procs, "minimal_publisher.py")
     assert wait_for(lambda: heard.has('I heard: "Hello World: 3"'), 20), heard.text() + said.text()
+    # diffctl's own tools see the rclpy talker as any ROS 2 node.
+    echo = subprocess.run([sys.executable, "-m", "diffctl", "topic", "echo", "/topic", "--once", "--timeout", "10"],
+                          capture_output=True, text=True, timeout=30)
+    assert "data: 'Hello World: " in echo.stdout, echo.stdout + echo.stderr
     assert said.has('[INFO] [') and said.has('] [minimal_publisher]: Publishing: "Hello World: 0"')
     # Ctrl-C: the tutorials' except clauses end both quietly, exit status 0, no traceback.
     assert procs.stop(talker, signal.SIGINT) == 0
@@ -59,6 +63,10 @@ def test_add_two_ints(router: str, procs: Procs) -> None:
     assert client.returncode == 0, client.stderr
     assert "] [minimal_client_async]: Result of add_two_ints: for 2 + 3 = 5" in client.stderr
     assert wait_for(lambda: served.has("Incoming request"), 5)
+    call = subprocess.run([sys.executable, "-m", "diffctl", "service", "call", "/add_two_ints",
+                           "example_interfaces/srv/AddTwoInts", "{a: 40, b: 2}"], capture_output=True, text=True,
+                          timeout=30)
+    assert "sum: 42" in call.stdout, call.stdout + call.stderr
     # SIGTERM: the server's `except ExternalShutdownException` ends it normally.
     assert procs.stop(server, signal.SIGTERM) == 0, served.text()
 
