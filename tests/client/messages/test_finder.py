@@ -9,6 +9,7 @@ from pathlib import Path
 
 import pytest
 
+from tests.client.messages.programs import OVERLAY as OVERLAY_PATH
 from tests.client.messages.programs import ours_env, run_ours
 
 
@@ -122,3 +123,19 @@ def test_install_trees_and_the_workspace_before_them(tmp_path: Path) -> None:
     p = python("from tree_msgs.msg import Level; print(Level())\nfrom my_msgs.msg import Level; print(Level())",
                {"AMENT_PREFIX_PATH": str(prefix), "DIFFCTL_WORKSPACE": str(ws)})
     assert p.stdout.splitlines() == ["tree_msgs.msg.Level(level=0.25)", "my_msgs.msg.Level(from_source=0)"], p.stderr
+
+
+def test_a_package_with_python_code_and_interfaces(tmp_path: Path) -> None:
+    """ament_cmake_python packages install their Python package and the generated msg/ beside each other:
+    `mixed_pkg` is the user's own code (first on sys.path) and `mixed_pkg.msg` is generated."""
+    pkg = tmp_path / "ws" / "src" / "mixed_pkg"
+    (pkg / "msg").mkdir(parents=True)
+    (pkg / "mixed_pkg").mkdir()
+    (pkg / "mixed_pkg" / "__init__.py").write_text("WHO = 'user code'\n")
+    (pkg / "package.xml").write_text("<package><name>mixed_pkg</name></package>")
+    (pkg / "CMakeLists.txt").write_text("project(mixed_pkg)\nament_python_install_package(${PROJECT_NAME})\n"
+                                        'rosidl_generate_interfaces(${PROJECT_NAME} "msg/Status.msg")\n')
+    (pkg / "msg" / "Status.msg").write_text("uint8 OK=0\nuint8 level\nstring message\n")
+    p = python("import mixed_pkg\nfrom mixed_pkg.msg import Status\nprint(mixed_pkg.WHO, Status(level=2), Status.OK)",
+               {"DIFFCTL_WORKSPACE": str(tmp_path / "ws"), "PYTHONPATH": f"{OVERLAY_PATH}:{pkg}"})
+    assert p.stdout.strip() == "user code mixed_pkg.msg.Status(level=2, message='') 0", p.stderr
