@@ -58,6 +58,8 @@ class Entity:
         # Joints commanded to 0: name → the position they are held at, or None until they have stopped.
         self._held: dict[str, float | None] = {}
         self.settling = False  # some held joint still awaits its anchor (PhysicsWorld.step calls settle_holds)
+        # Non-zero velocity or effort commands so far (gz's LinearBatteryPlugin starts draining on the first).
+        self.motion_commands = 0
         # Spawn state, for world reset: base link frames and (zero) joint positions.
         self._initial = [(b, plan.bodies[i].links[0]) for i, b in enumerate(bodies)]
 
@@ -156,6 +158,7 @@ class Entity:
             self._held[h.name] = None
             self.settling = True
         else:
+            self.motion_commands += 1
             self._held.pop(h.name, None)
         pb.setJointMotorControl2(
             h.body, h.index, pb.VELOCITY_CONTROL, targetVelocity=v, force=h.max_effort, physicsClientId=self.client
@@ -165,6 +168,8 @@ class Entity:
         """Apply `effort` for the next step only (PyBullet clears applied torques after each step)."""
         e = max(-h.max_effort, min(h.max_effort, effort)) if math.isfinite(effort) else 0.0
         self._held.pop(h.name, None)
+        if e != 0.0:
+            self.motion_commands += 1
         pb.setJointMotorControl2(h.body, h.index, pb.VELOCITY_CONTROL, force=0.0, physicsClientId=self.client)
         pb.setJointMotorControl2(h.body, h.index, pb.TORQUE_CONTROL, force=e, physicsClientId=self.client)
 

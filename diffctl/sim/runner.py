@@ -27,6 +27,7 @@ from diffctl.sim.plugins.base import PluginContext, SystemPlugin, rate_period_ns
 from diffctl.sim.plugins.diff_drive import DiffDrive, DiffDriveParams
 from diffctl.sim.plugins.gz_ros2_control import GzRos2Control, PreparedManager
 from diffctl.sim.plugins.joint_state_publisher import JointStatePublisher
+from diffctl.sim.plugins.linear_battery import LinearBatteryPlugin
 from diffctl.sim.plugins.odometry_publisher import OdometryPublisher
 from diffctl.sim.plugins.system_names import system_kind
 from diffctl.sim.sensors import (
@@ -69,7 +70,13 @@ NATIVE_SYSTEMS = {
     "contact",
 }
 CONTROL_SYSTEMS = ("gz_ros2_control", "ign_ros2_control")
-MODEL_SYSTEMS = {"diff-drive", "joint-state-publisher", "odometry-publisher", *CONTROL_SYSTEMS}
+MODEL_SYSTEMS = {
+    "diff-drive",
+    "joint-state-publisher",
+    "odometry-publisher",
+    "linearbatteryplugin",
+    *CONTROL_SYSTEMS,
+}
 
 
 def system_name(filename: str, name: str = "") -> str:
@@ -193,6 +200,8 @@ class Simulation:
                 rt.plugins.append(DiffDrive(self.ctx, rt.entity, params))
             elif kind == "joint-state-publisher":
                 rt.plugins.append(JointStatePublisher(self.ctx, rt.entity, plugin))
+            elif kind == "linearbatteryplugin":
+                rt.plugins.append(LinearBatteryPlugin(self.ctx, rt.entity, plugin))
             elif kind == "odometry-publisher":
                 rng = self.sensor_rng(model.name, f"odometry_publisher:{plugin.name}")
                 rt.plugins.append(OdometryPublisher(self.ctx, rt.entity, plugin, rng))
