@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import threading
 import weakref
 from collections.abc import Callable
@@ -47,6 +48,10 @@ class Context:
                 raise RuntimeError(f"Domain ID must be a non-negative integer, got {domain_id!r}")
             self._args = list(sys.argv if args is None else args)
             self._domain_id = env_domain() if domain_id is None else domain_id
+            if domain_id is not None:
+                # The process's one Zenoh session reads its domain where nodes are made: an explicit domain
+                # is this process's ROS_DOMAIN_ID from here on (its children inherit it, as with the variable).
+                os.environ["ROS_DOMAIN_ID"] = str(domain_id)
             self._init_called = True
             self._ok = True
         from diffctl.client import ros_logging

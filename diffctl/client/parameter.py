@@ -193,3 +193,45 @@ def from_python_value(name: str, value: Any) -> Parameter:
                                                   for v in value) and any(isinstance(v, float) for v in value):
         value = [float(v) for v in value]
     return Parameter(name, value=value)
+
+
+def parameter_dict_from_yaml_file(parameter_file: str, use_wildcard: bool = False,
+                                  target_nodes: list[str] | None = None, namespace: str = "") -> dict[str, Any]:
+    """rcl_interfaces/msg/Parameter messages of a params file's sections (rclpy's helper for tools)."""
+    import yaml
+
+    with open(parameter_file) as f:
+        data = yaml.safe_load(f) or {}
+    keys: list[str] = []
+    if use_wildcard and "/**" in data:
+        keys.append("/**")
+    if target_nodes:
+        for n in target_nodes:
+            if n not in data:
+                raise RuntimeError(f"Param file does not contain parameters for {n},only for nodes: {list(data)} ")
+            keys.append(n)
+    else:
+        keys.extend(k for k in data if k != "/**")
+    if not keys:
+        raise RuntimeError("Param file does not contain selected parameters")
+    values: dict[str, Any] = {}
+    for k in keys:
+        section = data[k]
+        if not isinstance(section, dict) or "ros__parameters" not in section:
+            raise RuntimeError(f"YAML file is not a valid ROS parameter file for node {k}")
+        values.update(section["ros__parameters"])
+    out: dict[str, Any] = {}
+
+    def unpack(prefix: str, d: dict[str, Any]) -> None:
+        for name, value in d.items():
+            full = f"{prefix}.{name}" if prefix else name
+            if isinstance(value, dict):
+                unpack(full, value)
+            else:
+                msg = cls("rcl_interfaces/msg/Parameter")(name=full, value=get_parameter_value(str(value)))
+                if isinstance(value, (list, str)):
+                    msg = Parameter(full, value=value).to_parameter_msg()
+                out[full] = msg
+
+    unpack(namespace, values)
+    return out

@@ -133,6 +133,20 @@ obs("undeclared allowed set", lambda: loose.set_parameters([Parameter("free", va
 obs("undeclared allowed after", lambda: loose.get_parameter("free"))
 cli = Node("cli_demo", cli_args=["--ros-args", "-p", "k:=true"])
 obs("cli_args override", lambda: cli.declare_parameter("k", False))
+import os  # noqa: E402
+import tempfile  # noqa: E402
+
+from rclpy.parameter import parameter_dict_from_yaml_file, parameter_value_to_python  # noqa: E402
+
+yaml_path = os.path.join(tempfile.mkdtemp(), "p.yaml")
+with open(yaml_path, "w") as f:
+    f.write("/**:\n  ros__parameters:\n    w: 1\nnode_a:\n  ros__parameters:\n    a: 1\n"
+            "    b: {c: [1.5, 2.0], d: hi, e: true}\n")
+obs("parameter_dict_from_yaml_file", lambda: {k: [v.name, v.value.type, _plain(parameter_value_to_python(v.value))]
+                                              for k, v in parameter_dict_from_yaml_file(yaml_path).items()})
+obs("with wildcard", lambda: sorted(parameter_dict_from_yaml_file(yaml_path, use_wildcard=True,
+                                                                  target_nodes=["node_a"])))
+obs("missing target", lambda: parameter_dict_from_yaml_file(yaml_path, target_nodes=["other"]))
 for n in (node, auto, loose, cli):
     n.destroy_node()
 rclpy.shutdown()
