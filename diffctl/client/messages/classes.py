@@ -11,8 +11,6 @@ from __future__ import annotations
 
 import importlib
 import linecache
-import sys
-import threading
 import types
 from typing import Any
 
@@ -20,7 +18,6 @@ from diffctl.client.messages import pysource, registry
 from diffctl.client.messages.idl import TypeDef
 from diffctl.client.messages.registry import InterfacePackage
 
-_lock = threading.RLock()
 # class → its type name (pkg/msg/T, pkg/srv/T_Request, …): what the codecs and type_name() key on.
 NAMES: dict[type, str] = {}
 CLASSES: dict[str, type] = {}
@@ -136,6 +133,3 @@ def interface_class(typename: str) -> type:
         raise ImportError(f"{typename} is not a type of {pkg}/{kind}/{short}", name=f"{pkg}.{kind}")
     return cls
 
-
-def loaded_modules() -> list[str]:
-    return sorted(m for m in sys.modules if "." in m and m.split(".")[1] in registry.KINDS)

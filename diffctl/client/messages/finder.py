@@ -11,7 +11,6 @@ from __future__ import annotations
 import importlib.abc
 import importlib.machinery
 import types
-from typing import Any
 
 from diffctl.client.messages import classes, pysource, registry
 from diffctl.errors import suggest
@@ -71,7 +70,3 @@ def find_spec(fullname: str) -> importlib.machinery.ModuleSpec | None:
                 return _spec(fullname, ("interface", p, kind, short), False, origin)
     return None
 
-
-def module_for(name: str) -> Any:
-    """For the tests: the spec `find_spec` gives, without importing."""
-    return find_spec(name)
