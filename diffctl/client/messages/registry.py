@@ -46,7 +46,7 @@ def diffctl_packages() -> dict[str, InterfacePackage]:
     global _diffctl_index
     if _diffctl_index is None:
         index: dict[str, InterfacePackage] = {}
-        for name in typedefs.definitions():
+        for name in sorted(typedefs.own_names()):  # not what other packages entered there since
             pkg, kind, short = name.split("/")
             if kind == "srv":
                 if not short.endswith("_Request"):
