@@ -76,6 +76,19 @@ def _ensure_router(output: Any) -> Any:
     default="diffctl",
     help="diffctl: 1 when a required process or readiness failed; ros: 1 only on an error in the launch itself.",
 )
+@click.option(
+    "--signal",
+    "signal_scope",
+    type=click.Choice(["group", "process"]),
+    default="group",
+    help="Stop signals to each process's whole group (diffctl) or the process alone (ros2 launch).",
+)
+@click.option(
+    "--process-names",
+    type=click.Choice(["diffctl", "ros"]),
+    default="diffctl",
+    help="Process labels: the name, -2 for a second (diffctl), or name-N from one counter (ros2 launch).",
+)
 @click.option("--no-router", is_flag=True, help="Do not start the embedded Zenoh router.")
 @click.option(
     "--workspace",
@@ -92,6 +105,8 @@ def launch(
     no_color: bool,
     output_default: str,
     exit_code_mode: str,
+    signal_scope: str,
+    process_names: str,
     no_router: bool,
     workspace_dir: Path | None,
 ) -> None:
@@ -162,7 +177,13 @@ def launch(
             log_given=log_dir is not None,
             no_color=no_color,
             no_router=no_router,
-            options={"output_default": output_default, "exit_code_mode": exit_code_mode},
+            options={
+                "output_default": output_default,
+                "exit_code_mode": exit_code_mode,
+                "signal_scope": signal_scope,
+                "process_names": process_names,
+                "real_environ": True,
+            },
         )
     )
 

@@ -69,7 +69,13 @@ class LaunchContext:
     ) -> None:
         self.configurations: dict[str, Any] = dict(arguments or {})
         self._config_stack: list[dict[str, Any]] = []
-        self.env: dict[str, str] = with_tool_path(dict(os.environ if env is None else env))
+        if env is os.environ:
+            # The live launch: the environment IS the launcher's, as in ros2/launch (an OpaqueFunction's
+            # os.environ sees what set_env did).
+            os.environ.update(with_tool_path(dict(os.environ)))
+            self.env: dict[str, str] = os.environ  # type: ignore[assignment]
+        else:
+            self.env = with_tool_path(dict(os.environ if env is None else env))
         self.initial_env: dict[str, str] = dict(self.env)  # what ResetEnvironment goes back to
         self._env_stack: list[dict[str, str]] = []
         self._globals: dict[str, Any] = {}

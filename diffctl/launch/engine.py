@@ -61,8 +61,10 @@ class Engine:
         dry: bool = False,
         env: dict[str, str] | None = None,
         output_default: str = "screen",
+        process_names: str = "diffctl",
     ) -> None:
         self.context = LaunchContext(arguments, source, env, engine=self)
+        self.process_names = process_names
         self.services = services
         self.dry = dry
         self.output_default = output_default
@@ -339,6 +341,9 @@ class Engine:
             raise LaunchError("a process needs a name")
         unique = name
         n = 2
+        if self.process_names == "ros":
+            # ExecuteProcess's names: `-N` from one counter for every process (talker-1, talker-2, rsp-3 …)
+            unique = f"{name}-{len(self.processes) + 1}"
         while unique in self.processes:
             unique = f"{name}-{n}"
             n += 1

@@ -143,6 +143,14 @@ class PosixSpawner:
         except (ProcessLookupError, PermissionError):
             return False
 
+    def signal_process(self, child: Child, sig: int) -> bool:
+        """The process itself, not its group (`--signal process`, as ros2 launch signals)."""
+        try:
+            os.kill(child.pid, sig)
+            return True
+        except (ProcessLookupError, PermissionError):
+            return False
+
     def group_alive(self, child: Child) -> bool:
         return self.signal_group(child, 0)
 

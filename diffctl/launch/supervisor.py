@@ -77,6 +77,9 @@ class Supervisor:
         output_default: str = "screen",
         exit_code_mode: str = "diffctl",
         lifecycle: Callable[[Callable[[], None]], Any] | None = None,
+        signal_scope: str = "group",
+        process_names: str = "diffctl",
+        real_environ: bool = False,
     ) -> None:
         """lifecycle: makes the bus side of LifecycleNode (given a thread-safe `post`), on first use."""
         self.plan = plan
@@ -91,7 +94,15 @@ class Supervisor:
         self.states = {name: ProcessState(spec) for name, spec in plan.processes.items()}
         self.pid_names: dict[int, str] = {}
         self.started_at: dict[int, float] = {}  # pgid → when that start of the process began
-        self.engine = Engine(dict(plan.launch_arguments), plan.source, self, output_default=output_default)
+        self.signal_scope = signal_scope
+        self.engine = Engine(
+            dict(plan.launch_arguments),
+            plan.source,
+            self,
+            output_default=output_default,
+            process_names=process_names,
+            env=os.environ if real_environ else None,  # type: ignore[arg-type]
+        )
         self._held: list[Step] | None = None
         self._inbox: deque[Callable[[], None]] = deque()  # work posted from other threads (bus callbacks)
         self._make_lifecycle = lifecycle
@@ -325,7 +336,7 @@ class Supervisor:
                 self._stop(st, signal.SIGINT)
             else:
                 self.output.launcher("INFO", f"sending {signal.Signals(step.signal).name} to [{st.spec.name}]")
-                self.spawner.signal_group(st.child or st.lingering, step.signal)  # type: ignore[arg-type]
+                self._send(st.child or st.lingering, step.signal)  # type: ignore[arg-type]
 
     def _after(self, delay_s: float, callback: Callable[[], None], kind: str) -> Timer:
         timer = Timer(callback, kind)
@@ -527,7 +538,7 @@ class Supervisor:
             return
         if not quiet:
             self.output.launcher("INFO", f"sending {signal.Signals(sig).name} to [{st.spec.name}]")
-        self.spawner.signal_group(target, sig)
+        self._send(target, sig)
         st.state = "stopping" if st.child else st.state
         for timer in st.stop_timers:
             timer.cancelled = True
@@ -549,7 +560,19 @@ class Supervisor:
         if target is None:
             return
         self.output.launcher("WARN", f"[{st.spec.name}] still running {why}: sending {signal.Signals(sig).name}")
-        self.spawner.signal_group(target, sig)
+        self._send(target, sig)
+
+    def _send(self, target: Child, sig: int) -> None:
+        """To the process group (diffctl), or with `--signal process` to the process alone (ros2 launch)."""
+        one = getattr(self.spawner, "signal_process", None)
+        if (
+            self.signal_scope == "process"
+            and one is not None
+            and any(st.child is target for st in self.states.values())
+        ):
+            one(target, sig)
+        else:
+            self.spawner.signal_group(target, sig)
 
     def _kill_all(self, why: str) -> None:
         alive = [st for st in self.states.values() if st.alive]

@@ -384,3 +384,27 @@ def test_a_lifecycle_node_is_driven_by_change_state_events_and_its_transitions(r
     positions = [text.index(m) for m in order]
     assert positions == sorted(positions), text
     assert run.leftovers() == []
+
+
+def test_the_flags_that_restore_ros2_launchs_behaviour(launch_run, tmp_path: Path) -> None:
+    path = tmp_path / "flags.launch.py"
+    path.write_text(
+        IMPORTS
+        + """
+def generate_launch_description():
+    return LaunchDescription([
+        SetEnvironmentVariable("SET_BY_LAUNCH", "1"),
+        OpaqueFunction(function=lambda context: [LogInfo(msg="os.environ " + os.environ.get("SET_BY_LAUNCH", "-"))]),
+        ExecuteProcess(cmd=["sh", "-c", "echo to-stdout; echo to-stderr >&2; exit 3"], name="talker",
+                       on_exit=Shutdown()),
+    ])
+"""
+    )
+    ros = ("--output-default", "log", "--exit-code", "ros", "--process-names", "ros", "--signal", "process")
+    run = launch_run(str(path), "--no-router", *ros)
+    assert run.wait(20) == 0, run.text()  # ros2 launch: a process's failure is not the launch's
+    text = run.text()
+    assert "[talker-1] to-stderr" in text and "to-stdout" not in text  # output='log': stdout to the log only
+    assert "os.environ 1" in text  # the launch environment is the launcher's own, as ROS's
+    run = launch_run(str(path), "--no-router")
+    assert run.wait(20) == 1 and "[talker] to-stdout" in run.text()
