@@ -13,7 +13,6 @@ import json
 import os
 import tempfile
 import threading
-from importlib import metadata
 from pathlib import Path
 from typing import Any
 
@@ -29,7 +28,12 @@ def _cache_file() -> Path:
     from diffctl.bus import interfaces
 
     h = hashlib.sha256()
-    h.update(f"{FORMAT}/{metadata.version('rosbags')}/".encode())
+    # rosbags' Jazzy store as installed (a stat, not importlib.metadata: 15 ms of every process's start)
+    import importlib.util
+
+    spec = importlib.util.find_spec("rosbags.typesys.stores.ros2_jazzy")
+    st = os.stat(spec.origin) if spec and spec.origin else None
+    h.update(f"{FORMAT}/{spec and spec.origin}/{st and st.st_size}/{st and st.st_mtime_ns}/".encode())
     h.update(Path(interfaces.__file__).read_bytes())
     h.update(repr((interfaces.MSGS, interfaces.SRVS)).encode())  # the texts read from interface_texts/
     base = Path(os.environ.get("XDG_CACHE_HOME") or Path.home() / ".cache") / "diffctl"
