@@ -134,12 +134,16 @@ class Clock:
                              post_callback: Callable[[TimeJump], None] | None = None) -> JumpHandle:
         return JumpHandle(clock=self, threshold=threshold, pre_callback=pre_callback, post_callback=post_callback)
 
-    def _jump(self, change: ClockChange, delta_ns: int) -> None:
+    def _jump_handles_for(self, change: ClockChange, delta_ns: int) -> list[JumpHandle]:
         with self._lock:
-            handles = [h for h in self._jump_handles if h._wants(change, delta_ns)]
+            return [h for h in self._jump_handles if h._wants(change, delta_ns)]
+
+    def _pre_jump(self, handles: list[JumpHandle]) -> None:
         for h in handles:
             if h.pre_callback is not None:
                 h.pre_callback()
+
+    def _post_jump(self, handles: list[JumpHandle], change: ClockChange, delta_ns: int) -> None:
         for h in handles:
             if h.post_callback is not None:
                 h.post_callback(TimeJump(change, Duration(nanoseconds=delta_ns)))
@@ -189,12 +193,15 @@ class ROSClock(Clock):
         return self._ros_time_active
 
     def _set_ros_time_is_active(self, enabled: bool) -> None:
+        if self._ros_time_active == enabled:
+            return
+        change = ClockChange.ROS_TIME_ACTIVATED if enabled else ClockChange.ROS_TIME_DEACTIVATED
+        handles = self._jump_handles_for(change, 0)
+        self._pre_jump(handles)  # before the switch: callbacks see the time they are leaving
         with self._cond:
-            if self._ros_time_active == enabled:
-                return
             self._ros_time_active = enabled
             self._cond.notify_all()
-        self._jump(ClockChange.ROS_TIME_ACTIVATED if enabled else ClockChange.ROS_TIME_DEACTIVATED, 0)
+        self._post_jump(handles, change, 0)
         waiting.notify()
 
     def set_ros_time_override(self, time: Time) -> None:
@@ -203,11 +210,13 @@ class ROSClock(Clock):
         self._set_override_ns(time.nanoseconds)
 
     def _set_override_ns(self, ns: int) -> None:
+        delta = ns - self._override_ns
+        handles = self._jump_handles_for(ClockChange.ROS_TIME_NO_CHANGE, delta) if self._ros_time_active else []
+        self._pre_jump(handles)
         with self._cond:
-            delta = ns - self._override_ns
             self._override_ns = ns
             active = self._ros_time_active
             self._cond.notify_all()
-        if active and delta:
-            self._jump(ClockChange.ROS_TIME_NO_CHANGE, delta)
+        if active:
+            self._post_jump(handles, ClockChange.ROS_TIME_NO_CHANGE, delta)
             waiting.notify()

@@ -7,7 +7,8 @@ from collections.abc import Callable
 from typing import Any
 
 from diffctl.client import waiting
-from diffctl.client.clock import Clock
+from diffctl.client.clock import Clock, ClockType, JumpThreshold
+from diffctl.client.duration import Duration
 from diffctl.client.exceptions import InvalidHandle, ROSInterruptException
 
 
@@ -36,6 +37,36 @@ class Timer:
         self._canceled = not autostart
         self._destroyed = False
         self._node: Any = None
+        self._credit_ns = 0
+        self._jump_handle: Any = None
+        if clock.clock_type == ClockType.ROS_TIME:
+            # rcl's timers on ROS time: across a switch to or from ROS time they keep their remaining time; a
+            # jump back past their last call restarts the period from the new time.
+            self._jump_handle = clock.create_jump_callback(
+                JumpThreshold(min_forward=Duration(nanoseconds=1), min_backward=Duration(nanoseconds=-1),
+                              on_clock_change=True),
+                pre_callback=self._before_jump, post_callback=self._after_jump)
+
+    def _before_jump(self) -> None:
+        now = self._clock.now_ns()
+        with self._lock:
+            # Only a switch of time source uses the credit; with the clock still at zero there is none.
+            self._credit_ns = max(0, self._next_call_ns - now) if now else 0
+
+    def _after_jump(self, jump: Any) -> None:
+        from diffctl.client.clock import ClockChange
+
+        now = self._clock.now_ns()
+        with self._lock:
+            if jump.clock_change in (ClockChange.ROS_TIME_ACTIVATED, ClockChange.ROS_TIME_DEACTIVATED):
+                credit, self._credit_ns = self._credit_ns, 0
+                if now and credit:
+                    self._next_call_ns = now + credit
+                    self._last_call_ns = self._next_call_ns - self._period_ns
+            elif now < self._last_call_ns:
+                self._next_call_ns = now + self._period_ns
+                self._last_call_ns = now
+        waiting.notify()
 
     @property
     def handle(self) -> Timer:
@@ -135,6 +166,9 @@ class Timer:
 
     def _destroy(self) -> None:
         self._destroyed = True
+        if self._jump_handle is not None:
+            self._jump_handle.unregister()
+            self._jump_handle = None
 
 
 class Rate:
