@@ -64,7 +64,30 @@ try:
     out.append(["negative time", "no error"])
 except ValueError as e:
     out.append(["negative time", str(e)])
+import threading  # noqa: E402
+
+t0 = time.monotonic()
+slept = Clock().sleep_for(Duration(seconds=0.2))
+out.append(["sleep_for", [slept, 0.15 < time.monotonic() - t0 < 1.0]])
+try:
+    Clock().sleep_until(Time(seconds=1, clock_type=ClockType.ROS_TIME))
+except ValueError as e:
+    out.append(["sleep_until other clock type", str(e)])
+rate_node = Node("rate_demo")
+rate = rate_node.create_rate(20)
+spinner = threading.Thread(target=rclpy.spin, args=(rate_node,), daemon=True)
+spinner.start()
+t0 = time.monotonic()
+for _ in range(5):
+    rate.sleep()
+out.append(["rate 20 Hz x5", 0.15 < time.monotonic() - t0 < 0.6])
 sim.destroy_node()
 source.destroy_node()
 rclpy.shutdown()
+spinner.join(2)
+try:
+    rate.sleep()
+    out.append(["rate after shutdown", "slept"])
+except Exception as e:
+    out.append(["rate after shutdown", type(e).__name__ + ": " + str(e)])
 print(json.dumps(out))
