@@ -1,8 +1,10 @@
-"""Regenerate data/rosidl_runtime_py_jazzy.json: the runtime program under upstream's rosidl_runtime_py (its
-`jazzy` branch, a checkout named on the command line; it is not on PyPI) in the oracle venv, with the real
-generated message classes.
+"""Regenerate the golden files of upstream's pure-Python packages that are not on PyPI, run in the oracle venv
+with the real generated message classes: data/rosidl_runtime_py_jazzy.json (rosidl_runtime_py's `jazzy`
+branch) and data/point_cloud2_jazzy.json (common_interfaces' `jazzy` branch, sensor_msgs_py). Each argument
+is a folder holding the upstream Python package (e.g. `git archive jazzy rosidl_runtime_py | tar -x`).
 
-    .venv/bin/python -m tests.client.messages.make_runtime_golden /path/to/rosidl_runtime_py
+    .venv/bin/python -m tests.client.messages.make_runtime_golden /path/to/rosidl_runtime_py_src \
+        /path/to/common_interfaces/sensor_msgs_py
 """
 
 from __future__ import annotations
@@ -11,19 +13,26 @@ import json
 import sys
 from pathlib import Path
 
+from tests.client.messages import point_cloud2_program, runtime_program
 from tests.client.messages.programs import PRELUDE
-from tests.client.messages.runtime_program import PROGRAM
 from tests.oracle import jazzy_venv
 
-GOLDEN = Path(__file__).parent / "data" / "rosidl_runtime_py_jazzy.json"
+DATA = Path(__file__).parent / "data"
+GOLDEN = DATA / "rosidl_runtime_py_jazzy.json"
+POINT_CLOUD2_GOLDEN = DATA / "point_cloud2_jazzy.json"
+
+
+def _run(source: Path, program: str, golden: Path) -> None:
+    p = jazzy_venv.run_python(f"import sys; sys.path.insert(0, {str(source.resolve())!r})\n" + PRELUDE + program)
+    out = json.loads(next(line for line in reversed(p.stdout.splitlines()) if line.startswith("OBS"))[3:])
+    golden.write_text(json.dumps(out, indent=1, ensure_ascii=False) + "\n")
+    print(f"{golden}: {len(out)} observations")
 
 
 def main() -> None:
-    checkout = Path(sys.argv[1]).resolve()
-    p = jazzy_venv.run_python(f"import sys; sys.path.insert(0, {str(checkout)!r})\n" + PRELUDE + PROGRAM)
-    out = json.loads(next(line for line in reversed(p.stdout.splitlines()) if line.startswith("OBS"))[3:])
-    GOLDEN.write_text(json.dumps(out, indent=1, ensure_ascii=False) + "\n")
-    print(f"{GOLDEN}: {len(out)} observations")
+    _run(Path(sys.argv[1]), runtime_program.PROGRAM, GOLDEN)
+    if len(sys.argv) > 2:
+        _run(Path(sys.argv[2]), point_cloud2_program.PROGRAM, POINT_CLOUD2_GOLDEN)
 
 
 if __name__ == "__main__":
