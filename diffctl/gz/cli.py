@@ -85,6 +85,11 @@ def sim(rest: list[str]) -> int:
         print("Usage: gz sim [-r] [-s] [-g] [-v N] [--iterations N] [--seed N] WORLD  (diffctl sim run)")
         return 0
     parse_gz_args(rest)  # bad flags are reported here, before anything starts
+    from diffctl.workspace import find_workspace, use_in_children
+
+    # typed in a workspace (not sourced, as diffctl needs no build): its packages' hooks apply, as after
+    # `source install/setup.bash`; inside a launch this was done already and changes nothing
+    use_in_children(find_workspace())
     os.execv(sys.executable, [sys.executable, "-m", "diffctl", "sim", "run", *rest])
     return 0  # not reached
 

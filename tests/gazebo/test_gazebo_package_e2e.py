@@ -62,3 +62,35 @@ def test_a_gazebo_package_runs_from_its_workspace_root(stack_env: str, procs, tm
     out = launch.stdout.read()
     assert "rqt_graph/rqt_graph is a GUI-only tool" in out and out.count("GUI-only tool") == 1
     assert "error" not in out.lower().replace("stderr", ""), out
+
+
+@pytest.mark.slow
+def test_gz_sim_typed_in_the_workspace_applies_its_hooks(router: str, tmp_path: Path, monkeypatch) -> None:
+    """No `source install/setup.bash` with diffctl: `gz sim NAME` in a workspace finds the package's world
+    and models through the package's hook, runs its iterations and exits 0."""
+    ws = build(tmp_path)
+    for var in ("GZ_SIM_RESOURCE_PATH", "SDF_PATH", "DIFFCTL_WORKSPACE"):
+        monkeypatch.delenv(var, raising=False)
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    monkeypatch.setenv("GZ_FUEL_CACHE_PATH", str(tmp_path))
+    monkeypatch.setenv("DIFFCTL_FUEL_OFFLINE", "1")
+    gz_cli = [sys.executable, "-c", "from diffctl.gz.cli import main; main()"]
+    done = subprocess.run(
+        [*gz_cli, "sim", "-r", "-s", "--iterations", "50", "-v", "3", "wedge_world.sdf"],
+        cwd=ws / "src",
+        capture_output=True,
+        text=True,
+        timeout=60,
+        env=os.environ.copy(),
+    )
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "world 'wedge_world'" in done.stdout + done.stderr
+    outside = subprocess.run(
+        [*gz_cli, "sim", "-r", "-s", "--iterations", "50", "wedge_world.sdf"],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=60,
+        env=os.environ.copy(),
+    )
+    assert outside.returncode == 2 and "not found" in outside.stderr  # outside the workspace: no hook, no world
