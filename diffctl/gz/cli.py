@@ -84,7 +84,9 @@ def sim(rest: list[str]) -> int:
     if any(a in ("-h", "--help") for a in rest):
         print("Usage: gz sim [-r] [-s] [-g] [-v N] [--iterations N] [--seed N] WORLD  (diffctl sim run)")
         return 0
-    parse_gz_args(rest)  # bad flags are reported here, before anything starts
+    args = parse_gz_args(rest)  # bad flags are reported here, before anything starts
+    if args.gui_only and not args.server_only:
+        return _gui_client()
     from diffctl.workspace import find_workspace, use_in_children
 
     # typed in a workspace (not sourced, as diffctl needs no build): its packages' hooks apply, as after
@@ -92,6 +94,23 @@ def sim(rest: list[str]) -> int:
     use_in_children(find_workspace())
     os.execv(sys.executable, [sys.executable, "-m", "diffctl", "sim", "run", *rest])
     return 0  # not reached
+
+
+def _gui_client() -> int:
+    """`gz sim -g`: Gazebo's GUI client, which stays until its window closes. diffctl has no such window (the
+    browser visualizer shows the scene), so this says so once and idles until the launch stops it."""
+    import signal
+
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(sig, lambda *_: sys.exit(0))
+    print(
+        "[WARN] gz sim -g starts Gazebo's GUI client; diffctl's simulator has none: `diffctl viz` (rviz2) shows "
+        "the scene, `diffctl sim run --gui` opens PyBullet's window",
+        file=sys.stderr,
+        flush=True,
+    )
+    while True:
+        signal.pause()
 
 
 def _parser(prog: str) -> argparse.ArgumentParser:

@@ -46,3 +46,16 @@ def test_a_tools_own_arguments_do_not_reach_a_counterpart_that_does_not_take_the
     env = {**os.environ, "DIFFCTL_ROUTER": f"tcp/127.0.0.1:{free_port()}"}  # no router: it stops after parsing
     out = subprocess.run([*argv, "-t"], capture_output=True, text=True, timeout=60, env=env)
     assert "No such option" not in out.stderr and "visualizer fixed frame" in out.stderr, out.stderr
+
+
+def test_gz_sim_gui_client_idles_with_one_warning(procs) -> None:
+    import sys
+
+    p = procs.start(
+        [sys.executable, "-c", "from diffctl.gz.cli import main; main()", "sim", "-g", "-v", "4"],
+        stderr=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+    )
+    assert "gz sim -g starts Gazebo's GUI client" in p.stderr.readline()
+    assert p.poll() is None
+    assert procs.stop(p, signal.SIGTERM) == 0
