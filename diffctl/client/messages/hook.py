@@ -31,31 +31,12 @@ _workspace_dirs: dict[str, frozenset[str]] = {}
 
 
 
-def _workspace_root() -> str | None:
-    env = os.environ.get("DIFFCTL_WORKSPACE")
-    if env:
-        return env
-    try:
-        here = os.getcwd()
-    except OSError:
-        return None
-    while True:
-        if os.path.isdir(os.path.join(here, "src")):
-            return here
-        parent = os.path.dirname(here)
-        if parent == here:
-            return None
-        here = parent
-
-
-def in_workspace(name: str) -> bool:
-    root = _workspace_root()
-    if root is None:
-        return False
+def _packages_under(root: str) -> frozenset[str]:
+    """Folder and manifest names of the packages in `root`/src, walked once per process (and not far: a
+    `src` that is no workspace, say ~/src full of other repositories, costs a bounded walk)."""
     dirs = _workspace_dirs.get(root)
     if dirs is None:
         found = set()
-        # A `src` that is no workspace (say ~/src full of other repositories) is walked once, and not far.
         for visited, (dirpath, dirnames, filenames) in enumerate(
                 os.walk(os.path.join(root, "src"), followlinks=True)):
             if visited > 20000:
@@ -75,7 +56,32 @@ def in_workspace(name: str) -> bool:
             else:
                 dirnames[:] = [d for d in dirnames if not d.startswith(".")]
         dirs = _workspace_dirs[root] = frozenset(found)
-    return name in dirs
+    return dirs
+
+
+def _workspace_packages() -> frozenset[str]:
+    """The packages of $DIFFCTL_WORKSPACE, else of the nearest folder above the current one whose src/ holds
+    packages (a package's own C++ src/ is passed over), as diffctl.workspace finds the workspace."""
+    env = os.environ.get("DIFFCTL_WORKSPACE")
+    if env:
+        return _packages_under(env)
+    try:
+        here = os.getcwd()
+    except OSError:
+        return frozenset()
+    while True:
+        if os.path.isdir(os.path.join(here, "src")):
+            found = _packages_under(here)
+            if found:
+                return found
+        parent = os.path.dirname(here)
+        if parent == here:
+            return frozenset()
+        here = parent
+
+
+def in_workspace(name: str) -> bool:
+    return name in _workspace_packages()
 
 
 def in_install_trees(name: str) -> bool:

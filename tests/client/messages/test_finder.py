@@ -139,3 +139,17 @@ def test_a_package_with_python_code_and_interfaces(tmp_path: Path) -> None:
     p = python("import mixed_pkg\nfrom mixed_pkg.msg import Status\nprint(mixed_pkg.WHO, Status(level=2), Status.OK)",
                {"DIFFCTL_WORKSPACE": str(tmp_path / "ws"), "PYTHONPATH": f"{OVERLAY_PATH}:{pkg}"})
     assert p.stdout.strip() == "user code mixed_pkg.msg.Status(level=2, message='') 0", p.stderr
+
+
+def test_workspace_found_from_inside_a_package_with_its_own_src(tmp_path: Path) -> None:
+    """`python my_node.py` run inside a package whose C++ sources are in src/: the workspace is further up."""
+    pkg = tmp_path / "ws" / "src" / "robot_msgs"
+    (pkg / "msg").mkdir(parents=True)
+    (pkg / "src").mkdir()
+    (pkg / "src" / "node.cpp").write_text("int main() {}\n")
+    (pkg / "package.xml").write_text("<package><name>robot_msgs</name></package>")
+    (pkg / "CMakeLists.txt").write_text(
+        'project(robot_msgs)\nrosidl_generate_interfaces(${PROJECT_NAME} "msg/Ping.msg")\n')
+    (pkg / "msg" / "Ping.msg").write_text("uint32 seq\n")
+    p = python("from robot_msgs.msg import Ping; print(Ping(seq=3))", cwd=pkg)
+    assert p.stdout.strip() == "robot_msgs.msg.Ping(seq=3)", p.stderr
