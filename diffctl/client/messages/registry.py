@@ -148,12 +148,16 @@ def _load(p: InterfacePackage) -> None:
     own = {td.name for td in loaded}
     for td in loaded:
         for fname, ref in referenced_types(td):
-            if ref.split("/")[0] == p.name and ref not in own:
-                where = p.files.get(td.name.rsplit("_", 1)[0]) or p.files.get(td.name)
-                others = [n for n in defs if n.split("/")[2] == ref.split("/")[2]]
-                raise InterfaceError(
-                    f"{td.name}: field {fname!r} has type {ref}, which package {p.name} does not define"
-                    f"{suggest(ref, others) if others else ''}", source=str(where) if where else p.where)
+            ref_pkg = ref.split("/")[0]
+            if ref in own or (ref_pkg != p.name and ref in _types):
+                continue
+            where = p.files.get(td.name.rsplit("_", 1)[0]) or p.files.get(td.name)
+            others = [n for n in (*defs, *_types) if n.split("/")[2] == ref.split("/")[2]]
+            if not others and ref_pkg != p.name:
+                others = [n for n in _types if n.startswith(ref_pkg + "/msg/")]
+            raise InterfaceError(
+                f"{td.name}: field {fname!r} has type {ref}, which package {ref_pkg} does not define"
+                f"{suggest(ref, others) if others else ''}", source=str(where) if where else p.where)
     for td in loaded:
         defs[td.name] = (td.constants, td.fields)
 

@@ -153,3 +153,18 @@ def test_workspace_found_from_inside_a_package_with_its_own_src(tmp_path: Path) 
     (pkg / "msg" / "Ping.msg").write_text("uint32 seq\n")
     p = python("from robot_msgs.msg import Ping; print(Ping(seq=3))", cwd=pkg)
     assert p.stdout.strip() == "robot_msgs.msg.Ping(seq=3)", p.stderr
+
+
+def test_a_misspelt_type_of_another_package_is_located(tmp_path: Path) -> None:
+    pkg = tmp_path / "ws" / "src" / "nav_extra_msgs"
+    (pkg / "msg").mkdir(parents=True)
+    (pkg / "package.xml").write_text("<package><name>nav_extra_msgs</name></package>")
+    (pkg / "CMakeLists.txt").write_text(
+        'project(nav_extra_msgs)\nrosidl_generate_interfaces(${PROJECT_NAME} "msg/Goal.msg")\n')
+    (pkg / "msg" / "Goal.msg").write_text("geometry_msgs/PoseStampd pose\n")
+    p = python("from nav_extra_msgs.msg import Goal", {"DIFFCTL_WORKSPACE": str(tmp_path / "ws")})
+    last = p.stderr.strip().splitlines()[-1]
+    assert last.endswith("Goal.msg: nav_extra_msgs/msg/Goal: field 'pose' has type geometry_msgs/msg/PoseStampd, "
+                         "which package geometry_msgs does not define (did you mean "
+                         "'geometry_msgs/msg/PoseStamped' or 'geometry_msgs/msg/PointStamped' or "
+                         "'geometry_msgs/msg/Pose'?)"), last
