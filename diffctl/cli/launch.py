@@ -198,7 +198,9 @@ def _start_fork_server(run_dir: Path) -> Any:
     env = default_child_env(_children_env(run_dir))
     if not fork_server.enabled(env):
         return None
-    return fork_server.ForkServer(env, preexec=fork_server.dies_with_launcher())
+    from diffctl.cli.fork_preload import SPEC
+
+    return fork_server.ForkServer(env, preexec=fork_server.dies_with_launcher(), preload=SPEC)
 
 
 def _event_loop(server: Any) -> Any:

@@ -22,7 +22,7 @@ import subprocess
 import sys
 from collections.abc import Callable, Mapping, Sequence
 
-from diffctl.launch.zygote import MAX_MESSAGE, PR_SET_PDEATHSIG, TITLE_ROOM
+from diffctl.launch.zygote import MAX_MESSAGE, PR_SET_PDEATHSIG, TITLE_ROOM, Preload
 
 ENABLE_ENV = "DIFFCTL_FORK_SERVER"
 REPLY_TIMEOUT_S = 60.0  # the first request waits for the zygote's imports, on a loaded machine too
@@ -63,13 +63,23 @@ def dies_with_launcher() -> Callable[[], None] | None:
 class ForkServer:
     """One zygote per launch; `spawn` returns the component's pid, or None when it must be exec'd instead."""
 
-    def __init__(self, env: Mapping[str, str], preexec: Callable[[], None] | None = None) -> None:
-        """env: what the launcher gives a child that sets no variables of its own."""
+    def __init__(
+        self, env: Mapping[str, str], preexec: Callable[[], None] | None = None, preload: Preload | None = None
+    ) -> None:
+        """env: what the launcher gives a child that sets no variables of its own; preload: what the server
+        imports and warms up ahead (the CLI layer's list: the engine names no component)."""
         self._env = dict(env)
         ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
         try:
             self.process: subprocess.Popen[bytes] | None = subprocess.Popen(
-                [sys.executable, "-m", "diffctl.launch.zygote", str(theirs.fileno()), " " * TITLE_ROOM],
+                [
+                    sys.executable,
+                    "-m",
+                    "diffctl.launch.zygote",
+                    str(theirs.fileno()),
+                    (preload or Preload()).to_json(),
+                    " " * TITLE_ROOM,
+                ],
                 stdin=subprocess.DEVNULL,
                 stdout=subprocess.DEVNULL,
                 stderr=subprocess.DEVNULL,

@@ -38,6 +38,7 @@ class EventLoop:
         watch_stdin: bool = True,
         fork_env: dict[str, str] | None = None,
         server: fork_server.ForkServer | None = None,
+        preload: fork_server.Preload | None = None,
     ) -> None:
         """fork_env: start the fork server now (its imports overlap whatever the caller does next), in the
         environment of a child that sets nothing of its own; server: one the caller started already."""
@@ -46,7 +47,7 @@ class EventLoop:
         if server is not None:
             self.spawner.fork_server = server
         elif fork_env is not None and fork_server.enabled(fork_env):
-            self.spawner.fork_server = fork_server.ForkServer(fork_env, preexec=self.spawner.preexec)
+            self.spawner.fork_server = fork_server.ForkServer(fork_env, preexec=self.spawner.preexec, preload=preload)
         self.supervisor: Supervisor | None = None
         self._pipes: dict[int, list[_Pipe]] = {}
         self._wake_r, self._wake_w = os.pipe()

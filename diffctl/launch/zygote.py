@@ -34,92 +34,27 @@ from pathlib import Path
 TITLE_ROOM = 4096  # bytes of argv a component's command line may take in ps
 MAX_MESSAGE = 1 << 20
 PR_SET_PDEATHSIG = 1
-# What the sim_control graph's components import at start-up (measured with PYTHONPROFILEIMPORTTIME over a
-# whole launch): third-party libraries first, then diffctl's command and component modules. A module that
-# fails to import is left to the component, which then fails exactly as it would have without the server.
-PRELOAD: tuple[str, ...] = (
-    "numpy",
-    "numpy.random",
-    "yaml",
-    "lxml.etree",
-    "click",
-    "zenoh",
-    "rosbags.typesys",
-    "pybullet",
-    "diffctl.cli.main",
-    "diffctl.bus.node",
-    "diffctl.bus.gz",
-    "diffctl.bus.graph",
-    "diffctl.bus.parameter_services",
-    "diffctl.description",
-    "diffctl.description.urdf",
-    "diffctl.sim.cli",
-    "diffctl.sim.runner",
-    "diffctl.sim.world",
-    "diffctl.sim.sensors",
-    "diffctl.sim.plugins",
-    "diffctl.sim.world_client",
-    "diffctl.sim.services",
-    "diffctl.control.manager",
-    "diffctl.control.realtime_publisher",
-    "diffctl.control.controllers.diff_drive",
-    "diffctl.control.controllers.joint_state_broadcaster",
-    "diffctl.control.controller_node",
-    "diffctl.control.cli",
-    "diffctl.control.spawner",
-    "diffctl.cli.spawn",
-    "diffctl.robot_state_publisher.cli",
-    "diffctl.robot_state_publisher.node",
-    "diffctl.bridge.cli",
-    "diffctl.bridge.bridge",
-)
-# The bus types the sim_control components use at start-up (recorded over a whole launch): registering a type
-# in the typestore builds its classes, and a compiled CDR codec costs 5-15 ms, in every process that uses it —
-# 0.4 s of the simulator's gz_ros2_control plugin start and 0.1-0.2 s of each spawner's. Done once here, the
-# components inherit them. Services get codecs both ways (the spawner encodes a request, the manager decodes
-# it); those only declared at start-up (a node's parameter services) are registered and hashed.
-WARM_SERVICES: tuple[str, ...] = (
-    "controller_manager_msgs/srv/ListControllers",
-    "controller_manager_msgs/srv/LoadController",
-    "controller_manager_msgs/srv/ConfigureController",
-    "controller_manager_msgs/srv/SwitchController",
-    "rcl_interfaces/srv/SetParameters",
-)
-DECLARED_SERVICES: tuple[str, ...] = (
-    "controller_manager_msgs/srv/CleanupController",
-    "controller_manager_msgs/srv/ListControllerTypes",
-    "controller_manager_msgs/srv/ListHardwareComponents",
-    "controller_manager_msgs/srv/ListHardwareInterfaces",
-    "controller_manager_msgs/srv/ReloadControllerLibraries",
-    "controller_manager_msgs/srv/SetHardwareComponentState",
-    "controller_manager_msgs/srv/UnloadController",
-    "rcl_interfaces/srv/DescribeParameters",
-    "rcl_interfaces/srv/GetParameterTypes",
-    "rcl_interfaces/srv/GetParameters",
-    "rcl_interfaces/srv/ListParameters",
-    "rcl_interfaces/srv/SetParametersAtomically",
-    "type_description_interfaces/srv/GetTypeDescription",
-)
-WARM_MESSAGES: tuple[str, ...] = (
-    "rcl_interfaces/msg/Log",
-    "rcl_interfaces/msg/ParameterEvent",
-    "std_msgs/msg/String",
-    "rosgraph_msgs/msg/Clock",
-    "sensor_msgs/msg/JointState",
-    "tf2_msgs/msg/TFMessage",
-    "nav_msgs/msg/Odometry",
-    "geometry_msgs/msg/TwistStamped",
-    "control_msgs/msg/DynamicJointState",
-    "controller_manager_msgs/msg/ControllerManagerActivity",  # every manager publishes it as it comes up
-)  # the bridge's sensor types (Imu, LaserScan, Image, CameraInfo: 25 ms) it compiles itself, off the critical path
-# Components a launch usually starts only once the robot is up (the visualizer after the spawners, a
-# recorder): imported while the server has no request waiting, so they stay off the start-up's critical path.
-PRELOAD_LATER: tuple[str, ...] = (
-    "diffctl.viz.cli",
-    "diffctl.viz.server",
-    "diffctl.viz.bus_feed",
-    "diffctl.bag.cli",
-)
+
+
+@dataclass(frozen=True)
+class Preload:
+    """What the server imports before it serves (`modules`), what it imports while idle (`later`), and the
+    warm-up functions (`module:function`) it calls after the imports. The launch engine names no component:
+    the list comes from the CLI layer (diffctl/cli/fork_preload.py), each component naming its own."""
+
+    modules: tuple[str, ...] = ()
+    later: tuple[str, ...] = ()
+    warm: tuple[str, ...] = ()
+
+    def to_json(self) -> str:
+        return json.dumps({"modules": self.modules, "later": self.later, "warm": self.warm})
+
+    @classmethod
+    def from_json(cls, text: str) -> Preload:
+        if not text.strip():
+            return cls()
+        raw = json.loads(text)
+        return cls(tuple(raw.get("modules", ())), tuple(raw.get("later", ())), tuple(raw.get("warm", ())))
 
 
 # The later imports wait for this much quiet: a launch asks for its first components in a burst, a few ms
@@ -136,26 +71,19 @@ class Request:
     stderr_fd: int
 
 
-def preload() -> None:
+def preload(spec: Preload) -> None:
     # OpenBLAS starts a worker thread when numpy loads; a single-threaded BLAS keeps this process at one
     # thread, so fork() copies no lock another thread holds. Components get their own environment back.
     os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
     # No collection while importing: what the imports allocate stays for good (frozen below), and the
     # collections the allocations would trigger cost 15-35 ms of the first component's wait.
     gc.disable()
-    for name in PRELOAD:
+    for name in spec.modules:
         _import(name)
-    with contextlib.suppress(Exception):
-        warm_bus_types()
-    with contextlib.suppress(Exception):
-        from diffctl.control import plugin_registry
-
-        plugin_registry.controller_types()  # scan the installed plugins once, for every controller manager
-        plugin_registry.hardware_plugins()
-    with contextlib.suppress(Exception):
-        from diffctl.sim import world
-
-        world.reserve_client()  # the simulator's PyBullet client, connected (no thread, nothing loaded)
+    for target in spec.warm:
+        with contextlib.suppress(Exception):
+            module, _, function = target.partition(":")
+            getattr(importlib.import_module(module), function)()
     # What is imported now lives as long as every component: out of the collector's sight, a component's
     # collections (and its final one at exit, which otherwise walks every module object for a good part of a
     # second on a busy machine) skip it, and its pages stay shared instead of being dirtied by the scans.
@@ -169,22 +97,6 @@ def preload() -> None:
         ctypes.CDLL(None).fflush(None)
 
 
-def warm_bus_types() -> None:
-    """Register the start-up types in the bus's typestore and compile their codecs (see WARM_MESSAGES)."""
-    from diffctl.bus import types
-
-    for name in (*WARM_SERVICES, *DECLARED_SERVICES):
-        types.type_hash(types.check_service(name))
-    for name in WARM_SERVICES:
-        for part in ("_Request", "_Response"):
-            types.encoder(name + part)
-            types.decoder(name + part)
-    for name in WARM_MESSAGES:
-        types.type_hash(types.check(name))
-        types.encoder(name)
-        types.decoder(name)
-
-
 def _import(name: str) -> None:
     with contextlib.suppress(Exception):
         importlib.import_module(name)
@@ -195,9 +107,9 @@ def _freeze() -> None:
     gc.freeze()
 
 
-def serve(sock: socket.socket, launcher_pid: int) -> Request | None:
+def serve(sock: socket.socket, launcher_pid: int, later_modules: tuple[str, ...] = ()) -> Request | None:
     """Answer requests until the launcher closes its end (None); in a forked component, its Request."""
-    later = list(PRELOAD_LATER)
+    later = list(later_modules)
     last_request = time.monotonic()
     while True:
         if later:
@@ -341,12 +253,13 @@ def _max_fd() -> int:
 
 def main() -> None:
     fd = int(sys.argv[1])
+    spec = Preload.from_json(sys.argv[2] if len(sys.argv) > 3 else "")
     launcher_pid = os.getppid()
     start_cwd = os.getcwd()
     sock = socket.socket(fileno=fd)
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # only the launcher's close or its death ends the server
-    preload()
-    request = serve(sock, launcher_pid)
+    preload(spec)
+    request = serve(sock, launcher_pid, spec.later)
     if request is None:
         os._exit(0)  # the launcher is done: nothing of this process needs finalising
     become(request, start_cwd)

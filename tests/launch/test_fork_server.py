@@ -17,6 +17,7 @@ import psutil
 import pytest
 
 from bench.ports import free_port, wait_port
+from diffctl.cli.fork_preload import SPEC
 from diffctl.launch.environment import default_child_env
 from diffctl.launch.fork_server import ForkServer
 from diffctl.launch.process_state import Child
@@ -38,7 +39,7 @@ class Server:
         self.env = env
         self.lines: dict[int, list[object]] = {}
         self.spawner = PosixSpawner(guard=False, on_pipes=self._keep)
-        self.spawner.fork_server = ForkServer(env, preexec=self.spawner.preexec)
+        self.spawner.fork_server = ForkServer(env, preexec=self.spawner.preexec, preload=SPEC)
 
     def _keep(self, name: str, pid: int, out: object, err: object) -> None:
         self.lines[pid] = [out, err]  # held open: a component writing to a closed pipe would die of it
