@@ -26,8 +26,9 @@ _CONST_NAME = re.compile(r"^[A-Z][A-Z0-9_]*$")
 _TYPE = re.compile(r"^(?P<base>[A-Za-z][A-Za-z0-9_/]*)(?:<=(?P<sbound>\d+))?(?P<arr>\[(?P<abound><=)?(?P<n>\d*)\])?$")
 
 
-class InterfaceError(ConfigError):
-    """A malformed interface definition (file, line, what is wrong and what would be valid)."""
+class InterfaceError(ConfigError, ImportError):
+    """A malformed interface definition (file, line, what is wrong and what would be valid); an ImportError
+    too, since it surfaces from the import of the package."""
 
 
 @dataclass
