@@ -42,6 +42,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "description": ("diffctl.cli.description:description", "Show what the simulator makes of a URDF/xacro/SDF."),
     "fuel": ("diffctl.fuel.cli:fuel", "Download Gazebo Fuel models into Gazebo's cache (gz fuel)."),
     "tf2": ("diffctl.tf2_tools.cli:tf2", "tf2_ros's static_transform_publisher and tf2_echo."),
+    "test": ("diffctl.testing.cli:test", "Run launch tests and pytest files (launch_test, colcon test)."),
 }
 
 

@@ -9,6 +9,8 @@ finder, so modules on sys.path (a sourced ROS 2's message packages) always win. 
 the standard library only, whether the name can be an interface package (one of diffctl's, a folder of the
 workspace's src/, an install tree's share/<pkg>/msg|srv|action, or named like one), so other failed
 imports cost next to nothing; only then is `finder.py` (the registry, the workspace reader) imported.
+PYTEST_DONT_REWRITE: pytest marks the modules of a distribution with a pytest11 plugin for assertion
+rewriting; this one is imported before pytest starts, and says so to keep pytest from warning about it.
 """
 
 from __future__ import annotations

@@ -1,0 +1,4 @@
+"""`launch_testing.asserts` (diffctl/testing/asserts.py)."""
+
+from diffctl.testing.asserts import *  # noqa: F403
+from diffctl.testing.asserts import SequentialTextChecker, __all__  # noqa: F401

@@ -1,0 +1,110 @@
+"""Running test files in child processes, N at a time, each stopped at its timeout with everything reaped.
+
+Each file runs in a process of its own session (launch tests through `python -m diffctl.testing.launch_test`,
+pytest files through `python -m pytest`); a launch test's processes die with it (death signal and the
+launcher's guard), so killing that session at the timeout leaves nothing behind.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+from pathlib import Path
+
+from diffctl.testing.discovery import TestFile
+
+
+@dataclass
+class Outcome:
+    test: TestFile
+    returncode: int
+    output: str
+    seconds: float
+    timed_out: bool = False
+    junit: Path | None = None
+
+    @property
+    def ok(self) -> bool:
+        return self.returncode == 0 and not self.timed_out
+
+
+def command(test: TestFile, junit: Path, arguments: list[str], artifacts: Path | None) -> list[str]:
+    if test.kind == "launch":
+        argv = [sys.executable, "-m", "diffctl.testing.launch_test", str(test.path), *arguments,
+                "--junit-xml", str(junit)]
+        if test.package:
+            argv += ["--package-name", test.package]
+        if artifacts is not None:
+            argv += ["--artifacts", str(artifacts)]
+        return argv
+    argv = [sys.executable, "-m", "pytest", str(test.path), "-p", "no:cacheprovider", "-q",
+            f"--junit-xml={junit}"]
+    if test.package:
+        argv.append(f"--junit-prefix={test.package}")
+    if arguments:
+        argv += ["--launch-args", *arguments]
+    return argv
+
+
+def run_one(test: TestFile, junit: Path, arguments: list[str], timeout_s: float,
+            artifacts: Path | None = None) -> Outcome:
+    argv = command(test, junit, arguments, artifacts)
+    started = time.monotonic()
+    proc = subprocess.Popen(
+        argv,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        stdin=subprocess.DEVNULL,
+        cwd=str(test.root) if test.root else None,
+        start_new_session=True,
+        text=True,
+        errors="replace",
+    )
+    timed_out = False
+    try:
+        output, _ = proc.communicate(timeout=timeout_s)
+    except subprocess.TimeoutExpired:
+        timed_out = True
+        _kill_session(proc)
+        output, _ = proc.communicate()
+        output += f"\n[diffctl test] {test.label}: timed out after {timeout_s:g} s; stopped it and its processes\n"
+    finally:
+        if proc.poll() is None:
+            _kill_session(proc)
+    return Outcome(test, proc.returncode, output, time.monotonic() - started, timed_out, junit)
+
+
+def _kill_session(proc: subprocess.Popen) -> None:
+    # SIGKILL: the launch test's children follow through their death signal and the guard.
+    try:
+        os.killpg(proc.pid, signal.SIGKILL)
+    except (ProcessLookupError, PermissionError):
+        pass
+    proc.wait()
+
+
+def run_all(tests: list[TestFile], *, jobs: int, junit_dir: Path, arguments: list[str], timeout_s: float,
+            artifacts: Path | None, on_done: Callable[[Outcome], None]) -> list[Outcome]:
+    lock = threading.Lock()
+    outcomes: list[Outcome | None] = [None] * len(tests)
+
+    def one(index: int) -> None:
+        test = tests[index]
+        where = None
+        if artifacts is not None:
+            where = artifacts / f"{index:02d}-{test.path.name[:-3]}"
+        outcome = run_one(test, junit_dir / f"{index:03d}.xml", arguments, timeout_s, where)
+        outcomes[index] = outcome
+        with lock:
+            on_done(outcome)
+
+    with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+        list(pool.map(one, range(len(tests))))
+    return [o for o in outcomes if o is not None]
