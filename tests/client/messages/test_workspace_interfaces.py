@@ -123,3 +123,36 @@ for n in NAMES:
     obs(n, lambda n=n: types.type_hash(n))
 ''', {"DIFFCTL_WORKSPACE": str(test_msgs_workspace)})
     assert {k: v[1] for k, v in ours.items()} == real
+
+
+SETTERS = r'''
+import array
+import numpy
+import test_msgs.msg as M
+BAD = {"str": "x", "int": 1, "neg": -1, "big": 2**70, "float": 1.5, "inf": float("inf"), "huge": 1e300,
+       "bytes": b"ab", "byte": b"a", "none": None, "list": [1, 2], "flist": [1.0, 2.0, 3.0],
+       "longlist": list(range(40)), "strs": ["a", "b", "c"], "longstrs": ["x" * 30] * 2, "nan": float("nan"),
+       "ndarray": numpy.zeros(3, dtype=numpy.int32), "ndarray3f": numpy.zeros(3, dtype=numpy.float32),
+       "arr_d": array.array("d", [1.0]), "arr_i": array.array("i", [1] * 4), "bools": [True, False, True],
+       "tuple": (1, 2, 3), "set": {1, 2, 3}, "longstr": "y" * 30}
+for T in (M.BasicTypes, M.Arrays, M.BoundedSequences, M.UnboundedSequences, M.BoundedPlainSequences,
+          M.Strings, M.WStrings, M.Nested, M.MultiNested, M.Builtins):
+    for field in T.get_fields_and_field_types():
+        for label, value in BAD.items():
+            def set_it(T=T, field=field, value=value):
+                m = T()
+                setattr(m, field, value)
+                return getattr(m, field)
+            obs(f"{T.__name__}.{field}={label}", set_it)
+'''
+
+
+@pytest.mark.parametrize("check", ["", "1"], ids=["checks-off", "checks-on"])
+def test_field_setters_check_as_rosidl(test_msgs_workspace, check: str) -> None:
+    """Every field kind of test_msgs given wrong values, with and without ROS_PYTHON_CHECK_FIELDS=1: the same
+    values are accepted (and converted the same way), the same are refused with rosidl's assertion message."""
+    env = {"ROS_PYTHON_CHECK_FIELDS": check}
+    ours = run_ours(SETTERS, {**env, "DIFFCTL_WORKSPACE": str(test_msgs_workspace)})
+    oracle = run_oracle(SETTERS, env)
+    assert len(oracle) > 1000
+    assert_same(ours, oracle)
