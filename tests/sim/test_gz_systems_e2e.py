@@ -1,0 +1,100 @@
+"""A world built in a temp folder with the Gazebo systems community robots use (OdometryPublisher spelled the
+old ignition way, LinearBatteryPlugin, DiffDrive), run by `diffctl sim run` on a real router with real
+PyBullet, bridged by `diffctl bridge` and read as ROS messages where a user looks at them."""
+
+from __future__ import annotations
+
+import math
+import re
+import time
+from pathlib import Path
+
+import pytest
+from sim_helpers import CAR, EMPTY_WORLD
+
+from diffctl.bus import Node, types
+
+ODOM = """<plugin filename="libignition-gazebo-odometry-publisher-system.so"
+    name="ignition::gazebo::systems::OdometryPublisher">
+  <odom_frame>odom</odom_frame><robot_base_frame>base_footprint</robot_base_frame>
+  <odom_publish_frequency>30</odom_publish_frequency>
+</plugin>"""
+BATTERY = """<plugin filename="gz-sim-linearbatteryplugin-system" name="gz::sim::systems::LinearBatteryPlugin">
+  <battery_name>linear_battery</battery_name><voltage>12.592</voltage>
+  <open_circuit_voltage_constant_coef>12.694</open_circuit_voltage_constant_coef>
+  <open_circuit_voltage_linear_coef>-3.1424</open_circuit_voltage_linear_coef>
+  <initial_charge>1.1665</initial_charge><capacity>1.2009</capacity><resistance>0.061523</resistance>
+  <smooth_current_tau>1.9499</smooth_current_tau><power_load>6.6</power_load><fix_issue_225>true</fix_issue_225>
+</plugin>"""
+
+
+def systems_world(folder: Path) -> Path:
+    car = CAR.read_text()
+    model = car[car.index("<model") : car.rindex("</model>")] + ODOM + BATTERY + "</model>"
+    model = re.sub(r'<model name="[^"]*"', '<model name="robot"', model, count=1)
+    world = EMPTY_WORLD.read_text().replace('<world name="empty">', '<world name="systems">')
+    i = world.rindex("</world>")
+    path = folder / "systems.sdf"
+    path.write_text(world[:i] + model + world[i:])
+    return path
+
+
+def wait_for(pred, timeout: float = 30.0, what: str = "condition"):
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        v = pred()
+        if v:
+            return v
+        time.sleep(0.05)
+    raise AssertionError(f"timed out waiting for {what}")
+
+
+@pytest.mark.slow
+def test_odometry_publisher_and_battery_reach_ros_through_the_bridge(router: str, procs, tmp_path: Path) -> None:
+    world = systems_world(tmp_path)
+    sim = procs.diffctl("sim", "run", "-r", "--rtf", "4", str(world), cwd=tmp_path)
+    bridge = procs.diffctl(
+        "bridge",
+        "/model/robot/odometry@nav_msgs/msg/Odometry[gz.msgs.Odometry",
+        "/model/robot/battery/linear_battery/state@sensor_msgs/msg/BatteryState[gz.msgs.BatteryState",
+        "/cmd_vel@geometry_msgs/msg/Twist]gz.msgs.Twist",  # the car's DiffDrive has <topic>cmd_vel</topic>
+        "/model/robot/pose@tf2_msgs/msg/TFMessage[gz.msgs.Pose_V",
+    )
+    node = Node("systems_probe")
+    odom, battery, tf = [], [], []
+    try:
+        node.create_subscription("/model/robot/odometry", "nav_msgs/msg/Odometry", odom.append)
+        node.create_subscription(
+            "/model/robot/battery/linear_battery/state", "sensor_msgs/msg/BatteryState", battery.append
+        )
+        node.create_subscription("/model/robot/pose", "tf2_msgs/msg/TFMessage", tf.append)
+        wait_for(lambda: odom and battery and tf, 60, "odometry, battery state and pose on the ROS side")
+        first = battery[-1]
+        assert first.power_supply_status == first.POWER_SUPPLY_STATUS_FULL  # not moved yet: not draining
+        assert first.percentage == pytest.approx(100 * 1.1665 / 1.2009, rel=1e-5)  # fix_issue_225: 0-100
+        assert math.isnan(first.design_capacity)
+        o = odom[-1]
+        assert (o.header.frame_id, o.child_frame_id) == ("odom", "base_footprint")
+        t = tf[-1].transforms[0]
+        assert (t.header.frame_id, t.child_frame_id) == ("odom", "base_footprint")
+        pub = node.create_publisher("/cmd_vel", "geometry_msgs/msg/Twist")
+        cls = types.get_class("geometry_msgs/msg/Twist")
+        vec = types.get_class("geometry_msgs/msg/Vector3")
+        twist = cls(linear=vec(x=0.3, y=0.0, z=0.0), angular=vec(x=0.0, y=0.0, z=0.0))
+
+        def driving() -> bool:
+            pub.publish(twist)
+            return odom[-1].twist.twist.linear.x > 0.25 and battery[-1].power_supply_status == 2
+
+        wait_for(driving, 60, "the car driving at 0.3 m/s and its battery discharging")
+        before = battery[-1].charge
+        wait_for(lambda: battery[-1].charge < before - 1e-6, 30, "charge falling")
+        o = odom[-1]
+        assert o.twist.twist.linear.x == pytest.approx(0.3, abs=0.03)
+        assert o.pose.pose.position.x > 0.05 and o.pose.pose.position.z == 0.0
+        b = battery[-1]
+        assert 12.0 < b.voltage < 12.7 and 0 < b.current < 6.6 / 12.0  # rising towards 6.6 W / ~12.6 V
+    finally:
+        node.close()
+        for p in (bridge, sim):
+            procs.stop(p)
