@@ -123,3 +123,10 @@ class RCLError(RuntimeError):
 
 class InvalidQosOverridesError(Exception):
     pass
+
+
+# Tracebacks name them as rclpy does (`rclpy.exceptions.ParameterNotDeclaredException: …`); the overlay's
+# rclpy.exceptions is where users import them from.
+for _cls in list(globals().values()):
+    if isinstance(_cls, type) and issubclass(_cls, Exception) and _cls.__module__ == __name__:
+        _cls.__module__ = "rclpy.exceptions"

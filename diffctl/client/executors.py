@@ -266,10 +266,12 @@ class Executor:
                         wait_s = due
                 if wait_s is None or wait_s > 0:
                     signal.wait(generation, wait_s)
-            if self._is_shutdown:
-                raise ShutdownException()
+            # The context first: a shutdown of the context also shuts the global executor down (its on-shutdown
+            # callback), and rclpy's waiter, woken before that callback runs, reports the external shutdown.
             if not self._context.ok():
                 raise ExternalShutdownException()
+            if self._is_shutdown:
+                raise ShutdownException()
 
             timers_ready = {id(e) for e in timers if e.is_ready()}
             subs_ready = {id(e) for e in subs if e._ready()}
@@ -400,3 +402,7 @@ class MultiThreadedExecutor(Executor):
         ok = super().shutdown(timeout_sec)
         self._executor.shutdown(wait=True)
         return ok
+
+
+for _cls in (ExternalShutdownException, ShutdownException, TimeoutException, ConditionReachedException):
+    _cls.__module__ = "rclpy.executors"  # as tracebacks print them under rclpy

@@ -4,11 +4,16 @@ exactly as under the real rclpy; a node started with no router says so in one li
 from __future__ import annotations
 
 import os
+import signal
 import subprocess
 import sys
+import time
+
+import pytest
 
 from bench.ports import free_port
 from tests.client.differential import PROGRAMS, REPO
+from tests.conftest import Procs
 from tests.oracle import jazzy_venv
 
 
@@ -46,3 +51,29 @@ def test_no_router_is_one_line_and_exit_2() -> None:
     lines = p.stderr.strip().splitlines()
     assert len(lines) == 1, p.stderr
     assert endpoint in lines[0] and "diffctl router" in lines[0]
+
+
+def _signal_outcome(p: subprocess.Popen, sig: int) -> tuple[int, str]:
+    assert p.stdout.readline().strip() == "spinning"
+    time.sleep(0.5)
+    p.send_signal(sig)
+    _, err = p.communicate(timeout=20)
+    lines = err.strip().splitlines()
+    return p.returncode, lines[-1] if lines else ""
+
+
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM])
+def test_signals_end_spin_as_in_rclpy(router: str, procs: Procs, sig: int) -> None:
+    """Ctrl-C: KeyboardInterrupt out of spin; SIGTERM: ExternalShutdownException — the exit and the last line the
+    real rclpy gives. (The real one races on SIGTERM: a context shut down between two waits lets spin return
+    normally now and then; diffctl always reports the external shutdown.)"""
+    code = (PROGRAMS / "spin_forever.py").read_text()
+    real = procs.start([str(jazzy_venv.python()), "-I", "-c", code], env=jazzy_venv.env(), stderr=subprocess.PIPE)
+    ours = procs.start([sys.executable, str(PROGRAMS / "spin_forever.py")], stderr=subprocess.PIPE)
+    real_outcome, our_outcome = _signal_outcome(real, sig), _signal_outcome(ours, sig)
+    if sig == signal.SIGINT:
+        assert our_outcome == real_outcome
+        assert our_outcome[1] == "KeyboardInterrupt"
+    else:
+        assert our_outcome == (1, "rclpy.executors.ExternalShutdownException")
+        assert real_outcome == our_outcome or real_outcome[0] == 0
