@@ -39,8 +39,22 @@ def module_name_for(path: Path) -> str:
     return re.sub(r"\W", "_", stem)
 
 
+ROS_MODULES = ("launch", "launch_ros", "launch_testing", "launch_testing_ros", "launch_pytest")
+
+
+def forget_folders_taken_for_modules() -> None:
+    """A folder named `launch/` (a package's launch files, the repository's) imported as a namespace package
+    would hide the overlay's `launch`: such imports are dropped so the real module is found next time."""
+    for name in ROS_MODULES:
+        module = sys.modules.get(name)
+        if module is not None and getattr(module, "__file__", None) is None:
+            for key in [k for k in sys.modules if k == name or k.startswith(name + ".")]:
+                del sys.modules[key]
+
+
 def import_test_module(path: Path, name: str | None = None) -> Any:
     name = name or module_name_for(path)
+    forget_folders_taken_for_modules()
     spec = importlib.util.spec_from_file_location(name, path)
     if spec is None or spec.loader is None:
         raise LaunchTestError(f"{path}: not a Python file")

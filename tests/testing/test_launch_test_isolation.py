@@ -1,0 +1,53 @@
+"""Launch tests run side by side on buses of their own; a hanging one is stopped with everything it started."""
+
+from __future__ import annotations
+
+import re
+import shutil
+import subprocess
+import sys
+import time
+import uuid
+from pathlib import Path
+
+import psutil
+import pytest
+
+FILES = Path(__file__).resolve().parent / "launch_tests"
+
+
+@pytest.mark.slow
+def test_two_tests_at_once_do_not_hear_each_other(tmp_path: Path) -> None:
+    a, b = tmp_path / "a_crosstalk_launch_test.py", tmp_path / "b_crosstalk_launch_test.py"
+    shutil.copy(FILES / "crosstalk_launch_test.py", a)
+    shutil.copy(FILES / "crosstalk_launch_test.py", b)
+    started = time.monotonic()
+    r = subprocess.run([sys.executable, "-m", "diffctl", "test", str(a), str(b), "-j", "2"],
+                       capture_output=True, text=True, timeout=120, start_new_session=True)
+    took = time.monotonic() - started
+    assert r.returncode == 0, r.stdout + r.stderr
+    buses = set(re.findall(r"bus (tcp/127\.0\.0\.1:\d+) domain (\d+)", r.stdout))
+    assert len(buses) == 2 and len({d for _, d in buses}) == 2, buses  # two routers, two domains
+    assert took < 2 * 3.0 + 8  # side by side: each listens 3 s
+
+
+@pytest.mark.slow
+def test_hanging_test_is_stopped_at_its_timeout_and_leaves_nothing(tmp_path: Path) -> None:
+    marker = f"{4000 + uuid.uuid4().int % 1000}.{uuid.uuid4().int % 9 + 1}"
+    env = {**__import__("os").environ, "HANG_MARKER": marker}
+    started = time.monotonic()
+    r = subprocess.run([sys.executable, "-m", "diffctl", "test", str(FILES / "hanging_launch_test.py"),
+                        "--timeout", "4"], capture_output=True, text=True, timeout=60, env=env,
+                       start_new_session=True)
+    took = time.monotonic() - started
+    assert r.returncode == 1
+    assert "timed out after 4 s" in r.stdout and "hanging" in r.stdout
+    assert took < 15
+    deadline = time.monotonic() + 3
+    left: list[psutil.Process] = []
+    while time.monotonic() < deadline:
+        left = [p for p in psutil.process_iter(["cmdline"]) if marker in " ".join(p.info["cmdline"] or [])]
+        if not left:
+            break
+        time.sleep(0.1)
+    assert not left, [p.info["cmdline"] for p in left]
