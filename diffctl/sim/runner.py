@@ -29,6 +29,7 @@ from diffctl.sim.plugins.gz_ros2_control import GzRos2Control, PreparedManager
 from diffctl.sim.plugins.joint_state_publisher import JointStatePublisher
 from diffctl.sim.plugins.linear_battery import LinearBatteryPlugin
 from diffctl.sim.plugins.odometry_publisher import OdometryPublisher
+from diffctl.sim.plugins.pose_publisher import PosePublisher
 from diffctl.sim.plugins.system_names import system_kind
 from diffctl.sim.sensors import (
     AirPressure,
@@ -75,6 +76,7 @@ MODEL_SYSTEMS = {
     "joint-state-publisher",
     "odometry-publisher",
     "linearbatteryplugin",
+    "pose-publisher",
     *CONTROL_SYSTEMS,
 }
 
@@ -200,6 +202,8 @@ class Simulation:
                 rt.plugins.append(DiffDrive(self.ctx, rt.entity, params))
             elif kind == "joint-state-publisher":
                 rt.plugins.append(JointStatePublisher(self.ctx, rt.entity, plugin))
+            elif kind == "pose-publisher":
+                rt.plugins.append(PosePublisher(self.ctx, rt.entity, plugin))
             elif kind == "linearbatteryplugin":
                 rt.plugins.append(LinearBatteryPlugin(self.ctx, rt.entity, plugin))
             elif kind == "odometry-publisher":
