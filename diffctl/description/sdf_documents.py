@@ -68,7 +68,9 @@ def read_file(path: Path, search_path: tuple[Path, ...], check_files: bool) -> t
     except OSError as e:
         raise DescriptionError(f"cannot read: {e.strerror}", source=str(path)) from None
     base = path.resolve().parent
-    return doc_from_bytes(data, str(path), base, search_path or search_path_for(base), check_files)
+    # a workspace package's share tree links each file to its source: errors name the file the user edits
+    shown = str(path.resolve()) if path.is_symlink() else str(path)
+    return doc_from_bytes(data, shown, base, search_path or search_path_for(base), check_files)
 
 
 def text_doc(

@@ -185,3 +185,15 @@ def test_download_failure_names_the_server_answer(cache: Path, tmp_path: Path, m
         [sys.executable, "-m", "diffctl", "fuel", "download", "model://x"], capture_output=True, text=True, timeout=60
     )
     assert out.returncode == 2 and "not a Fuel model URL" in out.stderr
+
+
+def test_an_error_in_a_linked_world_names_the_users_own_file(cache: Path, tmp_path: Path, monkeypatch) -> None:
+    # a workspace package's share tree (diffctl's cache) links each installed file to its source
+    monkeypatch.setenv("DIFFCTL_FUEL_OFFLINE", "1")
+    source = write_world(tmp_path, f"{FUEL}/Ground Plane", f"{FUEL}/Sun", f"<include><uri>{FUEL}/Nope</uri></include>")
+    link = tmp_path / "share" / "worlds" / "world.sdf"
+    link.parent.mkdir(parents=True)
+    link.symlink_to(source)
+    with pytest.raises(DescriptionError) as e:
+        load_world(link)
+    assert e.value.source == str(source.resolve()) and e.value.line == 7
