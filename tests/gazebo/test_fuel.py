@@ -196,4 +196,4 @@ def test_an_error_in_a_linked_world_names_the_users_own_file(cache: Path, tmp_pa
     link.symlink_to(source)
     with pytest.raises(DescriptionError) as e:
         load_world(link)
-    assert e.value.source == str(source.resolve()) and e.value.line == 7
+    assert e.value.source == str(source.resolve()) and e.value.line == 6
