@@ -47,6 +47,9 @@ def main(argv: list[str] | None = None) -> None:
         code = e.exit_code
     except KeyboardInterrupt:
         code = 130
+    except BrokenPipeError:  # `gz topic -e … | head`: the reader left, which is no error
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        code = 0
     finally:
         session = sys.modules.get("diffctl.bus.session")
         if session is not None:
