@@ -42,3 +42,8 @@ def test_ros_args_agree(router: str) -> None:
 
 def test_parameter_events_and_logger_services_agree(router: str) -> None:
     assert_same(*run_both("param_events.py", router))
+
+
+def test_parameter_services_agree(router: str) -> None:
+    """Another node's parameter services through AsyncParameterClient: the same answers as rclpy's."""
+    assert_same(*run_both("param_client.py", router))
