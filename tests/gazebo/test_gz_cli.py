@@ -15,7 +15,9 @@ import pytest
 from diffctl.gz.textproto import format_message, parse_message
 from tests.waiting import wait_for
 
-GZ = shutil.which("gz", path=str(Path(sys.executable).parent))
+# the venv's console script (pyproject's [project.scripts] gz); the same entry point without it
+GZ_SCRIPT = shutil.which("gz", path=str(Path(sys.executable).parent))
+GZ = [GZ_SCRIPT] if GZ_SCRIPT else [sys.executable, "-c", "from diffctl.gz.cli import main; main()"]
 
 BOX_WORLD = """<?xml version="1.0"?>
 <sdf version="1.9">
@@ -68,18 +70,17 @@ def test_text_format_prints_as_protobuf_and_reads_what_users_type() -> None:
 
 
 def gz(*args: str, timeout: float = 30) -> subprocess.CompletedProcess:
-    return subprocess.run([GZ, *args], capture_output=True, text=True, timeout=timeout, env=os.environ.copy())
+    return subprocess.run([*GZ, *args], capture_output=True, text=True, timeout=timeout, env=os.environ.copy())
 
 
 @pytest.mark.slow
-@pytest.mark.skipif(GZ is None, reason="the gz console script is installed with diffctl (pip install -e .)")
 def test_gz_topic_service_model_against_a_running_world(router: str, procs, tmp_path: Path, monkeypatch) -> None:
     monkeypatch.setenv("GZ_SIM_RESOURCE_PATH", str(tmp_path))
     monkeypatch.setenv("GZ_FUEL_CACHE_PATH", str(tmp_path))
     monkeypatch.setenv("DIFFCTL_FUEL_OFFLINE", "1")
     (tmp_path / "shapes.sdf").write_text(BOX_WORLD)
     # a bare world name resolves through GZ_SIM_RESOURCE_PATH, as `gz sim shapes.sdf` does
-    sim = procs.start([GZ, "sim", "-s", "-v", "3", "shapes.sdf"], cwd=tmp_path)
+    sim = procs.start([*GZ, "sim", "-s", "-v", "3", "shapes.sdf"], cwd=tmp_path)
     assert wait_for(lambda: "shapes" in gz("service", "-l").stdout or sim.poll() is not None, 30)
     assert sim.poll() is None, sim.stdout.read()
     services = gz("service", "-l").stdout.split()
@@ -131,3 +132,11 @@ def test_gz_topic_service_model_against_a_running_world(router: str, procs, tmp_
     assert gone.stdout == "data: true\n"
     assert "box" not in gz("model", "--list").stdout
     assert gz("sim", "--no-such-flag", "x.sdf").returncode == 2
+
+
+def test_gz_is_a_console_script_of_the_project() -> None:
+    import tomllib
+
+    REPO = Path(__file__).resolve().parents[2]
+    scripts = tomllib.loads((REPO / "pyproject.toml").read_text())["project"]["scripts"]
+    assert scripts["gz"] == "diffctl.gz.cli:main"
