@@ -52,7 +52,7 @@ def package_prefix(package: str) -> Path:
 
 def use_in_children(workspace: Path | None, env: MutableMapping[str, str] = os.environ) -> None:
     """Make processes started with `env` resolve packages as this one does: the workspace in
-    $DIFFCTL_WORKSPACE, diffctl's ament_index_python first on PYTHONPATH (xacro's `$(find)`), and the
+    $DIFFCTL_WORKSPACE, diffctl's overlay on PYTHONPATH after any sourced ROS (xacro's `$(find)`, rclpy, …), the
     workspace packages' environment hooks applied (GZ_SIM_RESOURCE_PATH …), as sourcing its setup.bash would,
     and diffctl's `gz` first on PATH."""
     from diffctl.gz.path import put_gz_on_path
@@ -63,5 +63,7 @@ def use_in_children(workspace: Path | None, env: MutableMapping[str, str] = os.e
         from diffctl.workspace.env_hooks import apply_workspace_hooks
 
         apply_workspace_hooks(env, workspace)
+    # The overlay goes after what PYTHONPATH already holds: a sourced ROS 2 installation (its rclpy, launch,
+    # message packages) comes first and wins, as ARCHITECTURE.md promises; without one, the overlay answers.
     parts = [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p and p != str(PYTHON_PATH)]
-    env["PYTHONPATH"] = os.pathsep.join([str(PYTHON_PATH), *parts])
+    env["PYTHONPATH"] = os.pathsep.join([*parts, str(PYTHON_PATH)])
