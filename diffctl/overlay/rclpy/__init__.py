@@ -3,6 +3,7 @@
 A sourced ROS 2 installation, earlier on sys.path, wins over this overlay.
 """
 
+import diffctl.client.messages  # noqa: F401  (the message finder, where no .pth file installed it)
 from diffctl.client.context import Context, get_default_context
 from diffctl.client.runtime import (
     InitContextManager,

@@ -1,0 +1,6 @@
+"""rclpy.topic_or_service_is_hidden."""
+
+
+def topic_or_service_is_hidden(name: str) -> bool:
+    """A name any of whose tokens starts with an underscore (hidden from tools by default)."""
+    return any(token.startswith("_") for token in name.split("/"))
