@@ -58,7 +58,7 @@ test: $(STAMP) bytecode system-deps jazzy-oracle
 test-fast: $(STAMP) bytecode
 	$(BIN)/python -m pytest -p no:cacheprovider -m "not slow and not browser"
 
-bench: $(STAMP) bytecode
+bench: $(STAMP) bytecode jazzy-oracle
 	$(BIN)/python -m bench
 
 lint: $(STAMP)
