@@ -1,4 +1,4 @@
-"""The one table of type pairs the bridge can move, as ros_gz_bridge's README lists them for our messages.
+"""The one table of type pairs the bridge can move, from ros_gz_bridge's Jazzy mapping table (mappings.py).
 
 A pair is looked up by (ROS type, gz type); `ignition.msgs.*` is read as `gz.msgs.*` and `pkg/Type` as
 `pkg/msg/Type`, as ros_gz_bridge accepts both spellings.
@@ -11,8 +11,10 @@ from dataclasses import dataclass
 from typing import Any
 
 from diffctl.bridge import conversions as c
+from diffctl.bridge import covariance_conversions as cv
 from diffctl.bridge import geometry_conversions as g
 from diffctl.bridge import sensor_conversions as sc
+from diffctl.bridge import std_conversions as st
 from diffctl.errors import MessageError
 
 
@@ -95,6 +97,48 @@ TYPE_PAIRS: tuple[TypePair, ...] = (
         "std_msgs/msg/String", "gz.msgs.StringMsg", c.scalar_to_ros("std_msgs/msg/String", str), c.scalar_to_gz(str)
     ),
     TypePair("std_msgs/msg/Empty", "gz.msgs.Empty", c.empty_to_ros, c.empty_to_gz),
+    TypePair("builtin_interfaces/msg/Time", "gz.msgs.Time", st.time_msg_to_ros, st.time_msg_to_gz),
+    TypePair("std_msgs/msg/Header", "gz.msgs.Header", st.header_msg_to_ros, st.header_msg_to_gz),
+    TypePair("std_msgs/msg/ColorRGBA", "gz.msgs.Color", st.color_to_ros, st.color_to_gz),
+    TypePair("geometry_msgs/msg/Quaternion", "gz.msgs.Quaternion", st.quaternion_msg_to_ros, st.quaternion_msg_to_gz),
+    TypePair("sensor_msgs/msg/Joy", "gz.msgs.Joy", st.joy_to_ros, st.joy_to_gz),
+    TypePair(
+        "trajectory_msgs/msg/JointTrajectory",
+        "gz.msgs.JointTrajectory",
+        st.joint_trajectory_to_ros,
+        st.joint_trajectory_to_gz,
+    ),
+    TypePair("rcl_interfaces/msg/ParameterValue", "gz.msgs.Any", st.any_to_parameter_value, st.parameter_value_to_any),
+    TypePair(
+        "geometry_msgs/msg/PoseWithCovariance",
+        "gz.msgs.PoseWithCovariance",
+        cv.pose_with_covariance_to_ros,
+        cv.pose_with_covariance_to_gz,
+    ),
+    TypePair(
+        "geometry_msgs/msg/PoseWithCovarianceStamped",
+        "gz.msgs.PoseWithCovariance",
+        cv.pose_with_covariance_stamped_to_ros,
+        cv.pose_with_covariance_stamped_to_gz,
+    ),
+    TypePair(
+        "geometry_msgs/msg/TwistWithCovariance",
+        "gz.msgs.TwistWithCovariance",
+        cv.twist_with_covariance_to_ros,
+        cv.twist_with_covariance_to_gz,
+    ),
+    TypePair(
+        "geometry_msgs/msg/TwistWithCovarianceStamped",
+        "gz.msgs.TwistWithCovariance",
+        cv.twist_with_covariance_stamped_to_ros,
+        cv.twist_with_covariance_stamped_to_gz,
+    ),
+    TypePair(
+        "nav_msgs/msg/Odometry",
+        "gz.msgs.OdometryWithCovariance",
+        cv.odometry_with_covariance_to_ros,
+        cv.odometry_with_covariance_to_gz,
+    ),
 )
 
 _BY_KEY = {(p.ros_type, p.gz_type): p for p in TYPE_PAIRS}

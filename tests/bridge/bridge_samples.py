@@ -134,6 +134,56 @@ GZ_SAMPLES: dict[tuple[str, str], dict] = {
         "frame_id": "robot::gps_link",
         "velocity_east": 0.2,
     },
+    ("builtin_interfaces/msg/Time", "gz.msgs.Time"): {"sec": 12, "nsec": 500},
+    ("std_msgs/msg/Header", "gz.msgs.Header"): gz.header(3_000_000_007, frame_id="robot::base_link"),
+    ("std_msgs/msg/ColorRGBA", "gz.msgs.Color"): {"r": 0.25, "g": 0.5, "b": 0.75, "a": 1.0},
+    ("geometry_msgs/msg/Quaternion", "gz.msgs.Quaternion"): {"x": 0.0, "y": 0.0, "z": 0.6, "w": 0.8},
+    ("sensor_msgs/msg/Joy", "gz.msgs.Joy"): {"header": H, "axes": [0.5, -1.0], "buttons": [0, 1, 1]},
+    ("trajectory_msgs/msg/JointTrajectory", "gz.msgs.JointTrajectory"): {
+        "header": H,
+        "joint_names": ["shoulder", "elbow"],
+        "points": [
+            {
+                "positions": [0.1, 0.2],
+                "velocities": [0.0, 0.5],
+                "accelerations": [],
+                "effort": [],
+                "time_from_start": {"sec": 1, "nsec": 250_000_000},
+            }
+        ],
+    },
+    ("rcl_interfaces/msg/ParameterValue", "gz.msgs.Any"): {"type": "DOUBLE", "double_value": 2.5},
+    ("geometry_msgs/msg/PoseWithCovariance", "gz.msgs.PoseWithCovariance"): {
+        "pose": {"position": {"x": 1.0, "y": 2.0, "z": 0.0}, "orientation": {"x": 0, "y": 0, "z": 0.6, "w": 0.8}},
+        "covariance": {"data": [float(i) for i in range(36)]},
+    },
+    ("geometry_msgs/msg/PoseWithCovarianceStamped", "gz.msgs.PoseWithCovariance"): {
+        "pose": {
+            "header": H,
+            "position": {"x": 1.0, "y": 2.0, "z": 0.0},
+            "orientation": {"x": 0, "y": 0, "z": 0.6, "w": 0.8},
+        },
+        "covariance": {"data": [0.5] * 36},
+    },
+    ("geometry_msgs/msg/TwistWithCovariance", "gz.msgs.TwistWithCovariance"): {
+        "twist": {"linear": {"x": 0.3, "y": 0.0, "z": 0.0}, "angular": {"x": 0.0, "y": 0.0, "z": 0.2}},
+        "covariance": {"data": [float(i) / 10 for i in range(36)]},
+    },
+    ("geometry_msgs/msg/TwistWithCovarianceStamped", "gz.msgs.TwistWithCovariance"): {
+        "twist": {"header": H, "linear": {"x": 0.3, "y": 0.0, "z": 0.0}, "angular": {"x": 0.0, "y": 0.0, "z": 0.2}},
+        "covariance": {"data": [0.25] * 36},
+    },
+    ("nav_msgs/msg/Odometry", "gz.msgs.OdometryWithCovariance"): {
+        "header": H,
+        "pose_with_covariance": {
+            "pose": {"position": {"x": 1.0, "y": 2.0, "z": 0.0}, "orientation": {"x": 0, "y": 0, "z": 0.6, "w": 0.8}},
+            "covariance": {"data": [0.01] * 36},
+        },
+        "twist_with_covariance": {
+            "twist": {"linear": {"x": 0.3, "y": 0.0, "z": 0.0}, "angular": {"x": 0.0, "y": 0.0, "z": 0.2}},
+            "covariance": {"data": [0.02] * 36},
+        },
+    },
     ("sensor_msgs/msg/BatteryState", "gz.msgs.BatteryState"): {
         "header": gz.header(12, frame_id="robot::battery"),
         "voltage": 12.5,

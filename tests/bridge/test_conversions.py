@@ -352,3 +352,44 @@ def test_type_name_spellings() -> None:
     assert type_pairs.lookup("sensor_msgs/msg/CameraInfo", "ignition.msgs.CameraInfo") is not None
     assert type_pairs.lookup("geometry_msgs/msg/Twist", "gz.msgs.Odometry") is None
     assert Direction.GZ_TO_ROS.to_ros and not Direction.GZ_TO_ROS.to_gz
+
+
+def test_covariances_and_stamped_headers_as_ros_gz_bridge_converts_them() -> None:
+    pwc = _to_ros("geometry_msgs/msg/PoseWithCovariance", "gz.msgs.PoseWithCovariance")
+    assert list(pwc.covariance) == [float(i) for i in range(36)] and pwc.pose.position.y == 2.0
+    short = type_pairs.lookup("geometry_msgs/msg/PoseWithCovariance", "gz.msgs.PoseWithCovariance").convert_to_ros(
+        {"pose": {}, "covariance": {"data": [1.0] * 6}}
+    )
+    assert not short.covariance.any()  # not 36 values: left at zeros
+    stamped = _to_ros("geometry_msgs/msg/TwistWithCovarianceStamped", "gz.msgs.TwistWithCovariance")
+    assert stamped.header.frame_id == "robot/base_link"  # from the inner twist's header
+    back = _to_gz("geometry_msgs/msg/TwistWithCovarianceStamped", "gz.msgs.TwistWithCovariance", stamped)
+    assert gz.header_value(back["twist"]["header"], "frame_id") == "robot/base_link"
+    odom = _to_ros("nav_msgs/msg/Odometry", "gz.msgs.OdometryWithCovariance")
+    assert odom.child_frame_id == "robot/odom_child" and odom.twist.covariance[0] == 0.02
+    assert odom.pose.pose.orientation.z == pytest.approx(0.6)
+
+
+def test_parameter_value_any_trajectory_and_header_follow_ros_gz_bridge() -> None:
+    pair = type_pairs.lookup("rcl_interfaces/msg/ParameterValue", "gz.msgs.Any")
+    value = _to_ros("rcl_interfaces/msg/ParameterValue", "gz.msgs.Any")
+    assert (value.type, value.double_value) == (3, 2.5)
+    value.type, value.integer_value = 2, 2**40
+    assert pair.convert_to_gz(value) == {"type": "INT32", "int_value": 2**31 - 1}  # clamped to int32
+    value.type = 7  # a double array: not converted
+    assert pair.convert_to_gz(value) == {"type": "NONE"}
+    assert pair.convert_to_ros({"type": "POSE3D"}).type == 0
+    with pytest.raises(MessageError, match=r"not a gz\.msgs\.Any\.ValueType"):
+        pair.convert_to_ros({"type": "BANANA"})
+    traj = _to_ros("trajectory_msgs/msg/JointTrajectory", "gz.msgs.JointTrajectory")
+    assert traj.joint_names == ["shoulder", "elbow"] and list(traj.points[0].velocities) == [0.0, 0.5]
+    assert (traj.points[0].time_from_start.sec, traj.points[0].time_from_start.nanosec) == (1, 250_000_000)
+    odd = type_pairs.lookup("trajectory_msgs/msg/JointTrajectory", "gz.msgs.JointTrajectory").convert_to_ros(
+        {"points": [{"time_from_start": {"sec": 1, "nsec": 1_500_000_000}}]}
+    )
+    assert (odd.points[0].time_from_start.sec, odd.points[0].time_from_start.nanosec) == (2, 500_000_000)
+    header = _to_ros("std_msgs/msg/Header", "gz.msgs.Header")
+    header.frame_id = ""
+    assert _to_gz("std_msgs/msg/Header", "gz.msgs.Header", header)["data"] == [{"key": "frame_id", "value": [""]}]
+    joy = _to_ros("sensor_msgs/msg/Joy", "gz.msgs.Joy")
+    assert list(joy.axes) == [0.5, -1.0] and list(joy.buttons) == [0, 1, 1]
