@@ -5,6 +5,7 @@ A sourced ROS 2 installation, earlier on sys.path, wins over this overlay.
 
 import diffctl.client.messages  # noqa: F401  (the message finder, where no .pth file installed it)
 from diffctl.client.context import Context, get_default_context
+from diffctl.client.parameter import Parameter
 from diffctl.client.runtime import (
     InitContextManager,
     create_node,
@@ -17,16 +18,25 @@ from diffctl.client.runtime import (
     spin_until_future_complete,
     try_shutdown,
 )
+from diffctl.client.signals import SignalHandlerOptions, install_signal_handlers, uninstall_signal_handlers
+from diffctl.client.task import Future
 from diffctl.client.utilities import get_rmw_implementation_identifier, remove_ros_args
+
+# As rclpy's own __init__ imports them: `rclpy.utilities`, `rclpy.parameter`, … are attributes after `import rclpy`.
+from . import context, parameter, signals, task, utilities  # noqa: F401
 
 __all__ = [
     "Context",
+    "Future",
     "InitContextManager",
+    "Parameter",
+    "SignalHandlerOptions",
     "create_node",
     "get_default_context",
     "get_global_executor",
     "get_rmw_implementation_identifier",
     "init",
+    "install_signal_handlers",
     "ok",
     "remove_ros_args",
     "shutdown",
@@ -34,4 +44,5 @@ __all__ = [
     "spin_once",
     "spin_until_future_complete",
     "try_shutdown",
+    "uninstall_signal_handlers",
 ]
