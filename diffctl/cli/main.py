@@ -29,6 +29,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     ),
     "control": ("diffctl.control.cli:control", "Controller manager and its commands (ros2 control)."),
     "bridge": ("diffctl.bridge.cli:bridge", "Bridge simulator topics to ROS topics (ros_gz_bridge)."),
+    "image-bridge": ("diffctl.bridge.image_bridge_cli:image_bridge", "Bridge gz image topics to ROS (ros_gz_image)."),
     "viz": ("diffctl.viz.cli:viz", "Browser visualizer (rviz2)."),
     "teleop": ("diffctl.teleop.cli:teleop", "Drive the robot from a keyboard or a game pad."),
     "run": ("diffctl.cli.run:run", "Run a package's executable: the user's Python nodes from sources (ros2 run)."),

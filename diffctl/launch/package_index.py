@@ -24,6 +24,7 @@ COMPONENTS: dict[tuple[str, str], tuple[str, ...]] = {
     ("ros_gz_sim", "gz_sim"): ("sim", "run"),
     ("ros_gz_sim", "create"): ("spawn", "entity"),
     ("ros_gz_bridge", "parameter_bridge"): ("bridge",),
+    ("ros_gz_image", "image_bridge"): ("image-bridge",),
     ("rviz2", "rviz2"): ("viz",),
     ("teleop_twist_joy", "teleop_node"): ("teleop", "joy"),
     ("teleop_twist_keyboard", "teleop_twist_keyboard"): ("teleop", "keyboard"),

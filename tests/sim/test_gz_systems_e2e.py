@@ -98,3 +98,32 @@ def test_odometry_publisher_and_battery_reach_ros_through_the_bridge(router: str
         node.close()
         for p in (bridge, sim):
             procs.stop(p)
+
+
+@pytest.mark.slow
+def test_image_bridge_from_a_launch_node_brings_the_simulated_camera_to_ros(router: str, procs, tmp_path: Path) -> None:
+    # Node(package='ros_gz_image', executable='image_bridge', arguments=['/camera']) runs this command.
+    from diffctl.launch.package_index import executable_argv
+
+    argv = executable_argv("ros_gz_image", "image_bridge")
+    assert argv[-2:] == ["diffctl", "image-bridge"]
+    world = systems_world(tmp_path)
+    sim = procs.diffctl("sim", "run", "-r", "--rtf", "2", str(world), cwd=tmp_path)
+    bridge = procs.start([*argv, "/camera"])
+    node = Node("image_probe")
+    images = []
+    try:
+        node.create_subscription("/camera", "sensor_msgs/msg/Image", images.append)
+        wait_for(lambda: len(images) >= 2, 60, "two camera frames as sensor_msgs/Image on /camera")
+        img = images[-1]
+        assert (img.width, img.height, img.encoding, img.step) == (320, 240, "rgb8", 960)
+        assert len(img.data) == 320 * 240 * 3 and int(max(img.data)) > 0
+        assert img.header.frame_id and "::" not in img.header.frame_id
+        assert (img.header.stamp.sec, img.header.stamp.nanosec) > (0, 0)
+        assert any(g.node == "ros_gz_image" for g in node.graph.publishers("/camera")) or node.graph.publishers(
+            "/camera"
+        )
+    finally:
+        node.close()
+        for p in (bridge, sim):
+            procs.stop(p)
