@@ -1,9 +1,10 @@
 """Gazebo's Fuel cache on disk, laid out as gz-fuel-tools writes it (LocalCache::SaveModel, uriToPath).
 
-`<cache>/<host>/<owner>/models/<name>/<N>/model.config`: the host with `:` → `%3A` and `@` → `%40`, owner and
-name lowercased, `<N>` an integer ≥ 1 (there is never a `tip` folder), and a version folder counts only when it
-holds a model.config. The cache is `$GZ_FUEL_CACHE_PATH` (or the deprecated `$IGN_FUEL_CACHE_PATH`), else
-`~/.gz/fuel`. "tip" means the highest version already on disk.
+`<cache>/<host>/<owner>/models/<name>/<N>/model.config`, worlds `…/worlds/<name>/<N>/<file>.sdf`: the host with
+`:` → `%3A` and `@` → `%40`, owner and name lowercased, `<N>` an integer ≥ 1 (there is never a `tip` folder),
+and a version folder counts only when it holds its model.config (a world: its world file). The cache is
+`$GZ_FUEL_CACHE_PATH` (or the deprecated `$IGN_FUEL_CACHE_PATH`), else `~/.gz/fuel`. "tip" means the highest
+version already on disk.
 """
 
 from __future__ import annotations
@@ -30,7 +31,7 @@ def host_folder(host: str) -> str:
 
 def model_root(ref: FuelRef, root: Path | None = None) -> Path:
     """The folder holding the version folders of `ref` (it may not exist)."""
-    return (root or cache_root()) / host_folder(ref.host) / ref.owner / "models" / ref.name
+    return (root or cache_root()) / host_folder(ref.host) / ref.owner / ref.kind / ref.name
 
 
 def _child_ci(parent: Path, name: str) -> Path | None:
@@ -44,17 +45,30 @@ def _child_ci(parent: Path, name: str) -> Path | None:
     return next((p for p in sorted(parent.iterdir()) if p.name.lower() == wanted and p.is_dir()), None)
 
 
+def is_complete(folder: Path, kind: str) -> bool:
+    """A model version counts with its model.config; a world version with its world file."""
+    if kind == "models":
+        return (folder / "model.config").is_file()
+    return world_file(folder) is not None
+
+
+def world_file(folder: Path) -> Path | None:
+    """The .sdf (or .world) file of a cached Fuel world version."""
+    found = sorted(p for p in folder.iterdir() if p.suffix in (".sdf", ".world") and p.is_file())
+    return found[0] if found else None
+
+
 def cached_versions(ref: FuelRef, root: Path | None = None) -> dict[int, Path]:
     """Version → folder of every valid cached copy of `ref`."""
     top = root or cache_root()
     folder: Path | None = top / host_folder(ref.host)
-    for part in (ref.owner, "models", ref.name):
+    for part in (ref.owner, ref.kind, ref.name):
         folder = _child_ci(folder, part) if folder is not None else None
     if folder is None:
         return {}
     out: dict[int, Path] = {}
     for d in folder.iterdir():
-        if d.name.isdigit() and int(d.name) >= 1 and (d / "model.config").is_file():
+        if d.name.isdigit() and int(d.name) >= 1 and is_complete(d, ref.kind):
             out[int(d.name)] = d
     return out
 

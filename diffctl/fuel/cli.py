@@ -20,7 +20,7 @@ def fuel() -> None:
 @fuel.command()
 @click.argument("uri")
 def download(uri: str) -> None:
-    """Download the model URI names into $GZ_FUEL_CACHE_PATH (default ~/.gz/fuel) unless it is cached."""
+    """Download the model or world URI names into $GZ_FUEL_CACHE_PATH (default ~/.gz/fuel)."""
     from diffctl.console import info
     from diffctl.fuel.cache import cached_model
     from diffctl.fuel.download import DownloadError, download_model
@@ -29,8 +29,8 @@ def download(uri: str) -> None:
     ref = parse_fuel_uri(uri)
     if ref is None or ref.file is not None:
         raise ConfigError(
-            f"fuel download: {uri!r} is not a Fuel model URL",
-            hint="e.g. https://fuel.gazebosim.org/1.0/OpenRobotics/models/Sun or …/models/<name>/<version>",
+            f"fuel download: {uri!r} is not a Fuel model or world URL",
+            hint="e.g. https://fuel.gazebosim.org/1.0/OpenRobotics/models/Sun or …/worlds/<name>/<version>",
         )
     cached = cached_model(ref)
     if cached is not None and ref.version is not None:

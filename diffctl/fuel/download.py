@@ -26,7 +26,7 @@ from lxml import etree
 
 from diffctl import __version__
 from diffctl.description.resources import model_file_in
-from diffctl.fuel.cache import cache_root, model_root
+from diffctl.fuel.cache import cache_root, is_complete, model_root
 from diffctl.fuel.uri import FuelRef
 
 SERVER_ENV = "DIFFCTL_FUEL_SERVER"
@@ -46,7 +46,7 @@ def server_url(ref: FuelRef) -> str:
 
 def zip_url(ref: FuelRef) -> str:
     version = "tip" if ref.version is None else str(ref.version)
-    route = urllib.parse.unquote(f"{ref.owner}/models/{ref.name}/{version}/{ref.name}.zip")
+    route = urllib.parse.unquote(f"{ref.owner}/{ref.kind}/{ref.name}/{version}/{ref.name}.zip")
     return f"{server_url(ref)}/{ref.api}/{urllib.parse.quote(route, safe='')}?link=true"
 
 
@@ -133,27 +133,30 @@ def download_model(ref: FuelRef, out: Callable[[str], None] | None = None) -> Pa
 
     def progress(done: int, total: int | None) -> None:
         of = f" of {total / 1024:.0f} kB" if total else ""
-        say(f"\rDownloading Fuel model {label}: {done / 1024:.0f} kB{of}")
+        say(f"\rDownloading Fuel {what} {label}: {done / 1024:.0f} kB{of}")
 
-    say(f"Downloading Fuel model {label} …")
+    what = "model" if ref.kind == "models" else "world"
+    say(f"Downloading Fuel {what} {label} …")
     try:
         data, version = fetch_zip(ref, progress)
     finally:
         say("\n")
     dest = model_root(ref) / str(version)
-    if (dest / "model.config").is_file():
+    if dest.is_dir() and is_complete(dest, ref.kind):
         return dest
     dest.parent.mkdir(parents=True, exist_ok=True)
     tmp = Path(tempfile.mkdtemp(prefix=f".{version}-", dir=dest.parent))
     try:
         _extract(data, tmp)
-        if not (tmp / "model.config").is_file():
-            raise DownloadError("the archive has no model.config at its top")
-        fix_paths(tmp, ref, version)
+        if not is_complete(tmp, ref.kind):
+            top = "model.config" if ref.kind == "models" else "world file (.sdf)"
+            raise DownloadError(f"the archive has no {top} at its top")
+        if ref.kind == "models":
+            fix_paths(tmp, ref, version)
         try:
             tmp.rename(dest)  # atomic: a concurrent reader sees the whole model or none
         except OSError:
-            if not (dest / "model.config").is_file():
+            if not is_complete(dest, ref.kind):
                 raise
     finally:
         shutil.rmtree(tmp, ignore_errors=True)

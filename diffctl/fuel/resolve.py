@@ -41,7 +41,7 @@ def fetch_command(ref: FuelRef) -> str:
 
 def model_folder(ref: FuelRef) -> Path:
     """The local folder of the model `ref` names (downloading it if needed and allowed)."""
-    found = cached_model(ref) or known_model(ref)
+    found = cached_model(ref) or (known_model(ref) if ref.kind == "models" else None)
     if found is not None:
         return found
     key = (ref.host, ref.owner, ref.name, ref.version)
@@ -60,11 +60,13 @@ def model_folder(ref: FuelRef) -> Path:
                 reason = f"the server sent version {folder.name}, not {ref.version}"
         _failed[key] = reason
     version = "" if ref.version is None else f" version {ref.version}"
+    what = "model" if ref.kind == "models" else "world"
     raise FuelModelUnavailable(
-        f"Fuel model {ref.original or ref.model_url!r}{version} is not available: not in Gazebo's Fuel cache "
+        f"Fuel {what} {ref.original or ref.model_url!r}{version} is not available: not in Gazebo's Fuel cache "
         f"(searched {model_root(ref)}/<version>/, cache {cache_root()} from $GZ_FUEL_CACHE_PATH or ~/.gz/fuel) "
         f"and {reason}",
-        hint=f"fetch it with `{fetch_command(ref)}`, or set {SKIP_MISSING_ENV}=1 to load the world without it",
+        hint=f"fetch it with `{fetch_command(ref)}`"
+        + (f", or set {SKIP_MISSING_ENV}=1 to load the world without it" if ref.kind == "models" else ""),
     )
 
 
@@ -74,7 +76,7 @@ def resolve_fuel(uri: str) -> Path | None:
     Raises FuelModelUnavailable when it is one but the model cannot be had, and DescriptionError for a file
     the model does not hold."""
     ref = parse_fuel_uri(uri)
-    if ref is None:
+    if ref is None or ref.kind != "models":
         return None
     folder = model_folder(ref)
     if ref.file is None:
@@ -83,3 +85,14 @@ def resolve_fuel(uri: str) -> Path | None:
     if not path.exists():
         raise DescriptionError(f"Fuel model {ref.model_url!r} has no file {ref.file!r} (looked in {folder})")
     return path
+
+
+def resolve_fuel_world(uri: str) -> Path | None:
+    """The world file a Fuel world URL names (`gz sim https://fuel…/worlds/X`), cached or downloaded; None
+    when `uri` is not a Fuel world URL. Raises FuelModelUnavailable when it cannot be had."""
+    from diffctl.fuel.cache import world_file
+
+    ref = parse_fuel_uri(uri)
+    if ref is None or ref.kind != "worlds" or ref.file is not None:
+        return None
+    return world_file(model_folder(ref))

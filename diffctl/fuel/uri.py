@@ -1,8 +1,9 @@
 """Fuel URLs parsed as gz-fuel-tools parses them (FuelClient.cc's model and model-file URL patterns).
 
 `https://fuel.gazebosim.org/1.0/OpenRobotics/models/Ground Plane/2` names a model; `…/<N|tip>/files/<path>`
-one file inside it. The API version and the model version are optional (absent = tip); owner and name are
-lowercased, as ModelIdentifier stores them; a space and `%20` stay distinct (nothing decodes `%20`).
+one file inside it; `…/worlds/<name>` a world, the same way. The API version and the model version are
+optional (absent = tip); owner and name are lowercased, as ModelIdentifier stores them; a space and `%20`
+stay distinct (nothing decodes `%20`).
 """
 
 from __future__ import annotations
@@ -10,7 +11,10 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass
 
-_HEAD = r"^(?P<scheme>[A-Za-z0-9.+\-]+)://(?P<host>[^/\s]+)/+(?P<api>[0-9]+\.[0-9]+)?/*(?P<owner>[^/\s]+)/+models/+"
+_HEAD = (
+    r"^(?P<scheme>[A-Za-z0-9.+\-]+)://(?P<host>[^/\s]+)/+(?P<api>[0-9]+\.[0-9]+)?/*(?P<owner>[^/\s]+)/+"
+    r"(?P<kind>models|worlds)/+"
+)
 MODEL_RE = re.compile(_HEAD + r"(?P<name>[^/]+)/*(?P<version>[0-9]*|tip)/?$")
 MODEL_FILE_RE = re.compile(_HEAD + r"(?P<name>[^/]+)/+(?P<version>[0-9]*|tip)/+files/+(?P<path>.*?)/?$")
 DEFAULT_API = "1.0"
@@ -28,6 +32,7 @@ class FuelRef:
     file: str | None = None  # path inside the model for a file URL
     api: str = DEFAULT_API
     original: str = ""
+    kind: str = "models"  # or "worlds" (a world URL, as `gz sim URL` takes it)
 
     @property
     def server(self) -> str:
@@ -36,7 +41,7 @@ class FuelRef:
     @property
     def model_url(self) -> str:
         version = "tip" if self.version is None else str(self.version)
-        return f"{self.server}/{self.api}/{self.owner}/models/{self.name}/{version}"
+        return f"{self.server}/{self.api}/{self.owner}/{self.kind}/{self.name}/{version}"
 
 
 def is_fuel_uri(uri: str) -> bool:
@@ -44,7 +49,7 @@ def is_fuel_uri(uri: str) -> bool:
 
 
 def parse_fuel_uri(uri: str) -> FuelRef | None:
-    """The model (or model file) a URL names, or None when it is not a Fuel model URL."""
+    """The model or world (or a file of one) a URL names, or None when it is not a Fuel URL."""
     text = uri.strip()
     m = MODEL_FILE_RE.match(text)
     file = None
@@ -67,4 +72,5 @@ def parse_fuel_uri(uri: str) -> FuelRef | None:
         file=file,
         api=m.group("api") or DEFAULT_API,
         original=text,
+        kind=m.group("kind"),
     )

@@ -105,6 +105,8 @@ def _int(text: str, flag: str) -> int:
 
 def find_world(name: str) -> Path:
     """The world file: a path, or a name looked up on GZ_SIM_RESOURCE_PATH, the project's worlds and Gazebo's."""
+    if name.startswith(("http://", "https://")):
+        return _fuel_world(name)
     p = Path(name).expanduser()
     if p.is_file():
         return p
@@ -127,6 +129,22 @@ def find_world(name: str) -> Path:
         f"world file {name!r} not found",
         hint="give a path to an SDF world, or a name found on GZ_SIM_RESOURCE_PATH (e.g. empty.world)",
     )
+
+
+def _fuel_world(url: str) -> Path:
+    """A Fuel world URL (`gz sim https://fuel.gazebosim.org/1.0/OpenRobotics/worlds/X`): Gazebo's Fuel cache,
+    else a download into it."""
+    from diffctl.fuel.resolve import FuelModelUnavailable, resolve_fuel_world
+
+    try:
+        path = resolve_fuel_world(url)
+    except FuelModelUnavailable as e:
+        raise ConfigError(e.message, hint=e.hint) from None
+    if path is None:
+        raise ConfigError(
+            f"world {url!r} is not a Fuel world URL", hint="e.g. https://fuel.gazebosim.org/1.0/<owner>/worlds/<name>"
+        )
+    return path
 
 
 @click.group()

@@ -52,7 +52,7 @@ def fuel_server(models: FuelModels) -> Iterator[str]:
                 return self._zip(owner, name, version)
             api, _, route = path.lstrip("/").partition("/")
             parts = urllib.parse.unquote(route).split("/")
-            if api != "1.0" or len(parts) != 5 or parts[1] != "models" or parts[4] != parts[2] + ".zip":
+            if api != "1.0" or len(parts) != 5 or parts[1] not in ("models", "worlds") or parts[4] != parts[2] + ".zip":
                 return self._answer(404, "text/html", b"not found")
             owner, _, name, version, _ = parts
             if models.link and "link=true" in query:

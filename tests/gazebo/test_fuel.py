@@ -184,7 +184,7 @@ def test_download_failure_names_the_server_answer(cache: Path, tmp_path: Path, m
     out = subprocess.run(
         [sys.executable, "-m", "diffctl", "fuel", "download", "model://x"], capture_output=True, text=True, timeout=60
     )
-    assert out.returncode == 2 and "not a Fuel model URL" in out.stderr
+    assert out.returncode == 2 and "not a Fuel model or world URL" in out.stderr
 
 
 def test_an_error_in_a_linked_world_names_the_users_own_file(cache: Path, tmp_path: Path, monkeypatch) -> None:
@@ -197,3 +197,26 @@ def test_an_error_in_a_linked_world_names_the_users_own_file(cache: Path, tmp_pa
     with pytest.raises(DescriptionError) as e:
         load_world(link)
     assert e.value.source == str(source.resolve()) and e.value.line == 6
+
+
+def test_a_fuel_world_url_is_found_in_the_cache_or_downloaded(cache: Path, tmp_path: Path, monkeypatch) -> None:
+    """`gz sim https://fuel.gazebosim.org/1.0/OpenRobotics/worlds/Tiny` (Gazebo's last resort for the world
+    argument): `…/worlds/<name>/<N>/<file>.sdf` in the cache, else the world's zip from the server."""
+    from diffctl.sim.cli import find_world
+
+    tiny = WORLD.format(ground=f"{FUEL}/Ground Plane", sun=f"{FUEL}/Sun", extra="")
+    models = FuelModels()
+    models.models[("openrobotics", "tiny")] = {3: {"tiny.sdf": tiny}}
+    url = "https://fuel.gazebosim.org/1.0/OpenRobotics/worlds/Tiny"
+    with fuel_server(models) as server:
+        monkeypatch.setenv("DIFFCTL_FUEL_SERVER", server)
+        path = find_world(url)
+        assert path == cache / "fuel.gazebosim.org" / "openrobotics" / "worlds" / "tiny" / "3" / "tiny.sdf"
+        assert models.requests == ["/1.0/openrobotics%2Fworlds%2Ftiny%2Ftip%2Ftiny.zip?link=true"]
+        assert find_world(url) == path and len(models.requests) == 1  # cached now: no second request
+    assert load_world(path).name == "fuel_world"
+    monkeypatch.setenv("DIFFCTL_FUEL_OFFLINE", "1")
+    from diffctl.errors import ConfigError
+
+    with pytest.raises(ConfigError, match=r"Fuel world .*Nope.*fetch it with `diffctl fuel download [^,]*`\)$"):
+        find_world("https://fuel.gazebosim.org/1.0/OpenRobotics/worlds/Nope")
