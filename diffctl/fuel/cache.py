@@ -18,11 +18,31 @@ CACHE_ENV = ("GZ_FUEL_CACHE_PATH", "IGN_FUEL_CACHE_PATH")
 
 
 def cache_root() -> Path:
+    """`$GZ_FUEL_CACHE_PATH`, else `cache: path:` of `~/.gz/fuel/config.yaml` (gz-fuel-tools' ClientConfig), else
+    `~/.gz/fuel`."""
     for var in CACHE_ENV:
         value = os.environ.get(var, "").strip()
         if value:
             return Path(value).expanduser()
-    return Path.home() / ".gz" / "fuel"
+    default = Path.home() / ".gz" / "fuel"
+    configured = _config_cache_path(default / "config.yaml")
+    return configured or default
+
+
+def _config_cache_path(config: Path) -> Path | None:
+    try:
+        text = config.read_text()
+    except OSError:
+        return None
+    import yaml
+
+    try:
+        data = yaml.safe_load(text)
+    except yaml.YAMLError:
+        return None  # Gazebo reports a broken config.yaml itself; the default cache still works
+    cache = data.get("cache") if isinstance(data, dict) else None
+    path = cache.get("path") if isinstance(cache, dict) else None
+    return Path(str(path)).expanduser() if path else None
 
 
 def host_folder(host: str) -> str:

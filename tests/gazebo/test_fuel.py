@@ -220,3 +220,21 @@ def test_a_fuel_world_url_is_found_in_the_cache_or_downloaded(cache: Path, tmp_p
 
     with pytest.raises(ConfigError, match=r"Fuel world .*Nope.*fetch it with `diffctl fuel download [^,]*`\)$"):
         find_world("https://fuel.gazebosim.org/1.0/OpenRobotics/worlds/Nope")
+
+
+def test_the_cache_is_the_environments_else_config_yamls_else_home(tmp_path: Path, monkeypatch) -> None:
+    from diffctl.fuel.cache import cache_root
+
+    for var in ("GZ_FUEL_CACHE_PATH", "IGN_FUEL_CACHE_PATH"):
+        monkeypatch.delenv(var, raising=False)
+    monkeypatch.setenv("HOME", str(tmp_path))
+    assert cache_root() == tmp_path / ".gz" / "fuel"
+    (tmp_path / ".gz" / "fuel").mkdir(parents=True)
+    (tmp_path / ".gz" / "fuel" / "config.yaml").write_text(
+        "servers:\n  - url: https://fuel.gazebosim.org\ncache:\n  path: /data/fuel\n"
+    )
+    assert cache_root() == Path("/data/fuel")
+    monkeypatch.setenv("IGN_FUEL_CACHE_PATH", str(tmp_path / "old"))
+    assert cache_root() == tmp_path / "old"
+    monkeypatch.setenv("GZ_FUEL_CACHE_PATH", str(tmp_path / "new"))
+    assert cache_root() == tmp_path / "new"
