@@ -26,10 +26,13 @@ from diffctl.errors import ConfigError
 @click.option("--artifacts", type=click.Path(file_okay=False, path_type=Path),
               help="On failure, each process's log, an MCAP bag of the run and a picture of the scene, here.")
 @click.option("--init", "init_package", metavar="PKG", help="Write a smoke test for the robot of package PKG.")
+@click.option("-o", "--output", "init_output", type=click.Path(dir_okay=False, path_type=Path),
+              help="With --init: the file to write (default: the package's test/test_<PKG>_smoke.launch.py).")
 @click.option("--workspace", "workspace_dir", type=click.Path(file_okay=False, path_type=Path), default=None,
               help="The ROS workspace (default: $DIFFCTL_WORKSPACE, else the enclosing one).")
 def test(paths: tuple[Path, ...], packages_select: tuple[str, ...], jobs: int, junit_xml: Path | None,
-         timeout_s: float, artifacts: Path | None, init_package: str | None, workspace_dir: Path | None) -> int:
+         timeout_s: float, artifacts: Path | None, init_package: str | None, init_output: Path | None,
+         workspace_dir: Path | None) -> int:
     """Run launch test files (generate_test_description) and pytest files, as launch_test and colcon test.
 
     PATH is a launch test file (test_*.launch.py, *_launch_test.py), a pytest file, or a folder of them.
@@ -50,7 +53,7 @@ def test(paths: tuple[Path, ...], packages_select: tuple[str, ...], jobs: int, j
     if init_package is not None:
         from diffctl.testing.smoke import write_smoke_test
 
-        path = write_smoke_test(init_package, workspace)
+        path = write_smoke_test(init_package, workspace, init_output)
         click.echo(f"wrote {path}")
         click.echo(f"run it: diffctl test {path}")
         return 0

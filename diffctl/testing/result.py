@@ -28,6 +28,18 @@ class TestResult(unittest.TextTestResult):
         self.successes.append(test)
         super().addSuccess(test)
 
+    failure_hook: Any = None  # called with the test's id at each failure or error (the artifacts' picture)
+
+    def addFailure(self, test: Any, err: Any) -> None:
+        if self.failure_hook is not None:
+            self.failure_hook(f"FAIL: {test.id()}")
+        super().addFailure(test, err)
+
+    def addError(self, test: Any, err: Any) -> None:
+        if self.failure_hook is not None:
+            self.failure_hook(f"ERROR: {test.id()}")
+        super().addError(test, err)
+
 
 class FailResult(unittest.TestResult):
     """A run whose launch ended before its tests did: every case fails, as launch_testing reports it."""

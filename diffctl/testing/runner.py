@@ -11,12 +11,13 @@ from __future__ import annotations
 
 import contextlib
 import os
+import re
 import sys
 import tempfile
 import threading
 import time
 import unittest
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TextIO
@@ -101,6 +102,7 @@ def run_once(
     stdout: TextIO | None = None,
     stderr: TextIO | None = None,
     shutdown_timeout_s: float = 30.0,
+    on_failure: Callable[[str], None] | None = None,
 ) -> RunResult:
     """Launch one run of a test file, run its tests, shut it down and run its post-shutdown tests."""
     stdout = stdout or sys.stdout
@@ -131,7 +133,10 @@ def run_once(
     run.bind(run.pre_shutdown_tests, {**values, **common, "launch_service": service},
              {**common, "launch_service": service})
     run.bind(run.post_shutdown_tests, {**values, **common}, common)
-    runner = unittest.TextTestRunner(stream=stderr, verbosity=2, resultclass=TestResult)
+    resultclass = TestResult
+    if on_failure is not None:
+        resultclass = type("TestResult", (TestResult,), {"failure_hook": staticmethod(on_failure)})
+    runner = unittest.TextTestRunner(stream=stderr, verbosity=2, resultclass=resultclass)
     done = threading.Event()
     pre: list[unittest.TestResult] = []
 
@@ -166,6 +171,8 @@ def run_once(
         print("Processes under test stopped before tests completed", file=stdout)
         _print_process_summary(proc_info, proc_output, stdout)
         result.failed_early = True
+        if on_failure is not None:
+            on_failure("Processes under test stopped before tests completed")
         result.results.append(FailResult(list(run.all_cases())))
         result.seconds = time.monotonic() - started_at
         return result
@@ -222,7 +229,23 @@ def run_file(
             run_dir = root / (f"run{index}" if len(runs) > 1 else "run")
             bus = isolated_bus() if isolate else contextlib.nullcontext()
             with bus:
-                one = run_once(run, arguments, log_dir=run_dir, stdout=stdout, stderr=stderr)
+                kept = None
+                if artifacts is not None:
+                    from diffctl.testing.artifacts import Artifacts
+
+                    label = re.sub(r"[^\w.=-]+", "_", str(run))
+                    target = artifacts / label if len(runs) > 1 else artifacts
+                    kept = Artifacts(target, root / f"artifacts-work-{index}")
+                one: RunResult | None = None
+                try:
+                    one = run_once(run, arguments, log_dir=run_dir, stdout=stdout, stderr=stderr,
+                                   on_failure=kept.on_failure if kept is not None else None)
+                finally:
+                    if kept is not None:
+                        failed = one is None or not one.ok
+                        kept.finish(failed, one.logs if one is not None else read_logs(run_dir))
+                        if failed:
+                            print(f"artifacts of {run}: {kept.target}", file=stdout)
             file_result.runs.append(one)
             if one.failed_early:
                 break  # as launch_testing: the runs after a launch that died are not attempted
