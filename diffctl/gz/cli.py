@@ -200,7 +200,7 @@ def _echo(name: str, count: int, duration_s: float, as_json: bool) -> int:
     import queue
 
     from diffctl.bus import gz
-    from diffctl.gz.textproto import format_message
+    from diffctl.gz.textproto import format_message, json_value
 
     session = _session()
     samples: queue.Queue[bytes] = queue.Queue()
@@ -218,25 +218,13 @@ def _echo(name: str, count: int, duration_s: float, as_json: bool) -> int:
                 continue
             _, fields = gz.decode(payload)
             if as_json:
-                print(json.dumps(fields, default=_json_default), flush=True)
+                print(json.dumps(json_value(fields)), flush=True)
             else:
                 print(format_message(fields), flush=True)
             printed += 1
     finally:
         sub.undeclare()
     return 0
-
-
-def _json_default(obj: Any) -> Any:
-    import base64
-
-    import numpy as np
-
-    if isinstance(obj, np.ndarray):
-        return obj.tolist()
-    if isinstance(obj, bytes | bytearray):
-        return base64.b64encode(bytes(obj)).decode()
-    return str(obj)
 
 
 def _publish(name: str, gz_type: str, text: str) -> int:

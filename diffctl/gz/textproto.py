@@ -189,3 +189,35 @@ def parse_message(text: str) -> dict[str, Any]:
                 fields[name] = item
 
     return block(None)
+
+
+def _camel(name: str) -> str:
+    head, *rest = name.split("_")
+    return head + "".join(part[:1].upper() + part[1:] for part in rest)
+
+
+def json_value(value: Any, name: str = "") -> Any:
+    """Protobuf's JSON mapping of a gz message held as a dict (what `gz topic -e --json-output` prints):
+    lowerCamelCase names, defaults left out, bytes as base64, non-finite floats as "Infinity"/"NaN"."""
+    import base64
+
+    if isinstance(value, dict):
+        return {_camel(k): json_value(v, k) for k, v in value.items() if v is not None and not _is_default(v)}
+    if isinstance(value, list | tuple | np.ndarray):
+        return [json_value(v, name) for v in value]
+    if isinstance(value, bytes | bytearray | memoryview):
+        return base64.b64encode(bytes(value)).decode()
+    if isinstance(value, bool | np.bool_):
+        return bool(value)
+    if isinstance(value, np.integer):
+        value = int(value)
+    if isinstance(value, int):
+        return str(value) if abs(value) >= 2**53 else value  # int64 beyond a double travels as a string
+    if isinstance(value, float | np.floating):
+        v = float(value)
+        if math.isnan(v):
+            return "NaN"
+        if math.isinf(v):
+            return "Infinity" if v > 0 else "-Infinity"
+        return v
+    return value

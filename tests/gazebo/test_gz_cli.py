@@ -63,6 +63,18 @@ def test_text_format_prints_as_protobuf_and_reads_what_users_type() -> None:
     assert parse_message("pose {position {x: 1}} pose {position {x: 2}}") == {
         "pose": [{"position": {"x": 1}}, {"position": {"x": 2}}]
     }
+    from diffctl.gz.textproto import json_value
+
+    assert json_value({**msg, "data": b"\x00\x01", "big": 2**60}) == {
+        "header": {"stamp": {"sec": 3}},
+        "linear": {"x": 0.5},
+        "angular": {"z": -1.25},
+        "name": 'a "b"\n',
+        "pixelFormatType": "RGB_INT8",
+        "ranges": [1.0, "Infinity"],
+        "data": "AAE=",
+        "big": str(2**60),
+    }
     from diffctl.errors import MessageError
 
     with pytest.raises(MessageError, match="missing '}'"):
