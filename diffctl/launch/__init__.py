@@ -15,6 +15,9 @@ import importlib
 
 # Every public name and the module it lives in: the one list (`__all__` is derived from it).
 _ORIGIN: dict[str, str] = {
+    "ComposableNode": "diffctl.launch.composable",
+    "ComposableNodeContainer": "diffctl.launch.composable",
+    "LoadComposableNodes": "diffctl.launch.composable",
     "LifecycleNode": "diffctl.launch.lifecycle",
     "OnStateTransition": "diffctl.launch.lifecycle",
     "ChangeState": "diffctl.launch.lifecycle",

@@ -32,6 +32,7 @@ from diffctl.launch.plan import (
     Handler,
     ProcessSpec,
     Skipped,
+    StartProcess,
     Step,
     TargetRef,
     Unknown,
@@ -173,6 +174,17 @@ class Engine:
         steps, self._buffer = self._buffer, None
         for step in steps:
             self.services.effect(step)
+
+    def amend_start(self, name: str, change: Callable[[tuple[str, ...]], tuple[str, ...]]) -> bool:
+        """Change the command of a process this visit starts and that has not started yet (False: too late)."""
+        steps = self._buffer if self._buffer is not None else getattr(self.services, "steps", None)
+        for i, step in enumerate(steps or []):
+            if isinstance(step, StartProcess) and step.spec.name == name:
+                spec = replace(step.spec, argv=change(step.spec.argv))
+                steps[i] = replace(step, spec=spec)  # type: ignore[index]
+                self.processes[name] = spec
+                return True
+        return False
 
     def defer(self, function: Callable[[], None]) -> None:
         """Run after the current visit and the events before it (TimerAction's coroutine)."""

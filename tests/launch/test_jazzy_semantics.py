@@ -408,3 +408,30 @@ def generate_launch_description():
     assert "os.environ 1" in text  # the launch environment is the launcher's own, as ROS's
     run = launch_run(str(path), "--no-router")
     assert run.wait(20) == 1 and "[talker] to-stdout" in run.text()
+
+
+@pytest.mark.slow
+def test_python_composable_nodes_load_into_one_container_and_cpp_ones_are_one_clear_error(
+    router, launch_run, tmp_path: Path
+) -> None:
+    data = Path(__file__).parent / "data" / "composable"
+    run = launch_run(str(data / "composed.launch.py"), "--no-router")
+    run.wait_for(r"Loaded node '/talker2' in container '/my_container'", timeout_s=30)
+    text = run.text()
+    assert "component /ns/talker1 says hello" in text and "component /talker2 says hi" in text
+    assert "Loaded node '/ns/talker1' in container '/my_container'" in text
+    containers = [p for p in run.leftovers() if "component-container" in " ".join(p.cmdline())]
+    assert len(containers) == 1  # one process hosts both
+    run.signal(signal.SIGINT)
+    assert run.wait(20) == 0, run.text()
+    cpp = tmp_path / "cpp.launch.py"
+    cpp.write_text(
+        "from launch import LaunchDescription\n"
+        "from launch_ros.actions import ComposableNodeContainer\n"
+        "from launch_ros.descriptions import ComposableNode\n"
+        "def generate_launch_description():\n"
+        "    return LaunchDescription([ComposableNodeContainer(name='c', namespace='', "
+        "composable_node_descriptions=[ComposableNode(package='composition', plugin='composition::Talker')])])\n"
+    )
+    with pytest.raises(LaunchError, match="'composition::Talker' is not a Python component"):
+        resolve(load(cpp), {}, str(cpp))
