@@ -25,6 +25,8 @@ BUDGET: dict[str, tuple[str, float, str]] = {
     "launcher_rss_mb": ("<=", 80.0, "launcher resident memory"),
     "fleet_rtf_ratio_10": (">=", 0.2, "ten cars in one world: RTF ÷ one car's"),
     "fleet_rss_mb_per_car": ("<=", 40.0, "memory per added car"),
+    "smoke_test_wall_s": ("<=", 3.0, "the tutorial car's --init smoke test: launch, drive 2 s sim, down"),
+    "smoke_tests_parallel_wall_s": ("<=", 10.0, "diffctl test -j 2: 8 copies of that smoke test"),
 }
 
 

@@ -230,7 +230,8 @@ LEFT_WHEEL_JOINT = "{left_wheel}"
 WHEEL_RADIUS_M = {radius}  # the wheel of the robot's description ({radius_from})
 SPEED_M_S = 0.5
 DRIVE_SIM_S = 2.0
-TOLERANCE_M = 0.1
+TOLERANCE_M = 0.1  # odometry against the wheels' travel (both read after the robot stopped)
+COMMAND_TOLERANCE_M = 0.2  # odometry against the command: a busy CI machine delays the stop a little
 ACTIVE_TIMEOUT_S = 30.0
 
 
@@ -296,7 +297,7 @@ class TestDrive(unittest.TestCase):
         travelled = self.latest[odom].pose.pose.position.x - x0
         expected = SPEED_M_S * DRIVE_SIM_S
         self.assertAlmostEqual(
-            travelled, expected, delta=TOLERANCE_M,
+            travelled, expected, delta=COMMAND_TOLERANCE_M,
             msg=f"odometry says the robot drove {{travelled:.3f}} m; {{SPEED_M_S}} m/s for {{DRIVE_SIM_S}} s "
                 f"of sim time is {{expected:.3f}} m",
         )
