@@ -161,6 +161,8 @@ class CameraSpec:
     lens_projection_px: tuple[float, float, float, float, float, float] | None = None
     distortion: tuple[float, float, float, float, float] = (0.0, 0.0, 0.0, 0.0, 0.0)  # <distortion> k1 k2 p1 p2 k3
     depth_clip_m: tuple[float | None, float | None] = (None, None)  # <depth_camera><clip> near, far
+    triggered: bool = False  # <triggered>: a frame only when a message arrives on the trigger topic
+    trigger_topic: str = ""  # <trigger_topic>; "" = Gazebo's default, <image topic>/trigger
 
     @property
     def vertical_fov_rad(self) -> float:

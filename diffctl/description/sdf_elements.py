@@ -359,6 +359,7 @@ def _parse_camera(doc: Doc, sensor: Element) -> CameraSpec:
     lens = child(cam, "lens")
     depth_camera = child(cam, "depth_camera")
     depth_clip = child(depth_camera, "clip") if depth_camera is not None else None
+    trigger_topic = child_text(cam, "trigger_topic")
     return CameraSpec(
         width,
         height,
@@ -373,6 +374,8 @@ def _parse_camera(doc: Doc, sensor: Element) -> CameraSpec:
         lens_projection_px=_lens_projection(doc, child(lens, "projection") if lens is not None else None),
         distortion=_distortion(doc, child(cam, "distortion")),
         depth_clip_m=(_optional_positive(doc, depth_clip, "near"), _optional_positive(doc, depth_clip, "far")),
+        triggered=bool_value(doc, cam, "triggered", False),
+        trigger_topic="/" + trigger_topic.strip().lstrip("/") if trigger_topic and trigger_topic.strip() else "",
     )
 
 

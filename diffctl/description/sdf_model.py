@@ -471,7 +471,12 @@ def build_model(
         sensors: list[Sensor] = []
         for s in children(node.el, "sensor"):
             sensor = parse_sensor(node.doc, s, key, to_link, pw)
-            if sensor is None:
+            if sensor is None and s.get("type") in ("thermal_camera", "thermal"):
+                ignored.append(
+                    f"thermal camera {s.get('name')!r} on link {key!r} is not simulated (diffctl renders no"
+                    " temperatures): its image topic stays silent"
+                )
+            elif sensor is None:
                 ignored.append(f"sensor {s.get('name')!r} of type {s.get('type')!r} on link {key!r} is not simulated")
             else:
                 sensors.append(sensor)

@@ -254,6 +254,12 @@ class Simulation:
             name = f"{s.type}:{entity.name}:{s.name}"
             if isinstance(sensor, CameraSensor):
                 job = CameraTask(sensor, pubs, RenderRate(period, step_ns), lambda: self.stepper.rtf, self.log.warn)
+                if s.type == "camera" and s.camera is not None and s.camera.triggered:
+                    job.triggered = True
+                    topic = s.camera.trigger_topic or base.rstrip("/") + "/trigger"
+                    rt.publishers.append(  # released with the model
+                        self.transport.subscribe(topic, "gz.msgs.Boolean", lambda _m, job=job: job.trigger())
+                    )
                 job.task = self.stepper.add_task(name, period, job)
                 rt.tasks.append(job.task)
                 continue

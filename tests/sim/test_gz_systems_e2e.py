@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 from sim_helpers import CAR, EMPTY_WORLD
 
-from diffctl.bus import Node, types
+from diffctl.bus import Node, gz, types
 
 ODOM = """<plugin filename="libignition-gazebo-odometry-publisher-system.so"
     name="ignition::gazebo::systems::OdometryPublisher">
@@ -123,6 +123,35 @@ def test_image_bridge_from_a_launch_node_brings_the_simulated_camera_to_ros(rout
         assert any(g.node == "ros_gz_image" for g in node.graph.publishers("/camera")) or node.graph.publishers(
             "/camera"
         )
+    finally:
+        node.close()
+        for p in (bridge, sim):
+            procs.stop(p)
+
+
+@pytest.mark.slow
+def test_a_triggered_camera_sends_one_frame_per_trigger_and_none_without(router: str, procs, tmp_path: Path) -> None:
+    world = systems_world(tmp_path)
+    text = world.read_text()
+    i = text.index("<camera", text.index('<sensor name="camera"'))
+    world.write_text(text[: i + len("<camera>")] + "<triggered>true</triggered>" + text[i + len("<camera>") :])
+    sim = procs.diffctl("sim", "run", "-r", "--rtf", "2", str(world), cwd=tmp_path)
+    bridge = procs.diffctl("image-bridge", "/camera")
+    node = Node("trigger_probe")
+    images, clock = [], []
+    try:
+        node.create_subscription("/camera", "sensor_msgs/msg/Image", images.append)
+        ticks = node.session.declare_subscriber(gz.key("/clock"), lambda s: clock.append(s))  # noqa: F841
+        wait_for(lambda: len(clock) > 0 and node.graph.publishers("/camera"), 60, "the sim and the image bridge")
+        time.sleep(2.0)  # a second of sim time at 10 Hz: no trigger, no frame
+        assert images == []
+        trigger = node.session.declare_publisher(gz.key("/camera/trigger"))
+        for n in (1, 2):
+            trigger.put(gz.encode("gz.msgs.Boolean", {"data": True}))
+            wait_for(lambda n=n: len(images) >= n, 30, f"frame {n} after trigger {n}")
+            time.sleep(1.0)  # several camera ticks later: still one frame per trigger
+            assert len(images) == n
+        assert (images[0].width, images[0].height) == (320, 240)
     finally:
         node.close()
         for p in (bridge, sim):

@@ -6,6 +6,10 @@ time (render, derive, encode) is measured, and when that cannot fit the requeste
 real-time factor (rate.py) the task's period grows and a warning naming the sensor is logged once. The
 render still happens on the sim thread (PyBullet is single-threaded), so the slower rate is what keeps a
 camera from holding the physics back.
+
+A triggered camera (`<triggered>true</triggered>`, gz-sensors CameraSensor) renders at its tick only after a
+message on its trigger topic (default `<image topic>/trigger`, gz.msgs.Boolean, value ignored); several
+triggers between two ticks give one frame, and a trigger waits while nobody is subscribed.
 """
 
 from __future__ import annotations
@@ -31,11 +35,19 @@ class CameraTask:
         self.sensor, self.publishers, self.rate, self.rtf, self.warn = sensor, publishers, rate, rtf, warn
         self.task: Task | None = None  # set once the stepper has it, so a lowered rate can change its period
         self._warned = False
+        self.triggered = False  # set for a triggered camera: frames only on trigger
+        self.pending = False
+
+    def trigger(self) -> None:
+        self.pending = True
 
     def __call__(self, sim_time_ns: int) -> None:
+        if self.triggered and not self.pending:
+            return
         wanted = {name for name, pub in self.publishers.items() if pub.matched}
         if not wanted:
             return
+        self.pending = False
         rendering = self.sensor.needs_render(wanted)
         t0 = time.perf_counter()
         for name, msg in self.sensor.messages(sim_time_ns, wanted).items():

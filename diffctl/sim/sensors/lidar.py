@@ -171,5 +171,7 @@ class Lidar:
             "vertical_count": s.vertical_samples,
             # As gz-sensors sends them (full doubles); the gz encoding carries the array as raw bytes.
             "ranges": np.ascontiguousarray(ranges, dtype=np.float64),
-            "intensities": [],
+            # gz-sensors fills one intensity per range: the laser_retro of the hit visual, 0 without any
+            # (diffctl's worlds set none).
+            "intensities": np.zeros(np.size(ranges), dtype=np.float64),
         }
