@@ -123,11 +123,30 @@ def _format(severity: LoggingSeverity, name: str, message: str, function: str, f
     return out
 
 
+# rcutils' colours on a terminal (RCUTILS_COLORIZED_OUTPUT=1 forces them, 0 turns them off).
+_COLORS = {LoggingSeverity.DEBUG: "\033[32m", LoggingSeverity.INFO: "\033[0m", LoggingSeverity.WARN: "\033[33m",
+           LoggingSeverity.ERROR: "\033[31m", LoggingSeverity.FATAL: "\033[31m"}
+
+
+def _colorize(stream: Any) -> bool:
+    wanted = os.environ.get("RCUTILS_COLORIZED_OUTPUT")
+    if wanted in ("0", "1"):
+        return wanted == "1"
+    try:
+        return stream.isatty()
+    except (AttributeError, ValueError):
+        return False
+
+
 def rcutils_log(severity: LoggingSeverity, name: str, message: str, function: str, file: str, line: int) -> None:
     stamp_ns = time.time_ns()
     stream = sys.stdout if os.environ.get("RCUTILS_LOGGING_USE_STDOUT") == "1" else sys.stderr
+    text = _format(severity, name, message, function, file, line, stamp_ns)
+    color = _COLORS.get(severity) if _colorize(stream) else None
+    if color:
+        text = f"{color}{text}\033[0m"
     try:
-        stream.write(_format(severity, name, message, function, file, line, stamp_ns) + "\n")
+        stream.write(text + "\n")
         stream.flush()
     except (ValueError, OSError):
         pass

@@ -4,6 +4,7 @@ exactly as under the real rclpy; a node started with no router says so in one li
 from __future__ import annotations
 
 import os
+import re
 import signal
 import subprocess
 import sys
@@ -77,3 +78,19 @@ def test_signals_end_spin_as_in_rclpy(router: str, procs: Procs, sig: int) -> No
     else:
         assert our_outcome == (1, "rclpy.executors.ExternalShutdownException")
         assert real_outcome == our_outcome or real_outcome[0] == 0
+
+
+@pytest.mark.parametrize("env", [{"RCUTILS_COLORIZED_OUTPUT": "1"},
+                                 {"RCUTILS_CONSOLE_OUTPUT_FORMAT": "{severity} {name} {function_name}:{line_number} "
+                                                                   "{message}", "RCUTILS_COLORIZED_OUTPUT": "0"}])
+def test_console_lines_as_rclpy(env: dict[str, str]) -> None:
+    """The same console lines, byte for byte but the stamps, under both (colours and the format variable)."""
+    stamp = re.compile(r"\[\d+\.\d{9}\]")
+    code = (PROGRAMS / "console.py").read_text()
+    real = jazzy_venv.run_python(code, env_extra=env)
+    ours = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=30,
+                          env={**os.environ, **env}, cwd=REPO)
+    assert ours.returncode == 0, ours.stderr
+    assert ours.stdout == real.stdout
+    real_lines = [stamp.sub("[T]", ln) for ln in real.stderr.splitlines() if "[rcl]" not in ln]
+    assert [stamp.sub("[T]", ln) for ln in ours.stderr.splitlines()] == real_lines
