@@ -27,7 +27,7 @@ def test_the_users_program_then_diffctls_component_then_an_installed_one(
     # /opt/ros sourced: real robot_state_publisher and controller_manager programs on AMENT_PREFIX_PATH
     opt = tmp_path / "opt"
     for pkg, exe in (("robot_state_publisher", "robot_state_publisher"), ("controller_manager", "spawner"),
-                     ("tf2_ros", "static_transform_publisher")):
+                     ("turtlesim", "turtlesim_node")):
         install_tree(opt, pkg)
         program(opt / "lib" / pkg / exe)
     monkeypatch.setenv("AMENT_PREFIX_PATH", str(opt))
@@ -47,10 +47,10 @@ def test_the_users_program_then_diffctls_component_then_an_installed_one(
     assert package_index.executable_argv("robot_state_publisher", "robot_state_publisher") == [
         sys.executable, "-m", "diffctl", "robot-state-publisher",
     ]  # diffctl's, not /opt/ros's
-    assert package_index.executable_argv("tf2_ros", "static_transform_publisher") == [
-        str(opt / "lib/tf2_ros/static_transform_publisher")
-    ]
-    assert "static_transform_publisher" in package_index.executables("tf2_ros")
+    assert package_index.executable_argv("turtlesim", "turtlesim_node") == [
+        str(opt / "lib/turtlesim/turtlesim_node")
+    ]  # a package diffctl does not replace: the installed program
+    assert "turtlesim_node" in package_index.executables("turtlesim")
 
 
 def test_a_missing_executable_names_the_packages_programs(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
