@@ -16,6 +16,8 @@ from pathlib import Path
 
 import click
 
+SIGINT_GRACE_S = 1.0
+
 
 @click.command(context_settings={"ignore_unknown_options": True, "allow_interspersed_args": False})
 @click.option(
@@ -53,7 +55,8 @@ def run(workspace_dir: Path | None, prefix: str | None, package: str, executable
 
 def _supervise(command: list[str]) -> int:
     """Run `command` in this process group (a terminal's Ctrl-C reaches it directly) until it exits;
-    a SIGTERM sent to us is passed on. Non-zero exits are reported as ros2 run does."""
+    a SIGTERM sent to us is passed on, and so is a SIGINT sent to us alone (`kill -INT`, a supervisor)
+    when the child is still running a moment later. Non-zero exits are reported as ros2 run does."""
     try:
         process = subprocess.Popen(command)
     except OSError as e:
@@ -66,7 +69,13 @@ def _supervise(command: list[str]) -> int:
             try:
                 process.wait()
             except KeyboardInterrupt:
-                pass  # the child has the same SIGINT and decides itself how to end
+                # From a terminal the child has the same SIGINT and decides itself how to end.
+                try:
+                    process.wait(SIGINT_GRACE_S)
+                except subprocess.TimeoutExpired:
+                    process.send_signal(signal.SIGINT)
+                except KeyboardInterrupt:
+                    pass
     finally:
         signal.signal(signal.SIGTERM, previous)
     code = process.returncode

@@ -63,6 +63,17 @@ from my_pkg import hello
 print('tool', __name__, sys.argv[1:], hello.__name__, flush=True)
 """
 
+WAITER = """import time
+
+
+def main():
+    print('waiting', flush=True)
+    try:
+        time.sleep(30)
+    except KeyboardInterrupt:
+        print('interrupted', flush=True)
+"""
+
 SETUP_CFG_PKG = {
     "package.xml": package_xml("cfg_pkg", "ament_python"),
     "setup.py": "from setuptools import setup\nsetup()\n",
@@ -154,3 +165,26 @@ def test_a_launch_file_node_runs_the_same_program(ws: Path) -> None:
     r = run("launch", "my_pkg", "hello.launch.yaml", "--no-router", cwd=ws)
     assert r.returncode == 0, r.stdout + r.stderr
     assert "hello 42 ['a1'" in r.stdout + r.stderr
+
+
+def test_a_sigint_to_diffctl_run_alone_reaches_the_node(ws: Path) -> None:
+    import signal
+    import time
+
+    write_tree(ws / "src/my_pkg", {"my_pkg/waiter.py": WAITER})
+    setup = ws / "src/my_pkg/setup.py"
+    setup.write_text(setup.read_text().replace("'crash = ", "'waiter = my_pkg.waiter:main', 'crash = "))
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    p = subprocess.Popen([sys.executable, "-m", "diffctl", "run", "my_pkg", "waiter"], cwd=ws, env=env,
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+    try:
+        assert p.stdout.readline() == "waiting\n"
+        started = time.monotonic()
+        p.send_signal(signal.SIGINT)  # to `diffctl run` only, as `kill -INT` does
+        out, err = p.communicate(timeout=10)
+        assert time.monotonic() - started < 5
+        assert (p.returncode, out) == (0, "interrupted\n"), err
+    finally:
+        if p.poll() is None:
+            os.killpg(p.pid, signal.SIGKILL)
+            p.wait()
