@@ -189,9 +189,15 @@ class ExecuteProcess(Action):
         required: bool | SomeSubstitutions = False,
         interactive: bool = False,
         emulate_tty: bool | None = None,  # accepted for compatibility: children are line-buffered anyway
+        cached_output: bool = False,
         **kw: Any,
     ) -> None:
         super().__init__(**kw)
+        self.cached_output = cached_output
+        # get_stdout()/get_stderr()/return_code, as launch's: filled from the process's events by whoever
+        # watches them for a test (diffctl/testing registers the handlers), not by the engine itself.
+        self.output_cache: dict[str, list[str]] = {"stdout": [], "stderr": []}
+        self.return_code: int | None = None
         self.cmd = [cmd] if isinstance(cmd, SplitArgs) else list(cmd)
         self.name = None if name is None else normalize(name)
         self.cwd = None if cwd is None else normalize(cwd)
@@ -217,6 +223,17 @@ class ExecuteProcess(Action):
         if self.on_exit_callable is not None:
             on_exit = None
         self.on_exit = [on_exit] if isinstance(on_exit, Action) else list(on_exit or [])
+
+    def get_stdout(self) -> str:
+        return self._cached("stdout")
+
+    def get_stderr(self) -> str:
+        return self._cached("stderr")
+
+    def _cached(self, stream: str) -> str:
+        if not self.cached_output:
+            raise RuntimeError(f"cached output must be true to be able to get {stream}, proc '{self.label()}'")
+        return "".join(self.output_cache[stream])
 
     def label(self) -> str:
         words = [describe(c.text if isinstance(c, SplitArgs) else c) for c in self.cmd]

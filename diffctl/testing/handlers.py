@@ -39,6 +39,20 @@ def set_process_details(event: Any) -> None:
         pass
 
 
+def cache_output(event: Any) -> None:
+    """launch's cached_output: the action keeps what its process printed (get_stdout/get_stderr)."""
+    action = getattr(event, "action", None)
+    cache = getattr(action, "output_cache", None)
+    if cache is not None and getattr(action, "cached_output", False):
+        cache["stdout" if event.from_stdout else "stderr"].append(event.text.decode(errors="replace"))
+
+
+def record_exit(event: Any) -> None:
+    action = getattr(event, "action", None)
+    if action is not None and hasattr(action, "return_code"):
+        action.return_code = event.returncode
+
+
 def _find(text: str, expected: Any, start: int = 0) -> int | None:
     """Where the match of `expected` (a string or a compiled regex) in `text` from `start` ends, or None."""
     if isinstance(expected, str):

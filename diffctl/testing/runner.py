@@ -25,7 +25,13 @@ from typing import Any, TextIO
 from diffctl.launch.actions import LaunchDescription
 from diffctl.launch.event_handlers import OnProcessExit, OnProcessIO, OnProcessStart, RegisterEventHandler
 from diffctl.launch.output import Output
-from diffctl.testing.handlers import ActiveIoHandler, ActiveProcInfoHandler, set_process_details
+from diffctl.testing.handlers import (
+    ActiveIoHandler,
+    ActiveProcInfoHandler,
+    cache_output,
+    record_exit,
+    set_process_details,
+)
 from diffctl.testing.loader import TestRun, import_test_module, iterate_cases, load_test_runs, module_name_for
 from diffctl.testing.result import FailResult, SkipResult, TestResult
 from diffctl.testing.service import LaunchService
@@ -69,11 +75,19 @@ def _processes(description: Any, proc_info: ActiveProcInfoHandler, proc_output: 
         proc_info.append(event)
         proc_output.track(event)
 
+    def exited(event: Any, context: Any) -> None:
+        record_exit(event)
+        proc_info.append(event)
+
+    def output(event: Any) -> None:
+        cache_output(event)
+        proc_output.append(event)
+
     return LaunchDescription(
         [
             RegisterEventHandler(OnProcessStart(on_start=started)),
-            RegisterEventHandler(OnProcessExit(on_exit=lambda event, context: proc_info.append(event))),
-            RegisterEventHandler(OnProcessIO(on_stdout=proc_output.append, on_stderr=proc_output.append)),
+            RegisterEventHandler(OnProcessExit(on_exit=exited)),
+            RegisterEventHandler(OnProcessIO(on_stdout=output, on_stderr=output)),
             description,
         ]
     )

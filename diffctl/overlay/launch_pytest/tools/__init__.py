@@ -1,0 +1,3 @@
+"""`launch_pytest.tools`."""
+
+from . import process  # noqa: F401
