@@ -72,8 +72,9 @@ class EventHandler(Waitable):
         if not pending:
             return None
         last = pending[-1]
-        if hasattr(last, "total_count_change"):
-            last.total_count_change = sum(getattr(p, "total_count_change", 0) for p in pending)
+        for field in ("total_count_change", "current_count_change"):
+            if hasattr(last, field):
+                setattr(last, field, sum(getattr(p, field, 0) for p in pending))
         return last
 
     async def execute(self, taken_data: Any) -> None:
@@ -106,6 +107,34 @@ class _IncompatibleQoSWatch:
         if bad:
             self._count += 1
             self._handler.post(QoSRequestedIncompatibleQoSInfo(self._count, 1, int(bad[-1][0])))
+
+    def close(self) -> None:
+        self._closed = True
+
+
+class _MatchedWatch:
+    """rmw's matched status from the graph: endpoints of the other side of the topic with the same type."""
+
+    def __init__(self, endpoint: Any, handler: EventHandler, *, is_publisher: bool) -> None:
+        self._endpoint = endpoint
+        self._handler = handler
+        self._kind = wire.KIND_SUB if is_publisher else wire.KIND_PUB
+        self._matched: set[str] = set()
+        self._total = 0
+        self._closed = False
+        endpoint._node._bus.graph.add_listener(self._on_graph)
+
+    def _on_graph(self, event: str, ent: wire.Entity) -> None:
+        ep = self._endpoint
+        if self._closed or ent.kind != self._kind or ent.topic != ep._bus_topic or ent.type != ep._bus.type:
+            return
+        if event == "put" and ent.token not in self._matched:
+            self._matched.add(ent.token)
+            self._total += 1
+            self._handler.post(QoSMatchedInfo(self._total, 1, len(self._matched), 1))
+        elif event == "delete" and ent.token in self._matched:
+            self._matched.discard(ent.token)
+            self._handler.post(QoSMatchedInfo(self._total, 0, len(self._matched), -1))
 
     def close(self) -> None:
         self._closed = True
@@ -163,5 +192,9 @@ def _create(cbs: Any, callback_group: Any, endpoint: Any, topic_name: str, *, is
     if callback is not None:
         h = EventHandler(callback_group=callback_group, callback=callback)
         h._watch = _IncompatibleQoSWatch(endpoint, h, is_publisher=is_publisher)  # type: ignore[attr-defined]
+        handlers.append(h)
+    if cbs.matched is not None:
+        h = EventHandler(callback_group=callback_group, callback=cbs.matched)
+        h._watch = _MatchedWatch(endpoint, h, is_publisher=is_publisher)  # type: ignore[attr-defined]
         handlers.append(h)
     return handlers

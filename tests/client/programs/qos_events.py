@@ -67,6 +67,21 @@ try:
     out.append(["qos override callback", "accepted"])
 except InvalidQosOverridesError as e:
     out.append(["qos override callback", str(e)])
+
+from rclpy.event_handler import PublisherEventCallbacks  # noqa: E402
+
+matched_pub, matched_sub = [], []
+mpub = tuned.create_publisher(String, "matched_topic", 10, event_callbacks=PublisherEventCallbacks(
+    matched=lambda e: matched_pub.append([e.total_count, e.current_count])))
+ex.add_node(tuned)
+spin_for(0.5)
+msub = node.create_subscription(String, "matched_topic", lambda m: None, 10, event_callbacks=SubscriptionEventCallbacks(
+    matched=lambda e: matched_sub.append([e.total_count, e.current_count])))
+spin_for(1.0)
+node.destroy_subscription(msub)
+spin_for(1.0)
+out.append(["publisher matched events", matched_pub])
+out.append(["subscription matched events", matched_sub])
 tuned.destroy_node()
 node.destroy_node()
 rclpy.shutdown()
