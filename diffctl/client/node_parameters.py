@@ -79,7 +79,6 @@ class NodeParameters(ParameterStore):
     def declare_parameters(self, namespace: str, parameters: list[tuple], ignore_override: bool = False
                            ) -> list[Parameter]:
         desc_cls = cls("rcl_interfaces/msg/ParameterDescriptor")
-        pv_cls = cls("rcl_interfaces/msg/ParameterValue")
         plist: list[Parameter] = []
         descriptors: dict[str, Any] = {}
         for index, tup in enumerate(parameters):
@@ -115,7 +114,8 @@ class NodeParameters(ParameterStore):
             else:
                 value = second
                 if not descriptor.dynamic_typing:
-                    if isinstance(value, pv_cls):
+                    # A ParameterValue message as the default (its class is not made just to ask).
+                    if type(value).__name__ == "ParameterValue" and hasattr(value, "double_array_value"):
                         descriptor.type = value.type
                     else:
                         descriptor.type = Parameter.Type.from_parameter_value(value).value
