@@ -51,7 +51,8 @@ def test_broadcasters_listener_and_lookups() -> None:
         executor = MultiThreadedExecutor(num_threads=2)
         executor.add_node(talker)
         executor.add_node(listener_node)
-        threading.Thread(target=executor.spin, daemon=True).start()
+        spinner = threading.Thread(target=executor.spin, daemon=True)
+        spinner.start()
 
         future = buffer.wait_for_transform_async("world", "carrot", Time())
         assert not future.done()
@@ -79,5 +80,46 @@ def test_broadcasters_listener_and_lookups() -> None:
         assert "when looking up transform from frame [carrot] to frame [world]" in str(e.value)
         assert "carrot: \n  parent: 'laser'\n  broadcaster: 'default_authority'" in buffer.all_frames_as_yaml()
         executor.shutdown()
+        spinner.join(5)
+    finally:
+        rclpy.try_shutdown()
+
+
+@pytest.mark.usefixtures("router")
+def test_listener_with_its_own_thread_and_buffer_transform() -> None:
+    import rclpy
+    import tf2_geometry_msgs  # noqa: F401 (registers the geometry_msgs types with Buffer.transform)
+    from geometry_msgs.msg import PointStamped
+    from rclpy.duration import Duration
+    from rclpy.executors import SingleThreadedExecutor
+    from rclpy.time import Time
+    from tf2_ros import Buffer, StaticTransformBroadcaster, TransformListener, TypeException
+
+    rclpy.init()
+    try:
+        talker = rclpy.create_node("tf_static_talker")
+        StaticTransformBroadcaster(talker).sendTransform(
+            transform("map", "sensor", talker.get_clock().now().to_msg(), -2.0))
+        talker_executor = SingleThreadedExecutor()
+        talker_executor.add_node(talker)
+        talker_spinner = threading.Thread(target=talker_executor.spin, daemon=True)
+        talker_spinner.start()
+
+        node = rclpy.create_node("tf_user")
+        buffer = Buffer()
+        listener = TransformListener(buffer, node, spin_thread=True)  # nobody else spins `node`
+        point = PointStamped()
+        point.header.frame_id = "sensor"
+        point.point.x, point.point.y = 0.5, 1.0
+        moved = buffer.transform(point, "map", timeout=Duration(seconds=5.0))
+        assert (moved.header.frame_id, moved.point.x, moved.point.y) == ("map", -1.5, 1.0)
+        with pytest.raises(TypeException):
+            buffer.transform(object(), "map")
+        assert buffer.get_latest_common_time("map", "sensor") == Time()  # static frames: time zero
+        assert listener.dedicated_listener_thread is not None and listener.dedicated_listener_thread.is_alive()
+        listener.executor.shutdown()
+        talker_executor.shutdown()
+        listener.dedicated_listener_thread.join(5)
+        talker_spinner.join(5)
     finally:
         rclpy.try_shutdown()

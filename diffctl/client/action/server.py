@@ -351,8 +351,7 @@ class ActionServer:
             for uuid in expired:
                 self._goal_handles.pop(uuid).destroy()
                 self._results.pop(uuid, None)
-        if expired:
-            self._publish_status()
+        # As rclpy: forgetting goals publishes no status array (the last one still lists them).
         self._schedule_expiry()
 
     def destroy(self) -> None:

@@ -118,6 +118,23 @@ def main():
     request.goal_id = UUID(uuid=list(uuid.uuid4().bytes))
     print("unknown result", wait(raw_result.call_async(request)).status)
 
+    # Results are kept result_timeout seconds after the goal ends, then the goal is forgotten.
+    short_statuses = []
+    ActionServer(server, Fibonacci, "fibonacci_short", lambda gh: (gh.succeed(), Fibonacci.Result())[1],
+                 result_timeout=1)
+    client_node.create_subscription(GoalStatusArray, "/fibonacci_short/_action/status",
+                                    lambda m: short_statuses.append([s.status for s in m.status_list]),
+                                    qos_profile_action_status_default)
+    short = ActionClient(client_node, Fibonacci, "fibonacci_short")
+    short.wait_for_server(timeout_sec=10.0)
+    short_handle = wait(short.send_goal_async(Fibonacci.Goal(order=2)))
+    print("short result", wait(short_handle.get_result_async()).status)
+    time.sleep(2.5)
+    short_raw = client_node.create_client(Fibonacci.Impl.GetResultService, "/fibonacci_short/_action/get_result")
+    request = Fibonacci.Impl.GetResultService.Request()
+    request.goal_id = short_handle.goal_id
+    print("expired result", wait(short_raw.call_async(request)).status, short_statuses[-1])
+
     end = time.time() + 5
     while time.time() < end and (statuses.get(bytes(handle.goal_id.uuid)) != GoalStatus.STATUS_SUCCEEDED
                                  or statuses.get(bytes(slow.goal_id.uuid)) != GoalStatus.STATUS_CANCELED):
