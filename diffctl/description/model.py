@@ -182,6 +182,13 @@ class AirPressureSpec:
 
 
 @dataclass(frozen=True)
+class MagnetometerSpec:
+    """<magnetometer><x|y|z><noise>, in tesla."""
+
+    noise: tuple[Noise, Noise, Noise] = (Noise(), Noise(), Noise())
+
+
+@dataclass(frozen=True)
 class NavSatSpec:
     """<navsat> noise: position in degrees (horizontal, on latitude and longitude) and metres (vertical),
     velocity in m/s, as gz-sensors applies them."""
@@ -192,7 +199,7 @@ class NavSatSpec:
     vertical_velocity_noise: Noise = field(default_factory=Noise)
 
 
-SENSOR_TYPES = ("lidar", "imu", "camera", "depth_camera", "rgbd_camera", "air_pressure", "navsat")
+SENSOR_TYPES = ("lidar", "imu", "camera", "depth_camera", "rgbd_camera", "air_pressure", "navsat", "magnetometer")
 
 
 @dataclass(frozen=True)
@@ -213,6 +220,7 @@ class Sensor:
     imu: ImuSpec | None = None
     air_pressure: AirPressureSpec | None = None
     navsat: NavSatSpec | None = None
+    magnetometer: MagnetometerSpec | None = None
 
 
 # --- links, joints, frames ------------------------------------------------------------------------------
@@ -384,6 +392,8 @@ class Physics:
     real_time_factor: float = 1.0
     gravity: Vec3 = (0.0, 0.0, -9.8)
     real_time_update_rate_hz: float = 1000.0
+    # the world's <magnetic_field>, tesla, in the world frame (sdformat's default)
+    magnetic_field_t: Vec3 = (5.5645e-6, 22.8758e-6, -42.3884e-6)
 
 
 @dataclass(frozen=True)

@@ -24,6 +24,7 @@ from diffctl.description.model import (
     Inertial,
     LidarSpec,
     Light,
+    MagnetometerSpec,
     Mesh,
     NavSatSpec,
     Noise,
@@ -405,6 +406,14 @@ def _parse_air_pressure(doc: Doc, sensor: Element) -> AirPressureSpec:
     return AirPressureSpec(float_value(doc, el, "reference_altitude", 0.0), parse_noise(doc, pressure))
 
 
+def _parse_magnetometer(doc: Doc, sensor: Element) -> MagnetometerSpec:
+    el = child(sensor, "magnetometer")
+    if el is None:
+        return MagnetometerSpec()
+    x, y, z = (parse_noise(doc, child(el, axis)) for axis in ("x", "y", "z"))
+    return MagnetometerSpec((x, y, z))
+
+
 def _parse_navsat(doc: Doc, sensor: Element) -> NavSatSpec:
     el = child(sensor, "navsat")
     if el is None:
@@ -450,6 +459,8 @@ def sensor_kind(sdf_type: str) -> str | None:
         return "air_pressure"
     if sdf_type in ("navsat", "gps"):  # sdformat reads the old "gps" as navsat
         return "navsat"
+    if sdf_type == "magnetometer":
+        return "magnetometer"
     return None
 
 
@@ -484,6 +495,7 @@ def parse_sensor(doc: Doc, el: Element, link: str, to_link: ToLink, link_world: 
         imu=_parse_imu(doc, el) if kind == "imu" else None,
         air_pressure=_parse_air_pressure(doc, el) if kind == "air_pressure" else None,
         navsat=_parse_navsat(doc, el) if kind == "navsat" else None,
+        magnetometer=_parse_magnetometer(doc, el) if kind == "magnetometer" else None,
     )
 
 
@@ -527,11 +539,13 @@ def parse_physics(doc: Doc, world: Element) -> Physics:
         el = candidates[0]
     gravity_parent = world if child(world, "gravity") is not None else (el if el is not None else world)
     gravity = vec3_value(doc, gravity_parent, "gravity", (0.0, 0.0, -9.8))
+    magnetic = vec3_value(doc, world, "magnetic_field", Physics().magnetic_field_t)
     if el is None:
-        return Physics(gravity=gravity)
+        return Physics(gravity=gravity, magnetic_field_t=magnetic)
     return Physics(
         max_step_size_s=float_value(doc, el, "max_step_size", 0.001, positive=True),
         real_time_factor=float_value(doc, el, "real_time_factor", 1.0, minimum=0.0),
         gravity=gravity,
         real_time_update_rate_hz=float_value(doc, el, "real_time_update_rate", 1000.0, minimum=0.0),
+        magnetic_field_t=magnetic,
     )

@@ -38,6 +38,7 @@ from diffctl.sim.sensors import (
     CameraTask,
     Imu,
     Lidar,
+    Magnetometer,
     NavSat,
     RenderRate,
     origin_problem,
@@ -94,7 +95,7 @@ class ModelRuntime:
     tasks: list[Task] = field(default_factory=list)
     publishers: list[GzPublisher] = field(default_factory=list)
     imus: list[Imu] = field(default_factory=list)
-    sensors: list[Lidar | Imu | CameraSensor | AirPressure | NavSat] = field(default_factory=list)
+    sensors: list[Lidar | Imu | CameraSensor | AirPressure | NavSat | Magnetometer] = field(default_factory=list)
     control: GzRos2Control | None = None  # the model's controller manager (gz_ros2_control)
 
 
@@ -226,11 +227,13 @@ class Simulation:
             # update_rate 0 means "every step" in Gazebo.
             period = rate_period_ns(s.update_rate_hz, step_ns) if s.update_rate_hz > 0 else step_ns
             rng = self.sensor_rng(entity.name, s.name)
-            sensor: Lidar | Imu | CameraSensor | AirPressure | NavSat
+            sensor: Lidar | Imu | CameraSensor | AirPressure | NavSat | Magnetometer
             if s.type == "lidar":
                 sensor = Lidar(entity, s, rng)
             elif s.type == "air_pressure":
                 sensor = AirPressure(entity, s, rng)
+            elif s.type == "magnetometer":
+                sensor = Magnetometer(entity, s, self.physics.physics.magnetic_field_t, rng)
             elif s.type == "navsat":
                 origin = self.world_model.spherical_coordinates
                 problem = origin_problem(origin)

@@ -215,8 +215,8 @@ def test_pose_relative_to_with_no_numbers_is_the_identity_in_that_frame() -> Non
 
 
 def test_unsimulated_sensor_types_are_listed_not_fatal() -> None:
-    m = parse_model(model("<link name='a'><sensor name='mag' type='magnetometer'/></link>", static=True))
-    assert m.ignored == ("sensor 'mag' of type 'magnetometer' on link 'a' is not simulated",)
+    m = parse_model(model("<link name='a'><sensor name='bump' type='contact'/></link>", static=True))
+    assert m.ignored == ("sensor 'bump' of type 'contact' on link 'a' is not simulated",)
 
 
 def test_random_corruption_of_the_robot_file_never_escapes_as_another_exception() -> None:

@@ -28,10 +28,15 @@ BATTERY = """<plugin filename="gz-sim-linearbatteryplugin-system" name="gz::sim:
 </plugin>"""
 
 
+MAGNETOMETER = '<sensor name="compass" type="magnetometer"><topic>mag</topic><update_rate>20</update_rate></sensor>'
+
+
 def systems_world(folder: Path) -> Path:
     car = CAR.read_text()
     model = car[car.index("<model") : car.rindex("</model>")] + ODOM + BATTERY + "</model>"
     model = re.sub(r'<model name="[^"]*"', '<model name="robot"', model, count=1)
+    i = model.index("</link>", model.index('<link name="imu_link">'))
+    model = model[:i] + MAGNETOMETER + model[i:]
     world = EMPTY_WORLD.read_text().replace('<world name="empty">', '<world name="systems">')
     i = world.rindex("</world>")
     path = folder / "systems.sdf"
@@ -59,16 +64,22 @@ def test_odometry_publisher_and_battery_reach_ros_through_the_bridge(router: str
         "/model/robot/battery/linear_battery/state@sensor_msgs/msg/BatteryState[gz.msgs.BatteryState",
         "/cmd_vel@geometry_msgs/msg/Twist]gz.msgs.Twist",  # the car's DiffDrive has <topic>cmd_vel</topic>
         "/model/robot/pose@tf2_msgs/msg/TFMessage[gz.msgs.Pose_V",
+        "/mag@sensor_msgs/msg/MagneticField[gz.msgs.Magnetometer",
     )
     node = Node("systems_probe")
-    odom, battery, tf = [], [], []
+    odom, battery, tf, mag = [], [], [], []
     try:
         node.create_subscription("/model/robot/odometry", "nav_msgs/msg/Odometry", odom.append)
         node.create_subscription(
             "/model/robot/battery/linear_battery/state", "sensor_msgs/msg/BatteryState", battery.append
         )
         node.create_subscription("/model/robot/pose", "tf2_msgs/msg/TFMessage", tf.append)
-        wait_for(lambda: odom and battery and tf, 60, "odometry, battery state and pose on the ROS side")
+        node.create_subscription("/mag", "sensor_msgs/msg/MagneticField", mag.append)
+        wait_for(lambda: odom and battery and tf and mag, 60, "odometry, battery state, pose and field on the ROS side")
+        # the world sets no <magnetic_field>: sdformat's default, seen by the unturned car as it is
+        field = mag[-1].magnetic_field
+        assert (field.x, field.y, field.z) == pytest.approx((5.5645e-6, 22.8758e-6, -42.3884e-6), abs=1e-8)
+        assert mag[-1].header.frame_id == "robot/imu_link/compass"
         first = battery[-1]
         assert first.power_supply_status == first.POWER_SUPPLY_STATUS_FULL  # not moved yet: not draining
         assert first.percentage == pytest.approx(100 * 1.1665 / 1.2009, rel=1e-5)  # fix_issue_225: 0-100

@@ -4,6 +4,7 @@ conversion too), a thermal camera named in one clear warning, and a camera's <tr
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from sim_helpers import build, sdf_world
 from test_sensors_lidar import LIDAR
 
@@ -48,3 +49,32 @@ def test_a_thermal_camera_is_one_clear_line_naming_it() -> None:
     assert list(model.sensors()) == []
     (line,) = model.ignored
     assert "thermal camera 'cam' on link 'l'" in line and "not simulated" in line
+
+
+MAG_RIG = """<model name="rig"><static>true</static><pose>1 2 0.5 0 0 {yaw}</pose><link name="l">
+  <sensor name="compass" type="magnetometer"><topic>mag</topic><update_rate>50</update_rate>
+    <magnetometer><x><noise type="gaussian"><mean>0</mean><stddev>1e-8</stddev></noise></x></magnetometer>
+  </sensor></link></model>"""
+
+
+def test_a_magnetometer_reads_the_worlds_field_in_its_own_frame() -> None:
+    yaw = 0.9
+    world = sdf_world("<magnetic_field>6e-06 2.3e-05 -4.2e-05</magnetic_field>" + MAG_RIG.format(yaw=yaw))
+    assert world.physics.magnetic_field_t == (6e-06, 2.3e-05, -4.2e-05)
+    pw, ents = build(world)
+    try:
+        from diffctl.sim.sensors import Magnetometer
+
+        sensor = next(ents["rig"].model.sensors())
+        assert sensor.type == "magnetometer" and sensor.magnetometer is not None
+        mag = Magnetometer(ents["rig"], sensor, world.physics.magnetic_field_t, np.random.default_rng(1))
+        msg = mag.sample(1_000_000)
+        bx, by, bz = 6e-06, 2.3e-05, -4.2e-05
+        # a frame turned by yaw about z sees the world vector turned by -yaw
+        expected = (np.cos(yaw) * bx + np.sin(yaw) * by, -np.sin(yaw) * bx + np.cos(yaw) * by, bz)
+        f = msg["field_tesla"]
+        assert f["x"] == pytest.approx(expected[0], abs=1e-7)  # x carries 1e-8 T of noise
+        assert (f["y"], f["z"]) == pytest.approx(expected[1:], abs=1e-12)
+        assert gz.header_value(msg["header"], "frame_id") == "rig::l::compass"
+    finally:
+        pw.close()

@@ -4,7 +4,7 @@ The base topic T is `<topic>`, else `/world/<w>/model/<m>/link/<l>/sensor/<s>` p
 (gz-sim RenderUtil.cc, Imu.cc). From T: camera → T (Image) and its CameraInfo on `<camera_info_topic>`, else
 T with the last segment replaced by `camera_info`; depth_camera → T (depth Image), T/points and CameraInfo by
 the camera rule; rgbd_camera → T/image, T/depth_image, T/points, T/camera_info; lidar → T and T/points;
-imu, air_pressure, navsat → T.
+imu, air_pressure, navsat, magnetometer → T.
 """
 
 from __future__ import annotations
@@ -21,10 +21,11 @@ DEFAULT_SUFFIX = {
     "imu": "/imu",
     "air_pressure": "/air_pressure",
     "navsat": "/navsat",
+    "magnetometer": "/magnetometer",
 }
 
 IMAGE, DEPTH, POINTS, INFO, SCAN, IMU = "image", "depth_image", "points", "camera_info", "scan", "imu"
-PRESSURE, NAVSAT = "air_pressure", "navsat"
+PRESSURE, NAVSAT, MAGNETIC = "air_pressure", "navsat", "magnetometer"
 
 
 @dataclass(frozen=True)
@@ -62,6 +63,8 @@ def outputs(sensor: Sensor, base: str) -> tuple[Output, ...]:
         return (Output(PRESSURE, base, "gz.msgs.FluidPressure"),)
     if kind == "navsat":
         return (Output(NAVSAT, base, "gz.msgs.NavSat"),)
+    if kind == "magnetometer":
+        return (Output(MAGNETIC, base, "gz.msgs.Magnetometer"),)
     if kind == "rgbd_camera":
         return (
             Output(IMAGE, base + "/image", "gz.msgs.Image"),
