@@ -151,6 +151,16 @@ def test_a_crash_shows_the_users_file_and_line_once(ws: Path) -> None:
     assert r.stderr.count("ZeroDivisionError: division by zero") == 1
 
 
+def test_a_crash_under_launch_shows_the_traceback_once(ws: Path) -> None:
+    (ws / "crash.launch.yaml").write_text("launch:\n- node: {pkg: my_pkg, exec: crash}\n")
+    r = run("launch", "crash.launch.yaml", "--no-router", "--no-color", cwd=ws)
+    out = r.stdout + r.stderr
+    assert r.returncode != 0
+    crash_py = str((ws / "src/my_pkg/my_pkg/crash.py").resolve())
+    assert out.count("Traceback (most recent call last)") == 1
+    assert out.count(f'File "{crash_py}", line 2, in fail') == 1
+
+
 def test_wrong_names_list_close_matches(ws: Path) -> None:
     r = run("run", "my_pkgg", "hello", cwd=ws)
     assert r.returncode == 2
