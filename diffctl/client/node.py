@@ -36,11 +36,10 @@ from diffctl.client.parameter import Parameter, from_python_value
 from diffctl.client.publisher import Publisher
 from diffctl.client.qos_overriding_options import declare_qos_parameters
 from diffctl.client.ros_logging import RcutilsLogger, attach_rosout, detach_rosout, get_logger
-from diffctl.client.ros_time import Time
 from diffctl.client.service import Service
 from diffctl.client.subscription import Subscription
 from diffctl.client.timer import Rate, Timer
-from diffctl.client.topic_endpoint_info import TopicEndpointInfo, TopicEndpointTypeEnum
+from diffctl.client.topic_endpoint_info import TopicEndpointInfo, TopicEndpointTypeEnum  # noqa: F401 (rclpy.node has it)
 from diffctl.errors import NoRouterError
 
 
@@ -614,9 +613,3 @@ class Node:
         name = fully_qualified_node_name if fully_qualified_node_name.startswith("/") \
             else "/" + fully_qualified_node_name
         return self._graph.wait_for(lambda: name in self.get_fully_qualified_node_names(), timeout)
-
-    def _now_msg(self) -> Any:
-        return Time(nanoseconds=self._clock.now_ns()).to_msg()
-
-
-TopicEndpointTypeEnum = TopicEndpointTypeEnum
