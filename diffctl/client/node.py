@@ -15,7 +15,7 @@ from diffctl import ros_args
 from diffctl.bus import wire
 from diffctl.bus.node import Node as BusNode
 from diffctl.client import qos as _qos
-from diffctl.client import waiting
+from diffctl.client import ros_logging, waiting
 from diffctl.client.callback_groups import CallbackGroup, MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
 from diffctl.client.client import Client
 from diffctl.client.clock import Clock, ROSClock
@@ -154,7 +154,8 @@ class Node:
         try:
             self._bus = BusNode(name, namespace, use_sim_time=False, remaps=ra.remaps, params={},
                                 allow_undeclared_parameters=allow_undeclared_parameters, parameter_store=self._params,
-                                rosout=enable_rosout, parameter_services=start_parameter_services)
+                                rosout=enable_rosout and ros_logging.rosout_enabled,
+                                parameter_services=start_parameter_services)
         except NoRouterError as e:
             print(f"error: {e}", file=sys.stderr)
             raise SystemExit(2) from None

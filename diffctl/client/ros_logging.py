@@ -37,12 +37,22 @@ _THIS = os.path.realpath(__file__)
 _DEFAULT_FORMAT = "[{severity}] [{time}] [{name}]: {message}"
 
 
+_console = True  # --disable-stdout-logs turns the console output off, as in rcl
+rosout_enabled = True  # --disable-rosout-logs: no node publishes its log lines on /rosout
+
+
 def configure_from_args(argv: list[str]) -> None:
-    """`--log-level LEVEL` and `--log-level name:=LEVEL` inside --ros-args, as rcl reads them at init."""
-    global _default_level
+    """`--log-level LEVEL`, `--log-level name:=LEVEL` and the stdout/rosout switches inside --ros-args, as rcl
+    reads them at init."""
+    global _default_level, _console, rosout_enabled
     from diffctl.ros_args import split_argv
 
     _, ros = split_argv(list(argv))
+    for flag in ros:
+        if flag in ("--disable-stdout-logs", "--enable-stdout-logs"):
+            _console = flag.startswith("--enable")
+        elif flag in ("--disable-rosout-logs", "--enable-rosout-logs"):
+            rosout_enabled = flag.startswith("--enable")
     for i, a in enumerate(ros[:-1]):
         if a != "--log-level":
             continue
@@ -146,7 +156,8 @@ def rcutils_log(severity: LoggingSeverity, name: str, message: str, function: st
     if color:
         text = f"{color}{text}\033[0m"
     try:
-        stream.write(text + "\n")
+        if _console:
+            stream.write(text + "\n")
         stream.flush()
     except (ValueError, OSError):
         pass

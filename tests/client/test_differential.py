@@ -47,3 +47,9 @@ def test_parameter_events_and_logger_services_agree(router: str) -> None:
 def test_parameter_services_agree(router: str) -> None:
     """Another node's parameter services through AsyncParameterClient: the same answers as rclpy's."""
     assert_same(*run_both("param_client.py", router))
+
+
+def test_logging_switches_agree(router: str) -> None:
+    oracle, ours = run_both("logging_switches.py", router)
+    assert_same(oracle, ours)
+    assert ours.log_lines() == oracle.log_lines()
