@@ -5,6 +5,9 @@ signals through a wake-up pipe. A launch test runs its test methods while the la
 runs on a thread of its own: child exits come through pidfds (no SIGCHLD needed), and everything the test
 thread asks of the launch (shut down, include a description, emit an event) is queued and done on the launch
 thread between two steps of the loop, never in the middle of one.
+
+No fork server here: measured on the tutorial car's smoke test (2 cores), a zygote importing every component
+while the test process imports its own delayed "all started" by 0.4-0.6 s against plain exec.
 """
 
 from __future__ import annotations

@@ -36,7 +36,7 @@ def _cases(xml: Path) -> dict[str, str]:
 @pytest.mark.slow
 def test_examples_pass_and_fail_where_launch_test_does(tmp_path: Path) -> None:
     xml = tmp_path / "results.xml"
-    names = ("good_proc", "params", "hello_world", "talker_listener", "bad_proc", "stopped_early")
+    names = ("good_proc", "params", "hello_world", "talker_listener", "terminating_proc", "bad_proc", "stopped_early")
     files = [FILES / f"{n}_launch_test.py" for n in names]
     r = _run([PY, "-m", "diffctl", "test", *map(str, files), "-j", "2", "--junit-xml", str(xml), "dut_arg:=xyz"])
     assert r.returncode == 1, r.stdout + r.stderr
@@ -56,7 +56,8 @@ def test_examples_pass_and_fail_where_launch_test_does(tmp_path: Path) -> None:
     assert "Processes under test stopped before tests completed" in out
     assert "Process 'short' exited with 3" in out and "hello_world" in out
     assert "Starting test run params_launch_test.params_launch_test.launch_tests[thing=Off]" in out
-    assert "Summary: 6 test files, 4 passed, 2 failed" in out
+    assert "Summary: 7 test files, 5 passed, 2 failed" in out
+    assert cases["TestTerminatingProc.test_unhandled_exception"] == ""  # launch_testing's example processes
     for name in ("test_talker_transmits", "test_listener_receives", "test_wait_for_topics"):
         assert cases[f"TestTalkerListenerLink.{name}"] == ""  # rclpy test bodies on the test's own bus
     assert "test_count_to_four (good_proc_launch_test.TestGoodProcess.test_count_to_four) ..." in out  # unittest's
