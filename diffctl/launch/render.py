@@ -27,6 +27,7 @@ from diffctl.launch.plan import (
     StartProcess,
     StartTimer,
     Step,
+    Unknown,
 )
 
 
@@ -121,7 +122,8 @@ def _steps(node: _Node, steps: Iterable[Step]) -> None:
         if isinstance(step, StartProcess):
             _process(node, step.spec, step.gate)
         elif isinstance(step, StartTimer):
-            t = node.add(Text(f"after {_seconds(step.period_s)}", style="magenta"))
+            when = "after ? s" if step.period_s != step.period_s else f"after {_seconds(step.period_s)}"
+            t = node.add(Text(when + " (evaluated when it fires)", style="magenta"))
             _gate(t, step.gate)
             _steps(t, step.steps)
         elif isinstance(step, AddHandler):
@@ -132,10 +134,16 @@ def _steps(node: _Node, steps: Iterable[Step]) -> None:
                 "start": f"on start of {targets}",
                 "shutdown": "on shutdown",
                 "io": f"on output ({', '.join(h.streams)}) of {targets}",
+                "complete": f"on completion of {targets if h.targets else 'any action'}",
+                "state": "on a lifecycle state transition",
             }
-            text = label[h.event] + (f" with code {h.exit_code}" if h.exit_code is not None else "")
+            text = label.get(h.event, f"on {h.event}") + (
+                f" with code {h.exit_code}" if h.exit_code is not None else ""
+            )
             if h.callback is not None:
                 text += f": calls {h.describe_callback or 'a function'} (its actions are resolved when it fires)"
+            elif h.steps:
+                text += " (evaluated when it fires; as of now:)"
             child = node.add(Text(text, style="magenta"))
             _gate(child, step.gate)
             _steps(child, h.steps)
@@ -148,6 +156,8 @@ def _steps(node: _Node, steps: Iterable[Step]) -> None:
             _gate(node.add(f"shutdown {step.reason!r}", "red"), step.gate)
         elif isinstance(step, Skipped):
             node.add(f"skipped ({step.condition}): {step.what}", "dim")
+        elif isinstance(step, Unknown):
+            node.add(f"known only when it runs: {step.what}: {step.why}", "yellow")
 
 
 class PlanView:

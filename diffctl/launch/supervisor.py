@@ -137,7 +137,6 @@ class Supervisor:
         if self._held is not None:
             return
         self._held = []
-        self._t0 = self.now()
         self.engine.run_description(self.plan.description, hold=self._held)
 
     def may_start_components(self, is_component: Callable[[tuple[str, ...]], bool]) -> bool:
@@ -163,6 +162,7 @@ class Supervisor:
 
     def start(self) -> None:
         self.prepare()
+        self._t0 = self.now()  # "all N processes started in …" counts from here, the first visit being done
         declared = [a.name for a in self.engine.arguments]
         for name in self.plan.launch_arguments:
             if name not in declared and not self.plan.arguments:

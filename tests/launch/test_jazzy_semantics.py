@@ -87,6 +87,11 @@ def generate_launch_description():
     plan = resolve(load(path), {}, str(path))  # no FileNotFoundError: the handler is only previewed
     (unknown,) = [s for s in walk(plan.steps) if isinstance(s, Unknown)]
     assert "No such file" in unknown.why
+    from diffctl.launch.render import PlanView
+
+    text = "\n".join(str(line) for line in PlanView(plan).lines())
+    assert "on exit of writer (evaluated when it fires; as of now:)" in text
+    assert "known only when it runs: OpaqueFunction read" in text
 
 
 def test_configurations_and_environment_set_at_event_time_are_seen_by_later_handlers_and_timers(fake_run) -> None:
