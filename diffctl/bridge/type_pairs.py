@@ -13,6 +13,7 @@ from typing import Any
 from diffctl.bridge import conversions as c
 from diffctl.bridge import covariance_conversions as cv
 from diffctl.bridge import geometry_conversions as g
+from diffctl.bridge import gz_interfaces_conversions as gi
 from diffctl.bridge import sensor_conversions as sc
 from diffctl.bridge import std_conversions as st
 from diffctl.errors import MessageError
@@ -133,6 +134,19 @@ TYPE_PAIRS: tuple[TypePair, ...] = (
         cv.twist_with_covariance_stamped_to_ros,
         cv.twist_with_covariance_stamped_to_gz,
     ),
+    TypePair("ros_gz_interfaces/msg/Altimeter", "gz.msgs.Altimeter", gi.altimeter_to_ros, gi.altimeter_to_gz),
+    TypePair("ros_gz_interfaces/msg/Entity", "gz.msgs.Entity", gi.entity_to_ros, gi.entity_to_gz),
+    TypePair(
+        "ros_gz_interfaces/msg/EntityWrench", "gz.msgs.EntityWrench", gi.entity_wrench_to_ros, gi.entity_wrench_to_gz
+    ),
+    TypePair("ros_gz_interfaces/msg/JointWrench", "gz.msgs.JointWrench", gi.joint_wrench_to_ros, gi.joint_wrench_to_gz),
+    TypePair("ros_gz_interfaces/msg/Contact", "gz.msgs.Contact", gi.contact_to_ros, gi.contact_to_gz),
+    TypePair("ros_gz_interfaces/msg/Contacts", "gz.msgs.Contacts", gi.contacts_to_ros, gi.contacts_to_gz),
+    TypePair("ros_gz_interfaces/msg/Dataframe", "gz.msgs.Dataframe", gi.dataframe_to_ros, gi.dataframe_to_gz),
+    TypePair("ros_gz_interfaces/msg/Float32Array", "gz.msgs.Float_V", gi.float_v_to_ros, gi.float_v_to_gz),
+    TypePair("ros_gz_interfaces/msg/StringVec", "gz.msgs.StringMsg_V", gi.string_v_to_ros, gi.string_v_to_gz),
+    TypePair("ros_gz_interfaces/msg/ParamVec", "gz.msgs.Param", gi.param_to_ros, gi.param_to_gz),
+    TypePair("ros_gz_interfaces/msg/ParamVec", "gz.msgs.Param_V", gi.param_v_to_ros, gi.param_v_to_gz),
     TypePair(
         "nav_msgs/msg/Odometry",
         "gz.msgs.OdometryWithCovariance",

@@ -32,6 +32,25 @@ def plain(value: Any) -> Any:
 
 
 # One sim-side sample per pair, in the layouts of diffctl/bus/gz.py, and what the ROS side must see.
+WRENCH = {"force": {"x": 1.0, "y": 2.0, "z": 3.0}, "torque": {"x": 0.1, "y": 0.2, "z": 0.3}}
+JOINT_WRENCH = {
+    "header": gz.header(9, frame_id="j"),
+    "body_1_name": "robot::wheel",
+    "body_1_id": 11,
+    "body_2_name": "ground",
+    "body_2_id": 2,
+    "body_1_wrench": WRENCH,
+    "body_2_wrench": WRENCH,
+}
+CONTACT = {
+    "collision1": {"id": 3, "name": "robot::bumper::collision", "type": "COLLISION"},
+    "collision2": {"id": 3, "name": "robot::bumper::collision", "type": "COLLISION"},
+    "position": [{"x": 1.0, "y": 0.0, "z": 0.1}],
+    "normal": [{"x": -1.0, "y": 0.0, "z": 0.0}],
+    "depth": [0.001],
+    "wrench": [JOINT_WRENCH],
+}
+
 GZ_SAMPLES: dict[tuple[str, str], dict] = {
     ("rosgraph_msgs/msg/Clock", "gz.msgs.Clock"): {
         "header": gz.header(7),
@@ -183,6 +202,37 @@ GZ_SAMPLES: dict[tuple[str, str], dict] = {
             "twist": {"linear": {"x": 0.3, "y": 0.0, "z": 0.0}, "angular": {"x": 0.0, "y": 0.0, "z": 0.2}},
             "covariance": {"data": [0.02] * 36},
         },
+    },
+    ("ros_gz_interfaces/msg/Altimeter", "gz.msgs.Altimeter"): {
+        "header": H,
+        "vertical_position": 12.5,
+        "vertical_velocity": -0.25,
+        "vertical_reference": 100.0,
+    },
+    ("ros_gz_interfaces/msg/Entity", "gz.msgs.Entity"): {"id": 42, "name": "robot::base_link", "type": "LINK"},
+    ("ros_gz_interfaces/msg/EntityWrench", "gz.msgs.EntityWrench"): {
+        "header": H,
+        "entity": {"id": 7, "name": "box", "type": "MODEL"},
+        "wrench": {"force": {"x": 1.0, "y": 0.0, "z": 9.8}, "torque": {"x": 0.0, "y": 0.0, "z": 0.5}},
+    },
+    ("ros_gz_interfaces/msg/JointWrench", "gz.msgs.JointWrench"): JOINT_WRENCH,
+    ("ros_gz_interfaces/msg/Contact", "gz.msgs.Contact"): CONTACT,
+    ("ros_gz_interfaces/msg/Contacts", "gz.msgs.Contacts"): {"header": H, "contact": [CONTACT, CONTACT]},
+    ("ros_gz_interfaces/msg/Dataframe", "gz.msgs.Dataframe"): {
+        "header": {**gz.header(5, frame_id="radio"), "data": [{"key": "rssi", "value": ["-67.500000"]}]},
+        "src_address": "addr1",
+        "dst_address": "addr2",
+        "data": b"\x00\x01hello",
+    },
+    ("ros_gz_interfaces/msg/Float32Array", "gz.msgs.Float_V"): {"data": [0.5, -1.25, 3.0]},
+    ("ros_gz_interfaces/msg/StringVec", "gz.msgs.StringMsg_V"): {"header": H, "data": ["a", "b c"]},
+    ("ros_gz_interfaces/msg/ParamVec", "gz.msgs.Param"): {
+        "header": H,
+        "params": {"gain": {"type": "DOUBLE", "double_value": 0.5}, "name": {"type": "STRING", "string_value": "x"}},
+    },
+    ("ros_gz_interfaces/msg/ParamVec", "gz.msgs.Param_V"): {
+        "header": H,
+        "param": [{"params": {"on": {"type": "BOOLEAN", "bool_value": True}, "n": {"type": "INT32", "int_value": 3}}}],
     },
     ("sensor_msgs/msg/BatteryState", "gz.msgs.BatteryState"): {
         "header": gz.header(12, frame_id="robot::battery"),

@@ -7,11 +7,12 @@ field against the gz sample and ros_gz_bridge's conversion rules (src/convert/se
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
 from bridge_samples import CLOUD, GZ_SAMPLES, plain, same
-from rosbags.typesys import Stores, get_typestore
+from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
 from diffctl.bridge import type_pairs
 from diffctl.bridge.config import Direction
@@ -19,6 +20,16 @@ from diffctl.bus import gz, types
 from diffctl.errors import MessageError
 
 JAZZY = get_typestore(Stores.ROS2_JAZZY)
+# ros_gz_interfaces is not in rosbags' store: registered there from its upstream jazzy texts (the test data of
+# tests/graph, whose rosidl oracle checks diffctl's hashes of them), so rosbags' own CDR reads ours back.
+_UPSTREAM = Path(__file__).resolve().parents[1] / "graph" / "upstream_interfaces" / "ros_gz_interfaces" / "msg"
+JAZZY.register(
+    {
+        k: v
+        for f in sorted(_UPSTREAM.glob("*.msg"))
+        for k, v in get_types_from_msg(f.read_text(), f"ros_gz_interfaces/msg/{f.stem}").items()
+    }
+)
 
 
 def test_every_pair_has_a_sample() -> None:
@@ -46,7 +57,14 @@ def test_pair_round_trips_through_cdr_and_the_binary_encoding(ros_type: str, gz_
     assert same(types.to_dict(back_ros), types.to_dict(ros))
     back_gz = pair.convert_to_gz(back_ros)
     again = pair.convert_to_ros(_wire(gz_type, back_gz))
+    if (ros_type, gz_type) in NOT_ROUND_TRIPS:
+        return  # as upstream: see the pair's own test
     assert same(types.to_dict(again), types.to_dict(ros))
+
+
+# ros_gz_bridge itself does not round-trip these ("\\TODO(mjcarroll) Make this work fully round trip"): a
+# ParamVec goes into Param_V's first entry and comes back with every name prefixed `param_0/`.
+NOT_ROUND_TRIPS = {("ros_gz_interfaces/msg/ParamVec", "gz.msgs.Param_V")}
 
 
 def test_battery_state_as_ros_gz_bridge_converts_it() -> None:
@@ -393,3 +411,39 @@ def test_parameter_value_any_trajectory_and_header_follow_ros_gz_bridge() -> Non
     assert _to_gz("std_msgs/msg/Header", "gz.msgs.Header", header)["data"] == [{"key": "frame_id", "value": [""]}]
     joy = _to_ros("sensor_msgs/msg/Joy", "gz.msgs.Joy")
     assert list(joy.axes) == [0.5, -1.0] and list(joy.buttons) == [0, 1, 1]
+
+
+def test_ros_gz_interfaces_pairs_as_ros_gz_bridge_converts_them() -> None:
+    alt = _to_ros("ros_gz_interfaces/msg/Altimeter", "gz.msgs.Altimeter")
+    assert (alt.vertical_position, alt.vertical_velocity, alt.vertical_reference) == (12.5, -0.25, 100.0)
+    entity = _to_ros("ros_gz_interfaces/msg/Entity", "gz.msgs.Entity")
+    assert (entity.id, entity.name, entity.type) == (42, "robot::base_link", entity.LINK)  # names keep their ::
+    entity.type = 99
+    assert _to_gz("ros_gz_interfaces/msg/Entity", "gz.msgs.Entity", entity)["type"] == "NONE"
+    contacts = _to_ros("ros_gz_interfaces/msg/Contacts", "gz.msgs.Contacts")
+    c = contacts.contacts[1]
+    assert c.collision2.name == "robot::bumper::collision" and c.positions[0].x == 1.0 and list(c.depths) == [0.001]
+    w = c.wrenches[0]
+    assert (w.body_1_name.data, w.body_1_id.data, w.body_2_wrench.torque.z) == ("robot::wheel", 11, 0.3)
+    c.collision2.name = "ground::link::collision"
+    back = _to_gz("ros_gz_interfaces/msg/Contact", "gz.msgs.Contact", c)
+    assert back["collision2"]["name"] == "robot::bumper::collision"  # ros_gz_bridge copies collision1 there
+    frame = _to_ros("ros_gz_interfaces/msg/Dataframe", "gz.msgs.Dataframe")
+    assert frame.rssi == -67.5 and bytes(frame.data) == b"\x00\x01hello" and frame.dst_address == "addr2"
+    assert {"key": "rssi", "value": ["-67.500000"]} in _to_gz(
+        "ros_gz_interfaces/msg/Dataframe", "gz.msgs.Dataframe", frame
+    )["header"]["data"]
+    params = _to_ros("ros_gz_interfaces/msg/ParamVec", "gz.msgs.Param")
+    assert {(p.name, p.value.type) for p in params.params} == {("gain", 3), ("name", 4)}
+    nested = type_pairs.lookup("ros_gz_interfaces/msg/ParamVec", "gz.msgs.Param").convert_to_ros(
+        {"params": {"a": {"type": "INT32", "int_value": 1}}, "children": [{"params": {"b": {"type": "NONE"}}}]}
+    )
+    assert [p.name for p in nested.params] == ["a", "child_0/b"]
+    vec = _to_ros("ros_gz_interfaces/msg/ParamVec", "gz.msgs.Param_V")
+    assert sorted(p.name for p in vec.params) == ["param_0/n", "param_0/on"]
+    gz_vec = _to_gz("ros_gz_interfaces/msg/ParamVec", "gz.msgs.Param_V", vec)
+    assert len(gz_vec["param"]) == 1 and set(gz_vec["param"][0]["params"]) == {"param_0/n", "param_0/on"}
+    floats = _to_ros("ros_gz_interfaces/msg/Float32Array", "gz.msgs.Float_V")
+    assert list(floats.data) == [0.5, -1.25, 3.0]
+    strings = _to_ros("ros_gz_interfaces/msg/StringVec", "gz.msgs.StringMsg_V")
+    assert list(strings.data) == ["a", "b c"]
