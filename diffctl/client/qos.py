@@ -281,10 +281,45 @@ def incompatible_policies(pub: QoSProfile, sub: QoSProfile) -> list[tuple[QoSPol
     return out
 
 
+def _unknown(policy: Any) -> bool:
+    return policy.name in ("SYSTEM_DEFAULT", "UNKNOWN")
+
+
+def _warnings(pub: QoSProfile, sub: QoSProfile) -> str:
+    """rmw_qos_profile_check_compatible's warnings: policies left to the system (or unknown) on either side."""
+    out = []
+    pr, sr = pub.reliability, sub.reliability
+    if _unknown(pr) and _unknown(sr):
+        out.append(f"WARNING: Publisher reliability is {pr.short_key} and subscription reliability is "
+                   f"{sr.short_key};")
+    elif _unknown(pr) and sr == ReliabilityPolicy.RELIABLE:
+        out.append(f"WARNING: Reliable subscription, but publisher is {pr.short_key};")
+    elif pr == ReliabilityPolicy.BEST_EFFORT and _unknown(sr):
+        out.append(f"WARNING: Best effort publisher, but subscription is {sr.short_key};")
+    pd, sd = pub.durability, sub.durability
+    if _unknown(pd) and _unknown(sd):
+        out.append(f"WARNING: Publisher durabilty is {pd.short_key} and subscription durability is {sd.short_key};")
+    elif _unknown(pd) and sd == DurabilityPolicy.TRANSIENT_LOCAL:
+        out.append(f"WARNING: Transient local subscription, but publisher is {pd.short_key};")
+    elif pd == DurabilityPolicy.VOLATILE and _unknown(sd):
+        out.append(f"WARNING: Volatile publisher, but subscription is {sd.short_key};")
+    pl, sl = pub.liveliness, sub.liveliness
+    if _unknown(pl) and _unknown(sl):
+        out.append(f"WARNING: Publisher liveliness is {pl.short_key} and subscription liveliness is {sl.short_key};")
+    elif _unknown(pl) and sl == LivelinessPolicy.MANUAL_BY_TOPIC:
+        out.append(f"WARNING: Subscription's liveliness is manual by topic, but publisher's is {pl.short_key};")
+    elif pl == LivelinessPolicy.AUTOMATIC and _unknown(sl):
+        out.append(f"WARNING: Publisher's liveliness is automatic, but subscription's is {sl.short_key};")
+    return "".join(out)
+
+
 def qos_check_compatible(publisher_qos: QoSProfile, subscription_qos: QoSProfile) -> tuple[QoSCompatibility, str]:
     errors = incompatible_policies(publisher_qos, subscription_qos)
     if errors:
         return QoSCompatibility.ERROR, "".join(reason for _, reason in errors)
+    warnings_text = _warnings(publisher_qos, subscription_qos)
+    if warnings_text:
+        return QoSCompatibility.WARNING, warnings_text
     return QoSCompatibility.OK, ""
 
 

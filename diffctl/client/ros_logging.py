@@ -60,7 +60,7 @@ def configure_from_args(argv: list[str]) -> None:
         name, _, level = spec.rpartition(":=")
         try:
             sev = get_logging_severity_from_string(level)
-        except ValueError:
+        except RuntimeError:
             continue
         if name:
             _levels[name] = sev
@@ -69,13 +69,11 @@ def configure_from_args(argv: list[str]) -> None:
 
 
 def get_logging_severity_from_string(log_severity: str) -> LoggingSeverity:
-    key = log_severity.strip().upper()
-    if key == "WARNING":
-        key = "WARN"
+    """rcutils' names, in any case (UNSET, DEBUG, INFO, WARN, ERROR, FATAL)."""
     try:
-        return LoggingSeverity[key]
+        return LoggingSeverity[log_severity.upper()]
     except KeyError:
-        raise ValueError(f"Unknown log severity {log_severity!r}") from None
+        raise RuntimeError("Failed to get severity name") from None
 
 
 def set_logger_level(name: str, level: int | LoggingSeverity, detailed_error: bool = False) -> None:

@@ -53,3 +53,9 @@ def test_logging_switches_agree(router: str) -> None:
     oracle, ours = run_both("logging_switches.py", router)
     assert_same(oracle, ours)
     assert ours.log_lines() == oracle.log_lines()
+
+
+def test_values_agree(router: str) -> None:
+    """QoS profiles as printed, the compatibility check's verdict and words for every policy pairing, time and
+    parameter values, logging severities."""
+    assert_same(*run_both("values.py", router))
