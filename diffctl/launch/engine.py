@@ -325,7 +325,7 @@ class Engine:
         try:
             self.visit_all(entities)
         except LaunchError as e:
-            self.services.effect(Unknown(what=self._current[1] or "actions", why=str(e)))
+            self.services.effect(Unknown(what="actions", why=str(e)))
         finally:
             self.context = saved
         return recorder.close()

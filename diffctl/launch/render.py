@@ -157,7 +157,7 @@ def _steps(node: _Node, steps: Iterable[Step]) -> None:
         elif isinstance(step, Skipped):
             node.add(f"skipped ({step.condition}): {step.what}", "dim")
         elif isinstance(step, Unknown):
-            node.add(f"known only when it runs: {step.what}: {step.why}", "yellow")
+            node.add(f"known only when it runs: {step.why}", "yellow")
 
 
 class PlanView:
