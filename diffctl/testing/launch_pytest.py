@@ -162,7 +162,75 @@ def _marked_fixture(item: Any) -> str | None:
     return _fixture_name(obj) if obj is not None else None
 
 
+@pytest.hookimpl(trylast=True)  # after pytest grouped the items by their fixtures' parameters
 def pytest_collection_modifyitems(session: pytest.Session, config: pytest.Config, items: list[Any]) -> None:
+    _add_launch_fixtures(items)
+    items[:] = _shutdown_tests_last(items)
+
+
+def _launch_key(item: Any) -> tuple[str, str] | None:
+    """(fixture, parameter) of a test on a launch that outlives it (a launch per test needs no ordering)."""
+    name = _marked_fixture(item)
+    if name is None or _function_scoped(item):
+        return None
+    callspec = getattr(item, "callspec", None)
+    param = callspec.params.get(name, None) if callspec is not None else None
+    return name, repr(param)
+
+
+def _shutdown_tests_last(items: list[Any]) -> list[Any]:
+    """In each run of items on one launch (fixture and parameter), the `shutdown=True` ones go last, as they
+    end that launch."""
+    out: list[Any] = []
+    i = 0
+    while i < len(items):
+        key = _launch_key(items[i])
+        j = i + 1
+        while key is not None and j < len(items) and _launch_key(items[j]) == key:
+            j += 1
+        run = items[i:j]
+        keep = [t for t in run if not _marker(t).kwargs.get("shutdown")] if key is not None else run
+        out += keep + [t for t in run if t not in keep]
+        if key is not None and any(_is_generator(t.obj) for t in run):
+            last = run[-1]
+            param = "" if key[1] == "None" else f"[{key[1].strip(chr(39))}]"
+            label = f"{key[0]}{param}[shutdown_test]"
+            out.append(ShutdownTestItem.from_parent(last.parent, name=label, fixture_name=key[0]))
+        i = j
+    return out
+
+
+def _is_generator(fn: Any) -> bool:
+    return inspect.isgeneratorfunction(fn) or inspect.isasyncgenfunction(fn)
+
+
+class ShutdownTestItem(pytest.Item):
+    """After the tests on one launch: shut it down, then run the parts of its generator tests after `yield`."""
+
+    def __init__(self, *, fixture_name: str, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.fixture_name = fixture_name
+
+    def runtest(self) -> None:
+        session = _SESSIONS.get(self.fixture_name)
+        if session is None:
+            return
+        session.shutdown()
+        parts, session.after_shutdown = session.after_shutdown, []
+        errors = []
+        for part in parts:
+            try:
+                part()
+            except BaseException as e:
+                errors.append(e)
+        if errors:
+            raise errors[0]
+
+    def reportinfo(self) -> tuple[Any, int, str]:
+        return self.path, 0, self.name
+
+
+def _add_launch_fixtures(items: list[Any]) -> None:
     for item in items:
         mark = _marker(item)
         if mark is None:

@@ -167,6 +167,15 @@ class LaunchService:
     def running(self) -> bool:
         return self._thread.is_alive()
 
+    def _is_idle(self) -> bool:
+        """No process running and nothing pending (what launch_pytest's examples check after shutdown)."""
+        return not self.running or self.supervisor._idle()
+
+    @property
+    def event_loop(self) -> Any:
+        """The loop while the launch runs, None once it ended (as LaunchService.event_loop)."""
+        return self.loop if self.running else None
+
     def wait(self, timeout: float | None = None) -> bool:
         """Wait until the launch has ended (every process reaped); False on timeout."""
         self._thread.join(timeout)

@@ -15,7 +15,12 @@ FILES = Path(__file__).resolve().parent / "launch_tests"
 @pytest.mark.slow
 def test_launch_pytest_examples(tmp_path: Path) -> None:
     shutil.copy(FILES / "pytest_hello_world.py", tmp_path / "test_hello_world.py")
+    shutil.copy(FILES / "pytest_module_scope.py", tmp_path / "test_module_scope.py")
     shutil.copy(FILES / "talker.py", tmp_path / "talker.py")
+    r = subprocess.run([sys.executable, "-m", "pytest", "-p", "no:cacheprovider", "test_module_scope.py", "-v"],
+                       cwd=tmp_path, capture_output=True, text=True, timeout=120, start_new_session=True)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "keep_alive_launch[one][shutdown_test] PASSED" in r.stdout and "test_order PASSED" in r.stdout
     r = subprocess.run([sys.executable, "-m", "diffctl", "test", "test_hello_world.py", "--junit-xml", "r.xml"],
                        cwd=tmp_path, capture_output=True, text=True, timeout=120, start_new_session=True)
     assert r.returncode == 1, r.stdout + r.stderr
