@@ -14,6 +14,7 @@ from diffctl.bridge import conversions as c
 from diffctl.bridge import covariance_conversions as cv
 from diffctl.bridge import geometry_conversions as g
 from diffctl.bridge import gz_interfaces_conversions as gi
+from diffctl.bridge import gz_scene_conversions as gs
 from diffctl.bridge import sensor_conversions as sc
 from diffctl.bridge import std_conversions as st
 from diffctl.errors import MessageError
@@ -147,6 +148,17 @@ TYPE_PAIRS: tuple[TypePair, ...] = (
     TypePair("ros_gz_interfaces/msg/StringVec", "gz.msgs.StringMsg_V", gi.string_v_to_ros, gi.string_v_to_gz),
     TypePair("ros_gz_interfaces/msg/ParamVec", "gz.msgs.Param", gi.param_to_ros, gi.param_to_gz),
     TypePair("ros_gz_interfaces/msg/ParamVec", "gz.msgs.Param_V", gi.param_v_to_ros, gi.param_v_to_gz),
+    TypePair("ros_gz_interfaces/msg/Light", "gz.msgs.Light", gs.light_to_ros, gs.light_to_gz),
+    TypePair(
+        "ros_gz_interfaces/msg/MaterialColor",
+        "gz.msgs.MaterialColor",
+        gs.material_color_to_ros,
+        gs.material_color_to_gz,
+    ),
+    TypePair("ros_gz_interfaces/msg/SensorNoise", "gz.msgs.SensorNoise", gs.sensor_noise_to_ros, gs.sensor_noise_to_gz),
+    TypePair("ros_gz_interfaces/msg/TrackVisual", "gz.msgs.TrackVisual", gs.track_visual_to_ros, gs.track_visual_to_gz),
+    TypePair("ros_gz_interfaces/msg/GuiCamera", "gz.msgs.GUICamera", gs.gui_camera_to_ros, gs.gui_camera_to_gz),
+    TypePair("ros_gz_interfaces/msg/VideoRecord", "gz.msgs.VideoRecord", gs.video_record_to_ros, gs.video_record_to_gz),
     TypePair(
         "nav_msgs/msg/Odometry",
         "gz.msgs.OdometryWithCovariance",

@@ -51,6 +51,19 @@ CONTACT = {
     "wrench": [JOINT_WRENCH],
 }
 
+TRACK = {
+    "header": gz.header(2, frame_id="gui"),
+    "name": "robot",
+    "id": 8,
+    "inherit_orientation": True,
+    "min_dist": 0.5,
+    "max_dist": 10.0,
+    "static": False,
+    "use_model_frame": True,
+    "xyz": {"x": -2.0, "y": 0.0, "z": 1.0},
+    "inherit_yaw": True,
+}
+
 GZ_SAMPLES: dict[tuple[str, str], dict] = {
     ("rosgraph_msgs/msg/Clock", "gz.msgs.Clock"): {
         "header": gz.header(7),
@@ -233,6 +246,62 @@ GZ_SAMPLES: dict[tuple[str, str], dict] = {
     ("ros_gz_interfaces/msg/ParamVec", "gz.msgs.Param_V"): {
         "header": H,
         "param": [{"params": {"on": {"type": "BOOLEAN", "bool_value": True}, "n": {"type": "INT32", "int_value": 3}}}],
+    },
+    ("ros_gz_interfaces/msg/Light", "gz.msgs.Light"): {
+        "header": H,
+        "name": "lamp",
+        "type": "SPOT",
+        "pose": {"position": {"x": 0.0, "y": 0.0, "z": 3.0}, "orientation": {"x": 0, "y": 0, "z": 0, "w": 1.0}},
+        "diffuse": {"r": 1.0, "g": 0.5, "b": 0.25, "a": 1.0},
+        "specular": {"r": 0.5, "g": 0.5, "b": 0.5, "a": 1.0},
+        "attenuation_constant": 0.5,
+        "attenuation_linear": 0.25,
+        "attenuation_quadratic": 0.125,
+        "direction": {"x": 0.0, "y": 0.0, "z": -1.0},
+        "range": 20.0,
+        "cast_shadows": True,
+        "spot_inner_angle": 0.5,
+        "spot_outer_angle": 1.0,
+        "spot_falloff": 0.75,
+        "id": 4,
+        "parent_id": 1,
+        "intensity": 2.0,
+    },
+    ("ros_gz_interfaces/msg/MaterialColor", "gz.msgs.MaterialColor"): {
+        "header": H,
+        "entity": {"id": 0, "name": "box::link::visual", "type": "VISUAL"},
+        "ambient": {"r": 0.25, "g": 0.25, "b": 0.25, "a": 1.0},
+        "diffuse": {"r": 1.0, "g": 0.0, "b": 0.0, "a": 1.0},
+        "specular": {"r": 0.5, "g": 0.5, "b": 0.5, "a": 1.0},
+        "emissive": {"r": 0.0, "g": 0.0, "b": 0.0, "a": 1.0},
+        "shininess": 8.0,
+        "entity_match": "ALL",
+    },
+    ("ros_gz_interfaces/msg/SensorNoise", "gz.msgs.SensorNoise"): {
+        "header": H,
+        "type": "GAUSSIAN_QUANTIZED",
+        "mean": 0.0,
+        "stddev": 0.01,
+        "bias_mean": 0.001,
+        "bias_stddev": 0.0005,
+        "precision": 0.1,
+        "dynamic_bias_stddev": 0.002,
+    },
+    ("ros_gz_interfaces/msg/TrackVisual", "gz.msgs.TrackVisual"): TRACK,
+    ("ros_gz_interfaces/msg/GuiCamera", "gz.msgs.GUICamera"): {
+        "header": H,
+        "name": "user_camera",
+        "view_controller": "orbit",
+        "pose": {"position": {"x": -6.0, "y": 0.0, "z": 6.0}, "orientation": {"x": 0, "y": 0.38, "z": 0, "w": 0.92}},
+        "track": TRACK,
+        "projection_type": "perspective",
+    },
+    ("ros_gz_interfaces/msg/VideoRecord", "gz.msgs.VideoRecord"): {
+        "header": H,
+        "start": True,
+        "stop": False,
+        "format": "mp4",
+        "save_filename": "/tmp/run.mp4",
     },
     ("sensor_msgs/msg/BatteryState", "gz.msgs.BatteryState"): {
         "header": gz.header(12, frame_id="robot::battery"),

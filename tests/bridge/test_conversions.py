@@ -447,3 +447,18 @@ def test_ros_gz_interfaces_pairs_as_ros_gz_bridge_converts_them() -> None:
     assert list(floats.data) == [0.5, -1.25, 3.0]
     strings = _to_ros("ros_gz_interfaces/msg/StringVec", "gz.msgs.StringMsg_V")
     assert list(strings.data) == ["a", "b c"]
+
+
+def test_scene_messages_map_their_enums_as_ros_gz_bridge_does() -> None:
+    light = _to_ros("ros_gz_interfaces/msg/Light", "gz.msgs.Light")
+    assert (light.type, light.range, light.cast_shadows, light.parent_id) == (light.SPOT, 20.0, True, 1)
+    light.type = 7  # not a light type: the gz field stays unset
+    assert "type" not in _to_gz("ros_gz_interfaces/msg/Light", "gz.msgs.Light", light)
+    noise = _to_ros("ros_gz_interfaces/msg/SensorNoise", "gz.msgs.SensorNoise")
+    assert noise.type == noise.GAUSSIAN_QUANTIZED == 3 and noise.dynamic_bias_correlation_time == 0.0
+    color = _to_ros("ros_gz_interfaces/msg/MaterialColor", "gz.msgs.MaterialColor")
+    assert color.entity_match == color.ALL and color.entity.type == color.entity.VISUAL
+    cam = _to_ros("ros_gz_interfaces/msg/GuiCamera", "gz.msgs.GUICamera")
+    assert cam.track.name == "robot" and cam.track.use_model_frame and cam.view_controller == "orbit"
+    record = _to_ros("ros_gz_interfaces/msg/VideoRecord", "gz.msgs.VideoRecord")
+    assert (record.start, record.stop, record.format) == (True, False, "mp4")
