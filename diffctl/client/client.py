@@ -9,6 +9,7 @@ from collections.abc import Callable
 from typing import Any
 
 from diffctl.client import waiting
+from diffctl.client.exceptions import InvalidHandle
 from diffctl.client.interfaces import deserialize, serialize
 from diffctl.client.task import Future
 
@@ -30,6 +31,8 @@ class Client:
         self._destroyed = False
 
     def call_async(self, request: Any) -> Future:
+        if self._destroyed:
+            raise InvalidHandle("cannot use Destroyable because destruction was requested")
         if not isinstance(request, self.srv_type.Request):
             raise TypeError()
         data = serialize(request)
@@ -100,6 +103,11 @@ class Client:
             if graph.wait_for(self.service_is_ready, 0.25 if left is None else min(left, 0.25)):
                 return True
         return self.service_is_ready()
+
+    @property
+    def service_name(self) -> str:
+        """The fully qualified, remapped service name."""
+        return self._bus.name
 
     @property
     def handle(self) -> Client:

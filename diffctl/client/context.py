@@ -78,7 +78,7 @@ class Context:
                 if not self._init_called:
                     raise RuntimeError("Context must be initialized before it can be shutdown")
                 raise RCLError("failed to shutdown: rcl_shutdown already called on the given context, "
-                               "at ./src/rcl/init.c:241")
+                               "at /project/src/rcl/init.c:333")
             self._ok = False
             self._call_on_shutdown()
         waiting.notify()

@@ -125,6 +125,10 @@ class InvalidQosOverridesError(Exception):
     pass
 
 
+class NodeNameNonExistentError(RCLError):
+    """A graph query about a node that is not in the graph."""
+
+
 # Tracebacks name them as rclpy does (`rclpy.exceptions.ParameterNotDeclaredException: …`); the overlay's
 # rclpy.exceptions is where users import them from.
 for _cls in list(globals().values()):

@@ -63,25 +63,41 @@ def validate_namespace(namespace: str) -> bool:
 
 
 def validate_topic_name(name: str, *, is_service: bool = False) -> bool:
+    """rcl_validate_topic_name: the same checks and words for topics and services (only the exception's
+    name differs)."""
     exc = InvalidServiceNameException if is_service else InvalidTopicNameException
-    what = "service name" if is_service else "topic name"
     if not name:
-        raise exc(name, f"{what} must not be empty", 0)
+        raise exc(name, "topic name must not be empty string", 0)
     if name.endswith("/"):
-        raise exc(name, f"{what} must not end with a forward slash", len(name) - 1)
-    i = _bad_char(name, "_/~{}")
-    if i >= 0:
-        raise exc(name, f"{what} must not contain characters other than alphanumerics, '_', '~', '{{', or '}}'", i)
-    if name[0].isdigit():
-        raise exc(name, f"{what} must not start with a numeric character", 0)
-    i = name.find("//")
-    if i >= 0:
-        raise exc(name, f"{what} must not contain repeated forward slashes", i + 1)
-    i = name.find("~", 1)
-    if i >= 0:
-        raise exc(name, f"{what} must not have tilde '~' unless it is the first character", i)
-    if name.startswith("~") and len(name) > 1 and name[1] != "/":
-        raise exc(name, f"{what} must not have a tilde that is not followed by a forward slash", 1)
+        raise exc(name, "topic name must not end with a forward slash", len(name) - 1)
+    curly = -1
+    for i, c in enumerate(name):
+        if c.isascii() and (c.isalnum() or c == "_"):
+            if curly >= 0 and i == curly + 1 and c.isdigit():
+                raise exc(name, "substitution name must not start with a number", i)
+        elif c == "/" and curly < 0:
+            continue
+        elif c == "~" and curly < 0:
+            if i != 0:
+                raise exc(name, "topic name must not have tilde '~' unless it is the first character", i)
+        elif c == "{" and curly < 0:
+            curly = i
+        elif c == "}" and curly >= 0:
+            curly = -1
+        elif c in "{}":
+            raise exc(name, "topic name must not have unmatched (unbalanced) curly braces '{}'", i)
+        elif curly >= 0:
+            raise exc(name, "substitution name must not contain characters other than alphanumerics or '_'", i)
+        else:
+            raise exc(name, "topic name must not contain characters other than alphanumerics, '_', '~', '{', or '}'",
+                      i)
+    if curly >= 0:
+        raise exc(name, "topic name must not have unmatched (unbalanced) curly braces '{}'", curly)
+    pos = 0
+    for token in name.split("/"):
+        if token and token[0].isdigit():
+            raise exc(name, "topic name token must not start with a number", pos)
+        pos += len(token) + 1
     return True
 
 

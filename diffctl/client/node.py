@@ -21,7 +21,7 @@ from diffctl.client.client import Client
 from diffctl.client.clock import Clock, ROSClock
 from diffctl.client.context import Context, get_default_context
 from diffctl.client.event_handler import PublisherEventCallbacks, SubscriptionEventCallbacks
-from diffctl.client.exceptions import NotInitializedException
+from diffctl.client.exceptions import NodeNameNonExistentError, NotInitializedException, RCLError
 from diffctl.client.guard_condition import GuardCondition
 from diffctl.client.interfaces import check_message_type, cls, type_name
 from diffctl.client.names import (
@@ -440,6 +440,8 @@ class Node:
                      callback_group: CallbackGroup | None = None, clock: Clock | None = None,
                      autostart: bool = True) -> Timer:
         period_ns = int(float(timer_period_sec) * 1_000_000_000)
+        if period_ns < 0:
+            raise RCLError("failed to create timer: timer period must be non-negative, at /project/src/rcl/timer.c:157")
         callback_group = callback_group or self.default_callback_group
         timer = Timer(callback, callback_group, period_ns, clock or self._clock, context=self.context,
                       autostart=autostart)
@@ -536,31 +538,29 @@ class Node:
                 out.setdefault(e.topic, set()).add(e.type)
         return [(k, sorted(v)) for k, v in sorted(out.items())]
 
-    def _check_node_exists(self, node_name: str, node_namespace: str) -> None:
+    def _check_node_exists(self, node_name: str, node_namespace: str, what: str) -> None:
         ns = normalize_namespace(node_namespace)
         if (node_name, ns) not in self.get_node_names_and_namespaces():
-            from diffctl.client.exceptions import RCLError
-
-            raise RCLError(f"Node name not found: {ns.rstrip('/')}/{node_name}")
+            raise NodeNameNonExistentError(f"cannot get {what} names and types for nonexistent node: error not set")
 
     def get_publisher_names_and_types_by_node(self, node_name: str, node_namespace: str,
                                               no_demangle: bool = False) -> list[tuple[str, list[str]]]:
-        self._check_node_exists(node_name, node_namespace)
+        self._check_node_exists(node_name, node_namespace, "publisher")
         return self._by_node(node_name, node_namespace, (wire.KIND_PUB,))
 
     def get_subscriber_names_and_types_by_node(self, node_name: str, node_namespace: str,
                                                no_demangle: bool = False) -> list[tuple[str, list[str]]]:
-        self._check_node_exists(node_name, node_namespace)
+        self._check_node_exists(node_name, node_namespace, "subscriber")
         return self._by_node(node_name, node_namespace, (wire.KIND_SUB,))
 
     def get_service_names_and_types_by_node(self, node_name: str, node_namespace: str
                                             ) -> list[tuple[str, list[str]]]:
-        self._check_node_exists(node_name, node_namespace)
+        self._check_node_exists(node_name, node_namespace, "service")
         return self._by_node(node_name, node_namespace, (wire.KIND_SERVICE,))
 
     def get_client_names_and_types_by_node(self, node_name: str, node_namespace: str
                                            ) -> list[tuple[str, list[str]]]:
-        self._check_node_exists(node_name, node_namespace)
+        self._check_node_exists(node_name, node_namespace, "client")
         return self._by_node(node_name, node_namespace, (wire.KIND_CLIENT,))
 
     def get_topic_names_and_types(self, no_demangle: bool = False) -> list[tuple[str, list[str]]]:

@@ -29,6 +29,8 @@ from diffctl.client.interfaces import cls
 from diffctl.client.parameter import PARAMETER_SEPARATOR_STRING, Parameter, from_python_value, python_value
 
 PARAM_REL_TOL = 1e-6
+_RCLPY_DESCRIPTIONS = {"use_sim_time": "",
+                       "start_type_description_service": "If enabled, start the ~/get_type_description service."}
 
 
 def _descriptor(**kw: Any) -> Any:
@@ -329,9 +331,10 @@ class NodeParameters(ParameterStore):
 
     # ------------------------------------------------------------------ the bus store's interface
     def declare(self, name: str, default: Any, descriptor: BusDescriptor | None = None) -> Any:
-        """A declare by the bus node itself (use_sim_time, start_type_description_service)."""
+        """A declare by the bus node itself (use_sim_time, start_type_description_service), described as rclpy's
+        TimeSource and TypeDescriptionService describe them."""
         desc = _descriptor(read_only=bool(descriptor and descriptor.read_only),
-                           description=descriptor.description if descriptor else "")
+                           description=_RCLPY_DESCRIPTIONS.get(name, descriptor.description if descriptor else ""))
         if name in self.parameters:
             return self.values.get(name)
         return python_value(self.declare_parameters("", [(name, default, desc)])[0])

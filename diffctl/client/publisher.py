@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from diffctl.client.duration import Duration
+from diffctl.client.exceptions import InvalidHandle
 from diffctl.client.interfaces import serialize
 
 
@@ -26,6 +27,8 @@ class Publisher:
         self.event_handlers = event_callbacks.create_event_handlers(callback_group, self, topic)
 
     def publish(self, msg: Any) -> None:
+        if self._destroyed:
+            raise InvalidHandle("cannot use Destroyable because destruction was requested")
         if type(msg) is self.msg_type or isinstance(msg, self.msg_type):
             self._publish_raw(serialize(msg))
         elif isinstance(msg, (bytes, bytearray)):

@@ -59,3 +59,11 @@ def test_values_agree(router: str) -> None:
     """QoS profiles as printed, the compatibility check's verdict and words for every policy pairing, time and
     parameter values, logging severities."""
     assert_same(*run_both("values.py", router))
+
+
+def test_node_api_details_agree(router: str) -> None:
+    assert_same(*run_both("node_api.py", router))
+
+
+def test_name_validation_agrees(router: str) -> None:
+    assert_same(*run_both("names_graph.py", router))
