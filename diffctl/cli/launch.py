@@ -134,10 +134,11 @@ def launch(
     run_dir = None if show_args or print_plan else log_dir or default_log_dir()
     server = None if run_dir is None else _start_fork_server(run_dir)
     try:
+        from diffctl.cli.show_args import arguments_text
         from diffctl.console import make_console, warn
         from diffctl.launch import package_index
         from diffctl.launch.loader import load
-        from diffctl.launch.render import ArgumentsView, PlanView
+        from diffctl.launch.render import PlanView
         from diffctl.launch.resolver import Resolver, declared_arguments
 
         path = package_index.find_launch_file(*positional)
@@ -145,7 +146,7 @@ def launch(
         # Piped output is not cut to 80 columns: paths and commands must stay whole.
         console = make_console(no_color=no_color, width=None if sys.stdout.isatty() else 200)
         if show_args:
-            console.print(ArgumentsView(declared_arguments(description, str(path))))
+            print(arguments_text(declared_arguments(description, str(path))), end="")
             return
         if print_plan:
             # A dry run of the engine: what starts, with handlers and timers previewed as of now.
