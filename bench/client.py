@@ -4,7 +4,7 @@
 Keys (`rclpy_*` ours, `rclpy_real_*` the real one): `*_rtt_p50_us` / `*_rtt_p99_us` (geometry_msgs/Twist
 ping → pong node → back, each side a spinning rclpy node), `*_pubsub_msgs_per_s` (one node publishing Twist
 as fast as it can, another counting in its subscription callback), `*_node_start_ms` (rclpy.init → node →
-publisher → first publish returned, median of 3 fresh processes).
+publisher → first publish returned, median of 5 fresh processes).
 """
 
 from __future__ import annotations
@@ -124,7 +124,7 @@ def _measure(cmd: list[str], env: dict[str, str], prefix: str) -> dict:
         return json.loads(lines[-1])
 
     try:
-        starts = [result(start("start")) for _ in range(3)]
+        starts = [result(start("start")) for _ in range(5)]
         pong = start("pong")
         assert pong.stdout.readline().strip() == "ready"
         rtts = result(start("ping", str(SAMPLES + WARMUP), str(WARMUP)))["rtts"]
