@@ -58,7 +58,7 @@ def test_examples_pass_and_fail_where_launch_test_does(tmp_path: Path) -> None:
     assert "Starting test run params_launch_test.params_launch_test.launch_tests[thing=Off]" in out
     assert "Summary: 7 test files, 5 passed, 2 failed" in out
     assert cases["TestTerminatingProc.test_unhandled_exception"] == ""  # launch_testing's example processes
-    for name in ("test_talker_transmits", "test_listener_receives", "test_wait_for_topics"):
+    for name in ("test_talker_transmits", "test_listener_receives", "test_republished_data", "test_wait_for_topics"):
         assert cases[f"TestTalkerListenerLink.{name}"] == ""  # rclpy test bodies on the test's own bus
     assert "test_count_to_four (good_proc_launch_test.TestGoodProcess.test_count_to_four) ..." in out  # unittest's
     root = ET.parse(xml).getroot()

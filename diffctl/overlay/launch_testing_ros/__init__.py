@@ -1,7 +1,8 @@
-"""`launch_testing_ros` (diffctl/testing/): WaitForTopics, the output filters, LaunchTestRunner."""
+"""`launch_testing_ros` (diffctl/testing/): WaitForTopics, DataRepublisher, MessagePump, the output filters."""
 
+from diffctl.testing.ros_helpers import DataRepublisher, MessagePump
 from diffctl.testing.wait_for_topics import WaitForTopics
 
 from . import tools  # noqa: F401
 
-__all__ = ["WaitForTopics"]
+__all__ = ["DataRepublisher", "MessagePump", "WaitForTopics"]

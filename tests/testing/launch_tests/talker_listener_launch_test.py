@@ -78,6 +78,24 @@ class TestTalkerListenerLink(unittest.TestCase):
         finally:
             self.node.destroy_publisher(pub)
 
+    def test_republished_data(self, listener, proc_output):
+        def shout(msg):
+            return String(data=msg.data.upper()) if msg.data.endswith(("0", "2", "4", "6", "8")) else None
+
+        republisher = launch_testing_ros.DataRepublisher(self.node, "chatter", "listener_chatter", String, shout)
+        pump = launch_testing_ros.MessagePump(self.node)
+        pump.start()
+        try:
+            proc_output.assertWaitFor("I heard: [HELLO WORLD:", process=listener, timeout=10, stream="stdout")
+            end_time = time.time() + 10
+            while time.time() < end_time and republisher.get_num_received() < 4:
+                time.sleep(0.05)
+            self.assertGreater(republisher.get_num_received(), republisher.get_num_republished())  # odd ones dropped
+            self.assertGreaterEqual(republisher.get_num_republished(), 1)
+        finally:
+            pump.stop()
+            republisher.shutdown()
+
     def test_wait_for_topics(self):
         with launch_testing_ros.WaitForTopics([("chatter", String)], timeout=10.0) as wait:
             self.assertEqual(wait.topics_not_received(), set())
