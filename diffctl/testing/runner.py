@@ -242,7 +242,10 @@ def run_file(
                 print(f"\nStarting test run {run}", file=stdout)
             run_dir = root / (f"run{index}" if len(runs) > 1 else "run")
             bus = isolated_bus() if isolate else contextlib.nullcontext()
-            with bus:
+            with bus as where:
+                if where is not None:
+                    print(f"Running with ROS_DOMAIN_ID {where.domain_id} on the router {where.endpoint}",
+                          file=stdout)
                 kept = None
                 if artifacts is not None:
                     from diffctl.testing.artifacts import Artifacts
