@@ -53,20 +53,26 @@ def command(test: TestFile, junit: Path, arguments: list[str], artifacts: Path |
     return argv
 
 
+_RUNNING: set[subprocess.Popen] = set()
+_RUNNING_LOCK = threading.Lock()
+
+
 def run_one(test: TestFile, junit: Path, arguments: list[str], timeout_s: float,
             artifacts: Path | None = None) -> Outcome:
     argv = command(test, junit, arguments, artifacts)
     started = time.monotonic()
-    proc = subprocess.Popen(
-        argv,
-        stdout=subprocess.PIPE,
-        stderr=subprocess.STDOUT,
-        stdin=subprocess.DEVNULL,
-        cwd=str(test.root) if test.root else None,
-        start_new_session=True,
-        text=True,
-        errors="replace",
-    )
+    with _RUNNING_LOCK:
+        proc = subprocess.Popen(
+            argv,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            stdin=subprocess.DEVNULL,
+            cwd=str(test.root) if test.root else None,
+            start_new_session=True,
+            text=True,
+            errors="replace",
+        )
+        _RUNNING.add(proc)
     timed_out = False
     try:
         output, _ = proc.communicate(timeout=timeout_s)
@@ -78,6 +84,8 @@ def run_one(test: TestFile, junit: Path, arguments: list[str], timeout_s: float,
     finally:
         if proc.poll() is None:
             _kill_session(proc)
+        with _RUNNING_LOCK:
+            _RUNNING.discard(proc)
     return Outcome(test, proc.returncode, output, time.monotonic() - started, timed_out, junit)
 
 
@@ -106,5 +114,17 @@ def run_all(tests: list[TestFile], *, jobs: int, junit_dir: Path, arguments: lis
             on_done(outcome)
 
     with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
-        list(pool.map(one, range(len(tests))))
+        try:
+            list(pool.map(one, range(len(tests))))
+        except BaseException:
+            # Ctrl-C (or a bug here): the tests running in sessions of their own stop with us.
+            pool.shutdown(wait=False, cancel_futures=True)
+            with _RUNNING_LOCK:
+                running = list(_RUNNING)
+            for proc in running:
+                try:
+                    os.killpg(proc.pid, signal.SIGKILL)
+                except (ProcessLookupError, PermissionError):
+                    pass
+            raise
     return [o for o in outcomes if o is not None]

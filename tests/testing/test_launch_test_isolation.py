@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import time
@@ -34,7 +36,7 @@ def test_two_tests_at_once_do_not_hear_each_other(tmp_path: Path) -> None:
 @pytest.mark.slow
 def test_hanging_test_is_stopped_at_its_timeout_and_leaves_nothing(tmp_path: Path) -> None:
     marker = f"{4000 + uuid.uuid4().int % 1000}.{uuid.uuid4().int % 9 + 1}"
-    env = {**__import__("os").environ, "HANG_MARKER": marker}
+    env = {**os.environ, "HANG_MARKER": marker}
     started = time.monotonic()
     r = subprocess.run([sys.executable, "-m", "diffctl", "test", str(FILES / "hanging_launch_test.py"),
                         "--timeout", "4"], capture_output=True, text=True, timeout=60, env=env,
@@ -43,11 +45,37 @@ def test_hanging_test_is_stopped_at_its_timeout_and_leaves_nothing(tmp_path: Pat
     assert r.returncode == 1
     assert "timed out after 4 s" in r.stdout and "hanging" in r.stdout
     assert took < 15
-    deadline = time.monotonic() + 3
-    left: list[psutil.Process] = []
-    while time.monotonic() < deadline:
-        left = [p for p in psutil.process_iter(["cmdline"]) if marker in " ".join(p.info["cmdline"] or [])]
-        if not left:
-            break
-        time.sleep(0.1)
+    left = _left(marker)
     assert not left, [p.info["cmdline"] for p in left]
+
+
+def _left(marker: str) -> list[psutil.Process]:
+    deadline = time.monotonic() + 3
+    while True:
+        left = [p for p in psutil.process_iter(["cmdline"]) if marker in " ".join(p.info["cmdline"] or [])]
+        if not left or time.monotonic() > deadline:
+            return left
+        time.sleep(0.1)
+
+
+@pytest.mark.slow
+def test_ctrl_c_stops_running_tests_and_their_processes() -> None:
+    marker = f"{5000 + uuid.uuid4().int % 1000}.{uuid.uuid4().int % 9 + 1}"
+    env = {**os.environ, "HANG_MARKER": marker}
+    p = subprocess.Popen([sys.executable, "-m", "diffctl", "test", str(FILES / "hanging_launch_test.py")],
+                         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env,
+                         start_new_session=True)
+    try:
+        deadline = time.monotonic() + 20
+        while not _left(marker)[:1] and time.monotonic() < deadline:
+            time.sleep(0.1)
+        assert _left(marker), "the hanging test never started"
+        os.killpg(p.pid, signal.SIGINT)
+        assert p.wait(10) == 130
+    finally:
+        if p.poll() is None:
+            p.kill()
+            p.wait()
+        p.stdout.close()
+    left = _left(marker)
+    assert not left, [q.info["cmdline"] for q in left]
