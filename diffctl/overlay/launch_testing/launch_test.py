@@ -1,8 +1,8 @@
 """`python -m launch_testing.launch_test FILE` (diffctl/testing/launch_test.py)."""
 
-import sys
+from diffctl.testing.launch_test import main, run_and_exit
 
-from diffctl.testing.launch_test import main
+__all__ = ["main"]
 
 if __name__ == "__main__":
-    sys.exit(main())
+    run_and_exit()
