@@ -307,7 +307,8 @@ class Client:
                        timeout_s: float = 3600.0) -> int:
         """Send a serialized request; `on_reply(response_bytes, None)` or `on_reply(None, error)` later, on a
         Zenoh thread. A request that found no queryable while the graph shows a server (its route not yet
-        propagated) is sent again for up to 2 s; with no server at all it stays unanswered, as in ROS."""
+        propagated) is sent again for up to 10 s (a loaded machine can take seconds); with no server at all it stays
+        unanswered, as in ROS."""
         with self._lock:
             seq = next(self._seq)
         attachment = wire.pack_attachment(seq, time.time_ns(), self._gid)
@@ -330,7 +331,7 @@ class Client:
             def done() -> None:
                 if answered or self.closed:
                     return
-                if time.monotonic() - first < 2.0 and self.service_is_ready():
+                if time.monotonic() - first < 10.0 and self.service_is_ready():
                     t = threading.Timer(0.02, send)
                     t.daemon = True
                     t.start()
