@@ -34,6 +34,8 @@ def make_parser() -> argparse.ArgumentParser:
     parser.add_argument("--log-dir", default=None, help="keep the processes' logs here")
     parser.add_argument("--artifacts", default=None, help="on failure: logs, a bag and a picture of the scene here")
     parser.add_argument("--no-isolation", action="store_true", help="use the bus of the environment as it is")
+    parser.add_argument("--fork-server", action="store_true",
+                        help="fork diffctl's components from a zygote (saves CPU when tests run side by side)")
     parser.add_argument("-s", "--show-args", action="store_true", help="show the launch arguments and exit")
     parser.add_argument("-v", "--verbose", action="store_true")
     return parser
@@ -67,6 +69,11 @@ def main(argv: list[str] | None = None) -> int:
     from diffctl.workspace import find_workspace, use_in_children
 
     use_in_children(find_workspace(explicit=None))
+    if args.fork_server:
+        from diffctl.cli.fork_preload import SPEC
+        from diffctl.testing.service import use_fork_server
+
+        use_fork_server(SPEC)
     try:
         if args.show_args:
             _show_args(path, args.package_name)

@@ -32,6 +32,7 @@ class RobotFacts:
     controller: str
     controller_yaml: Path
     left_wheel: str
+    cmd_vel_timeout_s: float
     wheel_radius_m: float | None
     wheel_radius_from: str
     launch_arguments: dict[str, str]
@@ -61,7 +62,7 @@ def _files(share: Path, pattern: str, depth: int = 4) -> list[Path]:
     return out
 
 
-def _controller(share: Path) -> tuple[str, Path, str]:
+def _controller(share: Path) -> tuple[str, Path, str, float]:
     for path in _files(share, "*.yaml"):
         if "diff_drive_controller" not in path.read_text(errors="replace"):
             continue
@@ -77,7 +78,7 @@ def _controller(share: Path) -> tuple[str, Path, str]:
                 wheels = params.get("left_wheel_names") or []
                 if not wheels:
                     raise ConfigError(f"{path}: {name} has no left_wheel_names")
-                return str(name), path, str(wheels[0])
+                return str(name), path, str(wheels[0]), float(params.get("cmd_vel_timeout", 0.5))
     raise ConfigError(f"no controller YAML with a {DIFF_DRIVE_TYPE} under {share}",
                       hint="the smoke test drives a diff drive robot")
 
@@ -147,7 +148,7 @@ def robot_facts(package: str) -> RobotFacts:
     from diffctl.workspace import find_package
 
     share = find_package(package).share
-    controller, controller_yaml, left_wheel = _controller(share)
+    controller, controller_yaml, left_wheel, cmd_vel_timeout_s = _controller(share)
     launch = _launch_file(share, controller_yaml)
     text = launch.read_text(errors="replace")
     shares = [share]
@@ -161,8 +162,8 @@ def robot_facts(package: str) -> RobotFacts:
     radius, radius_from = _wheel_radius(shares, left_wheel)
     declared = {a.name for a in declared_arguments(load(launch), str(launch))}
     arguments = {k: v for k, v in QUIET_ARGUMENTS.items() if k in declared}
-    return RobotFacts(package, str(launch.relative_to(share)), controller, controller_yaml, left_wheel, radius,
-                      radius_from, arguments)
+    return RobotFacts(package, str(launch.relative_to(share)), controller, controller_yaml, left_wheel,
+                      cmd_vel_timeout_s, radius, radius_from, arguments)
 
 
 def render(facts: RobotFacts) -> str:
@@ -175,6 +176,7 @@ def render(facts: RobotFacts) -> str:
         controller=facts.controller,
         controller_yaml=facts.controller_yaml.name,
         left_wheel=facts.left_wheel,
+        cmd_vel_timeout=repr(facts.cmd_vel_timeout_s),
         radius=radius,
         radius_from=facts.wheel_radius_from or "not found in the description",
         arguments=repr(facts.launch_arguments),
@@ -226,6 +228,7 @@ PACKAGE = "{package}"
 LAUNCH_FILE = "{launch_file}"
 LAUNCH_ARGUMENTS = {arguments}
 CONTROLLER = "{controller}"  # from {controller_yaml}
+CMD_VEL_TIMEOUT_S = {cmd_vel_timeout}  # the controller's cmd_vel_timeout
 LEFT_WHEEL_JOINT = "{left_wheel}"
 WHEEL_RADIUS_M = {radius}  # the wheel of the robot's description ({radius_from})
 SPEED_M_S = 0.5
@@ -283,9 +286,15 @@ class TestDrive(unittest.TestCase):
         if LEFT_WHEEL_JOINT not in self.latest["/joint_states"].name:
             names = list(self.latest["/joint_states"].name)
             self.fail(f"joint {{LEFT_WHEEL_JOINT}} is not in /joint_states: {{names}}")
-        x0, wheel0, t0 = self.latest[odom].pose.pose.position.x, self.wheel_rad(), self.sim_s()
         pub = self.node.create_publisher(TwistStamped, f"/{{CONTROLLER}}/cmd_vel", 10)
+        self.spin_until(lambda: pub.get_subscription_count() > 0, 10.0, f"nothing subscribes {{CONTROLLER}}/cmd_vel")
+        x0, wheel0, t0 = self.latest[odom].pose.pose.position.x, self.wheel_rad(), self.sim_s()
+        # Stamped so that the controller's own clock ends the drive at t0 + DRIVE_SIM_S (each command is good
+        # for CMD_VEL_TIMEOUT_S after its stamp), however late this process gets to publish on a busy machine.
+        until = t0 + DRIVE_SIM_S - CMD_VEL_TIMEOUT_S
         command = TwistStamped()
+        command.header.stamp.sec = int(until)
+        command.header.stamp.nanosec = int((until - int(until)) * 1e9)
         command.twist.linear.x = SPEED_M_S
         while self.sim_s() - t0 < DRIVE_SIM_S:
             pub.publish(command)
@@ -296,13 +305,15 @@ class TestDrive(unittest.TestCase):
         self.spin_until(lambda: abs(self.latest[odom].twist.twist.linear.x) < 1e-3, 10.0, "the robot did not stop")
         travelled = self.latest[odom].pose.pose.position.x - x0
         expected = SPEED_M_S * DRIVE_SIM_S
+        rolled = None if WHEEL_RADIUS_M is None else (self.wheel_rad() - wheel0) * WHEEL_RADIUS_M
+        print(f"odometry: {{travelled:.3f}} m, wheels: {{rolled if rolled is None else round(rolled, 3)}} m, "
+              f"commanded: {{expected:.3f}} m", flush=True)
         self.assertAlmostEqual(
             travelled, expected, delta=COMMAND_TOLERANCE_M,
             msg=f"odometry says the robot drove {{travelled:.3f}} m; {{SPEED_M_S}} m/s for {{DRIVE_SIM_S}} s "
                 f"of sim time is {{expected:.3f}} m",
         )
-        if WHEEL_RADIUS_M is not None:
-            rolled = (self.wheel_rad() - wheel0) * WHEEL_RADIUS_M
+        if rolled is not None:
             self.assertAlmostEqual(
                 rolled, travelled, delta=TOLERANCE_M,
                 msg=f"the wheels rolled {{rolled:.3f}} m but odometry says {{travelled:.3f}} m: does wheel_radius "
