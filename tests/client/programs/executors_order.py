@@ -98,6 +98,18 @@ task.cancel()
 ex.spin_once(timeout_sec=0.1)
 out.append(["cancelled task", [task.cancelled(), task.done(), task.executing()]])
 
+# Several tasks: the newest pending task runs first; a done callback of a future that knows its executor
+# becomes a task too.
+order = []
+for name in ("t1", "t2", "t3"):
+    ex.create_task(lambda name=name: order.append(name))
+f_exec = Future(executor=ex)
+f_exec.add_done_callback(lambda f: order.append("done callback"))
+f_exec.set_result(1)
+for _ in range(4):
+    ex.spin_once(timeout_sec=0.1)
+out.append(["task order", order])
+
 # A callback that raises: spin_once propagates it.
 boom = node.create_timer(0.01, lambda: 1 / 0)
 try:
