@@ -45,7 +45,7 @@ def test_actions_goal_feedback_result_cancel_agree() -> None:
 def test_lifecycle_transitions_services_and_events_agree() -> None:
     real, ours = run_both("lifecycle_node.py")
     assert ours.stdout.splitlines() == real.stdout.splitlines()
-    assert "shutdown TransitionCallbackReturnType.SUCCESS (4, 'finalized')" in ours.stdout
+    assert "configure raising TransitionCallbackReturnType.ERROR (4, 'finalized')" in ours.stdout
     for text in ("[rcl_lifecycle]: No transition matching 4 found for current state inactive",
                  "[rcl_lifecycle]: No transition matching fly found for current state inactive"):
         assert text in real.stderr and text in ours.stderr

@@ -73,9 +73,11 @@ class LifecycleNodeMixin(ManagedEntity):
     def trigger_deactivate(self) -> TransitionCallbackReturn:
         return self.__change_state(4)
 
-    def trigger_shutdown(self) -> TransitionCallbackReturn | None:
+    def trigger_shutdown(self) -> TransitionCallbackReturn:
         shutdown = {sm.UNCONFIGURED: 5, sm.INACTIVE: 6, sm.ACTIVE: 7}.get(self._lifecycle_state)
-        return self.__change_state(shutdown) if shutdown is not None else None
+        if shutdown is None:
+            raise RCLError("Shutdown transtion not possible")  # sic, rclpy 7.1.6's words
+        return self.__change_state(shutdown)
 
     def add_managed_entity(self, entity: ManagedEntity) -> None:
         self._managed_entities.add(entity)

@@ -18,10 +18,13 @@ class Talker(LifecycleNode):
     def __init__(self):
         super().__init__("lc_talker")
         self.fail_next_activate = False
+        self.raise_next_configure = False
         self.pub = None
 
     def on_configure(self, state):
         print("on_configure", state)
+        if self.raise_next_configure:
+            raise RuntimeError("cannot configure")
         self.pub = self.create_lifecycle_publisher(String, "lifecycle_chatter", 10)
         return TransitionCallbackReturn.SUCCESS
 
@@ -126,8 +129,13 @@ def main():
         print("invalid", type(e).__name__, isinstance(e, RuntimeError), str(e).split(",")[0])
     print("bad label", change(label="fly"), state())
     print("cleanup", change(Transition.TRANSITION_CLEANUP), state())
-    print("shutdown", talker.trigger_shutdown(), state())
-    until(lambda: len(events) >= 12)
+    talker.raise_next_configure = True  # an exception is ERROR: on_error runs, and its FAILURE finalizes
+    print("configure raising", talker.trigger_configure(), state())
+    try:
+        talker.trigger_shutdown()
+    except Exception as e:  # what the user sees is the point
+        print("shutdown when finalized", type(e).__name__, str(e), state())
+    until(lambda: len(events) >= 13)
     print("events", [(e.timestamp, e.transition.id, e.start_state.label, e.goal_state.label) for e in events])
     print("state consts", State.PRIMARY_STATE_ACTIVE, Transition.TRANSITION_ON_ERROR_FAILURE,
           int(TransitionCallbackReturn.ERROR))

@@ -1,3 +1,4 @@
+# ruff: noqa: I001  (written as the ROS 2 examples are)
 from launch import LaunchDescription
 from launch_ros.actions import Node
 
