@@ -36,6 +36,21 @@ spin_for(1.5)
 out.append(["transient local late joiner", late])
 out.append(["volatile late joiner", volatile])
 
+# History: a depth-3 subscription that was not spun keeps the newest three; KEEP_ALL keeps every sample.
+from rclpy.qos import HistoryPolicy  # noqa: E402
+
+kept3, kept_all = [], []
+burst = node.create_publisher(String, "burst", 20)
+node.create_subscription(String, "burst", lambda m: kept3.append(m.data), 3)
+node.create_subscription(String, "burst", lambda m: kept_all.append(m.data), QoSProfile(history=HistoryPolicy.KEEP_ALL))
+spin_for(1.0)
+for i in range(10):
+    burst.publish(String(data=str(i)))
+time.sleep(1.0)
+spin_for(0.5)
+out.append(["keep last 3", kept3])
+out.append(["keep all", kept_all])
+
 events = []
 node.create_publisher(String, "incompatible_topic", QoSProfile(depth=5, reliability=ReliabilityPolicy.BEST_EFFORT))
 node.create_subscription(
