@@ -23,7 +23,7 @@ import sys
 KNOWN = frozenset({
     "action_msgs", "actionlib_msgs", "builtin_interfaces", "control_msgs", "controller_manager_msgs",
     "diagnostic_msgs", "example_interfaces", "geometry_msgs", "lifecycle_msgs", "nav_msgs", "rcl_interfaces",
-    "rmw_dds_common", "rosbag2_interfaces", "rosgraph_msgs", "sensor_msgs", "service_msgs", "shape_msgs",
+    "rmw_dds_common", "ros_gz_interfaces", "rosbag2_interfaces", "rosgraph_msgs", "sensor_msgs", "service_msgs", "shape_msgs",
     "statistics_msgs", "std_msgs", "std_srvs", "stereo_msgs", "tf2_msgs", "trajectory_msgs",
     "type_description_interfaces", "unique_identifier_msgs", "visualization_msgs",
 })
