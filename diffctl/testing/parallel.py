@@ -35,14 +35,13 @@ class Outcome:
         return self.returncode == 0 and not self.timed_out
 
 
-FORK_SERVER_ENV = "DIFFCTL_TEST_FORK_SERVER"  # 1: always, 0: never; unset: when tests run side by side
+FORK_SERVER_ENV = "DIFFCTL_TEST_FORK_SERVER"
 
 
 def use_fork_server(jobs: int) -> bool:
-    """Measured on 2 cores: one test alone starts its components sooner by exec, several side by side save CPU
-    (and time) when each forks them from a zygote."""
-    choice = os.environ.get(FORK_SERVER_ENV, "").strip()
-    return choice == "1" if choice in ("0", "1") else jobs > 1
+    """Off unless DIFFCTL_TEST_FORK_SERVER=1: on 2 cores, 8 smoke tests under -j 2 took as long with a zygote per
+    test as without (26-32 s either way, four runs), and one test alone started its components later with it."""
+    return os.environ.get(FORK_SERVER_ENV, "").strip() == "1"
 
 
 def command(test: TestFile, junit: Path, arguments: list[str], artifacts: Path | None,

@@ -6,9 +6,9 @@ runs on a thread of its own: child exits come through pidfds (no SIGCHLD needed)
 thread asks of the launch (shut down, include a description, emit an event) is queued and done on the launch
 thread between two steps of the loop, never in the middle of one.
 
-diffctl's components are forked from a fork server (as `diffctl launch` does) only when asked: measured on the
-tutorial car's smoke test (2 cores), one test alone starts sooner with plain exec (the zygote's imports compete
-with the test's own), while tests side by side save CPU with it.
+diffctl's components are forked from a fork server (as `diffctl launch` does) only when asked (`use_fork_server`):
+measured on the tutorial car's smoke test (2 cores), one test alone starts them sooner by plain exec (the
+zygote's imports compete with the test's own), and tests side by side gained nothing measurable.
 """
 
 from __future__ import annotations
