@@ -164,9 +164,10 @@ def launch(
         # The live run: the engine visits the description once, when the launch starts (see _run).
         plan = Plan(str(path), [], (), {}, description=description, launch_arguments=arguments)
         loop = _event_loop(server)
-    except BaseException:
+    except BaseException as e:
         if server is not None:
             server.close(kill=True)
+        _ros_exit_code(e, exit_code_mode)
         raise
     assert run_dir is not None
     # SystemExit, not ctx.exit: the entry point runs click with standalone_mode=False, which drops exit codes.
@@ -187,6 +188,13 @@ def launch(
             },
         )
     )
+
+
+def _ros_exit_code(e: BaseException, exit_code_mode: str) -> None:
+    """--exit-code ros: an error in the launch file ends the launch with 1, as ros2 launch's "Caught exception
+    in launch" does (diffctl's own: 2, bad input)."""
+    if exit_code_mode == "ros" and isinstance(e, LaunchError):
+        e.exit_code = 1
 
 
 def _start_fork_server(run_dir: Path) -> Any:
@@ -243,7 +251,11 @@ def _run(
         )
         # The first visit of the description: a bad argument, file or substitution fails here, exit 2,
         # before anything has started (not even the log directory).
-        supervisor.prepare()
+        try:
+            supervisor.prepare()
+        except LaunchError as e:
+            _ros_exit_code(e, options["exit_code_mode"])
+            raise
         try:
             output = supervisor.output = Output(log_dir=run_dir, no_color=no_color)
         except OSError as e:

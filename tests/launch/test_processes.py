@@ -284,3 +284,26 @@ def test_ctrl_c_sends_sigterm_at_once_to_what_a_stopped_shell_left_and_counts_ea
         assert ran >= 1.5, text  # counted from each one's start, not from the shutdown
     assert float(run.wait_for(r"\[job\] the rest of its process group is gone, ran ([\d.]+) s").group(1)) >= 1.5
     assert_nothing_left(run)
+
+
+def test_exit_code_ros_makes_an_error_in_the_launch_file_exit_1(tmp_path) -> None:
+    import subprocess
+
+    # ros2 launch (Jazzy) on this file: `Caught exception in launch (see debug for traceback): Argument "color"
+    # provided value "green" is not valid. Valid options are: ['red', 'blue']`, rc 1. diffctl: exit 2 by default.
+    launch = tmp_path / "choice.launch.py"
+    launch.write_text(
+        "from launch import LaunchDescription\n"
+        "from launch.actions import DeclareLaunchArgument\n"
+        "def generate_launch_description():\n"
+        "    return LaunchDescription([DeclareLaunchArgument('color', default_value='red', choices=['red', 'blue'])])\n"
+    )
+    for flags, code in (((), 2), (("--exit-code", "ros"), 1)):
+        done = subprocess.run(
+            [sys.executable, "-m", "diffctl", "launch", "--no-router", *flags, str(launch), "color:=green"],
+            capture_output=True,
+            text=True,
+            timeout=30,
+        )
+        assert done.returncode == code, done.stdout + done.stderr
+        assert "choice.launch.py:4" in done.stderr and "'green'" in done.stderr
