@@ -41,6 +41,18 @@ def _result(successful: bool, reason: str = "") -> Any:
     return cls("rcl_interfaces/msg/SetParametersResult")(successful=successful, reason=reason)
 
 
+_events_pool: ThreadPoolExecutor | None = None
+_events_lock = threading.Lock()
+
+
+def _events() -> ThreadPoolExecutor:
+    global _events_pool
+    with _events_lock:
+        if _events_pool is None:
+            _events_pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="parameter_events")
+        return _events_pool
+
+
 def validate_parameter_name(name: str) -> bool:
     if not name:  # rclpy checks nothing else
         from diffctl.client.exceptions import InvalidParameterException
@@ -60,22 +72,18 @@ class NodeParameters(ParameterStore):
         self.on_set: list[Callable[[list[Parameter]], Any]] = []
         self.post_set: list[Callable[[list[Parameter]], None]] = []
         self.rlock = threading.RLock()
-        self._events: ThreadPoolExecutor | None = None
 
     def _notify(self, changes: list[ParameterChange]) -> None:
-        # /parameter_events leave on one worker thread, in order: the set (and a node's start, which declares
-        # two parameters) does not wait for the event's first serialization.
+        # /parameter_events leave on one worker thread of the process, in order: the set (and a node's start,
+        # which declares two parameters) does not wait for the event's first serialization.
         if not self._listeners or not changes:
             return
-        if self._events is None:
-            self._events = ThreadPoolExecutor(max_workers=1, thread_name_prefix="parameter_events")
-        self._events.submit(super()._notify, changes)
+        _events().submit(super()._notify, changes)
 
     def flush(self) -> None:
-        """Wait until every parameter event has left (before the node's publisher closes)."""
-        if self._events is not None:
-            self._events.shutdown(wait=True)
-            self._events = None
+        """Wait until every parameter event queued so far has left (before the node's publisher closes)."""
+        if _events_pool is not None and not threading.current_thread().name.startswith("parameter_events"):
+            _events_pool.submit(lambda: None).result(timeout=5.0)
 
     # ------------------------------------------------------------------ rclpy's API
     def declare_parameters(self, namespace: str, parameters: list[tuple], ignore_override: bool = False
