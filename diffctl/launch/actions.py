@@ -509,7 +509,8 @@ class TimerAction(Action):
             from diffctl.launch.events import TimerEvent
 
             period = seconds(perform(self.period, context), "timer period")
-            engine.services.after(period, lambda: engine.emit(TimerEvent(timer_action=self, locals=saved)), "timer")
+            kind = "timer" if self.cancel_on_shutdown else "timer-kept"  # the latter still fires during shutdown
+            engine.services.after(period, lambda: engine.emit(TimerEvent(timer_action=self, locals=saved)), kind)
 
         engine.defer(start)
         return None

@@ -142,14 +142,19 @@ class Engine:
         outer, self._current = self._current, (action.where, action.label())
         try:
             entities = action.execute(self.context)
+            # As Action.visit: whether an ExecutionComplete is wanted is decided now, by the handlers registered
+            # now; it is emitted now, or when the action's work ends (a process's last exit, a timer firing).
+            wanted = self._would_handle_completion(action)
+            if getattr(action, "completes_later", False):
+                action._completion_wanted = wanted
+            elif wanted:
+                self.emit(events.ExecutionComplete(action=action))
             if entities:
                 self.visit_all(entities)
         except LaunchError as e:
             raise action.where.attach(e, action.label()) from None
         finally:
             self._current = outer
-        if not getattr(action, "completes_later", False):
-            self.completed(action)
 
     def effect(self, step: Step) -> None:
         """Something for the world to do: start a process, log, shut down, signal."""
@@ -290,13 +295,17 @@ class Engine:
         else:
             raise error
 
-    def completed(self, action: Any) -> None:
-        """ExecutionComplete, emitted only when some handler would take it (as Action.visit)."""
+    def _would_handle_completion(self, action: Any) -> bool:
         if self.dry or not self.context.handlers:
-            return
+            return False
         event = events.ExecutionComplete(action=action)
-        if any(h.matches(event) for h in self.context.handlers):
-            self.emit(event)
+        return any(h.matches(event) for h in self.context.handlers)
+
+    def completed(self, action: Any) -> None:
+        """The work of an action that completes later is done: its ExecutionComplete, if it was wanted."""
+        if getattr(action, "_completion_wanted", False):
+            action._completion_wanted = False
+            self.emit(events.ExecutionComplete(action=action))
 
     def process_event(self, kind: str, name: str, **fields: Any) -> Any:
         """A process event (started / exited / io) for the process called `name`."""

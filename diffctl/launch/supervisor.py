@@ -418,7 +418,8 @@ class Supervisor:
             if code != 0:
                 self.failures.append(why + (f" (last output: {st.tail[-1]!r})" if st.tail else ""))
             self._complete(name)
-            self.shutdown(why, by_action=True)  # on_exit=Shutdown(): handlers' processes start, as in ROS
+            # on_exit=Shutdown(): the event's reason is that action's, and handlers' processes start, as in ROS
+            self.shutdown(why, by_action=True, event_reason="reason not given")
         elif st.respawns_left:
             st.restarts += 1
             st.state = "respawning"
@@ -496,7 +497,9 @@ class Supervisor:
 
     # ---- shutdown ----------------------------------------------------------------------------------------------
 
-    def shutdown(self, reason: str, *, by_action: bool = False, due_to_sigint: bool = False) -> None:
+    def shutdown(
+        self, reason: str, *, by_action: bool = False, due_to_sigint: bool = False, event_reason: str | None = None
+    ) -> None:
         """Offer a Shutdown event to the handlers, then stop every process that was running before it.
 
         As Jazzy: after a `shutdown` action (or a required process's exit) processes that OnShutdown handlers
@@ -512,14 +515,14 @@ class Supervisor:
         context = self.engine.context
         if not by_action:
             context.is_shutdown = True
-        self.engine.emit(events.Shutdown(reason=reason, due_to_sigint=due_to_sigint))
+        self.engine.emit(events.Shutdown(reason=event_reason or reason, due_to_sigint=due_to_sigint))
         self.engine.defer(lambda: self._stop_all(alive))
         self.engine.process_events()
 
     def _stop_all(self, alive: list[ProcessState]) -> None:
         self.engine.context.is_shutdown = True
         for _, _, timer in self._timers:
-            if timer.kind != "stop":
+            if timer.kind not in ("stop", "timer-kept"):
                 timer.cancelled = True
         for p in self.pending:
             if isinstance(p.step, StartProcess):
@@ -601,7 +604,13 @@ class Supervisor:
             else:
                 self.natural_end = True
                 self.shutdown("all processes have exited")
-        if self.shutting_down and not any(st.alive for st in self.states.values()) and not self.engine.queue:
+        kept = any(not t.cancelled and t.kind == "timer-kept" for _, _, t in self._timers)
+        if (
+            self.shutting_down
+            and not any(st.alive for st in self.states.values())
+            and not self.engine.queue
+            and not kept
+        ):
             self._finish()
             return
         self._update_live()
@@ -611,7 +620,7 @@ class Supervisor:
             return False
         if self.pending and any(w.kind in ("topic", "service") for p in self.pending for w in p.gate.waits):
             return False
-        return not any(not t.cancelled and t.kind in ("timer", "respawn") for _, _, t in self._timers)
+        return not any(not t.cancelled and t.kind in ("timer", "timer-kept", "respawn") for _, _, t in self._timers)
 
     def _finish(self) -> None:
         self.done = True

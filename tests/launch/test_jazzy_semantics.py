@@ -27,9 +27,9 @@ from diffctl.launch.resolver import resolve
 IMPORTS = """
 import os
 from launch import LaunchDescription
-from launch.actions import (DeclareLaunchArgument, ExecuteProcess, GroupAction, IncludeLaunchDescription, LogInfo,
-    OpaqueFunction, RegisterEventHandler, SetEnvironmentVariable, SetLaunchConfiguration, Shutdown, TimerAction,
-    UnsetLaunchConfiguration)
+from launch.actions import (DeclareLaunchArgument, EmitEvent, ExecuteProcess, GroupAction, IncludeLaunchDescription,
+    LogInfo, OpaqueFunction, RegisterEventHandler, SetEnvironmentVariable, SetLaunchConfiguration, Shutdown,
+    TimerAction, UnsetLaunchConfiguration)
 from launch.event_handlers import OnExecutionComplete, OnProcessExit, OnProcessIO, OnProcessStart, OnShutdown
 from launch.substitutions import EnvironmentVariable, LaunchConfiguration, PythonExpression, ThisLaunchFileDir
 from launch.launch_description_sources import PythonLaunchDescriptionSource
@@ -440,3 +440,29 @@ def test_python_composable_nodes_load_into_one_container_and_cpp_ones_are_one_cl
     )
     with pytest.raises(LaunchError, match="'composition::Talker' is not a Python component"):
         resolve(load(cpp), {}, str(cpp))
+
+
+def test_a_timer_kept_on_shutdown_still_fires_and_completion_is_wanted_when_the_action_is_visited(fake_run) -> None:
+    run = fake_run(
+        IMPORTS
+        + """
+import launch.events
+
+def generate_launch_description():
+    r = ExecuteProcess(cmd=["true"], name="r")
+    return LaunchDescription([
+        r,  # its OnExecutionComplete comes after it: Action.visit asked before it existed, so never
+        RegisterEventHandler(OnExecutionComplete(target_action=r, on_completion=[LogInfo(msg="r complete")])),
+        TimerAction(period=0.2, actions=[EmitEvent(event=launch.events.Shutdown(reason="early"))]),
+        TimerAction(period=0.6, actions=[LogInfo(msg="cancelled")]),
+        TimerAction(period=0.4, actions=[LogInfo(msg="kept")], cancel_on_shutdown=False),
+    ])
+""",
+        suffix=".launch.py",
+    )
+    run.spawner.exit("r", 0)
+    run.advance(0.3)
+    assert run.sup.shutting_down and not run.sup.done  # a kept timer holds the launch open
+    run.advance(0.5)
+    assert run.sup.done
+    assert "kept" in logs(run) and "cancelled" not in logs(run) and "r complete" not in logs(run)
