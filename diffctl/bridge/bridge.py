@@ -54,6 +54,7 @@ class GzToRos:
         self.count = 0
         self._lock = threading.Lock()
         self._sub: Any = None
+        self._token: Any = None
         self._closed = False
         self.on_demand = entry.lazy or entry.gz_type in RENDERED_GZ_TYPES
         self.pub = self.node.create_publisher(
@@ -86,9 +87,13 @@ class GzToRos:
                 self._sub = self.node.session.declare_subscriber(
                     gz.key(self.entry.gz_topic), self._on_sample, allowed_origin=zenoh.Locality.REMOTE
                 )
+                # listed by `gz topic -l/-i` while it listens, as gz-transport lists ros_gz_bridge's subscriber
+                self._token = gz.announce(self.node.session, "sub", self.entry.gz_topic, self.entry.gz_type)
             elif not on and self._sub is not None:
-                self._sub.undeclare()
-                self._sub = None
+                for obj in (self._token, self._sub):
+                    with contextlib.suppress(zenoh.ZError):
+                        obj.undeclare()
+                self._sub = self._token = None
 
     def other_subscribers(self) -> int:
         mine = (self.node.context.zid, str(self.node.node_id))
@@ -140,6 +145,7 @@ class RosToGz:
         self._closed = False
         self._gz_key = gz.key(entry.gz_topic)
         self.gz_pub = self.node.session.declare_publisher(self._gz_key, allowed_destination=zenoh.Locality.REMOTE)
+        self._token = gz.announce(self.node.session, "pub", entry.gz_topic, entry.gz_type)
 
     @property
     def active(self) -> bool:
@@ -186,10 +192,9 @@ class RosToGz:
     def close(self) -> None:
         self._closed = True
         self.set_active(False)
-        try:
-            self.gz_pub.undeclare()
-        except zenoh.ZError:
-            pass
+        for obj in (self._token, self.gz_pub):
+            with contextlib.suppress(zenoh.ZError):
+                obj.undeclare()
 
 
 class Bridge:

@@ -13,10 +13,12 @@ from typing import Any
 from diffctl.bridge import conversions as c
 from diffctl.bridge import covariance_conversions as cv
 from diffctl.bridge import geometry_conversions as g
+from diffctl.bridge import gps_actuator_conversions as ga
 from diffctl.bridge import gz_interfaces_conversions as gi
 from diffctl.bridge import gz_scene_conversions as gs
 from diffctl.bridge import sensor_conversions as sc
 from diffctl.bridge import std_conversions as st
+from diffctl.bridge import vision_conversions as vc
 from diffctl.errors import MessageError
 
 
@@ -164,6 +166,26 @@ TYPE_PAIRS: tuple[TypePair, ...] = (
         "gz.msgs.OdometryWithCovariance",
         cv.odometry_with_covariance_to_ros,
         cv.odometry_with_covariance_to_gz,
+    ),
+    TypePair("actuator_msgs/msg/Actuators", "gz.msgs.Actuators", ga.actuators_to_ros, ga.actuators_to_gz),
+    TypePair("gps_msgs/msg/GPSFix", "gz.msgs.NavSat", ga.gps_fix_to_ros, ga.gps_fix_to_gz),
+    TypePair(
+        "vision_msgs/msg/Detection2D", "gz.msgs.AnnotatedAxisAligned2DBox", vc.detection2d_to_ros, vc.detection2d_to_gz
+    ),
+    TypePair(
+        "vision_msgs/msg/Detection2DArray",
+        "gz.msgs.AnnotatedAxisAligned2DBox_V",
+        vc.detection2d_array_to_ros,
+        vc.detection2d_array_to_gz,
+    ),
+    TypePair(
+        "vision_msgs/msg/Detection3D", "gz.msgs.AnnotatedOriented3DBox", vc.detection3d_to_ros, vc.detection3d_to_gz
+    ),
+    TypePair(
+        "vision_msgs/msg/Detection3DArray",
+        "gz.msgs.AnnotatedOriented3DBox_V",
+        vc.detection3d_array_to_ros,
+        vc.detection3d_array_to_gz,
     ),
 )
 

@@ -85,6 +85,12 @@ def endpoint_token(kind: str, zid: str, topic: str, gz_type: str) -> str:
     return f"{ENDPOINT_TOKEN_PREFIX}/{kind}/{zid}/{key(topic)[len(PREFIX) + 1 :].replace('/', '%')}/{gz_type}"
 
 
+def announce(session: Any, kind: str, topic: str, gz_type: str) -> Any:
+    """The liveliness token that makes a gz-side publisher (`kind` "pub") or subscriber ("sub") of `session`
+    discoverable, as gz-transport advertises its endpoints; undeclare it when the endpoint goes."""
+    return session.liveliness().declare_token(endpoint_token(kind, str(session.zid()), topic, gz_type))
+
+
 def parse_endpoint_token(token_key: str) -> tuple[str, str, str, str] | None:
     """(kind, zid, topic, gz type) of an endpoint token key, or None."""
     parts = str(token_key).split("/")

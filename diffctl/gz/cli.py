@@ -237,7 +237,7 @@ def _publish(name: str, gz_type: str, text: str) -> int:
     gz_type = "gz.msgs." + gz_type.split(".msgs.", 1)[1]
     session = _session()
     pub = session.declare_publisher(gz.key(name))
-    token = session.liveliness().declare_token(gz.endpoint_token("pub", str(session.zid()), name, gz_type))
+    token = gz.announce(session, "pub", name, gz_type)
     time.sleep(0.8)  # as gz-transport's `gz topic -p`: give subscribers time to discover the publisher
     pub.put(gz.encode(gz_type, fields))
     time.sleep(0.1)

@@ -150,7 +150,7 @@ class GzPublisher:
         self.matched = bool(self._pub.matching_status.matching)
         self._listener = self._pub.declare_matching_listener(self._on_matching)
         # discoverable by `gz topic -l`, as gz-transport advertises a publisher
-        self._token = session.liveliness().declare_token(gz.endpoint_token("pub", str(session.zid()), topic, gz_type))
+        self._token = gz.announce(session, "pub", topic, gz_type)
 
     def _on_matching(self, status: Any) -> None:
         self.matched = bool(status.matching)
@@ -235,7 +235,7 @@ class SimTransport:
 
         sub = self.session.declare_subscriber(gz.key(topic), on_sample)
         self._owned.append(sub)
-        self.token(gz.endpoint_token("sub", str(self.session.zid()), topic, gz_type))
+        self._owned.append(gz.announce(self.session, "sub", topic, gz_type))
         return sub
 
     def raw_subscribe(self, key: str, callback: Callable[[Any], None]) -> Any:

@@ -64,7 +64,45 @@ TRACK = {
     "inherit_yaw": True,
 }
 
+BOX_2D = {
+    "header": gz.header(3, frame_id="camera::link"),
+    "box": {"min_corner": {"x": 10.0, "y": 20.0}, "max_corner": {"x": 50.0, "y": 80.0}},
+    "label": 7,
+}
+BOX_3D = {
+    "header": gz.header(4, frame_id="camera::link"),
+    "box": {
+        "center": {"x": 1.0, "y": -2.0, "z": 0.5},
+        "boxsize": {"x": 0.4, "y": 0.6, "z": 1.2},
+        "orientation": {"x": 0.0, "y": 0.0, "z": math.sin(0.25), "w": math.cos(0.25)},
+    },
+    "label": 3,
+}
+
 GZ_SAMPLES: dict[tuple[str, str], dict] = {
+    ("actuator_msgs/msg/Actuators", "gz.msgs.Actuators"): {
+        "header": H,
+        "position": [0.5, -1.0],
+        "velocity": [100.0, 200.0, 300.0, 400.0],
+        "normalized": [],
+    },
+    ("gps_msgs/msg/GPSFix", "gz.msgs.NavSat"): {
+        "header": gz.header(9),
+        "latitude_deg": -22.9,
+        "longitude_deg": -43.2,
+        "altitude": 12.5,
+        "velocity_east": 3.0,
+        "velocity_north": 4.0,
+        "velocity_up": -0.5,
+        "frame_id": "robot::gps_link",
+    },
+    ("vision_msgs/msg/Detection2D", "gz.msgs.AnnotatedAxisAligned2DBox"): BOX_2D,
+    ("vision_msgs/msg/Detection2DArray", "gz.msgs.AnnotatedAxisAligned2DBox_V"): {
+        "header": H,
+        "annotated_box": [BOX_2D, {**BOX_2D, "label": 0}],
+    },
+    ("vision_msgs/msg/Detection3D", "gz.msgs.AnnotatedOriented3DBox"): BOX_3D,
+    ("vision_msgs/msg/Detection3DArray", "gz.msgs.AnnotatedOriented3DBox_V"): {"header": H, "annotated_box": [BOX_3D]},
     ("rosgraph_msgs/msg/Clock", "gz.msgs.Clock"): {
         "header": gz.header(7),
         "sim": {"sec": 3, "nsec": 250},
@@ -367,12 +405,15 @@ GZ_SAMPLES: dict[tuple[str, str], dict] = {
 }
 
 
-def same(a: object, b: object) -> bool:
-    # == but NaN equals NaN (ros_gz_bridge fills some fields with NaN, e.g. BatteryState.design_capacity).
+def same(a: object, b: object, rel_tol: float = 0.0) -> bool:
+    # == but NaN equals NaN (ros_gz_bridge fills some fields with NaN, e.g. BatteryState.design_capacity);
+    # rel_tol > 0 for pairs whose conversion goes through trigonometry (GPSFix's speed and track).
     if isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b):
         return True
+    if rel_tol and isinstance(a, float) and isinstance(b, float):
+        return math.isclose(a, b, rel_tol=rel_tol, abs_tol=rel_tol)
     if isinstance(a, dict) and isinstance(b, dict):
-        return a.keys() == b.keys() and all(same(a[k], b[k]) for k in a)
+        return a.keys() == b.keys() and all(same(a[k], b[k], rel_tol) for k in a)
     if isinstance(a, (list, tuple)) and isinstance(b, (list, tuple)):
-        return len(a) == len(b) and all(same(x, y) for x, y in zip(a, b, strict=True))
+        return len(a) == len(b) and all(same(x, y, rel_tol) for x, y in zip(a, b, strict=True))
     return bool(np.all(a == b)) if isinstance(a, np.ndarray) or isinstance(b, np.ndarray) else a == b

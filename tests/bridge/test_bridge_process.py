@@ -360,3 +360,30 @@ def test_a_non_lazy_entry_keeps_its_gz_side_and_converts_only_while_ros_listens(
     finally:
         node.close()
     assert procs.stop(bridge) == 0
+
+
+def test_the_bridge_gz_side_is_listed_by_gz_topic_as_gz_transport_lists_it(router: str, procs) -> None:
+    """ros_gz_bridge advertises a gz publisher for each ROS→gz entry and subscribes for each gz→ROS one, so
+    `gz topic -l` lists both and `gz topic -i` names their types; they go when the bridge does."""
+    import os
+
+    gz_cli = [sys.executable, "-c", "from diffctl.gz.cli import main; main()"]
+
+    def gz_run(*args: str) -> str:
+        res = subprocess.run([*gz_cli, *args], capture_output=True, text=True, timeout=30, env=os.environ.copy())
+        return res.stdout
+
+    bridge = procs.diffctl(
+        "bridge",
+        "/model/car/cmd_vel@geometry_msgs/msg/Twist]gz.msgs.Twist",
+        "/detections@vision_msgs/msg/Detection2DArray[gz.msgs.AnnotatedAxisAligned2DBox_V",
+    )
+    expected = {"/model/car/cmd_vel", "/detections"}
+    assert wait_for(lambda: expected <= set(gz_run("topic", "-l").split()), 20.0), output_of(procs, bridge)
+    info = gz_run("topic", "-i", "-t", "/model/car/cmd_vel")
+    assert info.startswith("Publishers [Address, Message Type]:") and ", gz.msgs.Twist" in info, info
+    assert "No subscribers on topic [/model/car/cmd_vel]" in info
+    info = gz_run("topic", "-i", "-t", "/detections")
+    assert "No publishers on topic [/detections]" in info and ", gz.msgs.AnnotatedAxisAligned2DBox_V" in info, info
+    assert procs.stop(bridge) == 0
+    assert wait_for(lambda: not expected & set(gz_run("topic", "-l").split()), 10.0)

@@ -20,14 +20,16 @@ from diffctl.bus import gz, types
 from diffctl.errors import MessageError
 
 JAZZY = get_typestore(Stores.ROS2_JAZZY)
-# ros_gz_interfaces is not in rosbags' store: registered there from its upstream jazzy texts (the test data of
-# tests/graph, whose rosidl oracle checks diffctl's hashes of them), so rosbags' own CDR reads ours back.
-_UPSTREAM = Path(__file__).resolve().parents[1] / "graph" / "upstream_interfaces" / "ros_gz_interfaces" / "msg"
+# ros_gz_interfaces, actuator_msgs, gps_msgs and vision_msgs are not in rosbags' store: registered there from
+# their upstream jazzy texts (the test data of tests/graph, whose rosidl oracle checks diffctl's hashes of them),
+# so rosbags' own CDR reads ours back.
+_UPSTREAM = Path(__file__).resolve().parents[1] / "graph" / "upstream_interfaces"
 JAZZY.register(
     {
         k: v
-        for f in sorted(_UPSTREAM.glob("*.msg"))
-        for k, v in get_types_from_msg(f.read_text(), f"ros_gz_interfaces/msg/{f.stem}").items()
+        for pkg in ("ros_gz_interfaces", "actuator_msgs", "gps_msgs", "vision_msgs")
+        for f in sorted((_UPSTREAM / pkg / "msg").glob("*.msg"))
+        for k, v in get_types_from_msg(f.read_text(), f"{pkg}/msg/{f.stem}").items()
     }
 )
 
@@ -59,7 +61,7 @@ def test_pair_round_trips_through_cdr_and_the_binary_encoding(ros_type: str, gz_
     again = pair.convert_to_ros(_wire(gz_type, back_gz))
     if (ros_type, gz_type) in NOT_ROUND_TRIPS:
         return  # as upstream: see the pair's own test
-    assert same(types.to_dict(again), types.to_dict(ros))
+    assert same(types.to_dict(again), types.to_dict(ros), 1e-12 if ros_type == "gps_msgs/msg/GPSFix" else 0.0)
 
 
 # ros_gz_bridge itself does not round-trip these ("\\TODO(mjcarroll) Make this work fully round trip"): a
@@ -462,3 +464,44 @@ def test_scene_messages_map_their_enums_as_ros_gz_bridge_does() -> None:
     assert cam.track.name == "robot" and cam.track.use_model_frame and cam.view_controller == "orbit"
     record = _to_ros("ros_gz_interfaces/msg/VideoRecord", "gz.msgs.VideoRecord")
     assert (record.start, record.stop, record.format) == (True, False, "mp4")
+
+
+def test_actuators_and_gps_fix_as_ros_gz_bridge_converts_them() -> None:
+    act = _to_ros("actuator_msgs/msg/Actuators", "gz.msgs.Actuators")
+    assert (list(act.position), list(act.velocity), list(act.normalized)) == ([0.5, -1.0], [100, 200, 300, 400], [])
+    assert act.header.frame_id == "robot/base_link"
+    fix = _to_ros("gps_msgs/msg/GPSFix", "gz.msgs.NavSat")
+    assert (fix.latitude, fix.longitude, fix.altitude, fix.climb) == (-22.9, -43.2, 12.5, -0.5)
+    # speed from the horizontal velocity, track atan2(north, east) (radians from east, as upstream)
+    assert fix.speed == 5.0 and fix.track == pytest.approx(math.atan2(4.0, 3.0))
+    assert fix.header.frame_id == "robot/gps_link" and fix.header.stamp.nanosec == 9
+    assert fix.status.status == fix.status.STATUS_GBAS_FIX == 2
+    assert fix.position_covariance_type == fix.COVARIANCE_TYPE_UNKNOWN and fix.err == 0.0
+    fix.track, fix.speed = math.pi / 2, 2.0
+    gz_fix = _to_gz("gps_msgs/msg/GPSFix", "gz.msgs.NavSat", fix)
+    assert gz_fix["velocity_north"] == pytest.approx(2.0) and abs(gz_fix["velocity_east"]) < 1e-12
+    assert gz_fix["frame_id"] == "robot/gps_link"
+
+
+def test_detections_as_ros_gz_bridge_converts_them() -> None:
+    d2 = _to_ros("vision_msgs/msg/Detection2D", "gz.msgs.AnnotatedAxisAligned2DBox")
+    assert (d2.bbox.center.position.x, d2.bbox.center.position.y, d2.bbox.size_x, d2.bbox.size_y) == (30, 50, 40, 60)
+    assert [(r.hypothesis.class_id, r.hypothesis.score) for r in d2.results] == [("7", 1.0)]
+    assert d2.header.frame_id == "camera/link" and d2.id == ""
+    arr = _to_ros("vision_msgs/msg/Detection2DArray", "gz.msgs.AnnotatedAxisAligned2DBox_V")
+    assert [d.results[0].hypothesis.class_id for d in arr.detections] == ["7", "0"]
+    d3 = _to_ros("vision_msgs/msg/Detection3D", "gz.msgs.AnnotatedOriented3DBox")
+    assert (d3.bbox.size.x, d3.bbox.size.z, d3.bbox.center.position.y) == (0.4, 1.2, -2.0)
+    assert d3.bbox.center.orientation.z == pytest.approx(math.sin(0.25))
+    # To gz: the first result's class_id read as std::stoi reads it (trailing text ignored, a sign wraps into
+    # the uint32 label); no result, no label; a class_id that is no number is one clear error
+    d2.results[0].hypothesis.class_id = " 12 cars"
+    assert _to_gz("vision_msgs/msg/Detection2D", "gz.msgs.AnnotatedAxisAligned2DBox", d2)["label"] == 12
+    d2.results[0].hypothesis.class_id = "-1"
+    assert _to_gz("vision_msgs/msg/Detection2D", "gz.msgs.AnnotatedAxisAligned2DBox", d2)["label"] == 2**32 - 1
+    d3.results = []
+    pair = type_pairs.lookup("vision_msgs/msg/Detection3D", "gz.msgs.AnnotatedOriented3DBox")
+    assert "label" not in pair.convert_to_gz(d3)
+    d2.results[0].hypothesis.class_id = "person"
+    with pytest.raises(MessageError, match="class_id 'person' is not an integer"):
+        type_pairs.lookup("vision_msgs/msg/Detection2D", "gz.msgs.AnnotatedAxisAligned2DBox").convert_to_gz(d2)
