@@ -18,6 +18,7 @@ from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
+from diffctl.testing.child import PARENT_ENV
 from diffctl.testing.discovery import TestFile
 
 
@@ -36,6 +37,7 @@ class Outcome:
 
 
 FORK_SERVER_ENV = "DIFFCTL_TEST_FORK_SERVER"
+CHILD = [sys.executable, "-m", "diffctl.testing.child"]  # runs the module, dying with this process
 
 
 def use_fork_server(jobs: int) -> bool:
@@ -47,8 +49,7 @@ def use_fork_server(jobs: int) -> bool:
 def command(test: TestFile, junit: Path, arguments: list[str], artifacts: Path | None,
             fork_server: bool = False) -> list[str]:
     if test.kind == "launch":
-        argv = [sys.executable, "-m", "diffctl.testing.launch_test", str(test.path), *arguments,
-                "--junit-xml", str(junit)]
+        argv = [*CHILD, "diffctl.testing.launch_test", str(test.path), *arguments, "--junit-xml", str(junit)]
         if fork_server:
             argv.append("--fork-server")
         if test.package:
@@ -56,8 +57,7 @@ def command(test: TestFile, junit: Path, arguments: list[str], artifacts: Path |
         if artifacts is not None:
             argv += ["--artifacts", str(artifacts)]
         return argv
-    argv = [sys.executable, "-m", "pytest", str(test.path), "-p", "no:cacheprovider", "-q",
-            f"--junit-xml={junit}"]
+    argv = [*CHILD, "pytest", str(test.path), "-p", "no:cacheprovider", "-q", f"--junit-xml={junit}"]
     if test.package:
         argv.append(f"--junit-prefix={test.package}")
     if arguments:
@@ -83,6 +83,7 @@ def run_one(test: TestFile, junit: Path, arguments: list[str], timeout_s: float,
             start_new_session=True,
             text=True,
             errors="replace",
+            env={**os.environ, PARENT_ENV: str(os.getpid())},
         )
         _RUNNING.add(proc)
     timed_out = False
