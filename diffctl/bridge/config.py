@@ -6,6 +6,7 @@ pair is a ConfigError naming the file, line, entry index and topic and listing w
 
 from __future__ import annotations
 
+import difflib
 import re
 from dataclasses import dataclass
 from enum import Enum
@@ -14,7 +15,7 @@ from typing import Any
 
 import yaml
 
-from diffctl.bridge.type_pairs import TypePair, describe_pairs, lookup, normalize_gz_type, normalize_ros_type
+from diffctl.bridge.type_pairs import TYPE_PAIRS, TypePair, lookup, normalize_gz_type, normalize_ros_type
 from diffctl.errors import ConfigError, suggest, yaml_error
 
 
@@ -228,10 +229,30 @@ def make_entry(
     ros_type, gz_type = normalize_ros_type(item["ros_type_name"]), normalize_gz_type(item["gz_type_name"])
     pair = lookup(ros_type, gz_type)
     if pair is None:
-        raise fail(f"unsupported type pair {ros_type} <-> {gz_type}; supported: {describe_pairs()}", "gz_type_name")
+        raise fail(f"unsupported type pair {ros_type} <-> {gz_type}; {pairs_near(ros_type, gz_type)}", "gz_type_name")
     if gz_namespace is not None:
         gz_topic = gz_namespace.expand(gz_topic)
     return BridgeEntry(ros_topic, gz_topic, ros_type, gz_type, Direction(direction_text), pair, lazy, pub_q, sub_q, qos)
+
+
+def pairs_near(ros_type: str, gz_type: str, limit: int = 8) -> str:
+    """The supported pairs a user most likely meant: those sharing either side, then close spellings of either.
+
+    The whole table is ~60 pairs, unreadable on one line, so only the neighbours of the pair asked for are shown.
+    Spellings are compared on the short names (`Temperature`, `Double`): the package prefixes are alike for all.
+    """
+
+    def short(name: str) -> str:
+        return name.rsplit("/", 1)[-1].rsplit(".", 1)[-1]
+
+    same_side = [p for p in TYPE_PAIRS if ros_type == p.ros_type or gz_type == p.gz_type]
+    ros_near = set(difflib.get_close_matches(short(ros_type), {short(p.ros_type) for p in TYPE_PAIRS}, n=3, cutoff=0.6))
+    gz_near = set(difflib.get_close_matches(short(gz_type), {short(p.gz_type) for p in TYPE_PAIRS}, n=3, cutoff=0.6))
+    spelled = [p for p in TYPE_PAIRS if short(p.ros_type) in ros_near or short(p.gz_type) in gz_near]
+    picked = list(dict.fromkeys(f"{p.ros_type}<->{p.gz_type}" for p in same_side + spelled))[:limit]
+    if not picked:
+        return f"no supported pair is close to it ({len(TYPE_PAIRS)} pairs supported, as in ros_gz_bridge)"
+    return f"did you mean: {', '.join(picked)} ({len(TYPE_PAIRS)} pairs supported)"
 
 
 def load_config(path: str | Path, gz_namespace: GzNamespace | None = None) -> list[BridgeEntry]:

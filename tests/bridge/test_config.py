@@ -120,7 +120,8 @@ def test_one_sided_topic_names_qos_profiles_and_queue_precedence(tmp_path: Path)
         ),
         (
             "  gz_type_name: gz.msgs.Twist",
-            r"entry 1 \(/odom\): unsupported type pair nav_msgs/msg/Odometry <-> gz.msgs.Twist; supported: .*Odometry",
+            r"entry 1 \(/odom\): unsupported type pair nav_msgs/msg/Odometry <-> gz.msgs.Twist; "
+            r"did you mean: geometry_msgs/msg/Twist<->gz.msgs.Twist, .*nav_msgs/msg/Odometry<->gz.msgs.Odometry",
         ),
         ("  gz_type_name: gz.msgs.Odometry\n  lazzy: true", r"unknown key 'lazzy' \(did you mean 'lazy'\?\)"),
         (
@@ -227,3 +228,17 @@ def test_entries_render_as_a_table() -> None:
     make_console(buf, width=160).print(load_config(REPO / "config" / "bridge_config.yaml")[-1])
     text = buf.getvalue()
     assert "/camera/image_raw" in text and "sensor_msgs/msg/Image" in text and "<-" in text and "lazy" in text
+
+
+def test_unsupported_pair_lists_only_its_neighbours() -> None:
+    # ros_gz_sim_demos navsat_gpsfix.launch.py bridges gps_msgs/GPSFix, which the table lacks: the error points at
+    # the NavSat pair instead of printing all ~60 pairs on one line.
+    with pytest.raises(ConfigError) as e:
+        parse_cli_entry("/gps/fix@gps_msgs/msg/GPSFix[gz.msgs.NavSat")
+    text = str(e.value)
+    assert "did you mean: sensor_msgs/msg/NavSatFix<->gz.msgs.NavSat (" in text
+    assert "gz.msgs.Clock" not in text and len(text) < 300
+    with pytest.raises(ConfigError, match=r"did you mean: sensor_msgs/msg/LaserScan<->gz.msgs.LaserScan \("):
+        parse_cli_entry("/scan@sensor_msgs/msg/LaserScn[gz.msgs.LaserScan")
+    with pytest.raises(ConfigError, match=r"no supported pair is close to it \(\d+ pairs supported"):
+        parse_cli_entry("/x@foo_msgs/msg/Bar[gz.msgs.Qux")
