@@ -61,21 +61,23 @@ def test_odometry_publisher_and_battery_reach_ros_through_the_bridge(router: str
     bridge = procs.diffctl(
         "bridge",
         "/model/robot/odometry@nav_msgs/msg/Odometry[gz.msgs.Odometry",
+        "/model/robot/odometry_with_covariance@nav_msgs/msg/Odometry[gz.msgs.OdometryWithCovariance",
         "/model/robot/battery/linear_battery/state@sensor_msgs/msg/BatteryState[gz.msgs.BatteryState",
         "/cmd_vel@geometry_msgs/msg/Twist]gz.msgs.Twist",  # the car's DiffDrive has <topic>cmd_vel</topic>
         "/model/robot/pose@tf2_msgs/msg/TFMessage[gz.msgs.Pose_V",
         "/mag@sensor_msgs/msg/MagneticField[gz.msgs.Magnetometer",
     )
     node = Node("systems_probe")
-    odom, battery, tf, mag = [], [], [], []
+    odom, odom_cov, battery, tf, mag = [], [], [], [], []
     try:
         node.create_subscription("/model/robot/odometry", "nav_msgs/msg/Odometry", odom.append)
         node.create_subscription(
             "/model/robot/battery/linear_battery/state", "sensor_msgs/msg/BatteryState", battery.append
         )
         node.create_subscription("/model/robot/pose", "tf2_msgs/msg/TFMessage", tf.append)
+        node.create_subscription("/model/robot/odometry_with_covariance", "nav_msgs/msg/Odometry", odom_cov.append)
         node.create_subscription("/mag", "sensor_msgs/msg/MagneticField", mag.append)
-        wait_for(lambda: odom and battery and tf and mag, 60, "odometry, battery state, pose and field on the ROS side")
+        wait_for(lambda: odom and odom_cov and battery and tf and mag, 60, "odometry, battery, pose and field in ROS")
         # the world sets no <magnetic_field>: sdformat's default, seen by the unturned car as it is
         field = mag[-1].magnetic_field
         assert (field.x, field.y, field.z) == pytest.approx((5.5645e-6, 22.8758e-6, -42.3884e-6), abs=1e-8)
@@ -86,6 +88,10 @@ def test_odometry_publisher_and_battery_reach_ros_through_the_bridge(router: str
         assert math.isnan(first.design_capacity)
         o = odom[-1]
         assert (o.header.frame_id, o.child_frame_id) == ("odom", "base_footprint")
+        # gz-sim 8's second topic: the same odometry, covariances the (absent) noise's variance
+        c = odom_cov[-1]
+        assert (c.header.frame_id, c.child_frame_id) == ("odom", "base_footprint")
+        assert list(c.pose.covariance) == [0.0] * 36 and list(c.twist.covariance) == [0.0] * 36
         t = tf[-1].transforms[0]
         assert (t.header.frame_id, t.child_frame_id) == ("odom", "base_footprint")
         pub = node.create_publisher("/cmd_vel", "geometry_msgs/msg/Twist")

@@ -80,6 +80,33 @@ def test_odometry_publisher_reports_ground_truth_in_its_frames_at_its_rate() -> 
         assert tw["linear"]["z"] == tw["angular"]["x"] == tw["angular"]["y"] == 0.0
         assert gz.header_value(msg["header"], "frame_id") == "odom"
         assert gz.header_value(msg["header"], "child_frame_id") == "base_footprint"
+        # gz-sim 8's odometry_with_covariance: the same sample, the noise's variance on both diagonals
+        assert odom.p.odom_covariance_topic == "/model/robot/odometry_with_covariance"
+        cov = odom.with_covariance(msg)
+        assert cov["header"] is msg["header"] and cov["pose_with_covariance"]["pose"] == msg["pose"]
+        assert cov["twist_with_covariance"]["twist"] == msg["twist"]
+        assert cov["pose_with_covariance"]["covariance"]["data"] == [0.0] * 36
+    finally:
+        sim.close()
+
+
+def test_odometry_with_covariance_carries_the_noise_variance_on_its_topic() -> None:
+    sim = Simulation(load_world(EMPTY_WORLD), rtf=0.0)
+    try:
+        noisy = LEGACY_ODOM.replace(
+            "<dimensions>2</dimensions>",
+            "<dimensions>3</dimensions><gaussian_noise>0.1</gaussian_noise>"
+            "<odom_covariance_topic>/odom_cov</odom_covariance_topic>",
+        )
+        sim.spawn(parse_model(car_with(noisy), name="robot", base_dir=CAR.parent))
+        odom = next(p for p in sim.models["robot"].plugins if isinstance(p, OdometryPublisher))
+        assert odom.p.odom_covariance_topic == "/odom_cov" and "/odom_cov" in odom.topics
+        advance(sim, 300)
+        cov = odom.with_covariance(odom.last_message)
+        for part in ("pose_with_covariance", "twist_with_covariance"):
+            data = cov[part]["covariance"]["data"]
+            assert [data[i * 7] for i in range(6)] == pytest.approx([0.01] * 6)
+            assert sum(abs(v) for i, v in enumerate(data) if i % 7) == 0.0
     finally:
         sim.close()
 

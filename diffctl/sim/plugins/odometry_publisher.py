@@ -1,7 +1,9 @@
 """Gazebo's OdometryPublisher system (`gz-sim-odometry-publisher-system`): ground-truth odometry of a model.
 
 Parameters as gz-sim reads them: `<odom_frame>` (`<model>/odom`), `<robot_base_frame>` (`<model>/base_footprint`),
-`<odom_publish_frequency>` (50 Hz), `<odom_topic>` (`/model/<model>/odometry`), `<tf_topic>`
+`<odom_publish_frequency>` (50 Hz), `<odom_topic>` (`/model/<model>/odometry`), `<odom_covariance_topic>`
+(`/model/<model>/odometry_with_covariance`: the same odometry as gz.msgs.OdometryWithCovariance, both
+covariances' diagonals the noise's variance, as gz-sim 8 publishes it), `<tf_topic>`
 (`/model/<model>/pose`, a Pose_V of one pose odom_frame → robot_base_frame), `<dimensions>` (2 or 3, default 2),
 `<xyz_offset>`, `<rpy_offset>` (applied to the model pose), `<gaussian_noise>` (standard deviation added to
 the twist). In 2D the pose is flattened (z, roll, pitch 0) and the twist has only linear x/y and angular z;
@@ -51,6 +53,7 @@ class OdometryPublisherParams:
     robot_base_frame: str
     rate_hz: float
     odom_topic: str
+    odom_covariance_topic: str
     tf_topic: str
     dimensions: int
     offset: Pose
@@ -73,6 +76,7 @@ class OdometryPublisherParams:
             robot_base_frame=plugin.get("robot_base_frame") or f"{model}/base_footprint",
             rate_hz=rate or DEFAULT_RATE_HZ,
             odom_topic=plugin.get("odom_topic") or f"/model/{model}/odometry",
+            odom_covariance_topic=plugin.get("odom_covariance_topic") or f"/model/{model}/odometry_with_covariance",
             tf_topic=plugin.get("tf_topic") or f"/model/{model}/pose",
             dimensions=int(dims_text),
             offset=Pose(_triple(plugin, "xyz_offset", source), quat_from_rpy(*_triple(plugin, "rpy_offset", source))),
@@ -86,10 +90,11 @@ class OdometryPublisher(SystemPlugin):
     ) -> None:
         self.ctx, self.entity = ctx, entity
         self.p = OdometryPublisherParams.from_plugin(plugin, entity.name, entity.model.source)
-        self.topics = (self.p.odom_topic, self.p.tf_topic)
+        self.topics = (self.p.odom_topic, self.p.odom_covariance_topic, self.p.tf_topic)
         self.rng = rng or np.random.default_rng(0)
         t = ctx.transport
         self._odom_pub = t.publisher(self.p.odom_topic, "gz.msgs.Odometry") if t else None
+        self._cov_pub = t.publisher(self.p.odom_covariance_topic, "gz.msgs.OdometryWithCovariance") if t else None
         self._tf_pub = t.publisher(self.p.tf_topic, "gz.msgs.Pose_V") if t else None
         self._last: tuple[int, Pose] | None = None
         self.last_message: dict | None = None  # the latest sample, published or not
@@ -143,6 +148,17 @@ class OdometryPublisher(SystemPlugin):
             },
         }
 
+    def with_covariance(self, msg: dict) -> dict:
+        """The OdometryWithCovariance gz-sim 8 sends beside `msg`: the same header, pose and twist, and 6×6
+        covariances whose diagonal is the noise's variance (pose and twist alike), zeros elsewhere."""
+        variance = self.p.noise_std * self.p.noise_std
+        covariance = {"data": [variance if i % 7 == 0 else 0.0 for i in range(36)]}
+        return {
+            "header": msg["header"],
+            "pose_with_covariance": {"pose": msg["pose"], "covariance": covariance},
+            "twist_with_covariance": {"twist": msg["twist"], "covariance": covariance},
+        }
+
     def _publish(self, sim_time_ns: int) -> None:
         msg = self.message(sim_time_ns)
         if msg is None:
@@ -150,6 +166,8 @@ class OdometryPublisher(SystemPlugin):
         self.last_message = msg
         if self._odom_pub is not None and self._odom_pub.matched:
             self._odom_pub.publish(msg)
+        if self._cov_pub is not None and self._cov_pub.matched:
+            self._cov_pub.publish(self.with_covariance(msg))
         if self._tf_pub is not None and self._tf_pub.matched:
             pose = dict(msg["pose"], name=self.p.robot_base_frame, header=msg["header"])
             self._tf_pub.publish({"header": gz.header(sim_time_ns), "pose": [pose]})
@@ -164,6 +182,6 @@ class OdometryPublisher(SystemPlugin):
         self.ctx.stepper.remove_task(self._task)
         t = self.ctx.transport
         if t is not None:
-            for pub in (self._odom_pub, self._tf_pub):
+            for pub in (self._odom_pub, self._cov_pub, self._tf_pub):
                 if pub is not None:
                     t.release(pub)
