@@ -38,7 +38,7 @@ class Publisher:
                  reliable: bool = True, qos: wire.QoS | None = None) -> None:
         self.node = node
         self.topic = node.resolve(topic)
-        self.type = types.check(typename)
+        self.type = types.check_defined(typename)
         self.qos = endpoint_qos(latched, depth, reliable, qos)
         self.latched = self.qos.transient_local
         key = wire.topic_key(node.domain, self.topic, self.type)
@@ -58,7 +58,7 @@ class Publisher:
         self._token = node.session.liveliness().declare_token(token)
         self._seq = itertools.count(1)
         # Hot path: bound once, not looked up per message.
-        self._encode = types.encoder(self.type)
+        self._encode: Callable[[Any], bytes] | None = None  # compiled on the first message object published
         self._put = self._pub.put
         self._attach = wire.attachment_packer(self.gid)
         node.context.add_local(self.topic, self.type, wire.KIND_PUB, node)
@@ -69,7 +69,10 @@ class Publisher:
     def publish(self, msg: Any) -> None:
         if isinstance(msg, dict):
             msg = types.new(self.type, msg)
-        self._put(self._encode(msg), attachment=self._attach(next(self._seq), time.time_ns()))
+        encode = self._encode
+        if encode is None:
+            encode = self._encode = types.encoder(self.type)
+        self._put(encode(msg), attachment=self._attach(next(self._seq), time.time_ns()))
 
     def publish_raw(self, cdr: bytes) -> None:
         self._put(cdr, attachment=self._attach(next(self._seq), time.time_ns()))
@@ -115,7 +118,7 @@ class Subscription:
                  with_info: bool = False, reliable: bool = True, qos: wire.QoS | None = None) -> None:
         self.node = node
         self.topic = node.resolve(topic)
-        self.type = types.check(typename)
+        self.type = types.check_defined(typename) if raw else types.check(typename)
         self.callback = callback
         self.raw = raw
         self.with_info = with_info  # callback(msg, MessageInfo)
@@ -123,7 +126,7 @@ class Subscription:
         # not hear its own output on a bidirectional topic).
         self._ignore_gids = node.context.local_gids if ignore_local else None
         self.qos = endpoint_qos(latched, depth, reliable, qos)
-        self._decode = types.decoder(self.type)
+        self._decode = None if raw else types.decoder(self.type)
         key = wire.topic_key(node.domain, self.topic, self.type)
         token = node.context.entity_token(node, wire.KIND_SUB, self.topic, self.type, self.qos.token())
         if self.qos.transient_local:

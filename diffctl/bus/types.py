@@ -146,6 +146,16 @@ def check(typename: str) -> str:
     return t
 
 
+def check_defined(typename: str) -> str:
+    """As `check`, without generating the type's class: an endpoint needs only its definition and hash until a
+    message object is encoded or decoded (a node's /rosout and /parameter_events publishers, raw endpoints)."""
+    t = normalize(typename)
+    _with_package_of(t)
+    if t in typedefs.definitions():
+        return t
+    return check(typename)
+
+
 def check_service(typename: str) -> str:
     t = normalize(typename.replace("/msg/", "/srv/")) if "/msg/" not in typename else normalize(typename)
     if t.count("/") == 2 and t.split("/")[1] == "msg":
