@@ -614,3 +614,9 @@ class Node:
         name = fully_qualified_node_name if fully_qualified_node_name.startswith("/") \
             else "/" + fully_qualified_node_name
         return self._graph.wait_for(lambda: name in self.get_fully_qualified_node_names(), timeout)
+
+
+# rclpy's node module imports rcl_interfaces' messages when it is imported; so does this one, so that a node's
+# start does not generate the classes every node needs (its parameter descriptors and set results).
+cls("rcl_interfaces/msg/ParameterDescriptor")
+cls("rcl_interfaces/msg/SetParametersResult")
