@@ -17,7 +17,8 @@ from diffctl.errors import ConfigError
 
 @click.command("test")
 @click.argument("paths", nargs=-1, type=click.Path(path_type=Path), metavar="[PATH ...] [NAME:=VALUE ...]")
-@click.option("--packages-select", multiple=True, metavar="PKG", help="Only these packages' tests (repeatable).")
+@click.option("--packages-select", multiple=True, metavar="PKG",
+              help="Only these packages' tests (`--packages-select a b`, as colcon, or repeated).")
 @click.option("-j", "--jobs", type=click.IntRange(min=1), default=1, show_default=True,
               help="Test files run at the same time, each on its own router and domain.")
 @click.option("--junit-xml", type=click.Path(dir_okay=False, path_type=Path), help="Write JUnit XML results here.")
@@ -62,9 +63,14 @@ def test(paths: tuple[Path, ...], packages_select: tuple[str, ...], jobs: int, j
     for a in arguments:
         if a.startswith(":="):
             raise ConfigError(f"malformed launch argument {a!r}, expected format '<name>:=<value>'")
-    if files:
-        if packages_select:
+    if packages_select:
+        # colcon's spelling, `--packages-select a b`, leaves b among the paths
+        more = [str(f) for f in files if not f.exists()]
+        if len(more) != len(files):
             raise click.UsageError("give PATHs or --packages-select, not both")
+        packages_select = (*packages_select, *more)
+        files = []
+    if files:
         tests = discovery.from_paths(files)
     else:
         if workspace is None:

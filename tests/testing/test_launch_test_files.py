@@ -120,7 +120,7 @@ def test_workspace_discovery_and_launch_folder_never_shadows_launch(tmp_path: Pa
     assert r.returncode == 0, r.stdout + r.stderr
     assert "robot_b/test_robot_b.launch.py" in r.stdout and "robot_a" not in r.stdout
     assert "Summary: 1 test files, 1 passed, 0 failed" in r.stdout
-    r = _run([PY, "-m", "diffctl", "test", "--packages-select", "robot_c"], cwd=ws)
+    r = _run([PY, "-m", "diffctl", "test", "--packages-select", "robot_b", "robot_c"], cwd=ws)
     assert r.returncode == 2 and "no package 'robot_c'" in r.stderr and "robot_a" in r.stderr
     pkg_root = ws / "src" / "robot_a"
     r = _run([PY, "-m", "pytest", "-p", "no:cacheprovider", "-q", "test"], cwd=pkg_root)
