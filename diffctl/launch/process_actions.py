@@ -435,7 +435,7 @@ class Node(ExecuteProcess):
             argv = package_index.executable_argv(perform(self.package, scope), perform(self.executable, scope))
         argv += _arguments(self.arguments, scope)
         if self.ros_arguments:
-            argv += ["--ros-args", *_arguments(self.ros_arguments, scope), "--"]
+            argv += ["--ros-args", *_arguments(self.ros_arguments, scope)]  # launch_ros adds no `--` after them
         return argv
 
     def index_names(self, scope: Scope) -> dict[str, str]:
@@ -444,6 +444,8 @@ class Node(ExecuteProcess):
         return {"package": perform(self.package, scope), "executable": perform(self.executable, scope)}
 
     def default_name(self, argv: list[str], scope: Scope) -> str:
+        if scope.engine is not None and scope.engine.process_names == "ros":
+            return os.path.basename(perform(self.executable, scope))  # launch_ros labels by executable
         return perform(self.name_parts if self.name_parts is not None else self.executable, scope)
 
     def ros_node(self, scope: Scope) -> tuple[RosNode | None, dict[str, str | None]]:

@@ -466,3 +466,18 @@ def generate_launch_description():
     run.advance(0.5)
     assert run.sup.done
     assert "kept" in logs(run) and "cancelled" not in logs(run) and "r complete" not in logs(run)
+
+
+def test_a_nodes_command_line_is_launch_ros_s(tmp_path: Path) -> None:
+    path = tmp_path / "n.launch.py"
+    path.write_text(
+        "from launch import LaunchDescription\nfrom launch_ros.actions import Node\n"
+        "def generate_launch_description():\n"
+        "    return LaunchDescription([Node(executable='sleep', name='n', namespace='ns', arguments=['5'],\n"
+        "                                   ros_arguments=['--log-level', 'debug'], remappings=[('a', 'b')])])\n"
+    )
+    (spec,) = resolve(load(path), {}, str(path)).processes.values()
+    # `<exe> <arguments> --ros-args <ros_arguments> --ros-args -r __node -r __ns … -r remaps` (node.py, Jazzy)
+    assert commandline.argv(spec)[1:] == [
+        "5", "--ros-args", "--log-level", "debug", "--ros-args", "-r", "__node:=n", "-r", "__ns:=/ns", "-r", "a:=b"
+    ]
