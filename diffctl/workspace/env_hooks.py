@@ -6,7 +6,11 @@ A package makes its `models/` and `worlds/` findable by Gazebo with `ament_envir
 dependencies (alphabetical between equals), following colcon-core's prefix_util: the line types below,
 relative values joined to the package prefix, a `.dsv` preferred to its `.sh` sibling, shell hooks without one
 sourced by bash. Workspace packages are handled from their sources: their CMakeLists' hooks are configured in
-memory for the prefix diffctl gives them (nothing is written into the workspace).
+memory for the prefix diffctl gives them (nothing is written into the workspace), and the `hooks` of a
+`colcon.pkg` (colcon-metadata's YAML file beside package.xml: paths relative to the install prefix, sourced
+after the package's own hooks, as colcon lists them in its package.dsv) are read from that prefix. A colcon
+`install/` of the workspace that the shell has not sourced (it is not on COLCON_PREFIX_PATH) is sourced as its
+local_setup would source it, for the packages whose sources are not in the workspace.
 """
 
 from __future__ import annotations
@@ -206,9 +210,10 @@ def install_tree_packages(install: Path) -> dict[str, tuple[Path, set[str]]]:
     return found
 
 
-def apply_install_tree(env: MutableMapping[str, str], install: Path) -> list[str]:
-    """Source a colcon install tree's packages into `env`; returns the variables changed."""
-    packages = install_tree_packages(install)
+def apply_install_tree(env: MutableMapping[str, str], install: Path, skip: Iterable[str] = ()) -> list[str]:
+    """Source a colcon install tree's packages (but those in `skip`) into `env`; returns the variables changed."""
+    skipped = set(skip)
+    packages = {n: v for n, v in install_tree_packages(install).items() if n not in skipped}
     state = HookEnv(env)
     for name in order_packages({n: deps for n, (_, deps) in packages.items()}):
         prefix = str(packages[name][0].resolve())
@@ -262,14 +267,62 @@ def cmake_hooks(package_dir: Path, package: str, prefix: Path) -> dict[str, str]
     return hooks
 
 
-def apply_package_hooks(state: HookEnv, package: str, prefix: Path, hooks: dict[str, str]) -> None:
-    """Apply one package's hooks as its local_setup.dsv would (`source` per hook, sorted by name)."""
+def colcon_pkg_hooks(package_dir: Path) -> list[str]:
+    """The `hooks` of a package's `colcon.pkg` (YAML, as colcon-metadata reads it): each a path relative to
+    the install prefix, or a list whose first item is one (the rest are shell arguments, unused by dsv)."""
+    import yaml
+
+    path = package_dir / "colcon.pkg"
+    if not path.is_file():
+        return []
+    try:
+        data = yaml.safe_load(path.read_text(encoding="utf-8", errors="replace"))
+    except yaml.YAMLError as e:
+        mark = getattr(e, "problem_mark", None)
+        raise HookError(
+            f"colcon.pkg is not valid YAML: {getattr(e, 'problem', None) or e}",
+            source=str(path),
+            line=mark.line + 1 if mark is not None else None,
+        ) from None
+    if data is None:
+        return []
+    if not isinstance(data, dict):
+        raise HookError("colcon.pkg must be a mapping (name, type, dependencies, hooks, …)", source=str(path))
+    raw = data.get("hooks", [])
+    if not isinstance(raw, list):
+        raise HookError(
+            f"colcon.pkg: 'hooks' must be a list of paths, got {raw!r}",
+            source=str(path),
+            field="hooks",
+            hint='e.g. hooks: ["share/my_pkg/hook/models.dsv", "share/my_pkg/hook/models.sh"]',
+        )
+    hooks = []
+    for i, item in enumerate(raw):
+        first = item[0] if isinstance(item, list) and item else item
+        if not isinstance(first, str) or not first:
+            raise HookError(
+                f"colcon.pkg: hooks[{i}] {item!r} is not a path relative to the install prefix",
+                source=str(path),
+                field=f"hooks[{i}]",
+                hint="a string, or a list whose first item is one",
+            )
+        hooks.append(first)
+    return hooks
+
+
+def apply_package_hooks(
+    state: HookEnv, package: str, prefix: Path, hooks: dict[str, str], extra: Iterable[str] = ()
+) -> None:
+    """Apply one package's hooks as its package.dsv would: its ament environment hooks (`source` per hook,
+    sorted by name, through local_setup.dsv), then `extra` hooks (colcon.pkg's, relative to the prefix)."""
     env_dir = prefix / "share" / package / "environment"
     lines = []
     for name in sorted(hooks):
         path = str(env_dir / name)
         state.files[path] = hooks[name]
         lines.append(f"{SOURCE};share/{package}/environment/{name}")
+    # colcon makes an absolute hook path relative to the prefix; a relative one stays as written
+    lines += [f"{SOURCE};{os.path.relpath(h, prefix) if os.path.isabs(h) else h}" for h in extra]
     local = str(prefix / "share" / package / "local_setup.dsv")
     state.files[local] = "\n".join(lines) + "\n"
     process_dsv(state, local, str(prefix))
@@ -289,16 +342,25 @@ def apply_source_packages(env: MutableMapping[str, str], packages: Iterable[Sour
     state = HookEnv(env)
     for name in order_packages({n: set(p.run_depends) for n, p in by_name.items()}):
         pkg = by_name[name]
-        if not (pkg.source / "CMakeLists.txt").is_file():
+        extra = colcon_pkg_hooks(pkg.source)
+        lists = pkg.source / "CMakeLists.txt"
+        # reading the CMake tree only when it names hooks: the common case has none
+        has_cmake_hooks = lists.is_file() and "ament_environment_hooks" in lists.read_text(
+            encoding="utf-8", errors="replace"
+        )
+        if not has_cmake_hooks and not extra:
             continue
-        lists_text = (pkg.source / "CMakeLists.txt").read_text(encoding="utf-8", errors="replace")
-        if "ament_environment_hooks" not in lists_text:
-            continue  # the common case, without reading the CMake tree
         prefix = pkg.prefix()
-        hooks = cmake_hooks(pkg.source, name, prefix)
-        if hooks:
-            apply_package_hooks(state, name, prefix, hooks)
+        hooks = cmake_hooks(pkg.source, name, prefix) if has_cmake_hooks else {}
+        if hooks or extra:
+            apply_package_hooks(state, name, prefix, hooks, extra)
     return state.changed
+
+
+def install_tree_sourced(env: MutableMapping[str, str], install: Path) -> bool:
+    """Whether `install` was sourced into `env` (colcon's prefix script puts it on COLCON_PREFIX_PATH)."""
+    here = os.path.realpath(install)
+    return any(os.path.realpath(p) == here for p in env.get("COLCON_PREFIX_PATH", "").split(os.pathsep) if p)
 
 
 def apply_workspace_hooks(env: MutableMapping[str, str], workspace: Path | None) -> list[str]:
@@ -317,7 +379,14 @@ def apply_workspace_hooks(env: MutableMapping[str, str], workspace: Path | None)
         )
         for name, m in scan.manifests.items()
     ]
-    return apply_source_packages(env, packages)
+    changed: list[str] = []
+    install = workspace / "install"
+    if install.is_dir() and not install_tree_sourced(env, install):
+        # built but not sourced: what only the install tree knows (packages without sources here); the
+        # workspace's own packages come from their sources below, never from a possibly stale build
+        changed += apply_install_tree(env, install, skip=scan.manifests)
+    changed += [v for v in apply_source_packages(env, packages) if v not in changed]
+    return changed
 
 
 def _prefix_of(pkg: object) -> Path:

@@ -158,3 +158,140 @@ def test_workspace_hooks_from_cmakelists_reach_the_environment(tmp_path: Path, m
     before = dict(env)
     use_in_children(ws, env)  # idempotent, as sourcing twice is
     assert env == before
+
+
+ROBOT_WORLDS_SETUP = """from setuptools import setup
+
+package_name = 'robot_worlds'
+setup(
+    name=package_name,
+    version='0.0.1',
+    packages=[],
+    data_files=[
+        ('share/ament_index/resource_index/packages', ['resource/' + package_name]),
+        ('share/' + package_name, ['package.xml']),
+        ('share/' + package_name + '/hook', ['hooks/models.dsv', 'hooks/models.sh', 'hooks/home.dsv']),
+        ('share/' + package_name + '/models/robot', ['models/robot/model.config']),
+    ],
+)
+"""
+ROBOT_WORLDS_HOOKS = {
+    "hooks/models.dsv": "prepend-non-duplicate;GZ_SIM_RESOURCE_PATH;share/robot_worlds/models\n",
+    "hooks/models.sh": "export WRONG_SH=1\n",  # its .dsv sibling wins, in colcon as here
+    "hooks/home.dsv": "set;ROBOT_WORLDS_HOME;share/robot_worlds\n",
+}
+# colcon-metadata's colcon.pkg: YAML, hooks relative to the install prefix ([path, args…] accepted)
+COLCON_PKG = """hooks:
+  - share/robot_worlds/hook/models.dsv
+  - share/robot_worlds/hook/models.sh
+  - [share/robot_worlds/hook/home.dsv, unused-argument]
+"""
+
+
+def test_colcon_pkg_hooks_of_a_source_package_apply_as_colcons_package_dsv(tmp_path: Path) -> None:
+    """An ament_python package whose colcon.pkg lists hooks it installs with data_files: diffctl applies them
+    from its sources as sourcing colcon's install of it does (colcon-core's own descriptor update, package
+    script and prefix script are the oracle)."""
+    import yaml
+    from colcon_core.package_augmentation import update_descriptor
+    from colcon_core.package_descriptor import PackageDescriptor
+
+    from diffctl.workspace import use_in_children
+
+    ws = tmp_path / "ws"
+    files = {
+        "package.xml": package_xml("robot_worlds", "ament_python"),
+        "setup.py": ROBOT_WORLDS_SETUP,
+        "resource/robot_worlds": "",
+        "colcon.pkg": COLCON_PKG,
+        "models/robot/model.config": "<model/>",
+        **ROBOT_WORLDS_HOOKS,
+    }
+    src = write_tree(ws / "src" / "robot_worlds", files)
+    # the oracle: colcon's install of the package, its package.dsv listing the descriptor's hooks
+    desc = PackageDescriptor(src)
+    desc.type, desc.name = "ros.ament_python", "robot_worlds"
+    update_descriptor(desc, yaml.safe_load(COLCON_PKG))
+    install = tmp_path / "install"
+    prefix = install / "robot_worlds"
+    write_tree(
+        prefix,
+        {
+            "share/colcon-core/packages/robot_worlds": "",
+            "share/robot_worlds/models/robot/model.config": "<model/>",
+            **{f"share/robot_worlds/hook/{Path(k).name}": v for k, v in ROBOT_WORLDS_HOOKS.items()},
+        },
+    )
+    hooks = [(h[0], h[1:]) if isinstance(h, list) else (h, ()) for h in desc.hooks]
+    DsvShell().create_package_script(prefix, "robot_worlds", hooks)
+    base = {"PATH": os.environ["PATH"], "GZ_SIM_RESOURCE_PATH": "/opt/user/models"}
+    expected = _sourced_by_colcon(install, dict(base))
+    env = dict(base)
+    use_in_children(ws, env)
+    ours = env["GZ_SIM_RESOURCE_PATH"].split(":")
+    theirs = expected["GZ_SIM_RESOURCE_PATH"].split(":")
+    assert ours[1:] == theirs[1:] == ["/opt/user/models"]
+    # the same place inside each prefix: diffctl's from the sources, colcon's in its install
+    ours_prefix = Path(ours[0]).parents[2]
+    models = Path("share/robot_worlds/models")
+    assert Path(ours[0]).relative_to(ours_prefix) == Path(theirs[0]).relative_to(prefix) == models
+    assert (Path(ours[0]) / "robot" / "model.config").is_file()
+    home = Path(env["ROBOT_WORLDS_HOME"]).relative_to(ours_prefix)
+    assert home == Path(expected["ROBOT_WORLDS_HOME"]).relative_to(prefix) == Path("share/robot_worlds")
+    assert "WRONG_SH" not in env and "WRONG_SH" not in expected
+
+
+def test_colcon_pkg_with_bad_hooks_is_one_located_error(tmp_path: Path) -> None:
+    from diffctl.workspace.env_hooks import colcon_pkg_hooks
+
+    (tmp_path / "colcon.pkg").write_text("hooks: share/x/hook/a.dsv\n")
+    with pytest.raises(ConfigError) as e:
+        colcon_pkg_hooks(tmp_path)
+    assert e.value.source == str(tmp_path / "colcon.pkg") and "'hooks' must be a list" in str(e.value)
+    (tmp_path / "colcon.pkg").write_text("name: x\nhooks: [a.dsv\n")
+    with pytest.raises(ConfigError) as e:
+        colcon_pkg_hooks(tmp_path)
+    assert "not valid YAML" in str(e.value) and e.value.line is not None
+    (tmp_path / "colcon.pkg").write_text('{"name": "x", "hooks": ["share/x/hook/a.dsv", ["share/x/hook/b.sh", "1"]]}')
+    assert colcon_pkg_hooks(tmp_path) == ["share/x/hook/a.dsv", "share/x/hook/b.sh"]
+
+
+def test_an_unsourced_install_tree_applies_as_its_local_setup_would(tmp_path: Path) -> None:
+    """A workspace built with colcon whose install/ the shell never sourced: the packages only the install
+    holds are applied as colcon's local_setup.sh applies them; a package whose sources are in the workspace
+    comes from them, not from its (possibly stale) build; a sourced install/ is left to the shell."""
+    from diffctl.workspace import use_in_children
+
+    ws = tmp_path / "ws"
+    install = ws / "install"
+    _install_package(
+        install,
+        "scenery",
+        [],
+        {
+            "share/scenery/local_setup.dsv": "source;share/scenery/hook/models.dsv\n",
+            "share/scenery/hook/models.dsv": "prepend-non-duplicate;GZ_SIM_RESOURCE_PATH;share/scenery/models\n"
+            "set;SCENERY_HOME;share/scenery\n",
+            "share/scenery/models/tree/model.config": "<model/>",
+        },
+    )
+    _install_package(
+        install,
+        "robot_worlds",
+        ["scenery"],
+        {
+            "share/robot_worlds/local_setup.dsv": "source;share/robot_worlds/hook/stale.dsv\n",
+            "share/robot_worlds/hook/stale.dsv": "set;STALE_BUILD;1\n",
+        },
+    )
+    write_tree(ws / "src" / "robot_worlds", {"package.xml": package_xml("robot_worlds")})
+    base = {"PATH": os.environ["PATH"]}
+    expected = _sourced_by_colcon(install, dict(base))
+    env = dict(base)
+    use_in_children(ws, env)
+    assert env["GZ_SIM_RESOURCE_PATH"] == expected["GZ_SIM_RESOURCE_PATH"] == f"{install}/scenery/share/scenery/models"
+    assert env["SCENERY_HOME"] == expected["SCENERY_HOME"]
+    assert expected["STALE_BUILD"] == "1" and "STALE_BUILD" not in env  # the sources win over the build
+    sourced = {**base, "COLCON_PREFIX_PATH": str(install)}
+    use_in_children(ws, sourced)
+    assert "SCENERY_HOME" not in sourced and "GZ_SIM_RESOURCE_PATH" not in sourced
