@@ -202,9 +202,9 @@ def write_smoke_test(package: str, workspace: Path | None, output: Path | None =
 TEMPLATE = '''\
 """Smoke test of {package}'s robot (written by `diffctl test --init {package}`; edit it as you like).
 
-Brings up {launch_file}, waits for {controller} to be active, drives DRIVE_SIM_S seconds of simulated time
-at SPEED_M_S on its cmd_vel, checks odometry against the command and against how far the wheels turned,
-then that every process exits cleanly. Run it with `diffctl test`, `launch_test` or pytest.
+Brings up LAUNCH_FILE, waits for the controllers to be active, drives DRIVE_SIM_S seconds of simulated time
+at SPEED_M_S on CONTROLLER's cmd_vel, checks odometry against the command and against how far the wheels
+turned, then that every process exits cleanly. Run it with `diffctl test`, `launch_test` or pytest.
 """
 
 import os
@@ -218,15 +218,18 @@ import launch_testing.asserts
 import pytest
 import rclpy
 from ament_index_python.packages import get_package_share_directory
+from controller_manager_msgs.msg import ControllerManagerActivity
 from geometry_msgs.msg import TwistStamped
 from launch import launch_description_sources
 from nav_msgs.msg import Odometry
+from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import JointState
 
 PACKAGE = "{package}"
 LAUNCH_FILE = "{launch_file}"
 LAUNCH_ARGUMENTS = {arguments}
+CONTROLLER_MANAGER = "/controller_manager"
 CONTROLLER = "{controller}"  # from {controller_yaml}
 CMD_VEL_TIMEOUT_S = {cmd_vel_timeout}  # the controller's cmd_vel_timeout
 LEFT_WHEEL_JOINT = "{left_wheel}"
@@ -257,6 +260,10 @@ class TestDrive(unittest.TestCase):
         for topic, msg_type in ((f"/{{CONTROLLER}}/odom", Odometry), ("/joint_states", JointState),
                                 ("/clock", Clock)):
             self.node.create_subscription(msg_type, topic, lambda m, t=topic: self.on_message(t, m), 100)
+        latched = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL,
+                             reliability=ReliabilityPolicy.RELIABLE)
+        self.node.create_subscription(ControllerManagerActivity, f"{{CONTROLLER_MANAGER}}/activity",
+                                      lambda m: self.latest.__setitem__("activity", m), latched)
 
     def on_message(self, topic, msg):
         self.latest[topic] = msg
@@ -278,6 +285,14 @@ class TestDrive(unittest.TestCase):
         stamp = self.latest["/clock"].clock
         return stamp.sec + stamp.nanosec * 1e-9
 
+    def controller_states(self):
+        activity = self.latest.get("activity")
+        return {{}} if activity is None else {{c.name: c.state.label for c in activity.controllers}}
+
+    def all_active(self):
+        states = self.controller_states()
+        return CONTROLLER in states and all(label == "active" for label in states.values())
+
     def moving_since_s(self):
         """Sim time of the last odometry at rest before the robot moved: the command took effect right after."""
         at_rest = None
@@ -292,11 +307,16 @@ class TestDrive(unittest.TestCase):
         return js.position[list(js.name).index(LEFT_WHEEL_JOINT)]
 
     def test_drives_on_cmd_vel(self):
-        # The controller publishes odometry only while active, the broadcaster joint states only while active.
+        deadline = time.monotonic() + ACTIVE_TIMEOUT_S
+        while not self.all_active():
+            if time.monotonic() > deadline:
+                states = self.controller_states() or "none"
+                self.fail(f"controllers not active within {{ACTIVE_TIMEOUT_S:g}} s: {{states}} "
+                          f"(from {{CONTROLLER_MANAGER}}/activity)")
+            rclpy.spin_once(self.node, timeout_sec=0.02)
         odom = f"/{{CONTROLLER}}/odom"
-        self.spin_until(lambda: all(t in self.latest for t in (odom, "/joint_states", "/clock")), ACTIVE_TIMEOUT_S,
-                        f"{{CONTROLLER}} and joint_state_broadcaster did not become active (no odometry, joint "
-                        "states or clock)")
+        self.spin_until(lambda: all(t in self.latest for t in (odom, "/joint_states", "/clock")), 10.0,
+                        "no odometry, joint states or clock")
         if LEFT_WHEEL_JOINT not in self.latest["/joint_states"].name:
             names = list(self.latest["/joint_states"].name)
             self.fail(f"joint {{LEFT_WHEEL_JOINT}} is not in /joint_states: {{names}}")
