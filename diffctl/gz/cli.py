@@ -24,7 +24,7 @@ Usage: gz <command> [options]
   sim      Run a world: gz sim [-r] [-s] [-g] [-v N] [--iterations N] WORLD
   topic    gz topic -l | -i -t T | -e -t T [-n N] [-d S] [--json-output] | -p TEXT -t T -m gz.msgs.X
   service  gz service -l | -i -s S | -s S --reqtype A --reptype B [--timeout MS] --req TEXT
-  model    gz model --list | -m NAME [-p]
+  model    gz model --list | -m NAME [-p] [-l [LINK]] [-j [JOINT]]
   fuel     gz fuel download -u URL
 
 Options: -h, --help
@@ -340,6 +340,8 @@ def model(rest: list[str]) -> int:
     p.add_argument("--list", action="store_true")
     p.add_argument("-m", "--model")
     p.add_argument("-p", "--pose", action="store_true")
+    p.add_argument("-l", "--link", nargs="?", const="")
+    p.add_argument("-j", "--joint", nargs="?", const="")
     a = _parse(p, rest)
     from diffctl.sim.world_client import call
 
@@ -361,12 +363,88 @@ def model(rest: list[str]) -> int:
     if m is None:
         print(f"No model named <{a.model}> was found")
         return 1
-    pose = m["pose"]
-    index = list(models).index(a.model) + 1
-    print(f"Model: [{index}]\n  - Name: {a.model}\n  - Pose [ XYZ (m) ] [ RPY (rad) ]:")
-    print(f"      [{pose['x']:.6f} {pose['y']:.6f} {pose['z']:.6f}]")
-    print(f"      [{pose['roll']:.6f} {pose['pitch']:.6f} {pose['yaw']:.6f}]")
+    print(model_text(m, _entity_ids(list(models.values())), a.pose, a.link, a.joint), end="")
     return 0
+
+
+def _entity_ids(models: list[dict[str, Any]]) -> dict[str, int]:
+    """Entity numbers as an ECM hands them out in load order (the world is 1): each model, then its links,
+    then its joints. Keys are `model`, `model/link` and `model//joint`."""
+    ids: dict[str, int] = {}
+    n = 1
+    for m in models:
+        n += 1
+        ids[m["name"]] = n
+        for link in m.get("links", []):
+            n += 1
+            ids[f"{m['name']}/{link['name']}"] = n
+        for joint in m.get("joints", []):
+            n += 1
+            ids[f"{m['name']}//{joint['name']}"] = n
+    return ids
+
+
+def _pose_lines(pose: dict[str, float], spaces: int) -> str:
+    pad = " " * spaces
+    return (
+        f"{pad}[{pose['x']:.6f} {pose['y']:.6f} {pose['z']:.6f}]\n"
+        f"{pad}[{pose['roll']:.6f} {pose['pitch']:.6f} {pose['yaw']:.6f}]\n"
+    )
+
+
+def _vector(values: list[float]) -> str:
+    # gz-math's stream output: six significant digits, a zero as 0
+    return " ".join("0" if v == 0 else f"{v:.6g}" for v in values)
+
+
+def model_text(
+    m: dict[str, Any], ids: dict[str, int], pose: bool = False, link: str | None = None, joint: str | None = None
+) -> str:
+    """What gz-sim 8's `gz model -m NAME [-p] [-l [LINK]] [-j [JOINT]]` prints (ModelCommandAPI.cc)."""
+    name = m["name"]
+    every = not pose and link is None and joint is None
+    parent = f"{name} [{ids[name]}]"
+    out = []
+    spaces = 0
+    if every or pose:
+        out.append(f"Model: [{ids[name]}]\n  - Name: {name}\n  - Pose [ XYZ (m) ] [ RPY (rad) ]:\n")
+        out.append(_pose_lines(m["pose"], 4))
+        spaces = 2
+    pad, pad2, pad4 = " " * spaces, " " * (spaces + 2), " " * (spaces + 4)
+    if every or link is not None:
+        for lk in m.get("links", []):
+            if link and link != lk["name"]:
+                continue
+            out.append(f"{pad}- Link [{ids[name + '/' + lk['name']]}]\n{pad2}- Name: {lk['name']}\n")
+            out.append(f"{pad2}- Parent: {parent}\n")
+            if "mass" in lk:
+                ixx, ixy, ixz, iyy, iyz, izz = lk["inertia"]
+                out.append(f"{pad2}- Mass (kg): {lk['mass']:.6f}\n{pad2}- Inertial Pose [ XYZ (m) ] [ RPY (rad) ]:\n")
+                out.append(_pose_lines(lk["inertial_pose"], spaces + 4))
+                out.append(
+                    f"{pad2}- Inertial Matrix (kg.m^2):\n{pad4}[{ixx:.6f} {ixy:.6f} {ixz:.6f}]\n"
+                    f"{pad4}[{ixy:.6f} {iyy:.6f} {iyz:.6f}]\n{pad4}[{ixz:.6f} {iyz:.6f} {izz:.6f}]\n"
+                )
+            out.append(f"{pad2}- Pose [ XYZ (m) ] [ RPY (rad) ]:\n")
+            out.append(_pose_lines(lk["pose"], spaces + 4))
+    if every or joint is not None:
+
+        def link_info(link_name: str) -> str:
+            known = ids.get(f"{name}/{link_name}")
+            return f"{link_name} [{known}]" if known is not None else link_name  # "world" has no link entity
+
+        for jt in m.get("joints", []):
+            if joint and joint != jt["name"]:
+                continue
+            out.append(f"{pad}- Joint [{ids[name + '//' + jt['name']]}]\n{pad2}- Name: {jt['name']}\n")
+            out.append(f"{pad2}- Parent: {parent}\n{pad2}- Type: {jt['type']}\n")
+            out.append(f"{pad2}- Parent Link: {link_info(jt['parent'])}\n")
+            out.append(f"{pad2}- Child Link: {link_info(jt['child'])}\n")
+            out.append(f"{pad2}- Pose [ XYZ (m) ] [ RPY (rad) ]:\n")
+            out.append(_pose_lines(jt["pose"], spaces + 4))
+            if jt.get("axis") is not None:
+                out.append(f"{pad2}- Axis unit vector [ XYZ ]:\n{pad4}[{_vector(jt['axis'])}]\n")
+    return "".join(out)
 
 
 def fuel(rest: list[str]) -> int:

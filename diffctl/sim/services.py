@@ -8,7 +8,10 @@ Queryables under `gz/world/<world>/`, JSON in and out; every answer has "ok" (an
             "allow_renaming": false, "base_dir": "/dir for relative URIs"} → {"ok", "name", "ignored": [...]}
   remove   {"name"} → {"ok"}
   state    {} → {"ok", "world", "paused", "sim_time_ns", "iterations", "rtf_target", "models": [{"name",
-            "static", "pose": {"x","y","z","roll","pitch","yaw"}, "ros2_control": bool}]}
+            "static", "pose": P, "ros2_control": bool, "links": [{"name", "pose" (in the model frame, now),
+            "mass", "inertial_pose", "inertia": [ixx, ixy, ixz, iyy, iyz, izz]}], "joints": [{"name", "type",
+            "parent", "child", "pose" (in the child link's frame), "axis" (in the joint frame, or null)}]}]}
+           where P = {"x","y","z","roll","pitch","yaw"}
 Liveliness token `gz/world/<world>/sim` while the simulator runs (spawners wait for it).
 Topic `/world/<world>/stats` (gz.msgs.WorldStatistics, 5 Hz of wall time, also while paused), with extras:
   {"sim_time", "real_time", "pause_time", "iterations", "paused", "real_time_factor", "step_size",
@@ -177,6 +180,8 @@ class WorldServices:
                     "static": rt.entity.model.static,
                     "pose": {"x": p.xyz[0], "y": p.xyz[1], "z": p.xyz[2], "roll": r[0], "pitch": r[1], "yaw": r[2]},
                     "ros2_control": rt.control is not None,
+                    "links": _links(rt.entity, p),
+                    "joints": _joints(rt.entity.model),
                 }
             )
         return {**self._status(), "world": self.sim.name, "rtf_target": self.sim.stepper.rtf, "models": models}
@@ -253,3 +258,47 @@ def _renamed(model: Any, taken: dict[str, Any]) -> Any:
     while f"{model.name}_{i}" in taken:
         i += 1
     return dataclasses.replace(model, name=f"{model.name}_{i}")
+
+
+def _pose6(p: Pose) -> dict[str, float]:
+    r = p.rpy
+    return {"x": p.xyz[0], "y": p.xyz[1], "z": p.xyz[2], "roll": r[0], "pitch": r[1], "yaw": r[2]}
+
+
+def _links(entity: Any, model_pose: Pose) -> list[dict[str, Any]]:
+    """Each link as `gz model -m` shows it: its pose in the model frame where physics has it now."""
+    out = []
+    to_model = model_pose.inverse()
+    for link in entity.model.links:
+        try:
+            pose = to_model.compose(entity.link_pose(link.name))
+        except KeyError:  # a link physics does not carry on its own: where the description puts it
+            pose = link.pose_model
+        entry: dict[str, Any] = {"name": link.name, "pose": _pose6(pose)}
+        if link.inertial is not None:
+            i = link.inertial
+            entry.update(
+                mass=i.mass_kg,
+                inertial_pose=_pose6(i.pose_link),
+                inertia=[i.ixx, i.ixy, i.ixz, i.iyy, i.iyz, i.izz],
+            )
+        out.append(entry)
+    return out
+
+
+def _joints(model: Model) -> list[dict[str, Any]]:
+    out = []
+    for j in model.joints:
+        # SDF's <axis><xyz> is in the joint frame by default; the description keeps it in the child's
+        axis = j.pose_child.inverse().rotate(j.axis_child) if j.axis_child is not None else None
+        out.append(
+            {
+                "name": j.name,
+                "type": j.type,
+                "parent": j.parent,
+                "child": j.child,
+                "pose": _pose6(j.pose_child),
+                "axis": list(axis) if axis is not None else None,
+            }
+        )
+    return out

@@ -31,6 +31,23 @@ BOX_WORLD = """<?xml version="1.0"?>
         <collision name="c"><geometry><box><size>1 1 1</size></box></geometry></collision>
       </link>
     </model>
+    <model name="pendulum">
+      <pose>0 -2 0 0 0 0</pose>
+      <link name="base">
+        <inertial><mass>5</mass><inertia><ixx>0.1</ixx><iyy>0.1</iyy><izz>0.1</izz></inertia></inertial>
+        <collision name="c"><geometry><box><size>0.2 0.2 0.2</size></box></geometry></collision>
+      </link>
+      <link name="arm">
+        <pose>0 0 1 0 0 0</pose>
+        <inertial><mass>0.5</mass><pose>0 0 0.25 0 0 0</pose>
+          <inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.001</izz></inertia></inertial>
+      </link>
+      <joint name="anchor" type="fixed"><parent>world</parent><child>base</child></joint>
+      <joint name="hinge" type="revolute">
+        <parent>base</parent><child>arm</child><pose>0 0 -0.5 0 0 0</pose>
+        <axis><xyz>0 1 0</xyz></axis>
+      </joint>
+    </model>
   </world>
 </sdf>
 """
@@ -104,9 +121,24 @@ def test_gz_topic_service_model_against_a_running_world(router: str, procs, tmp_
     listing = gz("model", "--list")
     assert listing.stdout == (
         "\nRequesting state for world [shapes]...\n\nAvailable models:\n    - ground_plane\n    - box\n"
+        "    - pendulum\n"
     )
     pose = gz("model", "-m", "box").stdout
-    assert "  - Name: box" in pose and "[1.000000 2.000000 0.500000]" in pose
+    assert "  - Name: box" in pose and "    [1.000000 2.000000 0.500000]\n" in pose
+    # links and joints as gz-sim 8's ModelCommandAPI prints them (entity numbers are diffctl's own)
+    info = gz("model", "-m", "pendulum").stdout
+    assert "\n  - Link [" in info and "    - Name: arm\n" in info and "    - Parent: pendulum [" in info
+    mass = "    - Mass (kg): 0.500000\n    - Inertial Pose [ XYZ (m) ] [ RPY (rad) ]:\n"
+    assert mass + "      [0.000000 0.000000 0.250000]\n" in info
+    assert "    - Inertial Matrix (kg.m^2):\n      [0.010000 0.000000 0.000000]\n" in info
+    assert "    - Pose [ XYZ (m) ] [ RPY (rad) ]:\n      [0.000000 0.000000 1.000000]\n" in info  # arm, model frame
+    hinge = info[info.index("    - Name: hinge"):]
+    assert "    - Type: revolute\n    - Parent Link: base [" in hinge and "    - Child Link: arm [" in hinge
+    assert "      [0.000000 0.000000 -0.500000]\n" in hinge and "- Axis unit vector [ XYZ ]:\n      [0 1 0]\n" in hinge
+    assert "    - Parent Link: world\n" in info  # the fixed anchor: no entity named world
+    only_joint = gz("model", "-m", "pendulum", "-j", "hinge").stdout
+    assert "Model: [" not in only_joint and "- Joint [" in only_joint and "- Link [" not in only_joint
+    assert "Name: anchor" not in only_joint
     assert "No model named <nope> was found" in gz("model", "-m", "nope").stdout
     # paused (no -r): /clock holds still until the world is unpaused through the control service
     first = gz("topic", "-e", "-t", "/clock", "-n", "1").stdout
