@@ -86,6 +86,7 @@ class Visual:
     pose_link: Pose
     geometry: Geometry
     rgba: tuple[float, float, float, float] | None = None  # <material><diffuse> (or ambient), when given
+    laser_retro: float = 0.0  # <laser_retro>: the intensity a lidar ray reports when it hits this visual
 
 
 @dataclass(frozen=True)

@@ -217,7 +217,8 @@ def parse_visual(doc: Doc, el: Element, to_link: ToLink) -> Visual:
     material = child(el, "material")
     if material is not None:
         rgba = color_value(doc, material, "diffuse", None) or color_value(doc, material, "ambient", None)
-    return Visual(name, to_link(pose, rel, pose_el), parse_geometry(doc, el), rgba)
+    retro = float_value(doc, el, "laser_retro", 0.0) if child(el, "laser_retro") is not None else 0.0
+    return Visual(name, to_link(pose, rel, pose_el), parse_geometry(doc, el), rgba, retro)
 
 
 def parse_inertial(doc: Doc, el: Element, to_link: ToLink) -> Inertial:

@@ -123,6 +123,7 @@ class Simulation:
         self.ctx = PluginContext(self.stepper, self.transport, self.log, world.name)
         self.seed = seed
         self.models: dict[str, ModelRuntime] = {}
+        self._retro: dict[tuple[int, int], float] | None = None  # laser_retro by PyBullet link, built on demand
         lights = [lt for lt in world.lights if lt.type == "directional"]
         self.light_direction = lights[0].direction if lights else DEFAULT_LIGHT_DIRECTION
         self.wall_start_s = time.time()
@@ -154,6 +155,7 @@ class Simulation:
         entity = self.physics.add_model(model)
         rt = ModelRuntime(entity)
         self.models[model.name] = rt
+        self._retro = None
         try:
             self._add_systems(rt, description, prepared)
             self._add_sensors(rt)
@@ -170,10 +172,25 @@ class Simulation:
             self._look_at(entity)
         return entity
 
+    def laser_retro(self) -> dict[tuple[int, int], float]:
+        """(PyBullet body, link index) → the `<laser_retro>` of the visuals there, for every model that sets
+        one (the largest where one PyBullet link carries several); rebuilt after a spawn or a removal."""
+        if self._retro is None:
+            retro: dict[tuple[int, int], float] = {}
+            for rt in self.models.values():
+                for link in rt.entity.model.links:
+                    value = max((v.laser_retro for v in link.visuals), default=0.0)
+                    if value:
+                        body, index, _ = rt.entity.link_frame(link.name)
+                        retro[(body, index)] = max(value, retro.get((body, index), value))
+            self._retro = retro
+        return self._retro
+
     def remove(self, name: str) -> None:
         rt = self.models.pop(name, None)
         if rt is None:
             raise RuntimeFailure(f"no entity named {name!r}", hint=f"entities: {', '.join(self.models) or 'none'}")
+        self._retro = None
         for p in rt.plugins:
             p.close()
         for t in rt.tasks:
@@ -229,7 +246,7 @@ class Simulation:
             rng = self.sensor_rng(entity.name, s.name)
             sensor: Lidar | Imu | CameraSensor | AirPressure | NavSat | Magnetometer
             if s.type == "lidar":
-                sensor = Lidar(entity, s, rng)
+                sensor = Lidar(entity, s, rng, self.laser_retro)
             elif s.type == "air_pressure":
                 sensor = AirPressure(entity, s, rng)
             elif s.type == "magnetometer":

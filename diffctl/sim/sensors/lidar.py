@@ -1,9 +1,13 @@
 """gpu_lidar / lidar / ray sensors on the CPU: one PyBullet `rayTestBatch` per scan, gz.msgs.LaserScan out.
 
 Noise follows SDF/Gazebo: Gaussian with `mean` and `stddev` from the sensor's own seeded numpy Generator.
+Intensities are the `<laser_retro>` of the visuals a ray hits, as gz-rendering reports them; PyBullet tells only
+the link hit, so a link whose visuals carry different values reports the largest.
 """
 
 from __future__ import annotations
+
+from collections.abc import Callable
 
 import numpy as np
 import pybullet as pb
@@ -53,10 +57,12 @@ def lidar_points(ranges: np.ndarray, directions: np.ndarray) -> np.ndarray:
         return np.asarray(ranges, dtype=np.float32)[:, None] * directions
 
 
-def pack_lidar_points(points: np.ndarray, h_samples: int) -> bytes:
-    """PointCloudPacked data: x, y, z, intensity (0: no retro-reflectors simulated), ring = vertical row."""
+def pack_lidar_points(points: np.ndarray, h_samples: int, intensities: np.ndarray | None = None) -> bytes:
+    """PointCloudPacked data: x, y, z, intensity (the hit visual's laser_retro, else 0), ring = vertical row."""
     out = np.zeros(len(points), dtype=_LIDAR_DTYPE)
     out["x"], out["y"], out["z"] = points[:, 0], points[:, 1], points[:, 2]
+    if intensities is not None:
+        out["intensity"] = intensities
     out["ring"] = np.arange(len(points)) // h_samples
     return out.tobytes()
 
@@ -82,10 +88,19 @@ def lidar_cloud_msg(sim_time_ns: int, frame: str, h_samples: int, v_samples: int
 class Lidar:
     """gpu_lidar / lidar / ray sensors. Rays start at range_min so the sensor never sees its own housing."""
 
-    def __init__(self, entity: Entity, sensor: Sensor, rng: np.random.Generator) -> None:
+    def __init__(
+        self,
+        entity: Entity,
+        sensor: Sensor,
+        rng: np.random.Generator,
+        retro: Callable[[], dict[tuple[int, int], float]] | None = None,
+    ) -> None:
         spec = sensor.lidar
         assert spec is not None
         self.entity, self.sensor, self.spec, self.rng = entity, sensor, spec, rng
+        # (PyBullet body, link) → laser_retro of the world's visuals there; empty: every intensity is 0
+        self._retro = retro or (lambda: {})
+        self.intensities = np.zeros(0, dtype=np.float64)  # of the latest scan, one per range
         self.frame_id = frame_id(entity.name, sensor)
         self.count = spec.horizontal_samples * spec.vertical_samples
         if self.count > MAX_RAYS:
@@ -128,6 +143,14 @@ class Lidar:
         )
         # One pass over the result tuples: a miss has fraction 1 and object -1; mark it with fraction 2.
         frac = np.fromiter((r[2] if r[0] >= 0 else 2.0 for r in res), dtype=np.float64, count=self.count)
+        retro = self._retro()
+        if retro:
+            # as gz-rendering's GpuRays: the hit visual's laser_retro, 0 on a miss or a visual without one
+            self.intensities = np.fromiter(
+                (retro.get((r[0], r[1]), 0.0) if r[0] >= 0 else 0.0 for r in res), dtype=np.float64, count=self.count
+            )
+        else:
+            self.intensities = np.zeros(self.count, dtype=np.float64)
         ranges = ranges_from_hits(frac, frac < 1.5, self.spec.range_min_m, self.spec.range_max_m)
         if self._noise is not None:
             n = self._noise
@@ -148,9 +171,15 @@ class Lidar:
             out[SCAN] = self.scan_msg(sim_time_ns, ranges)
         if POINTS in wanted:
             s = self.spec
-            data = pack_lidar_points(lidar_points(ranges, self.directions), s.horizontal_samples)
+            points = lidar_points(ranges, self.directions)
+            data = pack_lidar_points(points, s.horizontal_samples, self._intensities_for(ranges))
             out[POINTS] = lidar_cloud_msg(sim_time_ns, self.frame_id, s.horizontal_samples, s.vertical_samples, data)
         return out
+
+    def _intensities_for(self, ranges: np.ndarray) -> np.ndarray:
+        # the latest scan's, when `ranges` came from it
+        n = np.size(ranges)
+        return self.intensities if np.size(self.intensities) == n else np.zeros(n, dtype=np.float64)
 
     def scan_msg(self, sim_time_ns: int, ranges: np.ndarray) -> dict:
         s = self.spec
@@ -172,6 +201,5 @@ class Lidar:
             # As gz-sensors sends them (full doubles); the gz encoding carries the array as raw bytes.
             "ranges": np.ascontiguousarray(ranges, dtype=np.float64),
             # gz-sensors fills one intensity per range: the laser_retro of the hit visual, 0 without any
-            # (diffctl's worlds set none).
-            "intensities": np.zeros(np.size(ranges), dtype=np.float64),
+            "intensities": self._intensities_for(ranges),
         }
