@@ -23,7 +23,7 @@ from diffctl.bus.log import Logger
 from diffctl.description.model import Model, World
 from diffctl.errors import DescriptionError, RuntimeFailure
 from diffctl.sim.entity import Entity
-from diffctl.sim.plugins.base import PluginContext, SystemPlugin, rate_period_ns
+from diffctl.sim.plugins.base import PluginContext, SystemPlugin, bool_param, rate_period_ns
 from diffctl.sim.plugins.diff_drive import DiffDrive, DiffDriveParams
 from diffctl.sim.plugins.gz_ros2_control import GzRos2Control, PreparedManager
 from diffctl.sim.plugins.joint_state_publisher import JointStatePublisher
@@ -44,6 +44,7 @@ from diffctl.sim.sensors import (
     origin_problem,
 )
 from diffctl.sim.sensors import topics as sensor_topics
+from diffctl.sim.sensors.magnetometer import EarthFieldParams
 from diffctl.sim.stepper import Stepper, Task
 from diffctl.sim.transport import GzPublisher, SimTransport
 from diffctl.sim.world import PhysicsWorld
@@ -172,6 +173,23 @@ class Simulation:
             self._look_at(entity)
         return entity
 
+    def _earth_field(self) -> EarthFieldParams | None:
+        """The Earth's field for magnetometers when the world is placed on it (gz-sim's Magnetometer system)."""
+        origin = self.world_model.spherical_coordinates
+        if origin is None:
+            return None
+        system = next(
+            (p for p in self.world_model.plugins if system_kind(p.filename, p.name) == "magnetometer"), None
+        )
+        source = self.world_model.source
+        if system is None:
+            return EarthFieldParams(origin)
+        return EarthFieldParams(
+            origin,
+            units_gauss=bool_param(system, "use_units_gauss", True, source=source),
+            ned=bool_param(system, "use_earth_frame_ned", True, source=source),
+        )
+
     def laser_retro(self) -> dict[tuple[int, int], float]:
         """(PyBullet body, link index) → the `<laser_retro>` of the visuals there, for every model that sets
         one (the largest where one PyBullet link carries several); rebuilt after a spawn or a removal."""
@@ -250,7 +268,7 @@ class Simulation:
             elif s.type == "air_pressure":
                 sensor = AirPressure(entity, s, rng)
             elif s.type == "magnetometer":
-                sensor = Magnetometer(entity, s, self.physics.physics.magnetic_field_t, rng)
+                sensor = Magnetometer(entity, s, self.physics.physics.magnetic_field_t, rng, self._earth_field())
             elif s.type == "navsat":
                 origin = self.world_model.spherical_coordinates
                 problem = origin_problem(origin)
