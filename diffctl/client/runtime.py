@@ -12,7 +12,8 @@ _global_executor: Any = None
 
 
 class InitContextManager:
-    """What init() returns: `with rclpy.init():` shuts the context down on leaving, as in Jazzy."""
+    """What init() returns: `with rclpy.init():` shuts the context down on leaving. (Jazzy's init returns None;
+    later releases return this, and ros2/examples use it, so programs written for either run.)"""
 
     def __init__(self, args: list[str] | None, context: Context | None, domain_id: int | None) -> None:
         self.context = get_default_context() if context is None else context
@@ -31,8 +32,10 @@ def init(*, args: list[str] | None = None, context: Context | None = None, domai
     if signal_handler_options is None:
         signal_handler_options = (SignalHandlerOptions.ALL if context is None or context is get_default_context()
                                   else SignalHandlerOptions.NO)
+    manager = InitContextManager(args, context, domain_id)
+    # After the context's init, as rclpy: a signal during a long init still ends the process the default way.
     install_signal_handlers(signal_handler_options)
-    return InitContextManager(args, context, domain_id)
+    return manager
 
 
 def shutdown(*, context: Context | None = None, uninstall_handlers: bool | None = None) -> None:
