@@ -91,6 +91,20 @@ def announce(session: Any, kind: str, topic: str, gz_type: str) -> Any:
     return session.liveliness().declare_token(endpoint_token(kind, str(session.zid()), topic, gz_type))
 
 
+# gz-side services (gz-transport's Advertise of a service): a queryable on `gz_srv/<name>` taking one sample
+# of the request type and answering one of the response type, in this encoding; announced by an endpoint token
+# of kind "srv" whose type is `<request type>~<response type>`.
+SERVICE_PREFIX = "gz_srv"
+
+
+def service_key(name: str) -> str:
+    return SERVICE_PREFIX + key(name)[len(PREFIX) :]
+
+
+def announce_service(session: Any, name: str, request_type: str, response_type: str) -> Any:
+    return announce(session, "srv", name, f"{request_type}~{response_type}")
+
+
 def parse_endpoint_token(token_key: str) -> tuple[str, str, str, str] | None:
     """(kind, zid, topic, gz type) of an endpoint token key, or None."""
     parts = str(token_key).split("/")

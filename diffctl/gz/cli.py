@@ -163,7 +163,7 @@ def topic(rest: list[str]) -> int:
     p.add_argument("--json-output", action="store_true")
     a = _parse(p, rest)
     if a.list:
-        for name in sorted({t for _, _, t, _ in _endpoints(_session())}):
+        for name in sorted({t for kind, _, t, _ in _endpoints(_session()) if kind != "srv"}):
             print(name)
         return 0
     if not a.topic:
@@ -268,6 +268,9 @@ def service(rest: list[str]) -> int:
     for w in worlds:
         for leaf, types in WORLD_SERVICES.items():
             services[f"/world/{w}/{leaf}"] = types
+    # the services systems advertise (a battery's recharge/start, …), from their announcing tokens
+    announced = {t: tuple(types.split("~", 1)) for kind, _, t, types in _endpoints(session) if kind == "srv"}
+    services.update({n: (r[0], r[1]) for n, r in announced.items() if len(r) == 2})
     if a.list:
         for name in sorted(services):
             print(name)
@@ -285,7 +288,31 @@ def service(rest: list[str]) -> int:
     if name not in services:
         print("Service call timed out")
         return 1
+    if name in announced:
+        return _call_announced(session, name, a.reqtype or services[name][0], a.reptype or "", a.req, a.timeout)
     return _call(session, name, a.req, a.timeout)
+
+
+def _call_announced(session: Any, name: str, req_type: str, rep_type: str, text: str, timeout_ms: int) -> int:
+    """A request to a system's gz service, as gz-transport's `gz service -s` sends it: with `--reptype
+    gz.msgs.Empty` it waits at most a second and prints nothing; otherwise it prints the response."""
+    from diffctl.bus import gz
+    from diffctl.gz.textproto import format_message, parse_message
+
+    req_type = "gz.msgs." + req_type.split(".msgs.", 1)[-1]
+    payload = gz.encode(req_type, parse_message(text) if text.strip() else {})
+    empty = rep_type.endswith(".msgs.Empty")
+    timeout_s = 1.0 if empty else max(timeout_ms, 1) / 1000.0
+    for reply in session.get(gz.service_key(name), payload=payload, timeout=timeout_s):
+        if reply.ok is not None:
+            if not empty:
+                _, fields = gz.decode(reply.ok.payload.to_bytes())
+                print(format_message(fields), end="")
+            return 0
+    if empty:
+        return 0
+    print("Service call timed out")
+    return 1
 
 
 def _call(session: Any, name: str, text: str, timeout_ms: int) -> int:

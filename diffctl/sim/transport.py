@@ -238,6 +238,34 @@ class SimTransport:
         self._owned.append(gz.announce(self.session, "sub", topic, gz_type))
         return sub
 
+    def gz_service(
+        self, name: str, request_type: str, response_type: str, handler: Callable[[dict[str, Any]], dict[str, Any]]
+    ) -> Any:
+        """A gz service (`gz service -s NAME --reqtype … --reptype …`): `handler(request fields)` runs on the sim
+        thread and returns the response's fields; a malformed request gets no answer (the caller times out,
+        as with gz-transport)."""
+
+        def on_query(query: zenoh.Query) -> None:
+            try:
+                _, fields = gz.decode(query.payload.to_bytes() if query.payload is not None else b"", request_type)
+            except MessageError as e:
+                self.log.throttled(f"bad:{name}", f"dropped a malformed request to gz service {name}: {e}")
+                query.drop()
+                return
+
+            def serve() -> None:
+                try:
+                    query.reply(query.key_expr, gz.encode(response_type, handler(fields)))
+                finally:
+                    query.drop()
+
+            self.call_soon(serve)
+
+        q = self.session.declare_queryable(gz.service_key(name), on_query, complete=True)
+        both = _Together(q, gz.announce_service(self.session, name, request_type, response_type))
+        self._owned.append(both)
+        return both
+
     def raw_subscribe(self, key: str, callback: Callable[[Any], None]) -> Any:
         """A subscriber whose callback runs on the Zenoh thread (for the lockstep path: no hand-over)."""
         sub = self.session.declare_subscriber(key, callback)
@@ -319,6 +347,17 @@ class SimTransport:
         self.outbox.close()
         while self._owned:
             _undeclare(self._owned.pop())
+
+
+class _Together:
+    """Declarations released as one (a service's queryable and its announcing token)."""
+
+    def __init__(self, *objs: Any) -> None:
+        self._objs = objs
+
+    def undeclare(self) -> None:
+        for obj in self._objs:
+            _undeclare(obj)
 
 
 def _undeclare(obj: Any) -> None:

@@ -173,3 +173,47 @@ def test_a_triggered_camera_sends_one_frame_per_trigger_and_none_without(router:
         node.close()
         for p in (bridge, sim):
             procs.stop(p)
+
+
+@pytest.mark.slow
+def test_battery_recharge_services_are_listed_and_called_as_gz_service_does(router: str, procs, tmp_path: Path) -> None:
+    """gz-sim 8's LinearBatteryPlugin with <enable_recharge>: its recharge/start|stop services are listed by
+    `gz service -l/-i` and a request through `gz service -s` starts and stops charging."""
+    import os
+    import subprocess
+    import sys
+
+    world = systems_world(tmp_path)
+    recharge = "<enable_recharge>true</enable_recharge><charging_time>2.0</charging_time></plugin>"
+    world.write_text(
+        world.read_text().replace(
+            "<fix_issue_225>true</fix_issue_225>\n</plugin>", "<fix_issue_225>true</fix_issue_225>" + recharge
+        )
+    )
+    assert "<enable_recharge>" in world.read_text()
+    sim = procs.diffctl("sim", "run", "-r", str(world), cwd=tmp_path)
+
+    def gz_cli(*args: str) -> str:
+        cmd = [sys.executable, "-c", "from diffctl.gz.cli import main; main()", *args]
+        return subprocess.run(cmd, capture_output=True, text=True, timeout=30, env=os.environ.copy()).stdout
+
+    base = "/model/robot/battery/linear_battery/recharge"
+    wait_for(lambda: f"{base}/start" in gz_cli("service", "-l").split() or sim.poll() is not None, 60, "services")
+    assert sim.poll() is None
+    listed = gz_cli("service", "-l").split()
+    assert f"{base}/stop" in listed and "/world/systems/control" in listed
+    info = gz_cli("service", "-i", "-s", f"{base}/start")
+    assert "gz.msgs.Boolean, gz.msgs.Empty" in info, info
+    assert f"{base}/start" not in gz_cli("topic", "-l").split()  # a service, not a topic
+
+    def status() -> str:
+        text = gz_cli("topic", "-e", "-t", "/model/robot/battery/linear_battery/state", "-n", "1")
+        return next((line.split(":")[1].strip() for line in text.splitlines() if "power_supply_status" in line), "")
+
+    assert status() != "CHARGING"
+    call = ["service", "-s", "--reqtype", "gz.msgs.Boolean", "--reptype", "gz.msgs.Empty", "--req", "data: true"]
+    assert gz_cli(*call[:2], f"{base}/start", *call[2:]) == ""  # gz prints nothing for an Empty response
+    wait_for(lambda: status() == "CHARGING", 20, "the battery charging")
+    gz_cli(*call[:2], f"{base}/stop", *call[2:])
+    wait_for(lambda: status() not in ("CHARGING", ""), 20, "charging stopped")
+    procs.stop(sim)

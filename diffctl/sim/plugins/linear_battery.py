@@ -5,13 +5,17 @@ Parameters as gz-sim 8 reads them: `<battery_name>`, `<voltage>`, `<capacity>` (
 `<open_circuit_voltage_constant_coef>`, `<open_circuit_voltage_linear_coef>`, `<initial_charge>` (clamped to
 [0, capacity]), `<resistance>`, `<smooth_current_tau>`, `<power_load>` (W), `<start_draining>`,
 `<power_draining_topic>` / `<stop_power_draining_topic>` (repeatable; any message starts / stops draining),
-`<enable_recharge>` with `<charging_time>` (h) and `<recharge_by_topic>` (Boolean messages on
-`…/recharge/start|stop`), `<fix_issue_225>` (percentage 0–100 and soc = q / c), `<invert_current_sign>`.
+`<enable_recharge>` with `<charging_time>` (h): the services `/model/<model>/battery/<name>/recharge/start|stop`
+(gz.msgs.Boolean → gz.msgs.Empty, any request starts / stops charging), and with `<recharge_by_topic>` also
+Boolean messages on those names as topics, `<fix_issue_225>` (percentage 0–100 and soc = q / c),
+`<invert_current_sign>`.
 Draining also starts, and stays on, once any joint of the model is commanded a non-zero velocity or effort.
 Status: CHARGING, else DISCHARGING, else FULL above 90 %, else NOT_CHARGING.
 """
 
 from __future__ import annotations
+
+from collections.abc import Callable
 
 from diffctl.bus import gz
 from diffctl.description.model import Plugin
@@ -91,8 +95,13 @@ class LinearBatteryPlugin(SystemPlugin):
                 self._owned.append(t.raw_subscribe(gz.key(topic), lambda _s: ctx.stepper.call_soon(self._drain)))
             for topic in plugin.get_all("stop_power_draining_topic"):
                 self._owned.append(t.raw_subscribe(gz.key(topic), lambda _s: ctx.stepper.call_soon(self._stop)))
+            base = f"/model/{entity.name}/battery/{name}/recharge"
+            if self.battery.p.charging_time_h > 0:
+                for leaf, on in (("start", True), ("stop", False)):
+                    self._owned.append(
+                        t.gz_service(f"{base}/{leaf}", "gz.msgs.Boolean", "gz.msgs.Empty", self._recharge_service(on))
+                    )
             if self.battery.p.charging_time_h > 0 and plugin.get("recharge_by_topic") is not None:
-                base = f"/model/{entity.name}/battery/{name}/recharge"
                 self._owned.append(t.subscribe(f"{base}/start", "gz.msgs.Boolean", lambda _m: self._recharge(True)))
                 self._owned.append(t.subscribe(f"{base}/stop", "gz.msgs.Boolean", lambda _m: self._recharge(False)))
         self._dt_s = ctx.stepper.step_ns * 1e-9
@@ -108,6 +117,13 @@ class LinearBatteryPlugin(SystemPlugin):
 
     def _recharge(self, on: bool) -> None:
         self.charging = on
+
+    def _recharge_service(self, on: bool) -> Callable[[dict], dict]:
+        def handle(_request: dict) -> dict:
+            self._recharge(on)
+            return {}
+
+        return handle
 
     def _step(self) -> None:
         if not self.draining and self.entity.motion_commands != self._motion_seen:
