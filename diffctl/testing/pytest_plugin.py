@@ -29,6 +29,8 @@ def pytest_addoption(parser: pytest.Parser) -> None:
 def pytest_configure(config: pytest.Config) -> None:
     config.addinivalue_line("markers", "launch_test: a launch test file's generate_test_description (launch_testing)")
     config.addinivalue_line("markers", "rostest: a ROS launch test file's generate_test_description")
+    # ament_copyright is diffctl's own (diffctl/testing/copyright.py): its marker, as ament_copyright registers it
+    config.addinivalue_line("markers", "copyright: marks tests checking for copyright notices")
 
 
 def is_marked_launch_test(path: Path) -> bool:
