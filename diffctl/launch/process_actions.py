@@ -262,6 +262,12 @@ class ExecuteProcess(Action):
         name = perform(self.name, scope) if self.name is not None else self.default_name(argv, scope)
         if self.prefix is not None:
             argv = shlex.split(perform(self.prefix, scope)) + argv
+        elif scope.configurations.get("launch-prefix"):
+            # As launch's Executable.prepare: the `launch-prefix` configuration for every process without its
+            # own prefix, limited by the `launch-prefix-filter` regex on the executable's name when set.
+            pattern = scope.configurations.get("launch-prefix-filter")
+            if not pattern or re.match(str(pattern), os.path.basename(argv[0])):
+                argv = shlex.split(str(scope.configurations["launch-prefix"])) + argv
         raw = {k: _option(v, scope) for k, v in self.options.items()}
         if raw.get("output") is None:
             raw["output"] = engine.output_default

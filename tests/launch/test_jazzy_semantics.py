@@ -481,3 +481,19 @@ def test_a_nodes_command_line_is_launch_ros_s(tmp_path: Path) -> None:
     assert commandline.argv(spec)[1:] == [
         "5", "--ros-args", "--log-level", "debug", "--ros-args", "-r", "__node:=n", "-r", "__ns:=/ns", "-r", "a:=b"
     ]
+
+
+def test_the_launch_prefix_configuration_applies_to_processes_without_their_own(tmp_path: Path) -> None:
+    path = tmp_path / "p.launch.yaml"
+    path.write_text("""
+launch:
+- let: {name: launch-prefix, value: "nice -n 5"}
+- executable: {cmd: "sleep 1", name: a}
+- executable: {cmd: "sleep 2", name: b, launch_prefix: "env"}
+- let: {name: launch-prefix-filter, value: "tru.*"}
+- executable: {cmd: "sleep 3", name: c}
+- executable: {cmd: "true", name: d}
+""")
+    procs = resolve(load(path), {}, str(path)).processes
+    assert procs["a"].argv == ("nice", "-n", "5", "sleep", "1") and procs["b"].argv == ("env", "sleep", "2")
+    assert procs["c"].argv == ("sleep", "3") and procs["d"].argv == ("nice", "-n", "5", "true")
