@@ -101,3 +101,13 @@ def merge(paths: list[Path], target: Path) -> None:
 
 def case_failed(result: unittest.TestResult) -> bool:
     return not result.wasSuccessful()
+
+
+def unittestResultsToXml(*, name: str = "launch_test", test_results: dict | None = None) -> ET.ElementTree:
+    """launch_testing.junitxml's entry: {TestRun: its result} (LaunchTestRunner.run()'s answer) as JUnit XML."""
+    file_result = FileResult(Path(f"{name}.py"), name)
+    for run, result in (test_results or {}).items():
+        file_result.runs.append(RunResult(run, results=[result]))
+    tree = to_xml(file_result)
+    tree.getroot().set("name", name)
+    return tree

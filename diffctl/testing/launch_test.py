@@ -11,6 +11,7 @@ import os
 import sys
 import traceback
 from pathlib import Path
+from typing import Any
 
 from diffctl.errors import DiffctlError
 
@@ -42,14 +43,20 @@ def make_parser() -> argparse.ArgumentParser:
 
 
 def _show_args(path: Path, package_name: str | None) -> None:
-    from diffctl.launch.resolver import declared_arguments
     from diffctl.testing.loader import import_test_module, load_test_runs
 
     module = import_test_module(path, package_name)
     run = load_test_runs(module)[0]
     description, _ = run.description(lambda: None)
+    print_arguments_of_launch_description(launch_description=description, source=str(path))
+
+
+def print_arguments_of_launch_description(*, launch_description: Any, source: str = "<launch description>") -> None:
+    """The launch arguments a description declares, as `launch_test --show-args` prints them."""
+    from diffctl.launch.resolver import declared_arguments
+
     print("Arguments (pass arguments as '<name>:=<value>'):")
-    arguments = declared_arguments(description, str(path))
+    arguments = declared_arguments(launch_description, source)
     if not arguments:
         print("\n  No arguments.")
     for a in arguments:

@@ -173,6 +173,23 @@ def _load(module: Any, *, post_shutdown: bool) -> unittest.TestSuite:
     return suite
 
 
+class PreShutdownTestLoader(unittest.TestLoader):
+    """unittest's loader keeping only the TestCase classes that run while the launch is up (launch_testing's)."""
+
+    post_shutdown = False
+
+    def loadTestsFromTestCase(self, testCaseClass: type) -> unittest.TestSuite:
+        if bool(getattr(testCaseClass, "__post_shutdown_test__", False)) != self.post_shutdown:
+            return self.suiteClass([])
+        return super().loadTestsFromTestCase(testCaseClass)
+
+
+class PostShutdownTestLoader(PreShutdownTestLoader):
+    """unittest's loader keeping only the `@post_shutdown_test()` classes."""
+
+    post_shutdown = True
+
+
 def _keep_cases(suite: unittest.TestSuite) -> None:
     """A suite drops each case after running it; the cases (their names, their classes) are kept for reports."""
     suite._cleanup = False

@@ -1,4 +1,4 @@
-"""`launch_testing_ros.tools` (diffctl/testing/ros_output.py)."""
+"""`launch_testing_ros.tools.output` (diffctl/testing/ros_output.py)."""
 
 from diffctl.testing.ros_output import basic_output_filter, get_rmw_output_filter
 

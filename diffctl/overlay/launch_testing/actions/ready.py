@@ -1,4 +1,4 @@
-"""`launch_testing.actions` (diffctl/testing/decorators.py)."""
+"""`launch_testing.actions.ready` (diffctl/testing/decorators.py)."""
 
 from diffctl.testing.decorators import ReadyToTest
 
