@@ -59,11 +59,12 @@ class Output:
         if screen:
             self._print(Text(f"[{name}] ", style=colour_of(name)) + Text(text))
 
-    def launcher(self, level: str, message: str) -> None:
+    def launcher(self, level: str, message: str, logger: str = "launch") -> None:
+        """A line of the launcher's own (`logger` as ROS names it: `launch`, or `launch.user` for LogInfo)."""
         if self._launch_log is not None:
             stamp = time.strftime("%H:%M:%S", time.localtime()) + f".{int(time.time() * 1000) % 1000:03d}"
             self._launch_log.write(f"{stamp} [{level}] {message}\n")
-        self._print(Text(f"[{level}] [launch]: {message}", style=LEVEL_STYLES.get(level, "")))
+        self._print(Text(f"[{level}] [{logger}]: {message}", style=LEVEL_STYLES.get(level, "")))
 
     def show(self, renderable: Any) -> None:
         if self._screen_gone:

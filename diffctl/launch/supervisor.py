@@ -179,7 +179,7 @@ class Supervisor:
 
     def effect(self, step: Step) -> None:
         if isinstance(step, LogMessage):
-            self.output.launcher("INFO", step.message)
+            self.output.launcher("INFO", step.message, logger="launch.user")  # LogInfo's logger, as ROS's
         elif isinstance(step, StartProcess):
             self._start(step.spec)
         elif isinstance(step, RequestShutdown):
