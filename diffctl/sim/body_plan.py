@@ -12,7 +12,8 @@ parsed model with `createMultiBody`. Planning rules:
   and every SDF link keeps an offset from the PyBullet link it ended up in, for sensors and poses;
 - a static model becomes one massless PyBullet body; a joint to `world` pins the tree (a fixed one makes the
   base static, a moving one hangs the tree from a static anchor);
-- each tree of links (links not connected by joints) becomes its own PyBullet body.
+- each tree of links (links not connected by joints) becomes its own PyBullet body;
+- a cylinder turning about its own axis (a wheel) meets the world as a contact disc and a core (wheel_contact.py).
 A moving PyBullet link with no mass is an error: some link needs an <inertial>.
 """
 
@@ -20,10 +21,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from diffctl.description.model import Collision, Geometry, Joint, Model, Surface, Visual
+from diffctl.description.model import Collision, Cylinder, Geometry, Joint, Model, Surface, Visual
 from diffctl.description.pose import Pose, Vec3
 from diffctl.errors import DescriptionError
 from diffctl.sim.inertia import MassProperties, combine, from_inertial, principal
+from diffctl.sim.wheel_contact import rolls_about_own_axis, wheel_parts
 
 DEFAULT_RGBA = (0.7, 0.7, 0.7, 1.0)
 
@@ -209,6 +211,8 @@ class _Planner:
         axis: Vec3 = (0.0, 0.0, 1.0)
         if joint is not None and joint.axis_world is not None:
             axis = frame.inverse().rotate(joint.axis_world)
+            if joint.type in ("revolute", "continuous"):
+                collisions = _wheel_contacts(collisions, axis)
         return LinkPlan(
             members=tuple(g["members"]),
             frame_world=frame,
@@ -228,6 +232,18 @@ def _shape(element: Collision | Visual, link_in_frame: Pose) -> ShapeSpec:
     rgba = getattr(element, "rgba", None) or DEFAULT_RGBA
     surface = element.surface if isinstance(element, Collision) else None
     return ShapeSpec(element.geometry, link_in_frame.compose(element.pose_link), rgba, surface)
+
+
+def _wheel_contacts(collisions: list[ShapeSpec], axis: Vec3) -> list[ShapeSpec]:
+    """Each cylinder turning about its own axis as a contact disc and a core (see wheel_contact.py)."""
+    out: list[ShapeSpec] = []
+    for c in collisions:
+        parts = wheel_parts(c.geometry) if isinstance(c.geometry, Cylinder) else None
+        if parts is None or not rolls_about_own_axis(c.pose, axis):
+            out.append(c)
+            continue
+        out.extend(ShapeSpec(g, c.pose, c.rgba, c.surface) for g in parts)
+    return out
 
 
 def _split_surfaces(links: tuple[LinkPlan, ...]) -> tuple[LinkPlan, ...]:

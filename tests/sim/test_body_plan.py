@@ -236,3 +236,34 @@ def test_one_link_with_two_surfaces_keeps_both_frictions_and_its_exact_mass() ->
         assert frictions == [0.01, 1.0]
     finally:
         pw.close()
+
+
+def test_a_wheel_cylinder_meets_the_world_as_a_contact_disc_and_a_core_and_other_cylinders_stay() -> None:
+    from sim_helpers import CAR
+
+    from diffctl.description.model import Cylinder
+    from diffctl.description.sdf_loader import load_model
+    from diffctl.sim.wheel_contact import CORE_RADIUS_SHARE, DISC_LENGTH_M
+
+    plan = plan_model(load_model(CAR, name="robot", pose=Pose.from_xyz_rpy((0, 0, 0), (0, 0, 0.7))))
+    by_name = {m: lp for lp in plan.bodies[0].links for m in lp.members}
+    for wheel in ("left_wheel", "right_wheel"):
+        shapes = [s.geometry for s in by_name[wheel].collisions]
+        assert shapes == [
+            Cylinder(0.04, DISC_LENGTH_M),
+            Cylinder(pytest.approx(0.04 * (1 - CORE_RADIUS_SHARE)), 0.02),
+        ]
+        assert all(s.surface.mu == 1.0 for s in by_name[wheel].collisions)
+        assert [v.geometry for v in by_name[wheel].visuals] == [Cylinder(0.04, 0.02)]  # visuals untouched
+    # The lidar's cylinder is on a fixed joint: unchanged.
+    assert any(s.geometry == Cylinder(0.03, 0.04) for lp in plan.bodies[0].links for s in lp.collisions)
+    # A cylinder on a revolute joint that does not turn about its own axis (a flap) is unchanged too.
+    model = parse_model("""<?xml version="1.0"?><sdf version="1.8"><model name="m">
+      <link name="a"><inertial><mass>1</mass></inertial></link>
+      <link name="b"><inertial><mass>1</mass></inertial>
+        <collision name="c"><pose>0.1 0 0 0 0 0</pose>
+          <geometry><cylinder><radius>0.05</radius><length>0.1</length></cylinder></geometry></collision></link>
+      <joint name="j" type="revolute"><parent>a</parent><child>b</child><axis><xyz>0 0 1</xyz></axis></joint>
+    </model></sdf>""")
+    flap = {m: lp for lp in plan_model(model).bodies[0].links for m in lp.members}["b"]
+    assert [s.geometry for s in flap.collisions] == [Cylinder(0.05, 0.1)]
