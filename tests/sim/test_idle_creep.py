@@ -121,5 +121,9 @@ def test_a_held_wheel_stopped_from_speed_is_anchored_where_it_stopped_not_sprung
 @pytest.mark.parametrize("yaw_rad", [-2.3, 1.2, 3.0])
 def test_the_tutorial_car_on_free_wheels_stays_put_at_any_heading(yaw_rad: float) -> None:
     pose = Pose.from_xyz_rpy((-0.4, 0.7, 0.0), (0.0, 0.0, yaw_rad))
-    _check("tutorial car (frictionless sphere caster)", lambda: load_model(CAR, name="robot", pose=pose),
-           f"at yaw {yaw_rad}", holds=(False,))
+    _check(
+        "tutorial car (frictionless sphere caster)",
+        lambda: load_model(CAR, name="robot", pose=pose),
+        f"at yaw {yaw_rad}",
+        holds=(False,),
+    )
