@@ -23,12 +23,13 @@ from diffctl.sim.flat_planes import FlatPlane
 from diffctl.sim.link_gravity import GravityOff
 from diffctl.sim.mimic import Mimics
 
-# PyBullet's default and Gazebo ODE's (<ode><solver><iters>). 10 gave the same drive trajectories (to 0.1 mm
-# over 6 s) for a third of the cost, but left held wheels slipping: a car standing on held wheels turned
-# 0.002 rad a minute at 10, 0.00015 at 20. With one fresh contact per wheel (wheel_contact.py) 20 still let a
-# TurtleBot-like robot on held wheels slide 1.6 mm a minute at yaw 0.7 and one on free wheels turn 0.0009 rad;
-# 50: 0.05 mm and 0.0004 rad (tests/sim/test_idle_creep.py). At rest the solve exits early (residual below).
-SOLVER_ITERATIONS = 50
+# PyBullet defaults to 50. 10 gave the same drive trajectories (to 0.1 mm over 6 s) for a third of the cost,
+# but left held wheels slipping: a car standing on held wheels turned 0.002 rad a minute at 10, 0.00015 at 20.
+# With one fresh contact per wheel (wheel_contact.py), robots on held wheels at yaw 0.7 slid a minute at
+# 20 / 30 / 40 / 50 iterations: TurtleBot-like 1.59 / 0.51 / 0.15 / 0.05 mm, the tutorial car 0.53 / 0.45 /
+# 0.26 / 0.15 mm (free wheels converge before 30; tests/sim/test_idle_creep.py). Stepping the driving car costs
+# +13 % at 30, +28 % at 40, +45 % at 50 over 20 (bench.sim, CPU time). At rest the solve exits early anyway.
+SOLVER_ITERATIONS = 30
 # Bullet stops iterating once the solve's residual is under 1e-7 (its default). At rest that leaves small
 # velocities every step which integrate: on free wheels next to a frictionless caster the residual fed back
 # through the contact points and an idle car rolled away (0.85 m in 20 s); everywhere else it crept ~0.1 mm
