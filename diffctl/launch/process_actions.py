@@ -199,7 +199,7 @@ class ExecuteProcess(Action):
         self.output_cache: dict[str, list[str]] = {"stdout": [], "stderr": []}
         self.return_code: int | None = None
         self.cmd = [cmd] if isinstance(cmd, SplitArgs) else list(cmd)
-        self.name = None if name is None else normalize(name)
+        self.name_subs = None if name is None else normalize(name)
         self.cwd = None if cwd is None else normalize(cwd)
         self.env = None if env is None else {k: normalize(v) for k, v in env.items()}
         self.additional_env = {k: normalize(v) for k, v in (additional_env or {}).items()}
@@ -237,7 +237,7 @@ class ExecuteProcess(Action):
 
     def label(self) -> str:
         words = [describe(c.text if isinstance(c, SplitArgs) else c) for c in self.cmd]
-        return f"executable {describe(self.name) or ' '.join(words)}"
+        return f"executable {describe(self.name_subs) or ' '.join(words)}"
 
     def command(self, scope: Scope) -> list[str]:
         argv = _arguments(self.cmd, scope)
@@ -253,13 +253,19 @@ class ExecuteProcess(Action):
 
     completes_later = True  # ExecutionComplete when the process has exited for good
 
+    @property
+    def name(self) -> str | None:
+        """The process's name once executed (as launch's ExecuteLocal.name), else its name as written."""
+        process = getattr(self, "_process_name", None)
+        return process if process is not None else (describe(self.name_subs) or None)
+
     def execute(self, context: Scope) -> list[Action] | None:
         if context.is_shutdown:
             return None  # as ExecuteProcess: nothing starts once the launch is shutting down
         scope = context
         engine = context.engine
         argv = self.command(scope)
-        name = perform(self.name, scope) if self.name is not None else self.default_name(argv, scope)
+        name = perform(self.name_subs, scope) if self.name_subs is not None else self.default_name(argv, scope)
         if self.prefix is not None:
             argv = shlex.split(perform(self.prefix, scope)) + argv
         elif scope.configurations.get("launch-prefix"):
@@ -414,7 +420,7 @@ class Node(ExecuteProcess):
         self.executable = normalize(executable)
         self.name_parts = None if name is None else normalize(name)
         self._fqn: str | None = None
-        self.name = None if exec_name is None else normalize(exec_name)
+        self.name_subs = None if exec_name is None else normalize(exec_name)
         self.namespace = None if namespace is None else normalize(namespace)
         self.parameters = list(parameters or [])
         for p in self.parameters:

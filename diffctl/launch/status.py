@@ -94,7 +94,7 @@ def _static_name(action: Any) -> str | None:
 
     if not isinstance(action, ExecuteProcess):
         return None
-    parts = action.name
+    parts = action.name_subs
     if isinstance(action, Node) and parts is None:
         parts = action.name_parts if action.name_parts is not None else action.executable
     if parts and all(isinstance(p, TextSubstitution) for p in parts):
