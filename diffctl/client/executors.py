@@ -46,24 +46,37 @@ class TimeoutObject:
 
 
 class _WorkTracker:
+    """Callbacks running now, per thread: shutdown() waits for the others' callbacks, never for its caller's own
+    (rclpy.shutdown() inside a timer callback would otherwise wait for itself forever; rclpy's returns)."""
+
     def __init__(self) -> None:
         self._num_work_executing = 0
+        self._by_thread: dict[int, int] = {}
         self._cond = threading.Condition()
 
     def __enter__(self) -> None:
+        me = threading.get_ident()
         with self._cond:
             self._num_work_executing += 1
+            self._by_thread[me] = self._by_thread.get(me, 0) + 1
 
     def __exit__(self, *exc: Any) -> None:
+        me = threading.get_ident()
         with self._cond:
             self._num_work_executing -= 1
+            left = self._by_thread.pop(me, 1) - 1
+            if left:
+                self._by_thread[me] = left
             self._cond.notify_all()
 
     def wait(self, timeout_sec: float | None = None) -> bool:
         if timeout_sec is not None and timeout_sec < 0:
             timeout_sec = None
+        me = threading.get_ident()
         with self._cond:
-            return self._cond.wait_for(lambda: self._num_work_executing == 0, timeout_sec)
+            return self._cond.wait_for(
+                lambda: self._num_work_executing - self._by_thread.get(me, 0) == 0, timeout_sec
+            )
 
 
 def _timeout_s(timeout_sec: Any) -> float | None:

@@ -24,22 +24,31 @@ def _wrapper() -> str:
     return f"#!{sys.executable}\nfrom diffctl.gz.cli import main\nmain()\n"
 
 
+def write_wrapper(path: Path, text: str) -> None:
+    """Write an executable script at `path` unless it already holds `text`; atomic, so a launch starting
+    meanwhile never runs half a script."""
+    try:
+        if path.read_text() == text:
+            return
+    except OSError:
+        pass
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}")
+    tmp.write_text(text)
+    tmp.chmod(0o755)
+    tmp.replace(path)
+
+
+def put_first_on_path(env: MutableMapping[str, str], folder: Path) -> None:
+    parts = [p for p in env.get("PATH", "").split(os.pathsep) if p and p != str(folder)]
+    env["PATH"] = os.pathsep.join([str(folder), *parts])
+
+
 def put_gz_on_path(env: MutableMapping[str, str]) -> Path:
     """Write the wrappers (when missing or stale) and put their folder first on `env`'s PATH."""
     folder = bin_dir()
     text = _wrapper()
     for name in COMMANDS:
-        path = folder / name
-        try:
-            if path.read_text() == text:
-                continue
-        except OSError:
-            pass
-        folder.mkdir(parents=True, exist_ok=True)
-        tmp = path.with_name(f".{name}.{os.getpid()}")
-        tmp.write_text(text)
-        tmp.chmod(0o755)
-        tmp.replace(path)  # atomic: a launch starting meanwhile never runs half a script
-    parts = [p for p in env.get("PATH", "").split(os.pathsep) if p and p != str(folder)]
-    env["PATH"] = os.pathsep.join([str(folder), *parts])
+        write_wrapper(folder / name, text)
+    put_first_on_path(env, folder)
     return folder

@@ -58,7 +58,9 @@ def component_packages() -> set[str]:
 
 
 def known_packages() -> list[str]:
-    return sorted({p.name for p in workspace.list_packages()} | component_packages())
+    from diffctl import demo_nodes
+
+    return sorted({p.name for p in workspace.list_packages()} | component_packages() | set(demo_nodes.PACKAGES))
 
 
 _reported: set[str] = set()
@@ -105,7 +107,9 @@ def _program(lib: Path | None, executable: str) -> Path | None:
 
 
 def executables(package: str) -> list[str]:
-    names = [exe for pkg, exe in COMPONENTS if pkg == package]
+    from diffctl import demo_nodes
+
+    names = [exe for pkg, exe in COMPONENTS if pkg == package] + demo_nodes.executables(package)
     lib = _lib_dir(package)
     if lib is not None:
         names += [p.name for p in lib.iterdir() if p.is_file() and os.access(p, os.X_OK)]
@@ -131,6 +135,11 @@ def executable_argv(package: str, executable: str) -> list[str]:
     program = _program(_lib_dir(package), executable)
     if program is not None:
         return [str(program)]
+    from diffctl import demo_nodes
+
+    demo = demo_nodes.argv_for(package, executable)  # demo_nodes_cpp/py's talker…, where no real one is found
+    if demo is not None:
+        return demo
     if package not in known_packages():
         raise LaunchError(
             f"unknown package {package!r}{suggest(package, known_packages())}",

@@ -54,10 +54,12 @@ def use_in_children(workspace: Path | None, env: MutableMapping[str, str] = os.e
     """Make processes started with `env` resolve packages as this one does: the workspace in
     $DIFFCTL_WORKSPACE, diffctl's overlay on PYTHONPATH after any sourced ROS (xacro's `$(find)`, rclpy, …), the
     workspace packages' environment hooks applied (GZ_SIM_RESOURCE_PATH …), as sourcing its setup.bash would,
-    and diffctl's `gz` first on PATH."""
+    and diffctl's `gz` (and `ros2`, without a real one) first on PATH."""
+    from diffctl.cli.ros2 import put_ros2_on_path
     from diffctl.gz.path import put_gz_on_path
 
     put_gz_on_path(env)  # `ExecuteProcess(cmd=['gz', 'sim', …])` reaches diffctl's simulator
+    put_ros2_on_path(env)  # `ExecuteProcess(cmd=['ros2', 'bag', 'record', …])` too, where ROS 2 is absent
     if workspace is not None:
         env[WORKSPACE_ENV] = str(workspace)
         from diffctl.workspace.env_hooks import apply_workspace_hooks

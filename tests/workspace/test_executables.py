@@ -62,3 +62,18 @@ def test_a_missing_executable_names_the_packages_programs(tmp_path: Path, monkey
     assert "has no executable 'static_transform_publishr' (did you mean 'static_transform_publisher'?)" in str(e.value)
     with pytest.raises(LaunchError, match="unknown package 'tf2_rs'"):
         package_index.executable_argv("tf2_rs", "x")
+
+
+def test_demo_nodes_yield_to_an_installed_or_workspace_package(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # no demo_nodes anywhere: diffctl's own talker
+    assert package_index.executable_argv("demo_nodes_cpp", "talker") == [
+        sys.executable, "-m", "diffctl.demo_nodes", "demo_nodes_cpp", "talker",
+    ]
+    assert {"talker", "listener", "parameter_blackboard"} <= set(package_index.executables("demo_nodes_cpp"))
+    # a sourced ROS 2 with the real demo_nodes_cpp: its program
+    opt = install_tree(tmp_path / "opt", "demo_nodes_cpp")
+    program(opt / "lib/demo_nodes_cpp/talker")
+    monkeypatch.setenv("AMENT_PREFIX_PATH", os.fspath(opt))
+    assert package_index.executable_argv("demo_nodes_cpp", "talker") == [str(opt / "lib/demo_nodes_cpp/talker")]
+    with pytest.raises(LaunchError, match="no executable 'talkr'"):
+        package_index.executable_argv("demo_nodes_cpp", "talkr")
