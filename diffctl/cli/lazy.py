@@ -20,7 +20,8 @@ class LazyGroup(click.Group):
 
     def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
         # Listing must not import every subsystem (pybullet, zenoh): use the declared short help.
-        rows = [(name, self.lazy_help.get(name, "")) for name in self.list_commands(ctx)]
+        rows = [(name, self.lazy_help.get(name, "")) for name in self.list_commands(ctx)
+                if not self.lazy_help.get(name, "").startswith("(internal)")]
         if rows:
             with formatter.section("Commands"):
                 formatter.write_dl(rows)

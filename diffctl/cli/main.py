@@ -44,6 +44,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "fuel": ("diffctl.fuel.cli:fuel", "Download Gazebo Fuel models into Gazebo's cache (gz fuel)."),
     "tf2": ("diffctl.tf2_tools.cli:tf2", "tf2_ros's static_transform_publisher and tf2_echo."),
     "test": ("diffctl.testing.cli:test", "Run launch tests and pytest files (launch_test, colcon test)."),
+    "test-child": ("diffctl.testing.cli:test_child", "(internal) one launch test forked by `diffctl test -j`."),
     "component-container": (
         "diffctl.cli.component_container:component_container",
         "Host Python composable nodes in one process (rclcpp_components' component_container).",

@@ -111,3 +111,18 @@ def _run(tests: list, jobs: int, junit_xml: Path | None, timeout_s: float, artif
         why = "timed out" if o.timed_out else f"exit code {o.returncode}"
         click.echo(f"  FAILED {o.test.label} ({why})")
     return 1 if failed else 0
+
+
+@click.command("test-child", hidden=True, add_help_option=False,
+               context_settings={"ignore_unknown_options": True, "allow_extra_args": True})
+@click.argument("module")
+@click.argument("args", nargs=-1, type=click.UNPROCESSED)
+def test_child(module: str, args: tuple[str, ...]) -> None:
+    """(internal) Run MODULE as `python -m MODULE ARGS…` in a launch test forked from `diffctl test`'s zygote."""
+    import runpy
+
+    from diffctl.testing.zygotes import start_inherited
+
+    start_inherited()  # first, while this process is single-threaded: its launch's fork server
+    sys.argv = [module, *args]
+    runpy.run_module(module, run_name="__main__", alter_sys=True)

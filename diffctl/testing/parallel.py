@@ -17,6 +17,7 @@ from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 from diffctl.testing.child import PARENT_ENV
 from diffctl.testing.discovery import TestFile
@@ -102,6 +103,75 @@ def run_one(test: TestFile, junit: Path, arguments: list[str], timeout_s: float,
     return Outcome(test, proc.returncode, output, time.monotonic() - started, timed_out, junit)
 
 
+SHARED_ZYGOTE_ENV = "DIFFCTL_TEST_SHARED_ZYGOTE"
+_FORKED: set[int] = set()
+
+
+def shared_zygote(tests: list[TestFile]) -> Any:
+    """One preloaded interpreter the launch tests of this run are forked from (zygotes.py), when there are
+    two or more of them (for one, its imports would only come first instead of beside the rest);
+    DIFFCTL_TEST_SHARED_ZYGOTE=0 turns it off."""
+    if sum(t.kind == "launch" for t in tests) < 2 or os.environ.get(SHARED_ZYGOTE_ENV, "1").strip() == "0":
+        return None
+    from diffctl.launch.fork_server import ForkServer, dies_with_launcher, enabled
+    from diffctl.testing.zygotes import become_subreaper, test_preload
+
+    if not enabled(os.environ) or not become_subreaper():
+        return None
+    return ForkServer(dict(os.environ), preexec=dies_with_launcher(), preload=test_preload())
+
+
+def run_one_forked(server: Any, test: TestFile, junit: Path, arguments: list[str], timeout_s: float,
+                   artifacts: Path | None = None) -> Outcome | None:
+    """A launch test forked from the shared zygote; None when the zygote cannot (then it is exec'd)."""
+    argv = command(test, junit, arguments, artifacts)
+    argv = [sys.executable, "-m", "diffctl", "test-child", *argv[len(CHILD):]]
+    read_end, write_end = os.pipe()
+    started = time.monotonic()
+    try:
+        with _RUNNING_LOCK:
+            pid = server.spawn(argv, dict(os.environ), str(test.root) if test.root else None, write_end, write_end)
+            if pid is not None:
+                _FORKED.add(pid)
+    finally:
+        os.close(write_end)
+    if pid is None:
+        os.close(read_end)
+        return None
+    chunks: list[bytes] = []
+
+    def read() -> None:
+        with os.fdopen(read_end, "rb") as pipe:
+            chunks.append(pipe.read())
+
+    reader = threading.Thread(target=read, daemon=True)
+    reader.start()
+    reader.join(timeout_s)
+    timed_out = reader.is_alive()
+    if timed_out:
+        _kill_group(pid)
+        reader.join()
+    try:
+        _, status = os.waitpid(pid, 0)
+        returncode = os.waitstatus_to_exitcode(status)
+    except ChildProcessError:
+        returncode = 1
+    finally:
+        with _RUNNING_LOCK:
+            _FORKED.discard(pid)
+    output = b"".join(chunks).decode(errors="replace")
+    if timed_out:
+        output += f"\n[diffctl test] {test.label}: timed out after {timeout_s:g} s; stopped it and its processes\n"
+    return Outcome(test, returncode, output, time.monotonic() - started, timed_out, junit)
+
+
+def _kill_group(pid: int) -> None:
+    try:
+        os.killpg(pid, signal.SIGKILL)
+    except (ProcessLookupError, PermissionError):
+        pass
+
+
 def _kill_session(proc: subprocess.Popen) -> None:
     # SIGKILL: the launch test's children follow through their death signal and the guard.
     try:
@@ -116,13 +186,19 @@ def run_all(tests: list[TestFile], *, jobs: int, junit_dir: Path, arguments: lis
     lock = threading.Lock()
     outcomes: list[Outcome | None] = [None] * len(tests)
     fork = use_fork_server(jobs)
+    zygote = None if fork else shared_zygote(tests)
 
     def one(index: int) -> None:
         test = tests[index]
         where = None
         if artifacts is not None:
             where = artifacts / f"{index:02d}-{test.path.name[:-3]}"
-        outcome = run_one(test, junit_dir / f"{index:03d}.xml", arguments, timeout_s, where, fork)
+        junit = junit_dir / f"{index:03d}.xml"
+        outcome = None
+        if zygote is not None and test.kind == "launch":
+            outcome = run_one_forked(zygote, test, junit, arguments, timeout_s, where)
+        if outcome is None:
+            outcome = run_one(test, junit, arguments, timeout_s, where, fork)
         outcomes[index] = outcome
         with lock:
             on_done(outcome)
@@ -135,10 +211,13 @@ def run_all(tests: list[TestFile], *, jobs: int, junit_dir: Path, arguments: lis
             pool.shutdown(wait=False, cancel_futures=True)
             with _RUNNING_LOCK:
                 running = list(_RUNNING)
+                forked = list(_FORKED)
             for proc in running:
-                try:
-                    os.killpg(proc.pid, signal.SIGKILL)
-                except (ProcessLookupError, PermissionError):
-                    pass
+                _kill_group(proc.pid)
+            for pid in forked:
+                _kill_group(pid)
             raise
+        finally:
+            if zygote is not None:
+                zygote.close(kill=True)
     return [o for o in outcomes if o is not None]

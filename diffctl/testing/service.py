@@ -107,9 +107,15 @@ def use_fork_server(preload: Any) -> None:
 def _fork_server() -> Any:
     from diffctl.launch import fork_server
     from diffctl.launch.environment import default_child_env
+    from diffctl.testing.zygotes import take_inherited
 
     env = default_child_env(dict(os.environ))  # the test's own bus: the zygote's children get it
     if not fork_server.enabled(env):
+        return None
+    inherited = take_inherited(env)  # this test was forked from a preloaded interpreter (zygotes.py)
+    if inherited is not None:
+        return inherited
+    if _FORK_PRELOAD is None:
         return None
     return fork_server.ForkServer(env, preexec=fork_server.dies_with_launcher(), preload=_FORK_PRELOAD)
 
@@ -143,7 +149,7 @@ class LaunchService:
     ) -> None:
         self.description = description
         self.arguments = dict(arguments or {})
-        self.loop = _ThreadLoop(_fork_server() if _FORK_PRELOAD is not None else None)
+        self.loop = _ThreadLoop(_fork_server())
         self.output = output or Output(log_dir=log_dir, live=False)
         plan = Plan(source, [], (), {}, description=description, launch_arguments=self.arguments)
         self.supervisor = _TestSupervisor(

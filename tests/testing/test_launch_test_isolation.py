@@ -82,3 +82,58 @@ def test_stopping_diffctl_test_stops_its_tests_and_their_processes(sig: int) -> 
         p.stdout.close()
     left = _left(marker)
     assert not left, [q.info["cmdline"] for q in left]
+
+
+def _forked_tests() -> list[str]:
+    return [" ".join(p.info["cmdline"] or []) for p in psutil.process_iter(["cmdline"])
+            if "test-child" in (p.info["cmdline"] or [])]
+
+
+@pytest.mark.slow
+def test_tests_forked_from_the_shared_zygote_time_out_and_die_with_diffctl_test(tmp_path: Path) -> None:
+    """With two launch tests, both are forked from one preloaded interpreter (`diffctl test-child`): a hanging
+    one is still stopped at its timeout with everything it started, the other passes; a `diffctl test` killed
+    outright takes its forked tests, their processes and the zygote along."""
+    hang = tmp_path / "hang_launch_test.py"
+    shutil.copy(FILES / "hanging_launch_test.py", hang)
+    hello = tmp_path / "hello_world_launch_test.py"
+    shutil.copy(FILES / "hello_world_launch_test.py", hello)
+    marker = f"{6000 + uuid.uuid4().int % 1000}.{uuid.uuid4().int % 9 + 1}"
+    env = {**os.environ, "HANG_MARKER": marker}
+    argv = [sys.executable, "-m", "diffctl", "test", "-j", "2", str(hang), str(hello)]
+    p = subprocess.Popen([*argv, "--timeout", "8"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                         env=env, start_new_session=True)
+    try:
+        seen: set[str] = set()
+        while p.poll() is None:
+            seen.update(c for c in _forked_tests() if str(tmp_path) in c)
+            time.sleep(0.1)
+        out = p.stdout.read()
+    finally:
+        if p.poll() is None:
+            p.kill()
+            p.wait()
+        p.stdout.close()
+    assert p.returncode == 1, out
+    assert any(str(hang) in c for c in seen) and any(str(hello) in c for c in seen), seen
+    assert "hello_world_launch_test.py: passed" in out and "timed out after 8 s" in out
+    assert not _left(marker), "the hanging test's processes outlived its timeout"
+
+    p = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env,
+                         start_new_session=True)
+    try:
+        deadline = time.monotonic() + 30
+        while not _left(marker)[:1] and time.monotonic() < deadline:
+            time.sleep(0.1)
+        assert _left(marker), "the hanging test never started"
+        os.kill(p.pid, signal.SIGKILL)
+        p.wait(10)
+    finally:
+        if p.poll() is None:
+            p.kill()
+            p.wait()
+    assert not _left(marker)
+    deadline = time.monotonic() + 3
+    while [c for c in _forked_tests() if str(tmp_path) in c] and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert not [c for c in _forked_tests() if str(tmp_path) in c]
