@@ -302,7 +302,7 @@ def test_unsupported_pair_is_one_line_naming_the_entry_and_the_supported_pairs(t
         lines = [ln for ln in r.stderr.splitlines() if ln.strip()]
         err = " ".join(r.stderr.split())
         assert "unsupported type pair sensor_msgs/msg/Temperature <-> gz.msgs.Double" in err
-        assert "/battery" in err and "sensor_msgs/msg/CameraInfo<->gz.msgs.CameraInfo" in err
+        assert "/battery" in err and "did you mean: std_msgs/msg/Float64<->gz.msgs.Double" in err
         assert "Traceback" not in r.stderr and len(lines) <= 2, r.stderr
 
 
