@@ -7,6 +7,8 @@ Queryables under `gz/world/<world>/`, JSON in and out; every answer has "ok" (an
   create   {"name", "sdf": "<sdf…>" | "sdf_filename": "/abs/path.sdf", "pose": {"x","y","z","roll","pitch","yaw"},
             "allow_renaming": false, "base_dir": "/dir for relative URIs"} → {"ok", "name", "ignored": [...]}
   remove   {"name"} → {"ok"}
+gz service `/world/<world>/set_pose` (gz.msgs.Pose → gz.msgs.Boolean, as UserCommands): a model by name moved
+  to the pose (in the world; a missing orientation is the identity), joints and velocities as they were.
   state    {} → {"ok", "world", "paused", "sim_time_ns", "iterations", "rtf_target", "models": [{"name",
             "static", "pose": P, "ros2_control": bool, "links": [{"name", "pose" (in the model frame, now),
             "mass", "inertial_pose", "inertia": [ixx, ixy, ixz, iyy, iyz, izz]}], "joints": [{"name", "type",
@@ -27,6 +29,8 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
+
+import pybullet as pb
 
 from diffctl.bus import gz
 from diffctl.description.model import Model
@@ -58,6 +62,7 @@ class WorldServices:
         t.service(world_key(w, "create"), self.create, fast=self._prepare_create)
         t.service(world_key(w, "remove"), self.remove)
         t.service(world_key(w, "state"), lambda req, reply: self.state())
+        t.gz_service(f"/world/{w}/set_pose", "gz.msgs.Pose", "gz.msgs.Boolean", self.set_pose)
         t.token(sim_token_key(w))
         self._window = (time.perf_counter(), sim.stepper.sim_time_ns, 0, 0.0)
         self._rtf = 0.0
@@ -168,6 +173,25 @@ class WorldServices:
         self.sim.remove(name)
         self.sim.log.info(f"removed {name!r}")
         return {"ok": True}
+
+    def set_pose(self, req: dict[str, Any]) -> dict[str, Any]:
+        """UserCommands' set_pose for models: every PyBullet body of the model moved rigidly, so the joints
+        between them keep their angles; false for a name that is no model (links and lights are not moved)."""
+        rt = self.sim.models.get(str(req.get("name", "")))
+        if rt is None:
+            return {"data": False}
+        pos, q = req.get("position") or {}, req.get("orientation") or {}
+        quat = tuple(float(q.get(k, 0.0)) for k in "xyzw")
+        norm = math.sqrt(sum(c * c for c in quat))
+        quat = (0.0, 0.0, 0.0, 1.0) if norm < 1e-12 else tuple(c / norm for c in quat)
+        target = Pose(tuple(float(pos.get(k, 0.0)) for k in "xyz"), quat)
+        entity = rt.entity
+        move = target.compose(entity.pose().inverse())
+        for body in dict.fromkeys(entity.bodies):
+            xyz, orn = pb.getBasePositionAndOrientation(body, physicsClientId=entity.client)
+            moved = move.compose(Pose(tuple(xyz), tuple(orn)))
+            pb.resetBasePositionAndOrientation(body, moved.xyz, moved.quat, physicsClientId=entity.client)
+        return {"data": True}
 
     def state(self) -> dict[str, Any]:
         models = []

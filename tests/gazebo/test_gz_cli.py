@@ -140,6 +140,15 @@ def test_gz_topic_service_model_against_a_running_world(router: str, procs, tmp_
     assert "Model: [" not in only_joint and "- Joint [" in only_joint and "- Link [" not in only_joint
     assert "Name: anchor" not in only_joint
     assert "No model named <nope> was found" in gz("model", "-m", "nope").stdout
+    # UserCommands' set_pose, listed with the world's services and called as gz-transport's CLI calls it
+    assert "/world/shapes/set_pose" in gz("service", "-l").stdout.split()
+    set_pose = ["service", "-s", "/world/shapes/set_pose", "--reqtype", "gz.msgs.Pose", "--reptype", "gz.msgs.Boolean"]
+    req = 'name: "box", position: {x: 3, y: -1, z: 0.5}, orientation: {z: 0.24740395925452294, w: 0.9689124217106447}'
+    assert gz(*set_pose, "--timeout", "3000", "--req", req).stdout == "data: true\n"
+    moved = gz("model", "-m", "box", "-p").stdout
+    assert "    [3.000000 -1.000000 0.500000]\n    [0.000000 0.000000 0.500000]\n" in moved, moved
+    # false: protobuf's text format leaves a default field out, so gz prints nothing
+    assert gz(*set_pose, "--timeout", "3000", "--req", 'name: "nope"').stdout == ""
     # paused (no -r): /clock holds still until the world is unpaused through the control service
     first = gz("topic", "-e", "-t", "/clock", "-n", "1").stdout
     assert first.startswith("header {") and "sim {" in first
