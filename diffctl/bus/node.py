@@ -127,10 +127,12 @@ class Node:
         parameter_store: ParameterStore | None = None,
         rosout: bool = True,
         parameter_services: bool = True,
+        serve_parameters: bool = True,
     ) -> None:
         """`parameter_store` replaces the default store (the client library's, with rclpy's semantics);
         `rosout` and `parameter_services` False leave those standard endpoints out (rclpy's enable_rosout and
-        start_parameter_services)."""
+        start_parameter_services). `serve_parameters` False keeps `/parameter_events` but leaves the six
+        parameter services to the caller (the client library answers them from its executor, as rclpy)."""
         self.name = validate_name(name)
         self.namespace = "/" + namespace.strip("/") if namespace and namespace != "/" else "/"
         self.params: dict[str, Any] = dict(params or {})
@@ -155,7 +157,8 @@ class Node:
         # Every ROS node's standard endpoints: /rosout, parameter services and events, type descriptions.
         self._builtin_services: dict[str, Service] = {}
         self._rosout = self._keep(Rosout(self)) if rosout else None
-        self._parameter_services = self._keep(ParameterServices(self)) if parameter_services else None
+        self._parameter_services = (self._keep(ParameterServices(self, serve=serve_parameters))
+                                    if parameter_services else None)
         if self._parameter_services is not None:
             self._builtin_services.update(self._parameter_services.services)
         self.clock = Clock(False)

@@ -31,19 +31,20 @@ SERVICES = {
 
 
 class ParameterServices:
-    def __init__(self, node: Node) -> None:
+    def __init__(self, node: Node, *, serve: bool = True) -> None:
+        """`serve` False: no services of its own; `handlers` answer requests taken elsewhere."""
         from diffctl.bus.endpoints import Publisher, Service
 
         self.node = node
         self.store = node.parameters
         self.events: Publisher = Publisher(node, EVENTS_TOPIC, "rcl_interfaces/msg/ParameterEvent", qos=PARAMETER_QOS)
-        handlers = {
+        self.handlers = handlers = {
             "describe_parameters": self.describe_parameters, "get_parameters": self.get_parameters,
             "get_parameter_types": self.get_parameter_types, "list_parameters": self.list_parameters,
             "set_parameters": self.set_parameters, "set_parameters_atomically": self.set_parameters_atomically,
         }
         self.services: dict[str, Service] = {}
-        for short, srv in SERVICES.items():
+        for short, srv in SERVICES.items() if serve else ():
             s = Service(node, f"~/{short}", RCL + srv, handlers[short], qos=PARAMETER_QOS)
             self.services[s.name] = s
         self.store.add_listener(self.publish_event)

@@ -18,7 +18,7 @@ from typing import Any
 
 from rosbags.typesys.base import Nodetype
 
-FORMAT = 2  # 2: every char is uint8, as rosidl has it
+FORMAT = 3  # 2: every char is uint8, as rosidl has it; 3: empty structures carry rosidl's placeholder member
 _defs: dict[str, tuple[list, list]] | None = None
 _own: frozenset[str] = frozenset()
 _lock = threading.Lock()
@@ -60,6 +60,18 @@ def patch_chars(fielddefs: dict[str, Any]) -> None:
         )
 
 
+EMPTY_MEMBER = "structure_needs_at_least_one_member"
+
+
+def pad_empty(fielddefs: dict[str, Any]) -> None:
+    """rosidl gives a structure without members (an empty .msg, most service requests) one `uint8` named
+    structure_needs_at_least_one_member, so it is one byte on the wire and in its type hash; rosbags' parser
+    leaves such a .msg text without fields (its Jazzy store has the member)."""
+    for name, (consts, flds) in list(fielddefs.items()):
+        if not flds:
+            fielddefs[name] = (consts, [(EMPTY_MEMBER, (Nodetype.BASE, ("uint8", 0)))])
+
+
 def srv_typesdict(name: str, req_text: str, resp_text: str) -> dict[str, Any]:
     """Request, response, event and the wrapper whose RIHS01 hash is the service's, as rosidl defines them."""
     from rosbags.typesys import get_types_from_msg
@@ -94,6 +106,7 @@ def _build() -> dict[str, tuple[list, list]]:
         defs.update(get_types_from_msg(text, name))
     for name, (req, resp) in SRVS.items():
         defs.update(srv_typesdict(name, req, resp))
+    pad_empty(defs)
     return defs
 
 

@@ -11,6 +11,7 @@ from typing import Any
 from diffctl.client import waiting
 from diffctl.client.exceptions import InvalidHandle
 from diffctl.client.interfaces import deserialize, serialize
+from diffctl.client.service_introspection import REQUEST_SENT, RESPONSE_RECEIVED, ServiceEvents
 from diffctl.client.task import Future
 
 
@@ -29,6 +30,12 @@ class Client:
         self._next = 0
         self._bus: Any = None
         self._destroyed = False
+        self._events = ServiceEvents(node, srv_type)
+
+    def configure_introspection(self, clock: Any, service_event_qos_profile: Any,
+                                introspection_state: Any) -> None:
+        """Publish this client's requests and responses on `<service>/_service_event` (OFF stops it)."""
+        self._events.configure(self.service_name, clock, service_event_qos_profile, introspection_state)
 
     def call_async(self, request: Any) -> Future:
         if self._destroyed:
@@ -48,6 +55,9 @@ class Client:
             waiting.notify()
 
         self._bus.call_raw_async(data, on_reply)
+        if self._events._pub is not None:
+            # The bus client numbers its requests from 1 as this one does: the same sequence numbers.
+            self._events.publish(REQUEST_SENT, self._bus._gid, seq, request)
         return future
 
     def call(self, request: Any, timeout_sec: float | None = None) -> Any:
@@ -80,6 +90,8 @@ class Client:
         if future is None or payload is None:
             return None  # cancelled or removed meanwhile, or the server failed (rcl never answers then)
         response = deserialize(payload, self.srv_type.Response)
+        if self._events._pub is not None:
+            self._events.publish(RESPONSE_RECEIVED, self._bus._gid, seq, response)
 
         async def _execute() -> None:
             if future.cancelled():
@@ -132,3 +144,4 @@ class Client:
             self._destroyed = True
             if self._bus is not None:
                 self._bus.close()
+            self._events.close()

@@ -42,6 +42,9 @@ from diffctl.client.timer import Rate, Timer
 from diffctl.client.topic_endpoint_info import TopicEndpointInfo, TopicEndpointTypeEnum  # noqa: F401 (rclpy.node has it)
 from diffctl.errors import NoRouterError
 
+CLOCK_TOPIC = "/clock"
+USE_SIM_TIME_NAME = "use_sim_time"
+
 
 class TimeSource:
     """use_sim_time: the node's ROS clocks follow /clock (best effort, depth 1) while it is true."""
@@ -154,8 +157,7 @@ class Node:
         try:
             self._bus = BusNode(name, namespace, use_sim_time=False, remaps=ra.remaps, params={},
                                 allow_undeclared_parameters=allow_undeclared_parameters, parameter_store=self._params,
-                                rosout=enable_rosout and ros_logging.rosout_enabled,
-                                parameter_services=start_parameter_services)
+                                rosout=enable_rosout and ros_logging.rosout_enabled, serve_parameters=False)
         except NoRouterError as e:
             print(f"error: {e}", file=sys.stderr)
             raise SystemExit(2) from None
@@ -166,6 +168,13 @@ class Node:
         if rosout is not None:
             self._rosout_sink = rosout._sink
             attach_rosout(self._logger_name, self._rosout_sink)
+        if start_parameter_services:
+            from diffctl.client.parameter_service import ParameterService
+
+            self._parameter_service = ParameterService(self)
+        from diffctl.client.type_description_service import TypeDescriptionService
+
+        self._type_description_service = TypeDescriptionService(self)
         self._clock = ROSClock()
         self._time_source = TimeSource(self)
         self._time_source.attach_clock(self._clock)

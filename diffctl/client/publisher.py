@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from diffctl.client.duration import Duration
-from diffctl.client.exceptions import InvalidHandle
+from diffctl.client.exceptions import InvalidHandle, RCLError
 from diffctl.client.interfaces import serialize
 
 
@@ -23,18 +23,27 @@ class Publisher:
         self.qos_profile = qos_profile
         self.callback_group = callback_group
         self._publish_raw = bus_pub.publish_raw
+        self._context = self._node.context
         self._destroyed = False
         self.event_handlers = event_callbacks.create_event_handlers(callback_group, self, topic)
 
     def publish(self, msg: Any) -> None:
         if self._destroyed:
             raise InvalidHandle("cannot use Destroyable because destruction was requested")
+        if not self._context._ok:
+            raise _context_invalid()
         if type(msg) is self.msg_type or isinstance(msg, self.msg_type):
-            self._publish_raw(serialize(msg))
+            data = serialize(msg)
         elif isinstance(msg, (bytes, bytearray)):
-            self._publish_raw(bytes(msg))
+            data = bytes(msg)
         else:
             raise TypeError(f"Expected {self.msg_type}, got {type(msg)}")
+        try:
+            self._publish_raw(data)
+        except Exception as e:  # zenoh.ZError: the session closed under a callback still running at exit
+            if "closed" in str(e):
+                raise _context_invalid() from None
+            raise
 
     def get_subscription_count(self) -> int:
         return self._bus.subscription_count
@@ -73,3 +82,7 @@ class Publisher:
 
     def wait_for_all_acked(self, timeout: Duration = Duration(seconds=-1)) -> bool:
         return True  # Zenoh's reliable channel has handed every sample over once put returns
+
+
+def _context_invalid() -> RCLError:
+    return RCLError("Failed to publish: publisher's context is invalid, at /project/src/rcl/publisher.c:423")

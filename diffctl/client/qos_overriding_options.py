@@ -22,6 +22,10 @@ from diffctl.client.qos import (
     ReliabilityPolicy,
 )
 
+# rclpy's alias: a QoS callback answers as a set-parameters callback does.
+QosCallbackResult = cls("rcl_interfaces/msg/SetParametersResult")
+QosCallbackType = Callable[[QoSProfile], Any]
+
 _ENUMS = {QoSPolicyKind.HISTORY: HistoryPolicy, QoSPolicyKind.RELIABILITY: ReliabilityPolicy,
           QoSPolicyKind.DURABILITY: DurabilityPolicy, QoSPolicyKind.LIVELINESS: LivelinessPolicy}
 _DURATIONS = (QoSPolicyKind.LIFESPAN, QoSPolicyKind.DEADLINE, QoSPolicyKind.LIVELINESS_LEASE_DURATION)

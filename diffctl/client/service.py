@@ -7,8 +7,10 @@ import threading
 from collections.abc import Callable
 from typing import Any
 
+from diffctl.bus import wire
 from diffctl.client import waiting
 from diffctl.client.interfaces import deserialize, serialize
+from diffctl.client.service_introspection import REQUEST_RECEIVED, RESPONSE_SENT, ServiceEvents
 from diffctl.client.timer import await_or_execute
 
 
@@ -26,6 +28,12 @@ class Service:
         self._lock = threading.Lock()
         self._bus: Any = None
         self._destroyed = False
+        self._events = ServiceEvents(node, srv_type)
+
+    def configure_introspection(self, clock: Any, service_event_qos_profile: Any,
+                                introspection_state: Any) -> None:
+        """Publish this service's requests and responses on `<service>/_service_event` (OFF stops it)."""
+        self._events.configure(self.service_name, clock, service_event_qos_profile, introspection_state)
 
     def _on_query(self, query: Any) -> None:
         with self._lock:
@@ -42,6 +50,8 @@ class Service:
             query = self._queue.popleft()
         payload = query.payload.to_bytes() if query.payload is not None else b""
         request = deserialize(payload, self.srv_type.Request)
+        if self._events._pub is not None:
+            self._events.publish(REQUEST_RECEIVED, *_caller(query), request)
 
         async def _execute() -> None:
             response = await await_or_execute(self.callback, request, self.srv_type.Response())
@@ -55,6 +65,8 @@ class Service:
         if self._destroyed:
             return
         self._bus.reply(header, serialize(response))
+        if self._events._pub is not None:
+            self._events.publish(RESPONSE_SENT, *_caller(header), response)
 
     @property
     def service_name(self) -> str:
@@ -83,3 +95,13 @@ class Service:
             self._destroyed = True
             if self._bus is not None:
                 self._bus.close()
+            self._events.close()
+
+
+def _caller(query: Any) -> tuple[bytes, int]:
+    """The calling client's GID and the request's sequence number, from rmw_zenoh's attachment."""
+    try:
+        seq, _, gid = wire.unpack_attachment(query.attachment.to_bytes())
+    except Exception:  # a request without rmw_zenoh's attachment: nothing to attribute it to
+        return bytes(16), 0
+    return gid, seq

@@ -23,7 +23,7 @@ from diffctl.client.task import Future
 from diffctl.client.utilities import get_rmw_implementation_identifier, remove_ros_args
 
 # As rclpy's own __init__ imports them: `rclpy.utilities`, `rclpy.parameter`, … are attributes after `import rclpy`.
-from . import context, parameter, signals, task, utilities  # noqa: F401
+from . import constants, context, destroyable, exceptions, guard_condition, impl, parameter, signals, task, utilities  # noqa: F401
 
 __all__ = [
     "Context",

@@ -1,5 +1,6 @@
 """rclpy.action, from diffctl.client.action."""
 
+import rclpy.node  # noqa: F401  (rclpy's package loads the node module and all it imports)
 from rclpy.action.client import ActionClient
 from rclpy.action.graph import (
     get_action_client_names_and_types_by_node,

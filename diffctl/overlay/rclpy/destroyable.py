@@ -1,0 +1,3 @@
+"""rclpy.destroyable (diffctl: diffctl.client.destroyable)."""
+
+from diffctl.client.destroyable import DestroyableType  # noqa: F401

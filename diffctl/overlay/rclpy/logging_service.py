@@ -1,0 +1,3 @@
+"""rclpy.logging_service (diffctl: diffctl.client.logging_service)."""
+
+from diffctl.client.logging_service import LoggingService  # noqa: F401

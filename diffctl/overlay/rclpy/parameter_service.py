@@ -1,0 +1,3 @@
+"""rclpy.parameter_service (diffctl: diffctl.client.parameter_service)."""
+
+from diffctl.client.parameter_service import ParameterService  # noqa: F401
