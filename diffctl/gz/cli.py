@@ -24,7 +24,7 @@ Usage: gz <command> [options]
   sim      Run a world: gz sim [-r] [-s] [-g] [-v N] [--iterations N] WORLD
   topic    gz topic -l | -i -t T | -e -t T [-n N] [-d S] [--json-output] | -p TEXT -t T -m gz.msgs.X
   service  gz service -l | -i -s S | -s S --reqtype A --reptype B [--timeout MS] --req TEXT
-  model    gz model --list | -m NAME [-p] [-l [LINK]] [-j [JOINT]]
+  model    gz model --list | -m NAME [-p] [-l [LINK]] [-j [JOINT]] [-s [SENSOR]]
   fuel     gz fuel download -u URL
 
 Options: -h, --help
@@ -369,6 +369,7 @@ def model(rest: list[str]) -> int:
     p.add_argument("-p", "--pose", action="store_true")
     p.add_argument("-l", "--link", nargs="?", const="")
     p.add_argument("-j", "--joint", nargs="?", const="")
+    p.add_argument("-s", "--sensor", nargs="?", const="")
     a = _parse(p, rest)
     from diffctl.sim.world_client import call
 
@@ -390,13 +391,14 @@ def model(rest: list[str]) -> int:
     if m is None:
         print(f"No model named <{a.model}> was found")
         return 1
-    print(model_text(m, _entity_ids(list(models.values())), a.pose, a.link, a.joint), end="")
+    print(model_text(m, _entity_ids(list(models.values())), a.pose, a.link, a.joint, a.sensor), end="")
     return 0
 
 
 def _entity_ids(models: list[dict[str, Any]]) -> dict[str, int]:
     """Entity numbers as an ECM hands them out in load order (the world is 1): each model, then its links,
-    then its joints. Keys are `model`, `model/link` and `model//joint`."""
+    then its joints (a link's sensors after it). Keys are `model`, `model/link`, `model/link/sensor` and
+    `model//joint`."""
     ids: dict[str, int] = {}
     n = 1
     for m in models:
@@ -405,6 +407,9 @@ def _entity_ids(models: list[dict[str, Any]]) -> dict[str, int]:
         for link in m.get("links", []):
             n += 1
             ids[f"{m['name']}/{link['name']}"] = n
+            for sensor in link.get("sensors", []):
+                n += 1
+                ids[f"{m['name']}/{link['name']}/{sensor['name']}"] = n
         for joint in m.get("joints", []):
             n += 1
             ids[f"{m['name']}//{joint['name']}"] = n
@@ -424,12 +429,30 @@ def _vector(values: list[float]) -> str:
     return " ".join("0" if v == 0 else f"{v:.6g}" for v in values)
 
 
+def _sensor_text(lk: dict[str, Any], model: str, ids: dict[str, int], only: str, spaces: int) -> str:
+    pad, pad2 = " " * spaces, " " * (spaces + 2)
+    out = []
+    for s in lk.get("sensors", []):
+        if only and only != s["name"]:
+            continue
+        out.append(f"{pad}- Sensor [{ids[model + '/' + lk['name'] + '/' + s['name']]}]\n{pad2}- Name: {s['name']}\n")
+        out.append(f"{pad2}- Parent: {model} [{ids[model]}]\n{pad2}- Pose [ XYZ (m) ] [ RPY (rad) ]:\n")
+        out.append(_pose_lines(s["pose"], spaces + 4))
+    return "".join(out)
+
+
 def model_text(
-    m: dict[str, Any], ids: dict[str, int], pose: bool = False, link: str | None = None, joint: str | None = None
+    m: dict[str, Any],
+    ids: dict[str, int],
+    pose: bool = False,
+    link: str | None = None,
+    joint: str | None = None,
+    sensor: str | None = None,
 ) -> str:
-    """What gz-sim 8's `gz model -m NAME [-p] [-l [LINK]] [-j [JOINT]]` prints (ModelCommandAPI.cc)."""
+    """What gz-sim 8's `gz model -m NAME [-p] [-l [LINK]] [-j [JOINT]] [-s [SENSOR]]` prints (ModelCommandAPI.cc),
+    sensors with their name, parent and pose (not their type's own details)."""
     name = m["name"]
-    every = not pose and link is None and joint is None
+    every = not pose and link is None and joint is None and sensor is None
     parent = f"{name} [{ids[name]}]"
     out = []
     spaces = 0
@@ -438,9 +461,12 @@ def model_text(
         out.append(_pose_lines(m["pose"], 4))
         spaces = 2
     pad, pad2, pad4 = " " * spaces, " " * (spaces + 2), " " * (spaces + 4)
-    if every or link is not None:
+    if every or link is not None or sensor is not None:
         for lk in m.get("links", []):
             if link and link != lk["name"]:
+                continue
+            if sensor:  # a sensor named: no link block, at the links' indentation (bare -s lists links too)
+                out.append(_sensor_text(lk, name, ids, sensor, spaces))
                 continue
             out.append(f"{pad}- Link [{ids[name + '/' + lk['name']]}]\n{pad2}- Name: {lk['name']}\n")
             out.append(f"{pad2}- Parent: {parent}\n")
@@ -454,6 +480,7 @@ def model_text(
                 )
             out.append(f"{pad2}- Pose [ XYZ (m) ] [ RPY (rad) ]:\n")
             out.append(_pose_lines(lk["pose"], spaces + 4))
+            out.append(_sensor_text(lk, name, ids, "", spaces + 2))
     if every or joint is not None:
 
         def link_info(link_name: str) -> str:

@@ -11,7 +11,8 @@ gz service `/world/<world>/set_pose` (gz.msgs.Pose → gz.msgs.Boolean, as UserC
   to the pose (in the world; a missing orientation is the identity), joints and velocities as they were.
   state    {} → {"ok", "world", "paused", "sim_time_ns", "iterations", "rtf_target", "models": [{"name",
             "static", "pose": P, "ros2_control": bool, "links": [{"name", "pose" (in the model frame, now),
-            "mass", "inertial_pose", "inertia": [ixx, ixy, ixz, iyy, iyz, izz]}], "joints": [{"name", "type",
+            "mass", "inertial_pose", "inertia": [ixx, ixy, ixz, iyy, iyz, izz], "sensors": [{"name", "type",
+            "pose" (in the link frame)}]}], "joints": [{"name", "type",
             "parent", "child", "pose" (in the child link's frame), "axis" (in the joint frame, or null)}]}]}
            where P = {"x","y","z","roll","pitch","yaw"}
 Liveliness token `gz/world/<world>/sim` while the simulator runs (spawners wait for it).
@@ -298,7 +299,11 @@ def _links(entity: Any, model_pose: Pose) -> list[dict[str, Any]]:
             pose = to_model.compose(entity.link_pose(link.name))
         except KeyError:  # a link physics does not carry on its own: where the description puts it
             pose = link.pose_model
-        entry: dict[str, Any] = {"name": link.name, "pose": _pose6(pose)}
+        entry: dict[str, Any] = {
+            "name": link.name,
+            "pose": _pose6(pose),
+            "sensors": [{"name": s.name, "type": s.sdf_type, "pose": _pose6(s.pose_link)} for s in link.sensors],
+        }
         if link.inertial is not None:
             i = link.inertial
             entry.update(

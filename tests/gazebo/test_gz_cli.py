@@ -41,6 +41,7 @@ BOX_WORLD = """<?xml version="1.0"?>
         <pose>0 0 1 0 0 0</pose>
         <inertial><mass>0.5</mass><pose>0 0 0.25 0 0 0</pose>
           <inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.001</izz></inertia></inertial>
+        <sensor name="tip_imu" type="imu"><pose>0 0 0.5 0 0 0</pose><update_rate>10</update_rate></sensor>
       </link>
       <joint name="anchor" type="fixed"><parent>world</parent><child>base</child></joint>
       <joint name="hinge" type="revolute">
@@ -136,6 +137,12 @@ def test_gz_topic_service_model_against_a_running_world(router: str, procs, tmp_
     assert "    - Type: revolute\n    - Parent Link: base [" in hinge and "    - Child Link: arm [" in hinge
     assert "      [0.000000 0.000000 -0.500000]\n" in hinge and "- Axis unit vector [ XYZ ]:\n      [0 1 0]\n" in hinge
     assert "    - Parent Link: world\n" in info  # the fixed anchor: no entity named world
+    # a link's sensors under it, as ModelCommandAPI lists them
+    tip = info[info.index("    - Sensor ["):]
+    assert tip.startswith("    - Sensor [") and "      - Name: tip_imu\n      - Parent: pendulum [" in tip
+    assert "      - Pose [ XYZ (m) ] [ RPY (rad) ]:\n        [0.000000 0.000000 0.500000]\n" in tip
+    only_sensor = gz("model", "-m", "pendulum", "-s", "tip_imu").stdout
+    assert "\n- Sensor [" in only_sensor and "- Link [" not in only_sensor and "Model: [" not in only_sensor
     only_joint = gz("model", "-m", "pendulum", "-j", "hinge").stdout
     assert "Model: [" not in only_joint and "- Joint [" in only_joint and "- Link [" not in only_joint
     assert "Name: anchor" not in only_joint
