@@ -12,6 +12,7 @@ from pathlib import Path
 
 from lxml import etree
 
+from diffctl.description.missing_mesh import MeshNotFound
 from diffctl.description.model import (
     AirPressureSpec,
     Box,
@@ -47,6 +48,7 @@ from diffctl.description.sdf_values import (
     child_text,
     children,
     color_value,
+    element_path,
     fail,
     float_value,
     int_value,
@@ -136,10 +138,11 @@ def _parse_mesh(doc: Doc, shape: Element) -> Mesh:
     path = _fuel_file(doc, uri, uri_el) if is_remote(uri) else resolve_uri(uri, doc.base_dir, doc.search_path)
     if path is None or not path.is_file():
         if doc.check_files:
-            fail(
-                doc,
-                uri_el,
+            raise MeshNotFound(
                 f"mesh {uri!r} not found",
+                source=doc.source,
+                line=uri_el.sourceline,
+                field=element_path(uri_el),
                 hint="searched "
                 + ", ".join(str(d) for d in (doc.base_dir, *doc.search_path))
                 + "; set GZ_SIM_RESOURCE_PATH",

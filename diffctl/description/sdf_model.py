@@ -8,8 +8,11 @@ with every pose resolved and check what physics needs (a tree of joints, mass on
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
+from diffctl.description.missing_mesh import MeshNotFound, report_missing_mesh
 from diffctl.description.model import (
     JOINT_TYPES,
     Frame,
@@ -430,6 +433,17 @@ def _check_tree(b: _Builder, static: bool, links: dict[str, Link]) -> None:
             )
 
 
+def _shapes(doc: Doc, els: list[Element], parse: Callable[..., Any], to_link: ToLink, kind: str) -> tuple[Any, ...]:
+    """The link's visuals or collisions; one whose mesh file is missing is left out with an error, as in Gazebo."""
+    out = []
+    for el in els:
+        try:
+            out.append(parse(doc, el, to_link))
+        except MeshNotFound as e:
+            report_missing_mesh(e, kind)
+    return tuple(out)
+
+
 def build_model(
     doc: Doc,
     el: Element,
@@ -485,8 +499,8 @@ def build_model(
             pose_world=pw,
             pose_model=pm,
             inertial=parse_inertial(node.doc, inertial_el, to_link) if inertial_el is not None else None,
-            collisions=tuple(parse_collision(node.doc, c, to_link) for c in children(node.el, "collision")),
-            visuals=tuple(parse_visual(node.doc, v, to_link) for v in children(node.el, "visual")),
+            collisions=_shapes(node.doc, children(node.el, "collision"), parse_collision, to_link, "collision"),
+            visuals=_shapes(node.doc, children(node.el, "visual"), parse_visual, to_link, "visual"),
             sensors=tuple(sensors),
             gravity=bool_value(node.doc, node.el, "gravity", True),
             kinematic=bool_value(node.doc, node.el, "kinematic", False),

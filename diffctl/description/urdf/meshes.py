@@ -3,7 +3,8 @@
 `package://pkg/path` resolves through diffctl's package index (the user's workspace first, as ROS would find
 it); `model://name/path` through GZ_SIM_RESOURCE_PATH as Gazebo does; relative paths against the URDF's folder.
 PyBullet reads OBJ and STL; a COLLADA (.dae) file is converted once to OBJ with trimesh into the user's cache.
-A mesh that cannot be found is an error naming the URI and every place it was looked for.
+A mesh that cannot be found is a MeshNotFound naming the URI and every place it was looked for (the
+conversion leaves that shape out with an error, as Gazebo does).
 """
 
 from __future__ import annotations
@@ -12,6 +13,7 @@ import hashlib
 import os
 from pathlib import Path
 
+from diffctl.description.missing_mesh import MeshNotFound
 from diffctl.description.resources import env_search_path
 from diffctl.errors import DescriptionError, DiffctlError
 
@@ -79,7 +81,7 @@ def resolve_mesh(uri: str, base_dir: Path, source: str, line: int | None) -> Pat
         looked = ", ".join(str(c) for c in candidates)
         if not looked and uri.startswith(("model://", "package://")):
             looked = "GZ_SIM_RESOURCE_PATH, which is empty"
-        raise DescriptionError(
+        raise MeshNotFound(
             f"mesh {uri!r} not found" + (f": {problem}" if problem else ""),
             source=source,
             line=line,

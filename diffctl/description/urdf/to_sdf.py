@@ -23,6 +23,7 @@ from pathlib import Path
 
 from lxml import etree
 
+from diffctl.description.missing_mesh import MeshNotFound, report_missing_mesh
 from diffctl.description.pose import Pose
 from diffctl.description.urdf.gazebo_ext import (
     GazeboExtension,
@@ -172,10 +173,15 @@ class _Converter:
             if not name.startswith(body.name):  # sdformat marks names that do not start with the link's
                 name = body.name + LUMP_PREFIX + name
             el = _sub(link_el, kind, line=shape.line, name=name)
-            if shape.geometry.kind == "mesh":
-                self.mesh_uris[(body.name, kind, count)] = shape.geometry.filename
             _sub(el, "pose", _pose_text(pose), shape.line)
-            self.geometry(el, shape.geometry, shape.line)
+            try:
+                self.geometry(el, shape.geometry, shape.line)
+            except MeshNotFound as e:  # Gazebo loads the robot without that shape
+                link_el.remove(el)
+                report_missing_mesh(e, kind)
+                continue
+            if shape.geometry.kind == "mesh":  # keyed by the shape's place among those the link keeps
+                self.mesh_uris[(body.name, kind, len(out))] = shape.geometry.filename
             if kind == "visual" and shape.rgba is not None:
                 mat = _sub(el, "material", line=shape.line)
                 rgba = " ".join(_num(c) for c in shape.rgba)
