@@ -56,7 +56,9 @@ class DiffctlError(Exception):
     def where(self) -> str:
         parts = []
         if self.source:
-            loc = str(self.source)
+            from diffctl.source_paths import user_source
+
+            loc = user_source(str(self.source))  # the file under src/, not its link in diffctl's cache
             if self.line is not None:
                 loc += f":{self.line}"
                 if self.column is not None:

@@ -122,8 +122,9 @@ def _include_target(doc: Doc, uri: str, uri_el: Element) -> Path | None:
                 if uri not in _skipped:
                     _skipped.add(uri)
                     from diffctl.console import warn
+                    from diffctl.source_paths import user_source
 
-                    warn(f"{doc.source}:{uri_el.sourceline}: left out: {e.message}")
+                    warn(f"{user_source(doc.source)}:{uri_el.sourceline}: left out: {e.message}")
                 return None
             fail(doc, uri_el, e.message, hint=e.hint)
         except DescriptionError as e:

@@ -81,8 +81,10 @@ def call_user(function: Callable[..., Any], what: str, *args: Any, **kwargs: Any
     except DiffctlError:
         raise
     except Exception as e:
+        from diffctl.source_paths import user_source
+
         code = getattr(function, "__code__", None)
-        where = f" ({code.co_filename}:{code.co_firstlineno})" if code is not None else ""
+        where = f" ({user_source(code.co_filename)}:{code.co_firstlineno})" if code is not None else ""
         raise LaunchError(f"{what}{where} raised {type(e).__name__}: {e}") from None
 
 

@@ -29,7 +29,9 @@ class Where:
     def __str__(self) -> str:
         if not self.source:
             return ""
-        text = self.source
+        from diffctl.source_paths import user_source
+
+        text = user_source(self.source)  # the file under src/, not its link in diffctl's cache
         if self.line is not None:
             text += f":{self.line}"
             if self.column is not None:
