@@ -132,7 +132,8 @@ def split_argv(argv: list[str]) -> tuple[list[str], list[str]]:
         if argv[i] == "--ros-args":
             i += 1
             while i < len(argv) and argv[i] != "--":
-                ros.append(argv[i])
+                if argv[i] != "--ros-args":  # rcl: a repeated flag inside ROS arguments just continues them
+                    ros.append(argv[i])
                 i += 1
             i += 1  # skip the closing "--"
             continue
@@ -287,7 +288,9 @@ def _parse_argv(ros_argv: list[str]) -> _Parsed:
             i += 2
         elif a in ("-e", "--enclave", "--log-config-file"):
             i += 2
-        elif a in _LOGGING_SWITCHES:  # rcl's logging switches: the client library reads what it needs
+        elif a in _LOGGING_SWITCHES or a == "--ros-args":
+            # rcl's logging switches (the client library reads what it needs), and a repeated `--ros-args`
+            # (launch_ros's ros_arguments, then its own): rcl just goes on
             i += 1
         else:
             raise ConfigError(

@@ -88,3 +88,12 @@ def test_the_recorded_cases_are_what_rclpy_does_now() -> None:
     code = f"import sys; sys.argv = ['probe', {str(DATA / 'cases.json')!r}, {str(DATA)!r}]\n{probe}"
     live = json.loads(jazzy_venv.run_python(code, timeout_s=120).stdout.strip().splitlines()[-1])
     assert live == [c["rclpy"] for c in CASES]
+
+
+def test_a_repeated_ros_args_flag_continues_the_ros_arguments() -> None:
+    # launch_ros writes a Node's ros_arguments and then its own `--ros-args …` (no `--` between): rcl reads one run
+    # of ROS arguments (the last recorded case above is that command line, through the real rclpy).
+    argv = ["talker", "pos1", "--ros-args", "--log-level", "info", "--ros-args", "-r", "__node:=t", "--", "tail"]
+    plain, ros = ros_args.split_argv(argv)
+    assert plain == ["talker", "pos1", "tail"]
+    assert ros == ["--log-level", "info", "-r", "__node:=t"]
