@@ -6,6 +6,7 @@ output is printed as `launch_test` prints it when it is done, then a summary; ex
 
 from __future__ import annotations
 
+import re
 import sys
 import tempfile
 from pathlib import Path
@@ -87,6 +88,22 @@ def test(paths: tuple[Path, ...], packages_select: tuple[str, ...], jobs: int, j
     return _run(tests, jobs, junit_xml, timeout_s, artifacts, arguments)
 
 
+_MISSING_AMENT = re.compile(r"No module named '(ament_\w+)'")
+LINT_EXTRA = {"ament_flake8", "ament_pep257", "ament_lint"}
+
+
+def missing_linter_hint(output: str) -> str | None:
+    """The install line for an ament linter a generated test file imports and this environment lacks."""
+    match = _MISSING_AMENT.search(output)
+    if match is None:
+        return None
+    name = match.group(1)
+    if name in LINT_EXTRA:
+        return f"hint: {name} is not installed; the linters of ros2 pkg create's tests: pip install 'diffctl[lint]'"
+    return (f"hint: {name} (an ament linter) is not installed; try: pip install "
+            f"ros-jazzy-{name.replace('_', '-')}")
+
+
 def _run(tests: list, jobs: int, junit_xml: Path | None, timeout_s: float, artifacts: Path | None,
          arguments: list[str]) -> int:
     from diffctl.testing import junit
@@ -98,6 +115,9 @@ def _run(tests: list, jobs: int, junit_xml: Path | None, timeout_s: float, artif
         sys.stdout.write(outcome.output if outcome.output.endswith("\n") or not outcome.output
                          else outcome.output + "\n")
         click.echo(f"===== {outcome.test.label}: {verdict} in {outcome.seconds:.1f} s =====")
+        hint = None if outcome.ok else missing_linter_hint(outcome.output)
+        if hint:
+            click.echo(hint)
         sys.stdout.flush()
 
     with tempfile.TemporaryDirectory(prefix="diffctl-test-") as tmp:

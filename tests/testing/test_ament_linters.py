@@ -171,3 +171,18 @@ def test_copyright_repository_root_needs_license_and_contributing(tmp_path: Path
         "Any contribution that you make to this repository will\nbe under the Apache 2 License, as dictated by that\n"
         "[license](http://www.apache.org/licenses/LICENSE-2.0.html):\n")
     assert main([str(tmp_path)]) == 0, capsys.readouterr().err
+
+
+def test_a_missing_ament_linter_is_named_with_its_install_line(tmp_path: Path) -> None:
+    test_dir = tmp_path / "test"
+    test_dir.mkdir()
+    (test_dir / "test_cppcheck.py").write_text(
+        "from ament_cppcheck.main import main\n\n\ndef test_cppcheck():\n    assert main(argv=[]) == 0\n")
+    r = subprocess.run([sys.executable, "-m", "diffctl", "test", str(test_dir / "test_cppcheck.py")], cwd=tmp_path,
+                       capture_output=True, text=True, timeout=60, start_new_session=True)
+    assert r.returncode == 1
+    assert "hint: ament_cppcheck (an ament linter) is not installed; try: pip install ros-jazzy-ament-cppcheck" \
+        in r.stdout, r.stdout
+    from diffctl.testing.cli import missing_linter_hint
+
+    assert "pip install 'diffctl[lint]'" in missing_linter_hint("ModuleNotFoundError: No module named 'ament_pep257'")
