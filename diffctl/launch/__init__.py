@@ -88,6 +88,7 @@ _ORIGIN: dict[str, str] = {
     "get_package_share_path": "diffctl.launch.package_index",
     "ParameterFile": "diffctl.launch.parameters",
     "ParameterValue": "diffctl.launch.parameters",
+    "Parameter": "diffctl.launch.parameters",
     "ExecuteProcess": "diffctl.launch.process_actions",
     "Node": "diffctl.launch.process_actions",
     "WaitFor": "diffctl.launch.readiness",
@@ -109,6 +110,7 @@ _ORIGIN: dict[str, str] = {
     "TextSubstitution": "diffctl.launch.substitutions",
     "ThisLaunchFile": "diffctl.launch.substitutions",
     "ThisLaunchFileDir": "diffctl.launch.substitutions",
+    "get_logger": "diffctl.launch.user_logging",
 }
 
 __all__ = sorted(_ORIGIN)

@@ -11,6 +11,7 @@ from pathlib import Path
 
 import yaml
 
+from diffctl.launch.parameters import CommandLineParameter
 from diffctl.launch.plan import ProcessSpec
 
 PRINT_PARAMS_DIR = Path("<log-dir>/params")
@@ -27,6 +28,8 @@ def params_files(spec: ProcessSpec, params_dir: Path, *, write: bool) -> list[st
         return files
     inline = 0
     for entry in spec.node.params:
+        if isinstance(entry, CommandLineParameter):
+            continue
         if isinstance(entry, str):
             files.append(entry)
             continue
@@ -49,18 +52,22 @@ def ros_arguments(spec: ProcessSpec, params_dir: Path = PRINT_PARAMS_DIR, *, wri
     out: list[str] = []
     if node.node_name:
         out += ["-r", f"__node:={node.node_name}"]
-    if node.namespace and node.namespace != "/":
+    if node.namespace and (node.namespace != "/" or node.namespace_given):
         out += ["-r", f"__ns:={node.namespace}"]
     for entry in node.global_params:
         if isinstance(entry, tuple):
             out += ["-p", f"{entry[0]}:={entry[1]}"]
         else:
             out += ["--params-file", entry]
-    for path in params_files(spec, params_dir, write=write):
-        out += ["--params-file", path]
+    files = iter(params_files(spec, params_dir, write=write))
+    for entry in node.params:  # files and `-p` in the order the node's parameters list them, as launch_ros
+        if isinstance(entry, CommandLineParameter):
+            out += ["-p", f"{entry.name}:={entry.text}"]
+        else:
+            out += ["--params-file", next(files)]
     for src, dst in node.remaps:
         out += ["-r", f"{src}:={dst}"]
-    return ["--ros-args", *out] if out else []
+    return ["--ros-args", *out]  # launch_ros gives every node `--ros-args`, even with nothing after it
 
 
 def argv(spec: ProcessSpec, params_dir: Path = PRINT_PARAMS_DIR, *, write: bool = False) -> list[str]:

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 from diffctl.errors import LaunchError
 from diffctl.launch.actions import Action, describe
-from diffctl.launch.parameters import resolve_parameters
+from diffctl.launch.parameters import CommandLineParameter, resolve_parameters
 from diffctl.launch.process_actions import Node
 from diffctl.launch.substitutions import SomeSubstitutions, normalize, perform
 
@@ -69,6 +69,8 @@ class ComposableNode:
         for entry in resolve_parameters(self.parameters, context):
             if isinstance(entry, str):
                 args += ["--params-file", entry]
+            elif isinstance(entry, CommandLineParameter):
+                args += ["-p", f"{entry.name}:={entry.text}"]
             else:
                 for key, value in _flat(entry).items():
                     args += ["-p", f"{key}:={json.dumps(value) if not isinstance(value, str) else value}"]

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from abc import ABC, abstractmethod
 from typing import TYPE_CHECKING
 
@@ -63,6 +64,17 @@ class UnlessCondition(IfCondition):
 
 class LaunchConfigurationEquals(Condition):
     def __init__(self, launch_configuration_name: str, expected_value: SomeSubstitutions | None) -> None:
+        # launch's own deprecation warning, word for word (both conditions print it, once per process)
+        warnings.warn(
+            "The 'LaunchConfigurationEquals' and 'LaunchConfigurationNotEquals' Conditions are "
+            " deprecated. Use the 'EqualsSubstitution' and 'NotEqualsSubstitution' substitutions "
+            "instead! E.g.:\n"
+            "  IfCondition(\n  "
+            "\tEqualsSubstitution(LaunchConfiguration('some_launch_arg'), \"some_equality_check\")"
+            "\n  )",
+            UserWarning,
+            stacklevel=1,
+        )
         self.name = launch_configuration_name
         self.expected = None if expected_value is None else normalize(expected_value)
 

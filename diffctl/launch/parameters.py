@@ -1,4 +1,4 @@
-"""Node parameters in launch files: ParameterValue, ParameterFile, and how values get their ROS types.
+"""Node parameters in launch files: ParameterValue, Parameter, ParameterFile, and how values get their ROS types.
 
 Python (`parameters=[{...}, "file.yaml", ParameterFile(...)]`), YAML (`param:`) and XML (`<param>`) all end
 here: values with substitutions are typed after they are resolved, as launch_ros does. The XML frontend's
@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import tempfile
 from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -119,6 +120,26 @@ class ParameterValue:
         self.value_type = value_type
 
 
+class Parameter:
+    """launch_ros's Parameter (parameter_descriptions): one parameter of a node, given on its command line."""
+
+    def __init__(self, name: SomeSubstitutions, value: Any, *, value_type: Any = None) -> None:
+        self.name = normalize(name)
+        self.value = ParameterValue(value, value_type=value_type)
+
+    def evaluate(self, scope: Scope) -> tuple[str, Any]:
+        return perform(self.name, scope), _param_value(self.value, scope)
+
+
+@dataclass(frozen=True)
+class CommandLineParameter:
+    """A `Parameter` after substitution: `-p name:=text`, text as launch_ros writes it (`yaml.dump` of the
+    value, so 5 is "5\\n...\\n" — rcl reads it back as YAML)."""
+
+    name: str
+    text: str
+
+
 class ParameterFile:
     """launch_ros's ParameterFile: a parameters YAML; with `allow_substs=True` its `$(...)` are substituted."""
 
@@ -182,9 +203,9 @@ def flatten(values: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
     return out
 
 
-def resolve_parameters(entries: Iterable[Any], scope: Scope) -> tuple[str | dict[str, Any], ...]:
+def resolve_parameters(entries: Iterable[Any], scope: Scope) -> tuple[str | dict[str, Any] | CommandLineParameter, ...]:
     """Parameter files and dicts in order; consecutive dicts merge, as they would on the node."""
-    out: list[str | dict[str, Any]] = []
+    out: list[str | dict[str, Any] | CommandLineParameter] = []
     for entry in entries:
         if isinstance(entry, Mapping):
             values = {
@@ -197,6 +218,10 @@ def resolve_parameters(entries: Iterable[Any], scope: Scope) -> tuple[str | dict
             continue
         if isinstance(entry, ParameterFile):
             out.append(entry.evaluate(scope))
+            continue
+        if isinstance(entry, Parameter):
+            name, value = entry.evaluate(scope)
+            out.append(CommandLineParameter(name, yaml.dump(value)))
             continue
         path = Path(perform(entry, scope) if not isinstance(entry, Path) else str(entry))
         if not path.is_file():

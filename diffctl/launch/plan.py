@@ -108,6 +108,8 @@ class RosNode:
     params: tuple[str | Mapping[str, Any], ...] = ()  # parameter files and inline dicts, in order
     remaps: tuple[tuple[str, str], ...] = ()
     global_params: tuple[tuple[str, str] | str, ...] = ()
+    # launch_ros passes `__ns` (even `/`) once a namespace was given or pushed, never otherwise
+    namespace_given: bool = False
 
 
 @dataclass(frozen=True)

@@ -19,8 +19,8 @@ from diffctl.errors import LaunchError
 from diffctl.launch import package_index
 from diffctl.launch.actions import Action, Shutdown, describe, seconds
 from diffctl.launch.conditions import truth
-from diffctl.launch.context import join_namespace
-from diffctl.launch.parameters import ParameterFile, resolve_parameters
+from diffctl.launch.context import ROS_NAMESPACE, join_namespace
+from diffctl.launch.parameters import Parameter, ParameterFile, resolve_parameters
 from diffctl.launch.plan import OUTPUTS, RosNode, StartProcess
 from diffctl.launch.registry import register
 from diffctl.launch.substitutions import SomeSubstitutions, Substitution, TextSubstitution, normalize, perform
@@ -424,7 +424,7 @@ class Node(ExecuteProcess):
         self.namespace = None if namespace is None else normalize(namespace)
         self.parameters = list(parameters or [])
         for p in self.parameters:
-            if not isinstance(p, (Mapping, str, Path, Substitution, list, tuple, ParameterFile)):
+            if not isinstance(p, (Mapping, str, Path, Substitution, list, tuple, ParameterFile, Parameter)):
                 raise LaunchError(f"parameters entry {p!r} must be a dict or a parameter file path")
         self.remappings = [(normalize(a), normalize(b)) for a, b in (remappings or [])]
         self.ros_arguments = list(ros_arguments or [])
@@ -478,8 +478,14 @@ class Node(ExecuteProcess):
         remaps = tuple(scope.configurations.get("ros_remaps") or ())
         if node_name is not None:
             self._fqn = namespace.rstrip("/") + "/" + node_name
+        given = self.namespace is not None or scope.configurations.get(ROS_NAMESPACE) is not None
         node = RosNode(
-            node_name=node_name, namespace=namespace, params=params, remaps=(*remaps, *own), global_params=glob
+            node_name=node_name,
+            namespace=namespace,
+            params=params,
+            remaps=(*remaps, *own),
+            global_params=glob,
+            namespace_given=given,
         )
         return node, {}
 

@@ -12,8 +12,11 @@ from collections.abc import Iterable
 from dataclasses import dataclass, field
 from typing import Any
 
+import yaml
+
 from diffctl.console import Text, table
 from diffctl.launch import commandline
+from diffctl.launch.parameters import CommandLineParameter
 from diffctl.launch.plan import (
     AddHandler,
     Argument,
@@ -92,6 +95,8 @@ def _process(node: _Node, spec: ProcessSpec, gate: Gate | None) -> None:
         for entry in n.params:
             if isinstance(entry, str):
                 p.add(f"params file: {entry}")
+            elif isinstance(entry, CommandLineParameter):
+                p.add(f"param {entry.name} = {short(yaml.safe_load(entry.text))}")
             else:
                 for key, value in _flatten("", dict(entry)):
                     p.add(f"param {key} = {short(value)}")
