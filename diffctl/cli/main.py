@@ -20,6 +20,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "service": ("diffctl.cli.graph:service", "List and call services (ros2 service)."),
     "param": ("diffctl.cli.param:param", "List, get, set, describe, dump and load node parameters (ros2 param)."),
     "interface": ("diffctl.cli.graph:interface", "Show message and service definitions (ros2 interface)."),
+    "lifecycle": ("diffctl.cli.lifecycle:lifecycle", "Get, set and list states of managed nodes (ros2 lifecycle)."),
     "launch": ("diffctl.cli.launch:launch", "Start a launch file and supervise it (ros2 launch)."),
     "sim": ("diffctl.sim.cli:sim", "Run the PyBullet simulator on an SDF world (gz sim)."),
     "spawn": ("diffctl.cli.spawn:spawn", "Spawn an entity into the sim or a controller into the manager."),

@@ -19,6 +19,7 @@ VERBS: dict[str, str] = {
     "control": "ros2_control's controller manager commands",
     "interface": "Show message and service definitions",
     "launch": "Run a launch file",
+    "lifecycle": "Get, set and list the states of managed nodes",
     "node": "List nodes and show their endpoints",
     "param": "Get, set, list, describe, dump and load parameters",
     "pkg": "List packages and where they are",

@@ -80,7 +80,7 @@ def test_ros2_command_maps_verbs_onto_diffctl(router: str, procs: Procs, tmp_pat
     r = _ros2("bags", "record")
     assert r.returncode == 2
     assert "ros2 verb 'bags' is not available without ROS 2 (did you mean 'bag'?)" in r.stderr
-    assert "bag, control, interface, launch, node, param, pkg, run, service, topic" in r.stderr
+    assert "bag, control, interface, launch, lifecycle, node, param, pkg, run, service, topic" in r.stderr
     assert _ros2().returncode == 2 and _ros2("--help").returncode == 0
 
     # a real ros2 on PATH (a sourced ROS 2) takes over with the same arguments
@@ -136,3 +136,37 @@ def test_shutdown_inside_a_callback_ends_spin_as_in_rclpy(router: str) -> None:
     )
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=30)
     assert r.returncode == 0 and r.stdout == "spin returned\n", r.stdout + r.stderr
+
+
+LIFECYCLE_NODE = """
+import rclpy
+from rclpy.lifecycle import LifecycleNode
+rclpy.init()
+node = LifecycleNode('lc')
+print('up', flush=True)
+try:
+    rclpy.spin(node)
+except KeyboardInterrupt:
+    pass
+"""
+
+
+def test_ros2_lifecycle_verbs(router: str, procs: Procs) -> None:
+    node = procs.start([sys.executable, "-c", LIFECYCLE_NODE])
+    _read_until(node, "up")
+
+    def lc(*args: str) -> subprocess.CompletedProcess[str]:
+        return _ros2("lifecycle", *args)
+
+    r = lc("nodes")
+    assert "/lc" in r.stdout.split(), r.stdout + r.stderr
+    assert lc("get", "/lc").stdout == "unconfigured [1]\n"
+    r = lc("set", "/lc", "configure")
+    assert (r.returncode, r.stdout) == (0, "Transitioning successful\n"), r.stderr
+    assert lc("get", "lc").stdout == "inactive [2]\n"
+    listed = lc("list", "/lc").stdout
+    assert "- activate [3]\n\tStart: inactive\n\tGoal: activating\n" in listed, listed
+    r = lc("set", "/lc", "jump")
+    assert r.returncode == 1 and r.stderr.startswith("Unknown transition requested, available ones are:\n- "), r.stderr
+    r = lc("get", "/nobody")
+    assert r.returncode == 1 and r.stderr == "Node not found\n"
