@@ -15,6 +15,9 @@ import importlib
 
 # Every public name and the module it lives in: the one list (`__all__` is derived from it).
 _ORIGIN: dict[str, str] = {
+    "OpaqueCoroutine": "diffctl.launch.local_actions",
+    "ExecuteLocal": "diffctl.launch.local_actions",
+    "Executable": "diffctl.launch.local_actions",
     "ComposableNode": "diffctl.launch.composable",
     "ComposableNodeContainer": "diffctl.launch.composable",
     "LoadComposableNodes": "diffctl.launch.composable",

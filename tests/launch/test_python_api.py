@@ -208,11 +208,11 @@ def test_include_python_xml_and_yaml_files(tmp_path: Path) -> None:
 
 def test_a_missing_feature_fails_in_one_line_naming_it(tmp_path: Path) -> None:
     path = tmp_path / "m.launch.py"
-    path.write_text("from launch.actions import OpaqueCoroutine\n\ndef generate_launch_description():\n    pass\n")
+    path.write_text("from launch.events.process import ProcessStdin\n\ndef generate_launch_description():\n    pass\n")
     with pytest.raises(LaunchError) as info:
         load(path)
     e = info.value
-    assert "launch.actions.OpaqueCoroutine is not supported by diffctl" in e.message
+    assert "launch.events.process.ProcessStdin is not supported by diffctl" in e.message
     assert e.line == 1 and "AttributeError" not in str(e)
     path.write_text("import launch_ros.actions\n\ndef generate_launch_description():\n    launch_ros.actions.Foo()\n")
     with pytest.raises(LaunchError, match=r"launch_ros\.actions\.Foo is not supported"):

@@ -10,6 +10,7 @@ __getattr__ = _export(__name__, globals())
 for _name in (
     "actions",
     "conditions",
+    "descriptions",
     "event_handlers",
     "events",
     "events.process",

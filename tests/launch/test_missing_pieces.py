@@ -1,0 +1,156 @@
+"""launch / launch_ros pieces that were missing, each as ros2/launch and launch_ros (jazzy) define it.
+
+OpaqueCoroutine (`launch/actions/opaque_coroutine.py`: `coroutine(context, *args, **kwargs)` scheduled on the
+launch loop, cancelled on shutdown, `ignore_context`), ExecuteLocal / descriptions.Executable
+(`launch/actions/execute_local.py`, `launch/descriptions/executable.py`). The supervisor runs on a fake clock
+and fake processes (conftest `fake_run`).
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import pytest
+
+from diffctl.errors import LaunchError
+from diffctl.launch.loader import load
+from diffctl.launch.plan import Unknown, walk
+from diffctl.launch.resolver import resolve
+
+
+def started(run) -> list[str]:
+    return [n for _, n, _ in run.spawner.spawned]
+
+
+def test_an_opaque_coroutine_runs_on_the_launch_loop_with_its_context(fake_run, tmp_path: Path) -> None:
+    out = tmp_path / "seen.txt"
+    run = fake_run(
+        f"""
+import asyncio
+from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument, OpaqueCoroutine
+
+async def watch(context, tag, *, suffix):
+    seen = [context.launch_configurations["who"]]
+    await asyncio.sleep(0)
+    await asyncio.sleep(0.02)
+    seen.append(tag + suffix)
+    open({str(out)!r}, "w").write(" ".join(seen))
+
+def generate_launch_description():
+    return LaunchDescription([
+        DeclareLaunchArgument("who", default_value="me"),
+        OpaqueCoroutine(coroutine=watch, args=["after"], kwargs={{"suffix": "-sleep"}}),
+    ])
+""",
+        suffix=".launch.py",
+    )
+    assert not run.sup.done  # the launch waits for the pending coroutine, as ROS waits for its future
+    for _ in range(200):  # asyncio.sleep keeps real time, the supervisor a fake clock: give it both
+        if out.exists():
+            break
+        time.sleep(0.002)
+        run.advance(0.01)
+    assert out.read_text() == "me after-sleep"
+    run.advance(0.2)
+    assert run.sup.done and run.sup.exit_code == 0
+
+
+def test_an_opaque_coroutine_is_cancelled_on_shutdown_and_ignore_context_drops_it(fake_run, tmp_path: Path) -> None:
+    out = tmp_path / "cancelled.txt"
+    run = fake_run(
+        f"""
+import asyncio
+from launch import LaunchDescription
+from launch.actions import ExecuteProcess, OpaqueCoroutine
+
+async def forever(*args):
+    try:
+        await asyncio.sleep(3600)
+    except asyncio.CancelledError:
+        open({str(out)!r}, "w").write(f"cancelled with {{len(args)}} args")
+        raise
+
+def generate_launch_description():
+    return LaunchDescription([
+        ExecuteProcess(cmd=["sleep", "100"], name="worker"),
+        OpaqueCoroutine(coroutine=forever, ignore_context=True),
+    ])
+""",
+        suffix=".launch.py",
+    )
+    run.advance(0.1)
+    run.spawner.exit("worker", 0)
+    run.advance(0.5)
+    assert not run.sup.done  # as ROS's LaunchService: not idle while an action's future is pending
+    run.sup.shutdown("as a Ctrl-C would")
+    run.advance(0.5)
+    assert run.sup.done
+    assert out.read_text() == "cancelled with 0 args"
+
+
+def test_an_opaque_coroutine_needs_an_async_function(tmp_path: Path) -> None:
+    from diffctl.launch import OpaqueCoroutine
+
+    with pytest.raises(LaunchError, match="coroutine function"):
+        OpaqueCoroutine(coroutine=lambda context: None)
+
+
+def test_print_says_a_coroutine_is_known_only_at_run_time(tmp_path: Path) -> None:
+    path = tmp_path / "co.launch.py"
+    path.write_text(
+        """
+from launch import LaunchDescription
+from launch.actions import OpaqueCoroutine
+
+async def later(context):
+    raise RuntimeError("must not run under --print")
+
+def generate_launch_description():
+    return LaunchDescription([OpaqueCoroutine(coroutine=later)])
+"""
+    )
+    steps = list(walk(resolve(load(path), {}, str(path)).steps))
+    assert [s.what for s in steps if isinstance(s, Unknown)] == ["OpaqueCoroutine later"]
+
+
+def test_execute_local_runs_its_executable_description(fake_run) -> None:
+    run = fake_run(
+        """
+from launch import LaunchDescription
+from launch.actions import ExecuteLocal
+from launch.descriptions import Executable
+from launch.substitutions import LaunchConfiguration
+
+def generate_launch_description():
+    return LaunchDescription([
+        ExecuteLocal(
+            process_description=Executable(
+                cmd=["echo", "hi"], name="local", additional_env={"GREETING": "hello"}, arguments=["there"]
+            ),
+            output="screen",
+        ),
+    ])
+""",
+        suffix=".launch.py",
+    )
+    assert started(run) == ["local"]
+    argv = run.spawner.spawned[0][2]
+    assert argv[-2:] == ["hi", "there"] and argv[0].endswith("echo")
+    assert run.spawner.envs["local"]["GREETING"] == "hello"
+
+
+def test_execute_local_refuses_a_description_that_is_not_an_executable() -> None:
+    from diffctl.launch import ExecuteLocal
+
+    with pytest.raises(LaunchError, match="Executable"):
+        ExecuteLocal(process_description={"cmd": ["true"]})
+
+
+def test_execute_local_and_executable_are_in_the_ros_modules() -> None:
+    import launch.actions
+    import launch.descriptions
+
+    assert issubclass(launch.actions.ExecuteLocal, launch.actions.ExecuteProcess)
+    assert launch.descriptions.Executable is not None
