@@ -10,6 +10,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 from tests.client.differential import assert_same, run_both
 from tests.oracle import jazzy_venv
 
@@ -30,8 +32,9 @@ def test_every_public_module_of_the_wheel_exists() -> None:
     assert ours - real == set()
 
 
-def test_typical_imports_load_what_rclpy_loads(router: str) -> None:
-    oracle, ours = run_both("module_set.py", router)
+@pytest.mark.parametrize("program", ["module_set.py", "module_set_create_node.py"])
+def test_typical_imports_load_what_rclpy_loads(router: str, program: str) -> None:
+    oracle, ours = run_both(program, router)
     for obs in oracle.observations:
         if isinstance(obs[1], list) and obs[1] and isinstance(obs[1][0], str):
             obs[1] = [m for m in obs[1] if m not in KNOWN_ABSENT]
