@@ -35,7 +35,8 @@ def from_value(msg: Any) -> Any:
         return None
     raw = getattr(msg, _FIELD[kind])
     if kind == "byte_array":
-        return bytes(int(x) for x in raw)
+        # rclpy's byte[] fields hold one-byte bytes objects (b'\xff'); diffctl's decoder gives ints
+        return bytes(x[0] if isinstance(x, (bytes, bytearray)) else int(x) for x in raw)
     if kind.endswith("_array"):
         cast = {"bool_array": bool, "integer_array": int, "double_array": float, "string_array": str}[kind]
         return [cast(x) for x in raw]

@@ -19,6 +19,7 @@ PROGRAMS: dict[tuple[str, str], str] = {
     ("demo_nodes_cpp", "add_two_ints_server"): "services:cpp_server",
     ("demo_nodes_cpp", "add_two_ints_client"): "services:cpp_client",
     ("demo_nodes_cpp", "parameter_blackboard"): "parameters:blackboard",
+    ("demo_nodes_cpp", "set_and_get_parameters"): "parameters:set_and_get",
     ("demo_nodes_py", "talker"): "topics:py_talker",
     ("demo_nodes_py", "listener"): "topics:py_listener",
     ("demo_nodes_py", "add_two_ints_server"): "services:py_server",

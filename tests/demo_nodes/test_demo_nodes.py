@@ -170,3 +170,20 @@ def test_ros2_lifecycle_verbs(router: str, procs: Procs) -> None:
     assert r.returncode == 1 and r.stderr.startswith("Unknown transition requested, available ones are:\n- "), r.stderr
     r = lc("get", "/nobody")
     assert r.returncode == 1 and r.stderr == "Node not found\n"
+
+
+def test_cpp_set_and_get_parameters_prints_rclcpp_values(router: str) -> None:
+    r = subprocess.run(
+        [sys.executable, "-m", "diffctl", "run", "demo_nodes_cpp", "set_and_get_parameters"],
+        capture_output=True, text=True, timeout=60, start_new_session=True,
+    )
+    out = r.stdout + r.stderr
+    assert r.returncode == 0, out
+    # rclcpp's Parameter::value_to_string: std::to_string for doubles, boolalpha and 0x-hex arrays
+    assert re.search(
+        LOG.format(node="set_and_get_parameters") + "\nParameter name: foo\nParameter value \\(integer\\): 2\n"
+        "Parameter name: baz\nParameter value \\(double\\): 1.450000\n"
+        "Parameter name: foobarbaz\nParameter value \\(bool_array\\): \\[true, false\\]\n"
+        "Parameter name: toto\nParameter value \\(byte_array\\): \\[0xff, 0x7f\\]\n",
+        out,
+    ), out
