@@ -252,6 +252,9 @@ class Engine:
             self.visit_and_flush(run)
         if print_seq is not None:
             self._print(event)
+        if isinstance(event, events.IncludeLaunchDescription):  # ROS's own OnIncludeLaunchDescription, the oldest
+            with ctx.frame({"event": event}):
+                self.visit_and_flush(lambda: self.visit_all([event.launch_description]))
         if isinstance(event, events.TimerEvent):
             action = event.timer_action
 

@@ -150,3 +150,26 @@ class ProcessIO(ProcessEvent):
 
 ProcessStdout = ProcessIO
 ProcessStderr = ProcessIO
+
+
+class IncludeLaunchDescription(Event):
+    """Include a description when the event is handled (launch.events.IncludeLaunchDescription): emitted with
+    EmitEvent, it is visited by the launch's own OnIncludeLaunchDescription handler, which runs last."""
+
+    name = "launch.events.IncludeLaunchDescription"
+
+    def __init__(self, launch_description: Any) -> None:
+        self.launch_description = launch_description
+
+
+_IO_NAMES = {0: "ProcessStdin", 1: "ProcessStdout", 2: "ProcessStderr"}
+
+
+def event_type_name(event: Any) -> str:
+    """ROS's `Event.name` of an event: its type's dotted name (diffctl's process events keep the process's
+    name in `.name`, so their type name is derived from the class, and the stream for output)."""
+    if isinstance(event, ProcessIO):
+        return "launch.events.process." + _IO_NAMES.get(event.fd, "ProcessIO")
+    if isinstance(event, ProcessEvent):
+        return "launch.events.process." + type(event).__name__
+    return str(getattr(type(event), "name", "launch.Event"))

@@ -154,3 +154,71 @@ def test_execute_local_and_executable_are_in_the_ros_modules() -> None:
 
     assert issubclass(launch.actions.ExecuteLocal, launch.actions.ExecuteProcess)
     assert launch.descriptions.Executable is not None
+
+
+# ---- OnIncludeLaunchDescription, events.IncludeLaunchDescription, event_named ------------------------------------
+# (launch/event_handlers/on_include_launch_description.py, launch/events/include_launch_description.py,
+# launch/event_handlers/event_named.py; LaunchService registers one OnIncludeLaunchDescription at start.)
+
+INCLUDE_EVENT = """
+from launch import LaunchDescription
+from launch.actions import EmitEvent, ExecuteProcess, LogInfo, RegisterEventHandler
+from launch.event_handlers import OnIncludeLaunchDescription, event_named
+from launch.events import IncludeLaunchDescription
+from launch import EventHandler
+
+def generate_launch_description():
+    return LaunchDescription([
+        RegisterEventHandler(EventHandler(
+            matcher=event_named("launch.events.IncludeLaunchDescription"), entities=[LogInfo(msg="saw the include")])),
+        RegisterEventHandler(EventHandler(
+            matcher=event_named("launch.events.process.ProcessExited"), entities=[LogInfo(msg="saw an exit")])),
+        EmitEvent(event=IncludeLaunchDescription(LaunchDescription([
+            LogInfo(msg="included"), ExecuteProcess(cmd=["true"], name="from_include")]))),
+    ])
+"""
+
+
+def logs(run) -> list[str]:
+    return [line.split("]: ", 1)[1] for line in run.text().splitlines() if "]: " in line]
+
+
+def test_an_emitted_include_event_is_visited_after_the_handlers_registered_later(fake_run) -> None:
+    run = fake_run(INCLUDE_EVENT, suffix=".launch.py")
+    run.advance(0.1)
+    assert logs(run)[:2] == ["saw the include", "included"]
+    assert started(run) == ["from_include"]
+    run.spawner.exit("from_include", 0)
+    run.advance(0.1)
+    assert "saw an exit" in logs(run)
+    assert run.sup.done and run.sup.exit_code == 0
+
+
+def test_a_registered_on_include_handler_visits_the_description_again(fake_run) -> None:
+    run = fake_run(
+        """
+from launch import LaunchDescription
+from launch.actions import EmitEvent, LogInfo, RegisterEventHandler
+from launch.event_handlers import OnIncludeLaunchDescription
+from launch.events import IncludeLaunchDescription
+
+def generate_launch_description():
+    return LaunchDescription([
+        RegisterEventHandler(OnIncludeLaunchDescription()),
+        EmitEvent(event=IncludeLaunchDescription(LaunchDescription([LogInfo(msg="included")]))),
+    ])
+""",
+        suffix=".launch.py",
+    )
+    run.advance(0.1)
+    assert logs(run)[:2] == ["included", "included"]  # as ROS: its handler and the launch's own one
+
+
+def test_event_named_matches_by_ros_type_name() -> None:
+    from diffctl.launch import event_named
+    from diffctl.launch.events import ProcessExited, ProcessIO, Shutdown
+
+    assert event_named("launch.events.Shutdown")(Shutdown())
+    assert event_named("launch.events.process.ProcessExited")(ProcessExited(action=None, name="p", pid=1))
+    assert event_named("launch.events.process.ProcessStderr")(ProcessIO(action=None, name="p", pid=1, fd=2))
+    assert not event_named("launch.events.process.ProcessStdout")(ProcessIO(action=None, name="p", pid=1, fd=2))
