@@ -235,6 +235,7 @@ class Argument:
     description: str
     choices: tuple[str, ...] | None = None
     declared_in: str = ""
+    default_substitutions: tuple[Any, ...] | None = None  # as written (--show-args describes them as launch does)
 
 
 @dataclass

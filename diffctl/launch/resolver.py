@@ -68,7 +68,8 @@ def declared_arguments(description: LaunchDescription, source: str) -> list[Argu
             if isinstance(action, DeclareLaunchArgument) and action.name not in seen:
                 seen.add(action.name)
                 default = None if action.default_value is None else _try_perform(action.default_value, scope)
-                out.append(Argument(action.name, None, default, action.description, action.choices, file))
+                subs = None if action.default_value is None else tuple(action.default_value)
+                out.append(Argument(action.name, None, default, action.description, action.choices, file, subs))
             elif isinstance(action, IncludeLaunchDescription) and is_static(action.location):
                 path = Path(perform(action.location, scope))
                 if not path.is_absolute():

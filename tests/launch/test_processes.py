@@ -214,6 +214,22 @@ def test_show_args_prints_what_ros2_launch_show_args_prints(tmp_path) -> None:
         "\n    'pick':\n        pick one. Valid choices are: ['x', 'y']\n        (default: 'x')\n"
         "\n    'req':\n        no description given\n"
     )
+    # A default made of substitutions is described as launch describes it, not evaluated (same real run).
+    subs = tmp_path / "subs.launch.yaml"
+    subs.write_text(
+        "launch:\n- arg: {name: a, default: x}\n- arg: {name: b, default: \"pre-$(var a)\"}\n"
+        "- arg: {name: c, default: \"$(env HOME)/x\"}\n"
+    )
+    done = subprocess.run(
+        [sys.executable, "-m", "diffctl", "launch", str(subs), "--show-args"],
+        capture_output=True,
+        text=True,
+        timeout=30,
+    )
+    assert done.stdout.endswith(
+        "\n    'b':\n        no description given\n        (default: 'pre-' + LaunchConfig('a'))\n"
+        "\n    'c':\n        no description given\n        (default: EnvVar('HOME') + '/x')\n"
+    ), done.stdout + done.stderr
     empty = tmp_path / "none.launch.yaml"
     empty.write_text("launch:\n- log: {message: x}\n")
     done = subprocess.run(
