@@ -60,7 +60,8 @@ class StateTransition(Event):
 
 def matches_node_name(node_name: str) -> Callable[[Any], bool]:
     """A matcher of the lifecycle node with this fully qualified name (`/ns/name`), as launch_ros's."""
-    return lambda action: getattr(action, "node_name", None) == node_name
+    fqn = node_name if node_name.startswith("/") else f"/{node_name}"  # as launch_ros's: `talker` is `/talker`
+    return lambda action: getattr(action, "node_name", None) == fqn
 
 
 class OnStateTransition(BaseEventHandler):

@@ -222,3 +222,120 @@ def test_event_named_matches_by_ros_type_name() -> None:
     assert event_named("launch.events.process.ProcessExited")(ProcessExited(action=None, name="p", pid=1))
     assert event_named("launch.events.process.ProcessStderr")(ProcessIO(action=None, name="p", pid=1, fd=2))
     assert not event_named("launch.events.process.ProcessStdout")(ProcessIO(action=None, name="p", pid=1, fd=2))
+
+
+# ---- LifecycleTransition (launch_ros/actions/lifecycle_transition.py) -----------------------------------------
+
+
+class FakeLifecycleNodes:
+    """The bus side of managed nodes, as a node answers: each accepted transition publishes two transition
+    events (into the intermediate state, then to the goal); `refuse` makes one go to errorprocessing."""
+
+    STEPS = {
+        1: ("unconfigured", "configuring", "inactive"),
+        3: ("inactive", "activating", "active"),
+        4: ("active", "deactivating", "inactive"),
+        2: ("inactive", "cleaningup", "unconfigured"),
+    }
+
+    def __init__(self, post, refuse: set[int] | None = None) -> None:
+        self.post, self.refuse = post, refuse or set()
+        self.watchers: dict[str, object] = {}
+        self.calls: list[tuple[str, int]] = []
+
+    def watch_transitions(self, node_fqn, on_transition) -> None:
+        self.watchers[node_fqn] = on_transition
+
+    def change_state(self, node_fqn, transition_id, done) -> None:
+        self.calls.append((node_fqn, transition_id))
+        start, middle, goal = self.STEPS[transition_id]
+        notify = self.watchers[node_fqn]
+        label = {1: "configure", 2: "cleanup", 3: "activate", 4: "deactivate"}[transition_id]
+        notify(label, start, middle, None)
+        if transition_id in self.refuse:
+            notify(label, middle, "errorprocessing", None)
+        else:
+            notify(label, middle, goal, None)
+        self.post(lambda: done(transition_id not in self.refuse, "refused"))
+
+
+LIFECYCLE = """
+from launch import LaunchDescription
+from launch.actions import LogInfo, RegisterEventHandler
+from launch_ros.actions import LifecycleNode, LifecycleTransition
+from launch_ros.event_handlers import OnStateTransition
+from lifecycle_msgs.msg import Transition
+
+def generate_launch_description():
+    return LaunchDescription([
+        LifecycleNode(executable="true", name="a", namespace=""),
+        LifecycleNode(executable="true", name="b", namespace="ns"),
+        RegisterEventHandler(OnStateTransition(goal_state="active", entities=[LogInfo(msg="an active node")])),
+        LifecycleTransition(lifecycle_node_names=["a", "/ns/b"],
+                            transition_ids=[Transition.TRANSITION_CONFIGURE, "3"]),
+    ])
+"""
+
+
+def _lifecycle_run(fake_run, refuse: set[int] | None = None):
+    run = fake_run(LIFECYCLE, suffix=".launch.py", start=False)
+    made: list[FakeLifecycleNodes] = []
+    run.sup._make_lifecycle = lambda post: made.append(FakeLifecycleNodes(post, refuse)) or made[0]
+    run.sup.start()
+    run.advance(0.3)
+    return run, made[0]
+
+
+def test_lifecycle_transition_walks_each_named_node_through_its_transitions(fake_run) -> None:
+    run, nodes = _lifecycle_run(fake_run)
+    assert sorted(nodes.calls) == [("/a", 1), ("/a", 3), ("/ns/b", 1), ("/ns/b", 3)]
+    assert nodes.calls.index(("/a", 3)) > nodes.calls.index(("/a", 1))  # the next once the first reached its goal
+    assert logs(run).count("an active node") == 2
+    # the last transition removed what was left of them (the errorprocessing handlers too)
+    assert not any(h.handle_once for h in run.sup.engine.context.handlers)
+
+
+def test_lifecycle_transition_stops_a_node_whose_transition_fails(fake_run) -> None:
+    run, nodes = _lifecycle_run(fake_run, refuse={1})
+    assert sorted(nodes.calls) == [("/a", 1), ("/ns/b", 1)]  # no activate after a failed configure
+    text = "\n".join(logs(run))
+    assert "Stopping transitions for a because 'error occured during transitions'" in text
+
+
+@pytest.mark.parametrize(
+    ("ids", "names", "message"),
+    [([], ["a"], "no transition_ids"), ([1], [], "no lifecycle_node_names")],
+)
+def test_lifecycle_transition_needs_names_and_transitions(ids, names, message) -> None:
+    from diffctl.launch import LifecycleTransition
+
+    with pytest.raises(LaunchError, match=message):
+        LifecycleTransition(lifecycle_node_names=names, transition_ids=ids)
+
+
+def test_lifecycle_transition_ids_are_lifecycle_transitions(fake_run) -> None:
+    text = """
+from launch import LaunchDescription
+from launch_ros.actions import LifecycleTransition
+
+def generate_launch_description():
+    return LaunchDescription([LifecycleTransition(lifecycle_node_names=["a"], transition_ids=[ID])])
+"""
+    with pytest.raises(
+        LaunchError, match=r"case0.launch.py:6: LifecycleTransition: expected an integer transition id, got 'activate'"
+    ):
+        fake_run(text.replace("ID", '"activate"'), suffix=".launch.py")
+    with pytest.raises(LaunchError, match="9 is not a lifecycle transition id"):
+        fake_run(text.replace("ID", "9"), suffix=".launch.py")
+
+
+@pytest.mark.slow
+def test_lifecycle_transition_drives_a_real_managed_node(router, launch_run) -> None:
+    data = Path(__file__).parent / "data" / "lifecycle"
+    run = launch_run(str(data / "transition.launch.py"), "--no-router")
+    assert run.wait(30) == 0, run.text()
+    text = run.text()
+    order = ["configuring", "activating", "now active", "shutting down: managed node is active"]
+    positions = [text.index(m) for m in order]
+    assert positions == sorted(positions), text
+    assert run.leftovers() == []
