@@ -134,3 +134,4 @@ class NodeNameNonExistentError(RCLError):
 for _cls in list(globals().values()):
     if isinstance(_cls, type) and issubclass(_cls, Exception) and _cls.__module__ == __name__:
         _cls.__module__ = "rclpy.exceptions"
+InvalidQosOverridesError.__module__ = "rclpy.qos_overriding_options"  # where rclpy defines it

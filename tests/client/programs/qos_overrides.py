@@ -45,7 +45,7 @@ try:
                          qos_overriding_options=QoSOverridingOptions.with_default_policies(callback=check))
     out.append(["refused", None])
 except InvalidQosOverridesError as e:
-    out.append(["refused", str(e)])
+    out.append(["refused", [f"{type(e).__module__}.{type(e).__name__}", str(e)]])
 try:
     talker.set_parameters([Parameter("qos_overrides./qos_overrides_chatter.publisher.depth", value=5)])
     out.append(["read only", None])
