@@ -1,7 +1,7 @@
 """One preloaded interpreter for all the launch tests of a `diffctl test` run, and each test's components
 forked from its test, so diffctl's modules are imported once per run instead of once per process.
 
-`diffctl test` with two or more launch tests starts one fork server (diffctl/launch/zygote.py) that imports
+`diffctl test` with launch tests to run starts one fork server (diffctl/launch/zygote.py) that imports
 what a launch test and diffctl's components import (the launch's own preload list plus the test runner) and
 forks every launch test from it (`python -m diffctl test-child …`, re-parented to `diffctl test`, a child
 subreaper, which waits and kills it as a process it started). A test so forked forks once more, first thing,
