@@ -15,6 +15,7 @@ import importlib
 
 # Every public name and the module it lives in: the one list (`__all__` is derived from it).
 _ORIGIN: dict[str, str] = {
+    "FindPackage": "diffctl.launch.ros_substitutions",
     "LifecycleTransition": "diffctl.launch.lifecycle_transition",
     "OnIncludeLaunchDescription": "diffctl.launch.include_events",
     "event_named": "diffctl.launch.include_events",

@@ -51,6 +51,10 @@ def _event_names() -> dict[str, Any]:
 def export(module: str, namespace: dict[str, Any]) -> Callable[[str], Any]:
     """Fill an overlay module's namespace with diffctl's objects; return its module `__getattr__`."""
     names = _event_names() if module in EVENT_MODULES else _launch_names()
+    if module == "launch_ros.substitutions":  # there `Parameter` is the substitution, not the node parameter
+        from diffctl.launch.ros_substitutions import ParameterSubstitution
+
+        names = names | {"Parameter": ParameterSubstitution}
     namespace.update(names)
     namespace["__all__"] = sorted(names)
 

@@ -30,6 +30,7 @@ from diffctl.launch.substitutions import (
     FindPackagePrefix,
     FindPackageShare,
     LaunchConfiguration,
+    LaunchLogDir,
     PythonExpression,
     SomeSubstitutions,
     Substitution,
@@ -129,7 +130,16 @@ SUBSTITUTIONS: dict[str, Any] = {
     "equals": _two("equals", EqualsSubstitution),
     "not-equals": _two("not-equals", NotEqualsSubstitution),
     "if": _make_if,
+    "param": lambda a: _ros_param(a),
+    "launch_log_dir": lambda a: (_arity("launch_log_dir", a, 0, 0), LaunchLogDir())[1],
+    "log_dir": lambda a: (_arity("log_dir", a, 0, 0), LaunchLogDir())[1],
 }
+
+
+def _ros_param(args: list[tuple[Substitution, ...]]) -> Substitution:
+    from diffctl.launch.ros_substitutions import from_frontend  # launch_ros's, registered as its frontend does
+
+    return from_frontend(args)
 
 
 class _Parser:

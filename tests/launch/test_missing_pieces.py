@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import time
 from pathlib import Path
+from typing import ClassVar
 
 import pytest
 
@@ -231,7 +232,7 @@ class FakeLifecycleNodes:
     """The bus side of managed nodes, as a node answers: each accepted transition publishes two transition
     events (into the intermediate state, then to the goal); `refuse` makes one go to errorprocessing."""
 
-    STEPS = {
+    STEPS: ClassVar[dict[int, tuple[str, str, str]]] = {
         1: ("unconfigured", "configuring", "inactive"),
         3: ("inactive", "activating", "active"),
         4: ("active", "deactivating", "inactive"),
@@ -339,3 +340,58 @@ def test_lifecycle_transition_drives_a_real_managed_node(router, launch_run) -> 
     positions = [text.index(m) for m in order]
     assert positions == sorted(positions), text
     assert run.leftovers() == []
+
+
+# ---- $(param …) and launch_ros.substitutions.Parameter, $(launch_log_dir) / $(log_dir) ----------------------------
+# (launch_ros/substitutions/parameter.py: @expose_substitution('param'), the first `global_params` pair of the
+# name as str(value); launch/substitutions/launch_log_dir.py: 'launch_log_dir' and 'log_dir'.)
+
+
+def test_the_parameter_substitution_reads_what_set_parameter_set(fake_run) -> None:
+    # The real Jazzy launch logs exactly this line for this file (run beside it while writing this test).
+    run = fake_run(
+        """
+from launch import LaunchDescription
+from launch.actions import LogInfo
+from launch_ros.actions import SetParameter
+from launch_ros.substitutions import Parameter
+
+def generate_launch_description():
+    return LaunchDescription([
+        SetParameter(name="x", value="5"),
+        SetParameter(name="b", value=True),
+        SetParameter(name="s", value="hello"),
+        SetParameter(name="f", value=2.5),
+        LogInfo(msg=["x=", Parameter("x"), " b=", Parameter("b"), " s=", Parameter("s"), " f=", Parameter("f"),
+                     " d=", Parameter("missing", default=7)]),
+    ])
+""",
+        suffix=".launch.py",
+    )
+    assert logs(run)[0] == "x=5 b=True s=hello f=2.5 d=7"
+
+
+def test_param_in_xml_and_yaml_with_a_default_and_a_clear_error_when_not_set(fake_run) -> None:
+    run = fake_run(
+        '<launch>\n  <set_parameter name="x" value="hi"/>\n'
+        '  <log message="x=$(param x) y=$(param y fallback)"/>\n</launch>\n',
+        suffix=".launch.xml",
+    )
+    assert logs(run)[0] == "x=hi y=fallback"
+    run = fake_run(
+        "launch:\n- set_parameter: {name: x, value: yo}\n- log: {message: 'x=$(param x) at $(log_dir)'}\n",
+        suffix=".launch.yaml",
+    )
+    assert logs(run)[0].startswith("x=yo at /")
+    with pytest.raises(LaunchError, match="parameter 'nope' not found"):
+        fake_run("launch:\n- log: {message: '$(param nope)'}\n", suffix=".launch.yaml")
+    with pytest.raises(LaunchError, match=r"\$\(param\) takes 1 or 2 arguments"):
+        fake_run("launch:\n- log: {message: '$(param)'}\n", suffix=".launch.yaml")
+
+
+def test_launch_ros_substitutions_parameter_is_the_substitution() -> None:
+    import launch_ros.parameter_descriptions
+    import launch_ros.substitutions
+
+    assert launch_ros.substitutions.Parameter is not launch_ros.parameter_descriptions.Parameter
+    assert type(launch_ros.substitutions.Parameter("x")).__name__ == "ParameterSubstitution"
