@@ -33,11 +33,17 @@ _CANNOT_IMPORT = re.compile(r"cannot import name '(\w+)' from '([\w.]+)'")
 
 
 def use_overlay() -> None:
-    """The overlay's `launch`, `launch_ros`, … first on sys.path (it is in the venv; a bare checkout needs it)."""
+    """The overlay's `launch`, `launch_ros`, … first on this process's sys.path.
+
+    This process is diffctl's launcher: the file it loads must build diffctl's entities, even where a sourced
+    ROS 2 puts its own `launch` earlier on PYTHONPATH (the processes the launch starts still get the sourced
+    ROS first: `diffctl.workspace.use_in_children`)."""
     from diffctl.workspace import PYTHON_PATH
 
     overlay = str(PYTHON_PATH)
-    if overlay not in sys.path:
+    if sys.path[:1] != [overlay]:
+        if overlay in sys.path:
+            sys.path.remove(overlay)
         sys.path.insert(0, overlay)
 
 
