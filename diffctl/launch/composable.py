@@ -16,12 +16,15 @@ from typing import TYPE_CHECKING, Any
 
 from diffctl.errors import LaunchError
 from diffctl.launch.actions import Action, describe
+from diffctl.launch.conditions import IfCondition, UnlessCondition
 from diffctl.launch.parameters import CommandLineParameter, resolve_parameters
 from diffctl.launch.process_actions import Node
+from diffctl.launch.registry import register
 from diffctl.launch.substitutions import SomeSubstitutions, normalize, perform
 
 if TYPE_CHECKING:
     from diffctl.launch.context import Scope
+    from diffctl.launch.yaml_frontend import Entity
 
 ENTRY_POINT_GROUP = "rclpy_components"
 CONTAINER_EXECUTABLES = ("component_container", "component_container_mt", "component_container_isolated")
@@ -104,10 +107,12 @@ def check_plugin(plugin: str) -> None:
     )
 
 
+@register
 class ComposableNodeContainer(Node):
     """A container process and the composable nodes it starts with (`node_container`)."""
 
     frontend_tags = ("node_container",)
+    frontend_attrs = (*Node.frontend_attrs, "composable_node")
 
     def __init__(
         self,
@@ -123,6 +128,15 @@ class ComposableNodeContainer(Node):
         self.descriptions = list(composable_node_descriptions or [])
         self.requests: list[dict[str, Any]] = []
 
+    @classmethod
+    def from_entity(cls, e: Entity) -> Action:
+        """As launch_ros's parse: a node's attributes, and `composable_node` children (pkg, plugin, name,
+        namespace, if/unless, param, remap, extra_arg)."""
+        container = super().from_entity(e)
+        assert isinstance(container, ComposableNodeContainer)
+        container.descriptions = [_composable_from_entity(c) for c in e.items("composable_node", COMPOSABLE_ATTRS)]
+        return container
+
     def command(self, scope: Scope) -> list[str]:
         argv = super().command(scope)
         ns = self.ros_node(scope)[0]
@@ -133,6 +147,34 @@ class ComposableNodeContainer(Node):
             if d.condition is None or d.condition.evaluate(scope)
         ]
         return [*argv, "--nodes", json.dumps(self.requests)]
+
+
+COMPOSABLE_ATTRS = ("pkg", "plugin", "name", "namespace", "if", "unless", "param", "remap", "extra_arg")
+
+
+def _composable_from_entity(e: Entity) -> ComposableNode:
+    from diffctl.launch.process_actions import _entity_params
+
+    if e.has("if") and e.has("unless"):
+        raise e.error("give `if` or `unless`, not both", key="unless")
+    condition = (
+        IfCondition(e.text("if")) if e.has("if") else UnlessCondition(e.text("unless")) if e.has("unless") else None
+    )
+    return ComposableNode(
+        package=e.text("pkg", required=True),
+        plugin=e.text("plugin", required=True),
+        name=e.text("name", required=True),
+        namespace=e.text("namespace"),
+        parameters=_entity_params(e),
+        remappings=[
+            (r.text("from", required=True), r.text("to", required=True)) for r in e.items("remap", ("from", "to"))
+        ],
+        extra_arguments=[
+            {x.text("name", required=True): x.text("value", required=True)}
+            for x in e.items("extra_arg", ("name", "value"))
+        ],
+        condition=condition,
+    )
 
 
 class LoadComposableNodes(Action):

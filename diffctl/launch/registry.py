@@ -32,6 +32,7 @@ def register(cls: A) -> A:
 def actions() -> dict[str, type[Action]]:
     # Importing the modules runs their @register decorators.
     import diffctl.launch.actions
+    import diffctl.launch.composable
     import diffctl.launch.event_actions
     import diffctl.launch.event_handlers
     import diffctl.launch.include_action

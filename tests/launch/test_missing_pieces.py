@@ -395,3 +395,88 @@ def test_launch_ros_substitutions_parameter_is_the_substitution() -> None:
 
     assert launch_ros.substitutions.Parameter is not launch_ros.parameter_descriptions.Parameter
     assert type(launch_ros.substitutions.Parameter("x")).__name__ == "ParameterSubstitution"
+
+
+# ---- node_container / composable_node tags (launch_ros ComposableNodeContainer.parse, ComposableNode.parse) ------
+
+CONTAINER_XML = """<launch>
+  <arg name="second" default="false"/>
+  <node_container pkg="rclcpp_components" exec="component_container" name="my_container" namespace="">
+    <composable_node pkg="demo" plugin="talker_component:Talker" name="talker1" namespace="ns">
+      <param name="greeting" value="hello"/>
+      <remap from="chatter" to="talk"/>
+      <extra_arg name="use_intra_process_comms" value="true"/>
+    </composable_node>
+    <composable_node pkg="demo" plugin="talker_component:Talker" name="talker2" if="$(var second)"/>
+  </node_container>
+</launch>
+"""
+
+CONTAINER_YAML = """launch:
+- arg: {name: second, default: "false"}
+- node_container:
+    pkg: rclcpp_components
+    exec: component_container
+    name: my_container
+    namespace: ""
+    composable_node:
+    - pkg: demo
+      plugin: talker_component:Talker
+      name: talker1
+      namespace: ns
+      param: [{name: greeting, value: hello}]
+      remap: [{from: chatter, to: talk}]
+      extra_arg: [{name: use_intra_process_comms, value: "true"}]
+    - {pkg: demo, plugin: "talker_component:Talker", name: talker2, if: $(var second)}
+"""
+
+CONTAINER_PY = """
+from launch import LaunchDescription
+from launch.actions import DeclareLaunchArgument
+from launch.conditions import IfCondition
+from launch.substitutions import LaunchConfiguration
+from launch_ros.actions import ComposableNodeContainer
+from launch_ros.descriptions import ComposableNode
+
+def generate_launch_description():
+    return LaunchDescription([
+        DeclareLaunchArgument("second", default_value="false"),
+        ComposableNodeContainer(
+            name="my_container", namespace="", package="rclcpp_components", executable="component_container",
+            composable_node_descriptions=[
+                ComposableNode(package="demo", plugin="talker_component:Talker", name="talker1", namespace="ns",
+                               parameters=[{"greeting": "hello"}], remappings=[("chatter", "talk")],
+                               extra_arguments=[{"use_intra_process_comms": True}]),
+                ComposableNode(package="demo", plugin="talker_component:Talker", name="talker2",
+                               condition=IfCondition(LaunchConfiguration("second"))),
+            ]),
+    ])
+"""
+
+
+def _container_nodes(tmp_path: Path, name: str, text: str, arguments: dict[str, str]) -> list[dict]:
+    import json
+
+    from diffctl.launch.plan import StartProcess
+
+    path = tmp_path / name
+    path.write_text(text)
+    starts = [s for s in walk(resolve(load(path), arguments, str(path)).steps) if isinstance(s, StartProcess)]
+    argv = list(starts[0].spec.argv)
+    return json.loads(argv[argv.index("--nodes") + 1])
+
+
+@pytest.mark.parametrize("second", ["false", "true"])
+def test_node_container_tags_load_the_same_nodes_as_the_python_container(tmp_path: Path, second: str) -> None:
+    args = {"second": second}
+    python = _container_nodes(tmp_path, "c.launch.py", CONTAINER_PY, args)
+    assert [n["cli_args"][2] for n in python] == ["__node:=talker1", "__node:=talker2"][: 1 + (second == "true")]
+    assert "chatter:=talk" in python[0]["cli_args"] and "greeting:=hello" in python[0]["cli_args"]
+    assert _container_nodes(tmp_path, "c.launch.xml", CONTAINER_XML, args) == python
+    assert _container_nodes(tmp_path, "c.launch.yaml", CONTAINER_YAML, args) == python
+
+
+def test_a_composable_node_needs_its_plugin(tmp_path: Path) -> None:
+    bad = CONTAINER_XML.replace(' plugin="talker_component:Talker" name="talker2"', ' name="talker2"')
+    with pytest.raises(LaunchError, match="plugin"):
+        _container_nodes(tmp_path, "bad.launch.xml", bad, {})
