@@ -15,7 +15,7 @@ from collections.abc import Iterable, Mapping
 from typing import TYPE_CHECKING, Any
 
 from diffctl.errors import LaunchError
-from diffctl.launch.actions import Action, describe
+from diffctl.launch.actions import Action
 from diffctl.launch.conditions import IfCondition, UnlessCondition
 from diffctl.launch.parameters import CommandLineParameter, resolve_parameters
 from diffctl.launch.process_actions import Node
@@ -177,10 +177,12 @@ def _composable_from_entity(e: Entity) -> ComposableNode:
     )
 
 
+@register
 class LoadComposableNodes(Action):
     """Add composable nodes to a container started in the same visit (`load_composable_node`)."""
 
     frontend_tags = ("load_composable_node",)
+    frontend_attrs = ("target", "composable_node")
 
     def __init__(
         self, *, composable_node_descriptions: Iterable[ComposableNode], target_container: Any, **kw: Any
@@ -194,13 +196,10 @@ class LoadComposableNodes(Action):
 
     def execute(self, context: Scope) -> list[Action] | None:
         engine = context.engine
-        if not isinstance(self.target, ComposableNodeContainer):
-            name = perform(self.target, context) if not isinstance(self.target, Action) else describe(None)
-            raise LaunchError(
-                f"LoadComposableNodes: the target container {name!r} must be a ComposableNodeContainer of this launch",
-                hint="diffctl's containers take their nodes when they start: pass target_container=<the action>",
-            )
-        process = engine.origin_names.get(id(self.target))
+        target = (
+            self.target if isinstance(self.target, ComposableNodeContainer) else _container_named(context, self.target)
+        )
+        process = engine.origin_names.get(id(target))
         ns = context.namespace
         requests = [
             d.request(context, ns) for d in self.descriptions if d.condition is None or d.condition.evaluate(context)
@@ -212,6 +211,30 @@ class LoadComposableNodes(Action):
                 hint="give the nodes to the ComposableNodeContainer, or load them in the visit that starts it",
             )
         return None
+
+    @classmethod
+    def from_entity(cls, e: Entity) -> Action:
+        return cls(
+            target_container=e.text("target", required=True),
+            composable_node_descriptions=[
+                _composable_from_entity(c) for c in e.items("composable_node", COMPOSABLE_ATTRS)
+            ],
+        )
+
+
+def _container_named(context: Scope, target: Any) -> ComposableNodeContainer:
+    """A container named by text (launch_ros's `target`): one this launch has started, by its node name."""
+    if isinstance(target, Action):
+        raise LaunchError(f"LoadComposableNodes: target_container {target.label()!r} is not a ComposableNodeContainer")
+    name = perform(target, context)
+    fqn = name if name.startswith("/") else f"/{name}"
+    for action in context.engine.process_actions.values():
+        if isinstance(action, ComposableNodeContainer) and action._fqn == fqn:
+            return action
+    raise LaunchError(
+        f"LoadComposableNodes: no container {fqn!r} in this launch",
+        hint="diffctl's containers take their nodes when they start: load into a node_container this launch starts",
+    )
 
 
 def _with_nodes(argv: tuple[str, ...], requests: list[dict[str, Any]]) -> tuple[str, ...]:

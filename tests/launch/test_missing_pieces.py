@@ -480,3 +480,17 @@ def test_a_composable_node_needs_its_plugin(tmp_path: Path) -> None:
     bad = CONTAINER_XML.replace(' plugin="talker_component:Talker" name="talker2"', ' name="talker2"')
     with pytest.raises(LaunchError, match="plugin"):
         _container_nodes(tmp_path, "bad.launch.xml", bad, {})
+
+
+def test_load_composable_node_names_its_container_by_text(tmp_path: Path) -> None:
+    load_tag = (
+        '  <load_composable_node target="TARGET">\n'
+        '    <composable_node pkg="demo" plugin="talker_component:Talker" name="talker3"/>\n'
+        "  </load_composable_node>\n</launch>\n"
+    )
+    text = CONTAINER_XML.replace("</launch>\n", load_tag)
+    nodes = _container_nodes(tmp_path, "l.launch.xml", text.replace("TARGET", "my_container"), {})
+    assert [n["cli_args"][2] for n in nodes] == ["__node:=talker1", "__node:=talker3"]
+    assert _container_nodes(tmp_path, "l2.launch.xml", text.replace("TARGET", "/my_container"), {}) == nodes
+    with pytest.raises(LaunchError, match="no container '/elsewhere' in this launch"):
+        _container_nodes(tmp_path, "l3.launch.xml", text.replace("TARGET", "elsewhere"), {})
