@@ -36,6 +36,13 @@ def _asyncio_loop(engine: Any) -> asyncio.AbstractEventLoop:
     return loop
 
 
+def _close_when_idle(engine: Any, loop: asyncio.AbstractEventLoop) -> None:
+    """The last coroutine is done: close its loop (a later OpaqueCoroutine makes a new one)."""
+    if not loop.is_closed() and not asyncio.all_tasks(loop):
+        loop.close()
+        engine._asyncio_loop = None
+
+
 def _next_turn_s(loop: asyncio.AbstractEventLoop) -> float:
     """When the coroutine can next make progress: now if callbacks are ready, at its earliest timer, or a poll."""
     if getattr(loop, "_ready", None):
@@ -89,15 +96,18 @@ class OpaqueCoroutine(Action):
             loop.run_forever()  # one iteration: the coroutine runs until its next await
             if not task.done():
                 engine.services.after(_next_turn_s(loop), pump, "timer")
-            elif not task.cancelled() and task.exception() is not None:
-                e = task.exception()
-                engine.failed(LaunchError(f"{what} raised {type(e).__name__}: {e}"))
+            else:
+                _close_when_idle(engine, loop)
+                if not task.cancelled() and task.exception() is not None:
+                    e = task.exception()
+                    engine.failed(LaunchError(f"{what} raised {type(e).__name__}: {e}"))
 
         def cancel(_context: Any) -> None:
             if not task.done():
                 task.cancel()
                 loop.call_soon(loop.stop)
                 loop.run_forever()  # let the coroutine see its CancelledError
+                _close_when_idle(engine, loop)
 
         from diffctl.launch.event_actions import OpaqueFunction
         from diffctl.launch.event_handlers import OnShutdown

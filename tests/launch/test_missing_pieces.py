@@ -37,7 +37,8 @@ async def watch(context, tag, *, suffix):
     await asyncio.sleep(0)
     await asyncio.sleep(0.02)
     seen.append(tag + suffix)
-    open({str(out)!r}, "w").write(" ".join(seen))
+    with open({str(out)!r}, "w") as f:
+        f.write(" ".join(seen))
 
 def generate_launch_description():
     return LaunchDescription([
@@ -70,7 +71,8 @@ async def forever(*args):
     try:
         await asyncio.sleep(3600)
     except asyncio.CancelledError:
-        open({str(out)!r}, "w").write(f"cancelled with {{len(args)}} args")
+        with open({str(out)!r}, "w") as f:
+            f.write(f"cancelled with {{len(args)}} args")
         raise
 
 def generate_launch_description():
@@ -494,3 +496,22 @@ def test_load_composable_node_names_its_container_by_text(tmp_path: Path) -> Non
     assert _container_nodes(tmp_path, "l2.launch.xml", text.replace("TARGET", "/my_container"), {}) == nodes
     with pytest.raises(LaunchError, match="no container '/elsewhere' in this launch"):
         _container_nodes(tmp_path, "l3.launch.xml", text.replace("TARGET", "elsewhere"), {})
+
+
+def test_an_opaque_coroutine_that_raises_fails_the_launch_a_listed_difference(fake_run) -> None:
+    run = fake_run(
+        """
+from launch import LaunchDescription
+from launch.actions import ExecuteProcess, OpaqueCoroutine
+
+async def broken(context):
+    raise RuntimeError("no luck")
+
+def generate_launch_description():
+    return LaunchDescription([ExecuteProcess(cmd=["sleep", "100"], name="worker"), OpaqueCoroutine(coroutine=broken)])
+""",
+        suffix=".launch.py",
+    )
+    run.advance(0.5)
+    assert run.sup.done and run.sup.exit_code == 1
+    assert any("OpaqueCoroutine broken raised RuntimeError: no luck" in line for line in logs(run))
