@@ -70,7 +70,7 @@ class LifecycleTransition(Action):
         return "LifecycleTransition"
 
     def _remove_handlers(self, context: Scope, node_name: str, reason: str | None = None) -> None:
-        if reason is not None:
+        if reason is not None and not context.engine.dry:
             context.engine.post_log("INFO", f"Stopping transitions for {node_name} because '{reason}'")
         for handler in self.handlers[node_name]:
             try:
@@ -113,7 +113,7 @@ class LifecycleTransition(Action):
                 self.handlers.setdefault(name, []).append(handler)
                 actions.append(RegisterEventHandler(handler))
         for name in names:
-            on_error = BaseEventHandler(
+            on_error = OnStateTransition(  # launch_ros: an EventHandler with this matcher, the same thing
                 matcher=_reaches(name, "errorprocessing"),
                 entities=[
                     OpaqueFunction(

@@ -515,3 +515,12 @@ def generate_launch_description():
     run.advance(0.5)
     assert run.sup.done and run.sup.exit_code == 1
     assert any("OpaqueCoroutine broken raised RuntimeError: no luck" in line for line in logs(run))
+
+
+def test_print_of_a_lifecycle_transition_shows_its_handlers_and_runs_nothing(tmp_path: Path) -> None:
+    path = tmp_path / "lt.launch.py"
+    path.write_text(LIFECYCLE)
+    steps = list(walk(resolve(load(path), {}, str(path)).steps))
+    assert not [s for s in steps if isinstance(s, Unknown)]
+    handlers = [s for s in steps if type(s).__name__ == "AddHandler"]
+    assert len(handlers) == 1 + 2 * 2 + 2  # the file's own, one per node and transition, one per node on error
