@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 from diffctl.errors import DiffctlError, LaunchError
 from diffctl.launch.actions import Action, Shutdown
+from diffctl.launch.events import IncludeLaunchDescription as IncludeEvent
 from diffctl.launch.events import Shutdown as ShutdownEvent
 from diffctl.launch.events import ShutdownProcess, SignalProcess
 from diffctl.launch.plan import RequestShutdown, SignalProcesses, TargetRef
@@ -49,6 +50,8 @@ class EmitEvent(Action):
             return None
         if not isinstance(self.event, (SignalProcess, ShutdownProcess)):
             if engine.dry:
+                if isinstance(self.event, IncludeEvent):  # --print: what it includes, shown in its place
+                    return [self.event.launch_description]
                 return None
             engine.emit(self.event)  # queued: handled after the current event, as EmitEvent does
             return None

@@ -524,3 +524,12 @@ def test_print_of_a_lifecycle_transition_shows_its_handlers_and_runs_nothing(tmp
     assert not [s for s in steps if isinstance(s, Unknown)]
     handlers = [s for s in steps if type(s).__name__ == "AddHandler"]
     assert len(handlers) == 1 + 2 * 2 + 2  # the file's own, one per node and transition, one per node on error
+
+
+def test_print_shows_what_an_emitted_include_event_starts(tmp_path: Path) -> None:
+    from diffctl.launch.plan import StartProcess
+
+    path = tmp_path / "inc.launch.py"
+    path.write_text(INCLUDE_EVENT)
+    steps = list(walk(resolve(load(path), {}, str(path)).steps))
+    assert [s.spec.name for s in steps if isinstance(s, StartProcess)] == ["from_include"]
