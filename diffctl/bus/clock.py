@@ -4,8 +4,11 @@ from __future__ import annotations
 
 import threading
 import time
+import weakref
 from collections.abc import Callable
 from typing import Any
+
+from diffctl.bus.session import before_close
 
 
 class Clock:
@@ -49,6 +52,17 @@ class Clock:
         return not stop.is_set()
 
 
+_live_timers: weakref.WeakSet[Timer] = weakref.WeakSet()
+
+
+def _stop_timers() -> None:
+    for t in list(_live_timers):
+        t.cancel(join_s=1.0)
+
+
+before_close(_stop_timers)
+
+
 class Timer:
     """Calls `callback()` every `period_s` of the clock, on its own thread, without drift."""
 
@@ -61,6 +75,7 @@ class Timer:
         self._on_error = on_error
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._run, daemon=True, name="timer")
+        _live_timers.add(self)
         self._thread.start()
 
     def _run(self) -> None:
@@ -75,5 +90,7 @@ class Timer:
             if nxt < now - self._period_ns or nxt > now + 10 * self._period_ns:
                 nxt = now + self._period_ns  # fell far behind, or time jumped back: resynchronise
 
-    def cancel(self) -> None:
+    def cancel(self, join_s: float = 0.0) -> None:
         self._stop.set()
+        if join_s > 0 and self._thread is not threading.current_thread():
+            self._thread.join(join_s)

@@ -54,6 +54,10 @@ class ParameterServices:
         def params(kind: str) -> list[dict[str, Any]]:
             return [{"name": c.name, "value": _value_or_unset(c.value)} for c in changes if c.kind == kind]
 
+        from diffctl.bus.session import closing
+
+        if closing() or self.events.closed:
+            return  # the process is ending: nobody will see the event, and a warning would only alarm
         try:
             self.events.publish({
                 "stamp": _time(self.node.now_ns()), "node": self.node.fqn, "new_parameters": params("new"),

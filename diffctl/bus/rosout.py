@@ -13,6 +13,7 @@ from typing import TYPE_CHECKING
 
 from diffctl.bus import wire
 from diffctl.bus.log import LogRecord
+from diffctl.bus.session import before_close, closing
 
 if TYPE_CHECKING:
     from diffctl.bus.endpoints import Publisher
@@ -31,6 +32,8 @@ class _Outbox:
         self._thread: threading.Thread | None = None
 
     def put(self, pub: Publisher, rec: LogRecord) -> None:
+        if closing():
+            return  # the session is going: the console has the line, /rosout can no longer get it
         with self._cond:
             self._queue.append((pub, rec))
             if self._thread is None:
@@ -46,11 +49,29 @@ class _Outbox:
 
     _busy: Publisher | None = None
 
+    _stopping = False
+
+    def stop(self, timeout_s: float = 1.0) -> None:
+        """Publish what is queued (bounded), then end the thread: it must not be inside a Zenoh put when the
+        session closes or the interpreter finalizes."""
+        with self._cond:
+            self._cond.wait_for(lambda: not self._queue and self._busy is None, timeout_s)
+            self._stopping = True
+            self._queue.clear()
+            thread, self._thread = self._thread, None
+            self._cond.notify_all()
+        if thread is not None and thread is not threading.current_thread():
+            thread.join(timeout_s)
+        with self._cond:
+            self._stopping = False
+
     def _run(self) -> None:
         while True:
             with self._cond:
-                while not self._queue:
+                while not self._queue and not self._stopping:
                     self._cond.wait()
+                if self._stopping:
+                    return
                 pub, rec = self._queue.popleft()
                 self._busy = pub
             try:
@@ -64,6 +85,7 @@ class _Outbox:
 
 
 _outbox = _Outbox()
+before_close(_outbox.stop)
 
 
 def _message(rec: LogRecord) -> dict:

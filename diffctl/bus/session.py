@@ -13,6 +13,7 @@ import json
 import os
 import socket
 import threading
+from collections.abc import Callable
 
 import zenoh
 
@@ -157,10 +158,11 @@ def router_config(listen: list[str] | None = None, config_file: str | None = Non
 
 def open_session() -> zenoh.Session:
     """This process's peer session (opened on first use, closed at exit). NoRouterError when none answers."""
-    global _session
+    global _session, _closing
     with _session_lock:
         if _session is None:
             _init_log()
+            _closing = False
             cfg = peer_config(router_endpoint())
             try:
                 _session = zenoh.open(cfg)
@@ -200,8 +202,37 @@ def _answers_quietly(endpoint: str) -> bool:
         return False
 
 
+_before_close: list[Callable[[], None]] = []  # run in order
+_closing = False
+
+
+def before_close(fn: Callable[[], None], *, first: bool = False) -> None:
+    """Run `fn` when the process's session closes (at the latest at exit), before it does: the bus's and the
+    client library's threads stop there (`first`: before the bus's own, as what runs user callbacks), so none
+    is inside a Zenoh call or publishing when the session goes or the interpreter finalizes (a thread caught
+    in Zenoh's Rust frames by finalization is cancelled, and that unwinding aborts the process: "FATAL:
+    exception not rethrown")."""
+    if fn not in _before_close:
+        _before_close.insert(0, fn) if first else _before_close.append(fn)
+
+
+def closing() -> bool:
+    """Whether the session is closing or closed (until another opens): publishing then is pointless and
+    must stay silent."""
+    return _closing
+
+
 def close_session() -> None:
-    global _session
+    global _session, _closing
+    with _session_lock:
+        if _session is None:
+            return
+        _closing = True
+    for fn in list(_before_close):
+        try:
+            fn()
+        except Exception:
+            pass  # one part failing to stop must not keep the others (or the session) open
     with _session_lock:
         s, _session = _session, None
     if s is not None:

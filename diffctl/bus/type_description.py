@@ -103,11 +103,17 @@ def _msg_field_type(ft: dict[str, Any]) -> str:
     if base is None:
         raise ValueError(f"unknown field type id {ft['type_id']}")
     if base == "nested":
-        pkg, _, name = str(ft["nested_type_name"]).partition("/msg/")
-        base = f"{pkg}/{name}"
+        base = _msg_name(str(ft["nested_type_name"]))
     elif base.startswith("bounded_"):
         base = f"{base.removeprefix('bounded_')}<={ft['string_capacity']}"
     return base + suffix
+
+
+def _msg_name(typename: str) -> str:
+    """A type's name as .msg text spells it: `pkg/msg/T` → `pkg/T`; a service's or action's part
+    (`pkg/srv/T_Request`, a `<srv>_Event`'s fields) keeps its full name, as rosbag2 writes it."""
+    pkg, sep, name = typename.partition("/msg/")
+    return f"{pkg}/{name}" if sep else typename
 
 
 def ros2msg_text(description: dict[str, Any]) -> str:
@@ -120,8 +126,7 @@ def ros2msg_text(description: dict[str, Any]) -> str:
 
     parts = [body(description["type_description"])]
     for ref in description["referenced_type_descriptions"]:
-        pkg, _, name = str(ref["type_name"]).partition("/msg/")
-        parts.append(f"{_SCHEMA_SEPARATOR}\nMSG: {pkg}/{name}\n{body(ref)}")
+        parts.append(f"{_SCHEMA_SEPARATOR}\nMSG: {_msg_name(str(ref['type_name']))}\n{body(ref)}")
     return "\n".join(parts) + "\n"
 
 

@@ -19,7 +19,7 @@ from rosbags.typesys import Stores, get_typestore
 from rosbags.typesys.base import Nodetype
 
 from diffctl.bus import cdr, typedefs
-from diffctl.errors import MessageError, suggest
+from diffctl.errors import ConfigError, MessageError, suggest
 
 _lock = threading.RLock()
 _store = None
@@ -118,10 +118,13 @@ def known_types() -> list[str]:
 
 
 def exists(typename: str) -> bool:
+    """Whether `typename` is known, counting interface packages the client library's registry reads (a
+    service's `<srv>_Event` is defined there only, so `topic echo` of `/<srv>/_service_event` needs it)."""
     try:
         t = normalize(typename)
+        _with_package_of(t)
         return t in _ensure(t).types
-    except MessageError:
+    except (MessageError, ConfigError):
         return False
 
 

@@ -13,10 +13,12 @@ import os
 import threading
 import time
 import warnings
+import weakref
 from collections.abc import Callable, Generator
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
+from diffctl.bus.session import before_close
 from diffctl.client import waiting
 from diffctl.client.context import Context, get_default_context
 from diffctl.client.task import Future, Task
@@ -86,6 +88,23 @@ def _timeout_s(timeout_sec: Any) -> float | None:
     return float(t)
 
 
+_live_executors: weakref.WeakSet[Executor] = weakref.WeakSet()
+EXIT_WAIT_S = 2.0  # how long the exit waits for callbacks in flight on executor threads
+
+
+def _stop_executors() -> None:
+    """At session close (exit at the latest): executors spinning in other threads stop, and the callbacks
+    they are running finish, before the session goes (else they publish into a closed session, or are inside
+    a Zenoh call when the interpreter finalizes)."""
+    for ex in list(_live_executors):
+        # The base class's: a MultiThreadedExecutor's pool joins without a bound, and its threads are joined
+        # at exit anyway (the caller's own callback is never waited for, see _WorkTracker).
+        Executor.shutdown(ex, timeout_sec=EXIT_WAIT_S)
+
+
+before_close(_stop_executors, first=True)
+
+
 class Executor:
     """The base: nodes, tasks and the wait; subclasses decide which thread runs a handler."""
 
@@ -99,6 +118,7 @@ class Executor:
         self._tasks_lock = threading.Lock()
         self._is_shutdown = False
         self._work_tracker = _WorkTracker()
+        _live_executors.add(self)
         self._shutdown_lock = threading.Lock()
         self._cb_iter: Generator[tuple[Task, Any, Any], None, None] | None = None
         self._last_args: Any = None

@@ -12,6 +12,7 @@ import signal
 import threading
 from typing import Any
 
+from diffctl.bus.session import before_close
 from diffctl.client import context as _context
 
 
@@ -26,6 +27,20 @@ _installed: dict[int, Any] = {}
 _options = SignalHandlerOptions.NO
 
 
+_shutdown_threads: list[threading.Thread] = []
+
+
+def _join_shutdown_threads() -> None:
+    """The contexts' shutdown a signal started ends before the session closes (it runs shutdown callbacks)."""
+    while _shutdown_threads:
+        t = _shutdown_threads.pop()
+        if t is not threading.current_thread():
+            t.join(2.0)
+
+
+before_close(_join_shutdown_threads, first=True)
+
+
 def _shutdown_all() -> None:
     for ctx in _context.all_contexts():
         ctx.try_shutdown()
@@ -33,7 +48,9 @@ def _shutdown_all() -> None:
 
 def _handler(signum: int, frame: Any) -> None:
     # A thread, as rclpy's deferred one: the interrupted code may hold a context's lock.
-    threading.Thread(target=_shutdown_all, name="rclpy-signal", daemon=True).start()
+    t = threading.Thread(target=_shutdown_all, name="rclpy-signal", daemon=True)
+    _shutdown_threads.append(t)
+    t.start()
     previous = _installed.get(signum)
     if callable(previous):
         previous(signum, frame)
