@@ -141,7 +141,12 @@ def main():
         time.sleep(0.02)
     print("status topic", statuses.get(bytes(handle.goal_id.uuid)), statuses.get(bytes(slow.goal_id.uuid)),
           bytes(rejected.goal_id.uuid) in statuses)
+    # rclpy's orderly teardown: stop and join the spinning thread, destroy the nodes, then shut down (the real
+    # rclpy aborts at exit, "terminate called without an active exception", when its threads outlive this).
     executor.shutdown()
+    spinner.join(timeout=10.0)
+    server.destroy_node()
+    client_node.destroy_node()
     rclpy.shutdown()
 
 

@@ -85,7 +85,8 @@ def main():
     executor = MultiThreadedExecutor(num_threads=4)
     executor.add_node(talker)
     executor.add_node(manager)
-    threading.Thread(target=executor.spin, daemon=True).start()
+    spinner = threading.Thread(target=executor.spin, daemon=True)
+    spinner.start()
     for c in clients.values():
         assert c.wait_for_service(timeout_sec=10.0)
 
@@ -139,7 +140,10 @@ def main():
     print("events", [(e.timestamp, e.transition.id, e.start_state.label, e.goal_state.label) for e in events])
     print("state consts", State.PRIMARY_STATE_ACTIVE, Transition.TRANSITION_ON_ERROR_FAILURE,
           int(TransitionCallbackReturn.ERROR))
-    executor.shutdown()
+    executor.shutdown()  # the orderly teardown, as in action_fibonacci.py
+    spinner.join(timeout=10.0)
+    talker.destroy_node()
+    manager.destroy_node()
     rclpy.shutdown()
 
 
