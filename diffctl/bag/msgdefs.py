@@ -38,6 +38,26 @@ def _referenced(defs: dict) -> set[str]:
     return out
 
 
+def _service_parts_named_in_full(defs: dict) -> dict:
+    """rosbags reads `MSG: pkg/srv/X_Request` (a `<srv>_Event`'s parts) as `pkg/srv/msg/X_Request`; such a
+    type is `pkg/srv/X_Request` on the bus, so the names and every reference to them are put back."""
+    renamed = {k: k.replace("/srv/msg/", "/srv/").replace("/action/msg/", "/action/") for k in defs}
+    renamed = {k: v for k, v in renamed.items() if k != v}
+    if not renamed:
+        return defs
+
+    def fix(desc: tuple) -> tuple:
+        kind, spec = desc
+        if kind in (Nodetype.ARRAY, Nodetype.SEQUENCE):
+            return kind, (fix(spec[0]), *spec[1:])
+        if kind == Nodetype.NAME:
+            return kind, renamed.get(spec, spec)
+        return desc
+
+    return {renamed.get(name, name): (consts, [(fname, fix(desc)) for fname, desc in fields])
+            for name, (consts, fields) in defs.items()}
+
+
 def register_schema(typename: str, encoding: str, text: str, source: str) -> bool:
     """Make `typename` (and its dependencies) known from a bag schema; True if anything was added.
 
@@ -57,6 +77,7 @@ def register_schema(typename: str, encoding: str, text: str, source: str) -> boo
         raise
     except Exception as e:  # rosbags' parsers raise their own error types on bad text
         raise MessageError(f"cannot parse the {encoding} schema of {typename}: {e}", source=source) from None
+    found = _service_parts_named_in_full(found)
     with _lock:
         store = types.store()
         new = {k: v for k, v in found.items() if not types.exists(k)}

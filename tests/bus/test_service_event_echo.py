@@ -56,3 +56,20 @@ def test_topic_echo_shows_service_events(router: str, procs) -> None:
     assert echo.returncode == 0, out
     assert "event_type:" in out and "sequence_number:" in out
     assert ("a: 2" in out and "b: 3" in out) or "sum: 5" in out
+
+
+def test_service_event_learnt_from_a_description_keeps_service_names() -> None:
+    """A `<srv>_Event` of a package this process has no definition of is learnt from the description's text,
+    under the bus's names (`pkg/srv/X_Request`, not rosbags' `pkg/srv/msg/X_Request`), and decodes."""
+    from diffctl.bag.msgdefs import register_schema
+
+    text = ros2msg_text(describe(types.check("example_interfaces/srv/AddTwoInts_Event")))
+    text = text.replace("example_interfaces/", "exit_clean_unknown_pkg/")
+    event = "exit_clean_unknown_pkg/srv/AddTwoInts_Event"
+    assert not types.exists(event)
+    register_schema(event, "ros2msg", text, "test")
+    assert types.exists(event) and types.exists("exit_clean_unknown_pkg/srv/AddTwoInts_Request")
+    known = types.new("example_interfaces/srv/AddTwoInts_Event",
+                      {"request": [{"a": 2, "b": 3}], "info": {"sequence_number": 7}})
+    learnt = types.deserialize(types.serialize(known, "example_interfaces/srv/AddTwoInts_Event"), event)
+    assert learnt.info.sequence_number == 7 and learnt.request[0].a == 2 and learnt.request[0].b == 3
