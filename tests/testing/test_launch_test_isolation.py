@@ -97,7 +97,11 @@ def test_tests_forked_from_the_shared_zygote_time_out_and_die_with_diffctl_test(
     hang = tmp_path / "hang_launch_test.py"
     shutil.copy(FILES / "hanging_launch_test.py", hang)
     hello = tmp_path / "hello_world_launch_test.py"
-    shutil.copy(FILES / "hello_world_launch_test.py", hello)
+    # The passing test lingers a second, so the 0.1 s sampling below sees its forked process on any machine (the
+    # bare hello world can come and go between two samples).
+    hello.write_text((FILES / "hello_world_launch_test.py").read_text()
+                     + "\n\nclass TestLingers(unittest.TestCase):\n"
+                     + "    def test_lingers(self):\n        __import__('time').sleep(1.5)\n")
     marker = f"{6000 + uuid.uuid4().int % 1000}.{uuid.uuid4().int % 9 + 1}"
     env = {**os.environ, "HANG_MARKER": marker}
     argv = [sys.executable, "-m", "diffctl", "test", "-j", "2", str(hang), str(hello)]
