@@ -163,9 +163,13 @@ def test_garbage_on_every_subscribed_topic_is_dropped_and_every_node_keeps_worki
         assert len(per_key) >= 20, per_key  # every node on every topic it subscribes to said so
         worst = per_key.most_common(1)[0]
         assert worst[1] <= inject_s / 5 + 2, f"not rate-limited: {worst} in {inject_s:.1f} s of injection"
-        if inject_s > 6:
-            # The count of suppressed lines rides on the next warning after a 5 s period, if one comes.
-            assert any("more suppressed" in ln for ln in dropped)
+        # The count of suppressed lines rides on the next warning after the 5 s throttle period. The injection may
+        # end within one period for every key (how long it takes depends on how many services answer at once), so
+        # garbage comes once more on one topic after the period has passed: its warning counts the suppressed ones.
+        (cmd_key,) = {wire.topic_key(domain, t, ty) for t, ty in targets if t == "/diffbot_base_controller/cmd_vel"}
+        time.sleep(max(0.0, t_inject + 5.5 - time.monotonic()))
+        session.put(cmd_key, payloads(None)["random"], attachment=wire.pack_attachment(REPEAT, time.time_ns(), gid))
+        wait_until(lambda: "more suppressed" in launch_log(stack), 10, "a warning counting those suppressed", stack)
 
         # Well-formed but absurd commands (NaN, ±inf, 1e308) never reach the physics: the controller's limits and
         # finiteness checks hold the car to |v| ≤ 1 m/s and |ω| ≤ 1 rad/s (the tutorial's limits), all finite.
