@@ -67,7 +67,7 @@ def _signal_outcome(p: subprocess.Popen, sig: int) -> tuple[int, str]:
 def test_signals_end_spin_as_in_rclpy(router: str, procs: Procs, sig: int) -> None:
     """Ctrl-C: KeyboardInterrupt out of spin; SIGTERM: ExternalShutdownException — the exit and the last line the
     real rclpy gives. (The real one races on SIGTERM: a context shut down between two waits lets spin return
-    normally now and then; diffctl always reports the external shutdown.)"""
+    normally now and then, or rcl_wait raises RCLError; diffctl always reports the external shutdown.)"""
     code = (PROGRAMS / "spin_forever.py").read_text()
     real = procs.start([str(jazzy_venv.python()), "-I", "-c", code], env=jazzy_venv.env(), stderr=subprocess.PIPE)
     ours = procs.start([sys.executable, str(PROGRAMS / "spin_forever.py")], stderr=subprocess.PIPE)
@@ -77,7 +77,8 @@ def test_signals_end_spin_as_in_rclpy(router: str, procs: Procs, sig: int) -> No
         assert our_outcome[1] == "KeyboardInterrupt"
     else:
         assert our_outcome == (1, "rclpy.executors.ExternalShutdownException")
-        assert real_outcome == our_outcome or real_outcome[0] == 0
+        # The real one's race has a third outcome: the context is shut down inside rcl_wait, which raises RCLError.
+        assert real_outcome == our_outcome or real_outcome[0] == 0 or "RCLError" in real_outcome[1], real_outcome
 
 
 @pytest.mark.parametrize("env", [{"RCUTILS_COLORIZED_OUTPUT": "1"},
