@@ -11,11 +11,12 @@ from typing import Any
 from diffctl.client import waiting
 from diffctl.client.exceptions import InvalidHandle
 from diffctl.client.interfaces import deserialize, serialize
+from diffctl.client.node_entity import NodeEntity
 from diffctl.client.service_introspection import REQUEST_SENT, RESPONSE_RECEIVED, ServiceEvents
 from diffctl.client.task import Future
 
 
-class Client:
+class Client(NodeEntity):
     def __init__(self, node: Any, srv_type: Any, srv_name: str, qos_profile: Any, callback_group: Any) -> None:
         self._node = node
         self.context = node.context
@@ -120,21 +121,6 @@ class Client:
     def service_name(self) -> str:
         """The fully qualified, remapped service name."""
         return self._bus.name
-
-    @property
-    def handle(self) -> Client:
-        return self
-
-    def __enter__(self) -> Client:
-        return self
-
-    def __exit__(self, *exc: Any) -> None:
-        pass
-
-    @property
-    def logger_name(self) -> str:
-        """The logger name of the node this entity belongs to."""
-        return self._node.get_logger().name
 
     def destroy(self) -> None:
         self._node.destroy_client(self)

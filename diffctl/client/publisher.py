@@ -7,9 +7,10 @@ from typing import Any
 from diffctl.client.duration import Duration
 from diffctl.client.exceptions import InvalidHandle, RCLError
 from diffctl.client.interfaces import serialize
+from diffctl.client.node_entity import NodeEntity
 
 
-class Publisher:
+class Publisher(NodeEntity):
     def __init__(self, publisher_impl: Any, msg_type: Any, topic: str, qos_profile: Any, *,
                  event_callbacks: Any, callback_group: Any) -> None:
         """rclpy's signature (subclasses such as LifecyclePublisher pass it through); `publisher_impl` is the
@@ -51,21 +52,6 @@ class Publisher:
     @property
     def topic_name(self) -> str:
         return self._bus_topic
-
-    @property
-    def handle(self) -> Publisher:
-        return self
-
-    def __enter__(self) -> Publisher:
-        return self
-
-    def __exit__(self, *exc: Any) -> None:
-        pass
-
-    @property
-    def logger_name(self) -> str:
-        """The logger name of the node this entity belongs to."""
-        return self._node.get_logger().name
 
     def destroy(self) -> None:
         self._node.destroy_publisher(self)

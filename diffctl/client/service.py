@@ -10,11 +10,12 @@ from typing import Any
 from diffctl.bus import wire
 from diffctl.client import waiting
 from diffctl.client.interfaces import deserialize, serialize
+from diffctl.client.node_entity import NodeEntity
 from diffctl.client.service_introspection import REQUEST_RECEIVED, RESPONSE_SENT, ServiceEvents
 from diffctl.client.timer import await_or_execute
 
 
-class Service:
+class Service(NodeEntity):
     def __init__(self, node: Any, srv_type: Any, srv_name: str, callback: Callable[[Any, Any], Any],
                  callback_group: Any, qos_profile: Any) -> None:
         self._node = node
@@ -71,21 +72,6 @@ class Service:
     @property
     def service_name(self) -> str:
         return self._bus.name if self._bus is not None else self.srv_name
-
-    @property
-    def handle(self) -> Service:
-        return self
-
-    def __enter__(self) -> Service:
-        return self
-
-    def __exit__(self, *exc: Any) -> None:
-        pass
-
-    @property
-    def logger_name(self) -> str:
-        """The logger name of the node this entity belongs to."""
-        return self._node.get_logger().name
 
     def destroy(self) -> None:
         self._node.destroy_service(self)

@@ -12,11 +12,12 @@ from typing import Any
 
 from diffctl.client import waiting
 from diffctl.client.interfaces import deserialize
+from diffctl.client.node_entity import NodeEntity
 from diffctl.client.qos import HistoryPolicy
 from diffctl.client.timer import await_or_execute
 
 
-class Subscription:
+class Subscription(NodeEntity):
     class CallbackType(enum.Enum):
         MessageOnly = 0
         WithMessageInfo = 1
@@ -97,21 +98,6 @@ class Subscription:
     @property
     def topic_name(self) -> str:
         return self._bus_topic
-
-    @property
-    def handle(self) -> Subscription:
-        return self
-
-    def __enter__(self) -> Subscription:
-        return self
-
-    def __exit__(self, *exc: Any) -> None:
-        pass
-
-    @property
-    def logger_name(self) -> str:
-        """The logger name of the node this entity belongs to."""
-        return self._node.get_logger().name
 
     def destroy(self) -> None:
         self._node.destroy_subscription(self)
