@@ -136,7 +136,7 @@ def launch(
     try:
         from diffctl.cli.show_args import arguments_text
         from diffctl.console import make_console, warn
-        from diffctl.launch import package_index
+        from diffctl.workspace import package_index
         from diffctl.launch.loader import load
         from diffctl.launch.render import PlanView
         from diffctl.launch.resolver import Resolver, declared_arguments

@@ -49,7 +49,7 @@ def pkg_list() -> None:
       diffctl pkg list
     """
     from diffctl.errors import ConfigError
-    from diffctl.launch.package_index import component_packages
+    from diffctl.workspace.package_index import component_packages
     from diffctl.workspace import find_workspace, list_packages
     from diffctl.workspace.resolve import install_index, scan_workspace
 
@@ -126,7 +126,7 @@ def pkg_executables(package: str | None) -> None:
     Example:
       diffctl pkg executables controller_manager
     """
-    from diffctl.launch.package_index import component_packages, executables
+    from diffctl.workspace.package_index import component_packages, executables
     from diffctl.workspace import find_package, list_packages
 
     if package is not None:

@@ -1,7 +1,7 @@
 """`diffctl run PKG EXE [args] [--ros-args …]`: the `ros2 run` counterpart.
 
 The executable resolves as `Node(package, executable)` does in a launch file (one path,
-`diffctl.launch.package_index.executable_argv`): a workspace package's console scripts and installed
+`diffctl.workspace.package_index.executable_argv`): a workspace package's console scripts and installed
 scripts run from its sources without building, with diffctl's overlay (rclpy, tf2_ros, …) and the
 workspace's Python packages importable; then diffctl's components; then install trees.
 """
@@ -40,7 +40,7 @@ def run(workspace_dir: Path | None, prefix: str | None, package: str, executable
       diffctl run demo_nodes_py talker
     """
     from diffctl import ros_args
-    from diffctl.launch.package_index import executable_argv
+    from diffctl.workspace.package_index import executable_argv
     from diffctl.workspace import find_workspace, use_in_children
 
     use_in_children(find_workspace(explicit=workspace_dir))

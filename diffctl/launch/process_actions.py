@@ -16,7 +16,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from diffctl.errors import LaunchError
-from diffctl.launch import package_index
+from diffctl.workspace import package_index
 from diffctl.launch.actions import Action, Shutdown, describe, seconds
 from diffctl.launch.conditions import truth
 from diffctl.launch.context import ROS_NAMESPACE, join_namespace

@@ -134,7 +134,7 @@ class FindPackageShare(Substitution):
         return f"$(find-pkg-share {describe(self.package)})"
 
     def perform(self, scope: Scope) -> str:
-        from diffctl.launch import package_index
+        from diffctl.workspace import package_index
 
         return str(package_index.share_dir(perform(self.package, scope)))
 
@@ -340,7 +340,7 @@ class FindPackagePrefix(Substitution):
         return f"$(find-pkg-prefix {describe(self.package)})"
 
     def perform(self, scope: Scope) -> str:
-        from diffctl.launch import package_index
+        from diffctl.workspace import package_index
 
         share = package_index.share_dir(perform(self.package, scope))
         return str(share.parent.parent) if share.parent.name == "share" else str(share)
@@ -356,7 +356,7 @@ class ExecutableInPackage(Substitution):
         return f"$(exec-in-pkg {describe(self.executable)} {describe(self.package)})"
 
     def perform(self, scope: Scope) -> str:
-        from diffctl.launch import package_index
+        from diffctl.workspace import package_index
 
         argv = package_index.executable_argv(perform(self.package, scope), perform(self.executable, scope))
         return shlex.join(argv)

@@ -16,7 +16,7 @@ PROJECT_DIR_ENV = "DIFFCTL_PROJECT_DIR"
 
 _PACKAGE_DIR = Path(__file__).resolve().parent.parent
 # Share folders of replaced ROS packages (e.g. ros_gz_sim/launch/gz_sim.launch.py), one folder each.
-COMPONENT_SHARES = _PACKAGE_DIR / "launch" / "share"
+COMPONENT_SHARES = _PACKAGE_DIR / "workspace" / "component_shares"
 # Gazebo's own worlds (empty.sdf, …): where `gz sim NAME` looks after GZ_SIM_RESOURCE_PATH.
 GAZEBO_WORLDS = COMPONENT_SHARES / "ros_gz_sim" / "worlds"
 

@@ -15,7 +15,7 @@ from diffctl.bus import gz
 from tests.waiting import wait_for
 
 REPO = Path(__file__).resolve().parents[2]
-EMPTY = REPO / "diffctl" / "launch" / "share" / "ros_gz_sim" / "worlds" / "empty.sdf"
+EMPTY = REPO / "diffctl" / "workspace" / "component_shares" / "ros_gz_sim" / "worlds" / "empty.sdf"
 CAR = (Path(__file__).resolve().parent / "data" / "urdf" / "diff_car.urdf").read_text()
 # Without the gz_ros2_control plugin: this test is about the model, not the manager it would host.
 CAR_MODEL = re.sub(r"<gazebo>\s*<plugin.*?</gazebo>", "", CAR, flags=re.S)

@@ -7,7 +7,7 @@ import os
 import signal
 import subprocess
 
-from diffctl.launch.package_index import executable_argv
+from diffctl.workspace.package_index import executable_argv
 from diffctl.workspace.gui_tools import argv_for
 from tests.conftest import free_port
 

@@ -11,7 +11,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from diffctl.errors import LaunchError
-from diffctl.launch import package_index
+from diffctl.workspace import package_index
 from diffctl.launch.context import Scope
 from diffctl.launch.loader import load
 from diffctl.launch.plan import AddHandler, StartProcess

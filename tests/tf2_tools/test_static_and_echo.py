@@ -12,7 +12,7 @@ import time
 import pybullet
 import pytest
 
-from diffctl.launch.package_index import executable_argv
+from diffctl.workspace.package_index import executable_argv
 from diffctl.tf2_tools.args import (
     OLD_STYLE_WARNING,
     ArgsError,

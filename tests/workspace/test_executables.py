@@ -9,7 +9,7 @@ from pathlib import Path
 import pytest
 
 from diffctl.errors import LaunchError
-from diffctl.launch import package_index
+from diffctl.workspace import package_index
 from tests.workspace.conftest import package_xml, write_tree
 from tests.workspace.test_resolution import install_tree
 

@@ -127,7 +127,7 @@ def tutorial_workspace(root: Path) -> Path:
 def test_the_tutorials_launch_file_resolves_in_the_readers_workspace(tmp_path: Path, monkeypatch) -> None:
     ws = tutorial_workspace(tmp_path / "ros2_ws")
     monkeypatch.chdir(ws / "src" / "diff_sim")
-    from diffctl.launch.package_index import find_launch_file
+    from diffctl.workspace.package_index import find_launch_file
 
     path = find_launch_file("diff_sim", "sim_control_gz.launch.py")
     plan = resolve(load(path), {}, str(path))
