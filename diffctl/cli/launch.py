@@ -136,10 +136,10 @@ def launch(
     try:
         from diffctl.cli.show_args import arguments_text
         from diffctl.console import make_console, warn
-        from diffctl.workspace import package_index
         from diffctl.launch.loader import load
         from diffctl.launch.render import PlanView
         from diffctl.launch.resolver import Resolver, declared_arguments
+        from diffctl.workspace import package_index
 
         path = package_index.find_launch_file(*positional)
         description = load(path)

@@ -49,8 +49,8 @@ def pkg_list() -> None:
       diffctl pkg list
     """
     from diffctl.errors import ConfigError
-    from diffctl.workspace.package_index import component_packages
     from diffctl.workspace import find_workspace, list_packages
+    from diffctl.workspace.package_index import component_packages
     from diffctl.workspace.resolve import install_index, scan_workspace
 
     ws = find_workspace()
@@ -126,8 +126,8 @@ def pkg_executables(package: str | None) -> None:
     Example:
       diffctl pkg executables controller_manager
     """
-    from diffctl.workspace.package_index import component_packages, executables
     from diffctl.workspace import find_package, list_packages
+    from diffctl.workspace.package_index import component_packages, executables
 
     if package is not None:
         if package not in component_packages():

@@ -40,8 +40,8 @@ def run(workspace_dir: Path | None, prefix: str | None, package: str, executable
       diffctl run demo_nodes_py talker
     """
     from diffctl import ros_args
-    from diffctl.workspace.package_index import executable_argv
     from diffctl.workspace import find_workspace, use_in_children
+    from diffctl.workspace.package_index import executable_argv
 
     use_in_children(find_workspace(explicit=workspace_dir))
     command = executable_argv(package, executable) + list(argv)

@@ -16,7 +16,6 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from diffctl.errors import LaunchError
-from diffctl.workspace import package_index
 from diffctl.launch.actions import Action, Shutdown, describe, seconds
 from diffctl.launch.conditions import truth
 from diffctl.launch.context import ROS_NAMESPACE, join_namespace
@@ -24,6 +23,7 @@ from diffctl.launch.parameters import Parameter, ParameterFile, resolve_paramete
 from diffctl.launch.plan import OUTPUTS, RosNode, StartProcess
 from diffctl.launch.registry import register
 from diffctl.launch.substitutions import SomeSubstitutions, Substitution, TextSubstitution, normalize, perform
+from diffctl.workspace import package_index
 
 if TYPE_CHECKING:
     from diffctl.launch.context import Scope

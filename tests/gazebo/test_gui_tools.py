@@ -7,8 +7,8 @@ import os
 import signal
 import subprocess
 
-from diffctl.workspace.package_index import executable_argv
 from diffctl.workspace.gui_tools import argv_for
+from diffctl.workspace.package_index import executable_argv
 from tests.conftest import free_port
 
 

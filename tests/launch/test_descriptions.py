@@ -11,12 +11,12 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from diffctl.errors import LaunchError
-from diffctl.workspace import package_index
 from diffctl.launch.context import Scope
 from diffctl.launch.loader import load
 from diffctl.launch.plan import AddHandler, StartProcess
 from diffctl.launch.resolver import resolve
 from diffctl.launch.substitutions import parse, perform
+from diffctl.workspace import package_index
 
 REPO = Path(__file__).resolve().parents[2]
 

@@ -12,7 +12,6 @@ import time
 import pybullet
 import pytest
 
-from diffctl.workspace.package_index import executable_argv
 from diffctl.tf2_tools.args import (
     OLD_STYLE_WARNING,
     ArgsError,
@@ -22,6 +21,7 @@ from diffctl.tf2_tools.args import (
     quaternion_from_rpy,
 )
 from diffctl.tf2_tools.echo_format import echo_block, euler_ypr, matrix_from_quaternion
+from diffctl.workspace.package_index import executable_argv
 
 
 def test_new_style_flags() -> None:
