@@ -1,6 +1,6 @@
 """`diffctl component-container`: Python composable nodes in one process (rclcpp_components' component_container).
 
-The launch gives the nodes as `--nodes JSON` (diffctl/launch/composable.py): each a plugin (`module:Class` or
+The launch gives the nodes as `--nodes JSON` (diffctl/launch_legacy/composable.py): each a plugin (`module:Class` or
 an `rclpy_components` entry point name) and its `--ros-args` (name, namespace, parameters, remappings). Each
 class is built with `cli_args=` (a component takes `**kwargs` and passes them to rclpy's Node, as ROS's
 Python composition expects); all spin in one executor, beside the container's own node.

@@ -125,7 +125,7 @@ def launch(
       diffctl launch diffctl_demo sim_control.launch.py
       diffctl launch ./my_robot.yaml --show-args
     """
-    from diffctl.launch.environment import default_log_dir
+    from diffctl.launch_legacy.environment import default_log_dir
 
     positional, arguments = _split_targets(target)
     _choose_workspace(workspace_dir)
@@ -136,9 +136,9 @@ def launch(
     try:
         from diffctl.cli.show_args import arguments_text
         from diffctl.console import make_console, warn
-        from diffctl.launch.loader import load
-        from diffctl.launch.render import PlanView
-        from diffctl.launch.resolver import Resolver, declared_arguments
+        from diffctl.launch_legacy.loader import load
+        from diffctl.launch_legacy.render import PlanView
+        from diffctl.launch_legacy.resolver import Resolver, declared_arguments
         from diffctl.workspace import package_index
 
         path = package_index.find_launch_file(*positional)
@@ -159,7 +159,7 @@ def launch(
                 warn(message)
             console.print(PlanView(plan))
             return
-        from diffctl.launch.plan import Plan
+        from diffctl.launch_legacy.plan import Plan
 
         # The live run: the engine visits the description once, when the launch starts (see _run).
         plan = Plan(str(path), [], (), {}, description=description, launch_arguments=arguments)
@@ -201,8 +201,8 @@ def _start_fork_server(run_dir: Path) -> Any:
     """The fork server, started in the environment the launch's children will get (None when turned off).
     Only light modules are imported on the way: everything the launcher imports before it delays the
     launch's first component."""
-    from diffctl.launch import fork_server
-    from diffctl.launch.environment import default_child_env
+    from diffctl.launch_legacy import fork_server
+    from diffctl.launch_legacy.environment import default_child_env
 
     env = default_child_env(_children_env(run_dir))
     if not fork_server.enabled(env):
@@ -214,7 +214,7 @@ def _start_fork_server(run_dir: Path) -> Any:
 
 def _event_loop(server: Any) -> Any:
     """The launcher's event loop, its spawner forking diffctl's components from `server` (if any)."""
-    from diffctl.launch.loop import EventLoop
+    from diffctl.launch_legacy.loop import EventLoop
 
     return EventLoop(server=server)
 
@@ -235,10 +235,10 @@ def _choose_workspace(workspace_dir: Path | None) -> None:
 def _run(
     plan: Any, loop: Any, run_dir: Path, *, log_given: bool, no_color: bool, no_router: bool, options: dict[str, Any]
 ) -> int:
-    from diffctl.launch.fork_server import is_component
-    from diffctl.launch.output import Output, link_latest
-    from diffctl.launch.readiness import ProbePoller
-    from diffctl.launch.supervisor import Supervisor
+    from diffctl.launch_legacy.fork_server import is_component
+    from diffctl.launch_legacy.output import Output, link_latest
+    from diffctl.launch_legacy.readiness import ProbePoller
+    from diffctl.launch_legacy.supervisor import Supervisor
 
     probes = None
     output = None

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from diffctl.launch.plan import Argument
+from diffctl.launch_legacy.plan import Argument
 
 
 def ros_description(argument: Argument) -> str:
@@ -25,7 +25,7 @@ def ros_description(argument: Argument) -> str:
 
 def _describe(sub: Any) -> str | None:
     """A substitution as launch's describe() writes it (None: one launch describes in a way not known here)."""
-    from diffctl.launch.substitutions import (
+    from diffctl.launch_legacy.substitutions import (
         EnvironmentVariable,
         LaunchConfiguration,
         TextSubstitution,

@@ -13,7 +13,7 @@ import time
 from collections.abc import Callable, Iterable, Iterator
 from typing import Any
 
-from diffctl.launch.actions import Action
+from diffctl.launch_legacy.actions import Action
 
 
 class ReadyToTest(Action):

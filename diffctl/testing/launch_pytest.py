@@ -27,8 +27,8 @@ class LaunchSession:
     """One launch fixture's launch: its bus, its LaunchService, its ReadyToTest."""
 
     def __init__(self, description: Any, *, shutdown_when_idle: bool) -> None:
-        from diffctl.launch.actions import LaunchDescription
-        from diffctl.launch.event_handlers import OnProcessExit, OnProcessIO, RegisterEventHandler
+        from diffctl.launch_legacy.actions import LaunchDescription
+        from diffctl.launch_legacy.event_handlers import OnProcessExit, OnProcessIO, RegisterEventHandler
         from diffctl.testing.decorators import ReadyToTest
         from diffctl.testing.handlers import cache_output, record_exit
         from diffctl.testing.isolation import isolated_bus
@@ -377,25 +377,25 @@ def _call_on_launch_thread(context: Any) -> Any:
 
 
 def _on_start(action: Any, event: threading.Event) -> Any:
-    from diffctl.launch.event_handlers import OnProcessStart
+    from diffctl.launch_legacy.event_handlers import OnProcessStart
 
     return OnProcessStart(target_action=action, on_start=lambda e, c: event.set())
 
 
 def _on_exit(action: Any, event: threading.Event) -> Any:
-    from diffctl.launch.event_handlers import OnProcessExit
+    from diffctl.launch_legacy.event_handlers import OnProcessExit
 
     return OnProcessExit(target_action=action, on_exit=lambda e, c: event.set())
 
 
 def _on_stdout(action: Any, event: threading.Event) -> Any:
-    from diffctl.launch.event_handlers import OnProcessIO
+    from diffctl.launch_legacy.event_handlers import OnProcessIO
 
     return OnProcessIO(target_action=action, on_stdout=lambda e: event.set())
 
 
 def _on_stderr(action: Any, event: threading.Event) -> Any:
-    from diffctl.launch.event_handlers import OnProcessIO
+    from diffctl.launch_legacy.event_handlers import OnProcessIO
 
     return OnProcessIO(target_action=action, on_stderr=lambda e: event.set())
 

@@ -53,7 +53,7 @@ def _show_args(path: Path, package_name: str | None) -> None:
 
 def print_arguments_of_launch_description(*, launch_description: Any, source: str = "<launch description>") -> None:
     """The launch arguments a description declares, as `launch_test --show-args` prints them."""
-    from diffctl.launch.resolver import declared_arguments
+    from diffctl.launch_legacy.resolver import declared_arguments
 
     print("Arguments (pass arguments as '<name>:=<value>'):")
     arguments = declared_arguments(launch_description, source)

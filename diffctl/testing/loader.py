@@ -20,7 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from diffctl.errors import DiffctlError
-from diffctl.launch.actions import Action, walk_entities
+from diffctl.launch_legacy.actions import Action, walk_entities
 from diffctl.testing.decorators import ReadyToTest
 
 DEFAULT_READY_TIMEOUT_S = 15.0

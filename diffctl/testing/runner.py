@@ -22,9 +22,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, TextIO
 
-from diffctl.launch.actions import LaunchDescription
-from diffctl.launch.event_handlers import OnProcessExit, OnProcessIO, OnProcessStart, RegisterEventHandler
-from diffctl.launch.output import Output
+from diffctl.launch_legacy.actions import LaunchDescription
+from diffctl.launch_legacy.event_handlers import OnProcessExit, OnProcessIO, OnProcessStart, RegisterEventHandler
+from diffctl.launch_legacy.output import Output
 from diffctl.testing.handlers import (
     ActiveIoHandler,
     ActiveProcInfoHandler,

@@ -1,6 +1,6 @@
 """One launch running on a thread of its own: the LaunchService that launch tests talk to.
 
-The engine's event loop (diffctl/launch/loop.py) is built for the main thread of `diffctl launch`: it takes
+The engine's event loop (diffctl/launch_legacy/loop.py) is built for the main thread of `diffctl launch`: it takes
 signals through a wake-up pipe. A launch test runs its test methods while the launch runs, so here the loop
 runs on a thread of its own: child exits come through pidfds (no SIGCHLD needed), and everything the test
 thread asks of the launch (shut down, include a description, emit an event) is queued and done on the launch
@@ -22,10 +22,10 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import IO, Any
 
-from diffctl.launch.loop import EventLoop
-from diffctl.launch.output import Output
-from diffctl.launch.plan import Plan
-from diffctl.launch.supervisor import Supervisor
+from diffctl.launch_legacy.loop import EventLoop
+from diffctl.launch_legacy.output import Output
+from diffctl.launch_legacy.plan import Plan
+from diffctl.launch_legacy.supervisor import Supervisor
 
 
 class _ThreadLoop(EventLoop):
@@ -105,8 +105,8 @@ def use_fork_server(preload: Any) -> None:
 
 
 def _fork_server() -> Any:
-    from diffctl.launch import fork_server
-    from diffctl.launch.environment import default_child_env
+    from diffctl.launch_legacy import fork_server
+    from diffctl.launch_legacy.environment import default_child_env
     from diffctl.testing.zygotes import take_inherited
 
     env = default_child_env(dict(os.environ))  # the test's own bus: the zygote's children get it
@@ -170,7 +170,7 @@ class LaunchService:
             except BaseException:
                 self.loop.spawner.close(kill_fork_server=True)
                 raise
-            from diffctl.launch.fork_server import is_component
+            from diffctl.launch_legacy.fork_server import is_component
 
             if not self.supervisor.may_start_components(is_component):
                 self.loop.spawner.drop_fork_server()

@@ -143,8 +143,8 @@ def _wheel_radius(shares: list[Path], joint: str) -> tuple[float | None, str]:
 
 
 def robot_facts(package: str) -> RobotFacts:
-    from diffctl.launch.loader import load
-    from diffctl.launch.resolver import declared_arguments
+    from diffctl.launch_legacy.loader import load
+    from diffctl.launch_legacy.resolver import declared_arguments
     from diffctl.workspace import find_package
 
     share = find_package(package).share

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from diffctl.launch.event_handlers import OnProcessIO
+from diffctl.launch_legacy.event_handlers import OnProcessIO
 
 
 class StdoutReadyListener(OnProcessIO):

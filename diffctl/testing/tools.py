@@ -14,10 +14,10 @@ from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 from typing import Any
 
-from diffctl.launch.actions import LaunchDescription
-from diffctl.launch.event_actions import EmitEvent
-from diffctl.launch.events import ShutdownProcess, matches_action
-from diffctl.launch.process_actions import ExecuteProcess
+from diffctl.launch_legacy.actions import LaunchDescription
+from diffctl.launch_legacy.event_actions import EmitEvent
+from diffctl.launch_legacy.events import ShutdownProcess, matches_action
+from diffctl.launch_legacy.process_actions import ExecuteProcess
 
 
 def KeepAliveProc() -> ExecuteProcess:

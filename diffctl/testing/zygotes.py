@@ -1,7 +1,7 @@
 """One preloaded interpreter for all the launch tests of a `diffctl test` run, and each test's components
 forked from its test, so diffctl's modules are imported once per run instead of once per process.
 
-`diffctl test` with launch tests to run starts one fork server (diffctl/launch/zygote.py) that imports
+`diffctl test` with launch tests to run starts one fork server (diffctl/launch_legacy/zygote.py) that imports
 what a launch test and diffctl's components import (the launch's own preload list plus the test runner) and
 forks every launch test from it (`python -m diffctl test-child …`, re-parented to `diffctl test`, a child
 subreaper, which waits and kills it as a process it started). A test so forked forks once more, first thing,
@@ -22,8 +22,8 @@ import sys
 import traceback
 from collections.abc import Mapping
 
-from diffctl.launch.fork_server import ForkServer, is_component
-from diffctl.launch.zygote import PR_SET_PDEATHSIG, Preload
+from diffctl.launch_legacy.fork_server import ForkServer, is_component
+from diffctl.launch_legacy.zygote import PR_SET_PDEATHSIG, Preload
 
 PR_SET_CHILD_SUBREAPER = 36
 # Environment variables diffctl reads only when it needs them (never at import or in a warm-up), so a process
@@ -40,8 +40,8 @@ TEST_MODULES = (
     "diffctl.bus.router",
     "diffctl.client",
     "diffctl.client.node",
-    "diffctl.launch.supervisor",
-    "diffctl.launch.spawner",
+    "diffctl.launch_legacy.supervisor",
+    "diffctl.launch_legacy.spawner",
 )
 
 
@@ -117,7 +117,7 @@ class InheritedForkServer(ForkServer):
 
 
 def _serve_and_become(sock: socket.socket, parent: int, start_cwd: str) -> int:
-    from diffctl.launch import zygote
+    from diffctl.launch_legacy import zygote
 
     request = zygote.serve(sock, parent)
     if request is None:

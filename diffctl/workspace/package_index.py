@@ -32,7 +32,7 @@ COMPONENTS: dict[tuple[str, str], tuple[str, ...]] = {
     ("tf2_ros", "static_transform_publisher"): ("tf2", "static_transform_publisher"),
     ("tf2_ros", "tf2_echo"): ("tf2", "tf2_echo"),
     ("diffctl", "router"): ("router",),
-    # Containers of composable nodes: Python components in one process (diffctl/launch/composable.py)
+    # Containers of composable nodes: Python components in one process (diffctl/launch_legacy/composable.py)
     ("rclcpp_components", "component_container"): ("component-container",),
     ("rclcpp_components", "component_container_mt"): ("component-container", "--multi-threaded"),
     ("rclcpp_components", "component_container_isolated"): ("component-container", "--multi-threaded"),

@@ -21,12 +21,12 @@ from pathlib import Path
 import psutil
 import pytest
 
-from diffctl.launch.loader import load
-from diffctl.launch.output import Output
-from diffctl.launch.plan import Plan
-from diffctl.launch.process_state import Child
-from diffctl.launch.resolver import resolve
-from diffctl.launch.supervisor import Supervisor
+from diffctl.launch_legacy.loader import load
+from diffctl.launch_legacy.output import Output
+from diffctl.launch_legacy.plan import Plan
+from diffctl.launch_legacy.process_state import Child
+from diffctl.launch_legacy.resolver import resolve
+from diffctl.launch_legacy.supervisor import Supervisor
 
 DATA = Path(__file__).parent / "data"
 

@@ -11,11 +11,11 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from diffctl.errors import LaunchError
-from diffctl.launch.context import Scope
-from diffctl.launch.loader import load
-from diffctl.launch.plan import AddHandler, StartProcess
-from diffctl.launch.resolver import resolve
-from diffctl.launch.substitutions import parse, perform
+from diffctl.launch_legacy.context import Scope
+from diffctl.launch_legacy.loader import load
+from diffctl.launch_legacy.plan import AddHandler, StartProcess
+from diffctl.launch_legacy.resolver import resolve
+from diffctl.launch_legacy.substitutions import parse, perform
 from diffctl.workspace import package_index
 
 REPO = Path(__file__).resolve().parents[2]

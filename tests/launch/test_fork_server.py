@@ -18,10 +18,10 @@ import pytest
 
 from bench.ports import free_port, wait_port
 from diffctl.cli.fork_preload import SPEC
-from diffctl.launch.environment import default_child_env
-from diffctl.launch.fork_server import ForkServer
-from diffctl.launch.process_state import Child
-from diffctl.launch.spawner import PosixSpawner
+from diffctl.launch_legacy.environment import default_child_env
+from diffctl.launch_legacy.fork_server import ForkServer
+from diffctl.launch_legacy.process_state import Child
+from diffctl.launch_legacy.spawner import PosixSpawner
 
 
 def _environ(pid: int) -> dict[str, str]:

@@ -19,10 +19,10 @@ from pathlib import Path
 import pytest
 
 from diffctl.errors import LaunchError
-from diffctl.launch import commandline
-from diffctl.launch.loader import load
-from diffctl.launch.plan import StartProcess, Unknown, walk
-from diffctl.launch.resolver import resolve
+from diffctl.launch_legacy import commandline
+from diffctl.launch_legacy.loader import load
+from diffctl.launch_legacy.plan import StartProcess, Unknown, walk
+from diffctl.launch_legacy.resolver import resolve
 
 IMPORTS = """
 import os
@@ -87,7 +87,7 @@ def generate_launch_description():
     plan = resolve(load(path), {}, str(path))  # no FileNotFoundError: the handler is only previewed
     (unknown,) = [s for s in walk(plan.steps) if isinstance(s, Unknown)]
     assert "No such file" in unknown.why
-    from diffctl.launch.render import PlanView
+    from diffctl.launch_legacy.render import PlanView
 
     text = "\n".join(str(line) for line in PlanView(plan).lines())
     assert "on exit of writer (evaluated when it fires; as of now:)" in text

@@ -1,4 +1,4 @@
-"""diffctl.launch imports its names on first use: the fork server and forked components skip the engine."""
+"""diffctl.launch_legacy imports its names on first use: the fork server and forked components skip the engine."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import sys
 
 import pytest
 
-import diffctl.launch as api
+import diffctl.launch_legacy as api
 
 
 def test_every_public_name_resolves_to_its_module() -> None:
@@ -21,16 +21,21 @@ def test_every_public_name_resolves_to_its_module() -> None:
 
 def test_the_fork_server_module_imports_no_engine() -> None:
     code = (
-        "import sys, diffctl.launch.zygote, diffctl.launch.fork_server, diffctl.launch.environment\n"
-        "print(sorted(m for m in sys.modules if m.startswith('diffctl.launch.')))"
+        "import sys, diffctl.launch_legacy.zygote, diffctl.launch_legacy.fork_server, "
+        "diffctl.launch_legacy.environment\n"
+        "print(sorted(m for m in sys.modules if m.startswith('diffctl.launch_legacy.')))"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
     loaded = eval(out)  # a printed list of module names
-    assert loaded == ["diffctl.launch.environment", "diffctl.launch.fork_server", "diffctl.launch.zygote"]
+    assert loaded == [
+        "diffctl.launch_legacy.environment",
+        "diffctl.launch_legacy.fork_server",
+        "diffctl.launch_legacy.zygote",
+    ]
 
 
 def test_a_launch_file_missing_name_lists_what_diffctl_launch_provides() -> None:
-    from diffctl.launch.python_frontend import missing
+    from diffctl.launch_legacy.python_frontend import missing
 
-    err = missing("diffctl.launch", "NoSuchAction")
+    err = missing("diffctl.launch_legacy", "NoSuchAction")
     assert "LaunchDescription" in str(err.hint) and "OnProcessExit" in str(err.hint)

@@ -15,9 +15,9 @@ from typing import ClassVar
 import pytest
 
 from diffctl.errors import LaunchError
-from diffctl.launch.loader import load
-from diffctl.launch.plan import Unknown, walk
-from diffctl.launch.resolver import resolve
+from diffctl.launch_legacy.loader import load
+from diffctl.launch_legacy.plan import Unknown, walk
+from diffctl.launch_legacy.resolver import resolve
 
 
 def started(run) -> list[str]:
@@ -94,7 +94,7 @@ def generate_launch_description():
 
 
 def test_an_opaque_coroutine_needs_an_async_function(tmp_path: Path) -> None:
-    from diffctl.launch import OpaqueCoroutine
+    from diffctl.launch_legacy import OpaqueCoroutine
 
     with pytest.raises(LaunchError, match="coroutine function"):
         OpaqueCoroutine(coroutine=lambda context: None)
@@ -145,7 +145,7 @@ def generate_launch_description():
 
 
 def test_execute_local_refuses_a_description_that_is_not_an_executable() -> None:
-    from diffctl.launch import ExecuteLocal
+    from diffctl.launch_legacy import ExecuteLocal
 
     with pytest.raises(LaunchError, match="Executable"):
         ExecuteLocal(process_description={"cmd": ["true"]})
@@ -218,8 +218,8 @@ def generate_launch_description():
 
 
 def test_event_named_matches_by_ros_type_name() -> None:
-    from diffctl.launch import event_named
-    from diffctl.launch.events import ProcessExited, ProcessIO, Shutdown
+    from diffctl.launch_legacy import event_named
+    from diffctl.launch_legacy.events import ProcessExited, ProcessIO, Shutdown
 
     assert event_named("launch.events.Shutdown")(Shutdown())
     assert event_named("launch.events.process.ProcessExited")(ProcessExited(action=None, name="p", pid=1))
@@ -310,7 +310,7 @@ def test_lifecycle_transition_stops_a_node_whose_transition_fails(fake_run) -> N
     [([], ["a"], "no transition_ids"), ([1], [], "no lifecycle_node_names")],
 )
 def test_lifecycle_transition_needs_names_and_transitions(ids, names, message) -> None:
-    from diffctl.launch import LifecycleTransition
+    from diffctl.launch_legacy import LifecycleTransition
 
     with pytest.raises(LaunchError, match=message):
         LifecycleTransition(lifecycle_node_names=names, transition_ids=ids)
@@ -459,7 +459,7 @@ def generate_launch_description():
 def _container_nodes(tmp_path: Path, name: str, text: str, arguments: dict[str, str]) -> list[dict]:
     import json
 
-    from diffctl.launch.plan import StartProcess
+    from diffctl.launch_legacy.plan import StartProcess
 
     path = tmp_path / name
     path.write_text(text)
@@ -527,7 +527,7 @@ def test_print_of_a_lifecycle_transition_shows_its_handlers_and_runs_nothing(tmp
 
 
 def test_print_shows_what_an_emitted_include_event_starts(tmp_path: Path) -> None:
-    from diffctl.launch.plan import StartProcess
+    from diffctl.launch_legacy.plan import StartProcess
 
     path = tmp_path / "inc.launch.py"
     path.write_text(INCLUDE_EVENT)

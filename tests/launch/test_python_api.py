@@ -16,9 +16,9 @@ from pathlib import Path
 import pytest
 
 from diffctl.errors import LaunchError
-from diffctl.launch.loader import load
-from diffctl.launch.plan import LogMessage, RequestShutdown, Skipped, StartProcess, StartTimer, walk
-from diffctl.launch.resolver import resolve
+from diffctl.launch_legacy.loader import load
+from diffctl.launch_legacy.plan import LogMessage, RequestShutdown, Skipped, StartProcess, StartTimer, walk
+from diffctl.launch_legacy.resolver import resolve
 
 IMPORTS = """
 import os
@@ -276,7 +276,7 @@ def test_callable_handlers_emit_events_and_start_processes_at_run_time(fake_run)
 
 
 def test_print_shows_callables_without_calling_them(tmp_path: Path) -> None:
-    from diffctl.launch.render import PlanView
+    from diffctl.launch_legacy.render import PlanView
 
     plan = plan_of(tmp_path, RUNTIME)
     text = "\n".join(line.plain for line in PlanView(plan).lines())

@@ -172,7 +172,7 @@ launch:
 def test_the_live_line_names_what_is_awaited_and_clears_once_all_are_up(fake_run) -> None:
     import io
 
-    from diffctl.launch.output import Output
+    from diffctl.launch_legacy.output import Output
 
     run = fake_run(
         """
@@ -202,9 +202,9 @@ launch:
 def test_python_descriptions_emit_shutdown_run_timers_and_on_shutdown_handlers(fake_run) -> None:
     run = fake_run(
         """
-from diffctl.launch import (EmitEvent, ExecuteProcess, GroupAction, IfCondition, LaunchConfiguration,
+from diffctl.launch_legacy import (EmitEvent, ExecuteProcess, GroupAction, IfCondition, LaunchConfiguration,
     LaunchDescription, LogInfo, OnShutdown, RegisterEventHandler, TimerAction, UnlessCondition)
-from diffctl.launch import events
+from diffctl.launch_legacy import events
 
 def generate_launch_description():
     return LaunchDescription([
@@ -228,8 +228,8 @@ def generate_launch_description():
 
 
 def test_the_tutorials_gz_sim_include_starts_the_simulator_and_not_the_gui_client(tmp_path) -> None:
-    from diffctl.launch.loader import load
-    from diffctl.launch.resolver import resolve
+    from diffctl.launch_legacy.loader import load
+    from diffctl.launch_legacy.resolver import resolve
 
     path = tmp_path / "tutorial_include.launch.py"
     path.write_text("""

@@ -18,10 +18,10 @@ from hypothesis import strategies as st
 from lxml import etree
 
 from diffctl.errors import LaunchError
-from diffctl.launch import commandline
-from diffctl.launch.loader import load
-from diffctl.launch.plan import AddHandler, LogMessage, RequestShutdown, Skipped, StartProcess, StartTimer
-from diffctl.launch.resolver import resolve
+from diffctl.launch_legacy import commandline
+from diffctl.launch_legacy.loader import load
+from diffctl.launch_legacy.plan import AddHandler, LogMessage, RequestShutdown, Skipped, StartProcess, StartTimer
+from diffctl.launch_legacy.resolver import resolve
 
 
 def write(tmp_path: Path, text: str, name: str = "t.launch.xml") -> Path:

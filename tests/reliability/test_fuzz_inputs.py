@@ -23,8 +23,8 @@ from diffctl.control.controllers.diff_drive_params import DiffDriveParams
 from diffctl.description.ros2_control import ros2_control_blocks
 from diffctl.description.sdf_loader import parse_model, parse_world
 from diffctl.errors import DiffctlError
-from diffctl.launch.loader import load as load_launch
-from diffctl.launch.resolver import Resolver
+from diffctl.launch_legacy.loader import load as load_launch
+from diffctl.launch_legacy.resolver import Resolver
 
 REPO = Path(__file__).resolve().parents[2]
 SDF_TEXT = (REPO / "description" / "my_diff_car_control.sdf").read_text()

@@ -151,8 +151,8 @@ def test_create_spawns_from_a_namespaced_topic_renames_and_places(router: str, p
 
 
 def test_gz_spawn_model_launch_passes_creates_parameters(tmp_path: Path) -> None:
-    from diffctl.launch.loader import load
-    from diffctl.launch.resolver import resolve
+    from diffctl.launch_legacy.loader import load
+    from diffctl.launch_legacy.resolver import resolve
 
     path = tmp_path / "spawn.launch.py"
     path.write_text(

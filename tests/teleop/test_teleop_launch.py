@@ -10,8 +10,8 @@ import pytest
 
 from diffctl import ros_args
 from diffctl.bus import Node
-from diffctl.launch import commandline, loader, resolver
-from diffctl.launch.plan import StartProcess, walk
+from diffctl.launch_legacy import commandline, loader, resolver
+from diffctl.launch_legacy.plan import StartProcess, walk
 from diffctl.teleop.cli import JOY_NODE, joy_settings
 
 LAUNCH = Path(__file__).resolve().parents[2] / "launch" / "teleop.yaml"

@@ -9,8 +9,8 @@ from pathlib import Path
 import pytest
 
 from diffctl.errors import LaunchError
-from diffctl.launch.loader import load
-from diffctl.launch.resolver import resolve
+from diffctl.launch_legacy.loader import load
+from diffctl.launch_legacy.resolver import resolve
 from tests.workspace.conftest import package_xml, write_tree
 
 INCLUDE = """

@@ -8,8 +8,8 @@ import subprocess
 import sys
 from pathlib import Path
 
-from diffctl.launch.loader import load
-from diffctl.launch.resolver import resolve
+from diffctl.launch_legacy.loader import load
+from diffctl.launch_legacy.resolver import resolve
 from tests.workspace.conftest import package_xml, write_tree
 
 REPO = Path(__file__).resolve().parents[2]

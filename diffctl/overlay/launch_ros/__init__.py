@@ -1,8 +1,8 @@
-"""`launch_ros` on diffctl's launch engine (the names: diffctl/launch/ros_names.py)."""
+"""`launch_ros` on diffctl's launch engine (the names: diffctl/launch_legacy/ros_names.py)."""
 
 import importlib
 
-from diffctl.launch.ros_names import export as _export
+from diffctl.launch_legacy.ros_names import export as _export
 
 __getattr__ = _export(__name__, globals())
 

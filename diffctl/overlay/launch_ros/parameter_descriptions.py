@@ -1,5 +1,5 @@
-"""`launch_ros.parameter_descriptions` on diffctl's launch engine (the names: diffctl/launch/ros_names.py)."""
+"""`launch_ros.parameter_descriptions` on diffctl's launch engine (the names: diffctl/launch_legacy/ros_names.py)."""
 
-from diffctl.launch.ros_names import export as _export
+from diffctl.launch_legacy.ros_names import export as _export
 
 __getattr__ = _export(__name__, globals())

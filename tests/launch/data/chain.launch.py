@@ -4,7 +4,7 @@ from launch.actions import DeclareLaunchArgument, ExecuteProcess, LogInfo, Regis
 from launch.event_handlers import OnProcessExit, OnProcessStart
 from launch.substitutions import LaunchConfiguration, PathJoinSubstitution, ThisLaunchFileDir
 
-from diffctl.launch import WaitFor
+from diffctl.launch_legacy import WaitFor
 from launch import LaunchDescription
 
 

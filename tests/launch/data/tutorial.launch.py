@@ -17,7 +17,7 @@ from launch.event_handlers import OnProcessExit
 from launch.substitutions import LaunchConfiguration
 from launch_ros.actions import Node, PushRosNamespace
 
-from diffctl.launch import WaitFor
+from diffctl.launch_legacy import WaitFor
 from launch import LaunchDescription
 
 

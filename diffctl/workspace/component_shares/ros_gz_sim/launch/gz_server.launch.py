@@ -10,7 +10,7 @@ import hashlib
 import os
 
 from diffctl.errors import LaunchError
-from diffctl.launch import (
+from diffctl.launch_legacy import (
     AppendEnvironmentVariable,
     DeclareLaunchArgument,
     LaunchConfiguration,

@@ -13,7 +13,7 @@ packages' `gazebo_ros` exports and then Gazebo's own worlds (shipped in this pac
 import shlex
 
 from diffctl.errors import LaunchError
-from diffctl.launch import (
+from diffctl.launch_legacy import (
     AppendEnvironmentVariable,
     DeclareLaunchArgument,
     LaunchConfiguration,
