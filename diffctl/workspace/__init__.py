@@ -15,7 +15,13 @@ from pathlib import Path
 
 from diffctl.workspace.builtin import DEMO_DESCRIPTION_PACKAGE, DEMO_PACKAGE, project_root
 from diffctl.workspace.discovery import WORKSPACE_ENV, find_workspace
-from diffctl.workspace.resolve import Package, PackageNotFoundError, find_package, list_packages
+from diffctl.workspace.resolve import (
+    Package,
+    PackageNotFoundError,
+    find_package,
+    list_packages,
+    workspace_python_path,
+)
 
 __all__ = [
     "DEMO_DESCRIPTION_PACKAGE",
@@ -31,10 +37,14 @@ __all__ = [
     "project_root",
     "share_dir",
     "use_in_children",
+    "workspace_python_path",
 ]
 
 # The one overlay of ROS-named modules (ament_index_python, rclpy, launch, …), for child processes.
 PYTHON_PATH = Path(__file__).resolve().parent.parent / "overlay"
+# What sourcing /opt/ros/jazzy/setup.bash sets (ros_environment's hooks): launch files and nodes read them
+# (`os.environ['ROS_DISTRO']`). A value already set (a sourced ROS 2, the user's own) is kept.
+ROS_ENVIRONMENT = {"ROS_DISTRO": "jazzy", "ROS_VERSION": "2", "ROS_PYTHON_VERSION": "3"}
 
 
 def share_dir(package: str) -> Path:
@@ -52,20 +62,27 @@ def package_prefix(package: str) -> Path:
 
 def use_in_children(workspace: Path | None, env: MutableMapping[str, str] = os.environ) -> None:
     """Make processes started with `env` resolve packages as this one does: the workspace in
-    $DIFFCTL_WORKSPACE, diffctl's overlay on PYTHONPATH after any sourced ROS (xacro's `$(find)`, rclpy, …), the
-    workspace packages' environment hooks applied (GZ_SIM_RESOURCE_PATH …), as sourcing its setup.bash would,
-    and diffctl's `gz` (and `ros2`, without a real one) first on PATH."""
+    $DIFFCTL_WORKSPACE, diffctl's overlay on PYTHONPATH after any sourced ROS (xacro's `$(find)`, rclpy, …) and
+    the workspace's Python packages after it (as colcon's site-packages would come), the workspace packages'
+    environment hooks applied (GZ_SIM_RESOURCE_PATH …), as sourcing its setup.bash would, Jazzy's
+    ROS_DISTRO / ROS_VERSION / ROS_PYTHON_VERSION unless set, and diffctl's `gz` (and `ros2`, without a real
+    one) first on PATH."""
     from diffctl.cli.ros2 import put_ros2_on_path
     from diffctl.gz.path import put_gz_on_path
 
     put_gz_on_path(env)  # `ExecuteProcess(cmd=['gz', 'sim', …])` reaches diffctl's simulator
     put_ros2_on_path(env)  # `ExecuteProcess(cmd=['ros2', 'bag', 'record', …])` too, where ROS 2 is absent
+    for name, value in ROS_ENVIRONMENT.items():
+        env.setdefault(name, value)
+    python: list[str] = []
     if workspace is not None:
         env[WORKSPACE_ENV] = str(workspace)
         from diffctl.workspace.env_hooks import apply_workspace_hooks
 
         apply_workspace_hooks(env, workspace)
+        python = [str(p) for p in workspace_python_path(workspace)]
     # The overlay goes after what PYTHONPATH already holds: a sourced ROS 2 installation (its rclpy, launch,
     # message packages) comes first and wins, as ARCHITECTURE.md promises; without one, the overlay answers.
-    parts = [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p and p != str(PYTHON_PATH)]
-    env["PYTHONPATH"] = os.pathsep.join([*parts, str(PYTHON_PATH)])
+    ours = {str(PYTHON_PATH), *python}
+    parts = [p for p in env.get("PYTHONPATH", "").split(os.pathsep) if p and p not in ours]
+    env["PYTHONPATH"] = os.pathsep.join([*parts, str(PYTHON_PATH), *python])

@@ -111,6 +111,13 @@ def python_sources(scan: WorkspaceScan, first: str) -> list[Path]:
     return found
 
 
+def workspace_python_path(workspace: Path) -> list[Path]:
+    """The source folders of every Python package of `workspace`: what a built and sourced workspace makes
+    importable (ament_python's packages, ament_cmake's `ament_python_install_package`, as nav2_common's
+    RewrittenYaml), for launch files and for every process."""
+    return python_sources(scan_workspace(workspace), "")
+
+
 def find_package(name: str, workspace: Path | None = None) -> Package:
     """The package `name` from the first place that holds it; PackageNotFoundError (exit 2) otherwise.
     `workspace` None means the one find_workspace() finds (--workspace, $DIFFCTL_WORKSPACE, enclosing)."""
