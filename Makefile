@@ -53,7 +53,7 @@ run: $(STAMP) bytecode
 	$(BIN)/diffctl launch sim_control
 
 test: $(STAMP) bytecode system-deps jazzy-oracle
-	$(BIN)/python -m pytest -p no:cacheprovider
+	$(BIN)/python -m pytest -p no:cacheprovider --durations=25
 
 test-fast: $(STAMP) bytecode
 	$(BIN)/python -m pytest -p no:cacheprovider -m "not slow and not browser"
