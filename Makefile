@@ -8,7 +8,7 @@ STAMP := $(VENV)/.installed
 .PHONY: run test test-fast bench lint soak system-deps bytecode clean jazzy-oracle
 
 # The interfaces hook is copied beside its .pth at install time (pyproject's force-include): reinstall on a change.
-$(STAMP): pyproject.toml diffctl/client/messages/hook.py
+$(STAMP): pyproject.toml diffctl/interfaces/hook.py
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install -q --upgrade pip
 	$(BIN)/python -m pip install -q -e '.[test]'
@@ -53,7 +53,7 @@ run: $(STAMP) bytecode
 	$(BIN)/diffctl launch sim_control
 
 test: $(STAMP) bytecode system-deps jazzy-oracle
-	$(BIN)/python -m pytest -p no:cacheprovider
+	$(BIN)/python -m pytest -p no:cacheprovider --durations=25
 
 test-fast: $(STAMP) bytecode
 	$(BIN)/python -m pytest -p no:cacheprovider -m "not slow and not browser"

@@ -39,7 +39,8 @@ PONG = textwrap.dedent(f"""
 
 FLOOD = textwrap.dedent(f"""
     import sys, time
-    from diffctl.bus import Node, types
+    from diffctl.bus import Node
+    from diffctl.interfaces import types
     n = Node("bench_flood")
     pub = n.create_publisher("/bench/flood", "{TYPE}")
     raw = types.serialize(types.new("{TYPE}", {{"twist": {{"linear": {{"x": 0.5}}}}}}), "{TYPE}")
@@ -63,8 +64,9 @@ def percentile(values: list[float], q: float) -> float:
 
 
 def run() -> dict:
-    from diffctl.bus import Node, types
+    from diffctl.bus import Node
     from diffctl.bus.session import close_session
+    from diffctl.interfaces import types
 
     port = free_port()
     os.environ["DIFFCTL_ROUTER"] = f"tcp/127.0.0.1:{port}"

@@ -23,7 +23,7 @@ from sensor_msgs.msg import LaserScan
 if sys.argv[1] == "real":
     from rclpy.serialization import serialize_message as ser, deserialize_message as de
 else:
-    from diffctl.client.messages import serialize as ser, deserialize as de
+    from diffctl.interfaces import serialize as ser, deserialize as de
 t = Twist(); t.linear.x = 0.5; t.angular.z = 0.1
 s = LaserScan(ranges=[1.0] * 720, intensities=[0.5] * 720); s.header.frame_id = "laser"
 tb, sb = ser(t), ser(s)

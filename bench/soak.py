@@ -137,8 +137,9 @@ def _memory(procs: dict[int, psutil.Process]) -> dict[int, tuple[float, float]]:
 
 
 def soak(minutes: float, warmup_minutes: float, sample_s: float, viz: bool) -> dict[str, Any]:
-    from diffctl.bus import Node, gz, types
+    from diffctl.bus import Node, gz
     from diffctl.bus.session import close_session
+    from diffctl.interfaces import types
 
     os.environ["DIFFCTL_ROUTER"] = f"tcp/127.0.0.1:{free_port()}"
     log_dir = Path(tempfile.mkdtemp(prefix="diffctl-soak-"))

@@ -147,8 +147,9 @@ def _cmd_vel_latencies(
 
 
 def run(*, startup_only: bool = False) -> dict:
-    from diffctl.bus import Node, gz, types
+    from diffctl.bus import Node, gz
     from diffctl.bus.session import close_session
+    from diffctl.interfaces import types
 
     # Bare stepping is measured before the stack starts and after it is gone, and the faster of the two is
     # the reference: a machine that is slow for a moment must not flatter the ratio.

@@ -10,9 +10,9 @@ from typing import Any
 
 from diffctl.bag.msgdefs import register_schema
 from diffctl.bag.reader import Bag, Channel
-from diffctl.bus import types
 from diffctl.console import warn
 from diffctl.errors import ConfigError
+from diffctl.interfaces import types
 
 
 def parse_remaps(items: tuple[str, ...]) -> dict[str, str]:

@@ -140,7 +140,8 @@ def play(bag_path: Path, rate: float, loop: bool, clock_hz: float, start_offset:
     from diffctl.bag.keys import TerminalKeys
     from diffctl.bag.player import RATE_STEP, Player, PlayOptions
     from diffctl.bag.reader import Bag
-    from diffctl.bus import Node, types
+    from diffctl.bus import Node
+    from diffctl.interfaces import types
 
     options = PlayOptions(rate=rate, loop=loop, clock_hz=clock_hz, start_offset_s=start_offset,
                           start_paused=start_paused, read_ahead=read_ahead_queue_size)

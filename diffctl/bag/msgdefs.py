@@ -13,8 +13,8 @@ import threading
 from rosbags.typesys import get_types_from_idl, get_types_from_msg
 from rosbags.typesys.base import Nodetype
 
-from diffctl.bus import types
 from diffctl.errors import ConfigError, MessageError
+from diffctl.interfaces import types
 
 _lock = threading.Lock()
 

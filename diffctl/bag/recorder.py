@@ -19,8 +19,9 @@ from typing import Any
 from diffctl.bag.metadata import INFINITE, Qos
 from diffctl.bag.msgdefs import ros2msg
 from diffctl.bag.writer import BagWriter
-from diffctl.bus import types, wire
+from diffctl.bus import wire
 from diffctl.errors import ConfigError
+from diffctl.interfaces import types
 
 FLUSH_PERIOD_S = 1.0  # bytes reach the OS at least this often, so a killed recorder loses little
 _Idle = object()  # nothing arrived for a flush period

@@ -21,8 +21,9 @@ from typing import Any
 import zenoh
 
 from diffctl.bridge.config import BridgeEntry
-from diffctl.bus import Node, gz, types, wire
+from diffctl.bus import Node, gz, wire
 from diffctl.errors import MessageError
+from diffctl.interfaces import types
 
 
 def _stamp_now(msg: Any, now: Any) -> None:

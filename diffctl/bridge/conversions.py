@@ -3,7 +3,7 @@
 Each supported pair has `<name>_to_ros(gz_dict) -> msg` and `<name>_to_gz(msg) -> gz_dict`; the behaviour
 follows ros_gz_bridge's convert functions (frame ids from the gz header's `frame_id` / `child_frame_id`
 entries, `::` in gz scoped names becomes `/`, the middle vertical slice of a multi-layer scan). Nothing here
-touches the bus: messages are built from the message classes of `diffctl.bus.types`.
+touches the bus: messages are built from the message classes of `diffctl.interfaces.types`.
 """
 
 from __future__ import annotations
@@ -13,8 +13,9 @@ from typing import Any
 
 import numpy as np
 
-from diffctl.bus import gz, types
+from diffctl.bus import gz
 from diffctl.errors import MessageError
+from diffctl.interfaces import types
 
 GzDict = dict[str, Any]
 

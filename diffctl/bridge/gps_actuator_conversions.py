@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from diffctl.bridge.conversions import GzDict, float_field, frame_to_ros, header_to_gz, header_to_ros
-from diffctl.bus import types
+from diffctl.interfaces import types
 
 
 def gps_fix_to_ros(m: GzDict) -> Any:

@@ -31,8 +31,8 @@ from diffctl.bridge.conversions import (
     vector3_to_ros,
     zero_covariance,
 )
-from diffctl.bus import types
 from diffctl.errors import MessageError
+from diffctl.interfaces import types
 
 
 def _array(m: GzDict, name: str, dtype: type) -> np.ndarray:

@@ -24,8 +24,8 @@ from diffctl.bridge.conversions import (
     quaternion_to_ros,
     vector3_to_gz,
 )
-from diffctl.bus import types
 from diffctl.errors import MessageError
+from diffctl.interfaces import types
 
 # std::stoi: leading white space, an optional sign, then digits; anything after them is ignored
 _STOI = re.compile(r"\s*([+-]?\d+)")

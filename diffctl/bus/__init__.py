@@ -16,7 +16,7 @@ _LAZY = {
     "open_session": "diffctl.bus.session",
     "router_endpoint": "diffctl.bus.session",
 }
-_MODULES = {"gz", "types", "wire", "graph", "session", "router", "probes"}
+_MODULES = {"gz", "wire", "graph", "session", "router", "probes"}
 
 __all__ = ["Node", "close_session", "domain_id", "gz", "open_session", "router_endpoint", "types"]
 
@@ -26,4 +26,6 @@ def __getattr__(name: str) -> Any:
         return getattr(importlib.import_module(_LAZY[name]), name)
     if name in _MODULES:
         return importlib.import_module(f"diffctl.bus.{name}")
+    if name == "types":  # transitional: the types moved to diffctl.interfaces (goes with the bus node)
+        return importlib.import_module("diffctl.interfaces.types")
     raise AttributeError(f"module 'diffctl.bus' has no attribute {name!r}")

@@ -12,8 +12,9 @@ from typing import TYPE_CHECKING, Any
 import zenoh
 from zenoh import ext
 
-from diffctl.bus import types, wire
+from diffctl.bus import wire
 from diffctl.errors import BusError, MessageError, ServiceTimeout
+from diffctl.interfaces import types
 
 if TYPE_CHECKING:
     from diffctl.bus.node import Node

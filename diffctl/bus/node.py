@@ -311,7 +311,7 @@ class Node:
         return self.clock.now_ns()
 
     def now(self) -> Any:
-        from diffctl.bus.types import time_msg
+        from diffctl.interfaces.types import time_msg
 
         return time_msg(self.now_ns())
 

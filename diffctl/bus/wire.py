@@ -13,8 +13,8 @@ from dataclasses import dataclass
 
 import xxhash
 
-from diffctl.bus.types import dds_name, from_dds_name, type_hash
 from diffctl.errors import MessageError
+from diffctl.interfaces.types import dds_name, from_dds_name, type_hash
 
 LV_PREFIX = "@ros2_lv"
 _ATT = struct.Struct("<qqB16s")

@@ -7,11 +7,12 @@ from typing import Any
 
 import yaml
 
-from diffctl.bus import types, wire
+from diffctl.bus import wire
 from diffctl.bus.graph import Graph
 from diffctl.bus.session import open_session, use_client_mode
 from diffctl.console import info
 from diffctl.errors import ConfigError, MessageError
+from diffctl.interfaces import types
 
 
 def parse_values(text: str | None, what: str = "VALUES") -> dict[str, Any]:
@@ -91,7 +92,7 @@ def learn_type(g: Graph, topic: str, typename: str) -> bool:
     `~/get_type_description`, as `ros2 topic echo` learns types it was not built with); False if none could."""
     from diffctl.bag.msgdefs import register_schema
     from diffctl.bus import Node
-    from diffctl.bus.type_description import SERVICE_TYPE, ros2msg_text
+    from diffctl.interfaces.type_description import SERVICE_TYPE, ros2msg_text
 
     pubs = [e for e in g.publishers(topic) if types.normalize(e.type) == typename]
     if not pubs:

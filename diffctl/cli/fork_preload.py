@@ -99,7 +99,7 @@ PRELOAD_LATER: tuple[str, ...] = (
 
 def warm_bus_types() -> None:
     """Register the start-up types in the bus's typestore and compile their codecs (see WARM_MESSAGES)."""
-    from diffctl.bus import types
+    from diffctl.interfaces import types
 
     for name in (*WARM_SERVICES, *DECLARED_SERVICES):
         types.type_hash(types.check_service(name))

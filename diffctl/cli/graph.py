@@ -5,10 +5,11 @@ from __future__ import annotations
 import click
 import yaml
 
-from diffctl.bus import Node, types, wire
+from diffctl.bus import Node, wire
 from diffctl.cli import bus_common as bc
 from diffctl.console import console
 from diffctl.errors import ConfigError
+from diffctl.interfaces import types
 
 
 @click.group()

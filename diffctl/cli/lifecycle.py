@@ -12,9 +12,10 @@ from typing import Any
 
 import click
 
-from diffctl.bus import Node, types
+from diffctl.bus import Node
 from diffctl.cli import bus_common as bc
 from diffctl.errors import ConfigError
+from diffctl.interfaces import types
 
 GET_STATE = "lifecycle_msgs/srv/GetState"
 

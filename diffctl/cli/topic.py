@@ -14,10 +14,11 @@ from typing import Any
 import click
 import yaml
 
-from diffctl.bus import Node, types, wire
+from diffctl.bus import Node, wire
 from diffctl.cli import bus_common as bc
 from diffctl.console import console, info, warn
 from diffctl.errors import ConfigError
+from diffctl.interfaces import types
 from diffctl.signals import stop_on_signals
 
 

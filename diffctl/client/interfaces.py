@@ -1,4 +1,4 @@
-"""Message classes the client library itself uses, looked up once through diffctl.client.messages."""
+"""Message classes the client library itself uses, looked up once through diffctl.interfaces."""
 
 from __future__ import annotations
 
@@ -9,25 +9,25 @@ from typing import Any
 @functools.cache
 def cls(name: str) -> Any:
     """The generated class of `pkg/msg/Type` (or a service type)."""
-    from diffctl.client import messages
+    from diffctl import interfaces as messages
 
     return messages.get_interface(name)
 
 
 def type_name(msg_type: Any) -> str:
-    from diffctl.client import messages
+    from diffctl import interfaces as messages
 
     return messages.type_name(msg_type)
 
 
 def serialize(msg: Any) -> bytes:
-    from diffctl.client import messages
+    from diffctl import interfaces as messages
 
     return messages.serialize(msg)
 
 
 def deserialize(data: bytes, msg_type: Any) -> Any:
-    from diffctl.client import messages
+    from diffctl import interfaces as messages
 
     return messages.deserialize(data, msg_type)
 

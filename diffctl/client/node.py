@@ -80,7 +80,7 @@ class TimeSource:
             self._sub = None
 
     def _on_clock(self, data: bytes) -> None:
-        from diffctl.bus import types
+        from diffctl.interfaces import types
 
         msg = types.deserialize(data, "rosgraph_msgs/msg/Clock")
         ns = int(msg.clock.sec) * 1_000_000_000 + int(msg.clock.nanosec)

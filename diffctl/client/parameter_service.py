@@ -10,10 +10,10 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
-from diffctl.bus import types
 from diffctl.bus.parameter_services import RCL, SERVICES
 from diffctl.client.interfaces import cls, deserialize
 from diffctl.client.qos import qos_profile_parameters
+from diffctl.interfaces import types
 
 
 class ParameterService:

@@ -33,7 +33,7 @@ class TypeHash:
 
     @classmethod
     def from_string(cls, text: str) -> TypeHash:
-        """From the `RIHS01_<64 hex>` form the bus and `diffctl.client.messages.type_hash` use."""
+        """From the `RIHS01_<64 hex>` form the bus and `diffctl.interfaces.type_hash` use."""
         head, _, digits = text.partition("_")
         return cls(int(head[4:]), bytes.fromhex(digits))
 

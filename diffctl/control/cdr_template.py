@@ -75,7 +75,7 @@ class CdrTemplate:
     """
 
     def __init__(self, msg: Any, typename: str, leaves: Sequence[tuple[str, str]]) -> None:
-        from diffctl.bus import types
+        from diffctl.interfaces import types
 
         self.typename = typename
         self.leaves = tuple(leaves)
@@ -124,7 +124,7 @@ class CdrTemplate:
         self._check(msg, places, saved, base)
 
     def _check(self, msg: Any, places: list[tuple[Any, Any]], saved: list[Any], base: bytes) -> None:
-        from diffctl.bus import types
+        from diffctl.interfaces import types
 
         if self.encode(saved) != base:
             raise TemplateError(f"{self.typename}: the template does not reproduce the message")

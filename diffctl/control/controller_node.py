@@ -70,7 +70,7 @@ class BusControllerNode:
         return self._now_ns()
 
     def now(self) -> Any:
-        from diffctl.bus.types import time_msg
+        from diffctl.interfaces.types import time_msg
 
         return time_msg(self._now_ns())
 

@@ -140,7 +140,7 @@ class RealtimePublisher:
     """A bus publisher whose `publish` returns as soon as the message is serialized."""
 
     def __init__(self, publisher: Any, thread: PublishingThread | None = None) -> None:
-        from diffctl.bus import types
+        from diffctl.interfaces import types
 
         self._pub = publisher
         self._thread = thread or publishing_thread()

@@ -58,12 +58,13 @@ def foxglove_bridge(port: int | None, address: str | None, bag_path: Path | None
         server.stop()
         bag.close()
         return
-    from diffctl.bus import Node, types
+    from diffctl.bus import Node
     from diffctl.foxglove.assets import DEFAULT_ALLOWLIST, AssetResolver
     from diffctl.foxglove.graph import GraphBridge
     from diffctl.foxglove.live import LiveBridge
     from diffctl.foxglove.parameters import ParameterBridge
     from diffctl.foxglove.services import ServiceBridge
+    from diffctl.interfaces import types
 
     caps = fg.check_capabilities(list(ra.params.get("capabilities", fg.CAPABILITIES)))
     assets = AssetResolver(list(ra.params.get("asset_uri_allowlist", DEFAULT_ALLOWLIST))) if "assets" in caps else None

@@ -19,8 +19,8 @@ from typing import Any
 import foxglove
 
 from diffctl.bag.msgdefs import ros2msg
-from diffctl.bus import types
 from diffctl.errors import DiffctlError
+from diffctl.interfaces import types
 
 
 @dataclass

@@ -16,8 +16,8 @@ from typing import Any
 import foxglove
 
 from diffctl.bag.msgdefs import ros2msg
-from diffctl.bus import types
 from diffctl.errors import DiffctlError
+from diffctl.interfaces import types
 
 CALL_TIMEOUT_S = 10.0
 

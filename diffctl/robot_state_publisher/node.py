@@ -77,7 +77,7 @@ def load_description(params: RspParams, base_dir: Path | None = None) -> Model:
 
 
 def _classes(*typenames: str) -> tuple[Any, ...]:
-    from diffctl.bus import types
+    from diffctl.interfaces import types
 
     return tuple(types.get_class(t) for t in typenames)
 

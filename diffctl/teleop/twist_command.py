@@ -8,8 +8,9 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from diffctl.bus import Node, types
+from diffctl.bus import Node
 from diffctl.errors import MessageError
+from diffctl.interfaces import types
 
 TWIST = "geometry_msgs/msg/Twist"
 TWIST_STAMPED = "geometry_msgs/msg/TwistStamped"

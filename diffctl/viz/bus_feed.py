@@ -16,8 +16,9 @@ import contextlib
 import threading
 from typing import Any
 
-from diffctl.bus import Node, gz, types, wire
+from diffctl.bus import Node, gz, wire
 from diffctl.errors import DiffctlError, MessageError
+from diffctl.interfaces import types
 from diffctl.viz.commands import PublishJob, TeleopCommand, fill_now
 from diffctl.viz.rviz_config import RvizConfig
 from diffctl.viz.scene import Scene

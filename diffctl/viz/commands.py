@@ -130,7 +130,7 @@ def fill_now(value: Any, stamp: dict[str, int]) -> Any:
 def parse_publish(obj: dict[str, Any], settings: VizSettings) -> PublishJob:
     """A message publisher job; the body is converted once here so a bad field is reported before anything
     is published."""
-    from diffctl.bus import types
+    from diffctl.interfaces import types
 
     job_id = str(obj.get("id", "")).strip()[:64] or "0"
     topic = _topic(obj.get("topic"), "topic")

@@ -203,7 +203,7 @@ class VizServer:
 
     def _hello(self, page: _Page) -> dict[str, Any]:
         s = self.settings
-        from diffctl.bus import types
+        from diffctl.interfaces import types
 
         return {
             "type": "hello",
@@ -283,7 +283,7 @@ class VizServer:
     @staticmethod
     def _template(type_name: Any) -> dict[str, Any]:
         """The fields of a message type with their defaults, as YAML for the publisher panel's body."""
-        from diffctl.bus import types
+        from diffctl.interfaces import types
 
         if not isinstance(type_name, str) or not type_name.strip():
             raise MessageError("message type is missing, e.g. geometry_msgs/msg/TwistStamped")

@@ -17,8 +17,8 @@ from diffctl.bag.metadata import Qos, parse
 from diffctl.bag.msgdefs import ros2msg
 from diffctl.bag.reader import Bag
 from diffctl.bag.writer import BagWriter, WriterOptions
-from diffctl.bus import types
 from diffctl.errors import ConfigError
+from diffctl.interfaces import types
 from tests.bag.fixtures import BASIC, T0, downgrade, mcap_file, rosbags_bag
 
 ODOM = "nav_msgs/msg/Odometry"

@@ -18,7 +18,8 @@ from mcap.stream_reader import StreamReader
 
 from diffctl.bag.msgdefs import register_schema
 from diffctl.bag.reader import Bag
-from diffctl.bus import Node, types
+from diffctl.bus import Node
+from diffctl.interfaces import types
 from tests.bag.fixtures import BASIC, rosbags_bag
 from tests.bag.test_files import one_error_line, topic_counts, write_bag
 from tests.waiting import wait_for

@@ -19,7 +19,7 @@ from mcap.reader import make_reader
 from mcap_ros2.decoder import DecoderFactory
 
 from diffctl.bag.reader import Bag
-from diffctl.bus import types
+from diffctl.interfaces import types
 from tests.bag.test_files import topic_counts
 from tests.conftest import free_port, wait_port
 from tests.e2e.stack import Stack

@@ -14,7 +14,8 @@ import zenoh
 from bridge_samples import GZ_SAMPLES, plain, same
 
 from diffctl.bridge import type_pairs
-from diffctl.bus import Node, gz, types
+from diffctl.bus import Node, gz
+from diffctl.interfaces import types
 from tests.waiting import wait_for
 
 

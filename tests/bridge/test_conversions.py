@@ -16,8 +16,9 @@ from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
 from diffctl.bridge import type_pairs
 from diffctl.bridge.config import Direction
-from diffctl.bus import gz, types
+from diffctl.bus import gz
 from diffctl.errors import MessageError
+from diffctl.interfaces import types
 
 JAZZY = get_typestore(Stores.ROS2_JAZZY)
 # ros_gz_interfaces, actuator_msgs, gps_msgs and vision_msgs are not in rosbags' store: registered there from

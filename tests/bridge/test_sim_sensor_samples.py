@@ -14,8 +14,9 @@ import pytest
 
 from diffctl.bridge import type_pairs
 from diffctl.bridge.config import load_config
-from diffctl.bus import gz, types
+from diffctl.bus import gz
 from diffctl.description.sdf_loader import load_model, load_world
+from diffctl.interfaces import types
 from diffctl.sim.sensors import Camera, Imu, Lidar
 from diffctl.sim.world import PhysicsWorld
 

@@ -12,8 +12,9 @@ import time
 import psutil
 import pytest
 
-from diffctl.bus import Node, types
+from diffctl.bus import Node
 from diffctl.errors import BusError, ServiceTimeout
+from diffctl.interfaces import types
 
 
 def wait_for(pred, timeout_s: float = 5.0, step_s: float = 0.02) -> bool:

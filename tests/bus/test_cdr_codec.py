@@ -1,4 +1,4 @@
-"""The compiled CDR codec (diffctl/bus/cdr.py) against rosbags' own serializer, on every type of the store.
+"""The compiled CDR codec (diffctl/interfaces/cdr.py) against rosbags' own serializer, on every type of the store.
 
 rosbags is the oracle: for default and randomly filled messages of each type, our bytes must equal its bytes,
 our decoding of its bytes must equal its decoding, and no truncation or corruption may raise anything but
@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 from rosbags.typesys.base import Nodetype
 
-from diffctl.bus import types
 from diffctl.errors import MessageError
+from diffctl.interfaces import types
 
 ALL_TYPES = [t for t in types.known_types() if "/srv/" not in t or t.endswith(("_Request", "_Response"))]
 _INT = {"byte": (0, 127), "char": (0, 127), "int8": (-128, 127), "uint8": (0, 255), "int16": (-(2**15), 2**15 - 1),

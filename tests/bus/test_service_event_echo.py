@@ -8,8 +8,8 @@ import textwrap
 
 from rosbags.typesys import get_types_from_msg
 
-from diffctl.bus import types
-from diffctl.bus.type_description import describe, ros2msg_text
+from diffctl.interfaces import types
+from diffctl.interfaces.type_description import describe, ros2msg_text
 
 SERVER = textwrap.dedent("""
     import rclpy

@@ -7,8 +7,9 @@ import struct
 import numpy as np
 import pytest
 
-from diffctl.bus import types, wire
+from diffctl.bus import wire
 from diffctl.errors import MessageError
+from diffctl.interfaces import types
 
 TWIST_STAMPED_HASH = "RIHS01_5f0fcd4f81d5d06ad9b4c4c63e3ea51b82d6ae4d0558f1d475229b1121db6f64"
 
@@ -81,8 +82,8 @@ def test_liveliness_tokens_follow_rmw_zenoh() -> None:
 def test_service_hash_matches_rmw_zenoh_design_example() -> None:
     # design.md: 2/add_two_ints/example_interfaces::srv::dds_::AddTwoInts_/RIHS01_e118de6b…239c81a;
     # the same construction gives our service hashes.
-    from diffctl.bus.typedefs import srv_typesdict
-    from diffctl.bus.types import _ensure
+    from diffctl.interfaces.typedefs import srv_typesdict
+    from diffctl.interfaces.types import _ensure
 
     ts = _ensure("service_msgs/msg/ServiceEventInfo")  # with client_gid as rosidl types it (uint8[16])
     if "example_interfaces/srv/AddTwoInts" not in ts.types:

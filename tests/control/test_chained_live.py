@@ -20,7 +20,8 @@ chain_input:
 
 @pytest.mark.slow
 def test_a_forward_controller_chained_in_front_drives_the_car(router, procs, tmp_path, output_dir, monkeypatch):
-    from diffctl.bus import Node, types
+    from diffctl.bus import Node
+    from diffctl.interfaces import types
 
     monkeypatch.setenv("ROS_HOME", str(tmp_path))
     start_manager(procs, output_dir / "manager.log")

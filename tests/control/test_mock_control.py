@@ -73,7 +73,7 @@ class Recorder:
 
 def publish_for(pub, node, duration_s: float, x: float, *, stamp_offset_s: float = 0.0, rate_hz: float = 50.0) -> float:
     """Publish TwistStamped(linear.x=x) at rate_hz for duration_s; returns the last stamp (s)."""
-    from diffctl.bus import types
+    from diffctl.interfaces import types
 
     end = time.monotonic() + duration_s
     last = 0.0

@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import threading
 
-from diffctl.bus import types
 from diffctl.control.cdr_template import CdrTemplate
 from diffctl.control.realtime_publisher import PublishingThread, RealtimePublisher
+from diffctl.interfaces import types
 
 
 class SlowSink:

@@ -15,7 +15,8 @@ from typing import Any
 
 import psutil
 
-from diffctl.bus import Node, gz, types
+from diffctl.bus import Node, gz
+from diffctl.interfaces import types
 
 
 def yaw_of(q: Any) -> float:

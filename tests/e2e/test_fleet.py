@@ -16,7 +16,8 @@ from typing import Any
 
 import pytest
 
-from diffctl.bus import gz, types
+from diffctl.bus import gz
+from diffctl.interfaces import types
 from tests.e2e.stack import Stack
 from tests.waiting import wait_for
 

@@ -16,7 +16,8 @@ from typing import Any
 import websockets
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
-from diffctl.bus import Node, types
+from diffctl.bus import Node
+from diffctl.interfaces import types
 from tests.bag.test_files import one_error_line, run, write_bag
 from tests.conftest import free_port, wait_port
 

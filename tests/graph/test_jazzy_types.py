@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import pytest
 
-from diffctl.bus import interfaces, type_description, typedefs, types
+from diffctl.interfaces import extra_texts as interfaces
+from diffctl.interfaces import type_description, typedefs, types
 from tests.graph import jazzy_oracle
 
 

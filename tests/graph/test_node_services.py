@@ -11,8 +11,9 @@ import time
 import xxhash
 import zenoh
 
-from diffctl.bus import Node, types, wire
+from diffctl.bus import Node, wire
 from diffctl.bus.parameters import ParameterDescriptor
+from diffctl.interfaces import types
 from tests.graph import jazzy_oracle
 
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import pytest
 
-from diffctl.bus import typedefs, types
+from diffctl.interfaces import typedefs, types
 from tests.graph import rosidl_oracle
 
 

@@ -13,7 +13,7 @@ import pytest
 import xxhash
 import zenoh
 
-from diffctl.bus import types
+from diffctl.interfaces import types
 from tests.e2e.stack import Stack
 from tests.graph import jazzy_oracle
 

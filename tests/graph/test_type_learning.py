@@ -10,8 +10,8 @@ import textwrap
 from rosbags.typesys import get_types_from_msg
 
 from diffctl.bag.msgdefs import register_schema
-from diffctl.bus import types
-from diffctl.bus.type_description import describe, ros2msg_text
+from diffctl.interfaces import types
+from diffctl.interfaces.type_description import describe, ros2msg_text
 
 MIXED = "diffctl_test_msgs/msg/Mixed"
 MIXED_MSG = """string<=10 label
@@ -35,7 +35,8 @@ def test_topic_echo_learns_a_type_it_does_not_know(router: str, procs) -> None:
     publisher = textwrap.dedent(f"""
         import time
         from diffctl.bag.msgdefs import register_schema
-        from diffctl.bus import Node, types
+        from diffctl.bus import Node
+        from diffctl.interfaces import types
         register_schema({MIXED!r}, "ros2msg", {MIXED_MSG!r}, "test")
         node = Node("mixed_talker")
         pub = node.create_publisher("/mixed", {MIXED!r})

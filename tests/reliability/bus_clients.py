@@ -14,7 +14,8 @@ import sys
 import time
 from typing import Any
 
-from diffctl.bus import Node, types
+from diffctl.bus import Node
+from diffctl.interfaces import types
 
 CMD = "/diffbot_base_controller/cmd_vel"
 ODOM = "/diffbot_base_controller/odom"

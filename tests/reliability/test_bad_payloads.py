@@ -20,8 +20,9 @@ from pathlib import Path
 import pytest
 from websockets.sync.client import connect as ws_connect
 
-from diffctl.bus import gz, types, wire
+from diffctl.bus import gz, wire
 from diffctl.bus.session import domain_id
+from diffctl.interfaces import types
 from tests.conftest import free_port
 from tests.reliability.stack_faults import (
     CMD,

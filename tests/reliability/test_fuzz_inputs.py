@@ -17,12 +17,12 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from diffctl.bridge.config import KEYS, load_config, parse_cli_entry
-from diffctl.bus import types
 from diffctl.cli.bus_common import parse_values
 from diffctl.control.controllers.diff_drive_params import DiffDriveParams
 from diffctl.description.ros2_control import ros2_control_blocks
 from diffctl.description.sdf_loader import parse_model, parse_world
 from diffctl.errors import DiffctlError
+from diffctl.interfaces import types
 from diffctl.launch_legacy.loader import load as load_launch
 from diffctl.launch_legacy.resolver import Resolver
 

@@ -9,8 +9,8 @@ import math
 from pathlib import Path
 from typing import Any
 
-from diffctl.bus import types
 from diffctl.description.sdf_loader import load_model
+from diffctl.interfaces import types
 from diffctl.robot_state_publisher.node import RobotStatePublisher, RspParams
 
 CAR = Path(__file__).resolve().parents[2] / "description" / "my_diff_car.sdf"

@@ -11,8 +11,9 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from diffctl.bus import Node, types
+from diffctl.bus import Node
 from diffctl.description.pose import Pose
+from diffctl.interfaces import types
 from tests.waiting import wait_for
 
 REPO = Path(__file__).resolve().parents[2]

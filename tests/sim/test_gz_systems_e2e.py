@@ -12,7 +12,8 @@ from pathlib import Path
 import pytest
 from sim_helpers import CAR, EMPTY_WORLD
 
-from diffctl.bus import Node, gz, types
+from diffctl.bus import Node, gz
+from diffctl.interfaces import types
 
 ODOM = """<plugin filename="libignition-gazebo-odometry-publisher-system.so"
     name="ignition::gazebo::systems::OdometryPublisher">

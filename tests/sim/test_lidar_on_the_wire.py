@@ -10,7 +10,8 @@ import numpy as np
 from sim_helpers import build, sdf_world
 
 from diffctl.bridge import type_pairs
-from diffctl.bus import gz, types
+from diffctl.bus import gz
+from diffctl.interfaces import types
 from diffctl.sim.sensors import Lidar
 
 RIG = """<model name="rig"><static>true</static><pose>0 0 0.5 0 0 0</pose><link name="l">

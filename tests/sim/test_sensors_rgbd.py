@@ -179,7 +179,8 @@ def test_every_output_reaches_ros_through_the_bridge_conversions() -> None:
     """The sim side of the contract with the bridge: each output, encoded for the gz bus, converts to its ROS
     type and survives CDR (rosbags' Jazzy typestore) with the frame id and layout a ROS user expects."""
     from diffctl.bridge import type_pairs
-    from diffctl.bus import gz, types
+    from diffctl.bus import gz
+    from diffctl.interfaces import types
 
     pw, cam = scene("rgbd_camera", 0.0)
     try:

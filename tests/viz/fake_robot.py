@@ -16,8 +16,9 @@ from pathlib import Path
 
 import numpy as np
 
-from diffctl.bus import Node, types
+from diffctl.bus import Node
 from diffctl.description import sdf_loader
+from diffctl.interfaces import types
 
 REPO = Path(__file__).resolve().parents[2]
 ROOM_HALF_M = 3.0

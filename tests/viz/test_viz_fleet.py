@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from diffctl.bus import types
 from diffctl.errors import ConfigError
+from diffctl.interfaces import types
 from diffctl.viz.rviz_config import parse_rviz
 from diffctl.viz.scene import Scene
 from diffctl.viz.settings import VizSettings

@@ -11,8 +11,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from diffctl.bus import types
 from diffctl.errors import MessageError
+from diffctl.interfaces import types
 from diffctl.viz.commands import fill_now, parse_body, parse_publish, parse_teleop
 from diffctl.viz.png import encode_png, image_data_url, image_pixels
 from diffctl.viz.rates import RateMeter, RtfMeter

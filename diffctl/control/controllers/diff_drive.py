@@ -34,7 +34,6 @@ import dataclasses
 import math
 from typing import Any
 
-from diffctl.bus import types
 from diffctl.control.cdr_template import CdrTemplate
 from diffctl.control.controller_interface import (
     ChainableControllerInterface,
@@ -52,6 +51,7 @@ from diffctl.control.math.kinematics import wheel_velocities_radps
 from diffctl.control.math.odometry import Odometry
 from diffctl.control.math.speed_limiter import SpeedLimiter
 from diffctl.errors import ParameterError, RuntimeFailure
+from diffctl.interfaces import types
 
 NAN = math.nan
 _OK = ReturnType.OK

@@ -21,7 +21,6 @@ from typing import Any
 
 import numpy as np
 
-from diffctl.bus import types
 from diffctl.control.cdr_template import CdrTemplate
 from diffctl.control.controller_interface import ControllerInterface, InterfaceConfiguration, ReturnType
 from diffctl.control.controllers.owned_endpoints import OwnedEndpoints
@@ -35,6 +34,7 @@ from diffctl.control.controllers.param_decl import (
     unknown_key_warnings,
 )
 from diffctl.errors import ParameterError, RuntimeFailure
+from diffctl.interfaces import types
 
 JOINT_STATE = "sensor_msgs/msg/JointState"
 DYNAMIC_JOINT_STATE = "control_msgs/msg/DynamicJointState"

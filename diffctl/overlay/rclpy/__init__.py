@@ -5,7 +5,7 @@ A sourced ROS 2 installation, earlier on sys.path, wins over this overlay.
 
 from typing import Any
 
-import diffctl.client.messages  # noqa: F401  (the message finder, where no .pth file installed it)
+import diffctl.interfaces  # noqa: F401  (the message finder, where no .pth file installed it)
 from diffctl.client import runtime as _runtime
 from diffctl.client.context import Context, get_default_context
 from diffctl.client.parameter import Parameter

@@ -1,12 +1,12 @@
-"""rosidl_runtime_py (Jazzy's API), from diffctl.client.messages.runtime."""
+"""rosidl_runtime_py (Jazzy's API), from diffctl.interfaces.runtime."""
 
-from diffctl.client.messages.runtime.convert import (
+from diffctl.interfaces.runtime.convert import (
     get_message_slot_types,
     message_to_csv,
     message_to_ordereddict,
     message_to_yaml,
 )
-from diffctl.client.messages.runtime.index import (
+from diffctl.interfaces.runtime.index import (
     get_action_interfaces,
     get_interface_packages,
     get_interface_path,
@@ -14,8 +14,8 @@ from diffctl.client.messages.runtime.index import (
     get_message_interfaces,
     get_service_interfaces,
 )
-from diffctl.client.messages.runtime.names import import_message_from_namespaced_type
-from diffctl.client.messages.runtime.set_message import set_message_fields
+from diffctl.interfaces.runtime.names import import_message_from_namespaced_type
+from diffctl.interfaces.runtime.set_message import set_message_fields
 
 __all__ = [
     "get_action_interfaces",

@@ -1,6 +1,6 @@
 """rosidl_runtime_py.convert."""
 
-from diffctl.client.messages.runtime.convert import (  # noqa: F401
+from diffctl.interfaces.runtime.convert import (  # noqa: F401
     get_message_slot_types,
     message_to_csv,
     message_to_ordereddict,

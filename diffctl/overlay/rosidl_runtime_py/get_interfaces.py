@@ -1,6 +1,6 @@
 """rosidl_runtime_py.get_interfaces."""
 
-from diffctl.client.messages.runtime.index import (  # noqa: F401
+from diffctl.interfaces.runtime.index import (  # noqa: F401
     get_action_interfaces,
     get_interface_packages,
     get_interface_path,

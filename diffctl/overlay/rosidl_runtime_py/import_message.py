@@ -1,3 +1,3 @@
 """rosidl_runtime_py.import_message."""
 
-from diffctl.client.messages.runtime.names import import_message_from_namespaced_type  # noqa: F401
+from diffctl.interfaces.runtime.names import import_message_from_namespaced_type  # noqa: F401

@@ -1,3 +1,3 @@
 """rosidl_runtime_py.set_message."""
 
-from diffctl.client.messages.runtime.set_message import set_message_fields  # noqa: F401
+from diffctl.interfaces.runtime.set_message import set_message_fields  # noqa: F401

@@ -1,6 +1,6 @@
 """rosidl_runtime_py.utilities."""
 
-from diffctl.client.messages.runtime.names import (  # noqa: F401
+from diffctl.interfaces.runtime.names import (  # noqa: F401
     get_action,
     get_action_namespaced_type,
     get_interface,

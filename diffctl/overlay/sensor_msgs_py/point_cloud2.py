@@ -1,6 +1,6 @@
-"""sensor_msgs_py.point_cloud2, from diffctl.client.messages.point_cloud2."""
+"""sensor_msgs_py.point_cloud2, from diffctl.interfaces.point_cloud2."""
 
-from diffctl.client.messages.point_cloud2 import (  # noqa: F401
+from diffctl.interfaces.point_cloud2 import (  # noqa: F401
     DUMMY_FIELD_PREFIX,
     create_cloud,
     create_cloud_xyz32,

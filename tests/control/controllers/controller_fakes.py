@@ -6,9 +6,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from diffctl.bus import types
 from diffctl.bus.parameters import ParameterStore
 from diffctl.control.controller_interface import CommandInterface, ControllerInterface, StateInterface
+from diffctl.interfaces import types
 
 NS = 1_000_000_000
 

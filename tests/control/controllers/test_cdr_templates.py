@@ -11,11 +11,11 @@ import random
 import pytest
 from controller_fakes import NS, FakeNode, hand_interfaces
 
-from diffctl.bus import types
 from diffctl.control.cdr_template import CdrTemplate, TemplateError
 from diffctl.control.controller_interface import StateInterface
 from diffctl.control.controllers.diff_drive import DiffDriveController
 from diffctl.control.controllers.joint_state_broadcaster import JointStateBroadcaster
+from diffctl.interfaces import types
 
 ODOMETRY = "nav_msgs/msg/Odometry"
 STAMP = [("header.stamp.sec", "i"), ("header.stamp.nanosec", "I")]

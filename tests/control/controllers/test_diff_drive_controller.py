@@ -10,9 +10,9 @@ import time
 import pytest
 from controller_fakes import NS, hand_interfaces, make_controller
 
-from diffctl.bus import types
 from diffctl.control.controller_interface import ReturnType
 from diffctl.control.controllers.diff_drive import DiffDriveController
+from diffctl.interfaces import types
 
 NAME = "diffbot_base_controller"
 CMD = f"/{NAME}/cmd_vel"

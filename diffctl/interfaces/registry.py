@@ -1,6 +1,6 @@
 """Which interface packages exist and what they define, in ROS's order: workspace, install trees, diffctl's.
 
-diffctl's own types are the bus's (rosbags' Jazzy store and the project's definitions, `diffctl.bus.typedefs`)
+diffctl's own types are the bus's (rosbags' Jazzy store and the project's definitions, `diffctl.interfaces.typedefs`)
 plus the Jazzy texts shipped beside this module (`jazzy/`: services, actions, example_interfaces, and the
 messages whose fields have .msg defaults, which rosbags does not keep). The user's workspace packages
 (`rosidl_generate_interfaces` in their CMakeLists) and install trees' `share/<pkg>/{msg,srv,action}` come
@@ -16,10 +16,9 @@ from pathlib import Path
 
 from rosbags.typesys.base import Nodetype
 
-from diffctl.bus import typedefs
-from diffctl.client.messages import idl
-from diffctl.client.messages.idl import InterfaceError, TypeDef
 from diffctl.errors import suggest
+from diffctl.interfaces import idl, typedefs
+from diffctl.interfaces.idl import InterfaceError, TypeDef
 
 JAZZY = Path(__file__).resolve().parent / "jazzy"
 KINDS = ("msg", "srv", "action")
@@ -94,13 +93,13 @@ def package(name: str) -> InterfacePackage | None:
     with _lock:
         if name in _packages:
             return _packages[name]
-        from diffctl.client.messages import hook
+        from diffctl.interfaces import hook
 
         # The hook's standard-library checks first: most processes have no workspace package or install tree
         # of that name, and then never import the workspace reader (lxml, the CMake reader, …).
         found = None
         if hook.in_workspace(name):
-            from diffctl.client.messages import workspace
+            from diffctl.interfaces import workspace
 
             found = workspace.interface_package(name)
         if found is None and hook.in_install_trees(name):
@@ -187,7 +186,7 @@ def lookup(typename: str) -> TypeDef | None:
 
 def searched(name: str) -> str:
     """Where a package was looked for, for the error that says it is nowhere."""
-    from diffctl.client.messages import workspace
+    from diffctl.interfaces import workspace
     from diffctl.workspace.prefixes import install_prefixes
 
     places = [workspace.describe()]
@@ -201,7 +200,7 @@ def searched(name: str) -> str:
 
 
 def all_package_names() -> list[str]:
-    from diffctl.client.messages import workspace
+    from diffctl.interfaces import workspace
 
     return sorted({*diffctl_packages(), *workspace.interface_package_names()})
 

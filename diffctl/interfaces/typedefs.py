@@ -25,7 +25,7 @@ _lock = threading.Lock()
 
 
 def _cache_file() -> Path:
-    from diffctl.bus import interfaces
+    from diffctl.interfaces import extra_texts as interfaces
 
     h = hashlib.sha256()
     # rosbags' Jazzy store as installed (a stat, not importlib.metadata: 15 ms of every process's start)
@@ -98,7 +98,7 @@ def srv_typesdict(name: str, req_text: str, resp_text: str) -> dict[str, Any]:
 def _build() -> dict[str, tuple[list, list]]:
     from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
-    from diffctl.bus.interfaces import MSGS, SRVS
+    from diffctl.interfaces.extra_texts import MSGS, SRVS
 
     defs: dict[str, Any] = dict(get_typestore(Stores.ROS2_JAZZY).fielddefs)
     patch_chars(defs)
@@ -128,7 +128,7 @@ def _decode(raw: dict[str, Any]) -> dict[str, tuple[list, list]]:
 
 def definitions() -> dict[str, tuple[list, list]]:
     """Every known type's rosbags field definitions: from the cache, or built (and cached) once. Interface
-    packages read later (diffctl.client.messages' registry: a workspace's, install trees') are added here."""
+    packages read later (diffctl.interfaces' registry: a workspace's, install trees') are added here."""
     global _defs, _own
     if _defs is None:
         with _lock:

@@ -14,9 +14,9 @@ import linecache
 import types
 from typing import Any
 
-from diffctl.client.messages import pysource, registry
-from diffctl.client.messages.idl import TypeDef
-from diffctl.client.messages.registry import InterfacePackage
+from diffctl.interfaces import pysource, registry
+from diffctl.interfaces.idl import TypeDef
+from diffctl.interfaces.registry import InterfacePackage
 
 # class → its type name (pkg/msg/T, pkg/srv/T_Request, …): what the codecs and type_name() key on.
 NAMES: dict[type, str] = {}

@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
-from tests.client.messages.programs import OVERLAY as OVERLAY_PATH
-from tests.client.messages.programs import ours_env, run_ours
+from tests.interfaces.programs import OVERLAY as OVERLAY_PATH
+from tests.interfaces.programs import ours_env, run_ours
 
 
 def python(code: str, env: dict[str, str] | None = None, cwd: Path | None = None) -> subprocess.CompletedProcess:
@@ -20,7 +20,7 @@ def python(code: str, env: dict[str, str] | None = None, cwd: Path | None = None
 
 def test_hook_is_installed_by_the_pth_after_the_path_finder() -> None:
     p = python("import sys; names = [getattr(f, '__name__', type(f).__name__) for f in sys.meta_path]; print(names); "
-               "print('diffctl.client.messages.registry' in sys.modules, 'rosbags' in sys.modules)")
+               "print('diffctl.interfaces.registry' in sys.modules, 'rosbags' in sys.modules)")
     names, loaded = p.stdout.splitlines()
     assert names.index("InterfaceFinder") > names.index("PathFinder"), names
     assert loaded == "False False", "the hook must not import the message machinery before it is needed"
@@ -48,7 +48,7 @@ obs('msg', lambda: __import__('geometry_msgs.msg', fromlist=['Twistt']).Twistt)
 def imp():
     from std_srvs.srv import Triger  # noqa
 obs('from', imp)
-from diffctl.client.messages import get_interface
+from diffctl.interfaces import get_interface
 obs('get', lambda: get_interface('geometry_msgs/msg/Twistt'))
 obs('short', lambda: get_interface('geometry_msgs/Twist'))
 obs('action', lambda: get_interface('example_interfaces/action/Fibonacci').Impl.SendGoalService.Request())
@@ -96,14 +96,14 @@ def test_malformed_interface_file_is_located(tmp_path: Path) -> None:
     ("string<=3 s \"toolong\"", "longer than its bound 3"),
 ])
 def test_parser_errors(text: str, error: str) -> None:
-    from diffctl.client.messages.idl import InterfaceError, parse_message
+    from diffctl.interfaces.idl import InterfaceError, parse_message
 
     with pytest.raises(InterfaceError, match=error.replace("[", r"\[")):
         parse_message(text, "p/msg/T", "T.msg")
 
 
 def test_the_hooks_list_of_packages_is_the_registrys() -> None:
-    from diffctl.client.messages import hook, registry
+    from diffctl.interfaces import hook, registry
 
     assert set(registry.diffctl_packages()) == hook.KNOWN
 

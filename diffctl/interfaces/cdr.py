@@ -8,7 +8,7 @@ dataclass `__init__` would, without the call (most of a small message's cost on 
 sequences and arrays of messages call a helper per element.
 
 With `classes` given (a typename → class function), the code reads and builds rosidl-style classes
-instead (diffctl.client.messages): fields are read from and written to their slots (`_x`, no property
+instead (diffctl.interfaces): fields are read from and written to their slots (`_x`, no property
 call), `byte` is a 1-byte `bytes`, fixed numeric arrays are writable numpy arrays, numeric sequences
 `array.array`, and bool and byte collections lists, as rosidl_generator_py's C conversions give them.
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from pathlib import Path
 
-from diffctl.client.messages import registry
+from diffctl.interfaces import registry
 
 _EXT = {"msg": ".msg", "srv": ".srv", "action": ".action"}
 

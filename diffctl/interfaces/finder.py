@@ -11,8 +11,8 @@ from __future__ import annotations
 import importlib.machinery
 import types
 
-from diffctl.client.messages import classes, pysource, registry
 from diffctl.errors import suggest
+from diffctl.interfaces import classes, pysource, registry
 
 INTERFACE_SUFFIXES = ("_msgs", "_srvs", "_interfaces", "_actions", "_msg", "_srv", "_action")
 

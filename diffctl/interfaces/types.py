@@ -18,8 +18,8 @@ import numpy as np
 from rosbags.typesys import Stores, get_typestore
 from rosbags.typesys.base import Nodetype
 
-from diffctl.bus import cdr, typedefs
 from diffctl.errors import ConfigError, MessageError, suggest
+from diffctl.interfaces import cdr, typedefs
 
 _lock = threading.RLock()
 _store = None
@@ -90,7 +90,7 @@ def store_with(typename: str):
 
 def store_described(typename: str):
     """The typestore with the definitions of `typename` and what it references (enough for hashes and the
-    compiled codecs of classes built elsewhere, e.g. diffctl.client.messages'), no rosbags classes generated."""
+    compiled codecs of classes built elsewhere, e.g. diffctl.interfaces'), no rosbags classes generated."""
     return _ensure_described(typename)
 
 
@@ -130,11 +130,11 @@ def exists(typename: str) -> bool:
 
 def _with_package_of(typename: str) -> None:
     """Types of interface packages beyond diffctl's own definitions (the user's workspace, install trees, the
-    Jazzy texts shipped with the client library) are read by diffctl.client.messages' registry, which enters
+    Jazzy texts shipped with the client library) are read by diffctl.interfaces' registry, which enters
     them in `typedefs.definitions()`: asked only for a name not defined yet."""
     if typename in typedefs.definitions():
         return
-    from diffctl.client.messages import registry
+    from diffctl.interfaces import registry
 
     registry.package(typename.split("/")[0])
 
@@ -192,7 +192,7 @@ def type_hash(typename: str) -> str:
         try:
             return ts.hash_rihs01(typename)
         except KeyError:  # rosbags hashes no wstring field; REP-2016's description itself covers them
-            from diffctl.bus import type_description
+            from diffctl.interfaces import type_description
 
             return type_description.hash_of(type_description.describe(typename))
 

@@ -7,8 +7,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from tests.client.messages.programs import assert_same, run_ours
-from tests.client.messages.runtime_program import PROGRAM
+from tests.interfaces.programs import assert_same, run_ours
+from tests.interfaces.runtime_program import PROGRAM
 
 GOLDEN = Path(__file__).parent / "data" / "rosidl_runtime_py_jazzy.json"
 

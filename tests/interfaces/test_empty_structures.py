@@ -9,9 +9,8 @@ from __future__ import annotations
 
 import json
 
-from diffctl.bus import types
 from diffctl.client.interfaces import cls, serialize
-from diffctl.client.messages import registry
+from diffctl.interfaces import registry, types
 from tests.oracle import jazzy_venv
 
 PARTS = {"msg": [""], "srv": ["Request", "Response"], "action": ["Goal", "Result", "Feedback"]}

@@ -7,8 +7,7 @@ import json
 
 import pytest
 
-from diffctl.bus import types
-from diffctl.client.messages import get_interface, registry, type_hash
+from diffctl.interfaces import get_interface, registry, type_hash, types
 from tests.oracle import jazzy_venv
 
 PACKAGES = ["action_msgs", "builtin_interfaces", "diagnostic_msgs", "geometry_msgs", "lifecycle_msgs", "nav_msgs",

@@ -20,7 +20,7 @@ from typing import Any
 
 from rosbags.typesys.base import Nodetype
 
-from diffctl.client.messages.idl import TypeDef
+from diffctl.interfaces.idl import TypeDef
 
 # .msg primitive (rosbags' name) → IDL basic type name, as rosidl_adapter converts them.
 IDL_NAME = {"bool": "boolean", "byte": "octet", "char": "uint8", "float32": "float", "float64": "double",
@@ -517,7 +517,7 @@ import math  # noqa: E402, F401, I100
 import numpy  # noqa: E402, F401, I100
 import rosidl_parser.definition  # noqa: E402, F401, I100
 
-from diffctl.client.messages.classes import import_type_support as _import_type_support  # noqa: E402
+from diffctl.interfaces.classes import import_type_support as _import_type_support  # noqa: E402
 """
 
 

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.client.messages.programs import run_ours
+from tests.interfaces.programs import run_ours
 from tests.oracle import jazzy_venv
 
 FILES = {
@@ -102,7 +102,7 @@ def test_user_package_imports_and_hashes_as_rosidl(workspace: Path) -> None:
 from robot_interfaces.msg import Obstacle, ObstacleArray
 from robot_interfaces.srv import SetSpeed
 from robot_interfaces.action import Drive
-from diffctl.bus import types
+from diffctl.interfaces import types
 for n in NAMES:
     obs(n, lambda n=n: types.type_hash(n))
 obs('obstacle', lambda: Obstacle())
@@ -125,15 +125,14 @@ obs('action', lambda: (Drive.Goal(), Drive.Impl.FeedbackMessage(), Drive.Impl.Ge
 def test_shipped_interfaces_hash_as_rosidl(tmp_path: Path) -> None:
     """The interface texts diffctl ships that no Jazzy wheel here has (example_interfaces; tf2_msgs' service and
     action, whose messages come from the graph tests' upstream texts) hashed by rosidl itself."""
-    from diffctl.bus import types
-    from diffctl.client.messages import registry
+    from diffctl.interfaces import registry, types
 
     src = Path(registry.JAZZY) / "example_interfaces"
     real = rosidl_hashes(src, "example_interfaces")
     assert "example_interfaces/action/Fibonacci_SendGoal" in real
     tf2 = tmp_path / "tf2_msgs"
     shutil.copytree(Path(registry.JAZZY) / "tf2_msgs", tf2)
-    shutil.copytree(Path(__file__).parents[2] / "graph" / "upstream_interfaces" / "tf2_msgs" / "msg", tf2 / "msg")
+    shutil.copytree(Path(__file__).parents[1] / "graph" / "upstream_interfaces" / "tf2_msgs" / "msg", tf2 / "msg")
     tf2_real = rosidl_hashes(tf2, "tf2_msgs")
     assert "tf2_msgs/action/LookupTransform_FeedbackMessage" in tf2_real and "tf2_msgs/srv/FrameGraph" in tf2_real
     real |= tf2_real
@@ -143,9 +142,9 @@ def test_shipped_interfaces_hash_as_rosidl(tmp_path: Path) -> None:
 
 
 def test_user_package_on_the_bus(workspace: Path, router: str) -> None:
-    from diffctl.bus import Node, types, wire
-    from diffctl.client.messages import deserialize, get_interface, registry, serialize, type_hash, type_name
-    from diffctl.client.messages import workspace as ws_index
+    from diffctl.bus import Node, wire
+    from diffctl.interfaces import deserialize, get_interface, registry, serialize, type_hash, type_name, types
+    from diffctl.interfaces import workspace as ws_index
 
     registry.reset()
     ws_index.reset()

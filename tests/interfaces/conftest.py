@@ -56,8 +56,7 @@ def _bus_definitions_restored() -> Iterator[None]:
     """Tests here load interface packages in this process, which enters their types in the bus's definitions:
     taken out again afterwards, so later tests of the same run (tests/graph's oracle checks over every
     defined type) see diffctl's own definitions only."""
-    from diffctl.bus import typedefs
-    from diffctl.client.messages import registry
+    from diffctl.interfaces import registry, typedefs
 
     defs = typedefs.definitions()
     before = dict(defs)

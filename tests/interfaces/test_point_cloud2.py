@@ -8,8 +8,8 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from tests.client.messages.point_cloud2_program import PROGRAM
-from tests.client.messages.programs import assert_same, run_ours
+from tests.interfaces.point_cloud2_program import PROGRAM
+from tests.interfaces.programs import assert_same, run_ours
 
 GOLDEN = Path(__file__).parent / "data" / "point_cloud2_jazzy.json"
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from tests.client.messages.programs import assert_same, run_oracle, run_ours
+from tests.interfaces.programs import assert_same, run_oracle, run_ours
 
 PROGRAM = r'''
 from geometry_msgs.msg import Twist, Vector3, Quaternion, PoseWithCovariance, Point

@@ -10,8 +10,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from diffctl.client.messages.idl import InterfaceError
-from diffctl.client.messages.registry import InterfacePackage
+from diffctl.interfaces.idl import InterfaceError
+from diffctl.interfaces.registry import InterfacePackage
 from diffctl.workspace.cmake_script import Call, Script
 from diffctl.workspace.discovery import find_workspace
 from diffctl.workspace.resolve import scan_workspace

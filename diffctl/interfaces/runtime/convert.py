@@ -10,7 +10,7 @@ from typing import Any
 import numpy
 import yaml
 
-from diffctl.client.messages import definition
+from diffctl.interfaces import definition
 
 _SEQUENCES = (list, tuple, array.array, numpy.ndarray)
 _representer_added = False

@@ -16,7 +16,7 @@ from pathlib import Path
 
 from tests.oracle import jazzy_venv
 
-REPO = Path(__file__).resolve().parents[3]
+REPO = Path(__file__).resolve().parents[2]
 OVERLAY = REPO / "diffctl" / "overlay"
 
 PRELUDE = r'''

@@ -8,8 +8,8 @@ import json
 
 import pytest
 
-from tests.client.messages.programs import assert_same, run_oracle, run_ours
-from tests.client.messages.test_wire_agreement import same_wire
+from tests.interfaces.programs import assert_same, run_oracle, run_ours
+from tests.interfaces.test_wire_agreement import same_wire
 from tests.oracle import jazzy_venv
 
 MSGS = ["Arrays", "BasicTypes", "BoundedPlainSequences", "BoundedSequences", "Builtins", "Constants", "Defaults",
@@ -100,7 +100,7 @@ for k, m in msgs.items():
     assert all(v[0] == "ok" for v in oracle.values()), oracle
     hexes = {k: v[1] for k, v in oracle.items() if not k.endswith(" repr")}
     ours = run_ours(program + f"HEX = {json.dumps(hexes)}\n" + r'''
-from diffctl.client.messages import serialize, deserialize
+from diffctl.interfaces import serialize, deserialize
 for k, m in msgs.items():
     obs(k, lambda m=m: serialize(m).hex())
     obs(k + ' repr', lambda k=k, m=m: deserialize(bytes.fromhex(HEX[k]), type(m)))
@@ -116,8 +116,8 @@ def test_workspace_package_hashes_as_rosidl(test_msgs_workspace) -> None:
         for entry in json.loads(path.read_text())["type_hashes"]:
             real[entry["type_name"]] = entry["hash_string"]
     ours = run_ours(f"NAMES = {sorted(real)!r}\n" + r'''
-from diffctl.client.messages import registry
-from diffctl.bus import types
+from diffctl.interfaces import registry
+from diffctl.interfaces import types
 for n in NAMES:
     registry.package(n.split('/')[0])
     obs(n, lambda n=n: types.type_hash(n))
@@ -161,7 +161,7 @@ def test_field_setters_check_as_rosidl(test_msgs_workspace, check: str) -> None:
 def test_workspace_package_filled_in_agrees_on_the_wire(test_msgs_workspace) -> None:
     """test_msgs' every message and service part, each field filled in from its SLOT_TYPES (the sweep of
     test_wire_agreement): the same bytes as the real build, and the real bytes decode to the same message."""
-    from tests.client.messages.test_wire_agreement import SWEEP
+    from tests.interfaces.test_wire_agreement import SWEEP
 
     program = SWEEP % ["test_msgs"]
     oracle = run_oracle(program + r'''
@@ -173,7 +173,7 @@ for k, m in msgs.items():
     assert len(oracle) > 2 * 20 and all(v[0] == "ok" for v in oracle.values()), oracle
     hexes = {k: v[1] for k, v in oracle.items() if not k.endswith(" repr")}
     ours = run_ours(program + f"HEX = {json.dumps(hexes)}\n" + r'''
-from diffctl.client.messages import serialize, deserialize
+from diffctl.interfaces import serialize, deserialize
 for k, m in msgs.items():
     obs(k, lambda m=m: serialize(m).hex())
     obs(k + ' repr', lambda k=k, m=m: deserialize(bytes.fromhex(HEX[k]), type(m)))

@@ -1,4 +1,4 @@
-"""Compiled CDR codecs for the generated classes: the bus's code generator (`diffctl.bus.cdr`), reading
+"""Compiled CDR codecs for the generated classes: the bus's code generator (`diffctl.interfaces.cdr`), reading
 fields from the classes' slots and building instances without their constructor, as rclpy's C conversion
 does (fields set directly, `_check_fields` as the class's module has it).
 
@@ -19,9 +19,8 @@ from typing import Any
 import numpy
 from rosbags.typesys.base import Nodetype
 
-from diffctl.bus import cdr, types
-from diffctl.client.messages import classes
 from diffctl.errors import MessageError
+from diffctl.interfaces import cdr, classes, types
 
 _TYPECODE = {"int8": "b", "uint8": "B", "int16": "h", "uint16": "H", "int32": "i", "uint32": "I", "int64": "q",
              "uint64": "Q", "float32": "f", "float64": "d"}
@@ -32,7 +31,7 @@ _EMPTY = "structure_needs_at_least_one_member"
 def _typename(cls: type) -> str:
     name = classes.NAMES.get(cls)
     if name is None or name.split("/")[-1] != cls.__name__:
-        raise TypeError(f"{cls!r} is not a message class of diffctl.client.messages")
+        raise TypeError(f"{cls!r} is not a message class of diffctl.interfaces")
     if "_CREATE_ROS_MESSAGE" not in vars(type(cls)):
         raise TypeError(f"{name} is a service or action, not a message: use its Request/Response/Goal/… classes")
     return name

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import json
 
-from tests.client.messages.programs import run_oracle, run_ours
+from tests.interfaces.programs import run_oracle, run_ours
 
 MESSAGES = r'''
 import math
@@ -87,7 +87,7 @@ for k, m in msgs.items():
     hexes = {k: v[1] for k, v in oracle.items() if not k.endswith(" repr")}
     assert all(v[0] == "ok" for v in oracle.values()), oracle
     ours = run_ours(MESSAGES + f"HEX = {json.dumps(hexes)}\n" + r'''
-from diffctl.client.messages import serialize, deserialize
+from diffctl.interfaces import serialize, deserialize
 for k, m in msgs.items():
     obs(k, lambda m=m: serialize(m).hex())
     obs(k + ' repr', lambda k=k, m=m: deserialize(bytes.fromhex(HEX[k]), type(m)))
@@ -122,7 +122,7 @@ for k, make in cases.items():
     obs(k, lambda make=make: serialize_message(make()).hex())
 ''')
     ours = run_ours(WRONG + r'''
-from diffctl.client.messages import serialize
+from diffctl.interfaces import serialize
 for k, make in cases.items():
     obs(k, lambda make=make: serialize(make()).hex())
 ''')
@@ -198,7 +198,7 @@ for k, m in msgs.items():
     assert len(oracle) > 2 * 200 and all(v[0] == "ok" for v in oracle.values()), oracle
     hexes = {k: v[1] for k, v in oracle.items() if not k.endswith(" repr")}
     ours = run_ours(program + f"HEX = {json.dumps(hexes)}\n" + r'''
-from diffctl.client.messages import serialize, deserialize
+from diffctl.interfaces import serialize, deserialize
 for k, m in msgs.items():
     obs(k, lambda m=m: serialize(m).hex())
     obs(k + ' repr', lambda k=k, m=m: deserialize(bytes.fromhex(HEX[k]), type(m)))

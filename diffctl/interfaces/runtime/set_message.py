@@ -8,9 +8,9 @@ from typing import Any
 
 import numpy
 
-from diffctl.client.messages.definition import AbstractNestedType, NamespacedType
-from diffctl.client.messages.runtime.convert import get_message_slot_types
-from diffctl.client.messages.runtime.names import import_message_from_namespaced_type
+from diffctl.interfaces.definition import AbstractNestedType, NamespacedType
+from diffctl.interfaces.runtime.convert import get_message_slot_types
+from diffctl.interfaces.runtime.names import import_message_from_namespaced_type
 
 
 def set_message_fields(msg: Any, values: dict[str, Any], expand_header_auto: bool = False,

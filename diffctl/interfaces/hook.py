@@ -1,7 +1,7 @@
 """The meta-path hook that makes interface packages importable: installed at interpreter start, cheap.
 
 `diffctl-interfaces.pth` (in the venv's site-packages, from the editable install or the wheel) imports a copy
-of this module installed beside it as `diffctl_interfaces_hook`; `diffctl.client.messages` imports it too
+of this module installed beside it as `diffctl_interfaces_hook`; `diffctl.interfaces` imports it too
 (one finder either way). It imports nothing of diffctl until a name may be an interface package.
 It appends one finder to `sys.meta_path`, AFTER the normal path
 finder, so modules on sys.path (a sourced ROS 2's message packages) always win. The finder answers only
@@ -116,7 +116,7 @@ class InterfaceFinder:
                 return None
         elif not may_be_interface_package(top):
             return None
-        from diffctl.client.messages import finder
+        from diffctl.interfaces import finder
 
         return finder.find_spec(fullname)
 

@@ -3,7 +3,7 @@ with the real generated message classes: data/rosidl_runtime_py_jazzy.json (rosi
 branch) and data/point_cloud2_jazzy.json (common_interfaces' `jazzy` branch, sensor_msgs_py). Each argument
 is a folder holding the upstream Python package (e.g. `git archive jazzy rosidl_runtime_py | tar -x`).
 
-    .venv/bin/python -m tests.client.messages.make_runtime_golden /path/to/rosidl_runtime_py_src \
+    .venv/bin/python -m tests.interfaces.make_runtime_golden /path/to/rosidl_runtime_py_src \
         /path/to/common_interfaces/sensor_msgs_py
 """
 
@@ -13,8 +13,8 @@ import json
 import sys
 from pathlib import Path
 
-from tests.client.messages import point_cloud2_program, runtime_program
-from tests.client.messages.programs import PRELUDE
+from tests.interfaces import point_cloud2_program, runtime_program
+from tests.interfaces.programs import PRELUDE
 from tests.oracle import jazzy_venv
 
 DATA = Path(__file__).parent / "data"

@@ -6,7 +6,7 @@ import importlib
 import warnings
 from typing import Any
 
-from diffctl.client.messages.definition import NamespacedType
+from diffctl.interfaces.definition import NamespacedType
 
 
 def import_message_from_namespaced_type(message_type: Any) -> Any:
