@@ -17,6 +17,9 @@ PROJECT_DIR_ENV = "DIFFCTL_PROJECT_DIR"
 _PACKAGE_DIR = Path(__file__).resolve().parent.parent
 # Share folders of replaced ROS packages (e.g. ros_gz_sim/launch/gz_sim.launch.py), one folder each.
 COMPONENT_SHARES = _PACKAGE_DIR / "workspace" / "component_shares"
+# An ament prefix (share/<pkg>, the resource index) of the ROS library packages diffctl reimplements in Python
+# (launch_ros, …): found after install trees, as a sourced ROS's own copy of the library is what Python imports.
+LIBRARY_PREFIX = _PACKAGE_DIR / "workspace" / "library_prefix"
 # Gazebo's own worlds (empty.sdf, …): where `gz sim NAME` looks after GZ_SIM_RESOURCE_PATH.
 GAZEBO_WORLDS = COMPONENT_SHARES / "ros_gz_sim" / "worlds"
 

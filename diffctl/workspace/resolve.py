@@ -140,6 +140,9 @@ def find_package(name: str, workspace: Path | None = None) -> Package:
             if reason is None:
                 return Package(name, p.origin, p.path / "share" / name, p.path)
             stale.append(f"{p.origin} {p.path}: {reason}")
+    library = builtin.LIBRARY_PREFIX
+    if (library / prefixes.MARKERS / name).is_file():
+        return Package(name, ORIGIN_DIFFCTL, library / "share" / name, library)
     demo = builtin.demo_packages()
     if name in demo:
         return Package(name, ORIGIN_DIFFCTL, demo[name])
@@ -180,6 +183,9 @@ def list_packages(workspace: Path | None = None, *, scan: WorkspaceScan | None =
         for name in prefixes.packages_in(p.path):
             if name not in found and prefixes.stale_reason(p.path, name) is None:
                 found[name] = Package(name, p.origin, p.path / "share" / name, p.path)
+    for name in prefixes.packages_in(builtin.LIBRARY_PREFIX):
+        library = builtin.LIBRARY_PREFIX
+        found.setdefault(name, Package(name, ORIGIN_DIFFCTL, library / "share" / name, library))
     for name, share in builtin.demo_packages().items():
         found.setdefault(name, Package(name, ORIGIN_DIFFCTL, share))
     return list(found.values())
