@@ -1,0 +1,5 @@
+"""Matchers of launch_ros's actions, for targeted events."""
+
+from .matches_node_name import matches_node_name
+
+__all__ = ["matches_node_name"]
