@@ -1,0 +1,20 @@
+"""`PushEnvironment`: Save the environment on a stack (restored by `PopEnvironment`)."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from ..action import Action
+
+if TYPE_CHECKING:
+    from ..launch_context import LaunchContext
+
+
+class PushEnvironment(Action):
+    """Save the environment on a stack (restored by `PopEnvironment`)."""
+
+    def __init__(self, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+
+    def execute(self, context: LaunchContext) -> None:
+        context._push_environment()

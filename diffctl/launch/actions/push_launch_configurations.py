@@ -1,0 +1,20 @@
+"""`PushLaunchConfigurations`: Save the launch configurations on a stack (restored by `PopLaunchConfigurations`)."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+from ..action import Action
+
+if TYPE_CHECKING:
+    from ..launch_context import LaunchContext
+
+
+class PushLaunchConfigurations(Action):
+    """Save the launch configurations on a stack (restored by `PopLaunchConfigurations`)."""
+
+    def __init__(self, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+
+    def execute(self, context: LaunchContext) -> None:
+        context._push_launch_configurations()

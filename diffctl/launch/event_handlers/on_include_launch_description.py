@@ -1,0 +1,30 @@
+"""`OnIncludeLaunchDescription`: the service's handler visiting included launch descriptions."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from ..event_handler import EventHandler
+from ..events.include_launch_description import IncludeLaunchDescription
+from ..utilities.class_tools_impl import is_a_subclass
+
+
+class OnIncludeLaunchDescription(EventHandler):
+    """Yields the launch description carried by each `IncludeLaunchDescription` event."""
+
+    def __init__(self, **kwargs: Any) -> None:
+        from ..actions.opaque_function import OpaqueFunction
+
+        super().__init__(
+            matcher=lambda event: is_a_subclass(event, IncludeLaunchDescription),
+            entities=OpaqueFunction(function=lambda context: [context.locals.event.launch_description]),
+            **kwargs,
+        )
+
+    @property
+    def handler_description(self) -> str:
+        return 'returns the launch_description in the event'
+
+    @property
+    def matcher_description(self) -> str:
+        return 'event issubclass of launch.events.IncludeLaunchDescription'

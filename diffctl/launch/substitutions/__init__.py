@@ -1,0 +1,53 @@
+"""The substitutions of launch (each imported on first use)."""
+
+from .._private.lazy import lazy_exports
+
+__all__ = [
+    'AllSubstitution',
+    'AndSubstitution',
+    'AnonName',
+    'AnySubstitution',
+    'Command',
+    'EnvironmentVariable',
+    'EqualsSubstitution',
+    'FileContent',
+    'FindExecutable',
+    'IfElseSubstitution',
+    'LaunchConfiguration',
+    'LaunchLogDir',
+    'LocalSubstitution',
+    'NotEqualsSubstitution',
+    'NotSubstitution',
+    'OrSubstitution',
+    'PathJoinSubstitution',
+    'PythonExpression',
+    'SubstitutionFailure',
+    'TextSubstitution',
+    'ThisLaunchFile',
+    'ThisLaunchFileDir',
+]
+
+__getattr__, __dir__ = lazy_exports(__name__, globals(), {
+    'AllSubstitution': '.boolean_substitution',
+    'AndSubstitution': '.boolean_substitution',
+    'AnySubstitution': '.boolean_substitution',
+    'NotSubstitution': '.boolean_substitution',
+    'OrSubstitution': '.boolean_substitution',
+    'AnonName': '.anon_name',
+    'Command': '.command',
+    'EqualsSubstitution': '.equals_substitution',
+    'EnvironmentVariable': '.environment_variable',
+    'FileContent': '.file_content',
+    'FindExecutable': '.find_executable',
+    'IfElseSubstitution': '.if_else_substitution',
+    'LaunchConfiguration': '.launch_configuration',
+    'LaunchLogDir': '.launch_log_dir',
+    'LocalSubstitution': '.local_substitution',
+    'NotEqualsSubstitution': '.not_equals_substitution',
+    'PathJoinSubstitution': '.path_join_substitution',
+    'PythonExpression': '.python_expression',
+    'SubstitutionFailure': '.substitution_failure',
+    'TextSubstitution': '.text_substitution',
+    'ThisLaunchFile': '.this_launch_file',
+    'ThisLaunchFileDir': '.this_launch_file_dir',
+})

@@ -1,0 +1,11 @@
+"""diffctl's implementation of ros2/launch's `launch_xml`: XML launch files."""
+
+from . import launch_description_sources
+from .entity import Entity
+from .parser import Parser
+
+__all__ = [
+    'Entity',
+    'Parser',
+    'launch_description_sources',
+]

@@ -1,0 +1,311 @@
+"""The spawner interface and the POSIX spawner: process groups, pidfd exit watching, chunked output."""
+
+from __future__ import annotations
+
+import asyncio
+import logging
+import os
+import signal
+import subprocess
+import threading
+import time
+from dataclasses import dataclass, field
+from typing import Literal, Protocol
+
+logger = logging.getLogger('launch.supervision')
+
+_READ_SIZE = 65536
+
+
+@dataclass(frozen=True)
+class SpawnRequest:
+    """What to run: the command (already substituted), where, with which environment.
+
+    `shell` runs `' '.join(cmd)` with /bin/sh. `emulate_tty` gives the child a pseudo-terminal for stdout
+    and one for stderr (so it line-buffers and colours as on a terminal). `stdin` is 'pipe' (an open pipe
+    nothing is written to, as ros2/launch gives), 'inherit' (the launcher's), or 'devnull'.
+    """
+
+    cmd: list[str]
+    cwd: str | None = None
+    env: dict[str, str] | None = None
+    shell: bool = False
+    emulate_tty: bool = False
+    stdin: Literal['pipe', 'inherit', 'devnull'] = 'pipe'
+    name: str = ''
+
+
+class OutputSink(Protocol):
+    """Receives a child's output as it is read (chunks of bytes, not necessarily whole lines)."""
+
+    def on_stdout(self, data: bytes) -> None: ...
+
+    def on_stderr(self, data: bytes) -> None: ...
+
+
+class ChildProcess(Protocol):
+    """A started child. `complete` resolves to the exit code (-N for signal N) once the leader is reaped
+    and what it wrote before exiting has been delivered; later output (from descendants still holding the
+    pipes) is still delivered until `close()`."""
+
+    pid: int
+    pgid: int
+    complete: asyncio.Future
+
+    def get_pid(self) -> int: ...
+
+    def get_returncode(self) -> int | None: ...
+
+    def send_signal(self, sig: int) -> None: ...
+
+    def kill(self) -> None: ...
+
+    def terminate(self) -> None: ...
+
+    def close(self) -> None: ...
+
+
+class Spawner(Protocol):
+    """Starts children for a launch and ends those still alive when it is over."""
+
+    async def spawn(self, request: SpawnRequest, sink: OutputSink) -> ChildProcess: ...
+
+    def signal_all(self, sig: int) -> None: ...
+
+    async def shutdown(self) -> None: ...
+
+
+def _group_alive(pgid: int) -> bool:
+    try:
+        os.killpg(pgid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+@dataclass(eq=False)
+class _Child:
+    """A child of the POSIX spawner (see `ChildProcess`)."""
+
+    pid: int
+    name: str
+    loop: asyncio.AbstractEventLoop
+    sink: OutputSink
+    popen: subprocess.Popen
+    complete: asyncio.Future
+    readers: dict[int, str] = field(default_factory=dict)  # fd -> 'stdout' | 'stderr'
+    stdin_fd: int | None = None
+    pidfd: int | None = None
+    returncode: int | None = None
+    closed: bool = False
+
+    @property
+    def pgid(self) -> int:
+        return self.pid  # a session leader: its group is its pid
+
+    def get_pid(self) -> int:
+        return self.pid
+
+    def get_returncode(self) -> int | None:
+        return self.returncode
+
+    def send_signal(self, sig: int) -> None:
+        """Signal the child's whole process group (ProcessLookupError when nothing of it is left)."""
+        os.killpg(self.pgid, sig)
+
+    def kill(self) -> None:
+        self.send_signal(signal.SIGKILL)
+
+    def terminate(self) -> None:
+        self.send_signal(signal.SIGTERM)
+
+    def close(self) -> None:
+        """Stop reading the child's output and release its pipes (the group is left as it is)."""
+        if self.closed:
+            return
+        self.closed = True
+        for fd in list(self.readers):
+            self._stop_reading(fd)
+        if self.stdin_fd is not None:
+            _close(self.stdin_fd)
+            self.stdin_fd = None
+
+    # ---- output --------------------------------------------------------------------------------------------
+
+    def _read(self, fd: int) -> bool:
+        """Deliver what can be read from `fd` now; False at end of file."""
+        while True:
+            try:
+                data = os.read(fd, _READ_SIZE)
+            except BlockingIOError:
+                return True
+            except InterruptedError:
+                continue
+            except OSError:  # EIO: the pseudo-terminal's other side is closed
+                data = b''
+            if not data:
+                self._stop_reading(fd)
+                return False
+            if self.readers.get(fd) == 'stdout':
+                self.sink.on_stdout(data)
+            else:
+                self.sink.on_stderr(data)
+            if len(data) < _READ_SIZE:
+                return True
+
+    def _stop_reading(self, fd: int) -> None:
+        if self.readers.pop(fd, None) is not None:
+            self.loop.remove_reader(fd)
+            _close(fd)
+
+    # ---- exit ----------------------------------------------------------------------------------------------
+
+    def _on_pidfd(self) -> None:
+        try:
+            pid, status = os.waitpid(self.pid, os.WNOHANG)
+        except ChildProcessError:
+            pid, status = self.pid, 0  # reaped elsewhere: the status is lost
+        if pid == 0:
+            return
+        self._exited(os.waitstatus_to_exitcode(status))
+
+    def _exited(self, code: int) -> None:
+        if self.pidfd is not None:
+            self.loop.remove_reader(self.pidfd)
+            _close(self.pidfd)
+            self.pidfd = None
+        self.returncode = code
+        self.popen.returncode = code  # Popen must not wait for it again
+        for fd in list(self.readers):
+            self._read(fd)  # what the child wrote before exiting comes before its exit
+        if not self.complete.done():
+            self.complete.set_result(code)
+
+
+def _close(fd: int) -> None:
+    try:
+        os.close(fd)
+    except OSError:
+        pass
+
+
+class PosixSpawner:
+    """Children in process groups of their own, watched on the asyncio loop.
+
+    `signal_all` signals every live group (what a terminal's Ctrl-C would reach); `shutdown` ends the groups
+    still alive after `term_timeout_s` with SIGKILL, logging each step.
+    """
+
+    def __init__(self, *, term_timeout_s: float = 2.0) -> None:
+        self.term_timeout_s = term_timeout_s
+        self._children: list[_Child] = []
+
+    async def spawn(self, request: SpawnRequest, sink: OutputSink) -> _Child:
+        loop = asyncio.get_running_loop()
+        argv = ['/bin/sh', '-c', ' '.join(request.cmd)] if request.shell else list(request.cmd)
+        parent_ends: list[tuple[int, str]] = []
+        child_ends: list[int] = []
+        try:
+            if request.emulate_tty:
+                import pty
+
+                out_master, out_slave = pty.openpty()
+                err_master, err_slave = pty.openpty()
+                parent_ends += [(out_master, 'stdout'), (err_master, 'stderr')]
+                child_ends += [out_slave, err_slave]
+                stdout, stderr = out_slave, err_slave
+            else:
+                out_r, out_w = os.pipe()
+                err_r, err_w = os.pipe()
+                parent_ends += [(out_r, 'stdout'), (err_r, 'stderr')]
+                child_ends += [out_w, err_w]
+                stdout, stderr = out_w, err_w
+            stdin = {'pipe': subprocess.PIPE, 'inherit': None, 'devnull': subprocess.DEVNULL}[request.stdin]
+            popen = subprocess.Popen(
+                argv, stdin=stdin, stdout=stdout, stderr=stderr, cwd=request.cwd, env=request.env,
+                start_new_session=True, close_fds=True)
+        except BaseException:
+            for fd, _ in parent_ends:
+                _close(fd)
+            raise
+        finally:
+            for fd in child_ends:
+                _close(fd)
+        child = _Child(pid=popen.pid, name=request.name or os.path.basename(argv[0]), loop=loop, sink=sink,
+                       popen=popen, complete=loop.create_future())
+        if popen.stdin is not None:
+            child.stdin_fd = os.dup(popen.stdin.fileno())
+            popen.stdin.close()
+        for fd, stream in parent_ends:
+            os.set_blocking(fd, False)
+            child.readers[fd] = stream
+            loop.add_reader(fd, child._read, fd)
+        self._children.append(child)
+        self._watch_exit(child)
+        return child
+
+    def _watch_exit(self, child: _Child) -> None:
+        try:
+            child.pidfd = os.pidfd_open(child.pid)
+        except (AttributeError, OSError):
+            child.pidfd = None
+        if child.pidfd is not None:
+            child.loop.add_reader(child.pidfd, child._on_pidfd)
+            child._on_pidfd()  # it may already be gone
+            return
+        # no pidfd (old kernel, other platform): a thread waits for it
+        def wait() -> None:
+            try:
+                _, status = os.waitpid(child.pid, 0)
+                code = os.waitstatus_to_exitcode(status)
+            except ChildProcessError:
+                code = 0
+            try:
+                child.loop.call_soon_threadsafe(child._exited, code)
+            except RuntimeError:
+                pass  # the loop is closed: nobody is waiting any more
+
+        threading.Thread(target=wait, name=f'wait-{child.pid}', daemon=True).start()
+
+    def live_groups(self) -> list[tuple[int, str]]:
+        """(pgid, name) of the groups started here that still have a process."""
+        return [(c.pgid, c.name) for c in self._children if _group_alive(c.pgid)]
+
+    def signal_all(self, sig: int) -> None:
+        """Send `sig` to every group still alive."""
+        for child in self._children:
+            if child.returncode is None or _group_alive(child.pgid):
+                try:
+                    os.killpg(child.pgid, sig)
+                except (ProcessLookupError, PermissionError):
+                    pass
+
+    async def shutdown(self) -> None:
+        """End every group still alive: SIGTERM, then SIGKILL after `term_timeout_s`; release all pipes."""
+        alive = self.live_groups()
+        for pgid, name in alive:
+            logger.warning(f"process group {pgid} of '{name}' still running as the launch ends: sending SIGTERM")
+            _killpg(pgid, signal.SIGTERM)
+        deadline = time.monotonic() + self.term_timeout_s
+        while alive and time.monotonic() < deadline:
+            await asyncio.sleep(0.02)
+            alive = [(pgid, name) for pgid, name in alive if _group_alive(pgid)]
+        for pgid, name in alive:
+            logger.error(
+                f"process group {pgid} of '{name}' still running {self.term_timeout_s} s after SIGTERM: "
+                'sending SIGKILL')
+            _killpg(pgid, signal.SIGKILL)
+        for child in self._children:
+            if child.returncode is None:
+                await asyncio.wait([child.complete], timeout=self.term_timeout_s)
+            child.close()
+        self._children = [c for c in self._children if c.returncode is None]
+
+
+def _killpg(pgid: int, sig: int) -> None:
+    try:
+        os.killpg(pgid, sig)
+    except (ProcessLookupError, PermissionError):
+        pass
