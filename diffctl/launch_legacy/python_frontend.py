@@ -40,11 +40,20 @@ def use_overlay() -> None:
     ROS first: `diffctl.workspace.use_in_children`)."""
     from diffctl.workspace import PYTHON_PATH
 
-    overlay = str(PYTHON_PATH)
-    if sys.path[:1] != [overlay]:
-        if overlay in sys.path:
-            sys.path.remove(overlay)
-        sys.path.insert(0, overlay)
+    # The legacy engine's own `launch`, `launch_xml`, `launch_yaml` (ros_overlay/) come before the overlay's,
+    # which are diffctl.launch: this process runs the legacy engine, its launch files must build its entities.
+    legacy = str(Path(__file__).with_name("ros_overlay"))
+    for folder in (str(PYTHON_PATH), legacy):
+        if sys.path[:1] != [folder]:
+            if folder in sys.path:
+                sys.path.remove(folder)
+            sys.path.insert(0, folder)
+    for name, module in list(sys.modules.items()):
+        if name.split(".")[0] in ("launch", "launch_xml", "launch_yaml") and (
+            getattr(module, "__name__", "").startswith("diffctl.launch")
+            and not getattr(module, "__name__", "").startswith("diffctl.launch_legacy")
+        ):
+            del sys.modules[name]
 
 
 def _line_in(path: str, tb: types.TracebackType | None) -> int | None:

@@ -53,6 +53,9 @@ def forget_folders_taken_for_modules() -> None:
 
 
 def import_test_module(path: Path, name: str | None = None) -> Any:
+    from diffctl.launch_legacy.python_frontend import use_overlay
+
+    use_overlay()  # until launch_testing runs on diffctl.launch: the test's `launch` is the legacy engine's
     name = name or module_name_for(path)
     forget_folders_taken_for_modules()
     spec = importlib.util.spec_from_file_location(name, path)

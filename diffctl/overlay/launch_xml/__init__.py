@@ -1,5 +1,5 @@
-"""`launch_xml` on diffctl's launch engine (the names: diffctl/launch_legacy/ros_names.py)."""
+"""`launch_xml` is diffctl.launch_xml under ROS's name (see diffctl/module_alias.py)."""
 
-from diffctl.launch_legacy.ros_names import export as _export
+from diffctl.module_alias import alias
 
-__getattr__ = _export(__name__, globals())
+alias(__name__, 'diffctl.launch_xml')

@@ -1,0 +1,20 @@
+"""`launch` on diffctl's launch engine (the names: diffctl/launch_legacy/ros_names.py)."""
+
+import importlib
+
+from diffctl.launch_legacy.ros_names import export as _export
+
+__getattr__ = _export(__name__, globals())
+
+# As ROS's package, importing it makes its submodules reachable as attributes.
+for _name in (
+    "actions",
+    "conditions",
+    "descriptions",
+    "event_handlers",
+    "events",
+    "events.process",
+    "launch_description_sources",
+    "substitutions",
+):
+    importlib.import_module(f"{__name__}.{_name}")
