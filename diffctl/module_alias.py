@@ -11,7 +11,6 @@ answers for names whose top-level module is the aliased diffctl package.
 from __future__ import annotations
 
 import importlib
-import importlib.abc
 import importlib.machinery
 import sys
 from types import ModuleType
@@ -19,17 +18,15 @@ from types import ModuleType
 _aliases: dict[str, str] = {}  # ROS name -> diffctl package
 
 
-class _AliasLoader(importlib.abc.Loader):
-    """Hands back the already-importable diffctl module instead of making a new one."""
+class _AliasLoader:
+    """Hands back the already-imported diffctl module instead of making a new one."""
 
-    def __init__(self, target: str) -> None:
-        self.target = target
-        self.own_spec = None
+    def __init__(self, module: ModuleType) -> None:
+        self.module = module
+        self.own_spec = module.__spec__
 
     def create_module(self, spec: importlib.machinery.ModuleSpec) -> ModuleType:
-        module = importlib.import_module(self.target)
-        self.own_spec = module.__spec__
-        return module
+        return self.module
 
     def exec_module(self, module: ModuleType) -> None:
         # executed once already, under its diffctl name; the import system just replaced its __spec__
@@ -37,7 +34,7 @@ class _AliasLoader(importlib.abc.Loader):
         module.__spec__ = self.own_spec
 
 
-class _AliasFinder(importlib.abc.MetaPathFinder):
+class _AliasFinder:
     """Finds `launch.X.Y` as `diffctl.launch.X.Y` while `launch` is the aliased package."""
 
     def find_spec(self, fullname: str, path=None, target=None):
@@ -47,17 +44,16 @@ class _AliasFinder(importlib.abc.MetaPathFinder):
             return None
         if sys.modules.get(top) is not sys.modules.get(package):
             return None  # `launch` is someone else's (a sourced ROS 2)
-        target = f'{package}.{rest}'
+        name = f'{package}.{rest}'
         try:
-            target_spec = importlib.util.find_spec(target)
-        except (ImportError, ValueError):
-            return None
-        if target_spec is None:
-            return None
-        spec = importlib.machinery.ModuleSpec(
-            fullname, _AliasLoader(target), origin=target_spec.origin,
-            is_package=target_spec.submodule_search_locations is not None)
-        return spec
+            module = importlib.import_module(name)
+        except ModuleNotFoundError as e:
+            if e.name is not None and (name == e.name or name.startswith(e.name + '.')):
+                return None  # no such module: the import fails as usual
+            raise
+        return importlib.machinery.ModuleSpec(
+            fullname, _AliasLoader(module), origin=getattr(module, '__file__', None),
+            is_package=hasattr(module, '__path__'))
 
 
 _finder = _AliasFinder()
@@ -65,8 +61,6 @@ _finder = _AliasFinder()
 
 def alias(name: str, package: str) -> ModuleType:
     """Make the top-level module `name` be `package` (imported now), and its submodules `package`'s."""
-    import importlib.util
-
     module = importlib.import_module(package)
     _aliases[name] = package
     sys.modules[name] = module

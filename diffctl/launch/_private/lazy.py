@@ -8,19 +8,18 @@ from __future__ import annotations
 
 import importlib
 from collections.abc import Callable, Mapping
-from typing import Any
 
 
 def lazy_exports(
-    package: str, namespace: dict[str, Any], names: Mapping[str, str]
-) -> tuple[Callable[[str], Any], Callable[[], list[str]]]:
+    package: str, namespace: dict[str, object], names: Mapping[str, str]
+) -> tuple[Callable[[str], object], Callable[[], list[str]]]:
     """`__getattr__` and `__dir__` for `package`: `names` maps an attribute to the submodule holding it.
 
     A value starting with '.' names a submodule relative to the package; the attribute of the same name is
     read from it unless the value ends with ':' (the attribute is the submodule itself).
     """
 
-    def __getattr__(attr: str) -> Any:
+    def __getattr__(attr: str) -> object:
         where = names.get(attr)
         if where is None:
             # a submodule that is not re-exported by name (e.g. `launch.actions.timer_action`)

@@ -12,7 +12,6 @@ import datetime
 import locale
 import logging
 import os
-import socket
 import sys
 from typing import Any, ClassVar
 
@@ -41,6 +40,8 @@ def _get_logging_directory() -> str:
 
 
 def _make_unique_log_dir(*, base_path: str) -> str:
+    import socket
+
     while True:
         stamp = datetime.datetime.now().strftime('%Y-%m-%d-%H-%M-%S-%f')
         candidate = os.path.join(base_path, f'{stamp}-{socket.gethostname()}-{os.getpid()}')

@@ -10,7 +10,6 @@ the rest with the handler's formatter. This lets one screen handler print launch
 from __future__ import annotations
 
 import logging
-import logging.handlers
 from typing import Any
 
 _made: dict[str, type] = {}
@@ -40,6 +39,8 @@ def with_per_logger_formatting(cls: type) -> type:
 
 
 def _standard_handler(name: str) -> type | None:
+    import logging.handlers
+
     for module in (logging, logging.handlers):
         candidate = getattr(module, name, None)
         if isinstance(candidate, type) and issubclass(candidate, logging.Handler):
@@ -55,6 +56,8 @@ def __getattr__(name: str) -> Any:
         return made
     standard = _standard_handler(name)
     if standard is None:
+        import logging.handlers
+
         try:
             return getattr(logging.handlers, name)
         except AttributeError:
@@ -64,5 +67,7 @@ def __getattr__(name: str) -> Any:
 
 
 def __dir__() -> list[str]:
+    import logging.handlers
+
     names = {n for m in (logging, logging.handlers) for n in dir(m) if _standard_handler(n) is not None}
     return sorted(names | set(globals()))
