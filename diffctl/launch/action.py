@@ -66,12 +66,30 @@ class Action(LaunchDescriptionEntity):
 
     def visit(self, context: LaunchContext) -> list[LaunchDescriptionEntity] | None:
         """Execute the action when its condition allows, then report its completion."""
-        if self.__condition is not None and not self.__condition.evaluate(context):
-            return None
+        try:
+            if self.__condition is not None and not self.__condition.evaluate(context):
+                return None
+        except Exception as exc:
+            self.__locate(exc)
+            raise
         try:
             return self.execute(context)
+        except Exception as exc:
+            self.__locate(exc)
+            raise
         finally:
             self.__report_completion(context)
+
+    def __locate(self, exc: Exception) -> None:
+        # an action read from a markup file names its file and line in what it raises (see frontend.Parser)
+        location = getattr(self, '_frontend_location', None)
+        if location is not None and getattr(exc, 'launch_location', None) is None:
+            try:
+                exc.launch_location = location
+                if location not in str(exc):
+                    exc.add_note(f'raised by the action at {location}')
+            except (AttributeError, TypeError):
+                pass
 
     def __report_completion(self, context: LaunchContext) -> None:
         from .events.execution_complete import ExecutionComplete

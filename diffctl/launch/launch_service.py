@@ -67,7 +67,7 @@ class LaunchService:
         if spawner is None:
             from diffctl.supervision import PosixSpawner
 
-            spawner = PosixSpawner()
+            spawner = PosixSpawner(logger=launch_logging.get_logger('launch.supervision'))
         self.__context._spawner = spawner
         self.__context.register_event_handler(OnIncludeLaunchDescription())
         self.__context.register_event_handler(OnShutdown(on_shutdown=self.__on_shutdown))
@@ -284,8 +284,10 @@ class LaunchService:
         from ._private.locate import user_location
 
         where = user_location(exc)
-        message = 'Caught exception in launch (see debug for traceback): {}'.format(
-            f'{where}: {exc}' if where else exc)
+        text = str(exc)
+        if where and where not in text:
+            text = f'{where}: {text}'
+        message = f'Caught exception in launch (see debug for traceback): {text}'
         self.__logger.debug(''.join(traceback.format_exception(exc)))
         self.__logger.error(message)
         return message

@@ -12,8 +12,6 @@ import time
 from dataclasses import dataclass, field
 from typing import Literal, Protocol
 
-logger = logging.getLogger('launch.supervision')
-
 _READ_SIZE = 65536
 
 
@@ -76,13 +74,29 @@ class Spawner(Protocol):
 
 
 def _group_alive(pgid: int) -> bool:
+    """Whether a process of the group still runs (zombies, waiting for whoever reaps orphans, do not)."""
     try:
         os.killpg(pgid, 0)
     except ProcessLookupError:
         return False
     except PermissionError:
         return True
-    return True
+    try:
+        entries = os.listdir('/proc')
+    except OSError:
+        return True  # no /proc to tell zombies apart
+    for entry in entries:
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f'/proc/{entry}/stat', 'rb') as f:
+                fields = f.read().rsplit(b')', 1)[1].split()
+        except (OSError, IndexError):
+            continue
+        # fields: state, ppid, pgrp, ...
+        if len(fields) > 2 and int(fields[2]) == pgid and fields[0] not in (b'Z', b'X'):
+            return True
+    return False
 
 
 @dataclass(eq=False)
@@ -198,8 +212,9 @@ class PosixSpawner:
     still alive after `term_timeout_s` with SIGKILL, logging each step.
     """
 
-    def __init__(self, *, term_timeout_s: float = 2.0) -> None:
+    def __init__(self, *, term_timeout_s: float = 2.0, logger: logging.Logger | None = None) -> None:
         self.term_timeout_s = term_timeout_s
+        self.logger = logger if logger is not None else logging.getLogger('launch.supervision')
         self._children: list[_Child] = []
 
     async def spawn(self, request: SpawnRequest, sink: OutputSink) -> _Child:
@@ -276,24 +291,21 @@ class PosixSpawner:
     def signal_all(self, sig: int) -> None:
         """Send `sig` to every group still alive."""
         for child in self._children:
-            if child.returncode is None or _group_alive(child.pgid):
-                try:
-                    os.killpg(child.pgid, sig)
-                except (ProcessLookupError, PermissionError):
-                    pass
+            _killpg(child.pgid, sig)
 
     async def shutdown(self) -> None:
         """End every group still alive: SIGTERM, then SIGKILL after `term_timeout_s`; release all pipes."""
         alive = self.live_groups()
         for pgid, name in alive:
-            logger.warning(f"process group {pgid} of '{name}' still running as the launch ends: sending SIGTERM")
+            self.logger.warning(
+                f"process group {pgid} of '{name}' still running as the launch ends: sending SIGTERM")
             _killpg(pgid, signal.SIGTERM)
         deadline = time.monotonic() + self.term_timeout_s
         while alive and time.monotonic() < deadline:
             await asyncio.sleep(0.02)
             alive = [(pgid, name) for pgid, name in alive if _group_alive(pgid)]
         for pgid, name in alive:
-            logger.error(
+            self.logger.error(
                 f"process group {pgid} of '{name}' still running {self.term_timeout_s} s after SIGTERM: "
                 'sending SIGKILL')
             _killpg(pgid, signal.SIGKILL)

@@ -14,5 +14,7 @@ def spawner_for(context: LaunchContext) -> Any:
     if spawner is None:
         from diffctl.supervision import PosixSpawner
 
-        spawner = context._spawner = PosixSpawner()
+        from .. import logging as launch_logging
+
+        spawner = context._spawner = PosixSpawner(logger=launch_logging.get_logger('launch.supervision'))
     return spawner

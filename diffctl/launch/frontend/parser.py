@@ -58,7 +58,8 @@ def mark_location(exc: BaseException, entity: Any) -> None:
     if location and getattr(exc, 'launch_location', None) is None:
         try:
             exc.launch_location = location  # type: ignore[attr-defined]
-            exc.add_note(f'while parsing <{entity.type_name}> at {location}')
+            if location not in str(exc):
+                exc.add_note(f'while parsing <{entity.type_name}> at {location}')
         except (AttributeError, TypeError):
             pass  # exceptions that take no attributes keep their message as is
 
@@ -109,10 +110,17 @@ class Parser:
         """The action an entity describes, through the parse method registered for its tag."""
         self.load_launch_extensions()
         try:
-            return instantiate_action(entity, self)
+            action = instantiate_action(entity, self)
         except Exception as exc:
             mark_location(exc, entity)
             raise
+        location = getattr(entity, 'location', None)
+        if location is not None:
+            try:
+                action._frontend_location = location  # named by what the action raises when launched
+            except AttributeError:
+                pass
+        return action
 
     def parse_substitution(self, value: str) -> list[Substitution]:
         """The substitutions in an attribute value."""

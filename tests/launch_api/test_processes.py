@@ -1,0 +1,143 @@
+"""Real child processes under ExecuteProcess: output, process groups, escalation, signals, no leftovers."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import pytest
+
+from diffctl.launch import LaunchDescription, LaunchService
+from diffctl.launch.actions import EmitEvent, ExecuteProcess, RegisterEventHandler
+from diffctl.launch.event_handlers import OnProcessIO
+from diffctl.launch.events import Shutdown
+from tests.waiting import wait_for
+
+# a child that starts a grandchild in its own process group, prints its pid, then waits forever
+PARENT = textwrap.dedent('''
+    import subprocess, sys, time
+    grandchild = subprocess.Popen(['sleep', '60'])
+    print('grandchild', grandchild.pid, flush=True)
+    time.sleep(60)
+''')
+
+# a child that ignores SIGINT and SIGTERM: only SIGKILL ends it
+STUBBORN = textwrap.dedent('''
+    import signal, sys, time
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_IGN)
+    print('ready', flush=True)
+    time.sleep(60)
+''')
+
+
+def gone(pid: int) -> bool:
+    """Ended (a zombie waiting for whoever reaps orphans counts as ended)."""
+    try:
+        with open(f'/proc/{pid}/stat') as f:
+            return f.read().rsplit(')', 1)[1].split()[0] == 'Z'
+    except FileNotFoundError:
+        return True
+
+
+def shutdown_when(text: str, process: ExecuteProcess, seen: list[str]) -> RegisterEventHandler:
+    """Emit a Shutdown once `process` printed `text` (its output lines are collected in `seen`)."""
+    def on_stdout(event):
+        seen.extend(event.text.decode().splitlines())
+        if any(text in line for line in seen):
+            return EmitEvent(event=Shutdown(reason='test'))
+        return None
+
+    return RegisterEventHandler(OnProcessIO(target_action=process, on_stdout=on_stdout))
+
+
+def test_shutdown_signals_the_whole_group() -> None:
+    seen: list[str] = []
+    parent = ExecuteProcess(cmd=[sys.executable, '-c', PARENT], output='screen')
+    service = LaunchService(noninteractive=True)  # no terminal: launch sends the SIGINT itself
+    service.include_launch_description(LaunchDescription([parent, shutdown_when('grandchild', parent, seen)]))
+    assert service.run() == 0
+    grandchild = int(next(line for line in seen if line.startswith('grandchild')).split()[1])
+    assert parent.return_code == -signal.SIGINT
+    assert wait_for(lambda: gone(grandchild), 5.0), 'the SIGINT reached the process only, not its group'
+
+
+def test_escalation_to_sigterm_and_sigkill_is_logged(capsys: pytest.CaptureFixture[str]) -> None:
+    seen: list[str] = []
+    stubborn = ExecuteProcess(cmd=[sys.executable, '-c', STUBBORN], sigterm_timeout='0.2', sigkill_timeout='0.2')
+    service = LaunchService(noninteractive=True)
+    service.include_launch_description(LaunchDescription([stubborn, shutdown_when('ready', stubborn, seen)]))
+    assert service.run() == 0
+    assert stubborn.return_code == -signal.SIGKILL
+    out = capsys.readouterr().out
+    name = stubborn.process_details['name']
+    for step in (
+        f"[INFO] [{name}]: sending signal 'SIGINT' to process[{name}]",
+        f"[ERROR] [{name}]: process[{name}] failed to terminate '0.2' seconds after receiving 'SIGINT', "
+        "escalating to 'SIGTERM'",
+        f"[INFO] [{name}]: sending signal 'SIGTERM' to process[{name}]",
+        f"[ERROR] [{name}]: process[{name}] failed to terminate '0.4' seconds after receiving 'SIGTERM', "
+        "escalating to 'SIGKILL'",
+        f"[INFO] [{name}]: sending signal 'SIGKILL' to process[{name}]",
+    ):
+        assert step in out, out
+
+
+LAUNCHER = textwrap.dedent('''
+    import sys
+    from diffctl.launch import LaunchDescription, LaunchService
+    from diffctl.launch.actions import ExecuteProcess
+    child = {child!r}
+    service = LaunchService()
+    service.include_launch_description(LaunchDescription(
+        [ExecuteProcess(cmd=[sys.executable, '-c', child], output='screen', name='child')]))
+    sys.exit(service.run())
+''')
+
+POLITE = textwrap.dedent('''
+    import os, signal, sys, time
+    def bye(signum, frame):
+        print('got', signal.Signals(signum).name, flush=True)
+        sys.exit(0)
+    signal.signal(signal.SIGINT, bye)
+    print('ready', os.getpid(), flush=True)
+    time.sleep(60)
+''')
+
+
+def launcher(child: str, tmp_path: Path) -> tuple[subprocess.Popen, int]:
+    """A script running a LaunchService with one child; returns it once the child is up, and the child's pid."""
+    script = tmp_path / 'launcher.py'
+    script.write_text(LAUNCHER.format(child=child))
+    proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                            text=True, start_new_session=True, cwd=Path(__file__).resolve().parents[2])
+    for line in proc.stdout:
+        if line.startswith('[child-') and 'ready' in line:
+            return proc, int(line.split()[-1])
+    raise AssertionError('the child never started')
+
+
+@pytest.mark.parametrize(('sig', 'code', 'expect'), [
+    # Ctrl-C on a terminal: the SIGINT goes on to the child's own process group, which ends politely
+    (signal.SIGINT, 0, '[child-1] got SIGINT'),
+    # SIGTERM cancels the run; the child, still alive, is ended at the end of the run
+    (signal.SIGTERM, 1, "still running as the launch ends: sending SIGTERM"),
+])
+def test_signals_to_the_launcher(tmp_path: Path, sig: int, code: int, expect: str) -> None:
+    proc, child = launcher(POLITE, tmp_path)
+    try:
+        os.kill(proc.pid, sig)  # the launcher only, as `kill` would
+        out, _ = proc.communicate(timeout=30)
+        assert proc.returncode == code, out
+        assert expect in out, out
+        assert gone(child)
+    finally:
+        try:
+            os.killpg(proc.pid, signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        proc.wait()
