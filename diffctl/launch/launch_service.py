@@ -310,6 +310,13 @@ class LaunchService:
                 return loop.run_until_complete(run_task)
             except KeyboardInterrupt:
                 continue
+            except BaseException:
+                # something aborted the loop (SystemExit from a handler, a test's timeout): the run cannot go
+                # on, and no process may outlive it
+                kill_all = getattr(self.spawner, 'kill_all', None)
+                if kill_all is not None:
+                    kill_all()
+                raise
 
     # ---- shutdown ------------------------------------------------------------------------------------------
 

@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import asyncio
+import atexit
 import logging
 import os
 import signal
 import subprocess
 import threading
 import time
+import weakref
 from dataclasses import dataclass, field
 from typing import Literal, Protocol
 
@@ -205,6 +207,16 @@ def _close(fd: int) -> None:
         pass
 
 
+_spawners: weakref.WeakSet = weakref.WeakSet()
+
+
+@atexit.register
+def _kill_leftovers() -> None:
+    """At interpreter exit, SIGKILL every group a spawner started that is still alive (a run cut short)."""
+    for spawner in list(_spawners):
+        spawner.kill_all()
+
+
 class PosixSpawner:
     """Children in process groups of their own, watched on the asyncio loop.
 
@@ -216,6 +228,7 @@ class PosixSpawner:
         self.term_timeout_s = term_timeout_s
         self.logger = logger if logger is not None else logging.getLogger('launch.supervision')
         self._children: list[_Child] = []
+        _spawners.add(self)
 
     async def spawn(self, request: SpawnRequest, sink: OutputSink) -> _Child:
         loop = asyncio.get_running_loop()
@@ -283,6 +296,13 @@ class PosixSpawner:
                 pass  # the loop is closed: nobody is waiting any more
 
         threading.Thread(target=wait, name=f'wait-{child.pid}', daemon=True).start()
+
+    def kill_all(self) -> None:
+        """SIGKILL every group still alive, now, without the loop (a run aborted, the interpreter exiting)."""
+        for child in self._children:
+            if child.returncode is None or _group_alive(child.pgid):
+                self.logger.error(f"killing process group {child.pgid} of '{child.name}': the launch was aborted")
+                _killpg(child.pgid, signal.SIGKILL)
 
     def live_groups(self) -> list[tuple[int, str]]:
         """(pgid, name) of the groups started here that still have a process."""

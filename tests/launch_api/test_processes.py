@@ -141,3 +141,22 @@ def test_signals_to_the_launcher(tmp_path: Path, sig: int, code: int, expect: st
         except ProcessLookupError:
             pass
         proc.wait()
+
+
+def test_a_run_cut_short_leaves_no_process() -> None:
+    """A run aborted from inside (SystemExit out of a handler) leaves no child behind."""
+    from diffctl.launch.actions import OpaqueFunction
+    from diffctl.launch.event_handlers import OnProcessStart
+
+    def give_up(context) -> None:
+        raise SystemExit('giving up')
+
+    sleeper = ExecuteProcess(cmd=['sleep', '60'])
+    service = LaunchService()
+    service.include_launch_description(LaunchDescription([
+        sleeper,
+        RegisterEventHandler(OnProcessStart(target_action=sleeper, on_start=[OpaqueFunction(function=give_up)])),
+    ]))
+    with pytest.raises(SystemExit):
+        service.run()
+    assert wait_for(lambda: gone(sleeper.process_details['pid']), 5.0)
