@@ -32,6 +32,9 @@ COMPONENTS: dict[tuple[str, str], tuple[str, ...]] = {
     ("tf2_ros", "static_transform_publisher"): ("tf2", "static_transform_publisher"),
     ("tf2_ros", "tf2_echo"): ("tf2", "tf2_echo"),
     ("diffctl", "router"): ("router",),
+    ("robot_localization", "ekf_node"): ("robot-localization", "ekf_node"),
+    ("robot_localization", "ukf_node"): ("robot-localization", "ukf_node"),
+    ("robot_localization", "navsat_transform_node"): ("robot-localization", "navsat_transform_node"),
     # Containers of composable nodes: Python components in one process (diffctl/launch/composable.py)
     ("rclcpp_components", "component_container"): ("component-container",),
     ("rclcpp_components", "component_container_mt"): ("component-container", "--multi-threaded"),
