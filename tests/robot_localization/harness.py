@@ -71,12 +71,13 @@ class Driver:
         with self.lock:
             self.last.pop(topic, None)
 
-    def publisher(self, topic: str, typename: str, *, wait_s: float = 30.0) -> Any:
+    def publisher(self, topic: str, typename: str, *, subscribers: int = 1, wait_s: float = 30.0) -> Any:
+        """A publisher on `topic` once `subscribers` nodes subscribe to it (nothing published is lost)."""
         if topic not in self.pubs:
             pub = self.node.create_publisher(topic, typename)
             deadline = time.monotonic() + wait_s
-            while pub.subscription_count == 0:
-                assert time.monotonic() < deadline, f"nobody subscribes to {topic}"
+            while pub.subscription_count < subscribers:
+                assert time.monotonic() < deadline, f"{pub.subscription_count} of {subscribers} subscribe to {topic}"
                 time.sleep(0.01)
             self.pubs[topic] = pub
         return self.pubs[topic]
