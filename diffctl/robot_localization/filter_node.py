@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from diffctl.client.messages import get_interface as msg
+from diffctl.interfaces import get_interface as msg
 from diffctl.robot_localization import params as params_mod
 from diffctl.robot_localization.estimator import Estimator
 from diffctl.robot_localization.filter_base import FilterBase, Measurement

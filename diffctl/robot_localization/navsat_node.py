@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from diffctl.client.messages import get_interface as msg
+from diffctl.interfaces import get_interface as msg
 from diffctl.robot_localization import navsat_conversions as nc
 from diffctl.robot_localization.navsat import NavSat, NavSatParams
 from diffctl.robot_localization.ros_messages import TfTree, quat_of, stamp_ns, time_msg, transform_msg, xyz_of

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from diffctl.client.messages import get_interface
+from diffctl.interfaces import get_interface
 from diffctl.robot_localization.rotations import Rigid
 from diffctl.tf2.buffer_core import BufferCore
 from diffctl.tf2.exceptions import TransformException
