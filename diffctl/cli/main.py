@@ -48,6 +48,15 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "diffctl.robot_localization.cli:robot_localization",
         "robot_localization's ekf_node, ukf_node and navsat_transform_node.",
     ),
+    "topic-tools": (
+        "diffctl.topic_tools.cli:topic_tools",
+        "topic_tools' relay, throttle, drop, delay, mux, demux and relay_field.",
+    ),
+    "twist-mux": ("diffctl.twist_mux.cli:twist_mux", "twist_mux: velocity commands by priority, timeouts and locks."),
+    "twist-stamper": (
+        "diffctl.twist_stamper.cli:twist_stamper",
+        "twist_stamper's twist_stamper and twist_unstamper (Twist <-> TwistStamped).",
+    ),
     "test": ("diffctl.testing.cli:test", "Run launch tests and pytest files (launch_test, colcon test)."),
     "test-child": ("diffctl.testing.cli:test_child", "(internal) one launch test forked by `diffctl test -j`."),
     "component-container": (
