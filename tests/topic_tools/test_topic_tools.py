@@ -93,7 +93,8 @@ def test_throttle_by_messages_and_by_bytes(router: str, procs) -> None:
             for round_ in (1, 2):
                 for text in burst:
                     pub.publish({"data": text})
-                assert wait_for(lambda: len(probe.data()) >= passing * round_, timeout_s=30), probe.data()
+                want = passing * round_
+                assert wait_for(lambda p=probe, n=want: len(p.data()) >= n, timeout_s=30), probe.data()
                 time.sleep(1.1)
             assert probe.data() == ["not dropped"] * (2 * passing)
     finally:
