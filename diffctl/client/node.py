@@ -37,7 +37,7 @@ from diffctl.client.names import (
 from diffctl.client.node_parameters import NodeParameters
 from diffctl.client.parameter import Parameter, from_python_value
 from diffctl.client.publisher import Publisher
-from diffctl.client.qos_overriding_options import declare_qos_parameters
+from diffctl.client.qos_overriding_options import QoSOverridingOptions, declare_qos_parameters
 from diffctl.client.ros_logging import RcutilsLogger, get_logger
 from diffctl.client.ros_time import Time
 from diffctl.client.rosout import Rosout
@@ -51,6 +51,9 @@ CLOCK_TOPIC = "/clock"
 USE_SIM_TIME_NAME = "use_sim_time"
 # rmw_qos_profile_parameter_events: reliable, volatile, keep_last 1000
 PARAMETER_EVENTS_QOS = wire.QoS(depth=1000)
+# What rclcpp lets a user override on /parameter_events and on the time source's /clock subscription
+_ALL_OVERRIDES = QoSOverridingOptions([_qos.QoSPolicyKind.DEPTH, _qos.QoSPolicyKind.DURABILITY,
+                                       _qos.QoSPolicyKind.HISTORY, _qos.QoSPolicyKind.RELIABILITY])
 
 
 _CLOCK_STAMP = struct.Struct("<iI")
@@ -85,6 +88,9 @@ class TimeSource:
             c._set_ros_time_is_active(enabled)
         bus = self._node._bus
         if enabled and self._sub is None:
+            if self._node._rclcpp:
+                declare_qos_parameters("subscription", self._node, CLOCK_TOPIC, _qos.QoSProfile(
+                    depth=1, reliability=_qos.ReliabilityPolicy.BEST_EFFORT), _ALL_OVERRIDES, rclcpp=True)
             self._sub = bus.create_subscription("/clock", "rosgraph_msgs/msg/Clock", self._on_clock, raw=True,
                                                 qos=wire.QoS(reliable=False, depth=1))
         elif not enabled and self._sub is not None:
@@ -131,7 +137,11 @@ class Node:
                  start_parameter_services: bool = True, parameter_overrides: list[Parameter] | None = None,
                  allow_undeclared_parameters: bool = False,
                  automatically_declare_parameters_from_overrides: bool = False,
-                 enable_logger_service: bool = False) -> None:
+                 enable_logger_service: bool = False, client_library: str = "rclpy") -> None:
+        """`client_library="rclcpp"` (diffctl's own addition) makes the node declare what an rclcpp node
+        declares — the read-only QoS overrides of /parameter_events (and of /clock with use_sim_time), rclcpp's
+        descriptions — so a diffctl component ROS writes in C++ lists the parameters the real one lists."""
+        self._rclcpp = client_library == "rclcpp"
         self._context = get_default_context() if context is None else context
         self._publishers: list[Publisher] = []
         self._subscriptions: list[Subscription] = []
@@ -195,6 +205,9 @@ class Node:
         from diffctl.client.type_description_service import TypeDescriptionService
 
         self._type_description_service = TypeDescriptionService(self)
+        if self._rclcpp:
+            declare_qos_parameters("publisher", self, "/parameter_events",
+                                   _qos.QoSProfile(depth=1000), _ALL_OVERRIDES, rclcpp=True)
         if enable_logger_service:
             from diffctl.client.logging_service import LoggingService
 
@@ -419,7 +432,7 @@ class Node:
         callback_group = callback_group or self.default_callback_group
         full = self.resolve_topic_name(topic)
         if qos_overriding_options is not None:
-            declare_qos_parameters("publisher", self, full, qos_profile, qos_overriding_options)
+            declare_qos_parameters("publisher", self, full, qos_profile, qos_overriding_options, rclcpp=self._rclcpp)
         typename = check_message_type(msg_type)
         bus_pub = self._bus.create_publisher(full, typename, qos=_qos.to_wire(qos_profile))
         bus_pub.client_node = self
@@ -439,7 +452,8 @@ class Node:
         callback_group = callback_group or self.default_callback_group
         full = self.resolve_topic_name(topic)
         if qos_overriding_options is not None:
-            declare_qos_parameters("subscription", self, full, qos_profile, qos_overriding_options)
+            declare_qos_parameters("subscription", self, full, qos_profile, qos_overriding_options,
+                                   rclcpp=self._rclcpp)
         typename = check_message_type(msg_type)
         sub = Subscription(self, msg_type, topic, callback, callback_group, qos_profile, raw,
                            event_callbacks=event_callbacks or SubscriptionEventCallbacks())

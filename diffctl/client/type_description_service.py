@@ -12,6 +12,8 @@ from diffctl.interfaces import types
 from diffctl.interfaces.type_description import SERVICE_TYPE, describe
 
 START_TYPE_DESCRIPTION_SERVICE_PARAM = "start_type_description_service"
+_RCLPY_TEXT = "If enabled, start the ~/get_type_description service."
+_RCLCPP_TEXT = "Start the ~/get_type_description service for this node."
 
 
 class TypeDescriptionService:
@@ -21,7 +23,7 @@ class TypeDescriptionService:
         self._type_description_srv: Any = None
         descriptor = cls("rcl_interfaces/msg/ParameterDescriptor")(
             name=START_TYPE_DESCRIPTION_SERVICE_PARAM, type=Parameter.Type.BOOL.value,
-            description="If enabled, start the ~/get_type_description service.", read_only=True)
+            description=_RCLCPP_TEXT if getattr(node, "_rclcpp", False) else _RCLPY_TEXT, read_only=True)
         self.enabled = bool(node.declare_parameter(START_TYPE_DESCRIPTION_SERVICE_PARAM, True, descriptor).value)
         if self.enabled:
             self._type_description_srv = node.create_service(
