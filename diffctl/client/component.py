@@ -2,8 +2,10 @@
 
 `run(make)` initialises the client with the process's `--ros-args` (so `--log-level`, remaps and parameter
 files apply as to any ROS node), builds the node with `make()`, spins it until SIGINT/SIGTERM, shutdown, or the
-loss of the Zenoh router, then tears down in rclpy's order. A parameter refused while `make()` declares it is
-bad input: one line naming the parameter and the value, exit code 2, the node gone before it published.
+loss of the Zenoh router, then tears down in rclpy's order. `start(make)` is the same for a program whose main
+thread has its own loop (a terminal, a game pad, a web server): the node spins on a thread of its own and
+`stop()` tears it down. A parameter refused while `make()` declares it is bad input: one line naming the
+parameter and the value, exit code 2, the node gone before it published.
 """
 
 from __future__ import annotations
@@ -58,6 +60,44 @@ def run(make: Callable[[], Any], *, executor: Any = None) -> int:
         print(f"error: lost the Zenoh router at {_router()}; shut down", file=sys.stderr)
         return 1
     return 0
+
+
+class Started:
+    """A node spinning on its own thread; `stop()` (idempotent) destroys it and closes the session."""
+
+    def __init__(self, node: Any) -> None:
+        self.node = node
+        self._executor = SingleThreadedExecutor()
+        self._executor.add_node(node)
+        self._thread = threading.Thread(target=self._spin, name="node-executor", daemon=True)
+        self._thread.start()
+
+    def _spin(self) -> None:
+        try:
+            while runtime.ok():
+                self._executor.spin_once()
+        except ExternalShutdownException:
+            pass
+
+    def stop(self) -> None:
+        if self.node is None:
+            return
+        node, self.node = self.node, None
+        runtime.try_shutdown()
+        self._thread.join(2.0)
+        node.destroy_node()
+        from diffctl.bus.session import close_session
+
+        close_session()
+
+
+def start(make: Callable[[], Any]) -> Started:
+    init()
+    try:
+        node = make()
+    except BAD_PARAMETER as e:
+        raise ConfigError(str(e)) from None
+    return Started(node)
 
 
 def _router() -> str:
