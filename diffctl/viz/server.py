@@ -269,7 +269,7 @@ class VizServer:
                 await self._reply(page, self._template(msg.get("type")))
             elif op in ("teleop", "publish", "publish_stop"):
                 if not page.authorized:
-                    self.log.throttled(f"refused{id(page)}", f"refused '{op}' from a page without the token")
+                    self.log.warning(f"refused '{op}' from a page without the token", throttle_duration_sec=5.0)
                     await self._reply(
                         page,
                         {
@@ -398,7 +398,7 @@ class VizServer:
             try:
                 await self._tick(started)
             except Exception as e:  # a bad frame must not stop the page from updating
-                self.log.throttled("tick", f"frame failed: {type(e).__name__}: {e}", level="ERROR")
+                self.log.error(f"frame failed: {type(e).__name__}: {e}", throttle_duration_sec=5.0)
             await asyncio.sleep(max(0.0, self.tick_s - (time.monotonic() - started)))
 
     async def _tick(self, now: float) -> None:
