@@ -187,7 +187,8 @@ class Node:
                 self._remaps.setdefault(self._expand(k), self._expand(v))
             except Exception:
                 continue  # a rule for a name this node cannot have
-        self._params = NodeParameters(overrides=overrides, allow_undeclared=allow_undeclared_parameters)
+        self._params = NodeParameters(overrides=overrides, allow_undeclared=allow_undeclared_parameters,
+                                      rclcpp=self._rclcpp)
         self._parameter_events = self._bus.create_publisher("/parameter_events", "rcl_interfaces/msg/ParameterEvent",
                                                             qos=PARAMETER_EVENTS_QOS)
         self._params.on_event = self._publish_parameter_event

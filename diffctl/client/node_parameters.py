@@ -27,6 +27,9 @@ from diffctl.client.interfaces import cls
 from diffctl.client.parameter import PARAMETER_SEPARATOR_STRING, Parameter
 
 PARAM_REL_TOL = 1e-6
+# rclcpp::to_string(ParameterType)
+_RCLCPP_TYPE = {0: "not set", 1: "bool", 2: "integer", 3: "double", 4: "string", 5: "byte_array", 6: "bool_array",
+                7: "integer_array", 8: "double_array", 9: "string_array"}
 
 
 def _descriptor(**kw: Any) -> Any:
@@ -58,8 +61,10 @@ def validate_parameter_name(name: str) -> bool:
 
 
 class NodeParameters:
-    def __init__(self, *, overrides: dict[str, Parameter], allow_undeclared: bool) -> None:
+    def __init__(self, *, overrides: dict[str, Parameter], allow_undeclared: bool, rclcpp: bool = False) -> None:
+        """`rclcpp`: refusals worded as rclcpp words them (a diffctl node that ROS writes in C++)."""
         self.allow_undeclared = allow_undeclared
+        self.rclcpp = rclcpp
         self.param_overrides = overrides
         self.parameters: dict[str, Parameter] = {}
         self.msg_descriptors: dict[str, Any] = {}
@@ -273,18 +278,27 @@ class NodeParameters:
     def _apply_descriptor(self, p: Parameter, descriptor: Any, check_read_only: bool) -> Any:
         descriptor.name = p.name
         if check_read_only and descriptor.read_only:
-            return _result(False, f"Trying to set a read-only parameter: {p.name}.")
+            return _result(False, f"parameter '{p.name}' cannot be set because it is read-only" if self.rclcpp
+                           else f"Trying to set a read-only parameter: {p.name}.")
         if descriptor.dynamic_typing:
             descriptor.type = p.type_.value
         elif p.name in self.parameters and p.type_ == Parameter.Type.NOT_SET:
             return _result(False, "Static parameter cannot be undeclared")
         elif p.type_ != Parameter.Type.NOT_SET and p.type_.value != descriptor.type:
+            if self.rclcpp:
+                return _result(False, f"Wrong parameter type, parameter {{{p.name}}} is of type "
+                                      f"{{{_RCLCPP_TYPE[descriptor.type]}}}, setting it to "
+                                      f"{{{_RCLCPP_TYPE[p.type_.value]}}} is not allowed.")
             return _result(False, f"Wrong parameter type, expected '{Parameter.Type(descriptor.type)}' "
                                   f"got '{p.type_}'")
         if p.type_ == Parameter.Type.INTEGER and descriptor.integer_range:
-            return _integer_range(p, descriptor.integer_range[0])
+            r = _integer_range(p, descriptor.integer_range[0])
+            return _result(False, f"Parameter {{{p.name}}} doesn't comply with integer range.") \
+                if self.rclcpp and not r.successful else r
         if p.type_ == Parameter.Type.DOUBLE and descriptor.floating_point_range:
-            return _float_range(p, descriptor.floating_point_range[0])
+            r = _float_range(p, descriptor.floating_point_range[0])
+            return _result(False, f"Parameter {{{p.name}}} doesn't comply with floating point range.") \
+                if self.rclcpp and not r.successful else r
         return _result(True)
 
     def _set_common(self, plist: list[Parameter], descriptors: dict[str, Any] | None = None,
