@@ -7,7 +7,7 @@ import numpy as np
 
 from diffctl.robot_localization import motion_model
 from diffctl.robot_localization.filter_base import FilterBase, Measurement, passes_mahalanobis
-from diffctl.robot_localization.state import ANGLES, AX, STATE_SIZE, VROLL, wrap_angles
+from diffctl.robot_localization.state import ANGLES, AX, VROLL, wrap_angles
 
 _ANGLE_SET = frozenset(ANGLES)
 
@@ -45,7 +45,8 @@ class Ekf(FilterBase):
         if not passes_mahalanobis(innovation, s_inv, m.mahalanobis_threshold):
             return
         self.state = self.state + gain @ innovation
-        residual = np.eye(STATE_SIZE)
-        residual[:, idx] -= gain
-        self.covariance = residual @ p @ residual.T + gain @ r @ gain.T
+        # Joseph form (I-KH)·P·(I-KH)ᵀ + K·R·Kᵀ, with H picking columns: (I-KH)·P = P - K·P[idx], then
+        # ·(I-KH)ᵀ = A - A[:, idx]·Kᵀ — two thin products instead of two full 15×15 ones.
+        a = p - gain @ p[idx, :]
+        self.covariance = a - a[:, idx] @ gain.T + gain @ r @ gain.T
         self.wrap_state_angles()
