@@ -14,7 +14,7 @@ import numpy as np
 
 from diffctl.robot_localization.ekf import Ekf
 from diffctl.robot_localization.filter_base import FilterBase, Measurement
-from diffctl.robot_localization.state import STATE_SIZE, VX, VY, VYAW, X, Y, YAW
+from diffctl.robot_localization.state import STATE_SIZE, VX, VY, VYAW, YAW, X, Y
 from diffctl.robot_localization.ukf import Ukf
 
 STEP_NS = 20_000_000
