@@ -13,7 +13,7 @@ from pathlib import Path
 
 from bench.budget import BUDGET, verdict
 
-MODULES = ["bus", "launch", "control", "sim", "stack", "fleet", "client", "messages", "testing"]
+MODULES = ["bus", "launch", "control", "sim", "stack", "fleet", "client", "messages", "testing", "localization"]
 RESULTS = Path(__file__).resolve().parent / "results"
 
 

@@ -6,6 +6,7 @@ import os
 import threading
 import time
 from pathlib import Path
+from typing import Any
 
 import click
 
@@ -64,7 +65,6 @@ def record(topic_args: tuple[str, ...], all_: bool, all_topics: bool, topics_opt
     from diffctl.bag.presets import preset
     from diffctl.bag.recorder import Recorder, Selection
     from diffctl.bag.writer import BagWriter, preset_options
-    from diffctl.bus import Node
 
     if storage != "mcap":
         raise ConfigError(f"--storage {storage!r} is not available", hint="valid: mcap")
@@ -79,16 +79,25 @@ def record(topic_args: tuple[str, ...], all_: bool, all_topics: bool, topics_opt
     if out.exists():
         raise ConfigError(f"output folder {out} already exists", hint="choose another -o or remove it")
     stop = stop_on_signals()
-    node = Node("rosbag2_recorder")
+    node = _start_node("rosbag2_recorder")
     writer = BagWriter(out, options)
-    recorder = Recorder(node, writer, selection, say=lambda s: info(s))
+    # Recording is a hot path: raw subscriptions on the node's wire presence, beside the client Node.
+    recorder = Recorder(node.node.bus_node, writer, selection, say=lambda s: info(s))
     recorder.start()
     info(f"Recording to {out} … (Ctrl-C stops and closes the bag)")
     started = time.monotonic()
     stop.wait()
     meta = recorder.stop()
+    node.stop()
     console.print(f"Recording stopped: {meta.message_count} messages on {len(meta.topics)} topics in "
                   f"{time.monotonic() - started:.1f} s, written to {out}", markup=False)
+
+
+def _start_node(name: str) -> Any:
+    from diffctl.client import component
+    from diffctl.client.node import Node
+
+    return component.start(lambda: Node(name, client_library="rclcpp"))
 
 
 @bag.command("info")
@@ -140,7 +149,6 @@ def play(bag_path: Path, rate: float, loop: bool, clock_hz: float, start_offset:
     from diffctl.bag.keys import TerminalKeys
     from diffctl.bag.player import RATE_STEP, Player, PlayOptions
     from diffctl.bag.reader import Bag
-    from diffctl.bus import Node
     from diffctl.interfaces import types
 
     options = PlayOptions(rate=rate, loop=loop, clock_hz=clock_hz, start_offset_s=start_offset,
@@ -152,7 +160,8 @@ def play(bag_path: Path, rate: float, loop: bool, clock_hz: float, start_offset:
         if not played:
             raise ConfigError(f"{bag_path}: nothing to play", hint="the bag has no messages on the chosen topics")
         stop = stop_on_signals()
-        node = Node("rosbag2_player")
+        started = _start_node("rosbag2_player")
+        node = started.node.bus_node  # the recorded bytes go out as they are, on raw publishers
         pubs = make_publishers(node, played)
         clock_pub = node.create_publisher("/clock", "rosgraph_msgs/msg/Clock") if clock_hz else None
         wanted = set(pubs)
@@ -180,7 +189,7 @@ def play(bag_path: Path, rate: float, loop: bool, clock_hz: float, start_offset:
                 info("SPACE pause/resume, → next message (paused), ↑/↓ rate ±0.1")
             n = player.run()
         time.sleep(0.2)  # the last samples leave before the session closes
-        node.close()
+        started.stop()
         info(f"played {n} messages")
     finally:
         b.close()

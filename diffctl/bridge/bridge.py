@@ -8,7 +8,13 @@ Semantics follow ros_gz_bridge's parameter_bridge:
   simulator renders a camera only while its gz topic is matched, so the bridge subscribes to it only while
   someone on the ROS side wants the frames (docs: ARCHITECTURE "Sensors without a GPU");
 - a bidirectional entry never echoes what it published itself back to where it came from (gz side: the
-  Zenoh locality of the gz endpoints; ROS side: the subscription ignores this process's own publishers).
+  Zenoh locality of the gz endpoints; ROS side: the subscription ignores this process's own publishers);
+- each ROS endpoint's QoS is declared as read-only `qos_overrides./<topic>.publisher.*` (deadline, depth,
+  durability, history, liveliness, reliability) or `.subscription.*` (history, depth, reliability) parameters,
+  so `bridge_params` can make a topic transient local as in ROS.
+
+The forwarding itself is a measured hot path: its ROS endpoints are raw ones on the node's wire presence
+(`node.bus_node`), beside the client Node that holds the parameters, logging and services.
 """
 
 from __future__ import annotations
@@ -21,9 +27,28 @@ from typing import Any
 import zenoh
 
 from diffctl.bridge.config import BridgeEntry
-from diffctl.bus import Node, gz, wire
+from diffctl.bus import gz, wire
+from diffctl.client import qos as client_qos
+from diffctl.client.qos_overriding_options import QoSOverridingOptions, declare_qos_parameters
 from diffctl.errors import MessageError
 from diffctl.interfaces import types
+
+_Kind = client_qos.QoSPolicyKind
+# ros_gz_bridge's factory.hpp: what its publishers and subscriptions let parameters override
+PUBLISHER_OVERRIDES = QoSOverridingOptions([_Kind.DEADLINE, _Kind.DEPTH, _Kind.DURABILITY, _Kind.HISTORY,
+                                            _Kind.LIVELINESS, _Kind.RELIABILITY])
+SUBSCRIPTION_OVERRIDES = QoSOverridingOptions.with_default_policies()
+
+
+def declared_qos(node: Any, topic: str, entry: BridgeEntry, kind: str) -> wire.QoS:
+    """The endpoint's QoS after its overrides, declared on `node` as rclcpp declares them."""
+    depth = entry.qos.depth or (entry.publisher_queue if kind == "publisher" else entry.subscriber_queue)
+    reliability = client_qos.ReliabilityPolicy.RELIABLE if entry.qos.reliable else \
+        client_qos.ReliabilityPolicy.BEST_EFFORT
+    profile = client_qos.QoSProfile(depth=depth, reliability=reliability)
+    declare_qos_parameters(kind, node, topic, profile,
+                           PUBLISHER_OVERRIDES if kind == "publisher" else SUBSCRIPTION_OVERRIDES, rclcpp=True)
+    return client_qos.to_wire(profile)
 
 
 def _stamp_now(msg: Any, now: Any) -> None:
@@ -51,20 +76,16 @@ class GzToRos:
     def __init__(self, bridge: Bridge, entry: BridgeEntry) -> None:
         self.entry = entry
         self.bridge = bridge
-        self.node = bridge.node
+        self.node = bridge.wire
         self.count = 0
         self._lock = threading.Lock()
         self._sub: Any = None
         self._token: Any = None
         self._closed = False
         self.on_demand = entry.lazy or entry.gz_type in RENDERED_GZ_TYPES
-        self.pub = self.node.create_publisher(
-            entry.ros_topic,
-            entry.ros_type,
-            depth=entry.publisher_queue,
-            latched=bridge.latched(entry.ros_topic),
-            reliable=entry.qos.reliable,
-        )
+        topic = bridge.node.resolve_topic_name(entry.ros_topic)
+        self.pub = self.node.create_publisher(topic, entry.ros_type,
+                                              qos=declared_qos(bridge.node, topic, entry, "publisher"))
         # Nobody subscribed on the ROS side: a sample would be converted and put for no one, so it is only
         # counted (a latched topic keeps every sample for late joiners). Zenoh tells when that changes.
         self._heard = True
@@ -118,7 +139,7 @@ class GzToRos:
                 _stamp_now(msg, types.time_msg(time.time_ns()))
             cdr = _serialize(msg, e.ros_type)
         except MessageError as err:
-            self.node.log.throttled(f"gz{e.gz_topic}", f"dropped a sample on gz {e.gz_topic}: {err}")
+            self.node.throttled(f"gz{e.gz_topic}", f"dropped a sample on gz {e.gz_topic}: {err}")
             return
         try:
             self.pub.publish_raw(cdr)
@@ -139,11 +160,13 @@ class RosToGz:
 
     def __init__(self, bridge: Bridge, entry: BridgeEntry) -> None:
         self.entry = entry
-        self.node = bridge.node
+        self.node = bridge.wire
         self.count = 0
         self._lock = threading.Lock()
         self._sub: Any = None
         self._closed = False
+        self._topic = bridge.node.resolve_topic_name(entry.ros_topic)
+        self._qos = declared_qos(bridge.node, self._topic, entry, "subscription")
         self._gz_key = gz.key(entry.gz_topic)
         self.gz_pub = self.node.session.declare_publisher(self._gz_key, allowed_destination=zenoh.Locality.REMOTE)
         self._token = gz.announce(self.node.session, "pub", entry.gz_topic, entry.gz_type)
@@ -162,12 +185,7 @@ class RosToGz:
                 return
             if on and self._sub is None:
                 self._sub = self.node.create_subscription(
-                    self.entry.ros_topic,
-                    self.entry.ros_type,
-                    self._on_cdr,
-                    depth=self.entry.subscriber_queue,
-                    reliable=self.entry.qos.reliable,
-                    raw=True,
+                    self._topic, self.entry.ros_type, self._on_cdr, qos=self._qos, raw=True,
                     ignore_local=True,  # never send our own gz→ROS output back to gz
                 )
             elif not on and self._sub is not None:
@@ -182,7 +200,7 @@ class RosToGz:
             msg = types.deserialize(cdr, e.ros_type)
             payload = gz.encode(e.gz_type, e.pair.convert_to_gz(msg))
         except MessageError as err:
-            self.node.log.throttled(f"ros{e.ros_topic}", f"dropped a message on {e.ros_topic}: {err}")
+            self.node.throttled(f"ros{e.ros_topic}", f"dropped a message on {e.ros_topic}: {err}")
             return
         try:
             self.gz_pub.put(payload)
@@ -201,19 +219,16 @@ class RosToGz:
 class Bridge:
     """All channels of a bridge config on one node; `start()` declares them, `close()` removes them."""
 
-    def __init__(self, node: Node, entries: list[BridgeEntry]) -> None:
+    def __init__(self, node: Any, entries: list[BridgeEntry]) -> None:
+        """`node`: the client Node (parameters, names); the channels' endpoints go on its wire presence."""
         self.node = node
+        self.wire = node.bus_node
         self.entries = entries
-        self.wall_stamps = bool(node.params.get("override_timestamps_with_wall_time", False))
+        self.wall_stamps = bool(node.get_parameter_or("override_timestamps_with_wall_time").value)
         self.gz_to_ros: list[GzToRos] = []
         self.ros_to_gz: list[RosToGz] = []
         self._listeners: list[Any] = []
         self._closed = False
-
-    def latched(self, ros_topic: str) -> bool:
-        # ros_gz_bridge has no qos key; durability comes from qos_overrides parameters, as in ROS.
-        value = self.node.params.get(f"qos_overrides.{self.node.resolve(ros_topic)}.publisher.durability", "")
-        return str(value).lower() == "transient_local"
 
     def start(self) -> Bridge:
         for e in self.entries:
@@ -233,7 +248,7 @@ class Bridge:
             if not ch.on_demand:
                 ch.set_active(True)
         if any(ch.on_demand for ch in self.gz_to_ros):
-            self.node.graph.add_listener(self._on_graph)
+            self.wire.graph.add_listener(self._on_graph)
             for ch in self.gz_to_ros:
                 if ch.on_demand:
                     ch.set_active(ch.other_subscribers() > 0)

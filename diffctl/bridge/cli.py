@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 from typing import Any
 
 import click
@@ -34,7 +35,10 @@ def collect_entries(
     entries: list[BridgeEntry] = []
     if config_file:
         entries += load_config(str(config_file), gz_namespace=gz_namespace)
-    entries += [parse_cli_entry(arg, i) for i, arg in enumerate(topics)]
+    # parameter_bridge's `lazy` parameter makes every command-line entry lazy
+    lazy = _bool_param(params, "lazy")
+    entries += [dataclasses.replace(parse_cli_entry(arg, i), lazy=lazy) if lazy else parse_cli_entry(arg, i)
+                for i, arg in enumerate(topics)]
     if not entries:
         raise ConfigError(
             "nothing to bridge",
@@ -52,7 +56,7 @@ def collect_entries(
     type=click.Path(dir_okay=False),
     help="ros_gz_bridge YAML config (also: --ros-args -p config_file:=FILE).",
 )
-def bridge(topics: tuple[str, ...], config_file: str | None) -> None:
+def bridge(topics: tuple[str, ...], config_file: str | None) -> int:
     """Bridge simulator-side (gz) topics and ROS topics, as ros_gz_bridge's parameter_bridge does.
 
     TOPICS are `/TOPIC@ROS_TYPE@GZ_TYPE`: `@` both ways, `[` gz to ROS, `]` ROS to gz. The YAML config
@@ -67,28 +71,33 @@ def bridge(topics: tuple[str, ...], config_file: str | None) -> None:
     """
     ra = ros_args.current(NODE_NAME)
     entries = collect_entries(topics, config_file, ra.params, ra.namespace, ra.node_name or NODE_NAME)
+    from diffctl.client import component
 
+    return component.run(lambda: make_node(entries))
+
+
+# ros_gz_bridge's RosGzBridge node and parameter_bridge's main declare these, without descriptors
+DECLARED = (("subscription_heartbeat", 1000), ("config_file", ""), ("expand_gz_topic_names", False),
+            ("override_timestamps_with_wall_time", False), ("lazy", False))
+
+
+def make_node(entries: list[BridgeEntry], node_name: str = NODE_NAME, declared: Any = DECLARED) -> Any:
+    """The bridge's client Node with its parameters, its channels started (closed when the node shuts down)."""
     from diffctl.bridge.bridge import Bridge
-    from diffctl.bus import Node, close_session
+    from diffctl.client.node import Node
 
-    node = Node.from_ros_args(NODE_NAME)
+    node = Node(node_name, client_library="rclcpp")
+    for name, default in declared:
+        node.declare_parameter(name, default)
     running = Bridge(node, entries)
-    try:
-        running.start()
-        for e in entries:
-            if e.direction.to_ros:
-                node.log.info(
-                    f"Creating GZ->ROS Bridge: [{e.gz_topic} ({e.gz_type}) -> {e.ros_topic} ({e.ros_type})]"
-                    f" (Lazy {int(e.lazy)})"
-                )
-            if e.direction.to_gz:
-                node.log.info(
-                    f"Creating ROS->GZ Bridge: [{e.ros_topic} ({e.ros_type}) -> {e.gz_topic} ({e.gz_type})]"
-                    f" (Lazy {int(e.lazy)})"
-                )
-        node.spin()
-    finally:
-        running.close()
-        node.close()
-        # Zenoh's callback threads are not daemons: close the session before the interpreter joins them.
-        close_session()
+    node.context.on_shutdown(lambda: running.close())
+    running.start()
+    log = node.get_logger()
+    for e in entries:
+        if e.direction.to_ros:
+            log.info(f"Creating GZ->ROS Bridge: [{e.gz_topic} ({e.gz_type}) -> {e.ros_topic} ({e.ros_type})]"
+                     f" (Lazy {int(e.lazy)})")
+        if e.direction.to_gz:
+            log.info(f"Creating ROS->GZ Bridge: [{e.ros_topic} ({e.ros_type}) -> {e.gz_topic} ({e.gz_type})]"
+                     f" (Lazy {int(e.lazy)})")
+    return node

@@ -9,6 +9,7 @@ no camera_info (ros_gz_image bridges none either).
 from __future__ import annotations
 
 import dataclasses
+from typing import Any
 
 import click
 
@@ -45,7 +46,7 @@ def image_entries(topics: tuple[str, ...], qos: str = "default") -> tuple[list[B
 
 @click.command("image-bridge", context_settings={"help_option_names": ["-h", "--help"]})
 @click.argument("topics", nargs=-1)
-def image_bridge(topics: tuple[str, ...]) -> None:
+def image_bridge(topics: tuple[str, ...]) -> int:
     """Bridge gz image topics to sensor_msgs/msg/Image on the same names, as ros_gz_image's image_bridge.
 
     \b
@@ -56,17 +57,14 @@ def image_bridge(topics: tuple[str, ...]) -> None:
     ra = ros_args.current(NODE_NAME)
     entries, problem = image_entries(topics, ra.params.get("qos", "default"))
 
-    from diffctl.bridge.bridge import Bridge
-    from diffctl.bus import Node, close_session
+    from diffctl.bridge.cli import make_node
+    from diffctl.client import component
 
-    node = Node.from_ros_args(NODE_NAME)
-    if problem:
-        node.log.error(problem)
-    running = Bridge(node, entries)
-    try:
-        running.start()
-        node.spin()
-    finally:
-        running.close()
-        node.close()
-        close_session()
+    def make() -> Any:
+        # ros_gz_image declares `qos` (string, "default") and starts its subscriptions at once
+        node = make_node(entries, NODE_NAME, (("qos", "default"),))
+        if problem:
+            node.get_logger().error(problem)
+        return node
+
+    return component.run(make)

@@ -17,7 +17,7 @@ from diffctl.errors import BusError, MessageError, ServiceTimeout
 from diffctl.interfaces import types
 
 if TYPE_CHECKING:
-    from diffctl.bus.node import Node
+    from diffctl.bus.participant import Participant as Node
 
 
 def endpoint_qos(latched: bool, depth: int | None, reliable: bool, qos: wire.QoS | None) -> wire.QoS:
@@ -146,7 +146,7 @@ class Subscription:
         att = sample.attachment
         if att is None:
             # rmw_zenoh drops samples without the attachment too; say so instead of staying silent.
-            self.node.log.throttled(f"noatt{self.topic}",
+            self.node.throttled(f"noatt{self.topic}",
                                     f"dropped a sample on {self.topic} without rmw_zenoh attachment")
             return
         if self._ignore_gids is not None or self.with_info:
@@ -160,7 +160,7 @@ class Subscription:
             try:
                 msg = self._decode(data)
             except MessageError as e:
-                self.node.log.throttled(f"bad{self.topic}", f"dropped a malformed sample on {self.topic}: {e}")
+                self.node.throttled(f"bad{self.topic}", f"dropped a malformed sample on {self.topic}: {e}")
                 return
         try:
             if self.with_info:
@@ -172,7 +172,7 @@ class Subscription:
             else:
                 self.callback(msg)
         except Exception as e:  # a user callback must not kill the transport thread
-            self.node.log.throttled(f"cb{self.topic}", f"callback for {self.topic} raised {type(e).__name__}: {e}",
+            self.node.throttled(f"cb{self.topic}", f"callback for {self.topic} raised {type(e).__name__}: {e}",
                                     level="ERROR")
 
     def close(self) -> None:
@@ -225,7 +225,7 @@ class Service:
             req = types.deserialize(payload, self.type + "_Request")
         except MessageError as e:
             # A malformed request is the caller's fault: answer it, but do not let a flood of them flood the log.
-            self.node.log.throttled(f"badreq{self.name}", f"service {self.name}: dropped a malformed request: {e}")
+            self.node.throttled(f"badreq{self.name}", f"service {self.name}: dropped a malformed request: {e}")
             query.reply_err(f"MessageError: {e}")
             return
         try:

@@ -6,14 +6,11 @@ tokens, the graph cache, a small executor for service handlers, type-mismatch re
 
 from __future__ import annotations
 
-import contextlib
-import itertools
 import os
 import signal
 import threading
 import time
 from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
 import zenoh
@@ -22,83 +19,14 @@ from diffctl import ros_args
 from diffctl.bus import wire
 from diffctl.bus.clock import Clock, Timer
 from diffctl.bus.endpoints import Client, Publisher, Service, Subscription
-from diffctl.bus.graph import Graph
 from diffctl.bus.log import Logger
 from diffctl.bus.parameter_services import ParameterServices
 from diffctl.bus.parameters import ParameterDescriptor, ParameterStore
+from diffctl.bus.participant import Participant
 from diffctl.bus.rosout import Rosout
-from diffctl.bus.session import domain_id, open_session, router_endpoint
+from diffctl.bus.session import router_endpoint
 from diffctl.bus.type_description import TypeDescriptionService
 from diffctl.errors import ConfigError
-
-_contexts: dict[int, _Context] = {}
-_contexts_lock = threading.Lock()
-
-
-class _Context:
-    def __init__(self, session: zenoh.Session) -> None:
-        self.session = session
-        self.zid = str(session.zid())
-        self.domain = domain_id()
-        self._ids = itertools.count(0)
-        self._graph: Graph | None = None
-        self._graph_lock = threading.Lock()
-        self._executor: ThreadPoolExecutor | None = None
-        self._locals: dict[tuple[str, str, str], Node] = {}  # (topic, type, kind) → a node owning it
-        self._warned: set[tuple[str, str, str]] = set()
-        self.local_gids: set[bytes] = set()
-
-    def next_id(self) -> int:
-        return next(self._ids)
-
-    def entity_token(self, node: Node, kind: str, topic: str, typename: str, qos: str) -> str:
-        return wire.entity_token(self.domain, self.zid, node.node_id, self.next_id(), kind, node.namespace,
-                                 node.name, topic, typename, qos)
-
-    @property
-    def graph(self) -> Graph:
-        with self._graph_lock:
-            if self._graph is None:
-                self._graph = Graph(self.session, self.domain)
-                self._graph.add_listener(self._check_mismatch)
-            return self._graph
-
-    def add_local(self, topic: str, typename: str, kind: str, node: Node) -> None:
-        self._locals[(topic, typename, kind)] = node
-        # Watch the graph so a mismatch is reported, including against endpoints that were already there.
-        for ent in self.graph.entities():
-            if ent.topic == topic:
-                self._check_mismatch("put", ent)
-
-    def _check_mismatch(self, event: str, ent: wire.Entity) -> None:
-        if event != "put" or ent.kind not in (wire.KIND_PUB, wire.KIND_SUB):
-            return
-        for (topic, typename, kind), node in list(self._locals.items()):
-            if topic != ent.topic or typename == ent.type:
-                continue
-            key = (topic, typename, ent.type)
-            if key in self._warned:
-                continue
-            self._warned.add(key)
-            mine = "publishes" if kind == wire.KIND_PUB else "subscribes to"
-            theirs = "publishes" if ent.kind == wire.KIND_PUB else "subscribes to"
-            node.log.warn(
-                f"type mismatch on {topic}: this node {mine} {typename} but {ent.node_fqn} {theirs} {ent.type}; "
-                "these endpoints will never exchange messages"
-            )
-
-    def executor_submit(self, fn: Callable[..., Any], *args: Any) -> None:
-        if self._executor is None:
-            self._executor = ThreadPoolExecutor(max_workers=4, thread_name_prefix="service")
-        self._executor.submit(fn, *args)
-
-
-def _context(session: zenoh.Session) -> _Context:
-    with _contexts_lock:
-        ctx = _contexts.get(id(session))
-        if ctx is None:
-            ctx = _contexts[id(session)] = _Context(session)
-        return ctx
 
 
 def _as_bool(value: Any) -> bool:
@@ -113,7 +41,7 @@ def validate_name(name: str, what: str = "node name") -> str:
     return name
 
 
-class Node:
+class Node(Participant):
     def __init__(
         self,
         name: str,
@@ -141,19 +69,12 @@ class Node:
             self.params["use_sim_time"] = _as_bool(self.params["use_sim_time"])
         self.parameters = parameter_store if parameter_store is not None else ParameterStore(
             self.params, allow_undeclared=allow_undeclared_parameters)
-        self.session = session or open_session()
-        self.context = _context(self.session)
-        self.domain = self.context.domain
-        self.node_id = self.context.next_id()
-        self.log = Logger(self.fqn[1:] if self.namespace == "/" else self.fqn[1:].replace("/", "."))
+        log = Logger(self.fqn[1:] if self.namespace == "/" else self.fqn[1:].replace("/", "."))
+        super().__init__(self.name, self.namespace, log, session=session)
         self._remaps: dict[str, str] = {}
         for k, v in (remaps or {}).items():  # rcl: the first rule matching a name wins
             self._remaps.setdefault(self._expand(k), self._expand(v))
-        self._closables: list[Any] = []
         self._stop = threading.Event()
-        self._token = self.session.liveliness().declare_token(
-            wire.node_token(self.domain, self.context.zid, self.node_id, self.namespace, self.name)
-        )
         # Every ROS node's standard endpoints: /rosout, parameter services and events, type descriptions.
         self._builtin_services: dict[str, Service] = {}
         self._rosout = self._keep(Rosout(self)) if rosout else None
@@ -215,10 +136,6 @@ class Node:
                    **kwargs)
 
     # ------------------------------------------------------------------ names
-    @property
-    def fqn(self) -> str:
-        return f"{self.namespace.rstrip('/')}/{self.name}"
-
     def _expand(self, name: str) -> str:
         if name.startswith("~"):
             return self.fqn + name[1:] if name != "~" else self.fqn
@@ -261,34 +178,11 @@ class Node:
 
     # ------------------------------------------------------------------ endpoints
     def _keep(self, obj: Any) -> Any:
-        self._closables.append(obj)
+        super()._keep(obj)
         td = getattr(self, "_type_descriptions", None)
         if td is not None and isinstance(obj, (Publisher, Subscription, Service, Client)):
             td.use(obj.type)
         return obj
-
-    def create_publisher(self, topic: str, typename: str, *, latched: bool = False, depth: int | None = None,
-                         reliable: bool = True, qos: wire.QoS | None = None) -> Publisher:
-        """`latched` is TRANSIENT_LOCAL (depth 1 unless given); `qos` states the whole profile instead."""
-        return self._keep(Publisher(self, topic, typename, latched=latched, depth=depth, reliable=reliable, qos=qos))
-
-    def create_subscription(self, topic: str, typename: str, callback: Callable[[Any], None], *,
-                            latched: bool = False, depth: int | None = None, raw: bool = False,
-                            ignore_local: bool = False, with_info: bool = False, reliable: bool = True,
-                            qos: wire.QoS | None = None) -> Subscription:
-        return self._keep(Subscription(self, topic, typename, callback, latched=latched, depth=depth, raw=raw,
-                                       ignore_local=ignore_local, with_info=with_info, reliable=reliable, qos=qos))
-
-    def destroy_subscription(self, sub: Subscription) -> None:
-        """Close `sub` and forget it (rclpy's destroy_subscription): a node that subscribes on demand does not
-        keep every closed subscription until it closes."""
-        self.destroy(sub)
-
-    def destroy(self, endpoint: Any) -> None:
-        """Close any endpoint or timer of this node now and forget it."""
-        (endpoint.cancel if isinstance(endpoint, Timer) else endpoint.close)()
-        with contextlib.suppress(ValueError):
-            self._closables.remove(endpoint)
 
     def create_service(self, name: str, srv_type: str, handler: Callable[[Any], Any], *,
                        qos: wire.QoS | None = None, raw: bool = False) -> Service:
@@ -299,9 +193,6 @@ class Node:
             # set_parameters, kept while it moves onto declared parameters) replaces the built-in one.
             builtin.close()
         return self._keep(Service(self, name, srv_type, handler, qos=qos, raw=raw))
-
-    def create_client(self, name: str, srv_type: str, *, qos: wire.QoS | None = None) -> Client:
-        return self._keep(Client(self, name, srv_type, qos=qos))
 
     def create_timer(self, period_s: float, callback: Callable[[], None]) -> Timer:
         return self._keep(Timer(self.clock, period_s, callback, self.log.error))
@@ -314,10 +205,6 @@ class Node:
         from diffctl.interfaces.types import time_msg
 
         return time_msg(self.now_ns())
-
-    @property
-    def graph(self) -> Graph:
-        return self.context.graph
 
     # ------------------------------------------------------------------ lifetime
     def request_shutdown(self) -> None:
@@ -348,13 +235,4 @@ class Node:
 
     def close(self) -> None:
         self._stop.set()
-        for obj in reversed(self._closables):
-            try:
-                (obj.cancel if isinstance(obj, Timer) else obj.close)()
-            except Exception:
-                pass
-        self._closables.clear()
-        try:
-            self._token.undeclare()
-        except Exception:
-            pass
+        super().close()

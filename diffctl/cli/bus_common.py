@@ -41,6 +41,32 @@ def graph() -> Graph:
     return g
 
 
+class ToolNode:
+    """A command's own node, as ros2cli makes one: a client Node without parameter services, spinning on a
+    thread of its own. One-shot tools use the raw endpoints of its wire presence synchronously; `node` takes
+    calls with the client's classes."""
+
+    def __init__(self, name: str, *, use_sim_time: bool = False) -> None:
+        from diffctl.client import component
+        from diffctl.client.node import Node
+        from diffctl.client.parameter import Parameter
+
+        self._started = component.start(lambda: Node(
+            name, start_parameter_services=False, parameter_overrides=[Parameter("use_sim_time", value=use_sim_time)]))
+        self.node = self._started.node
+        self.wire = self.node.bus_node
+        self.fqn = self.wire.fqn
+        self.create_subscription = self.wire.create_subscription
+        self.create_publisher = self.wire.create_publisher
+        self.create_client = self.wire.create_client
+
+    def now_ns(self) -> int:
+        return self.node.get_clock().now().nanoseconds
+
+    def close(self) -> None:
+        self._started.stop()
+
+
 def resolve_name(g: Graph, name: str, names: list[str], what: str = "topic") -> str:
     """An exact name, or the one known name whose last segment matches (`cmd_vel` → `/x/cmd_vel`)."""
     full = "/" + name.lstrip("/")
@@ -91,13 +117,12 @@ def learn_type(g: Graph, topic: str, typename: str) -> bool:
     """Register `typename` from the description a publisher of `topic` serves (REP-2016's
     `~/get_type_description`, as `ros2 topic echo` learns types it was not built with); False if none could."""
     from diffctl.bag.msgdefs import register_schema
-    from diffctl.bus import Node
     from diffctl.interfaces.type_description import SERVICE_TYPE, ros2msg_text
 
     pubs = [e for e in g.publishers(topic) if types.normalize(e.type) == typename]
     if not pubs:
         return False
-    node = Node("diffctl_type_lookup")
+    node = ToolNode("diffctl_type_lookup")
     try:
         for e in pubs:
             client = node.create_client(f"{e.node_fqn}/get_type_description", SERVICE_TYPE)

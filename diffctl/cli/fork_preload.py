@@ -26,6 +26,13 @@ PRELOAD: tuple[str, ...] = (
     "diffctl.bus.gz",
     "diffctl.bus.graph",
     "diffctl.bus.parameter_services",
+    "diffctl.bus.participant",
+    "diffctl.client.node",
+    "diffctl.client.component",
+    "diffctl.client.executors",
+    "diffctl.client.parameter_service",
+    "diffctl.client.type_description_service",
+    "diffctl.client.rosout",
     "diffctl.description",
     "diffctl.description.urdf",
     "diffctl.sim.cli",
@@ -87,6 +94,31 @@ WARM_MESSAGES: tuple[str, ...] = (
     "control_msgs/msg/DynamicJointState",
     "controller_manager_msgs/msg/ControllerManagerActivity",  # every manager publishes it as it comes up
 )  # the bridge's sensor types (Imu, LaserScan, Image, CameraInfo: 25 ms) it compiles itself, off the critical path
+# The generated classes (and their CDR codecs) every client Node uses as it starts — its parameter services,
+# events and descriptors, /rosout, type descriptions — and those the sim_control components publish and take at
+# start-up (robot_state_publisher's TF and description, joint states).
+CLIENT_MESSAGES: tuple[str, ...] = (
+    "rcl_interfaces/msg/ParameterDescriptor",
+    "rcl_interfaces/msg/SetParametersResult",
+    "rcl_interfaces/msg/ParameterEvent",
+    "rcl_interfaces/msg/ListParametersResult",
+    "rcl_interfaces/msg/Log",
+    "builtin_interfaces/msg/Time",
+    "tf2_msgs/msg/TFMessage",
+    "geometry_msgs/msg/TransformStamped",
+    "std_msgs/msg/String",
+    "sensor_msgs/msg/JointState",
+    "rosgraph_msgs/msg/Clock",
+)
+CLIENT_SERVICES: tuple[str, ...] = (
+    "rcl_interfaces/srv/DescribeParameters",
+    "rcl_interfaces/srv/GetParameters",
+    "rcl_interfaces/srv/GetParameterTypes",
+    "rcl_interfaces/srv/ListParameters",
+    "rcl_interfaces/srv/SetParameters",
+    "rcl_interfaces/srv/SetParametersAtomically",
+    "type_description_interfaces/srv/GetTypeDescription",
+)
 # Components a launch usually starts only once the robot is up (the visualizer after the spawners, a
 # recorder): imported while the server has no request waiting, so they stay off the start-up's critical path.
 PRELOAD_LATER: tuple[str, ...] = (
@@ -113,6 +145,20 @@ def warm_bus_types() -> None:
         types.decoder(name)
 
 
+def warm_client_classes() -> None:
+    """Generate the client's start-up classes and compile their codecs (see CLIENT_MESSAGES)."""
+    from diffctl import interfaces
+    from diffctl.client.interfaces import cls
+
+    for name in CLIENT_MESSAGES:
+        c = cls(name)
+        interfaces.deserialize(interfaces.serialize(c()), c)
+    for name in CLIENT_SERVICES:
+        srv = cls(name)
+        for part in (srv.Request, srv.Response):
+            interfaces.deserialize(interfaces.serialize(part()), part)
+
+
 def scan_controller_plugins() -> None:
     """The installed controller and hardware plugins, scanned once for every controller manager."""
     from diffctl.control import plugin_registry
@@ -133,6 +179,7 @@ SPEC = Preload(
     later=PRELOAD_LATER,
     warm=(
         f"{__name__}:warm_bus_types",
+        f"{__name__}:warm_client_classes",
         f"{__name__}:scan_controller_plugins",
         f"{__name__}:reserve_sim_client",
     ),

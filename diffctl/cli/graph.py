@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 import yaml
 
-from diffctl.bus import Node, wire
+from diffctl.bus import wire
 from diffctl.cli import bus_common as bc
 from diffctl.console import console
 from diffctl.errors import ConfigError
@@ -136,7 +136,7 @@ def service_call(name: str, args: tuple[str, ...], timeout: float) -> None:
         typename = ts[0]
     srv = types.check_service(typename)
     req = types.request(srv, values)
-    n = Node(f"diffctl_service_call_{__import__('os').getpid()}")
+    n = bc.ToolNode(f"diffctl_service_call_{__import__('os').getpid()}")
     client = n.create_client(full, srv)
     if not client.wait_for_service(timeout):
         raise ConfigError(f"service {full} ({srv}) is not available", hint="`diffctl service list` shows them")

@@ -12,7 +12,6 @@ from typing import Any
 
 import click
 
-from diffctl.bus import Node
 from diffctl.cli import bus_common as bc
 from diffctl.errors import ConfigError
 from diffctl.interfaces import types
@@ -42,7 +41,7 @@ def _managed_nodes() -> list[str]:
 
 def _call(node_name: str, service: str, typename: str, values: dict[str, Any], timeout_s: float = 5.0) -> dict:
     srv = types.check_service(typename)
-    n = Node(f"diffctl_lifecycle_{os.getpid()}")
+    n = bc.ToolNode(f"diffctl_lifecycle_{os.getpid()}")
     try:
         client = n.create_client(f"{node_name}/{service}", srv)
         if not client.wait_for_service(timeout_s):

@@ -44,6 +44,19 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "description": ("diffctl.cli.description:description", "Show what the simulator makes of a URDF/xacro/SDF."),
     "fuel": ("diffctl.fuel.cli:fuel", "Download Gazebo Fuel models into Gazebo's cache (gz fuel)."),
     "tf2": ("diffctl.tf2_tools.cli:tf2", "tf2_ros's static_transform_publisher and tf2_echo."),
+    "robot-localization": (
+        "diffctl.robot_localization.cli:robot_localization",
+        "robot_localization's ekf_node, ukf_node and navsat_transform_node.",
+    ),
+    "topic-tools": (
+        "diffctl.topic_tools.cli:topic_tools",
+        "topic_tools' relay, throttle, drop, delay, mux, demux and relay_field.",
+    ),
+    "twist-mux": ("diffctl.twist_mux.cli:twist_mux", "twist_mux: velocity commands by priority, timeouts and locks."),
+    "twist-stamper": (
+        "diffctl.twist_stamper.cli:twist_stamper",
+        "twist_stamper's twist_stamper and twist_unstamper (Twist <-> TwistStamped).",
+    ),
     "test": ("diffctl.testing.cli:test", "Run launch tests and pytest files (launch_test, colcon test)."),
     "test-child": ("diffctl.testing.cli:test_child", "(internal) one launch test forked by `diffctl test -j`."),
     "component-container": (

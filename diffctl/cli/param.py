@@ -14,11 +14,10 @@ from typing import Any
 import click
 import yaml
 
-from diffctl import ros_args
-from diffctl.bus import Node, parameter_msgs
 from diffctl.bus.graph import Graph
-from diffctl.bus.parameters import TYPE_NAMES, ParameterDescriptor
 from diffctl.cli import bus_common as bc
+from diffctl.client.interfaces import cls
+from diffctl.client.parameter import Parameter, from_python_value, get_parameter_value, parameter_value_to_python
 from diffctl.console import console
 from diffctl.errors import BusError, ConfigError, suggest, yaml_error
 
@@ -35,11 +34,15 @@ _DESCRIBE_WORDS = {
 }
 
 
+def _kind(type_code: int) -> str:
+    return Parameter.Type(int(type_code)).name.lower()
+
+
 class _Remote:
     """Calls one node's parameter services from a CLI node (shared when one command asks several nodes)."""
 
     def __init__(self, node_name: str, timeout_s: float, *, graph: Graph | None = None,
-                 me: Node | None = None) -> None:
+                 me: bc.ToolNode | None = None) -> None:
         g = graph or bc.graph()
         nodes = g.nodes()
         self.fqn = bc.resolve_name(g, node_name, nodes, "node")
@@ -48,24 +51,28 @@ class _Remote:
                               hint="`diffctl node list` shows them")
         self.timeout_s = timeout_s
         self._own = me is None
-        self.me = me or Node(f"diffctl_param_{os.getpid()}")
+        self.me = me or bc.ToolNode(f"diffctl_param_{os.getpid()}")
 
-    def call(self, short: str, srv: str, request: dict[str, Any]) -> Any:
-        client = self.me.create_client(f"{self.fqn}/{short}", RCL + srv)
+    def call(self, short: str, srv: str, **request: Any) -> Any:
+        """One call with the client's classes (the tool node spins on its own thread)."""
+        node = self.me.node
+        client = node.create_client(cls(RCL + srv), f"{self.fqn}/{short}")
         try:
             if not client.wait_for_service(self.timeout_s):
                 raise BusError(f"node {self.fqn} offers no {short} service",
                                hint="only nodes with parameter services answer `diffctl param`")
-            return client.call(request, timeout=self.timeout_s)
+            response = client.call(client.srv_type.Request(**request), timeout_sec=self.timeout_s)
+            if response is None:
+                raise BusError(f"node {self.fqn} did not answer {short} within {self.timeout_s:g} s")
+            return response
         finally:
-            client.close()
+            node.destroy_client(client)
 
     def names(self) -> list[str]:
-        return sorted(str(n) for n in self.call("list_parameters", "ListParameters", {}).result.names)
+        return sorted(str(n) for n in self.call("list_parameters", "ListParameters").result.names)
 
     def values(self, names: list[str]) -> list[Any]:
-        resp = self.call("get_parameters", "GetParameters", {"names": names})
-        return list(resp.values)
+        return list(self.call("get_parameters", "GetParameters", names=names).values)
 
     def close(self) -> None:
         if self._own:
@@ -109,7 +116,7 @@ def param_list(node_name: str | None, param_type: bool, pattern: str | None, tim
     except re.error as e:
         raise ConfigError(f"--filter {pattern!r} is not a regular expression: {e}") from None
     g = bc.graph()
-    me = Node(f"diffctl_param_{os.getpid()}")
+    me = bc.ToolNode(f"diffctl_param_{os.getpid()}")
     targets = [node_name] if node_name else [n for n in g.nodes() if n != me.fqn]
     for target in targets:
         remote = _Remote(target, timeout, graph=g, me=me)
@@ -122,10 +129,10 @@ def param_list(node_name: str | None, param_type: bool, pattern: str | None, tim
                 continue  # a node without parameter services: ros2 param list skips it too
             if not node_name:
                 console.print(f"{remote.fqn}:", markup=False)
-            kinds = list(remote.call("get_parameter_types", "GetParameterTypes", {"names": names}).types) \
+            kinds = list(remote.call("get_parameter_types", "GetParameterTypes", names=names).types) \
                 if param_type and names else []
             for i, n in enumerate(names):
-                suffix = f" (type: {TYPE_NAMES.get(int(kinds[i]), 'not_set')})" if param_type and kinds else ""
+                suffix = f" (type: {_kind(kinds[i])})" if param_type and kinds else ""
                 console.print(f"  {n}{suffix}", markup=False)
         finally:
             remote.close()
@@ -147,20 +154,19 @@ def param_get(node_name: str, name: str, hide_type: bool, timeout: float) -> Non
     remote = _remote(node_name, timeout)
     try:
         values = remote.values([name])
-        value = parameter_msgs.from_value(values[0]) if values else None
-        if value is None:
+        if not values or values[0].type == Parameter.Type.NOT_SET.value:
             console.print("Parameter not set.", markup=False)
             return
-        kind = TYPE_NAMES[int(values[0].type)]
-        text = _show(value)
+        kind = _kind(values[0].type)
+        text = _show(parameter_value_to_python(values[0]))
         console.print(text if hide_type else f"{_GET_WORDS[kind]} {text}", markup=False)
     finally:
         remote.close()
 
 
 def _show(value: Any) -> str:
-    if isinstance(value, bytes):
-        return str(list(value))
+    if isinstance(value, list) and value and isinstance(value[0], bytes):
+        return str([b[0] for b in value])
     return str(value)
 
 
@@ -177,14 +183,11 @@ def param_set(node_name: str, name: str, value: str, timeout: float) -> None:
     Example:
       diffctl param set /diff_drive_controller linear.x.max_velocity 0.3
     """
-    parsed = ros_args.parse_value(value)
-    try:
-        msg_value = parameter_msgs.to_value(parsed)
-    except ValueError as e:
-        raise ConfigError(f"VALUE {value!r}: {e}") from None
+    msg_value = get_parameter_value(value)  # ros2param's reading of VALUE
     remote = _remote(node_name, timeout)
     try:
-        resp = remote.call("set_parameters", "SetParameters", {"parameters": [{"name": name, "value": msg_value}]})
+        parameter = cls("rcl_interfaces/msg/Parameter")(name=name, value=msg_value)
+        resp = remote.call("set_parameters", "SetParameters", parameters=[parameter])
         result = resp.results[0]
         if not result.successful:
             raise BusError(f"Setting parameter failed: {result.reason}" if result.reason
@@ -207,19 +210,20 @@ def param_describe(node_name: str, names: tuple[str, ...], timeout: float) -> No
     """
     remote = _remote(node_name, timeout)
     try:
-        resp = remote.call("describe_parameters", "DescribeParameters", {"names": list(names)})
+        resp = remote.call("describe_parameters", "DescribeParameters", names=list(names))
         if not resp.descriptors:
             raise ConfigError(f"node {remote.fqn} has no parameter named {' or '.join(names)}",
                               hint=f"`diffctl param list {remote.fqn}` shows them")
         for msg in resp.descriptors:
-            for line in _describe_lines(str(msg.name), parameter_msgs.from_descriptor(msg)):
+            for line in _describe_lines(msg):
                 console.print(line, markup=False)
     finally:
         remote.close()
 
 
-def _describe_lines(name: str, d: ParameterDescriptor) -> list[str]:
-    out = [f"Parameter name: {name}", f"  Type: {_DESCRIBE_WORDS.get(d.type or 'not_set', d.type)}"]
+def _describe_lines(d: Any) -> list[str]:
+    """ros2param's describe of an rcl_interfaces/msg/ParameterDescriptor."""
+    out = [f"Parameter name: {d.name}", f"  Type: {_DESCRIBE_WORDS[_kind(d.type)]}"]
     if d.description:
         out.append(f"  Description: {d.description}")
     constraints = []
@@ -227,11 +231,10 @@ def _describe_lines(name: str, d: ParameterDescriptor) -> list[str]:
         constraints.append("    Read only: true")
     if d.dynamic_typing:
         constraints.append("    Dynamic typing: true")
-    for rng in (d.floating_point_range, d.integer_range):
-        if rng is not None:
-            constraints += [f"    Min value: {rng[0]}", f"    Max value: {rng[1]}"]
-            if rng[2]:
-                constraints.append(f"    Step: {rng[2]}")
+    for rng in (*d.floating_point_range, *d.integer_range):
+        constraints += [f"    Min value: {rng.from_value}", f"    Max value: {rng.to_value}"]
+        if rng.step:
+            constraints.append(f"    Step: {rng.step}")
     if d.additional_constraints:
         constraints.append(f"    {d.additional_constraints}")
     if constraints:
@@ -271,8 +274,9 @@ def param_dump(node_name: str, output: str | None, timeout: float) -> None:
     try:
         names = remote.names()
         values = remote.values(names) if names else []
-        flat = {n: parameter_msgs.from_value(v) for n, v in zip(names, values, strict=False)}
-        flat = {n: (list(v) if isinstance(v, bytes) else v) for n, v in flat.items() if v is not None}
+        flat = {n: parameter_value_to_python(v) for n, v in zip(names, values, strict=False)}
+        flat = {n: ([b[0] for b in v] if isinstance(v, list) and v and isinstance(v[0], bytes) else v)
+                for n, v in flat.items() if v is not None}
         text = yaml.safe_dump({remote.fqn: {"ros__parameters": nest(flat)}}, sort_keys=True,
                               default_flow_style=False)
     finally:
@@ -304,17 +308,17 @@ def param_load(node_name: str, file: str, no_use_wildcard: bool, timeout: float)
         params = []
         for name, value in values.items():
             try:
-                params.append({"name": name, "value": parameter_msgs.to_value(value)})
-            except ValueError as e:
+                params.append(from_python_value(name, value).to_parameter_msg())
+            except (TypeError, ValueError) as e:
                 raise ConfigError(f"parameter '{name}': {e}", source=file) from None
-        resp = remote.call("set_parameters", "SetParameters", {"parameters": params})
+        resp = remote.call("set_parameters", "SetParameters", parameters=params)
         # As ros2 param load: each parameter's outcome, and refusals (a dump's read-only parameters) are
         # reported, not fatal.
         for p, result in zip(params, resp.results, strict=False):
             if result.successful:
-                console.print(f"Set parameter {p['name']} successful", markup=False)
+                console.print(f"Set parameter {p.name} successful", markup=False)
             else:
-                console.print(f"Set parameter {p['name']} failed" + (f": {result.reason}" if result.reason else ""),
+                console.print(f"Set parameter {p.name} failed" + (f": {result.reason}" if result.reason else ""),
                               markup=False)
     finally:
         remote.close()

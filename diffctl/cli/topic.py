@@ -14,7 +14,7 @@ from typing import Any
 import click
 import yaml
 
-from diffctl.bus import Node, wire
+from diffctl.bus import wire
 from diffctl.cli import bus_common as bc
 from diffctl.console import console, info, warn
 from diffctl.errors import ConfigError
@@ -104,7 +104,7 @@ def echo(topic_name: str, typename: str | None, once: bool, field: str | None, n
     g = bc.graph()
     name = bc.resolve_name(g, topic_name, list(g.topics()))
     t = bc.wait_for_type(g, name, typename, timeout)
-    node = Node(f"diffctl_echo_{_pid()}")
+    node = bc.ToolNode(f"diffctl_echo_{_pid()}")
     stop = stop_on_signals()
     got = threading.Event()
     lock = threading.Lock()
@@ -187,7 +187,7 @@ def pub(topic_name: str, args: tuple[str, ...], rate: float | None, once: bool, 
     t = types.check(typename)
     msg = types.new(t, values)  # validates every field before anything is published
     use_sim = bc.sim_time_running(g)
-    node = Node(f"diffctl_pub_{_pid()}", use_sim_time=use_sim)
+    node = bc.ToolNode(f"diffctl_pub_{_pid()}", use_sim_time=use_sim)
     publisher = node.create_publisher(name, t)
     fill = [h for h in _stamp_fields(msg) if h.stamp.sec == 0 and h.stamp.nanosec == 0]
     if fill:
@@ -210,10 +210,10 @@ def pub(topic_name: str, args: tuple[str, ...], rate: float | None, once: bool, 
     while not stop.is_set():
         if use_sim and fill:
             deadline = time.monotonic() + 2.0
-            while not node.clock.started and time.monotonic() < deadline:
+            while not node.now_ns() and time.monotonic() < deadline:
                 time.sleep(0.01)
         for h in fill:
-            now = node.now()
+            now = types.time_msg(node.now_ns())
             h.stamp.sec, h.stamp.nanosec = now.sec, now.nanosec
         publisher.publish(msg)
         n += 1
@@ -244,7 +244,7 @@ def hz(topic_name: str, window: int, reports: int | None) -> None:
     g = bc.graph()
     name = bc.resolve_name(g, topic_name, list(g.topics()))
     t = bc.wait_for_type(g, name, None, None)
-    node = Node(f"diffctl_hz_{_pid()}")
+    node = bc.ToolNode(f"diffctl_hz_{_pid()}")
     stamps: deque[float] = deque(maxlen=window + 1)
     lock = threading.Lock()
 

@@ -1,5 +1,5 @@
-"""rclpy.node.Node on a bus node: the same ROS 2 node on the wire as diffctl's own (liveliness token,
-parameter services and events, /rosout, type descriptions), with rclpy's API and its executor model.
+"""rclpy.node.Node: the one node of diffctl, users' and its own components' alike — liveliness token, parameter
+services and events, /rosout, type descriptions, use_sim_time — with rclpy's API and its executor model.
 
 Names, remaps, parameter overrides and the node's name and namespace come from --ros-args through
 diffctl.ros_args (global arguments first, then `cli_args`, then `parameter_overrides=`).
@@ -7,13 +7,16 @@ diffctl.ros_args (global arguments first, then `cli_args`, then `parameter_overr
 
 from __future__ import annotations
 
+import struct
 import sys
+import time
 from collections.abc import Callable, Iterator
 from typing import Any
 
 from diffctl import ros_args
 from diffctl.bus import wire
-from diffctl.bus.node import Node as BusNode
+from diffctl.bus.participant import Participant
+from diffctl.bus.session import closing
 from diffctl.client import qos as _qos
 from diffctl.client import ros_logging, waiting
 from diffctl.client.callback_groups import CallbackGroup, MutuallyExclusiveCallbackGroup, ReentrantCallbackGroup
@@ -23,7 +26,7 @@ from diffctl.client.context import Context, get_default_context
 from diffctl.client.event_handler import PublisherEventCallbacks, SubscriptionEventCallbacks
 from diffctl.client.exceptions import NodeNameNonExistentError, NotInitializedException, RCLError
 from diffctl.client.guard_condition import GuardCondition
-from diffctl.client.interfaces import check_message_type, cls, type_name
+from diffctl.client.interfaces import check_message_type, cls, serialize, type_name
 from diffctl.client.names import (
     expand_topic_name,
     normalize_namespace,
@@ -34,8 +37,10 @@ from diffctl.client.names import (
 from diffctl.client.node_parameters import NodeParameters
 from diffctl.client.parameter import Parameter, from_python_value
 from diffctl.client.publisher import Publisher
-from diffctl.client.qos_overriding_options import declare_qos_parameters
-from diffctl.client.ros_logging import RcutilsLogger, attach_rosout, detach_rosout, get_logger
+from diffctl.client.qos_overriding_options import QoSOverridingOptions, declare_qos_parameters
+from diffctl.client.ros_logging import RcutilsLogger, get_logger
+from diffctl.client.ros_time import Time
+from diffctl.client.rosout import Rosout
 from diffctl.client.service import Service
 from diffctl.client.subscription import Subscription
 from diffctl.client.timer import Rate, Timer
@@ -44,6 +49,14 @@ from diffctl.errors import NoRouterError
 
 CLOCK_TOPIC = "/clock"
 USE_SIM_TIME_NAME = "use_sim_time"
+# rmw_qos_profile_parameter_events: reliable, volatile, keep_last 1000
+PARAMETER_EVENTS_QOS = wire.QoS(depth=1000)
+# What rclcpp lets a user override on /parameter_events and on the time source's /clock subscription
+_ALL_OVERRIDES = QoSOverridingOptions([_qos.QoSPolicyKind.DEPTH, _qos.QoSPolicyKind.DURABILITY,
+                                       _qos.QoSPolicyKind.HISTORY, _qos.QoSPolicyKind.RELIABILITY])
+
+
+_CLOCK_STAMP = struct.Struct("<iI")
 
 
 class TimeSource:
@@ -55,7 +68,9 @@ class TimeSource:
         self._active = False
         self._sub: Any = None
         self._last_ns = 0
-        p = node.get_parameter("use_sim_time")
+        if not node.has_parameter(USE_SIM_TIME_NAME):
+            node.declare_parameter(USE_SIM_TIME_NAME, False)
+        p = node.get_parameter(USE_SIM_TIME_NAME)
         if p.type_ == Parameter.Type.BOOL:
             self.ros_time_is_active = p.value
         node.add_on_set_parameters_callback(self._on_parameters)
@@ -73,6 +88,9 @@ class TimeSource:
             c._set_ros_time_is_active(enabled)
         bus = self._node._bus
         if enabled and self._sub is None:
+            if self._node._rclcpp:
+                declare_qos_parameters("subscription", self._node, CLOCK_TOPIC, _qos.QoSProfile(
+                    depth=1, reliability=_qos.ReliabilityPolicy.BEST_EFFORT), _ALL_OVERRIDES, rclcpp=True)
             self._sub = bus.create_subscription("/clock", "rosgraph_msgs/msg/Clock", self._on_clock, raw=True,
                                                 qos=wire.QoS(reliable=False, depth=1))
         elif not enabled and self._sub is not None:
@@ -80,10 +98,13 @@ class TimeSource:
             self._sub = None
 
     def _on_clock(self, data: bytes) -> None:
-        from diffctl.interfaces import types
+        # builtin_interfaces/Time right after the CDR header: sec (int32), nanosec (uint32)
+        sec, nanosec = _CLOCK_STAMP.unpack_from(data, 4)
+        self.set_time_ns(sec * 1_000_000_000 + nanosec)
 
-        msg = types.deserialize(data, "rosgraph_msgs/msg/Clock")
-        ns = int(msg.clock.sec) * 1_000_000_000 + int(msg.clock.nanosec)
+    def set_time_ns(self, ns: int) -> None:
+        """The ROS time of this node's clocks while use_sim_time holds (from /clock, or from a simulator
+        hosting the node, which needs no /clock round trip)."""
         self._last_ns = ns
         for c in self._clocks:
             c._set_override_ns(ns)
@@ -116,7 +137,11 @@ class Node:
                  start_parameter_services: bool = True, parameter_overrides: list[Parameter] | None = None,
                  allow_undeclared_parameters: bool = False,
                  automatically_declare_parameters_from_overrides: bool = False,
-                 enable_logger_service: bool = False) -> None:
+                 enable_logger_service: bool = False, client_library: str = "rclpy") -> None:
+        """`client_library="rclcpp"` (diffctl's own addition) makes the node declare what an rclcpp node
+        declares — the read-only QoS overrides of /parameter_events (and of /clock with use_sim_time), rclcpp's
+        descriptions — so a diffctl component ROS writes in C++ lists the parameters the real one lists."""
+        self._rclcpp = client_library == "rclcpp"
         self._context = get_default_context() if context is None else context
         self._publishers: list[Publisher] = []
         self._subscriptions: list[Subscription] = []
@@ -149,40 +174,62 @@ class Node:
         if parameter_overrides is not None:
             overrides.update({p.name: p for p in parameter_overrides})
         self._parameter_overrides = overrides
-        self._params = NodeParameters(overrides=overrides, allow_undeclared=allow_undeclared_parameters)
-        if automatically_declare_parameters_from_overrides:
-            desc = cls("rcl_interfaces/msg/ParameterDescriptor")
-            self.declare_parameters("", [(n, p.value, desc()) for n, p in overrides.items()], ignore_override=True)
-
+        self._logger_name = (f"{namespace.strip('/')}/{name}" if namespace != "/" else name).replace("/", ".")
+        self._logger = get_logger(self._logger_name)
         try:
-            self._bus = BusNode(name, namespace, use_sim_time=False, remaps=ra.remaps, params={},
-                                allow_undeclared_parameters=allow_undeclared_parameters, parameter_store=self._params,
-                                rosout=enable_rosout and ros_logging.rosout_enabled, serve_parameters=False)
+            self._bus = Participant(name, namespace, self._logger)
         except NoRouterError as e:
             print(f"error: {e}", file=sys.stderr)
             raise SystemExit(2) from None
-        self._logger_name = self._bus.log.name
-        self._logger = get_logger(self._logger_name)
-        self._rosout_sink = None
-        rosout = getattr(self._bus, "_rosout", None)
-        if rosout is not None:
-            self._rosout_sink = rosout._sink
-            attach_rosout(self._logger_name, self._rosout_sink)
+        self._remaps: dict[str, str] = {}
+        for k, v in ra.remaps.items():  # rcl: the first rule matching a name wins
+            try:
+                self._remaps.setdefault(self._expand(k), self._expand(v))
+            except Exception:
+                continue  # a rule for a name this node cannot have
+        self._params = NodeParameters(overrides=overrides, allow_undeclared=allow_undeclared_parameters,
+                                      rclcpp=self._rclcpp)
+        self._parameter_events = self._bus.create_publisher("/parameter_events", "rcl_interfaces/msg/ParameterEvent",
+                                                            qos=PARAMETER_EVENTS_QOS)
+        self._params.on_event = self._publish_parameter_event
+        self._rosout = Rosout(self._bus, self._logger_name) if enable_rosout and ros_logging.rosout_enabled else None
+        if automatically_declare_parameters_from_overrides:
+            desc = cls("rcl_interfaces/msg/ParameterDescriptor")
+            self.declare_parameters("", [(n, p.value, desc()) for n, p in overrides.items()], ignore_override=True)
         if start_parameter_services:
             from diffctl.client.parameter_service import ParameterService
 
             self._parameter_service = ParameterService(self)
-        from diffctl.client.type_description_service import TypeDescriptionService
-
-        self._type_description_service = TypeDescriptionService(self)
         self._clock = ROSClock()
         self._time_source = TimeSource(self)
         self._time_source.attach_clock(self._clock)
+        from diffctl.client.type_description_service import TypeDescriptionService
+
+        self._type_description_service = TypeDescriptionService(self)
+        if self._rclcpp:
+            declare_qos_parameters("publisher", self, "/parameter_events",
+                                   _qos.QoSProfile(depth=1000), _ALL_OVERRIDES, rclcpp=True)
         if enable_logger_service:
             from diffctl.client.logging_service import LoggingService
 
             self._logger_service = LoggingService(self)
         self._context.track_node(self)
+
+    def _publish_parameter_event(self, new: list[Parameter], changed: list[Parameter],
+                                 deleted: list[Parameter]) -> None:
+        pub = self._parameter_events
+        if closing() or pub.closed:
+            return  # the process is ending: nobody will see the event, and a warning would only alarm
+        clock = getattr(self, "_clock", None)
+        event = cls("rcl_interfaces/msg/ParameterEvent")(
+            stamp=clock.now().to_msg() if clock is not None else Time(nanoseconds=time.time_ns()).to_msg(),
+            node=self.get_fully_qualified_name(), new_parameters=[p.to_parameter_msg() for p in new],
+            changed_parameters=[p.to_parameter_msg() for p in changed],
+            deleted_parameters=[p.to_parameter_msg() for p in deleted])
+        try:
+            pub.publish_raw(serialize(event))
+        except Exception as e:  # a closed session at shutdown must not fail the set that caused the event
+            self._bus.throttled("parameter_events", f"could not publish /parameter_events: {type(e).__name__}: {e}")
 
     # ------------------------------------------------------------------ identity
     @property
@@ -255,8 +302,8 @@ class Node:
         self.destroy_node()
 
     @property
-    def bus_node(self) -> Any:
-        """The diffctl.bus.Node under this node (its session, graph, resolve)."""
+    def bus_node(self) -> Participant:
+        """This node on the wire (diffctl.bus.participant): its session, graph and raw endpoints."""
         return self._bus
 
     def get_name(self) -> str:
@@ -362,12 +409,12 @@ class Node:
     def resolve_topic_name(self, topic: str, *, only_expand: bool = False) -> str:
         validate_topic_name(topic)
         full = expand_topic_name(topic, self.get_name(), self.get_namespace())
-        return full if only_expand else self._bus.resolve(full)
+        return full if only_expand else self._remaps.get(full, full)
 
     def resolve_service_name(self, service: str, *, only_expand: bool = False) -> str:
         validate_topic_name(service, is_service=True)
         full = expand_topic_name(service, self.get_name(), self.get_namespace())
-        return full if only_expand else self._bus.resolve(full)
+        return full if only_expand else self._remaps.get(full, full)
 
     # ------------------------------------------------------------------ entities
     def add_waitable(self, waitable: Any) -> None:
@@ -386,7 +433,7 @@ class Node:
         callback_group = callback_group or self.default_callback_group
         full = self.resolve_topic_name(topic)
         if qos_overriding_options is not None:
-            declare_qos_parameters("publisher", self, full, qos_profile, qos_overriding_options)
+            declare_qos_parameters("publisher", self, full, qos_profile, qos_overriding_options, rclcpp=self._rclcpp)
         typename = check_message_type(msg_type)
         bus_pub = self._bus.create_publisher(full, typename, qos=_qos.to_wire(qos_profile))
         bus_pub.client_node = self
@@ -406,7 +453,8 @@ class Node:
         callback_group = callback_group or self.default_callback_group
         full = self.resolve_topic_name(topic)
         if qos_overriding_options is not None:
-            declare_qos_parameters("subscription", self, full, qos_profile, qos_overriding_options)
+            declare_qos_parameters("subscription", self, full, qos_profile, qos_overriding_options,
+                                   rclcpp=self._rclcpp)
         typename = check_message_type(msg_type)
         sub = Subscription(self, msg_type, topic, callback, callback_group, qos_profile, raw,
                            event_callbacks=event_callbacks or SubscriptionEventCallbacks())
@@ -525,8 +573,8 @@ class Node:
                 fn(table[0])
         self._destroyed = True
         self._params.flush()
-        if self._rosout_sink is not None:
-            detach_rosout(self._logger_name, self._rosout_sink)
+        if self._rosout is not None:
+            self._rosout.close()
         self._bus.close()
         self._context.untrack_node(self)
         self._wake_executor()

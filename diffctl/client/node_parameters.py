@@ -1,9 +1,9 @@
-"""A node's parameters with rclpy's semantics, as the store behind the bus node's parameter services.
+"""A node's parameters with rclpy's semantics: every declare, get and set decided the way rclpy's Node does.
 
-The bus serves `~/get_parameters`, `~/set_parameters`, … and publishes `/parameter_events` from its
-`ParameterStore`; this subclass decides every declare, get and set the way rclpy's Node does (descriptors
-as rcl_interfaces messages, override before checks, pre/on/post-set callbacks newest first, failures as
-SetParametersResult, rclpy's exceptions and texts), so the node's own calls and remote ones agree.
+Descriptors are rcl_interfaces messages, an override wins before the checks, pre/on/post-set callbacks run
+newest first, failures come back as SetParametersResult with rclpy's exceptions and texts; the node's own
+calls and its parameter services (`parameter_service.py`) go through the same code. Every accepted change
+is handed to `on_event`, which the node turns into `/parameter_events`.
 """
 
 from __future__ import annotations
@@ -15,8 +15,6 @@ from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
-from diffctl.bus.parameters import TYPE_NAMES, ParameterChange, ParameterStore
-from diffctl.bus.parameters import ParameterDescriptor as BusDescriptor
 from diffctl.client.exceptions import (
     InvalidParameterTypeException,
     InvalidParameterValueException,
@@ -26,11 +24,12 @@ from diffctl.client.exceptions import (
     ParameterUninitializedException,
 )
 from diffctl.client.interfaces import cls
-from diffctl.client.parameter import PARAMETER_SEPARATOR_STRING, Parameter, from_python_value, python_value
+from diffctl.client.parameter import PARAMETER_SEPARATOR_STRING, Parameter
 
 PARAM_REL_TOL = 1e-6
-_RCLPY_DESCRIPTIONS = {"use_sim_time": "",
-                       "start_type_description_service": "If enabled, start the ~/get_type_description service."}
+# rclcpp::to_string(ParameterType)
+_RCLCPP_TYPE = {0: "not set", 1: "bool", 2: "integer", 3: "double", 4: "string", 5: "byte_array", 6: "bool_array",
+                7: "integer_array", 8: "double_array", 9: "string_array"}
 
 
 def _descriptor(**kw: Any) -> Any:
@@ -61,10 +60,11 @@ def validate_parameter_name(name: str) -> bool:
     return True
 
 
-class NodeParameters(ParameterStore):
-    def __init__(self, *, overrides: dict[str, Parameter], allow_undeclared: bool) -> None:
-        super().__init__({}, allow_undeclared=allow_undeclared)
-        self.overrides = {}  # the bus store's own override table stays empty: declares consult `param_overrides`
+class NodeParameters:
+    def __init__(self, *, overrides: dict[str, Parameter], allow_undeclared: bool, rclcpp: bool = False) -> None:
+        """`rclcpp`: refusals worded as rclcpp words them (a diffctl node that ROS writes in C++)."""
+        self.allow_undeclared = allow_undeclared
+        self.rclcpp = rclcpp
         self.param_overrides = overrides
         self.parameters: dict[str, Parameter] = {}
         self.msg_descriptors: dict[str, Any] = {}
@@ -72,13 +72,14 @@ class NodeParameters(ParameterStore):
         self.on_set: list[Callable[[list[Parameter]], Any]] = []
         self.post_set: list[Callable[[list[Parameter]], None]] = []
         self.rlock = threading.RLock()
+        # (new, changed, deleted) of each accepted set, for /parameter_events
+        self.on_event: Callable[[list[Parameter], list[Parameter], list[Parameter]], None] | None = None
 
-    def _notify(self, changes: list[ParameterChange]) -> None:
+    def _notify(self, new: list[Parameter], changed: list[Parameter], deleted: list[Parameter]) -> None:
         # /parameter_events leave on one worker thread of the process, in order: the set (and a node's start,
         # which declares two parameters) does not wait for the event's first serialization.
-        if not self._listeners or not changes:
-            return
-        _events().submit(super()._notify, changes)
+        if self.on_event is not None and (new or changed or deleted):
+            _events().submit(self.on_event, new, changed, deleted)
 
     def flush(self) -> None:
         """Wait until every parameter event queued so far has left (before the node's publisher closes)."""
@@ -156,8 +157,6 @@ class NodeParameters(ParameterStore):
                 raise ParameterImmutableException(name)
             del self.parameters[name]
             del self.msg_descriptors[name]
-            self.values.pop(name, None)
-            self.descriptors.pop(name, None)
 
     def get_parameter(self, name: str) -> Parameter:
         if name in self.parameters:
@@ -234,7 +233,6 @@ class NodeParameters(ParameterStore):
                 if not r.successful:
                     raise InvalidParameterValueException(name, alternative.value, r.reason)
             self.msg_descriptors[name] = descriptor
-            self.descriptors[name] = to_bus_descriptor(descriptor)
             return self.get_parameter(name).get_parameter_value()
 
     def list_parameters(self, prefixes: list[str], depth: int) -> Any:
@@ -274,24 +272,33 @@ class NodeParameters(ParameterStore):
     def _apply_and_store(self, p: Parameter, descriptor: Any) -> Any:
         r = self._apply_descriptor(p, descriptor, False)
         if r.successful:
-            self._store(p)
+            self.parameters[p.name] = p
         return r
 
     def _apply_descriptor(self, p: Parameter, descriptor: Any, check_read_only: bool) -> Any:
         descriptor.name = p.name
         if check_read_only and descriptor.read_only:
-            return _result(False, f"Trying to set a read-only parameter: {p.name}.")
+            return _result(False, f"parameter '{p.name}' cannot be set because it is read-only" if self.rclcpp
+                           else f"Trying to set a read-only parameter: {p.name}.")
         if descriptor.dynamic_typing:
             descriptor.type = p.type_.value
         elif p.name in self.parameters and p.type_ == Parameter.Type.NOT_SET:
             return _result(False, "Static parameter cannot be undeclared")
         elif p.type_ != Parameter.Type.NOT_SET and p.type_.value != descriptor.type:
+            if self.rclcpp:
+                return _result(False, f"Wrong parameter type, parameter {{{p.name}}} is of type "
+                                      f"{{{_RCLCPP_TYPE[descriptor.type]}}}, setting it to "
+                                      f"{{{_RCLCPP_TYPE[p.type_.value]}}} is not allowed.")
             return _result(False, f"Wrong parameter type, expected '{Parameter.Type(descriptor.type)}' "
                                   f"got '{p.type_}'")
         if p.type_ == Parameter.Type.INTEGER and descriptor.integer_range:
-            return _integer_range(p, descriptor.integer_range[0])
+            r = _integer_range(p, descriptor.integer_range[0])
+            return _result(False, f"Parameter {{{p.name}}} doesn't comply with integer range.") \
+                if self.rclcpp and not r.successful else r
         if p.type_ == Parameter.Type.DOUBLE and descriptor.floating_point_range:
-            return _float_range(p, descriptor.floating_point_range[0])
+            r = _float_range(p, descriptor.floating_point_range[0])
+            return _result(False, f"Parameter {{{p.name}}} doesn't comply with floating point range.") \
+                if self.rclcpp and not r.successful else r
         return _result(True)
 
     def _set_common(self, plist: list[Parameter], descriptors: dict[str, Any] | None = None,
@@ -311,83 +318,26 @@ class NodeParameters(ParameterStore):
                 r = _result(False, "Callback returned an invalid type")
             if not r.successful:
                 return r
-        changes: list[ParameterChange] = []
+        new: list[Parameter] = []
+        changed: list[Parameter] = []
+        deleted: list[Parameter] = []
         for p in plist:
             if not allow_not_set_type and p.type_ == Parameter.Type.NOT_SET:
-                changes.append(ParameterChange("deleted", p.name, None))
+                deleted.append(p)
                 self.parameters.pop(p.name, None)
                 self.msg_descriptors.pop(p.name, None)
-                self.values.pop(p.name, None)
-                self.descriptors.pop(p.name, None)
                 continue
             if descriptors is not None:
                 self.msg_descriptors[p.name] = descriptors[p.name]
             elif p.name not in self.msg_descriptors:
                 self.msg_descriptors[p.name] = _descriptor(dynamic_typing=True)
             is_new = self.get_parameter_or(p.name).type_ == Parameter.Type.NOT_SET
-            changes.append(ParameterChange("new" if is_new else "changed", p.name, python_value(p)))
-            self._store(p)
-            self.descriptors[p.name] = to_bus_descriptor(self.msg_descriptors[p.name])
-        self._notify(changes)
+            (new if is_new else changed).append(p)
+            self.parameters[p.name] = p
+        self._notify(new, changed, deleted)
         for cb in self.post_set:
             cb(plist)
         return _result(True)
-
-    def _store(self, p: Parameter) -> None:
-        self.parameters[p.name] = p
-        self.values[p.name] = python_value(p)
-
-    # ------------------------------------------------------------------ the bus store's interface
-    def declare(self, name: str, default: Any, descriptor: BusDescriptor | None = None) -> Any:
-        """A declare by the bus node itself (use_sim_time, start_type_description_service), described as rclpy's
-        TimeSource and TypeDescriptionService describe them."""
-        desc = _descriptor(read_only=bool(descriptor and descriptor.read_only),
-                           description=_RCLPY_DESCRIPTIONS.get(name, descriptor.description if descriptor else ""))
-        if name in self.parameters:
-            return self.values.get(name)
-        return python_value(self.declare_parameters("", [(name, default, desc)])[0])
-
-    def get(self, name: str) -> Any:
-        if name not in self.parameters:
-            raise KeyError(name)
-        return self.values.get(name)
-
-    def has(self, name: str) -> bool:
-        return name in self.parameters
-
-    def names(self) -> list[str]:
-        return sorted(self.parameters)
-
-    def descriptor(self, name: str) -> BusDescriptor:
-        d = self.msg_descriptors.get(name)
-        return to_bus_descriptor(d) if d is not None else BusDescriptor(type="not_set", dynamic_typing=True)
-
-    def list(self, prefixes: Any = (), depth: int = 0) -> tuple[list[str], list[str]]:
-        return self._list(list(prefixes), depth)
-
-    def set_atomically(self, changes: dict[str, Any]) -> str | None:
-        """The set_parameters services: rclpy's path, an undeclared name answered as a failure."""
-        plist = [from_python_value(n, v) for n, v in changes.items()]
-        try:
-            r = self.set_parameters_atomically(plist)
-        except ParameterNotDeclaredException as e:
-            return str(e)
-        return None if r.successful else (r.reason or "failed")
-
-
-def to_bus_descriptor(d: Any) -> BusDescriptor:
-    fr = list(d.floating_point_range)
-    ir = list(d.integer_range)
-    return BusDescriptor(
-        type=TYPE_NAMES.get(int(d.type), "not_set"), description=str(d.description), read_only=bool(d.read_only),
-        additional_constraints=str(d.additional_constraints), dynamic_typing=bool(d.dynamic_typing),
-        floating_point_range=(min(fr[0].from_value, fr[0].to_value), max(fr[0].from_value, fr[0].to_value),
-                              abs(fr[0].step)) if fr else None,
-        integer_range=(min(ir[0].from_value, ir[0].to_value), max(ir[0].from_value, ir[0].to_value),
-                       abs(ir[0].step)) if ir else None,
-    )
-
-
 
 
 def _integer_range(p: Parameter, rng: Any) -> Any:

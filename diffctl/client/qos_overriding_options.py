@@ -81,17 +81,23 @@ def _apply(qos: QoSProfile, policy: QoSPolicyKind, value: Any) -> None:
 
 
 def declare_qos_parameters(kind: str, node: Any, topic_name: str, qos: QoSProfile,
-                           options: QoSOverridingOptions) -> None:
-    """`kind` is "publisher" or "subscription"; `qos` is changed in place, as rclpy does."""
+                           options: QoSOverridingOptions, *, rclcpp: bool = False) -> None:
+    """`kind` is "publisher" or "subscription"; `qos` is changed in place, as rclpy does. `rclcpp` describes
+    the parameters as rclcpp does (for diffctl's nodes that ROS writes in C++)."""
     suffix = "" if options.entity_id is None else f"_{options.entity_id}"
     name = f"qos_overrides.{topic_name}.{kind}{suffix}." + "{}"
-    description = "{}" + f" for {kind} `{topic_name}` with id `{options.entity_id}`"
+    def description(policy_name: str) -> str:
+        if rclcpp:
+            with_id = f" with id {{{options.entity_id}}}" if options.entity_id else ""
+            return f"qos policy {{{policy_name}}} for {kind} {{{topic_name}}}{with_id}"
+        return f"{policy_name} for {kind} `{topic_name}` with id `{options.entity_id}`"
+
     for policy in options.policy_kinds:
         if policy == QoSPolicyKind.INVALID or (kind == "subscription" and policy == QoSPolicyKind.LIFESPAN):
             continue
         policy_name = policy.name.lower()
         descriptor = cls("rcl_interfaces/msg/ParameterDescriptor")(
-            description=description.format(policy_name), read_only=True)
+            description=description(policy_name), read_only=True)
         try:
             param = node.declare_parameter(name.format(policy_name), _policy_value(qos, policy), descriptor)
         except ParameterAlreadyDeclaredException:
@@ -101,4 +107,4 @@ def declare_qos_parameters(kind: str, node: Any, topic_name: str, qos: QoSProfil
         result = options.callback(qos)
         if not result.successful:
             raise InvalidQosOverridesError(
-                f"{description.format('Provided QoS overrides')}, are not valid: {result.reason}")
+                f"{description('Provided QoS overrides')}, are not valid: {result.reason}")

@@ -15,9 +15,21 @@ import sys
 import threading
 import time
 from collections.abc import Callable
+from dataclasses import dataclass
 from typing import Any
 
-from diffctl.bus.log import LogRecord
+
+@dataclass(frozen=True)
+class LogRecord:
+    """One emitted line, as rcl_interfaces/msg/Log carries it to /rosout."""
+
+    stamp_ns: int
+    level: int
+    name: str
+    msg: str
+    file: str
+    function: str
+    line: int
 
 
 class LoggingSeverity(enum.IntEnum):

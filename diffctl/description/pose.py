@@ -27,7 +27,10 @@ def quat_from_rpy(roll_rad: float, pitch_rad: float, yaw_rad: float) -> Quat:
 
 
 def quat_from_axis_angle(axis: Sequence[float], angle_rad: float) -> Quat:
-    """Rotation by `angle_rad` about the unit vector `axis` (right-hand rule)."""
+    """Rotation by `angle_rad` about the unit vector `axis` (right-hand rule); none about a zero axis (as KDL,
+    for a URDF joint whose axis urdfdom kept at 0 0 0)."""
+    if not any(axis):
+        return (0.0, 0.0, 0.0, 1.0)
     s = math.sin(angle_rad / 2)
     return (axis[0] * s, axis[1] * s, axis[2] * s, math.cos(angle_rad / 2))
 

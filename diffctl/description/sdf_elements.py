@@ -12,6 +12,7 @@ from pathlib import Path
 
 from lxml import etree
 
+from diffctl.description.mass_matrix import inertia_is_valid
 from diffctl.description.missing_mesh import MeshNotFound
 from diffctl.description.model import (
     AirPressureSpec,
@@ -92,26 +93,23 @@ def parse_geometry(doc: Doc, parent: Element) -> Geometry:
         if size_el is None:
             fail(doc, shape, "<box> needs <size>x y z</size> (metres)")
         size = parse_floats(doc, size_el, 3)
-        if not all(s > 0 for s in size):
-            fail(doc, size_el, f"<size> of a box must be three positive lengths, got {size_el.text.strip()!r}")
         return Box((size[0], size[1], size[2]))
     if tag in ("cylinder", "capsule"):
-        radius = float_value(doc, shape, "radius", positive=True)
-        length = float_value(doc, shape, "length", positive=True)
+        radius = float_value(doc, shape, "radius")
+        length = float_value(doc, shape, "length")
         return Cylinder(radius, length) if tag == "cylinder" else Capsule(radius, length)
     if tag == "sphere":
-        return Sphere(float_value(doc, shape, "radius", positive=True))
+        return Sphere(float_value(doc, shape, "radius"))
     if tag == "ellipsoid":
         radii_el = child(shape, "radii")
         if radii_el is None:
             fail(doc, shape, "<ellipsoid> needs <radii>a b c</radii> (metres)")
         radii = parse_floats(doc, radii_el, 3)
-        if not all(r > 0 for r in radii):
-            fail(doc, radii_el, f"<radii> of an ellipsoid must be three positive lengths, got {radii!r}")
         from diffctl.description.generated_meshes import ellipsoid_obj
 
         uri = "ellipsoid://" + " ".join(f"{r:g}" for r in radii)
-        return Mesh(str(ellipsoid_obj((radii[0], radii[1], radii[2]))) if doc.check_files else "", uri)
+        solid = all(r > 0 for r in radii)  # a flat one is kept as written; the simulator leaves it out
+        return Mesh(str(ellipsoid_obj((radii[0], radii[1], radii[2]))) if doc.check_files and solid else "", uri)
     if tag == "plane":
         normal = vec3_value(doc, shape, "normal", (0.0, 0.0, 1.0))
         n = math.sqrt(sum(c * c for c in normal))
@@ -120,9 +118,7 @@ def parse_geometry(doc: Doc, parent: Element) -> Geometry:
         size_el = child(shape, "size")
         size = (100.0, 100.0)
         if size_el is not None:
-            size = parse_floats(doc, size_el, 2)
-            if not all(s > 0 for s in size):
-                fail(doc, size_el, f"<size> of a plane must be two positive lengths, got {size_el.text.strip()!r}")
+            size = tuple(abs(s) for s in parse_floats(doc, size_el, 2))  # (sdformat checks no vector's range)
         return Plane((normal[0] / n, normal[1] / n, normal[2] / n), (size[0], size[1]))
     return _parse_mesh(doc, shape)
 
@@ -133,8 +129,6 @@ def _parse_mesh(doc: Doc, shape: Element) -> Mesh:
     if not uri:
         fail(doc, shape, "<mesh> needs a <uri>")
     scale = vec3_value(doc, shape, "scale", (1.0, 1.0, 1.0))
-    if not all(s > 0 for s in scale):
-        fail(doc, child(shape, "scale"), f"<scale> of a mesh must be positive, got {scale}")
     path = _fuel_file(doc, uri, uri_el) if is_remote(uri) else resolve_uri(uri, doc.base_dir, doc.search_path)
     if path is None or not path.is_file():
         if doc.check_files:
@@ -225,13 +219,24 @@ def parse_visual(doc: Doc, el: Element, to_link: ToLink) -> Visual:
 
 
 def parse_inertial(doc: Doc, el: Element, to_link: ToLink) -> Inertial:
-    mass = float_value(doc, el, "mass", 1.0, positive=True)
+    mass = float_value(doc, el, "mass", 1.0)
     pose, rel, pose_el = pose_child(doc, el)
     inertia = child(el, "inertia")
     values = {"ixx": 1.0, "ixy": 0.0, "ixz": 0.0, "iyy": 1.0, "iyz": 0.0, "izz": 1.0}
     if inertia is not None:
         for key, default in values.items():
-            values[key] = float_value(doc, inertia, key, default, positive=key in ("ixx", "iyy", "izz"))
+            values[key] = float_value(doc, inertia, key, default)
+    if not doc.kinematics_only and not inertia_is_valid(mass, **values):
+        link = el.getparent()
+        name = link.get("name") if link is not None else "?"
+        shown = ", ".join(f"{k} {v:g}" for k, v in values.items())
+        fail(
+            doc,
+            inertia if inertia is not None else el,
+            f"A link named {name} has invalid inertia (sdformat's check): mass {mass:g}, {shown}",
+            hint="the mass must not be negative and the inertia matrix positive semi-definite, its principal "
+            "moments obeying the triangle inequality (zeros are fine)",
+        )
     return Inertial(mass, to_link(pose, rel, pose_el), **values)
 
 

@@ -279,17 +279,19 @@ def _joint(b: _Builder, key: str, model_world: Pose) -> Joint:
                 elif not doc.frames_v17 and bool_value(doc, axis_el, "use_parent_model_frame", False):
                     frame = Pose()
             norm = math.sqrt(sum(c * c for c in xyz))
-            if norm == 0:
-                fail(doc, xyz_el, "joint axis <xyz> must not be the zero vector")
-            xyz = (xyz[0] / norm, xyz[1] / norm, xyz[2] / norm)
+            if norm == 0 and not doc.kinematics_only:  # (urdfdom keeps a zero axis: the joint never moves)
+                fail(doc, xyz_el, "The norm of the xyz vector cannot be zero (joint axis <xyz>)")
+            if norm > 0:
+                xyz = (xyz[0] / norm, xyz[1] / norm, xyz[2] / norm)
             limits = _limits(doc, axis_el, kind)
             dyn = child(axis_el, "dynamics")
             if dyn is not None:
                 dynamics = JointDynamics(
-                    damping=float_value(doc, dyn, "damping", 0.0, minimum=0.0),
-                    friction=float_value(doc, dyn, "friction", 0.0, minimum=0.0),
+                    # (joint.sdf sets no minimum; the simulator treats a negative value as 0)
+                    damping=float_value(doc, dyn, "damping", 0.0),
+                    friction=float_value(doc, dyn, "friction", 0.0),
                     spring_reference=float_value(doc, dyn, "spring_reference", 0.0),
-                    spring_stiffness=float_value(doc, dyn, "spring_stiffness", 0.0, minimum=0.0),
+                    spring_stiffness=float_value(doc, dyn, "spring_stiffness", 0.0),
                 )
         axis_model = frame.rotate(xyz)
     mimic_el = child(axis_el, "mimic") if axis_el is not None else None

@@ -29,6 +29,9 @@ class Doc:
     version: tuple[int, int]
     search_path: tuple[Path, ...] = ()
     check_files: bool = True  # False: unresolvable mesh URIs are kept (path "") instead of failing
+    # True for a URDF read for its kinematics (robot_state_publisher): urdfdom checks no physical value (inertia,
+    # a zero joint axis), so only what sdformat would refuse *for the simulator* is skipped
+    kinematics_only: bool = False
 
     @property
     def frames_v17(self) -> bool:

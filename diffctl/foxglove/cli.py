@@ -58,7 +58,8 @@ def foxglove_bridge(port: int | None, address: str | None, bag_path: Path | None
         server.stop()
         bag.close()
         return
-    from diffctl.bus import Node
+    from diffctl.client import component
+    from diffctl.client.node import Node
     from diffctl.foxglove.assets import DEFAULT_ALLOWLIST, AssetResolver
     from diffctl.foxglove.graph import GraphBridge
     from diffctl.foxglove.live import LiveBridge
@@ -68,16 +69,18 @@ def foxglove_bridge(port: int | None, address: str | None, bag_path: Path | None
 
     caps = fg.check_capabilities(list(ra.params.get("capabilities", fg.CAPABILITIES)))
     assets = AssetResolver(list(ra.params.get("asset_uri_allowlist", DEFAULT_ALLOWLIST))) if "assets" in caps else None
-    node = Node.from_ros_args("foxglove_bridge")
-    sim_time = node.clock.use_sim_time
-    live = LiveBridge(node, context, say=info)
-    services = ServiceBridge(node, say=info) if "services" in caps else None
+    started = component.start(lambda: Node("foxglove_bridge", client_library="rclcpp"))
+    node = started.node
+    wire = node.bus_node  # what the app sees and sends passes on raw endpoints: a measured hot path
+    sim_time = bool(node.get_parameter("use_sim_time").value)
+    live = LiveBridge(wire, context, say=info)
+    services = ServiceBridge(wire, say=info) if "services" in caps else None
     params = ParameterBridge(node, say=info) if caps & {"parameters", "parametersSubscribe"} else None
-    graph = GraphBridge(node, live.wake) if "connectionGraph" in caps else None
+    graph = GraphBridge(wire, live.wake) if "connectionGraph" in caps else None
     server = fg.start(address, port, live=live, context=context, sim_time=sim_time, services=services,
                       params=params, assets=assets, client_publish="clientPublish" in caps, graph=graph)
     if sim_time:
-        node.create_subscription("/clock", "rosgraph_msgs/msg/Clock",
+        wire.create_subscription("/clock", "rosgraph_msgs/msg/Clock",
                                  lambda m: server.broadcast_time(types.time_ns(m.clock)))
     live.start()
     info(f"Foxglove server on ws://{address}:{server.port} (connect from the Foxglove app)")
@@ -87,4 +90,4 @@ def foxglove_bridge(port: int | None, address: str | None, bag_path: Path | None
     for part in (services, params):
         if part is not None:
             part.close()
-    node.close()
+    started.stop()

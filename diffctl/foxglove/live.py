@@ -162,7 +162,7 @@ class LiveBridge:
             else:
                 pub.publish(types.new(typename, json.loads(data)))
         except (DiffctlError, ValueError) as e:
-            self.node.log.throttled(f"fg{pub.topic}", f"dropped a message from a Foxglove client on {pub.topic}: {e}")
+            self.node.throttled(f"fg{pub.topic}", f"dropped a message from a Foxglove client on {pub.topic}: {e}")
 
     def close(self) -> None:
         self._stop.set()

@@ -17,8 +17,8 @@ from typing import Any
 import foxglove
 from foxglove import ParameterType
 
-from diffctl.bus import parameter_msgs
-from diffctl.bus.parameters import type_of
+from diffctl.client.interfaces import cls
+from diffctl.client.parameter import Parameter, from_python_value, parameter_value_to_python
 
 RCL = "rcl_interfaces/srv/"
 EVENTS = "/parameter_events"
@@ -31,16 +31,18 @@ def split_name(full: str) -> tuple[str, str]:
     return node, param
 
 
-def to_foxglove(name: str, value: Any) -> foxglove.Parameter:
-    kind = type_of(value) if value is not None else "not_set"
-    if kind == "not_set":
+def to_foxglove(name: str, parameter_value: Any) -> foxglove.Parameter:
+    """A foxglove parameter from an rcl_interfaces/msg/ParameterValue."""
+    kind = Parameter.Type(parameter_value.type)
+    value = parameter_value_to_python(parameter_value)
+    if kind is Parameter.Type.NOT_SET:
         return foxglove.Parameter(name)
-    if kind == "double":
+    if kind is Parameter.Type.DOUBLE:
         return foxglove.Parameter(name, value=float(value), type=ParameterType.Float64)
-    if kind == "double_array":
+    if kind is Parameter.Type.DOUBLE_ARRAY:
         return foxglove.Parameter(name, value=[float(v) for v in value], type=ParameterType.Float64Array)
-    if kind == "byte_array":
-        return foxglove.Parameter(name, value=bytes(value), type=ParameterType.ByteArray)
+    if kind is Parameter.Type.BYTE_ARRAY:
+        return foxglove.Parameter(name, value=b"".join(value), type=ParameterType.ByteArray)
     return foxglove.Parameter(name, value=value)
 
 
@@ -58,6 +60,7 @@ def from_foxglove(p: foxglove.Parameter) -> Any:
 
 class ParameterBridge:
     def __init__(self, node: Any, say: Callable[[str], None] = print) -> None:
+        """`node`: the bridge's client Node, spinning on another thread (its service calls block on it)."""
         self.node = node
         self.say = say
         self.server: Any = None
@@ -67,18 +70,23 @@ class ParameterBridge:
         self._lock = threading.Lock()
 
     # ------------------------------------------------------------------ calls to one node
-    def _call(self, node_fqn: str, short: str, srv: str, request: dict[str, Any]) -> Any:
+    def _call(self, node_fqn: str, short: str, srv: str, **request: Any) -> Any:
         with self._lock:
             client = self._clients.get((node_fqn, short))
             if client is None:
-                client = self._clients[(node_fqn, short)] = self.node.create_client(f"{node_fqn}/{short}", RCL + srv)
+                client = self._clients[(node_fqn, short)] = self.node.create_client(cls(RCL + srv),
+                                                                                    f"{node_fqn}/{short}")
         if not client.wait_for_service(TIMEOUT_S):
             raise RuntimeError(f"node {node_fqn} offers no {short} service")
-        return client.call(request, timeout=TIMEOUT_S)
+        response = client.call(client.srv_type.Request(**request), timeout_sec=TIMEOUT_S)
+        if response is None:
+            raise RuntimeError(f"{node_fqn}/{short} did not answer within {TIMEOUT_S:g} s")
+        return response
 
     def _parameter_nodes(self) -> list[str]:
-        services = self.node.graph.services()
-        return [n for n in self.node.graph.nodes() if n != self.node.fqn
+        graph = self.node.bus_node.graph
+        services = graph.services()
+        return [n for n in graph.nodes() if n != self.node.get_fully_qualified_name()
                 and RCL + "ListParameters" in services.get(f"{n}/list_parameters", ())
                 and RCL + "GetParameters" in services.get(f"{n}/get_parameters", ())]
 
@@ -98,31 +106,31 @@ class ParameterBridge:
             try:
                 if not params:
                     params = sorted(str(n) for n in
-                                    self._call(node, "list_parameters", "ListParameters", {}).result.names)
-                values = self._call(node, "get_parameters", "GetParameters", {"names": params}).values
+                                    self._call(node, "list_parameters", "ListParameters").result.names)
+                values = self._call(node, "get_parameters", "GetParameters", names=params).values
             except Exception as e:  # one node that does not answer must not hide the others
                 self.say(f"parameters of {node} could not be read: {e}")
                 continue
             # A node leaves out names it never declared (rclcpp answers them with no values at all).
             pairs = zip(params, values, strict=False)
-            out += [to_foxglove(f"{node}.{p}", parameter_msgs.from_value(v)) for p, v in pairs]
+            out += [to_foxglove(f"{node}.{p}", v) for p, v in pairs]
         return out
 
     def set(self, parameters: list[foxglove.Parameter]) -> list[foxglove.Parameter]:
         """Set each on its node; returns the values the nodes hold afterwards (a refused one keeps its value)."""
-        by_node: dict[str, list[dict[str, Any]]] = {}
+        by_node: dict[str, list[Any]] = {}
         for p in parameters:
             node, param = split_name(p.name)
-            by_node.setdefault(node, []).append({"name": param, "value": parameter_msgs.to_value(from_foxglove(p))})
+            by_node.setdefault(node, []).append(from_python_value(param, from_foxglove(p)).to_parameter_msg())
         for node, params in by_node.items():
             try:
-                results = self._call(node, "set_parameters", "SetParameters", {"parameters": params}).results
+                results = self._call(node, "set_parameters", "SetParameters", parameters=params).results
             except Exception as e:
                 self._status(f"cannot set parameters of {node}: {e}")
                 continue
             for p, r in zip(params, results, strict=False):
                 if not r.successful:
-                    self._status(f"{node}.{p['name']} was not set: {r.reason or 'refused'}")
+                    self._status(f"{node}.{p.name} was not set: {r.reason or 'refused'}")
         return self.get([p.name for p in parameters])
 
     def _status(self, text: str) -> None:
@@ -135,8 +143,8 @@ class ParameterBridge:
         with self._lock:
             self._watched.update(names)
             if self._events is None and self._watched:
-                self._events = self.node.create_subscription(EVENTS, "rcl_interfaces/msg/ParameterEvent",
-                                                             self._on_event, depth=1000)
+                self._events = self.node.create_subscription(cls("rcl_interfaces/msg/ParameterEvent"), EVENTS,
+                                                             self._on_event, 1000)
 
     def unsubscribe(self, names: list[str]) -> None:
         with self._lock:
@@ -147,7 +155,7 @@ class ParameterBridge:
 
     def _on_event(self, event: Any) -> None:
         with self._lock:
-            changed = [to_foxglove(f"{event.node}.{p.name}", parameter_msgs.from_value(p.value))
+            changed = [to_foxglove(f"{event.node}.{p.name}", p.value)
                        for p in event.changed_parameters if f"{event.node}.{p.name}" in self._watched]
         if changed and self.server is not None:
             self.server.publish_parameter_values(changed)
@@ -160,4 +168,4 @@ class ParameterBridge:
         if events is not None:
             self.node.destroy_subscription(events)
         for c in clients:
-            c.close()
+            self.node.destroy_client(c)

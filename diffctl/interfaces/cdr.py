@@ -31,6 +31,8 @@ import numpy
 from rosbags.serde.utils import ndtype
 from rosbags.typesys.base import Nodetype, normalize_fieldname
 
+from diffctl.interfaces.bytecode import compiled
+
 # The struct codes rosbags uses for each ROS primitive (note `byte` is signed there), size = alignment.
 _CODE = {
     "bool": "?", "byte": "b", "char": "B", "int8": "b", "uint8": "B", "int16": "h", "uint16": "H",
@@ -376,7 +378,7 @@ def compile_decoder(
         ns["FALLBACK"] = _big_endian_unsupported
     src = _decoder_source(ts, typename, ns, wrap=error is not None, classes=classes)
     ns = {k: v for k, v in ns.items() if isinstance(k, str)}
-    exec(compile(src, f"<cdr decoder {typename}>", "exec"), ns)
+    exec(compiled(src, f"<cdr decoder {typename}>"), ns)
     return ns["decode"]
 
 
@@ -546,7 +548,7 @@ def compile_encoder(ts: Any, typename: str, rosidl: bool = False) -> Callable[[A
                           "WENC": _wstring_encode}
     src = _encoder_source(ts, typename, ns, "_" if rosidl else "")
     ns = {k: v for k, v in ns.items() if isinstance(k, str)}
-    exec(compile(src, f"<cdr encoder {typename}>", "exec"), ns)
+    exec(compiled(src, f"<cdr encoder {typename}>"), ns)
     inner = ns["encode"]
 
     def encode(msg: Any) -> bytes:

@@ -4,7 +4,7 @@
 message classes; services with their `_Request`, `_Response` and `_Event`; actions with their `_SendGoal_*`
 and `_GetResult_*`), each built on first access from `<pkg>.<kind>._<snake>`, whose source
 `pysource.py` writes. The source is registered with linecache, so tracebacks through a setter's assertion
-show the line, as they do through rosidl's files.
+show the line, as they do through rosidl's files; its bytecode is cached (`bytecode.py`).
 """
 
 from __future__ import annotations
@@ -15,6 +15,7 @@ import types
 from typing import Any
 
 from diffctl.interfaces import pysource, registry
+from diffctl.interfaces.bytecode import compiled
 from diffctl.interfaces.idl import TypeDef
 from diffctl.interfaces.registry import InterfacePackage
 
@@ -80,7 +81,7 @@ def fill_interface_module(module: types.ModuleType, p: InterfacePackage, kind: s
     source = pysource.module_source(kind, full, defs, origin)
     filename = f"<{module.__name__} generated from {origin}>"
     linecache.cache[filename] = (len(source), None, source.splitlines(True), filename)
-    exec(compile(source, filename, "exec"), module.__dict__)
+    exec(compiled(source, filename), module.__dict__)
     for t in defs:
         cls = module.__dict__[t.split("/")[-1]]
         NAMES[cls] = t

@@ -9,7 +9,7 @@ import click
 
 @click.command("joint-state-publisher")
 @click.argument("description_file", required=False, type=click.Path(dir_okay=False, path_type=Path))
-def joint_state_publisher(description_file: Path | None) -> None:
+def joint_state_publisher(description_file: Path | None) -> int:
     """Publish sensor_msgs/JointState for the non-fixed joints of a robot description (no GUI).
 
     The description comes from DESCRIPTION_FILE (URDF, SDF or xacro, expanded) and from the latched robot_description
@@ -23,7 +23,6 @@ def joint_state_publisher(description_file: Path | None) -> None:
       diffctl joint-state-publisher --ros-args -p rate:=20
       diffctl joint-state-publisher robot.urdf --ros-args -p zeros.arm_joint:=0.5
     """
-    from diffctl import ros_args
-    from diffctl.joint_state_publisher.node import NODE_NAME, run
+    from diffctl.joint_state_publisher.node import run
 
-    run(dict(ros_args.current(NODE_NAME).params), description_file)
+    return run(description_file)

@@ -22,7 +22,7 @@ import click
 @click.option("--use-sim-time", is_flag=True, default=None, help="Stamp with /clock time (parameter use_sim_time).")
 def robot_state_publisher(
     description_file: Path | None, frame_prefix: str | None, publish_frequency: float | None, use_sim_time: bool | None
-) -> None:
+) -> int:
     """Publish /robot_description (latched), /tf_static for fixed joints and /tf from /joint_states.
 
     Parameters come from --ros-args as for ROS 2's robot_state_publisher (robot_description,
@@ -33,15 +33,9 @@ def robot_state_publisher(
       diffctl robot-state-publisher --description description/my_diff_car.sdf
       diffctl robot-state-publisher --ros-args -p robot_description:="$(cat description/my_diff_car.sdf)"
     """
-    from diffctl import ros_args
-    from diffctl.robot_state_publisher.node import NODE_NAME, run
+    from diffctl.client.parameter import Parameter
+    from diffctl.robot_state_publisher.node import run
 
-    params = dict(ros_args.current(NODE_NAME).params)
-    for name, value in (
-        ("frame_prefix", frame_prefix),
-        ("publish_frequency", publish_frequency),
-        ("use_sim_time", use_sim_time),
-    ):
-        if value is not None:
-            params[name] = value
-    run(params, description_file=description_file)
+    options = (("frame_prefix", frame_prefix), ("publish_frequency", publish_frequency),
+               ("use_sim_time", use_sim_time))
+    return run(description_file, [Parameter(name, value=value) for name, value in options if value is not None])

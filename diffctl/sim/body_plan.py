@@ -13,7 +13,10 @@ parsed model with `createMultiBody`. Planning rules:
 - a static model becomes one massless PyBullet body; a joint to `world` pins the tree (a fixed one makes the
   base static, a moving one hangs the tree from a static anchor);
 - each tree of links (links not connected by joints) becomes its own PyBullet body;
-- a cylinder turning about its own axis (a wheel) meets the world as a contact disc and a core (wheel_contact.py).
+- a cylinder turning about its own axis (a wheel) meets the world as a contact disc and a core (wheel_contact.py);
+- a shape with no volume (a size or radius <= 0, which SDF and URDF parsers accept) is left out, with a note;
+- principal moments of inertia are floored (`MIN_MOMENT_SHARE`): a zero one (sdformat accepts it) would make
+  Bullet divide by zero about that axis.
 A moving PyBullet link with no mass is an error: some link needs an <inertial>.
 """
 
@@ -21,7 +24,19 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from diffctl.description.model import Collision, Cylinder, Geometry, Joint, Model, Surface, Visual
+from diffctl.description.model import (
+    Box,
+    Capsule,
+    Collision,
+    Cylinder,
+    Geometry,
+    Joint,
+    Mesh,
+    Model,
+    Sphere,
+    Surface,
+    Visual,
+)
 from diffctl.description.pose import Pose, Vec3
 from diffctl.errors import DescriptionError
 from diffctl.sim.inertia import MassProperties, combine, from_inertial, principal
@@ -85,6 +100,28 @@ class ModelPlan:
     bodies: tuple[BodyPlan, ...]
     links: dict[str, LinkRef]
     joints: dict[str, tuple[int, int]]  # moving SDF joint → (body number, PyBullet joint index)
+    notes: tuple[str, ...] = ()  # what of the model is left out of the physics, one line each
+
+
+# A principal moment of inertia is at least this share of the link's largest (or MIN_MOMENT_KG_M2 when all
+# are zero): Bullet inverts each one.
+MIN_MOMENT_SHARE = 1e-6
+MIN_MOMENT_KG_M2 = 1e-9
+
+
+def degenerate(g: Geometry) -> str | None:
+    """Why a shape has no volume to simulate, or None."""
+    if isinstance(g, Box) and not all(v > 0 for v in g.size_m):
+        return f"box size {' '.join(f'{v:g}' for v in g.size_m)}"
+    if isinstance(g, Cylinder) and not (g.radius_m > 0 and g.length_m > 0):
+        return f"cylinder radius {g.radius_m:g} length {g.length_m:g}"
+    if isinstance(g, Capsule) and not (g.radius_m > 0 and g.length_m >= 0):
+        return f"capsule radius {g.radius_m:g} length {g.length_m:g}"
+    if isinstance(g, Sphere) and not g.radius_m > 0:
+        return f"sphere radius {g.radius_m:g}"
+    if isinstance(g, Mesh) and (not g.path or not all(v != 0 for v in g.scale)):
+        return f"mesh {g.uri!r} scaled {' '.join(f'{v:g}' for v in g.scale)}" if g.path else f"mesh {g.uri!r}"
+    return None
 
 
 def plan_model(model: Model, *, split_colours: bool = False) -> ModelPlan:
@@ -113,6 +150,7 @@ class _Planner:
             self.children[j.parent].append(j)
             child_of.add(j.child)
         self.roots = [link.name for link in model.links if link.name not in child_of]
+        self.notes: list[str] = []
 
     def plan(self) -> ModelPlan:
         if self.m.static:
@@ -138,13 +176,13 @@ class _Planner:
                     refs[name] = LinkRef(body_no, pb_index, g["frame"].inverse().compose(self.by_name[name].pose_world))
                 if g["joint"] is not None and g["joint"].type != "fixed":
                     joints[g["joint"].name] = (body_no, pb_index)
-        return ModelPlan(tuple(bodies), refs, joints)
+        return ModelPlan(tuple(bodies), refs, joints, tuple(self.notes))
 
     def _static(self) -> ModelPlan:
         base = self.by_name[self.m.root_link()]
         g = self._group([link.name for link in self.m.links], base.pose_world, -1, None, static=True)
         refs = {n: LinkRef(0, -1, g["frame"].inverse().compose(self.by_name[n].pose_world)) for n in g["members"]}
-        return ModelPlan((BodyPlan((self._finish(g),)),), refs, {})
+        return ModelPlan((BodyPlan((self._finish(g),)),), refs, {}, tuple(self.notes))
 
     @staticmethod
     def _group(members: list[str], frame: Pose, parent: int, joint: Joint | None, static: bool = False) -> dict:
@@ -188,11 +226,16 @@ class _Planner:
             in_frame = inv.compose(link.pose_world)
             if link.inertial is not None:
                 parts.append(from_inertial(link.inertial, in_frame))
-            for c in link.collisions:
-                collisions.append(_shape(c, in_frame))
-                surfaces.append(c.surface)
-            for v in link.visuals:
-                visuals.append(_shape(v, in_frame))
+            for kind, shapes in (("collision", link.collisions), ("visual", link.visuals)):
+                for c in shapes:
+                    why = degenerate(c.geometry)
+                    if why is not None:
+                        self.notes.append(f"{kind} {c.name!r} of link {name!r} has no volume ({why}): left out")
+                    elif isinstance(c, Collision):
+                        collisions.append(_shape(c, in_frame))
+                        surfaces.append(c.surface)
+                    else:
+                        visuals.append(_shape(c, in_frame))
         mp = combine(parts)
         joint: Joint | None = g["joint"]
         if g["static"]:
@@ -208,6 +251,15 @@ class _Planner:
         else:
             mass = mp.mass_kg
             inertial_frame, diag = principal(mp)
+            floor = max(MIN_MOMENT_KG_M2, MIN_MOMENT_SHARE * max(diag))
+            if min(diag) < floor:
+                diag = (max(diag[0], floor), max(diag[1], floor), max(diag[2], floor))
+        if joint is not None and (joint.dynamics.damping < 0 or joint.dynamics.friction < 0):
+            d = joint.dynamics
+            self.notes.append(
+                f"joint {joint.name!r}: negative <dynamics> (damping {d.damping:g}, friction {d.friction:g}) "
+                "simulated as 0"
+            )
         axis: Vec3 = (0.0, 0.0, 1.0)
         if joint is not None and joint.axis_world is not None:
             axis = frame.inverse().rotate(joint.axis_world)

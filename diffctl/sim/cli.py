@@ -10,6 +10,7 @@ the world's <real_time_factor>).
 from __future__ import annotations
 
 import os
+import re
 import shlex
 import signal
 import threading
@@ -36,71 +37,152 @@ class GzArgs:
     rtf: float | None = None
 
 
+# `gz sim`'s options as gz-sim 8's Ruby front end declares them (src/cmd/cmdsim.rb.in): name → the type of
+# its argument (None: a flag). Every argument is "placed" (`-v [verbose]`): it is the attached text (`-v4`,
+# `--seed=3`) or the next word unless that word starts with '-', else it is absent.
+_SHORT: dict[str, str | None] = {"h": None, "r": None, "g": None, "s": None, "v": "str", "z": "float"}
+_LONG: dict[str, str | None] = {
+    "help": None,
+    "iterations": "int",
+    "network-role": "str",
+    "network-secondaries": "int",
+    "initial-sim-time": "float",
+    "levels": None,
+    "record": None,
+    "record-path": "str",
+    "record-resources": None,
+    "record-topic": "str",
+    "record-period": "float",
+    "log-overwrite": None,
+    "log-compress": None,
+    "playback": "str",
+    "verbose": "str",
+    "gui-config": "str",
+    "physics-engine": "str",
+    "headless-rendering": None,
+    "render-engine-gui": "str",
+    "render-engine-gui-api-backend": "str",
+    "render-engine-server": "str",
+    "render-engine-server-api-backend": "str",
+    "render-engine": "str",
+    "render-engine-api-backend": "str",
+    "version": None,
+    "seed": "int",
+}
+_RUBY_INTEGER = re.compile(
+    r"[-+]?(?:0[bB][01]+(?:_[01]+)*|0[xX][\da-fA-F]+(?:_[\da-fA-F]+)*|0[oO]?[0-7]*(?:_[0-7]+)*|[1-9]\d*(?:_\d+)*)"
+)
+_RUBY_FLOAT = re.compile(r"[-+]?(?:\d+(?:_\d+)*(?:\.\d+(?:_\d+)*)?(?:[eE][-+]?\d+)?|\.\d+(?:[eE][-+]?\d+)?)")
+
+
 def parse_gz_args(tokens: list[str]) -> GzArgs:
-    """Gazebo's `gz sim` flags from loose tokens (each may hold several, as a gz_args string does)."""
+    """Gazebo's `gz sim` flags from loose tokens (each may hold several, as a gz_args string does), read as
+    gz sim 8's Ruby OptionParser reads them: short flags cluster (`-rs`), `-v` takes an attached or following
+    value unless that starts with '-' (bare `-v` is 3; `-v -v1` is 1: the last wins), long options take
+    `=value` and unambiguous prefixes, and the world is the last word that is no option's value."""
     words: list[str] = []
     for t in tokens:
         words.extend(shlex.split(t))
     out = GzArgs()
+    positional: list[str] = []
     i = 0
-
-    def value(flag: str) -> str:
-        if i + 1 >= len(words):
-            raise ConfigError(f"sim run: {flag} needs a value")
-        return words[i + 1]
-
     while i < len(words):
         w = words[i]
-        if w == "-r":
-            out.run = True
-        elif w == "-s":
-            out.server_only = True
-        elif w == "-g":
-            out.gui_only = True
-        elif w.startswith("-v") and w[2:].isdigit():
-            out.verbosity = int(w[2:])
-        elif w in ("-v", "--verbose"):
-            out.verbosity = _int(value(w), w)
-            i += 1
-        elif w == "--iterations":
-            out.iterations = _int(value(w), w)
-            i += 1
-        elif w == "--seed":
-            out.seed = _int(value(w), w)
-            i += 1
-        elif w in (
-            "-z",
-            "--render-engine",
-            "--physics-engine",
-            "--render-engine-server",
-            "--render-engine-gui",
-            "--initial-sim-time",
-            "--record-path",
-        ):
-            i += 1  # Gazebo options with a value that have no meaning here
-        elif w.startswith("-"):
-            if w not in ("--headless-rendering", "--record", "--levels", "--network-role"):
-                raise ConfigError(
-                    f"sim run: unknown option {w!r}",
-                    hint="valid: -r, -s, -g, -v N, --iterations N, --seed N, --gui, --rtf X",
-                )
-        elif out.world is None:
-            out.world = w
-        else:
-            raise ConfigError(f"sim run: more than one world file ({out.world!r} and {w!r})")
         i += 1
-    if out.verbosity is not None and not 0 <= out.verbosity <= 4:
-        raise ConfigError(f"sim run: verbosity {out.verbosity} is out of range", hint="valid: 0..4")
+        if w == "--":
+            positional.extend(words[i:])
+            break
+        if w.startswith("--"):
+            name, eq, attached = w[2:].partition("=")
+            long_name = _long_option(name, w)
+            i = _apply(out, f"--{long_name}", _LONG[long_name], attached if eq else None, words, i)
+        elif w.startswith("-") and len(w) > 1:
+            rest = w[1:]
+            while rest:
+                flag, rest = rest[0], rest[1:]
+                if flag not in _SHORT:
+                    raise ConfigError(
+                        f"sim run: invalid option: -{flag}" + (f" (in {w!r})" if len(w) > 2 else ""),
+                        hint="valid: -r, -s, -g, -v [N], -z HZ, --iterations N, --seed N, --gui, --rtf X, "
+                        "and gz sim's other long options",
+                    )
+                kind = _SHORT[flag]
+                if kind is None:
+                    _apply(out, f"-{flag}", None, None, words, i)
+                    continue
+                i = _apply(out, f"-{flag}", kind, rest or None, words, i)
+                break
+        else:
+            positional.append(w)
+    if positional:
+        out.world = positional[-1]  # cmdsim.rb pops the last one; others are not read
     if out.iterations is not None and out.iterations < 0:
         raise ConfigError(f"sim run: --iterations {out.iterations} must be >= 0")
     return out
 
 
-def _int(text: str, flag: str) -> int:
-    try:
-        return int(text)
-    except ValueError:
-        raise ConfigError(f"sim run: {flag} {text!r} is not an integer") from None
+def _long_option(name: str, word: str) -> str:
+    if name in _LONG:
+        return name
+    matches = [n for n in _LONG if n.startswith(name)] if name else []
+    if len(matches) == 1:
+        return matches[0]
+    what = "ambiguous option" if matches else "invalid option"
+    raise ConfigError(
+        f"sim run: {what}: {word}" + (f" ({', '.join('--' + m for m in matches)})" if matches else ""),
+        hint="valid: -r, -s, -g, -v [N], -z HZ, --iterations N, --seed N, --gui, --rtf X, "
+        "and gz sim's other long options",
+    )
+
+
+def _apply(out: GzArgs, flag: str, kind: str | None, attached: str | None, words: list[str], i: int) -> int:
+    """Record one option; returns the index of the next word (one further when it took that word)."""
+    value = attached
+    if kind is not None and value is None and i < len(words) and not words[i].startswith("-"):
+        value = words[i]
+        i += 1
+    if kind is None and attached is not None:
+        raise ConfigError(f"sim run: needless argument: {flag}={attached}")
+    if flag == "-r":
+        out.run = True
+    elif flag == "-s":
+        out.server_only = True
+    elif flag == "-g":
+        out.gui_only = True
+    elif flag in ("-v", "--verbose"):
+        # gz hands the text to atoi(): "-v" alone is 3, a word that is no number is 0; past 4 is as loud as 4
+        out.verbosity = max(0, min(4, _atoi(value))) if value is not None else 3
+    elif flag in ("--iterations", "--seed"):
+        if value is None:
+            raise ConfigError(f"sim run: {flag} needs a value")
+        number = _ruby_integer(value, flag)
+        if flag == "--iterations":
+            out.iterations = number
+        else:
+            out.seed = number
+    elif kind == "int" and value is not None:
+        _ruby_integer(value, flag)
+    elif kind == "float" and flag.startswith("--") and value is not None and not _RUBY_FLOAT.fullmatch(value):
+        # (a short option's bad number is not an error to Ruby's OptionParser: `-z x` reads as no rate)
+        raise ConfigError(f"sim run: invalid argument: {flag} {value}", hint="a number, e.g. 1000")
+    return i
+
+
+def _atoi(text: str) -> int:
+    m = re.match(r"\s*([-+]?\d+)", text)
+    return int(m.group(1)) if m else 0
+
+
+def _ruby_integer(text: str, flag: str) -> int:
+    """An Integer option's value as Ruby's Integer() reads it (0x.., 0b.., 0o../0.. octal, 1_000)."""
+    if not _RUBY_INTEGER.fullmatch(text):
+        raise ConfigError(f"sim run: invalid argument: {flag} {text}", hint="an integer, e.g. 100")
+    t = text.replace("_", "")
+    sign = -1 if t.startswith("-") else 1
+    t = t.lstrip("+-")
+    if len(t) > 1 and t[0] == "0" and t[1] not in "xXbBoO":
+        return sign * int(t[1:], 8)
+    return sign * int(t, 0)
 
 
 def find_world(name: str) -> Path:

@@ -194,7 +194,7 @@ class Entity:
             h.index,
             pb.VELOCITY_CONTROL,
             targetVelocity=0.0,
-            force=h.joint.dynamics.friction,
+            force=max(0.0, h.joint.dynamics.friction),
             physicsClientId=self.client,
         )
 

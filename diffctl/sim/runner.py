@@ -154,6 +154,8 @@ class Simulation:
         if model.name in self.models:
             raise RuntimeFailure(f"an entity named {model.name!r} already exists", hint="choose another name")
         entity = self.physics.add_model(model)
+        if entity.plan.notes:
+            self.log.warn(f"model {model.name!r}: " + "; ".join(entity.plan.notes))
         rt = ModelRuntime(entity)
         self.models[model.name] = rt
         self._retro = None

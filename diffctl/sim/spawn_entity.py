@@ -287,16 +287,20 @@ class _Description:
     """The latched description topic, subscribed to at once; `wait` returns its text."""
 
     def __init__(self, topic: str) -> None:
-        from diffctl.bus import Node
+        from diffctl.client import component
+        from diffctl.client.node import Node
 
         self._got: list[str] = []
         self._event = threading.Event()
-        self._node = Node.from_ros_args(NODE_NAME)
+        component.init()
+        self._node = Node(NODE_NAME, client_library="rclcpp")
         try:
-            self.resolved = self._node.resolve(topic)
-            self._node.create_subscription(topic, "std_msgs/msg/String", self._on_msg, latched=True)
+            self.resolved = self._node.resolve_topic_name(topic)
+            # One latched sample, taken on the transport's thread: the node is never spun.
+            self._node.bus_node.create_subscription(self.resolved, "std_msgs/msg/String", self._on_msg,
+                                                    latched=True)
         except BaseException:
-            self._node.close()
+            self._node.destroy_node()
             raise
 
     def _on_msg(self, msg: Any) -> None:
@@ -314,4 +318,4 @@ class _Description:
         return self._got[0]
 
     def close(self) -> None:
-        self._node.close()
+        self._node.destroy_node()

@@ -249,7 +249,7 @@ class PhysicsWorld:
             kw["localInertiaDiagonal"] = lp.inertia_diagonal
         joint = lp.joint
         if index >= 0 and joint is not None and joint.type != "fixed":
-            kw["jointDamping"] = joint.dynamics.damping
+            kw["jointDamping"] = max(0.0, joint.dynamics.damping)
             if joint.type in ("revolute", "prismatic") and joint.limits.bounded:
                 kw["jointLowerLimit"] = joint.limits.lower
                 kw["jointUpperLimit"] = joint.limits.upper
@@ -264,7 +264,7 @@ class PhysicsWorld:
                     targetPosition=[0, 0, 0, 1],
                     positionGain=0,
                     velocityGain=1,
-                    force=[joint.dynamics.friction] * 3,
+                    force=[max(0.0, joint.dynamics.friction)] * 3,
                     physicsClientId=cid,
                 )
             else:
@@ -273,7 +273,7 @@ class PhysicsWorld:
                     index,
                     pb.VELOCITY_CONTROL,
                     targetVelocity=0.0,
-                    force=joint.dynamics.friction,
+                    force=max(0.0, joint.dynamics.friction),
                     physicsClientId=cid,
                 )
 

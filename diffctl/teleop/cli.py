@@ -41,10 +41,19 @@ def _flag(params: dict[str, Any], name: str, cli_value: bool | None, default: bo
     return value
 
 
-def _open_node(name: str) -> Any:
-    from diffctl.bus import Node
+def _start_node(name: str, declared: dict[str, Any]) -> Any:
+    """The teleop's client node, spinning on its own thread; `declared` are the parameters it runs with."""
+    from diffctl.client import component
+    from diffctl.client.node import Node
+    from diffctl.client.parameter import Parameter
 
-    return Node.from_ros_args(name)
+    def make() -> Any:
+        node = Node(name, parameter_overrides=[Parameter(k, value=v) for k, v in declared.items()])
+        for k, v in declared.items():
+            node.declare_parameter(k, v)
+        return node
+
+    return component.start(make)
 
 
 @dataclass(frozen=True)
@@ -152,19 +161,17 @@ def keyboard(
             hint="run it in a terminal (or use `diffctl topic pub` from scripts)",
         )
 
-    from diffctl.bus import close_session
     from diffctl.teleop.keyboard import run_keyboard
     from diffctl.teleop.twist_command import TwistCommand
 
-    node = _open_node(KEYBOARD_NODE)
+    started = _start_node(KEYBOARD_NODE, {"stamped": is_stamped, "frame_id": str(frame)})
     try:
-        command = TwistCommand(node, choose_topic(topic, ra.remaps), stamped=is_stamped, frame_id=str(frame))
+        command = TwistCommand(started.node, choose_topic(topic, ra.remaps), stamped=is_stamped, frame_id=str(frame))
         run_keyboard(
             KeyboardTeleop(params), command, repeat_rate_hz=float(rate), fd_in=sys.stdin.fileno(), out=sys.stdout
         )
     finally:
-        node.close()
-        close_session()
+        started.stop()
 
 
 @teleop.command("joy")
@@ -227,24 +234,23 @@ def joy(
     path = evdev_reader.find_device(device or settings.device, settings.device_id)
     source = evdev_reader.InputDevice(path)
 
-    from diffctl.bus import close_session
     from diffctl.teleop.joy import run_joy
     from diffctl.teleop.shutdown import stop_on_signals
     from diffctl.teleop.twist_command import TwistCommand
 
     try:
-        node = _open_node(JOY_NODE)
+        started = _start_node(JOY_NODE, {"publish_stamped_twist": jp.publish_stamped_twist, "frame": jp.frame})
         try:
-            command = TwistCommand(node, settings.topic, stamped=jp.publish_stamped_twist, frame_id=jp.frame)
-            node.log.info(
+            command = TwistCommand(started.node, settings.topic, stamped=jp.publish_stamped_twist, frame_id=jp.frame)
+            log = started.node.get_logger()
+            log.info(
                 f"reading {path} '{source.info.name}' (joy_config {preset or 'from file'}), "
                 f"publishing {command.typename} on {command.topic}"
             )
             stop = threading.Event()
             stop_on_signals(stop)
-            run_joy(source, jp, command, stop, node.log)
+            run_joy(source, jp, command, stop, log)
         finally:
-            node.close()
-            close_session()
+            started.stop()
     finally:
         source.close()

@@ -8,9 +8,8 @@ from __future__ import annotations
 
 import threading
 import time
-from typing import Protocol
+from typing import Any, Protocol
 
-from diffctl.bus.log import Logger
 from diffctl.teleop.joy_config import JoyParams
 from diffctl.teleop.joy_mapping import AxisRange, Command, JoyState, JoyTeleop
 from diffctl.teleop.linux_input import EV_SYN, SYN_DROPPED, SYN_REPORT
@@ -27,7 +26,7 @@ class JoySource(Protocol):
 
 
 def run_joy(
-    source: JoySource, params: JoyParams, command: TwistCommand, stop: threading.Event, log: Logger | None = None
+    source: JoySource, params: JoyParams, command: TwistCommand, stop: threading.Event, log: Any = None
 ) -> None:
     """Publish teleop_twist_joy's commands until `stop` is set; evaluated per input frame and at autorepeat_rate."""
     state = JoyState(source.axis_ranges, params.deadzone)

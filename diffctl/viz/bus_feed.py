@@ -16,7 +16,7 @@ import contextlib
 import threading
 from typing import Any
 
-from diffctl.bus import Node, gz, wire
+from diffctl.bus import gz, wire
 from diffctl.errors import DiffctlError, MessageError
 from diffctl.interfaces import types
 from diffctl.viz.commands import PublishJob, TeleopCommand, fill_now
@@ -30,8 +30,12 @@ LIST_CONTROLLERS_TYPE = "controller_manager_msgs/srv/ListControllers"
 
 
 class BusFeed:
-    def __init__(self, node: Node, scene: Scene, config: RvizConfig, settings: VizSettings) -> None:
-        self.node = node
+    def __init__(self, node: Any, scene: Scene, config: RvizConfig, settings: VizSettings) -> None:
+        """`node`: the visualizer's client Node; the feed is a measured hot path, so its endpoints are raw ones
+        on the node's wire presence."""
+        self.node = node.bus_node
+        self._resolve = node.resolve_topic_name
+        self._clock = node.get_clock()
         self.scene = scene
         self.settings = settings
         self._lock = threading.Lock()
@@ -40,7 +44,9 @@ class BusFeed:
         self._publishers: dict[tuple[str, str], Any] = {}
         self._controllers_client: Any = None
 
-        sub = node.create_subscription
+        def sub(topic: str, typename: str, callback: Any, **kw: Any) -> Any:
+            return self.node.create_subscription(self._resolve(topic), typename, callback, **kw)
+
         sub("/tf_static", "tf2_msgs/msg/TFMessage", lambda m: scene.on_tf(m, static=True), latched=True)
         # Every display's topic, enabled or not: the page can switch a display on at any time.
         for topic in config.topics("robot_model", enabled_only=False):
@@ -61,7 +67,7 @@ class BusFeed:
         # truth places its own odom tree in the world.
         # Ground truth is not a ROS subscription (nothing in the graph changes) and the simulator computes it
         # only while someone listens: it is taken only while a page is open to draw it.
-        zs = node.session
+        zs = self.node.session
         self._truth_models = list(dict.fromkeys([settings.ground_truth_model,
                                                  *(p for _, p in config.robot_models() if p)]))
         self._truth_subs: list[Any] = []
@@ -72,7 +78,8 @@ class BusFeed:
         first page opens and the last one closes."""
         with self._lock:
             if on and not self._live_subs:
-                self._live_subs = [self.node.create_subscription(t, ty, cb) for t, ty, cb in self._live_specs]
+                self._live_subs = [self.node.create_subscription(self._resolve(t), ty, cb)
+                                   for t, ty, cb in self._live_specs]
                 self._truth_subs = [
                     self.node.session.declare_subscriber(gz.key(f"/model/{m}/pose"),
                                                          lambda s, m=m: self._on_gz_pose(s, m))
@@ -165,7 +172,7 @@ class BusFeed:
         with self._lock:
             if on and topic not in self._image_subs:
                 self._image_subs[topic] = self.node.create_subscription(
-                    topic, "sensor_msgs/msg/Image", lambda m, t=topic: self._on_image(t, m), depth=1
+                    self._resolve(topic), "sensor_msgs/msg/Image", lambda m, t=topic: self._on_image(t, m), depth=1
                 )
             elif not on and topic in self._image_subs:
                 self.node.destroy_subscription(self._image_subs.pop(topic))
@@ -180,7 +187,8 @@ class BusFeed:
         with self._lock:
             pub = self._publishers.get((topic, type_name))
             if pub is None:
-                pub = self._publishers[(topic, type_name)] = self.node.create_publisher(topic, type_name)
+                pub = self._publishers[(topic, type_name)] = self.node.create_publisher(self._resolve(topic),
+                                                                                        type_name)
             return pub
 
     def other_types(self, topic: str, type_name: str) -> list[str]:
@@ -188,12 +196,12 @@ class BusFeed:
         return [t for t in self.node.graph.topics().get(topic, []) if t != type_name]
 
     def publish_teleop(self, cmd: TeleopCommand) -> None:
-        stamp = types.time_msg(self.node.now_ns())
+        stamp = types.time_msg(self._clock.now().nanoseconds)
         fields = cmd.fields({"sec": stamp.sec, "nanosec": stamp.nanosec}, self.settings.teleop_frame_id)
         self._publisher(cmd.topic, cmd.type_name).publish(types.new(cmd.type_name, fields))
 
     def publish_job(self, job: PublishJob) -> None:
-        now = types.time_msg(self.node.now_ns())
+        now = types.time_msg(self._clock.now().nanoseconds)
         fields = fill_now(job.fields, {"sec": now.sec, "nanosec": now.nanosec})
         self._publisher(job.topic, job.type_name).publish(types.new(job.type_name, fields))
 

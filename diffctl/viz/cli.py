@@ -76,23 +76,23 @@ def viz(
 
 
 async def _serve(config, settings: VizSettings, ra: ros_args.RosArgs) -> None:
-    from diffctl.bus import Node
+    from diffctl.client import component
+    from diffctl.client.node import Node
+    from diffctl.client.parameter import Parameter
     from diffctl.viz.bus_feed import BusFeed
     from diffctl.viz.scene import Scene
     from diffctl.viz.security import new_token
     from diffctl.viz.server import VizServer
 
-    node = Node(
-        ra.node_name or DEFAULT_NODE_NAME,
-        ra.namespace or "/",
-        remaps=ra.remaps,
-        params={**ra.params, "use_sim_time": settings.use_sim_time},
-    )
+    started = component.start(lambda: Node(
+        DEFAULT_NODE_NAME, client_library="rclcpp",
+        parameter_overrides=[Parameter("use_sim_time", value=settings.use_sim_time)]))
+    node = started.node
     feed = None
     try:
         scene = Scene(config, settings)
         feed = BusFeed(node, scene, config, settings)
-        server = VizServer(scene, feed, config, new_token(), node.log)
+        server = VizServer(scene, feed, config, new_token(), node.get_logger())
         port = await server.start()
         shown_host = settings.host if ":" not in settings.host else f"[{settings.host}]"
         print(f"diffctl viz: open http://{shown_host}:{port}/?token={server.token}", flush=True)
@@ -104,5 +104,5 @@ async def _serve(config, settings: VizSettings, ra: ros_args.RosArgs) -> None:
     finally:
         if feed is not None:
             feed.close()
-        node.close()
+        started.stop()
         sys.stdout.flush()

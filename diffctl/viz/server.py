@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
+import errno
 import json
 import math
 import time
@@ -47,6 +48,8 @@ CSP = (
     "base-uri 'none'; form-action 'none'; frame-ancestors 'none'"
 )
 MAX_JOBS_PER_PAGE = 16
+# A taken port moves the page to the next free one among this many (several rviz2 run side by side).
+PORT_SEARCH = 100
 TELEOP_MIN_INTERVAL_S = 0.02
 
 
@@ -116,23 +119,33 @@ class VizServer:
     # ---- lifetime ----------------------------------------------------------------------------------------
 
     async def start(self) -> int:
-        """Bind and return the port (the chosen one when asked for port 0)."""
-        try:
-            self._server = await serve(
-                self._handle,
-                self.settings.host,
-                self.settings.port,
-                process_request=self._process_request,
-                max_size=256 * 1024,
-                server_header=f"diffctl-viz/{__version__}",
-                compression=None,
-            )
-        except OSError as e:
-            raise ConfigError(
-                f"cannot listen on {self.settings.host}:{self.settings.port}: {e.strerror or e}",
-                hint="pass another --port, or --port 0 to pick a free one",
-            ) from None
-        port = self._server.sockets[0].getsockname()[1] if self._server.sockets else self.settings.port
+        """Bind and return the port: the one asked for, else (taken by another visualizer, say) the next free
+        one, said in one line; a free one of the system's choosing for port 0."""
+        first = self.settings.port
+        last = min(65535, first + PORT_SEARCH) if first else 0
+        for port in range(first, last + 1):
+            try:
+                self._server = await serve(
+                    self._handle,
+                    self.settings.host,
+                    port,
+                    process_request=self._process_request,
+                    max_size=256 * 1024,
+                    server_header=f"diffctl-viz/{__version__}",
+                    compression=None,
+                )
+                break
+            except OSError as e:
+                if e.errno == errno.EADDRINUSE and port < last:
+                    continue
+                raise ConfigError(
+                    f"cannot listen on {self.settings.host}:{port}: {e.strerror or e}"
+                    + (f" (ports {first}..{port} are all taken)" if port > first else ""),
+                    hint="pass another --port, or --port 0 to pick a free one",
+                ) from None
+        port = self._server.sockets[0].getsockname()[1] if self._server.sockets else port
+        if first and port != first:
+            self.log.warn(f"port {first} is taken (another visualizer?): serving on port {port}")
         self.policy = HostPolicy(self.settings.host, port)
         return port
 
@@ -256,7 +269,7 @@ class VizServer:
                 await self._reply(page, self._template(msg.get("type")))
             elif op in ("teleop", "publish", "publish_stop"):
                 if not page.authorized:
-                    self.log.throttled(f"refused{id(page)}", f"refused '{op}' from a page without the token")
+                    self.log.warning(f"refused '{op}' from a page without the token", throttle_duration_sec=5.0)
                     await self._reply(
                         page,
                         {
@@ -385,7 +398,7 @@ class VizServer:
             try:
                 await self._tick(started)
             except Exception as e:  # a bad frame must not stop the page from updating
-                self.log.throttled("tick", f"frame failed: {type(e).__name__}: {e}", level="ERROR")
+                self.log.error(f"frame failed: {type(e).__name__}: {e}", throttle_duration_sec=5.0)
             await asyncio.sleep(max(0.0, self.tick_s - (time.monotonic() - started)))
 
     async def _tick(self, now: float) -> None:

@@ -1,8 +1,12 @@
 """Finding the user's workspace and the packages in its `src/`, the way colcon's crawl finds them.
 
-A workspace is a folder whose `src/` holds `package.xml` files. The crawl follows symlinks, skips
-directories whose name starts with `.`, skips subtrees holding `COLCON_IGNORE`, `AMENT_IGNORE` or
-`CATKIN_IGNORE`, and stops descending at a package (nested packages are not packages).
+A workspace is a folder whose `src/` holds ROS packages (`package.xml` files whose root is `<package>`, as
+colcon-ros identifies them). The crawl follows symlinks, skips directories whose name starts with `.`, skips
+subtrees holding `COLCON_IGNORE`, `AMENT_IGNORE` or `CATKIN_IGNORE`, and stops descending at a package (nested
+packages are not packages). Looking upward from the working directory, a folder counts only when the working
+directory is that folder or lies in its `src/`, or when colcon has built there (its `build/`, `install/` or
+`log/` holds the COLCON_IGNORE colcon writes): an unrelated `src/` higher up (say `~/src` full of other
+repositories) is never taken for the user's workspace.
 """
 
 from __future__ import annotations
@@ -16,6 +20,7 @@ from diffctl.errors import ConfigError
 
 WORKSPACE_ENV = "DIFFCTL_WORKSPACE"
 IGNORE_MARKERS = ("COLCON_IGNORE", "AMENT_IGNORE", "CATKIN_IGNORE")
+COLCON_OUTPUTS = ("build", "install", "log")
 
 
 def crawl(base: Path) -> Iterator[Path]:
@@ -36,8 +41,23 @@ def crawl(base: Path) -> Iterator[Path]:
         dirnames[:] = sorted(d for d in dirnames if not d.startswith("."))
 
 
+def _is_ros_package(directory: Path) -> bool:
+    from diffctl.workspace.package_xml import read_manifest
+
+    try:
+        read_manifest(directory / "package.xml")
+    except ConfigError:
+        return False
+    return True
+
+
 def holds_packages(src: Path) -> bool:
-    return src.is_dir() and next(crawl(src), None) is not None
+    return src.is_dir() and any(_is_ros_package(p) for p in crawl(src))
+
+
+def built_by_colcon(directory: Path) -> bool:
+    """Whether colcon has built in `directory` (it leaves COLCON_IGNORE in its build/, install/ and log/)."""
+    return any((directory / out / "COLCON_IGNORE").is_file() for out in COLCON_OUTPUTS)
 
 
 def _named_workspace(directory: Path, origin: str) -> Path:
@@ -71,6 +91,6 @@ def _enclosing(start: str) -> Path | None:
     # crawled once, not on every package lookup.
     here = Path(start)
     for d in (here, *here.parents):
-        if holds_packages(d / "src"):
+        if (d == here or here.is_relative_to(d / "src") or built_by_colcon(d)) and holds_packages(d / "src"):
             return d
     return None

@@ -32,6 +32,14 @@ COMPONENTS: dict[tuple[str, str], tuple[str, ...]] = {
     ("tf2_ros", "static_transform_publisher"): ("tf2", "static_transform_publisher"),
     ("tf2_ros", "tf2_echo"): ("tf2", "tf2_echo"),
     ("diffctl", "router"): ("router",),
+    ("robot_localization", "ekf_node"): ("robot-localization", "ekf_node"),
+    ("robot_localization", "ukf_node"): ("robot-localization", "ukf_node"),
+    ("robot_localization", "navsat_transform_node"): ("robot-localization", "navsat_transform_node"),
+    **{("topic_tools", exe): ("topic-tools", exe)
+       for exe in ("relay", "throttle", "drop", "delay", "mux", "demux", "relay_field")},
+    ("twist_mux", "twist_mux"): ("twist-mux",),
+    ("twist_stamper", "twist_stamper"): ("twist-stamper", "twist_stamper"),
+    ("twist_stamper", "twist_unstamper"): ("twist-stamper", "twist_unstamper"),
     # Containers of composable nodes: Python components in one process (diffctl/launch_legacy/composable.py)
     ("rclcpp_components", "component_container"): ("component-container",),
     ("rclcpp_components", "component_container_mt"): ("component-container", "--multi-threaded"),

@@ -9,14 +9,14 @@ from diffctl.control.controllers.joint_state_broadcaster import description_join
 from diffctl.description.pose import Pose
 from diffctl.description.ros2_control import gz_ros2_control_parameters, ros2_control_blocks
 from diffctl.robot_state_publisher.kinematics import KinematicTree
-from diffctl.robot_state_publisher.node import RspParams, load_description
+from diffctl.robot_state_publisher.node import load_description
 from diffctl.viz.robot_model import parse_description as viz_model
 
 URDF = (Path(__file__).resolve().parent / "data" / "urdf" / "diff_car.urdf").read_text()
 
 
 def test_tf_tree_has_every_urdf_frame_as_ros_robot_state_publisher_does() -> None:
-    tree = KinematicTree.from_model(load_description(RspParams(robot_description=URDF)))
+    tree = KinematicTree.from_model(load_description(URDF))
     assert tree.root == "base_footprint"
     fixed = {(s.parent, s.child): s for s in tree.fixed()}
     assert set(fixed) == {("base_footprint", "base_link"), ("base_link", "caster"), ("base_link", "lidar_link")}

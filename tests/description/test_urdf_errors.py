@@ -86,7 +86,13 @@ CASES = [
     ("bad_rpy", robot('<link name="a"><visual>\n<origin rpy="0 0"/></visual></link>'), 3, ["must be 3 numbers"]),
     ("no_geometry", robot('<link name="a">\n<collision/></link>'), 3, ["needs a <geometry>"]),
     ("capsule", robot('<link name="a"><visual><geometry>\n<capsule/></geometry></visual></link>'), 2, ["<capsule>"]),
-    ("negative_box", shape("visual", '<box size="1 -1 1"/>'), 3, ["positive"]),
+    (  # urdfdom checks no inertia, but Gazebo (sdformat) does when it spawns the robot
+        "invalid_inertia_when_simulated",
+        robot('<link name="a"><inertial><mass value="1"/>\n<inertia ixx="-1" ixy="0" ixz="0" iyy="1" iyz="0" '
+              'izz="1"/></inertial></link>'),
+        2,  # the converted <inertial> carries its URDF element's line
+        ["A link named a has invalid inertia", "ixx -1"],
+    ),
     ("no_mass", robot(f'<link name="a">\n<inertial>{INERTIA}</inertial></link>'), 3, ["<mass value"]),
     (
         "bad_inertia",
@@ -152,6 +158,19 @@ def test_bad_urdf_names_file_line_and_fix(tmp_path: Path, text: str, line: int, 
     assert "\n" not in message
     for fragment in fragments:
         assert fragment in message
+
+
+def test_values_urdfdom_accepts_load_for_robot_state_publisher() -> None:
+    """urdfdom checks no size, inertia, dynamics or axis; robot_state_publisher takes such a robot whole."""
+    text = robot(
+        '<link name="a"><inertial><mass value="-1"/><inertia ixx="0" ixy="0" ixz="0" iyy="-2" iyz="0" izz="0"/>'
+        '</inertial><visual><geometry><box size="0 -1 1"/></geometry></visual><collision><geometry>'
+        '<sphere radius="0"/></geometry></collision></link><link name="b"/>\n'
+        + joint("revolute", '<axis xyz="0 0 0"/><limit effort="1" velocity="1"/><dynamics damping="-1"/>')
+    )
+    m = parse_description(text, source="robot.urdf", simulation=False)
+    assert [link.name for link in m.links] == ["a", "b"]
+    assert m.joints[0].name == "j"
 
 
 def test_missing_mesh_names_the_uri_and_where_it_looked(

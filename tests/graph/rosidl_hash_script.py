@@ -17,7 +17,10 @@ def main() -> None:
     spec = json.loads(Path(sys.argv[1]).read_text())
     out = Path(spec["out"])
     hashes: dict[str, str] = {}
-    for pkg, src in spec["packages"].items():
+    includes = dict(spec["includes"])
+    # In name order, each package's descriptions an include of the next (robot_localization's services use
+    # geographic_msgs, as a colcon build finds them in the installed share/ of the package built before).
+    for pkg, src in sorted(spec["packages"].items()):
         src_dir = Path(src)
         idl_dir = out / "idl" / pkg
         tuples = []
@@ -26,13 +29,14 @@ def main() -> None:
                 convert(src_dir, pkg, Path(kind) / f.name, idl_dir / kind)
                 tuples.append(f"{idl_dir}:{kind}/{f.stem}.idl")
         args = {"package_name": pkg, "output_dir": str(out / "json" / pkg), "idl_tuples": tuples,
-                "include_paths": [f"{p}:{d}" for p, d in spec["includes"].items()]}
+                "include_paths": [f"{p}:{d}" for p, d in includes.items()]}
         args_file = out / f"{pkg}.args.json"
         args_file.write_text(json.dumps(args))
         for generated in generate_type_hash(str(args_file)):
             data = json.loads(Path(generated).read_text())
             for h in data["type_hashes"]:
                 hashes[h["type_name"]] = h["hash_string"]
+        includes[pkg] = str(out / "json" / pkg)
     print(json.dumps(hashes))
 
 

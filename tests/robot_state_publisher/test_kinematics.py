@@ -1,16 +1,13 @@
-"""Joint transforms of the TF tree against poses worked out by hand, and parameter validation."""
+"""Joint transforms of the TF tree against poses worked out by hand."""
 
 from __future__ import annotations
 
 import math
 
 import numpy as np
-import pytest
 
 from diffctl.description.sdf_loader import parse_model
-from diffctl.errors import ParameterError
 from diffctl.robot_state_publisher.kinematics import KinematicTree
-from diffctl.robot_state_publisher.node import RspParams
 
 ARM = """<sdf version="1.8"><model name="arm"><static>true</static>
   <link name="base"/>
@@ -42,18 +39,3 @@ def test_revolute_turns_about_the_joint_origin_and_prismatic_slides_along_its_ax
     assert np.allclose(turned.transform_point((0.5, 0, 0)), (0, 0.5, 1), atol=1e-12)
     slid = rail.transform(0.25)
     assert np.allclose(slid.xyz, (1.25, 0, 0), atol=1e-12) and slid.quat == (0, 0, 0, 1)
-
-
-def test_parameters_are_validated_in_one_place() -> None:
-    p = RspParams.from_dict({"robot_description": ARM, "publish_frequency": 50, "use_sim_time": "true", "other": 1})
-    assert (p.publish_frequency_hz, p.use_sim_time, p.frame_prefix) == (50.0, True, "")
-    for bad, needle in [
-        ({}, "'robot_description' is not set"),
-        ({"robot_description": {"a": 1}}, "must be the SDF text"),
-        ({"robot_description": ARM, "publish_frequency": "fast"}, "'publish_frequency'"),
-        ({"robot_description": ARM, "publish_frequency": math.nan}, "'publish_frequency'"),
-        ({"robot_description": ARM, "ignore_timestamp": "maybe"}, "'ignore_timestamp' must be true or false"),
-        ({"robot_description": ARM, "frame_prefix": 3}, "'frame_prefix'"),
-    ]:
-        with pytest.raises(ParameterError, match=needle):
-            RspParams.from_dict(bad)

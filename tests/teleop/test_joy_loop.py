@@ -9,6 +9,8 @@ import time
 import pytest
 
 from diffctl.bus import Node
+from diffctl.client.context import Context
+from diffctl.client.node import Node as ClientNode
 from diffctl.teleop.joy import run_joy
 from diffctl.teleop.joy_config import JoyParams
 from diffctl.teleop.joy_mapping import AxisRange
@@ -47,13 +49,15 @@ def test_enable_turbo_autorepeat_and_single_zero(router: str) -> None:
         "geometry_msgs/msg/TwistStamped",
         lambda m: got.append((time.monotonic(), m.twist.linear.x, m.twist.angular.z, m.header.frame_id)),
     )
-    teleop_node = Node("teleop_twist_joy_node")
+    context = Context()
+    context.init(args=[])
+    teleop_node = ClientNode("teleop_twist_joy_node", context=context)
     params = JoyParams.from_params({"autorepeat_rate": 20.0, "publish_stamped_twist": True}, "xbox")
     command = TwistCommand(teleop_node, topic, stamped=True, frame_id=params.frame)
     pad = ScriptedPad()
     stop = threading.Event()
     deadline = time.monotonic() + 5
-    while not command.pub.subscription_count and time.monotonic() < deadline:
+    while not command.pub.get_subscription_count() and time.monotonic() < deadline:
         time.sleep(0.02)
     loop = threading.Thread(target=run_joy, args=(pad, params, command, stop))
     before_start = len(got)
@@ -88,6 +92,7 @@ def test_enable_turbo_autorepeat_and_single_zero(router: str) -> None:
     finally:
         stop.set()
         loop.join(5)
-        teleop_node.close()
+        teleop_node.destroy_node()
+        context.try_shutdown()
         probe.close()
     assert not loop.is_alive()

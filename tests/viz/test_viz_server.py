@@ -254,14 +254,16 @@ def test_bad_rviz_file_exits_2_naming_it(tmp_path: Path, router, procs) -> None:
     assert p.returncode == 2 and "Displays[0].Color" in out and "300; 0; 0" in out
 
 
-def test_busy_port_and_bad_options_exit_2(router, procs) -> None:
-    with socket.socket() as s:
+def test_a_taken_port_moves_to_the_next_free_one_and_bad_options_exit_2(router, procs, start_viz) -> None:
+    with socket.socket() as s:  # another visualizer (or anything) holds the port asked for
         s.bind(("127.0.0.1", 0))
         s.listen()
         port = s.getsockname()[1]
-        p = procs.diffctl("viz", "--port", str(port))
-        out, _ = p.communicate(timeout=30)
-        assert p.returncode == 2 and f"127.0.0.1:{port}" in out and "--port 0" in out
+        v = start_viz("--port", str(port))
+        shown = int(v.host_port.rsplit(":", 1)[1])
+        assert shown > port, v.output()
+        assert f"port {port} is taken" in v.output() and f"serving on port {shown}" in v.output()
+        assert http_get(v.host_port, "/")[0] == 200
     p = procs.diffctl("viz", "--port", "0", "--ros-args", "-p", "max_linear_mps:=-1")
     out, _ = p.communicate(timeout=30)
     assert p.returncode == 2 and "max_linear_mps" in out and "-1" in out

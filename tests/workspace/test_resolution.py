@@ -67,6 +67,35 @@ def test_the_workspace_is_found_from_any_folder_inside_it(ws: Path, monkeypatch:
     assert find_workspace() == ws.resolve()
 
 
+def test_an_unrelated_src_above_the_working_directory_is_no_workspace(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    home = tmp_path / "home"
+    # ~/src of other repositories: a ROS package whose CMake hook only exists after a build, and a non-ROS
+    # package.xml; a project beside it is no workspace (this used to apply that hook and fail)
+    other = cmake_package(home / "src" / "someone_elses", "someone_elses")
+    (other / "CMakeLists.txt").write_text(
+        "project(someone_elses)\nament_environment_hooks(${CMAKE_CURRENT_BINARY_DIR}/generated.dsv)\nament_package()\n"
+    )
+    (home / "src" / "js_thing").mkdir(parents=True)
+    (home / "src" / "js_thing" / "package.xml").write_text("<project/>")
+    project = home / "project" / "launch"
+    project.mkdir(parents=True)
+    monkeypatch.chdir(project)
+    assert find_workspace() is None
+    assert find_workspace(start=home) == home.resolve()  # typed in the folder itself, it is taken
+    assert find_workspace(start=home / "src" / "someone_elses") == home.resolve()
+    # once colcon has built there, any folder inside counts (ws/launch of a tutorial layout)
+    (home / "install").mkdir()
+    (home / "install" / "COLCON_IGNORE").write_text("")
+    assert find_workspace(start=home / "project") == home.resolve()
+    # a src/ holding only non-ROS package.xml files is none
+    stray = tmp_path / "stray"
+    (stray / "src" / "x").mkdir(parents=True)
+    (stray / "src" / "x" / "package.xml").write_text("<project/>")
+    assert find_workspace(start=stray) is None
+
+
 def test_naming_a_folder_that_is_no_workspace_is_an_error(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     with pytest.raises(ConfigError, match=r"--workspace: .* is not a workspace \(no src/ folder"):
         find_workspace(explicit=tmp_path)

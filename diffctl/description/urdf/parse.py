@@ -184,27 +184,20 @@ class _Reader:
             hint = suggest(kids[0].tag, GEOMETRY_TAGS) if len(kids) == 1 else ""
             self.fail(geo, f"<geometry> must hold exactly one of {', '.join(GEOMETRY_TAGS)}; found {found}{hint}")
         g = kids[0]
+        # urdfdom checks no size (a zero box is a placeholder some robots carry); the simulator leaves out a
+        # shape with no volume
         if g.tag == "box":
             size = self.floats(g, "size", 3, None)
-            if not all(s > 0 for s in size):
-                self.fail(g, f"<box size> must be three positive lengths, got {g.get('size')!r}")
             return UrdfGeometry("box", size_m=(size[0], size[1], size[2]))
         if g.tag == "cylinder":
             radius, length = self.number(g, "radius"), self.number(g, "length")
-            if radius <= 0 or length <= 0:
-                self.fail(g, f"<cylinder> radius and length must be positive, got {radius:g} and {length:g}")
             return UrdfGeometry("cylinder", radius_m=radius, length_m=length)
         if g.tag == "sphere":
-            radius = self.number(g, "radius")
-            if radius <= 0:
-                self.fail(g, f"<sphere radius> must be positive, got {radius:g}")
-            return UrdfGeometry("sphere", radius_m=radius)
+            return UrdfGeometry("sphere", radius_m=self.number(g, "radius"))
         filename = (g.get("filename") or "").strip()
         if not filename:
             self.fail(g, "<mesh> needs a 'filename' attribute", hint='e.g. filename="package://my_pkg/meshes/a.stl"')
         scale = self.floats(g, "scale", 3, (1.0, 1.0, 1.0))
-        if not all(s > 0 for s in scale):
-            self.fail(g, f"<mesh scale> must be positive, got {g.get('scale')!r}")
         return UrdfGeometry("mesh", filename=filename, scale=(scale[0], scale[1], scale[2]), line=g.sourceline or 0)
 
     def material(self, el: Element, named: dict[str, tuple[RGBA | None, str]]) -> tuple[RGBA | None, str]:
@@ -228,16 +221,12 @@ def _inertial(r: _Reader, link: Element) -> UrdfInertial | None:
     mass_el = el.find("mass")
     if mass_el is None:
         r.fail(el, "<inertial> needs <mass value=…/> (kilograms)")
-    mass = r.number(mass_el, "value")
-    if mass < 0:
-        r.fail(mass_el, f"<mass value> must not be negative, got {mass:g}")
+    mass = r.number(mass_el, "value")  # urdfdom checks no value: Gazebo drops a link of mass <= 0
     inertia_el = el.find("inertia")
     if inertia_el is None:
         r.fail(el, "<inertial> needs <inertia ixx ixy ixz iyy iyz izz/>")
     keys = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
     inertia = tuple(r.number(inertia_el, k) for k in keys)
-    if any(inertia[i] < 0 for i in (0, 3, 5)):
-        r.fail(inertia_el, "ixx, iyy and izz must not be negative", hint="inertia is in kg·m² about the centre of mass")
     return UrdfInertial(mass, r.origin(el), inertia, el.sourceline or 0)  # type: ignore[arg-type]
 
 
@@ -284,9 +273,8 @@ def _joint(r: _Reader, el: Element, links: dict[str, UrdfLink]) -> UrdfJoint:
     if axis_el is not None and kind not in ("fixed", "floating"):
         xyz = r.floats(axis_el, "xyz", 3, (1.0, 0.0, 0.0))
         norm = math.sqrt(sum(c * c for c in xyz))
-        if norm == 0:
-            r.fail(axis_el, "joint <axis xyz> must not be the zero vector")
-        axis = (xyz[0] / norm, xyz[1] / norm, xyz[2] / norm)
+        # urdfdom keeps a zero axis (the joint never moves); sdformat refuses it when the robot is simulated
+        axis = (xyz[0] / norm, xyz[1] / norm, xyz[2] / norm) if norm > 0 else (0.0, 0.0, 0.0)
     limit = None
     limit_el = el.find("limit")
     if limit_el is not None:
@@ -309,8 +297,6 @@ def _joint(r: _Reader, el: Element, links: dict[str, UrdfLink]) -> UrdfJoint:
     dyn = el.find("dynamics")
     if dyn is not None:
         damping, friction = r.number(dyn, "damping", 0.0), r.number(dyn, "friction", 0.0)
-        if damping < 0 or friction < 0:
-            r.fail(dyn, "<dynamics> damping and friction must not be negative")
     mimic = None
     mimic_el = el.find("mimic")
     if mimic_el is not None:

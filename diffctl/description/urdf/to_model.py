@@ -39,10 +39,11 @@ def urdf_model(
     robot = parse_urdf(text_or_root, source)
     options = ConversionOptions(lump=simulation, resolve_meshes=check_files, base_dir=base)
     conv = urdf_to_sdf(robot, options, name)
-    doc = Doc(source, base, (1, 11), search_path_for(base), check_files)
-    model_el = conv.sdf.find("model")
-    # Kinematics need no mass: the tree view skips the simulator's "moving links need an <inertial>" check.
+    # Kinematics need no mass: the tree view skips the simulator's "moving links need an <inertial>" check,
+    # and, as urdfdom, every physical check (inertia, a zero joint axis)
     kinematic_only = not simulation and static is None
+    doc = Doc(source, base, (1, 11), search_path_for(base), check_files, kinematics_only=kinematic_only)
+    model_el = conv.sdf.find("model")
     model = build_model(
         doc,
         model_el,

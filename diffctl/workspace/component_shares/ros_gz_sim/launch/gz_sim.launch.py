@@ -23,6 +23,7 @@ from diffctl.launch_legacy import (
     OpaqueFunction,
     Shutdown,
 )
+from diffctl.sim.cli import parse_gz_args
 from diffctl.workspace.builtin import GAZEBO_WORLDS
 from diffctl.workspace.gazebo_paths import gazebo_paths
 
@@ -52,17 +53,20 @@ def launch_gz(context):
         words = shlex.split(gz_args)
     except ValueError as e:
         raise LaunchError(f"launch argument gz_args:={gz_args!r} of gz_sim.launch.py cannot be split: {e}") from None
-    shutdown = _flag(context, "on_exit_shutdown")
+    # ros_gz_sim tests the text, not its meaning: any non-empty value (its default 'false' too) shuts the
+    # launch down when the simulator exits
+    shutdown = bool(LaunchConfiguration("on_exit_shutdown").perform(context))
     for name in ("use_composition", "create_own_container"):
         _flag(context, name)
-    if LaunchConfiguration("debugger").perform(context).strip().lower() not in FALSE_WORDS:
+    if LaunchConfiguration("debugger").perform(context) != "false":
         actions.append(
             LogInfo(
                 msg="debugger: diffctl's simulator is a Python process; start it under a debugger "
                 "with `python -m pdb -m diffctl sim run …` instead"
             )
         )
-    if "-g" in words:
+    parsed = parse_gz_args(words)  # gz sim's option rules: `-rg` and `-g -v4` are the GUI client too
+    if parsed.gui_only and not parsed.server_only:
         # `gz sim -g` runs only the GUI client, which connects to a server started elsewhere.
         actions.append(
             LogInfo(

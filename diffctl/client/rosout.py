@@ -1,0 +1,113 @@
+"""`/rosout`: a node's log lines as rcl_interfaces/msg/Log, published as rcl does.
+
+One publisher per node with rcl's rosout QoS (reliable, transient local, keep_last 1000, lifespan 10 s), so
+rqt_console and `ros2 topic echo /rosout` see a node's recent lines even when they start later. Lines are
+handed to one background thread per process: a control loop that logs never waits on a Zenoh put.
+"""
+
+from __future__ import annotations
+
+import collections
+import threading
+from typing import TYPE_CHECKING, Any
+
+from diffctl.bus import wire
+from diffctl.bus.session import before_close, closing
+from diffctl.client import ros_logging
+from diffctl.client.ros_logging import LogRecord
+
+if TYPE_CHECKING:
+    from diffctl.bus.endpoints import Publisher
+
+TOPIC = "/rosout"
+LOG_TYPE = "rcl_interfaces/msg/Log"
+ROSOUT_QOS = wire.QoS(transient_local=True, depth=1000, lifespan_ns=10_000_000_000)
+_QUEUE_MAX = 10_000  # lines waiting for the publisher thread; the oldest go first when a flood outruns it
+
+
+class _Outbox:
+    def __init__(self) -> None:
+        self._queue: collections.deque[tuple[Publisher, LogRecord]] = collections.deque(maxlen=_QUEUE_MAX)
+        self._cond = threading.Condition()
+        self._thread: threading.Thread | None = None
+
+    def put(self, pub: Publisher, rec: LogRecord) -> None:
+        if closing():
+            return  # the session is going: the console has the line, /rosout can no longer get it
+        with self._cond:
+            self._queue.append((pub, rec))
+            if self._thread is None:
+                self._thread = threading.Thread(target=self._run, name="rosout", daemon=True)
+                self._thread.start()
+            self._cond.notify()
+
+    def drain(self, pub: Publisher, timeout_s: float) -> None:
+        """Wait (bounded) until no line of `pub` is queued, so a node's last words reach /rosout."""
+        with self._cond:
+            self._cond.wait_for(lambda: all(p is not pub for p, _ in self._queue) and self._busy is not pub,
+                                timeout_s)
+
+    _busy: Publisher | None = None
+
+    _stopping = False
+
+    def stop(self, timeout_s: float = 1.0) -> None:
+        """Publish what is queued (bounded), then end the thread: it must not be inside a Zenoh put when the
+        session closes or the interpreter finalizes."""
+        with self._cond:
+            self._cond.wait_for(lambda: not self._queue and self._busy is None, timeout_s)
+            self._stopping = True
+            self._queue.clear()
+            thread, self._thread = self._thread, None
+            self._cond.notify_all()
+        if thread is not None and thread is not threading.current_thread():
+            thread.join(timeout_s)
+        with self._cond:
+            self._stopping = False
+
+    def _run(self) -> None:
+        while True:
+            with self._cond:
+                while not self._queue and not self._stopping:
+                    self._cond.wait()
+                if self._stopping:
+                    return
+                pub, rec = self._queue.popleft()
+                self._busy = pub
+            try:
+                if not pub.closed:
+                    pub.publish(_message(rec))
+            except Exception:
+                pass  # the node is closing or the session is gone; the console line was written already
+            with self._cond:
+                self._busy = None
+                self._cond.notify_all()
+
+
+_outbox = _Outbox()
+before_close(_outbox.stop)
+
+
+def _message(rec: LogRecord) -> dict:
+    return {
+        "stamp": {"sec": rec.stamp_ns // 1_000_000_000, "nanosec": rec.stamp_ns % 1_000_000_000},
+        "level": rec.level, "name": rec.name, "msg": rec.msg, "file": rec.file, "function": rec.function,
+        "line": max(0, rec.line),
+    }
+
+
+class Rosout:
+    """A node's `/rosout` publisher, fed by the loggers named as the node (and their children)."""
+
+    def __init__(self, participant: Any, logger_name: str) -> None:
+        self.pub = participant.create_publisher(TOPIC, LOG_TYPE, qos=ROSOUT_QOS)
+        self._name = logger_name
+        ros_logging.attach_rosout(logger_name, self._sink)
+
+    def _sink(self, rec: LogRecord) -> None:
+        _outbox.put(self.pub, rec)
+
+    def close(self) -> None:
+        ros_logging.detach_rosout(self._name, self._sink)
+        _outbox.drain(self.pub, 1.0)
+        self.pub.close()
