@@ -25,7 +25,7 @@ KNOWN = frozenset({
     "control_msgs", "controller_manager_msgs", "diagnostic_msgs", "example_interfaces", "geographic_msgs",
     "geometry_msgs", "gps_msgs", "lifecycle_msgs", "nav_msgs", "rcl_interfaces", "rmw_dds_common",
     "robot_localization", "ros_gz_interfaces", "rosbag2_interfaces", "rosgraph_msgs", "sensor_msgs", "service_msgs",
-    "shape_msgs", "statistics_msgs", "std_msgs", "std_srvs", "stereo_msgs", "topic_tools_interfaces",
+    "shape_msgs", "statistics_msgs", "std_msgs", "std_srvs", "stereo_msgs", "tf2_msgs", "topic_tools_interfaces",
     "trajectory_msgs", "type_description_interfaces", "unique_identifier_msgs", "vision_msgs", "visualization_msgs",
 })
 _SUFFIXES = ("_msgs", "_srvs", "_interfaces", "_actions", "_msg", "_srv", "_action")
