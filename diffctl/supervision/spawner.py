@@ -300,7 +300,7 @@ class PosixSpawner:
     def kill_all(self) -> None:
         """SIGKILL every group still alive, now, without the loop (a run aborted, the interpreter exiting)."""
         for child in self._children:
-            if child.returncode is None or _group_alive(child.pgid):
+            if _group_alive(child.pgid):
                 self.logger.error(f"killing process group {child.pgid} of '{child.name}': the launch was aborted")
                 _killpg(child.pgid, signal.SIGKILL)
 

@@ -95,17 +95,29 @@ class _Output:
 
 
 class _Sink:
-    """Turns a child's output into ProcessStdout / ProcessStderr events."""
+    """Turns a child's output into ProcessStdout / ProcessStderr events, none before ProcessStarted."""
 
     def __init__(self, context: LaunchContext, event_args: dict[str, Any]) -> None:
         self.context = context
         self.event_args = event_args
+        self.early: list[tuple[type, bytes]] | None = []  # output read before the start was reported
+
+    def started(self) -> None:
+        early, self.early = self.early, None
+        for kind, data in early or ():
+            self.context.emit_event_sync(kind(text=data, **self.event_args))
+
+    def __emit(self, kind: type, data: bytes) -> None:
+        if self.early is not None:
+            self.early.append((kind, data))
+        else:
+            self.context.emit_event_sync(kind(text=data, **self.event_args))
 
     def on_stdout(self, data: bytes) -> None:
-        self.context.emit_event_sync(ProcessStdout(text=data, **self.event_args))
+        self.__emit(ProcessStdout, data)
 
     def on_stderr(self, data: bytes) -> None:
-        self.context.emit_event_sync(ProcessStderr(text=data, **self.event_args))
+        self.__emit(ProcessStderr, data)
 
 
 class ExecuteLocal(Action):
@@ -336,18 +348,25 @@ class ExecuteLocal(Action):
         process_logger = launch_logging.get_logger(args['name'])
         request = SpawnRequest(cmd=list(cmd), cwd=cwd, env=env, shell=self.__shell, emulate_tty=emulate_tty,
                                name=args['name'])
+        sink = _Sink(context, args)
         try:
-            child = await spawner_for(context).spawn(request, _Sink(context, args))
+            child = await spawner_for(context).spawn(request, sink)
         except Exception:
             self.__logger.error(f'exception occurred while executing process:\n{traceback.format_exc()}')
             self.__cleanup()
             return
+        # asyncio's subprocess transport reports a start a few loop iterations after the fork (its pipes are
+        # connected first); code that registers an OnProcessStart right after the launch visited this action
+        # (launch_pytest's tools.wait_for_start) relies on that
+        for _ in range(3):
+            await asyncio.sleep(0)
         pid = child.get_pid()
         process_logger.info(f'process started with pid [{pid}]')
         args['pid'] = pid
         self._subprocess_transport = child
         self._subprocess_protocol = child
         await context.emit_event(ProcessStarted(**args))
+        sink.started()
 
         returncode = await child.complete
         if returncode == 0:
