@@ -45,10 +45,14 @@ def gone(pid: int) -> bool:
 
 
 def shutdown_when(text: str, process: ExecuteProcess, seen: list[str]) -> RegisterEventHandler:
-    """Emit a Shutdown once `process` printed `text` (its output lines are collected in `seen`)."""
+    """Emit a Shutdown once `process` printed a line with `text` (its whole lines are collected in `seen`)."""
+    partial = ['']
+
     def on_stdout(event):
-        seen.extend(event.text.decode().splitlines())
-        if any(text in line for line in seen):
+        # chunks are as read: a line may come in pieces (an unbuffered child writes each print item alone)
+        *lines, partial[0] = (partial[0] + event.text.decode()).split('\n')
+        seen.extend(lines)
+        if any(text in line for line in lines):
             return EmitEvent(event=Shutdown(reason='test'))
         return None
 
