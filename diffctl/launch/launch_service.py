@@ -186,7 +186,12 @@ class LaunchService:
 
     async def _process_one_event(self) -> None:
         event = await self.__context._event_queue.get()
-        await self.__process_event(event)
+        try:
+            await self.__process_event(event)
+        except SystemExit as exc:
+            # out of the loop, it would leave this run half done on a loop others go on using: the launch
+            # fails and shuts down instead, as for any exception
+            raise RuntimeError(f'SystemExit({exc.code!r}) raised while launching') from exc
 
     async def __process_event(self, event: Event) -> None:
         context = self.__context

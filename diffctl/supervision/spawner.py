@@ -116,6 +116,7 @@ class _Child:
     pidfd: int | None = None
     returncode: int | None = None
     closed: bool = False
+    signal_group: bool = True
 
     @property
     def pgid(self) -> int:
@@ -128,8 +129,13 @@ class _Child:
         return self.returncode
 
     def send_signal(self, sig: int) -> None:
-        """Signal the child's whole process group (ProcessLookupError when nothing of it is left)."""
-        os.killpg(self.pgid, sig)
+        """Signal the child's process group, or the child alone (ProcessLookupError when it is gone)."""
+        if self.signal_group:
+            os.killpg(self.pgid, sig)
+        elif self.returncode is None:
+            os.kill(self.pid, sig)
+        else:
+            raise ProcessLookupError(self.pid)
 
     def kill(self) -> None:
         self.send_signal(signal.SIGKILL)
@@ -221,11 +227,16 @@ class PosixSpawner:
     """Children in process groups of their own, watched on the asyncio loop.
 
     `signal_all` signals every live group (what a terminal's Ctrl-C would reach); `shutdown` ends the groups
-    still alive after `term_timeout_s` with SIGKILL, logging each step.
+    still alive after `term_timeout_s` with SIGKILL, logging each step. With `signal_groups=False` a child's
+    signals (ShutdownProcess, SignalProcess, the escalation) reach the process only, as in ros2/launch; its
+    group is still ended with the run.
     """
 
-    def __init__(self, *, term_timeout_s: float = 2.0, logger: logging.Logger | None = None) -> None:
+    def __init__(
+        self, *, term_timeout_s: float = 2.0, logger: logging.Logger | None = None, signal_groups: bool = True
+    ) -> None:
         self.term_timeout_s = term_timeout_s
+        self.signal_groups = signal_groups
         self.logger = logger if logger is not None else logging.getLogger('launch.supervision')
         self._children: list[_Child] = []
         _spawners.add(self)
@@ -262,7 +273,7 @@ class PosixSpawner:
             for fd in child_ends:
                 _close(fd)
         child = _Child(pid=popen.pid, name=request.name or os.path.basename(argv[0]), loop=loop, sink=sink,
-                       popen=popen, complete=loop.create_future())
+                       popen=popen, complete=loop.create_future(), signal_group=self.signal_groups)
         if popen.stdin is not None:
             child.stdin_fd = os.dup(popen.stdin.fileno())
             popen.stdin.close()

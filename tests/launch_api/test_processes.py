@@ -147,13 +147,13 @@ def test_signals_to_the_launcher(tmp_path: Path, sig: int, code: int, expect: st
         proc.wait()
 
 
-def test_a_run_cut_short_leaves_no_process() -> None:
-    """A run aborted from inside (SystemExit out of a handler) leaves no child behind."""
+def test_sys_exit_in_a_handler_ends_the_launch_in_order(capsys: pytest.CaptureFixture[str]) -> None:
+    """sys.exit() in user code while launching: one error naming where, an orderly shutdown, rc 1."""
     from diffctl.launch.actions import OpaqueFunction
     from diffctl.launch.event_handlers import OnProcessStart
 
     def give_up(context) -> None:
-        raise SystemExit('giving up')
+        sys.exit(3)
 
     sleeper = ExecuteProcess(cmd=['sleep', '60'])
     service = LaunchService()
@@ -161,6 +161,22 @@ def test_a_run_cut_short_leaves_no_process() -> None:
         sleeper,
         RegisterEventHandler(OnProcessStart(target_action=sleeper, on_start=[OpaqueFunction(function=give_up)])),
     ]))
-    with pytest.raises(SystemExit):
-        service.run()
-    assert wait_for(lambda: gone(sleeper.process_details['pid']), 5.0)
+    assert service.run() == 1
+    assert sleeper.return_code == -signal.SIGINT
+    errors = [line for line in capsys.readouterr().out.splitlines() if line.startswith('[ERROR] [launch]')]
+    assert errors == ['[ERROR] [launch]: Caught exception in launch (see debug for traceback): '
+                      f'{__file__}:{give_up.__code__.co_firstlineno + 1}: SystemExit(3) raised while launching']
+
+
+def test_signals_to_the_process_only_when_asked() -> None:
+    """`PosixSpawner(signal_groups=False)`: ROS's behaviour, the grandchild survives the SIGINT (until the end)."""
+    from diffctl.supervision import PosixSpawner
+
+    seen: list[str] = []
+    parent = ExecuteProcess(cmd=[sys.executable, '-c', PARENT])
+    service = LaunchService(noninteractive=True, spawner=PosixSpawner(signal_groups=False))
+    service.include_launch_description(LaunchDescription([parent, shutdown_when('grandchild', parent, seen)]))
+    assert service.run() == 0
+    assert parent.return_code == -signal.SIGINT
+    grandchild = int(next(line for line in seen if line.startswith('grandchild')).split()[1])
+    assert gone(grandchild)  # ended with the run, as a leftover of the group

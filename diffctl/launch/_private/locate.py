@@ -23,4 +23,6 @@ def user_location(exc: BaseException) -> str | None:
         if path.startswith(_OURS + os.sep) or path.startswith(_STDLIB + os.sep) or frame.filename.startswith('<'):
             continue
         found = f'{frame.filename}:{frame.lineno}'
+    if found is None and exc.__cause__ is not None:
+        return user_location(exc.__cause__)
     return found
