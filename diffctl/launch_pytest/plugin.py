@@ -165,7 +165,9 @@ def _shutdown_twin(item: Any) -> Any:
     of its own); until that test runs and hands it the rest of its generator, it would only skip."""
     twin = pytest.Function.from_parent(
         item.parent, name=f"{item.name}[shutdown_test]", callspec=getattr(item, "callspec", None),
-        callobj=item.obj, fixtureinfo=item._fixtureinfo, originalname=item.originalname,
+        callobj=item.obj, fixtureinfo=item._fixtureinfo,
+        # pytest 8.4+ makes the id of a parametrized item from originalname and the parameters
+        originalname=f"{item.originalname}[shutdown_test]",
     )
     twin.obj = _not_paired
     return twin

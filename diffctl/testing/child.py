@@ -1,20 +1,21 @@
-"""`python -m diffctl.testing.child MODULE ARGS…`: run MODULE as `python -m` would, dying with `diffctl test`.
+"""`python -m diffctl.testing.child launch_test|pytest|pytest-isolated ARGS…`: one test file's run, dying with `diffctl test`.
 
 Each test file runs in a session of its own (so a timeout can kill all of it); with the death signal armed
 here, a `diffctl test` that is itself killed (a cancelled CI job) takes its tests, and through their own death
-signals and guards every process they started, along.
+signals and guards every process they started, along. The runners are called as functions, not run as
+`__main__` modules: a module already imported (the shared zygote preloads them) is not executed twice.
 """
 
 from __future__ import annotations
 
 import ctypes
 import os
-import runpy
 import signal
 import sys
 
 PR_SET_PDEATHSIG = 1
 PARENT_ENV = "DIFFCTL_TEST_PARENT_PID"
+ISOLATED_ENV = "DIFFCTL_TEST_ISOLATED"  # the session is on a bus of its own already (pytest_isolation.py)
 
 
 def arm_death_signal() -> None:
@@ -29,13 +30,41 @@ def arm_death_signal() -> None:
         os._exit(1)  # diffctl test died before the signal was armed
 
 
+def _pytest(args: list[str], isolated: bool) -> int:
+    """pytest on one file; `isolated` (launch_pytest files): on a bus of its own, which its launches and its
+    test bodies share. Plain pytest files need no router."""
+    import pytest
+
+    if not isolated:
+        os.environ[ISOLATED_ENV] = "1"  # nothing to isolate: pytest_isolation.py starts no router
+        return int(pytest.main(args))
+    from diffctl.testing.isolation import isolated_bus
+
+    with isolated_bus():
+        os.environ[ISOLATED_ENV] = "1"
+        return int(pytest.main(args))
+
+
+def run(runner: str, args: list[str]) -> int:
+    if runner == "launch_test":
+        from diffctl.testing.launch_test import run as launch_test
+
+        return launch_test(args)
+    if runner in ("pytest", "pytest-isolated"):
+        return _pytest(args, isolated=runner == "pytest-isolated")
+    print(f"diffctl.testing.child: unknown runner {runner!r} (launch_test, pytest or pytest-isolated)",
+          file=sys.stderr)
+    return 2
+
+
 def main() -> None:
     arm_death_signal()
     if len(sys.argv) < 2:
-        sys.exit("usage: python -m diffctl.testing.child MODULE [ARG ...]")
-    module = sys.argv[1]
-    sys.argv = sys.argv[1:]
-    runpy.run_module(module, run_name="__main__", alter_sys=True)
+        sys.exit("usage: python -m diffctl.testing.child launch_test|pytest|pytest-isolated [ARG ...]")
+    code = run(sys.argv[1], sys.argv[2:])
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(code)  # the teardown of zenoh's and rclpy's threads would only add time
 
 
 if __name__ == "__main__":

@@ -130,19 +130,24 @@ def _run(tests: list, jobs: int, junit_xml: Path | None, timeout_s: float, artif
     for o in failed:
         why = "timed out" if o.timed_out else f"exit code {o.returncode}"
         click.echo(f"  FAILED {o.test.label} ({why})")
+    if any(o.returncode == 2 and not o.timed_out for o in failed):
+        return 2  # a file that could not run (launch_test's and pytest's code for it): bad input
     return 1 if failed else 0
 
 
 @click.command("test-child", hidden=True, add_help_option=False,
                context_settings={"ignore_unknown_options": True, "allow_extra_args": True})
-@click.argument("module")
+@click.argument("runner")
 @click.argument("args", nargs=-1, type=click.UNPROCESSED)
-def test_child(module: str, args: tuple[str, ...]) -> None:
-    """(internal) Run MODULE as `python -m MODULE ARGS…` in a launch test forked from `diffctl test`'s zygote."""
-    import runpy
+def test_child(runner: str, args: tuple[str, ...]) -> None:
+    """(internal) RUNNER (launch_test, pytest) on ARGS in a test forked from `diffctl test`'s zygote."""
+    import os
 
+    from diffctl.testing.child import run
     from diffctl.testing.zygotes import start_inherited
 
     start_inherited()  # first, while this process is single-threaded: its launch's fork server
-    sys.argv = [module, *args]
-    runpy.run_module(module, run_name="__main__", alter_sys=True)
+    code = run(runner, list(args))
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(code)

@@ -1,27 +1,29 @@
 """What `diffctl test` runs: launch test files and plain pytest files, given or found in a workspace.
 
-A launch test file defines `generate_test_description()` (`test/test_*.launch.py`, `*_launch_test.py`, any
-name); other `test_*.py` / `*_test.py` files are pytest's. Without paths, inside a workspace, each package's
-`test/` folder is searched, as `colcon test` would (`--packages-select` keeps some).
+The framework is chosen by what a file uses, read from its syntax tree without running it: launch_pytest
+(an import of it, a `@pytest.mark.launch` test) makes it pytest's, whatever its function names;
+else a module-level `generate_test_description()` makes it a launch_testing file (`launch_test`); anything
+else named `test_*.py` / `*_test.py` is pytest's. Without paths, inside a workspace, each package's `test/`
+folder is searched, as `colcon test` would (`--packages-select` keeps some).
 """
 
 from __future__ import annotations
 
+import ast
 import fnmatch
-import re
 from dataclasses import dataclass
 from pathlib import Path
 
 from diffctl.errors import ConfigError, suggest
 
 TEST_PATTERNS = ("test_*.py", "*_test.py")
-_GENERATE = re.compile(r"^def generate_test_description\(", re.MULTILINE)
+ENTRYPOINT = "generate_test_description"
 
 
 @dataclass(frozen=True)
 class TestFile:
     path: Path
-    kind: str  # "launch" | "pytest"
+    kind: str  # "launch" (launch_testing) | "launch_pytest" | "pytest"
     package: str | None = None
     root: Path | None = None  # the package folder (pytest runs there, as colcon test)
 
@@ -30,11 +32,43 @@ class TestFile:
         return f"{self.package}/{self.path.name}" if self.package else str(self.path)
 
 
-def is_launch_test(path: Path) -> bool:
+def _uses_launch_pytest(tree: ast.Module) -> bool:
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import) and any(a.name.split(".")[0] == "launch_pytest" for a in node.names):
+            return True
+        if isinstance(node, ast.ImportFrom) and (node.module or "").split(".")[0] == "launch_pytest":
+            return True
+        # pytest.mark.launch(...) / mark.launch: launch_pytest's marker, whatever imported it
+        if isinstance(node, ast.Attribute) and node.attr == "launch" and isinstance(node.value, ast.Attribute) \
+                and node.value.attr == "mark":
+            return True
+    return False
+
+
+def framework(path: Path) -> str | None:
+    """'launch' (launch_testing: run by launch_test), 'launch_pytest', 'pytest', or None when the file is no
+    test at all. A file that does not parse goes where its text says, to report its error there."""
     try:
-        return bool(_GENERATE.search(path.read_text(errors="replace")))
+        text = path.read_text(errors="replace")
     except OSError:
-        return False
+        return None
+    try:
+        tree = ast.parse(text, filename=str(path))
+    except (SyntaxError, ValueError):
+        if "launch_pytest" in text:
+            return "launch_pytest"
+        if ENTRYPOINT in text:
+            return "launch"
+        return "pytest" if _is_test_name(path.name) else None
+    if _uses_launch_pytest(tree):
+        return "launch_pytest"
+    if any(isinstance(n, (ast.FunctionDef, ast.AsyncFunctionDef)) and n.name == ENTRYPOINT for n in tree.body):
+        return "launch"
+    return "pytest" if _is_test_name(path.name) else None
+
+
+def is_launch_test(path: Path) -> bool:
+    return framework(path) == "launch"
 
 
 def _is_test_name(name: str) -> bool:
@@ -42,7 +76,7 @@ def _is_test_name(name: str) -> bool:
 
 
 def classify(path: Path, package: str | None = None, root: Path | None = None) -> TestFile:
-    return TestFile(path, "launch" if is_launch_test(path) else "pytest", package, root)
+    return TestFile(path, framework(path) or "pytest", package, root)
 
 
 def in_folder(folder: Path, package: str | None = None, root: Path | None = None) -> list[TestFile]:
@@ -50,8 +84,9 @@ def in_folder(folder: Path, package: str | None = None, root: Path | None = None
     for path in sorted(folder.rglob("*.py")):
         if any(part.startswith(".") or part == "__pycache__" for part in path.relative_to(folder).parts):
             continue
-        if _is_test_name(path.name) or is_launch_test(path):
-            out.append(classify(path, package, root))
+        kind = framework(path)
+        if kind is not None:
+            out.append(TestFile(path, kind, package, root))
     return out
 
 

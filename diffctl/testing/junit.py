@@ -1,77 +1,37 @@
-"""JUnit XML of a launch test file, laid out as launch_testing's junitxml: one testsuite per run, one
-testcase per test method; diffctl adds each process's log of that run as the testsuite's `system-out`."""
+"""JUnit XML of launch test files: launch_testing's layout (one testsuite per run, one testcase per test
+method), with each process's output of the run as the testsuite's `system-out`; a file that could not run
+is one testcase in error; `merge` makes one document of several files' (`diffctl test --junit-xml`)."""
 
 from __future__ import annotations
 
-import unittest
 from pathlib import Path
+from typing import TYPE_CHECKING
 from xml.etree import ElementTree as ET
 
-from diffctl.testing.loader import iterate_cases
-from diffctl.testing.runner import FileResult, RunResult
-
-
-def _outcomes(one: RunResult) -> dict[int, tuple[str, str, float]]:
-    """case id → (kind, message, seconds): kind is '' (passed), 'failure', 'error' or 'skipped'."""
-    out: dict[int, tuple[str, str, float]] = {}
-    for result in one.results:
-        times = getattr(result, "testTimes", {})
-        for case in getattr(result, "successes", []):
-            out[id(case)] = ("", "", times.get(case, 0.0))
-        for kind, items in (("failure", result.failures), ("error", result.errors), ("skipped", result.skipped)):
-            for case, text in items:
-                out[id(case)] = (kind, text, times.get(case, 0.0))
-        for case, text in result.expectedFailures:
-            out[id(case)] = ("", text, times.get(case, 0.0))
-        for case in result.unexpectedSuccesses:
-            out[id(case)] = ("failure", "unexpected success", times.get(case, 0.0))
-    return out
-
-
-def _logs(one: RunResult) -> str:
-    return "\n".join(f"===== {name} =====\n{text}" for name, text in one.logs.items())
+if TYPE_CHECKING:
+    from diffctl.testing.runner import FileResult
 
 
 def to_xml(file_result: FileResult) -> ET.ElementTree:
+    from diffctl.launch_testing.junitxml import unittestResultsToXml
+
     name = f"{file_result.package_name}.{file_result.path.name[:-3]}"
-    root = ET.Element("testsuites", name=name)
-    totals = {"tests": 0, "failures": 0, "errors": 0, "time": 0.0}
-    if file_result.error is not None:
-        suite = ET.SubElement(root, "testsuite", name=f"{name}.launch_tests", tests="1", failures="0",
-                              errors="1", skipped="0", time="0.0")
-        case = ET.SubElement(suite, "testcase", classname=file_result.package_name, name="generate_test_description",
-                             time="0.0")
-        ET.SubElement(case, "error", message=file_result.error)
-        totals["tests"], totals["errors"] = 1, 1
-    for one in file_result.runs:
-        outcomes = _outcomes(one)
-        suite = ET.SubElement(root, "testsuite", name=str(one.run))
-        counts = {"tests": 0, "failures": 0, "errors": 0, "skipped": 0}
-        total_s = 0.0
-        cases = [*iterate_cases(one.run.pre_shutdown_tests), *iterate_cases(one.run.post_shutdown_tests)]
-        for case in cases:
-            kind, message, seconds = outcomes.get(id(case), ("skipped", "not run", 0.0))
-            cls = type(case)
-            element = ET.SubElement(suite, "testcase", classname=f"{file_result.package_name}.{cls.__name__}",
-                                    name=case._testMethodName, time=f"{round(seconds, 3)}")
-            counts["tests"] += 1
-            total_s += seconds
-            if kind:
-                ET.SubElement(element, kind, message=message)
-                counts["failures" if kind == "failure" else "errors" if kind == "error" else "skipped"] += 1
-        for key, value in counts.items():
-            suite.set(key, str(value))
-        suite.set("time", f"{round(one.seconds, 3)}")
-        logs = _logs(one)
+    results = {r.run: r.result for r in file_result.runs if r.result is not None}
+    tree = unittestResultsToXml(name=name, test_results=results)
+    root = tree.getroot()
+    for suite, record in zip(root, [r for r in file_result.runs if r.result is not None]):
+        logs = "\n".join(f"===== {log} =====\n{text}" for log, text in record.logs.items())
         if logs:
             ET.SubElement(suite, "system-out").text = logs
-        for key in ("tests", "failures", "errors"):
-            totals[key] += counts[key]
-        totals["time"] += one.seconds
-    for key in ("tests", "failures", "errors"):
-        root.set(key, str(totals[key]))
-    root.set("time", f"{round(totals['time'], 3)}")
-    return ET.ElementTree(root)
+    if file_result.error is not None:
+        suite = ET.SubElement(root, "testsuite", name=f"{name}.launch_tests", tests="1", failures="0", errors="1",
+                              skipped="0", time="0")
+        case = ET.SubElement(suite, "testcase", classname=file_result.package_name,
+                             name="generate_test_description", time="0")
+        ET.SubElement(case, "error", message=file_result.error)
+        root.set("tests", str(int(root.get("tests", "0")) + 1))
+        root.set("errors", str(int(root.get("errors", "0")) + 1))
+    return tree
 
 
 def write(file_result: FileResult, path: Path) -> None:
@@ -80,7 +40,7 @@ def write(file_result: FileResult, path: Path) -> None:
 
 
 def merge(paths: list[Path], target: Path) -> None:
-    """One file of several files' results (`diffctl test --junit-xml` over many test files)."""
+    """One document of several files' results."""
     root = ET.Element("testsuites", name="diffctl test")
     totals = {"tests": 0, "failures": 0, "errors": 0}
     seconds = 0.0
@@ -88,26 +48,13 @@ def merge(paths: list[Path], target: Path) -> None:
         if not path.is_file():
             continue
         other = ET.parse(path).getroot()
+        suites = [other] if other.tag == "testsuite" else list(other)  # pytest writes <testsuites><testsuite>
         for key in totals:
-            totals[key] += int(other.get(key, "0"))
-        seconds += float(other.get("time", "0"))
-        root.extend(list(other))
+            totals[key] += int(other.get(key, "0")) if other.get(key) else sum(int(s.get(key, "0")) for s in suites)
+        seconds += float(other.get("time", "0") or 0) or sum(float(s.get("time", "0") or 0) for s in suites)
+        root.extend(suites)
     for key, value in totals.items():
         root.set(key, str(value))
     root.set("time", f"{round(seconds, 3)}")
     target.parent.mkdir(parents=True, exist_ok=True)
     ET.ElementTree(root).write(target, encoding="utf-8", xml_declaration=True)
-
-
-def case_failed(result: unittest.TestResult) -> bool:
-    return not result.wasSuccessful()
-
-
-def unittestResultsToXml(*, name: str = "launch_test", test_results: dict | None = None) -> ET.ElementTree:
-    """launch_testing.junitxml's entry: {TestRun: its result} (LaunchTestRunner.run()'s answer) as JUnit XML."""
-    file_result = FileResult(Path(f"{name}.py"), name)
-    for run, result in (test_results or {}).items():
-        file_result.runs.append(RunResult(run, results=[result]))
-    tree = to_xml(file_result)
-    tree.getroot().set("name", name)
-    return tree

@@ -1,7 +1,7 @@
 """Running test files in child processes, N at a time, each stopped at its timeout with everything reaped.
 
-Each file runs in a process of its own session (launch tests through `python -m diffctl.testing.launch_test`,
-pytest files through `python -m pytest`); a launch test's processes die with it (death signal and the
+Each file runs in a process of its own session (`python -m diffctl.testing.child`: launch_testing files through
+diffctl's launch_test, pytest files through pytest, those using launch_pytest on a bus of their own); a launch test's processes die with it (death signal and the
 launcher's guard), so killing that session at the timeout leaves nothing behind.
 """
 
@@ -38,7 +38,7 @@ class Outcome:
 
 
 FORK_SERVER_ENV = "DIFFCTL_TEST_FORK_SERVER"
-CHILD = [sys.executable, "-m", "diffctl.testing.child"]  # runs the module, dying with this process
+CHILD = [sys.executable, "-m", "diffctl.testing.child"]  # runs the file's runner, dying with this process
 
 
 def use_fork_server(jobs: int) -> bool:
@@ -50,7 +50,7 @@ def use_fork_server(jobs: int) -> bool:
 def command(test: TestFile, junit: Path, arguments: list[str], artifacts: Path | None,
             fork_server: bool = False) -> list[str]:
     if test.kind == "launch":
-        argv = [*CHILD, "diffctl.testing.launch_test", str(test.path), *arguments, "--junit-xml", str(junit)]
+        argv = [*CHILD, "launch_test", str(test.path), *arguments, "--junit-xml", str(junit)]
         if fork_server:
             argv.append("--fork-server")
         if test.package:
@@ -58,7 +58,8 @@ def command(test: TestFile, junit: Path, arguments: list[str], artifacts: Path |
         if artifacts is not None:
             argv += ["--artifacts", str(artifacts)]
         return argv
-    argv = [*CHILD, "pytest", str(test.path), "-p", "no:cacheprovider", "-q", f"--junit-xml={junit}"]
+    runner = "pytest-isolated" if test.kind == "launch_pytest" else "pytest"
+    argv = [*CHILD, runner, str(test.path), "-p", "no:cacheprovider", "-q", f"--junit-xml={junit}"]
     if test.package:
         argv.append(f"--junit-prefix={test.package}")
     if arguments:

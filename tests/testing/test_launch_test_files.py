@@ -44,8 +44,8 @@ def test_examples_pass_and_fail_where_launch_test_does(tmp_path: Path) -> None:
     failed = {k: v for k, v in cases.items() if v}
     assert set(failed) == {"TestBad.test_never_printed", "TestAfter.test_exit_codes", "TestWaits.test_waits_long"}
     assert "Waiting for output timed out" in failed["TestBad.test_never_printed"]
-    assert "Proc bad exited with code 1" in failed["TestAfter.test_exit_codes"]
-    assert failed["TestWaits.test_waits_long"] == "Launch stopped before the active tests finished."
+    assert "Proc bad-1 exited with code 1" in failed["TestAfter.test_exit_codes"]  # launch's process names
+    assert "Launch stopped before the active tests finished." in failed["TestWaits.test_waits_long"]
     # every parametrized run, named as launch_testing names them
     for param in ("thing=On", "thing=Off", "flag1"):
         assert cases[f"TestProcessOutput.test_process_outputs_expected_value[{param}]"] == ""
@@ -54,7 +54,7 @@ def test_examples_pass_and_fail_where_launch_test_does(tmp_path: Path) -> None:
     assert cases["TestHelloWorldShutdown.test_exit_codes"] == ""
     out = r.stdout
     assert "Processes under test stopped before tests completed" in out
-    assert "Process 'short' exited with 3" in out and "hello_world" in out
+    assert "Process 'short-1' exited with 3" in out and "hello_world" in out
     assert "Starting test run params_launch_test.params_launch_test.launch_tests[thing=Off]" in out
     assert "Summary: 7 test files, 5 passed, 2 failed" in out
     assert cases["TestTerminatingProc.test_unhandled_exception"] == ""  # launch_testing's example processes

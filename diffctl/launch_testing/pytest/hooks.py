@@ -93,6 +93,23 @@ class LaunchTestItem(pytest.Item):
 
 
 def _import(path: pathlib.Path) -> Any:
+    """The test file as a module: as pytest imports it, but a file named like `test_x.launch.py` (a dotted
+    name Python cannot import) under its name made an identifier (`test_x_launch`)."""
+    if "." in path.name[:-3]:
+        import importlib.util
+        import sys
+
+        name = re.sub(r"\W", "_", path.name[:-3])
+        module = sys.modules.get(name)
+        if module is not None and getattr(module, "__file__", None) == str(path):
+            return module
+        spec = importlib.util.spec_from_file_location(name, path)
+        if spec is None or spec.loader is None:
+            raise ImportError(f"cannot import {path}")
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[name] = module
+        spec.loader.exec_module(module)
+        return module
     from _pytest.pathlib import import_path
 
     try:

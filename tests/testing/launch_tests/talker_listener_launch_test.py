@@ -67,14 +67,12 @@ class TestTalkerListenerLink(unittest.TestCase):
     def test_listener_receives(self, listener, proc_output):
         pub = self.node.create_publisher(String, "listener_chatter", 10)
         try:
+            end_time = time.time() + 10
+            while pub.get_subscription_count() == 0 and time.time() < end_time:
+                time.sleep(0.05)  # the listener's subscription is matched: what is published now arrives
             msg = String(data=str(uuid.uuid4()))
-            for _ in range(20):
-                pub.publish(msg)
-                success = proc_output.waitFor(expected_output=msg.data, process=listener, timeout=0.5,
-                                              stream="stdout")
-                if success:
-                    break
-            assert success, "Waiting for output timed out"
+            pub.publish(msg)
+            proc_output.assertWaitFor(expected_output=msg.data, process=listener, timeout=10, stream="stdout")
         finally:
             self.node.destroy_publisher(pub)
 
