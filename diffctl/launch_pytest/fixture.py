@@ -90,9 +90,7 @@ def _widen_module_fixtures(module_globals: dict[str, Any], scope: str) -> None:
     scope in its module; one the user wrote there is left alone."""
     for name, getter in _GETTERS:
         present = module_globals.get(name)
-        if present is None:
-            module_globals[name] = getter(scope=scope)
-        elif (getattr(present, "_launch_pytest_overridable_fixture", False)
+        if present is None or (getattr(present, "_launch_pytest_overridable_fixture", False)
               and _wider(scope, present._launch_pytest_fixture_scope)):
             module_globals[name] = getter(scope=scope)
 

@@ -109,6 +109,24 @@ def pytest_fixture_setup(fixturedef: Any, request: Any) -> Any:
     run_until_complete(event_loop, _ready_or_ended(ready_event, task))
 
 
+def _import_launch() -> None:
+    """Every module of launch, now: its packages import their modules on first use, and a test session that
+    runs pytest sessions of its own in-process (pytester) drops the modules those imported when each ends, while
+    the packages keep the classes they handed out; imported here first, the classes stay the same ones."""
+    import importlib
+    import pkgutil
+
+    import diffctl.launch
+
+    for module in pkgutil.walk_packages(diffctl.launch.__path__, "diffctl.launch."):
+        importlib.import_module(module.name)
+
+
+def pytest_collection_finish(session: Any) -> None:
+    if any(item.get_closest_marker("launch") is not None for item in session.items):
+        _import_launch()
+
+
 def is_launch_test(item: Any) -> bool:
     return item.get_closest_marker("launch") is not None
 
@@ -211,7 +229,7 @@ def pytest_pycollect_makeitem(collector: Any, name: str, obj: Any) -> Any:
     if need_shutdown_test_item(obj) and _fixture_scope(fixture) != "function":
         # with a function-scoped launch, one item runs both parts (a second would get a second launch)
         twins = generate_test_items(collector, name, obj, fixturename, is_shutdown=True, needs_renaming=True)
-        for item, twin in zip(items, twins):
+        for item, twin in zip(items, twins, strict=True):
             item._launch_pytest_shutdown_item = twin
         items += twins
     return items

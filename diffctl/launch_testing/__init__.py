@@ -26,7 +26,17 @@ _WHERE = {
     "ProcInfoHandler": ".proc_info_handler",
 }
 
-__all__ = sorted([*_WHERE, "ReadyAggregator", "parametrize", "post_shutdown_test", "ready_to_test_action_timeout"])
+__all__ = [
+    "ActiveIoHandler",
+    "ActiveProcInfoHandler",
+    "IoHandler",
+    "ProcInfoHandler",
+    "ReadyAggregator",
+    "parametrize",
+    "post_shutdown_test",
+    "ready_to_test_action_timeout",
+    "tools",
+]
 
 
 def __getattr__(name: str) -> Any:

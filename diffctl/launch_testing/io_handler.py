@@ -101,13 +101,12 @@ class ActiveIoHandler:
 
         with self._sync_lock:
             success = self._sync_lock.wait_for(found, timeout=timeout)
-        if not success:
-            # a name that never matched anything is more likely a typo than a slow process: say so
-            if not resolveProcesses(self, process=process, cmd_args=cmd_args, strict_proc_matching=False):
-                raise Exception(
-                    f"After timeout, found no processes matching '{process}'  It either doesn't exist, was "
-                    "never launched, or didn't generate any output"
-                )
+        # a name that never matched anything is more likely a typo than a slow process: say so
+        if not success and not resolveProcesses(self, process=process, cmd_args=cmd_args, strict_proc_matching=False):
+            raise Exception(
+                f"After timeout, found no processes matching '{process}'  It either doesn't exist, was "
+                "never launched, or didn't generate any output"
+            )
         return success
 
     def assertWaitFor(self, *args: Any, **kwargs: Any) -> None:

@@ -161,7 +161,8 @@ def _give_attribute_to_tests(value: Any, name: str, tests: Any) -> None:
             warnings.warn(
                 f"Automatically adding attributes like self.{name} to the test class will be deprecated in a "
                 f"future release.  Instead, add {name} to the test method argument list to access the test "
-                "object you need"
+                "object you need",
+                stacklevel=2,
             )
             setattr(self, "_warned_about_" + name, True)
         return value

@@ -38,7 +38,7 @@ def retry_on_failure(*, times: int, delay: float | None = None) -> Callable[[Cal
     assert times > 0
 
     def decorator(method: Callable[..., Any]) -> Callable[..., Any]:
-        assert list(inspect.signature(method).parameters)[0] == "self"
+        assert next(iter(inspect.signature(method).parameters)) == "self"
 
         @functools.wraps(method)
         def attempt(self: Any, *args: Any, **kwargs: Any) -> Any:

@@ -23,7 +23,7 @@ def parametrize(argnames: str, argvalues: Iterable[Any]) -> Callable[[Callable[.
         @functools.wraps(func)
         def runs() -> Iterator[tuple[Callable[..., Any], dict[str, Any]]]:
             for row in rows:
-                bound = dict(zip(names, row))
+                bound = dict(zip(names, row, strict=False))  # a short row binds what it has
                 yield functools.update_wrapper(functools.partial(func, **bound), func), bound
 
         runs.__parametrized__ = True  # type: ignore[attr-defined]

@@ -1,4 +1,5 @@
-"""`python -m diffctl.testing.child launch_test|pytest|pytest-isolated ARGS…`: one test file's run, dying with `diffctl test`.
+"""`python -m diffctl.testing.child launch_test|pytest|pytest-isolated ARGS…`: one test file's run, dying with
+`diffctl test`.
 
 Each test file runs in a session of its own (so a timeout can kill all of it); with the death signal armed
 here, a `diffctl test` that is itself killed (a cancelled CI job) takes its tests, and through their own death
@@ -18,14 +19,22 @@ PARENT_ENV = "DIFFCTL_TEST_PARENT_PID"
 ISOLATED_ENV = "DIFFCTL_TEST_ISOLATED"  # the session is on a bus of its own already (pytest_isolation.py)
 
 
+def interrupt_when_parent_dies() -> None:
+    """SIGINT when the parent dies: a test's launch then shuts its processes down as on Ctrl-C (a SIGKILL
+    would leave them running)."""
+    if not sys.platform.startswith("linux"):
+        return
+    try:
+        ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGINT, 0, 0, 0)
+    except (OSError, AttributeError):
+        pass
+
+
 def arm_death_signal() -> None:
     parent = os.environ.pop(PARENT_ENV, "")
     if not parent or not sys.platform.startswith("linux"):
         return
-    try:
-        ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
-    except (OSError, AttributeError):
-        return
+    interrupt_when_parent_dies()
     if os.getppid() != int(parent):
         os._exit(1)  # diffctl test died before the signal was armed
 

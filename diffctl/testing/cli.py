@@ -143,10 +143,9 @@ def test_child(runner: str, args: tuple[str, ...]) -> None:
     """(internal) RUNNER (launch_test, pytest) on ARGS in a test forked from `diffctl test`'s zygote."""
     import os
 
-    from diffctl.testing.child import run
-    from diffctl.testing.zygotes import start_inherited
+    from diffctl.testing.child import interrupt_when_parent_dies, run
 
-    start_inherited()  # first, while this process is single-threaded: its launch's fork server
+    interrupt_when_parent_dies()  # the zygote, which dies with diffctl test
     code = run(runner, list(args))
     sys.stdout.flush()
     sys.stderr.flush()

@@ -19,7 +19,7 @@ def to_xml(file_result: FileResult) -> ET.ElementTree:
     results = {r.run: r.result for r in file_result.runs if r.result is not None}
     tree = unittestResultsToXml(name=name, test_results=results)
     root = tree.getroot()
-    for suite, record in zip(root, [r for r in file_result.runs if r.result is not None]):
+    for suite, record in zip(root, [r for r in file_result.runs if r.result is not None], strict=True):
         logs = "\n".join(f"===== {log} =====\n{text}" for log, text in record.logs.items())
         if logs:
             ET.SubElement(suite, "system-out").text = logs

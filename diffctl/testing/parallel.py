@@ -1,12 +1,15 @@
 """Running test files in child processes, N at a time, each stopped at its timeout with everything reaped.
 
-Each file runs in a process of its own session (`python -m diffctl.testing.child`: launch_testing files through
-diffctl's launch_test, pytest files through pytest, those using launch_pytest on a bus of their own); a launch test's processes die with it (death signal and the
-launcher's guard), so killing that session at the timeout leaves nothing behind.
+Each file runs in a process of its own session (`python -m diffctl.testing.child`: launch_testing files
+through diffctl's launch_test, pytest files through pytest, those using launch_pytest on a bus of their own);
+a test stopped at its timeout is interrupted first (SIGINT: its launch shuts its processes down as on Ctrl-C),
+killed if it does not end within STOP_GRACE_S. `diffctl test` is a subreaper: whatever a test leaves behind
+(processes of a launcher that was killed) is re-parented to it and killed, group and all, when the test ends.
 """
 
 from __future__ import annotations
 
+import ctypes
 import os
 import signal
 import subprocess
@@ -37,22 +40,12 @@ class Outcome:
         return self.returncode == 0 and not self.timed_out
 
 
-FORK_SERVER_ENV = "DIFFCTL_TEST_FORK_SERVER"
 CHILD = [sys.executable, "-m", "diffctl.testing.child"]  # runs the file's runner, dying with this process
 
 
-def use_fork_server(jobs: int) -> bool:
-    """Off unless DIFFCTL_TEST_FORK_SERVER=1: on 2 cores, 8 smoke tests under -j 2 took as long with a zygote per
-    test as without (26-32 s either way, four runs), and one test alone started its components later with it."""
-    return os.environ.get(FORK_SERVER_ENV, "").strip() == "1"
-
-
-def command(test: TestFile, junit: Path, arguments: list[str], artifacts: Path | None,
-            fork_server: bool = False) -> list[str]:
+def command(test: TestFile, junit: Path, arguments: list[str], artifacts: Path | None) -> list[str]:
     if test.kind == "launch":
         argv = [*CHILD, "launch_test", str(test.path), *arguments, "--junit-xml", str(junit)]
-        if fork_server:
-            argv.append("--fork-server")
         if test.package:
             argv += ["--package-name", test.package]
         if artifacts is not None:
@@ -69,11 +62,67 @@ def command(test: TestFile, junit: Path, arguments: list[str], artifacts: Path |
 
 _RUNNING: set[subprocess.Popen] = set()
 _RUNNING_LOCK = threading.Lock()
+STOP_GRACE_S = 3.0  # for a launch to interrupt its processes; stubborn ones are swept up after (sweep_orphans)
+
+
+PR_SET_CHILD_SUBREAPER = 36
+
+
+def become_subreaper() -> bool:
+    """Orphans of this process's descendants are re-parented here (not to init): sweep_orphans finds them."""
+    if not sys.platform.startswith("linux"):
+        return False
+    try:
+        return ctypes.CDLL(None, use_errno=True).prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0) == 0
+    except (OSError, AttributeError):
+        return False
+
+
+def _signal_group(pgid: int, sig: int) -> None:
+    try:
+        os.killpg(pgid, sig)
+    except (ProcessLookupError, PermissionError):
+        pass
+
+
+def _children_of(parent: int) -> list[int]:
+    """The pids whose parent is `parent` (from /proc)."""
+    out = []
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/stat", "rb") as f:
+                fields = f.read().rsplit(b")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[1]) == parent:
+            out.append(int(entry))
+    return out
+
+
+def sweep_orphans(keep: set[int]) -> None:
+    """Kill (group and all) and reap every child of this process but `keep`: processes a dead test's launch
+    left behind, re-parented here because this process is a subreaper."""
+    if not sys.platform.startswith("linux"):
+        return
+    for pid in _children_of(os.getpid()):
+        if pid in keep:
+            continue
+        try:
+            _signal_group(os.getpgid(pid), signal.SIGKILL)
+        except ProcessLookupError:
+            pass
+        try:
+            os.kill(pid, signal.SIGKILL)
+            os.waitpid(pid, 0)
+        except (ProcessLookupError, ChildProcessError):
+            pass
 
 
 def run_one(test: TestFile, junit: Path, arguments: list[str], timeout_s: float,
-            artifacts: Path | None = None, fork_server: bool = False) -> Outcome:
-    argv = command(test, junit, arguments, artifacts, fork_server)
+            artifacts: Path | None = None) -> Outcome:
+    argv = command(test, junit, arguments, artifacts)
     started = time.monotonic()
     with _RUNNING_LOCK:
         proc = subprocess.Popen(
@@ -93,8 +142,12 @@ def run_one(test: TestFile, junit: Path, arguments: list[str], timeout_s: float,
         output, _ = proc.communicate(timeout=timeout_s)
     except subprocess.TimeoutExpired:
         timed_out = True
-        _kill_session(proc)
-        output, _ = proc.communicate()
+        _signal_group(proc.pid, signal.SIGINT)
+        try:
+            output, _ = proc.communicate(timeout=STOP_GRACE_S)
+        except subprocess.TimeoutExpired:
+            _kill_session(proc)
+            output, _ = proc.communicate()
         output += f"\n[diffctl test] {test.label}: timed out after {timeout_s:g} s; stopped it and its processes\n"
     finally:
         if proc.poll() is None:
@@ -112,10 +165,10 @@ def shared_zygote(tests: list[TestFile]) -> Any:
     """One preloaded interpreter the launch tests of this run are forked from (zygotes.py); one test gains
     too (its components then import nothing: 3.8 → 1.9 s of CPU for the tutorial's smoke test).
     DIFFCTL_TEST_SHARED_ZYGOTE=0 turns it off."""
-    if not any(t.kind == "launch" for t in tests) or os.environ.get(SHARED_ZYGOTE_ENV, "1").strip() == "0":
+    if not any(t.kind != "pytest" for t in tests) or os.environ.get(SHARED_ZYGOTE_ENV, "1").strip() == "0":
         return None
     from diffctl.launch_legacy.fork_server import ForkServer, dies_with_launcher, enabled
-    from diffctl.testing.zygotes import become_subreaper, test_preload
+    from diffctl.testing.zygotes import test_preload
 
     if not enabled(os.environ) or not become_subreaper():
         return None
@@ -150,7 +203,10 @@ def run_one_forked(server: Any, test: TestFile, junit: Path, arguments: list[str
     reader.join(timeout_s)
     timed_out = reader.is_alive()
     if timed_out:
-        _kill_group(pid)
+        _signal_group(pid, signal.SIGINT)
+        reader.join(STOP_GRACE_S)
+        if reader.is_alive():
+            _kill_group(pid)
         reader.join()
     try:
         _, status = os.waitpid(pid, 0)
@@ -174,7 +230,7 @@ def _kill_group(pid: int) -> None:
 
 
 def _kill_session(proc: subprocess.Popen) -> None:
-    # SIGKILL: the launch test's children follow through their death signal and the guard.
+    # SIGKILL: what its launch leaves behind is swept up once it is reaped (sweep_orphans).
     try:
         os.killpg(proc.pid, signal.SIGKILL)
     except (ProcessLookupError, PermissionError):
@@ -182,12 +238,41 @@ def _kill_session(proc: subprocess.Popen) -> None:
     proc.wait()
 
 
+def _stop_groups(pgids: list[int]) -> None:
+    """Interrupt the tests' groups (their launches shut down), then kill what is left after STOP_GRACE_S."""
+    for pgid in pgids:
+        _signal_group(pgid, signal.SIGINT)
+    deadline = time.monotonic() + STOP_GRACE_S
+    while time.monotonic() < deadline and any(_group_alive(g) for g in pgids):
+        time.sleep(0.05)
+    for pgid in pgids:
+        _kill_group(pgid)
+    deadline = time.monotonic() + STOP_GRACE_S
+    while time.monotonic() < deadline and any(_group_alive(g) for g in pgids):
+        time.sleep(0.02)  # gone, so what they leave behind is re-parented here before the sweep
+
+
+def _group_alive(pgid: int) -> bool:
+    try:
+        os.killpg(pgid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
 def run_all(tests: list[TestFile], *, jobs: int, junit_dir: Path, arguments: list[str], timeout_s: float,
             artifacts: Path | None, on_done: Callable[[Outcome], None]) -> list[Outcome]:
     lock = threading.Lock()
     outcomes: list[Outcome | None] = [None] * len(tests)
-    fork = use_fork_server(jobs)
-    zygote = None if fork else shared_zygote(tests)
+    become_subreaper()
+    zygote = shared_zygote(tests)
+
+    def keep() -> set[int]:
+        with _RUNNING_LOCK:
+            alive = {p.pid for p in _RUNNING} | set(_FORKED)
+        return alive | ({zygote.process.pid} if zygote is not None else set())
 
     def one(index: int) -> None:
         test = tests[index]
@@ -196,11 +281,12 @@ def run_all(tests: list[TestFile], *, jobs: int, junit_dir: Path, arguments: lis
             where = artifacts / f"{index:02d}-{test.path.name[:-3]}"
         junit = junit_dir / f"{index:03d}.xml"
         outcome = None
-        if zygote is not None and test.kind == "launch":
+        if zygote is not None and test.kind != "pytest":
             outcome = run_one_forked(zygote, test, junit, arguments, timeout_s, where)
         if outcome is None:
-            outcome = run_one(test, junit, arguments, timeout_s, where, fork)
+            outcome = run_one(test, junit, arguments, timeout_s, where)
         outcomes[index] = outcome
+        sweep_orphans(keep())
         with lock:
             on_done(outcome)
 
@@ -211,14 +297,11 @@ def run_all(tests: list[TestFile], *, jobs: int, junit_dir: Path, arguments: lis
             # Ctrl-C (or a bug here): the tests running in sessions of their own stop with us.
             pool.shutdown(wait=False, cancel_futures=True)
             with _RUNNING_LOCK:
-                running = list(_RUNNING)
-                forked = list(_FORKED)
-            for proc in running:
-                _kill_group(proc.pid)
-            for pid in forked:
-                _kill_group(pid)
+                groups = [p.pid for p in _RUNNING] + list(_FORKED)
+            _stop_groups(groups)
             raise
         finally:
             if zygote is not None:
                 zygote.close(kill=True)
+            sweep_orphans(set())
     return [o for o in outcomes if o is not None]

@@ -142,9 +142,19 @@ def _wheel_radius(shares: list[Path], joint: str) -> tuple[float | None, str]:
     return None, ""
 
 
+def _declared_arguments(launch: Path) -> set[str]:
+    """The names of the arguments the launch file declares (as `ros2 launch --show-args` reads them); none when
+    it cannot be read without running it."""
+    from diffctl.launch.launch_description_sources import AnyLaunchDescriptionSource
+
+    try:
+        description = AnyLaunchDescriptionSource(str(launch)).try_get_launch_description_without_context()
+        return {a.name for a in description.get_launch_arguments()} if description is not None else set()
+    except Exception:
+        return set()
+
+
 def robot_facts(package: str) -> RobotFacts:
-    from diffctl.launch_legacy.loader import load
-    from diffctl.launch_legacy.resolver import declared_arguments
     from diffctl.workspace import find_package
 
     share = find_package(package).share
@@ -160,7 +170,7 @@ def robot_facts(package: str) -> RobotFacts:
         if other not in shares:
             shares.append(other)
     radius, radius_from = _wheel_radius(shares, left_wheel)
-    declared = {a.name for a in declared_arguments(load(launch), str(launch))}
+    declared = _declared_arguments(launch)
     arguments = {k: v for k, v in QUIET_ARGUMENTS.items() if k in declared}
     return RobotFacts(package, str(launch.relative_to(share)), controller, controller_yaml, left_wheel,
                       cmd_vel_timeout_s, radius, radius_from, arguments)

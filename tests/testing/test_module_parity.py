@@ -151,12 +151,13 @@ def test_launch_test_programmatic_api(tmp_path: Path) -> None:
 
 
 def test_ready_aggregator_and_stdout_ready_listener() -> None:
-    from launch import LaunchContext
     from launch.actions import ExecuteProcess
     from launch.event_handlers import OnProcessIO
     from launch.events.process import ProcessStdout
     from launch_testing import ReadyAggregator
     from launch_testing.event_handlers import StdoutReadyListener
+
+    from launch import LaunchContext
 
     fired = []
     agg = ReadyAggregator(lambda: fired.append(1), 2)

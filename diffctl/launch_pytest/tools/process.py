@@ -68,7 +68,7 @@ async def _wait_until(context: Any, action: Any, handler_for: Callable[[Any, Any
                 break
             try:
                 await asyncio.wait_for(event.wait(), left)
-            except asyncio.TimeoutError:
+            except TimeoutError:
                 break
             event.clear()
             value = condition()

@@ -1,7 +1,5 @@
-"""`launch_pytest` (diffctl/testing/launch_pytest.py): launch fixtures and `@pytest.mark.launch` tests."""
+"""`launch_pytest` is diffctl.launch_pytest under ROS's name (see diffctl/module_alias.py)."""
 
-from diffctl.testing.launch_pytest import fixture
+from diffctl.module_alias import alias
 
-from . import actions, tools  # noqa: F401
-
-__all__ = ["fixture"]
+alias(__name__, "diffctl.launch_pytest")

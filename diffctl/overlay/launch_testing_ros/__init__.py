@@ -1,9 +1,5 @@
-"""`launch_testing_ros` (diffctl/testing/): WaitForTopics, DataRepublisher, MessagePump, the output filters."""
+"""`launch_testing_ros` is diffctl.launch_testing_ros under ROS's name (see diffctl/module_alias.py)."""
 
-from diffctl.testing.ros_helpers import DataRepublisher, MessagePump
-from diffctl.testing.test_runner import LaunchTestRunner
-from diffctl.testing.wait_for_topics import WaitForTopics
+from diffctl.module_alias import alias
 
-from . import tools  # noqa: F401
-
-__all__ = ["DataRepublisher", "LaunchTestRunner", "MessagePump", "WaitForTopics"]
+alias(__name__, "diffctl.launch_testing_ros")

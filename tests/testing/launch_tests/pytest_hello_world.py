@@ -24,7 +24,7 @@ def test_read_stdout(hello_world_proc, launch_context):
     def validate_output(output):
         assert output.splitlines() == ["hello_world"], "process never printed hello_world"
 
-    process_tools.assert_output_sync(launch_context, hello_world_proc, validate_output, timeout=5)
+    process_tools.assert_output_sync(launch_context, hello_world_proc, validate_output, timeout=30)
 
     def never(output):
         return output == "this will never happen"

@@ -1,1 +1,0 @@
-"""`launch_testing.pytest`: the pytest plugin (diffctl/testing/pytest_plugin.py)."""
