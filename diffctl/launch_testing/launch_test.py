@@ -76,16 +76,17 @@ def run(parser: argparse.ArgumentParser, args: argparse.Namespace,
 
 def where_in(error: BaseException, path: str) -> str:
     """`error` as one line, prefixed with the place in `path` it comes from (a syntax error's own line, else
-    the deepest frame of the traceback inside that file)."""
+    the deepest frame of the traceback inside that file, else the file alone)."""
     text = f"{type(error).__name__}: {error}"
     if isinstance(error, SyntaxError) and error.filename:
-        return f"{error.filename}:{error.lineno}: SyntaxError: {error.msg}"
+        return f"{error.filename}:{error.lineno}: {type(error).__name__}: {error.msg}"
     target = str(Path(path).resolve())
     line = None
     for frame, lineno in traceback.walk_tb(error.__traceback__):
         if str(Path(frame.f_code.co_filename).resolve()) == target:
             line = lineno
-    return f"{path}:{line}: {text}" if line is not None else text
+    text = " ".join(text.split())  # one line, whatever the exception's message holds
+    return f"{path}:{line}: {text}" if line is not None else f"{path}: {text}"
 
 
 def main() -> None:

@@ -25,6 +25,8 @@ from diffctl.errors import DiffctlError
 from diffctl.interfaces import types
 from diffctl.launch_legacy.loader import load as load_launch
 from diffctl.launch_legacy.resolver import Resolver
+from diffctl.testing.loader import LaunchTestError, describe
+from diffctl.testing.loader import load as load_launch_test
 
 REPO = Path(__file__).resolve().parents[2]
 SDF_TEXT = (REPO / "description" / "my_diff_car_control.sdf").read_text()
@@ -223,6 +225,51 @@ def test_mutated_launch_files_load_or_say_why(text: str, tmp_path: Path) -> None
     path = tmp_path / "sim_control.yaml"
     path.write_text(text)
     works_or_project_error(_resolve_launch, path)
+
+
+# ------------------------------------------------------------------------------------------------ launch tests
+
+LAUNCH_TEST_TEXT = (REPO / "tests" / "testing" / "launch_tests" / "params_launch_test.py").read_text()
+LAUNCH_TEST_WORDS = (
+    "def generate_test_description(x):\n",
+    "generate_test_description",
+    "launch_testing.actions.ReadyToTest()",
+    "@launch_testing.parametrize('thing', [1, 2])\n",
+    "@launch_testing.parametrize('nope', [])\n",
+    "@unittest.skip('why')\n",
+    "return None\n",
+    "    return 1, 2\n",
+    "yield",
+    "raise ValueError('x')",
+    "import not_a_module\n",
+    "launch.LaunchDescription",
+    "self",
+    "(",
+    ")",
+    "[",
+    "]",
+    ":",
+    ",",
+    "\n    ",
+    "'",
+    "=",
+)
+
+
+@FUZZ
+@given(text=mutated(LAUNCH_TEST_TEXT, LAUNCH_TEST_WORDS))
+def test_mutated_launch_tests_load_or_say_why_in_one_line(text: str, tmp_path: Path) -> None:
+    """As `diffctl test` / `launch_test` read a launch test before launching it (import, runs, validation, the
+    descriptions): it works, or one LaunchTestError names the file. Nothing is launched."""
+    path = tmp_path / f"fuzz_{abs(hash(text))}_launch_test.py"  # a new name: no stale bytecode, no module reuse
+    path.write_text(text)
+    try:
+        _, runs = load_launch_test(path, path.stem)
+        describe(path, runs)
+    except LaunchTestError as e:
+        message = str(e)
+        assert message.startswith(str(path)) or message.startswith(f"{path}:"), message
+        assert "\n" not in message.strip() and "Traceback" not in message
 
 
 @FUZZ
