@@ -33,6 +33,10 @@ class _AliasLoader:
         # with the alias's, which would make its relative imports disagree with its __package__
         module.__spec__ = self.own_spec
 
+    def get_code(self, fullname: str):
+        # `python -m launch_testing.launch_test`: runpy runs the module's code afresh as __main__
+        return self.own_spec.loader.get_code(self.own_spec.name)
+
 
 class _AliasFinder:
     """Finds `launch.X.Y` as `diffctl.launch.X.Y` while `launch` is the aliased package."""

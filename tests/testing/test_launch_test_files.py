@@ -67,22 +67,26 @@ def test_examples_pass_and_fail_where_launch_test_does(tmp_path: Path) -> None:
 
 
 def test_launch_test_cli_exit_codes_and_show_args(tmp_path: Path) -> None:
+    """launch_testing's own module (python -m) and diffctl's `launch_test` command: --show-args, and a file that
+    cannot run is exit code 2 with one line saying why."""
     r = _run([PY, "-m", "launch_testing.launch_test", str(FILES / "params_launch_test.py"), "-s"])
     assert r.returncode == 0, r.stderr
     assert "Arguments (pass arguments as '<name>:=<value>'):" in r.stdout
     assert "'dut_arg':" in r.stdout and "(default: 'default')" in r.stdout
-    r = _run([PY, "-m", "launch_testing.launch_test", str(FILES / "params_launch_test.py"), "oops"])
+    launch_test = str(Path(PY).parent / "launch_test")
+    r = _run([launch_test, str(FILES / "params_launch_test.py"), "oops"])
     assert r.returncode == 2
     assert "malformed launch argument 'oops', expected format '<name>:=<value>'" in r.stderr
     plain = tmp_path / "test_plain.py"
     plain.write_text("def test_x():\n    pass\n")
-    r = _run([PY, "-m", "launch_testing.launch_test", str(plain)])
-    assert r.returncode == 2 and "no generate_test_description()" in r.stderr
+    r = _run([launch_test, str(plain)])
+    assert r.returncode == 2 and "no generate_test_description() in this file" in r.stderr
     no_ready = tmp_path / "no_ready_launch_test.py"
     no_ready.write_text("import launch\n\ndef generate_test_description():\n    return launch.LaunchDescription([])\n")
-    r = _run([PY, "-m", "launch_testing.launch_test", str(no_ready)])
+    r = _run([launch_test, str(no_ready)])
     assert r.returncode == 2
     assert "must return a LaunchDescription containing a ReadyToTest action" in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1, r.stderr
 
 
 @pytest.mark.slow
