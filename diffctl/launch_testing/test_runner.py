@@ -32,11 +32,11 @@ class _RunnerWorker:
     """One TestRun: its launch, its two batches of tests, their combined result."""
 
     def __init__(self, test_run: Any, test_run_preamble: list[Any], launch_file_arguments: Any = (),
-                 debug: bool = False, result_class: type = TestResult) -> None:
+                 debug: bool = False, result_class: type = TestResult, launch_service: Any = None) -> None:
         self._test_run = test_run
         self._test_run_preamble = list(test_run_preamble)
         self._launch_file_arguments = list(launch_file_arguments)
-        self._launch_service = LaunchService(debug=debug)
+        self._launch_service = launch_service if launch_service is not None else LaunchService(debug=debug)
         self._result_class = result_class
         self._processes_launched = threading.Event()
         self._tests_completed = threading.Event()
