@@ -88,7 +88,14 @@ def get_ros_adapter(context: LaunchContext) -> ROSAdapter:
     if adapter is None:
         adapter = ROSAdapter()
         context.extend_globals({"ros_adapter": adapter})
-        context.register_event_handler(OnShutdown(on_shutdown=lambda *_args, **_kw: adapter.shutdown()))
+
+        def stop(*_args: Any, **_kwargs: Any) -> None:
+            try:
+                adapter.shutdown()
+            except RuntimeError:  # a later Shutdown event (an on_exit=Shutdown() after the launch's): stopped already
+                pass
+
+        context.register_event_handler(OnShutdown(on_shutdown=stop))
     return adapter
 
 

@@ -14,6 +14,7 @@ import diffctl.launch.logging
 from diffctl.launch.action import Action
 from diffctl.launch.actions import OpaqueFunction
 from diffctl.launch.event_handler import EventHandler
+from diffctl.launch.frontend import Entity, Parser, expose_action
 from diffctl.launch.launch_context import LaunchContext
 from diffctl.launch.some_substitutions_type import SomeSubstitutionsType
 
@@ -24,6 +25,8 @@ from .node import Node
 LOGGER_NAME = "launch_ros.actions.lifecycle_node"
 
 
+# Jazzy's launch_ros has no tag for it; diffctl's launch files have had `lifecycle_node` (a node's attributes).
+@expose_action("lifecycle_node")
 class LifecycleNode(Node):
     """A Node with a lifecycle: `name` and `namespace` are required (its services are found by them)."""
 
@@ -33,6 +36,13 @@ class LifecycleNode(Node):
         self.__current_state = ChangeState.valid_states[0]  # PRIMARY_STATE_UNKNOWN until the node reports
         self.__rclpy_subscription: Any = None
         self.__rclpy_change_state_client: Any = None
+
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser) -> tuple[type, dict[str, Any]]:
+        """A `node`'s attributes; without `namespace`, the scope's (as a Node's)."""
+        _, kwargs = super().parse(entity, parser)
+        kwargs.setdefault("namespace", "")
+        return cls, kwargs
 
     def _on_transition_event(self, context: LaunchContext, msg: Any) -> None:
         """A TransitionEvent (on the adapter's thread) → a StateTransition event on the launch's loop."""

@@ -1,0 +1,35 @@
+"""launch_ros's tests: launches run to their end in this process; whatever a failing one left running is
+killed here (and fails the test)."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from pathlib import Path
+
+import psutil
+import pytest
+
+DATA = Path(__file__).resolve().parent / "data"
+
+
+@pytest.fixture(autouse=True)
+def no_children_left() -> Iterator[None]:
+    """Autouse, so torn down after the test's other fixtures (the router's process included)."""
+    yield
+    left = psutil.Process().children(recursive=True)
+    for child in left:
+        try:
+            child.kill()
+        except psutil.NoSuchProcess:
+            pass
+    psutil.wait_procs(left, timeout=5)
+    assert not left, f"processes left running: {[p.pid for p in left]}"
+
+
+def run(entities: list, **service_kwargs) -> tuple[int, object]:
+    """Run a launch of `entities` to its end: (return code, its LaunchContext)."""
+    from diffctl.launch import LaunchDescription, LaunchService
+
+    service = LaunchService(**service_kwargs)
+    service.include_launch_description(LaunchDescription(entities))
+    return service.run(), service.context

@@ -1,0 +1,66 @@
+"""Composable nodes in diffctl's container, loaded over its load_node service as launch_ros does: the
+container's own descriptions and a LoadComposableNodes naming the container from a scoped group (its
+namespace and SetParameter apply); a C++ plugin fails alone, with launch_ros's message."""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+import pytest
+from diffctl.launch.actions import ExecuteProcess, GroupAction, Shutdown
+
+from diffctl.launch_ros.actions import ComposableNodeContainer, LoadComposableNodes, PushRosNamespace, SetParameter
+from diffctl.launch_ros.descriptions import ComposableNode
+from diffctl.launch_ros.utilities import get_node_name_count
+
+from .conftest import DATA, run
+
+
+@pytest.mark.slow
+def test_components_load_into_a_running_container(router: str, tmp_path: Path, capfd: pytest.CaptureFixture) -> None:
+    log = tmp_path / "components.log"
+    env = {"PYTHONPATH": os.pathsep.join([str(DATA), os.environ.get("PYTHONPATH", "")]), "COMPONENT_LOG": str(log)}
+    container = ComposableNodeContainer(
+        package="rclcpp_components",
+        executable="component_container",
+        name="box",
+        namespace="",
+        additional_env=env,
+        composable_node_descriptions=[
+            ComposableNode(
+                package="demo",
+                plugin="components:Greeter",
+                name="first",
+                namespace="ns",
+                parameters=[{"greeting": "hello"}],
+                remappings=[("chatter", "talk")],
+            )
+        ],
+    )
+    loader = LoadComposableNodes(
+        target_container="/box",
+        composable_node_descriptions=[
+            ComposableNode(package="composition", plugin="composition::Talker", name="cpp"),
+            ComposableNode(package="demo", plugin="components:Greeter", name="second"),
+        ],
+    )
+    # ends the launch once the container lists both Python nodes
+    checker = ExecuteProcess(
+        cmd=[sys.executable, str(DATA / "list_container.py"), "/box", "2"], on_exit=[Shutdown()], output="screen"
+    )
+    code, context = run([
+        container,
+        GroupAction([PushRosNamespace("group"), SetParameter("greeting", "scoped"), loader], scoped=True),
+        checker,
+    ])  # fmt: skip
+    assert code == 0
+    out = capfd.readouterr().out
+    assert "LOADED /group/second /ns/first" in out
+    assert sorted(log.read_text().splitlines()) == [
+        "/group/second greeting=scoped chatter=/group/chatter",
+        "/ns/first greeting=hello chatter=/ns/talk",
+    ]
+    assert "Failed to load node 'cpp' of type 'composition::Talker' in container '/box'" in out
+    assert [get_node_name_count(context, n) for n in ("/box", "/ns/first", "/group/second", "/cpp")] == [1, 1, 1, 0]
