@@ -40,8 +40,9 @@ def use_overlay() -> None:
     ROS first: `diffctl.workspace.use_in_children`)."""
     from diffctl.workspace import PYTHON_PATH
 
-    # The legacy engine's own `launch`, `launch_xml`, `launch_yaml` (ros_overlay/) come before the overlay's,
-    # which are diffctl.launch: this process runs the legacy engine, its launch files must build its entities.
+    # The legacy engine's own `launch`, `launch_xml`, `launch_yaml`, `launch_ros` (ros_overlay/) come before the
+    # overlay's, which are diffctl.launch*: this process runs the legacy engine, its launch files must build its
+    # entities.
     legacy = str(Path(__file__).with_name("ros_overlay"))
     for folder in (str(PYTHON_PATH), legacy):
         if sys.path[:1] != [folder]:
@@ -49,7 +50,7 @@ def use_overlay() -> None:
                 sys.path.remove(folder)
             sys.path.insert(0, folder)
     for name, module in list(sys.modules.items()):
-        if name.split(".")[0] in ("launch", "launch_xml", "launch_yaml") and (
+        if name.split(".")[0] in ("launch", "launch_xml", "launch_yaml", "launch_ros") and (
             getattr(module, "__name__", "").startswith("diffctl.launch")
             and not getattr(module, "__name__", "").startswith("diffctl.launch_legacy")
         ):

@@ -283,7 +283,7 @@ def test_a_python_launch_file_that_raises_is_one_message_with_its_line(tmp_path:
     for source, expected in cases.items():
         assert expected in str(error_of(tmp_path, source, name="raises.launch.py")), source
     # `launch` is the overlay's module, a real one that stays importable (by an OpaqueFunction called later)
-    assert "diffctl/overlay/launch_ros" in sys.modules["launch_ros.actions"].__file__
+    assert "diffctl/launch_legacy/ros_overlay/launch_ros" in sys.modules["launch_ros.actions"].__file__
 
 
 def test_override_launch_process_output(tmp_path: Path, monkeypatch) -> None:
