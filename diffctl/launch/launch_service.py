@@ -338,9 +338,14 @@ class LaunchService:
                 current = asyncio.get_running_loop()
             except RuntimeError:
                 current = None
+            loop = self.__loop_from_run_thread
             if force_sync:
                 self.__context.emit_event_sync(event)
-            elif current is not None and current is self.__loop_from_run_thread:
+            elif current is not None and current is loop:
+                result = self.__context.emit_event(event)
+            elif loop is not None and not loop.is_running():
+                # its run_async is paused (a caller drives the loop with run_until_complete, as ros2/launch's
+                # own tests do): waiting for it here would never end; the caller schedules the coroutine
                 result = self.__context.emit_event(event)
             else:
                 self.emit_event(event)
