@@ -321,6 +321,14 @@ class LaunchService:
                 kill_all = getattr(self.spawner, 'kill_all', None)
                 if kill_all is not None:
                     kill_all()
+                # the loop is this thread's for the next service too: left pending, this run would wake up in
+                # that one's run_until_complete (and abort it, or undo its signal handling); ended here, its
+                # cleanup runs now
+                run_task.cancel()
+                try:
+                    loop.run_until_complete(run_task)
+                except BaseException:
+                    pass
                 raise
 
     # ---- shutdown ------------------------------------------------------------------------------------------
