@@ -14,9 +14,12 @@ DATA = Path(__file__).resolve().parent / "data"
 
 @pytest.fixture(autouse=True)
 def no_children_left() -> Iterator[None]:
-    """Autouse, so torn down after the test's other fixtures (the router's process included)."""
+    """Autouse, so torn down after the test's other fixtures (the router's process included). Only what this
+    test started counts (an earlier test's zombie is its own business)."""
+    me = psutil.Process()
+    before = {p.pid for p in me.children(recursive=True)}
     yield
-    left = psutil.Process().children(recursive=True)
+    left = [p for p in me.children(recursive=True) if p.pid not in before]
     for child in left:
         try:
             child.kill()

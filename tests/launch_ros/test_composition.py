@@ -9,8 +9,8 @@ import sys
 from pathlib import Path
 
 import pytest
-from diffctl.launch.actions import ExecuteProcess, GroupAction, Shutdown
 
+from diffctl.launch.actions import ExecuteProcess, GroupAction, Shutdown
 from diffctl.launch_ros.actions import ComposableNodeContainer, LoadComposableNodes, PushRosNamespace, SetParameter
 from diffctl.launch_ros.descriptions import ComposableNode
 from diffctl.launch_ros.utilities import get_node_name_count

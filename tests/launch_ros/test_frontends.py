@@ -10,8 +10,8 @@ import sys
 from pathlib import Path
 
 import pytest
-from diffctl.launch.actions import GroupAction
 
+from diffctl.launch.actions import GroupAction
 from diffctl.launch_ros.actions import (
     Node,
     PushRosNamespace,

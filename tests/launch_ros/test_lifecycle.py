@@ -6,8 +6,8 @@ from __future__ import annotations
 import sys
 
 import pytest
-from diffctl.launch.actions import OpaqueFunction, RegisterEventHandler, Shutdown
 
+from diffctl.launch.actions import OpaqueFunction, RegisterEventHandler, Shutdown
 from diffctl.launch_ros.actions import LifecycleNode, LifecycleTransition
 from diffctl.launch_ros.event_handlers import OnStateTransition
 from diffctl.launch_ros.events.lifecycle import ChangeState

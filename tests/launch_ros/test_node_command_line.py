@@ -9,9 +9,9 @@ import sys
 from pathlib import Path
 
 import pytest
+
 from diffctl.launch.actions import GroupAction
 from diffctl.launch.substitutions import TextSubstitution
-
 from diffctl.launch_ros.actions import Node, PushRosNamespace, SetParameter, SetParametersFromFile, SetRemap
 from diffctl.launch_ros.descriptions import Parameter
 

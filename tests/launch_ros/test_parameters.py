@@ -7,9 +7,9 @@ import os
 from pathlib import Path
 
 import pytest
+
 from diffctl.launch.launch_context import LaunchContext
 from diffctl.launch.substitutions import EnvironmentVariable, TextSubstitution
-
 from diffctl.launch_ros.descriptions import ParameterFile, ParameterValue
 from diffctl.launch_ros.utilities import evaluate_parameters, normalize_parameters, to_parameters_list
 

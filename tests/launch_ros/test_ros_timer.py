@@ -5,8 +5,8 @@ from __future__ import annotations
 import sys
 
 import pytest
-from diffctl.launch.actions import ExecuteProcess, OpaqueFunction, Shutdown
 
+from diffctl.launch.actions import ExecuteProcess, OpaqueFunction, Shutdown
 from diffctl.launch_ros.actions import RosTimer, SetUseSimTime
 from diffctl.launch_ros.ros_adapters import get_ros_node
 
