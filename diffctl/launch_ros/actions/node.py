@@ -401,21 +401,21 @@ def instantiate_extension(
     return instance
 
 
-_extension_types: dict[str, type] | None = None
+g_entry_points_impl: Any = None  # the `launch_ros.node_action` entry points, read once a process
 
 
 def get_extensions(logger: Any) -> dict[str, Any]:
-    """Instances of the `launch_ros.node_action` extensions installed (entry points read once a process)."""
-    global _extension_types
-    if _extension_types is None:
-        _extension_types = {}
-        for entry_point in metadata.entry_points(group=EXTENSION_GROUP):
-            try:
-                _extension_types[entry_point.name] = entry_point.load()
-            except Exception as e:
-                logger.warning(f"Failed to load entry point '{entry_point.name}': {e}")
+    """Instances of the `launch_ros.node_action` extensions installed, by entry point name."""
+    global g_entry_points_impl
+    if g_entry_points_impl is None:
+        g_entry_points_impl = {ep.name: ep for ep in metadata.entry_points(group=EXTENSION_GROUP)}
     extensions: dict[str, Any] = {}
-    for name, cls in _extension_types.items():
+    for name, entry_point in g_entry_points_impl.items():
+        try:
+            cls = entry_point.load()
+        except Exception as e:
+            logger.warning(f"Failed to load entry point '{name}': {e}")
+            continue
         instance = instantiate_extension(EXTENSION_GROUP, name, cls, extensions, logger)
         if instance is not None:
             instance.NAME = name
