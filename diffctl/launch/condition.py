@@ -1,4 +1,4 @@
-"""`Condition`: a predicate on the launch context deciding whether an action runs."""
+"""`Condition`: whether an action runs, decided when it is visited."""
 
 from __future__ import annotations
 
@@ -10,16 +10,20 @@ if TYPE_CHECKING:
 
 
 class Condition:
-    """Wraps `predicate(context) -> bool`; without a predicate the condition is false."""
+    """A yes/no question on the launch context, asked by `Action.visit` before executing.
+
+    `predicate(context)` answers it; a condition made without one always says no.
+    """
 
     def __init__(self, *, predicate: Callable[[LaunchContext], bool] | None = None) -> None:
-        self._predicate = predicate
+        self._test = predicate
 
     def describe(self) -> str:
-        """Human-readable form of the condition."""
-        return self.__repr__()
+        """Text for introspection (the object's repr unless a subclass says better)."""
+        return repr(self)
 
     def evaluate(self, context: LaunchContext) -> bool:
-        """True when the action guarded by this condition should run."""
-        predicate = self._predicate
-        return False if predicate is None else predicate(context)
+        """The answer for `context`."""
+        if self._test is None:
+            return False
+        return self._test(context)

@@ -1,44 +1,46 @@
 """Package attributes imported on first use (PEP 562), so that `import launch` stays cheap.
 
-A package lists `name -> submodule` pairs; `from launch.actions import ExecuteProcess` then imports only the
-modules that name needs, and `dir()` / `__all__` still show every public name.
+A package says which submodule holds each of its names; `from launch.actions import ExecuteProcess`
+then imports only the modules that name needs, while `dir()` and `__all__` list every public name.
 """
 
 from __future__ import annotations
 
 import importlib
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 
 
 def lazy_exports(
-    package: str, namespace: dict[str, object], names: Mapping[str, str]
-) -> tuple[Callable[[str], object], Callable[[], list[str]]]:
-    """`__getattr__` and `__dir__` for `package`: `names` maps an attribute to the submodule holding it.
+    package: str, namespace: dict[str, object], homes: Mapping[str, Iterable[str]]
+) -> tuple[Callable[[str], object], Callable[[], list[str]], list[str]]:
+    """`__getattr__`, `__dir__` and `__all__` for `package`.
 
-    A value starting with '.' names a submodule relative to the package; the attribute of the same name is
-    read from it unless the value ends with ':' (the attribute is the submodule itself).
+    `homes` maps a submodule (relative: '.timer_action') to the names it holds and the package re-exports.
+    A name with a trailing '/' is a subpackage exported as itself ('actions/').
     """
+    where: dict[str, str] = {}
+    for module, names in homes.items():
+        for name in names:
+            where[name.rstrip('/')] = name if name.endswith('/') else module
 
-    def __getattr__(attr: str) -> object:
-        where = names.get(attr)
-        if where is None:
-            # a submodule that is not re-exported by name (e.g. `launch.actions.timer_action`)
+    def load(attr: str) -> object:
+        home = where.get(attr)
+        if home is None:
+            # a submodule not re-exported by name, e.g. `launch.actions.timer_action`
             try:
-                module = importlib.import_module(f"{package}.{attr}")
-            except ModuleNotFoundError as e:
-                if e.name != f"{package}.{attr}":
+                value = importlib.import_module(f'{package}.{attr}')
+            except ModuleNotFoundError as missing:
+                if missing.name != f'{package}.{attr}':
                     raise
-                raise AttributeError(f"module {package!r} has no attribute {attr!r}") from None
-            namespace[attr] = module
-            return module
-        if where.endswith(":"):
-            value = importlib.import_module(where[:-1], package)
+                raise AttributeError(f'module {package!r} has no attribute {attr!r}') from None
+        elif home.endswith('/'):
+            value = importlib.import_module(f'.{attr}', package)
         else:
-            value = getattr(importlib.import_module(where, package), attr)
+            value = getattr(importlib.import_module(home, package), attr)
         namespace[attr] = value
         return value
 
-    def __dir__() -> list[str]:
-        return sorted(set(namespace) | set(names))
+    def listing() -> list[str]:
+        return sorted(set(namespace) | set(where))
 
-    return __getattr__, __dir__
+    return load, listing, sorted(where)

@@ -1,57 +1,35 @@
-"""The actions of launch (each imported on first use)."""
+"""The actions of launch; each module is imported when one of its names is first used."""
 
 from .._private.lazy import lazy_exports
 
-__all__ = [
-    'AppendEnvironmentVariable',
-    'DeclareLaunchArgument',
-    'EmitEvent',
-    'ExecuteLocal',
-    'ExecuteProcess',
-    'GroupAction',
-    'IncludeLaunchDescription',
-    'LogInfo',
-    'OpaqueCoroutine',
-    'OpaqueFunction',
-    'PopEnvironment',
-    'PopLaunchConfigurations',
-    'PushEnvironment',
-    'PushLaunchConfigurations',
-    'RegisterEventHandler',
-    'ResetEnvironment',
-    'ResetLaunchConfigurations',
-    'SetEnvironmentVariable',
-    'SetLaunchConfiguration',
-    'Shutdown',
-    'TimerAction',
-    'UnregisterEventHandler',
-    'UnsetEnvironmentVariable',
-    'UnsetLaunchConfiguration',
-]
-
-__getattr__, __dir__ = lazy_exports(__name__, globals(), {
-    'AppendEnvironmentVariable': '.append_environment_variable',
-    'DeclareLaunchArgument': '.declare_launch_argument',
-    'EmitEvent': '.emit_event',
-    'ExecuteLocal': '.execute_local',
-    'ExecuteProcess': '.execute_process',
-    'GroupAction': '.group_action',
-    'IncludeLaunchDescription': '.include_launch_description',
-    'LogInfo': '.log_info',
-    'OpaqueCoroutine': '.opaque_coroutine',
-    'OpaqueFunction': '.opaque_function',
-    'PopEnvironment': '.pop_environment',
-    'PopLaunchConfigurations': '.pop_launch_configurations',
-    'PushEnvironment': '.push_environment',
-    'PushLaunchConfigurations': '.push_launch_configurations',
-    'ResetEnvironment': '.reset_environment',
-    'ResetLaunchConfigurations': '.reset_launch_configurations',
-    'RegisterEventHandler': '.register_event_handler',
-    'SetEnvironmentVariable': '.set_environment_variable',
-    'SetLaunchConfiguration': '.set_launch_configuration',
-    'Shutdown': '.shutdown_action',
-    'TimerAction': '.timer_action',
-    'UnregisterEventHandler': '.unregister_event_handler',
-    'UnsetEnvironmentVariable': '.unset_environment_variable',
-    'UnsetLaunchConfiguration': '.unset_launch_configuration',
+__getattr__, __dir__, __all__ = lazy_exports(__name__, globals(), {
+    # processes
+    '.execute_local': ('ExecuteLocal',),
+    '.execute_process': ('ExecuteProcess',),
+    # structure
+    '.group_action': ('GroupAction',),
+    '.include_launch_description': ('IncludeLaunchDescription',),
+    '.opaque_function': ('OpaqueFunction',),
+    '.opaque_coroutine': ('OpaqueCoroutine',),
+    '.timer_action': ('TimerAction',),
+    # events
+    '.emit_event': ('EmitEvent',),
+    '.register_event_handler': ('RegisterEventHandler',),
+    '.unregister_event_handler': ('UnregisterEventHandler',),
+    '.shutdown_action': ('Shutdown',),
+    '.log_info': ('LogInfo',),
+    # launch configurations
+    '.declare_launch_argument': ('DeclareLaunchArgument',),
+    '.set_launch_configuration': ('SetLaunchConfiguration',),
+    '.unset_launch_configuration': ('UnsetLaunchConfiguration',),
+    '.reset_launch_configurations': ('ResetLaunchConfigurations',),
+    '.push_launch_configurations': ('PushLaunchConfigurations',),
+    '.pop_launch_configurations': ('PopLaunchConfigurations',),
+    # environment
+    '.set_environment_variable': ('SetEnvironmentVariable',),
+    '.append_environment_variable': ('AppendEnvironmentVariable',),
+    '.unset_environment_variable': ('UnsetEnvironmentVariable',),
+    '.reset_environment': ('ResetEnvironment',),
+    '.push_environment': ('PushEnvironment',),
+    '.pop_environment': ('PopEnvironment',),
 })

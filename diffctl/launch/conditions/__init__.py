@@ -1,17 +1,12 @@
-"""Conditions deciding whether an action runs."""
+"""Conditions for actions: on an expression's truth, or (deprecated) on a launch configuration's value."""
 
-from .evaluate_condition_expression_impl import evaluate_condition_expression
-from .if_condition import IfCondition
-from .invalid_condition_expression_error import InvalidConditionExpressionError
-from .launch_configuration_equals import LaunchConfigurationEquals
-from .launch_configuration_not_equals import LaunchConfigurationNotEquals
-from .unless_condition import UnlessCondition
+from .._private.lazy import lazy_exports
 
-__all__ = [
-    'IfCondition',
-    'InvalidConditionExpressionError',
-    'LaunchConfigurationEquals',
-    'LaunchConfigurationNotEquals',
-    'UnlessCondition',
-    'evaluate_condition_expression',
-]
+__getattr__, __dir__, __all__ = lazy_exports(__name__, globals(), {
+    '.if_condition': ('IfCondition',),
+    '.unless_condition': ('UnlessCondition',),
+    '.evaluate_condition_expression_impl': ('evaluate_condition_expression',),
+    '.invalid_condition_expression_error': ('InvalidConditionExpressionError',),
+    '.launch_configuration_equals': ('LaunchConfigurationEquals',),
+    '.launch_configuration_not_equals': ('LaunchConfigurationNotEquals',),
+})

@@ -1,4 +1,4 @@
-"""`evaluate_condition_expression`: the boolean a condition's text stands for."""
+"""`evaluate_condition_expression`: the truth value a condition's text spells."""
 
 from __future__ import annotations
 
@@ -16,13 +16,12 @@ VALID_FALSE_EXPRESSIONS = ['false', '0']
 
 
 def evaluate_condition_expression(context: LaunchContext, expression: list[Substitution]) -> bool:
-    """True for 'true' or '1', False for 'false' or '0' (after stripping, any case); else raises.
+    """Perform `expression` and read it, ignoring case and surrounding blanks: 'true'/'1' or 'false'/'0'.
 
-    :raises: InvalidConditionExpressionError
+    Any other text raises InvalidConditionExpressionError, which lists the accepted spellings.
     """
-    text = perform_substitutions(context, expression).strip().lower()
-    if text in VALID_TRUE_EXPRESSIONS:
-        return True
-    if text in VALID_FALSE_EXPRESSIONS:
-        return False
-    raise InvalidConditionExpressionError(text, expression, VALID_TRUE_EXPRESSIONS + VALID_FALSE_EXPRESSIONS)
+    spelled = perform_substitutions(context, expression).strip().lower()
+    for accepted, meaning in ((VALID_TRUE_EXPRESSIONS, True), (VALID_FALSE_EXPRESSIONS, False)):
+        if spelled in accepted:
+            return meaning
+    raise InvalidConditionExpressionError(spelled, expression, [*VALID_TRUE_EXPRESSIONS, *VALID_FALSE_EXPRESSIONS])

@@ -1,4 +1,4 @@
-"""`IfCondition`: true when an expression reads as true."""
+"""`IfCondition`: an action runs when an expression says true."""
 
 from __future__ import annotations
 
@@ -14,17 +14,17 @@ if TYPE_CHECKING:
 
 
 class IfCondition(Condition):
-    """True when `predicate_expression` (text and substitutions) is 'true' or '1', false for 'false' or '0'.
+    """Holds when `predicate_expression` performs to 'true' or '1' (any case, blanks ignored).
 
-    Any other text raises `InvalidConditionExpressionError` when evaluated.
+    'false' and '0' make it fail; other text raises InvalidConditionExpressionError on evaluation.
     """
 
+    # the truth value of the expression for which the condition holds (UnlessCondition flips it)
+    _holds_when = True
+
     def __init__(self, predicate_expression: SomeSubstitutionsType) -> None:
-        self.__predicate_expression = normalize_to_list_of_substitutions(predicate_expression)
-        super().__init__(predicate=self._predicate_func)
+        self._expression = normalize_to_list_of_substitutions(predicate_expression)
+        super().__init__(predicate=self._check)
 
-    def _predicate_func(self, context: LaunchContext) -> bool:
-        return evaluate_condition_expression(context, self.__predicate_expression)
-
-    def describe(self) -> str:
-        return self.__repr__()
+    def _check(self, context: LaunchContext) -> bool:
+        return evaluate_condition_expression(context, self._expression) is self._holds_when

@@ -1,10 +1,14 @@
-"""`AnonName` (`$(anon name)`): a name made unique to this launch, the same for every use of `name`."""
+"""`AnonName`, `$(anon name)`: a name no other launch uses, stable within this one."""
 
 from __future__ import annotations
 
+import os
+import re
+import sys
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
+from .._private.operands import joined, tag_kwargs
 from ..frontend.expose import expose_substitution
 from ..substitution import Substitution
 from ..utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
@@ -14,43 +18,43 @@ if TYPE_CHECKING:
     from ..launch_context import LaunchContext
     from ..some_substitutions_type import SomeSubstitutionsType
 
+_NOT_IN_ROS_NAMES = re.compile('[.:-]')
+
 
 @expose_substitution('anon')
 class AnonName(Substitution):
-    """A unique name derived from `name`; it is remembered in the launch configurations as `'anon' + name`."""
+    """`name` made unique; every `AnonName` of the same name in a launch gives the same text.
+
+    The text is kept as the launch configuration `'anon' + name`, which is how later uses find it.
+    """
 
     def __init__(self, name: SomeSubstitutionsType) -> None:
         super().__init__()
-        self.__name = normalize_to_list_of_substitutions(name)
-
-    @classmethod
-    def parse(cls, data: Sequence[SomeSubstitutionsType]):
-        if len(data) != 1:
-            raise TypeError('anon substitution expects 1 argument')
-        return cls, {'name': data[0]}
+        self._base = normalize_to_list_of_substitutions(name)
 
     @property
     def name(self) -> list[Substitution]:
-        return self.__name
+        return self._base
+
+    @classmethod
+    def parse(cls, data: Sequence[SomeSubstitutionsType]):
+        return cls, tag_kwargs(data, ('name',), 'anon substitution expects 1 argument')
 
     def describe(self) -> str:
-        return 'AnonName({})'.format(' + '.join(sub.describe() for sub in self.name))
+        return f'AnonName({joined(self._base)})'
 
     def perform(self, context: LaunchContext) -> str:
-        name = perform_substitutions(context, self.name)
-        key = 'anon' + name
-        if key not in context.launch_configurations:
-            context.launch_configurations[key] = self.compute_name(name)
-        return context.launch_configurations[key]
+        base = perform_substitutions(context, self._base)
+        remembered = context.launch_configurations
+        key = f'anon{base}'
+        if key not in remembered:
+            remembered[key] = self.compute_name(base)
+        return remembered[key]
 
     def compute_name(self, id_value: str) -> str:
-        """`id_value` with host, process id and a random number appended, as a valid ROS name."""
-        import os
-        import random
+        """`id_value`, this host, this process and a random number, as one valid ROS name."""
+        import random  # not at import time: loading launch stays cheap
         import socket
-        import sys
 
-        name = f'{id_value}_{socket.gethostname()}_{os.getpid()}_{random.randint(0, sys.maxsize)}'
-        for c in '.-:':
-            name = name.replace(c, '_')
-        return name
+        unique = f'{id_value}_{socket.gethostname()}_{os.getpid()}_{random.randint(0, sys.maxsize)}'
+        return _NOT_IN_ROS_NAMES.sub('_', unique)

@@ -1,151 +1,127 @@
-"""Boolean substitutions: `$(not x)`, `$(and a b)`, `$(or a b)`, `$(any …)`, `$(all …)` → 'true' / 'false'.
+"""Logic on booleans held as text: `$(not x)`, `$(and a b)`, `$(or a b)`, `$(any …)`, `$(all …)`.
 
-Operands are read as booleans with the typed-substitution rules ('true', 'false', '1', '0', YAML's
-spellings); anything else is a SubstitutionFailure.
+Every operand is read the way typed substitutions read a `bool` ('true'/'false', '1'/'0', YAML's other
+spellings); text that is none of them makes the substitution fail. All operands are read before the
+result is combined, so a bad operand fails even where it would not change the answer.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
-from typing import TYPE_CHECKING
+from collections.abc import Callable, Iterable, Sequence
+from typing import TYPE_CHECKING, ClassVar
 
+from .._private.operands import bool_text, tag_kwargs, truth_of
 from ..frontend.expose import expose_substitution
 from ..substitution import Substitution
 from ..utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
-from ..utilities.type_utils import perform_typed_substitution
-from .substitution_failure import SubstitutionFailure
 
 if TYPE_CHECKING:
     from ..launch_context import LaunchContext
     from ..some_substitutions_type import SomeSubstitutionsType
 
 
-def _truth(context: LaunchContext, value: list[Substitution]) -> bool:
-    try:
-        return perform_typed_substitution(context, value, bool)
-    except (TypeError, ValueError) as e:
-        raise SubstitutionFailure(e) from e
+class _Logic(Substitution):
+    """Reads each operand as a boolean and folds them with `combine`."""
 
+    combine: ClassVar[Callable[[list[bool]], bool]]
 
-def _text(value: bool) -> str:
-    return 'true' if value else 'false'
+    def __init__(self, *operands: SomeSubstitutionsType) -> None:
+        super().__init__()
+        self._operands = [normalize_to_list_of_substitutions(operand) for operand in operands]
+
+    def perform(self, context: LaunchContext) -> str:
+        readings = [truth_of(context, operand) for operand in self._operands]
+        return bool_text(type(self).combine(readings))
 
 
 @expose_substitution('not')
-class NotSubstitution(Substitution):
-    """'true' when `value` is false, and the other way round."""
+class NotSubstitution(_Logic):
+    """'true' for a false `value`, 'false' for a true one."""
+
+    combine = staticmethod(lambda readings: not readings[0])
 
     def __init__(self, value: SomeSubstitutionsType) -> None:
-        super().__init__()
-        self.__value = normalize_to_list_of_substitutions(value)
-
-    @classmethod
-    def parse(cls, data: Sequence[SomeSubstitutionsType]):
-        if len(data) != 1:
-            raise TypeError('not substitution expects 1 argument')
-        return cls, {'value': data[0]}
+        super().__init__(value)
 
     @property
     def value(self) -> list[Substitution]:
-        return self.__value
+        return self._operands[0]
+
+    @classmethod
+    def parse(cls, data: Sequence[SomeSubstitutionsType]):
+        return cls, tag_kwargs(data, ('value',), 'not substitution expects 1 argument')
 
     def describe(self) -> str:
         return f'NotSubstitution({self.value})'
 
-    def perform(self, context: LaunchContext) -> str:
-        return _text(not _truth(context, self.value))
 
-
-class _Binary(Substitution):
-    """A boolean operator of two operands."""
+class _Pair(_Logic):
+    """An operator between a `left` and a `right` operand."""
 
     def __init__(self, left: SomeSubstitutionsType, right: SomeSubstitutionsType) -> None:
-        super().__init__()
-        self.__left = normalize_to_list_of_substitutions(left)
-        self.__right = normalize_to_list_of_substitutions(right)
+        super().__init__(left, right)
 
     @property
     def left(self) -> list[Substitution]:
-        return self.__left
+        return self._operands[0]
 
     @property
     def right(self) -> list[Substitution]:
-        return self.__right
+        return self._operands[1]
+
+    @classmethod
+    def parse(cls, data: Sequence[SomeSubstitutionsType]):
+        # `or` reports its arity under `and`'s name, as ROS 2 does
+        return cls, tag_kwargs(data, ('left', 'right'), 'and substitution expects 2 arguments')
 
     def describe(self) -> str:
-        # upstream describes `or` as AndSubstitution too
+        # `or` describes itself as an AndSubstitution too, as ROS 2's does
         return f'AndSubstitution({self.left} {self.right})'
 
 
 @expose_substitution('and')
-class AndSubstitution(_Binary):
-    """'true' when both operands are true."""
+class AndSubstitution(_Pair):
+    """'true' when `left` and `right` are both true."""
 
-    @classmethod
-    def parse(cls, data: Sequence[SomeSubstitutionsType]):
-        if len(data) != 2:
-            raise TypeError('and substitution expects 2 arguments')
-        return cls, {'left': data[0], 'right': data[1]}
-
-    def perform(self, context: LaunchContext) -> str:
-        left = _truth(context, self.left)
-        right = _truth(context, self.right)
-        return _text(left and right)
+    combine = staticmethod(all)
 
 
 @expose_substitution('or')
-class OrSubstitution(_Binary):
-    """'true' when either operand is true."""
+class OrSubstitution(_Pair):
+    """'true' when `left` or `right` (or both) is true."""
 
-    @classmethod
-    def parse(cls, data: Sequence[SomeSubstitutionsType]):
-        if len(data) != 2:
-            raise TypeError('and substitution expects 2 arguments')
-        return cls, {'left': data[0], 'right': data[1]}
-
-    def perform(self, context: LaunchContext) -> str:
-        left = _truth(context, self.left)
-        right = _truth(context, self.right)
-        return _text(left or right)
+    combine = staticmethod(any)
 
 
-class _Many(Substitution):
-    """A boolean operator of any number of operands."""
-
-    def __init__(self, *args: SomeSubstitutionsType) -> None:
-        super().__init__()
-        self.__args = [normalize_to_list_of_substitutions(arg) for arg in args]
-
-    @classmethod
-    def parse(cls, data: Iterable[SomeSubstitutionsType]):
-        # the operands are positional: build through a function taking them as `args`
-        def build(*, args: Iterable[SomeSubstitutionsType]) -> _Many:
-            return cls(*args)
-
-        return build, {'args': data}
+class _Variadic(_Logic):
+    """An operator over any number of operands, given positionally."""
 
     @property
     def args(self) -> list[list[Substitution]]:
-        return self.__args
+        return self._operands
+
+    @classmethod
+    def parse(cls, data: Iterable[SomeSubstitutionsType]):
+        # the parser calls back with keywords only, the constructor takes the operands positionally
+        def make(*, args: Iterable[SomeSubstitutionsType]) -> _Variadic:
+            return cls(*args)
+
+        return make, {'args': data}
 
     def describe(self) -> str:
-        return f'{type(self).__name__}({" ".join(str(arg) for arg in self.args)})'
-
-    def _values(self, context: LaunchContext) -> list[bool]:
-        return [_truth(context, arg) for arg in self.args]
+        listed = ' '.join(str(operand) for operand in self._operands)
+        return f'{type(self).__name__}({listed})'
 
 
 @expose_substitution('any')
-class AnySubstitution(_Many):
-    """'true' when at least one operand is true."""
+class AnySubstitution(_Variadic):
+    """'true' when one operand or more is true ('false' without operands)."""
 
-    def perform(self, context: LaunchContext) -> str:
-        return _text(any(self._values(context)))
+    combine = staticmethod(any)
 
 
 @expose_substitution('all')
-class AllSubstitution(_Many):
-    """'true' when every operand is true."""
+class AllSubstitution(_Variadic):
+    """'true' when no operand is false ('true' without operands)."""
 
-    def perform(self, context: LaunchContext) -> str:
-        return _text(all(self._values(context)))
+    combine = staticmethod(all)

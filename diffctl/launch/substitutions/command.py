@@ -1,10 +1,12 @@
-"""`Command` (`$(command cmd [on_stderr])`): the standard output of a command."""
+"""`Command`, `$(command cmd [on_stderr])`: what a command prints."""
 
 from __future__ import annotations
 
+import os
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
+from .._private.operands import joined, tag_kwargs
 from ..frontend.expose import expose_substitution
 from ..substitution import Substitution
 from ..utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
@@ -15,75 +17,72 @@ if TYPE_CHECKING:
     from ..launch_context import LaunchContext
     from ..some_substitutions_type import SomeSubstitutionsType
 
-_ON_STDERR = ('fail', 'ignore', 'warn', 'capture')
+# what output on standard error does to the substitution
+_STDERR_POLICIES = ('fail', 'ignore', 'warn', 'capture')
+
+
+def _run(line: str, merge_stderr: bool):
+    import shlex
+    import subprocess
+
+    argv = line if os.name == 'nt' else shlex.split(line)
+    try:
+        return subprocess.run(
+            argv, stdout=subprocess.PIPE, stderr=subprocess.STDOUT if merge_stderr else subprocess.PIPE,
+            text=True)
+    except FileNotFoundError as missing:
+        raise SubstitutionFailure(f'file not found: {missing}') from missing
 
 
 @expose_substitution('command')
 class Command(Substitution):
-    """Runs `command` (split with shell rules, run without a shell) and stands for its standard output.
+    """The standard output of `command`, split into words by shell rules and run without a shell.
 
-    A command that cannot start or exits non-zero is a SubstitutionFailure. `on_stderr` says what output on
-    standard error does: 'fail' (a SubstitutionFailure), 'ignore', 'warn' (logged), or 'capture' (mixed
-    into the result).
+    It fails when the command cannot be started or exits non-zero. Text on standard error, per
+    `on_stderr`: 'fail' fails the substitution, 'ignore' drops it, 'warn' logs it, 'capture' keeps it
+    in the result, interleaved with standard output.
     """
 
     def __init__(self, command: SomeSubstitutionsType, *, on_stderr: SomeSubstitutionsType = 'fail') -> None:
         super().__init__()
-        self.__command = normalize_to_list_of_substitutions(command)
-        self.__on_stderr = normalize_to_list_of_substitutions(on_stderr)
-
-    @classmethod
-    def parse(cls, data: Sequence[SomeSubstitutionsType]):
-        if not 1 <= len(data) <= 2:
-            raise ValueError('command substitution expects 1 or 2 arguments')
-        kwargs = {'command': data[0]}
-        if len(data) == 2:
-            kwargs['on_stderr'] = data[1]
-        return cls, kwargs
+        self._line = normalize_to_list_of_substitutions(command)
+        self._stderr_policy = normalize_to_list_of_substitutions(on_stderr)
 
     @property
     def command(self) -> list[Substitution]:
-        return self.__command
+        return self._line
 
     @property
     def on_stderr(self) -> list[Substitution]:
-        return self.__on_stderr
+        return self._stderr_policy
+
+    @classmethod
+    def parse(cls, data: Sequence[SomeSubstitutionsType]):
+        kwargs = tag_kwargs(
+            data, ('command', 'on_stderr'), 'command substitution expects 1 or 2 arguments', required=1,
+            error=ValueError)
+        return cls, kwargs
 
     def describe(self) -> str:
-        return 'Command({})'.format(' + '.join(sub.describe() for sub in self.command))
+        return f'Command({joined(self._line)})'
 
     def perform(self, context: LaunchContext) -> str:
-        import os
-        import shlex
-        import subprocess
-
-        command_str = perform_substitutions(context, self.command)
-        command = shlex.split(command_str) if os.name != 'nt' else command_str
-        on_stderr = perform_substitutions(context, self.on_stderr)
-        if on_stderr not in _ON_STDERR:
+        line = perform_substitutions(context, self._line)
+        policy = perform_substitutions(context, self._stderr_policy)
+        if policy not in _STDERR_POLICIES:
             raise SubstitutionFailure("expected 'on_stderr' to be one of: 'fail', 'ignore', 'warn' or 'capture'")
-        try:
-            result = subprocess.run(
-                command,
-                stdout=subprocess.PIPE,
-                stderr=subprocess.STDOUT if on_stderr == 'capture' else subprocess.PIPE,
-                text=True,
-            )
-        except FileNotFoundError as ex:
-            raise SubstitutionFailure(f'file not found: {ex}') from ex
-        if result.returncode != 0:
-            message = f'executed command failed. Command: {command_str}'
-            if result.stderr:
-                message += f'\nCaptured stderr output: {result.stderr}'
-            raise SubstitutionFailure(message)
-        if result.stderr:
-            message = (
-                f'executed command showed stderr output. Command: {command_str}\n'
-                f'Captured stderr output:\n{result.stderr}')
-            if on_stderr == 'fail':
-                raise SubstitutionFailure(message)
-            if on_stderr == 'warn':
-                from .. import logging as launch_logging
+        finished = _run(line, merge_stderr=policy == 'capture')
+        if finished.returncode != 0:
+            complaint = f'executed command failed. Command: {line}'
+            if finished.stderr:
+                complaint = f'{complaint}\nCaptured stderr output: {finished.stderr}'
+            raise SubstitutionFailure(complaint)
+        if finished.stderr and policy in ('fail', 'warn'):
+            complaint = (
+                f'executed command showed stderr output. Command: {line}\nCaptured stderr output:\n{finished.stderr}')
+            if policy == 'fail':
+                raise SubstitutionFailure(complaint)
+            from .. import logging as launch_logging
 
-                launch_logging.get_logger().warning(message)
-        return result.stdout
+            launch_logging.get_logger().warning(complaint)
+        return finished.stdout

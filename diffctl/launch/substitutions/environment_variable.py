@@ -1,10 +1,11 @@
-"""`EnvironmentVariable` (`$(env NAME [default])`): the value of an environment variable."""
+"""`EnvironmentVariable`, `$(env NAME [default])`: a variable of the launch's environment."""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
+from .._private.operands import joined, tag_kwargs
 from ..frontend.expose import expose_substitution
 from ..substitution import Substitution
 from ..utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
@@ -18,40 +19,35 @@ if TYPE_CHECKING:
 
 @expose_substitution('env')
 class EnvironmentVariable(Substitution):
-    """The variable `name` of the launch's environment (`context.environment`).
-
-    When it is not set, `default_value` is used; without one that is a SubstitutionFailure.
-    """
+    """The value of `name` in `context.environment`, else `default_value`, else a failure."""
 
     def __init__(self, name: SomeSubstitutionsType, *, default_value: SomeSubstitutionsType | None = None) -> None:
         super().__init__()
-        self.__name = normalize_to_list_of_substitutions(name)
-        self.__default_value = None if default_value is None else normalize_to_list_of_substitutions(default_value)
-
-    @classmethod
-    def parse(cls, data: Sequence[SomeSubstitutionsType]):
-        if not 1 <= len(data) <= 2:
-            raise TypeError('env substitution expects 1 or 2 arguments')
-        kwargs = {'name': data[0]}
-        if len(data) == 2:
-            kwargs['default_value'] = data[1]
-        return cls, kwargs
+        self._variable = normalize_to_list_of_substitutions(name)
+        self._fallback = None if default_value is None else normalize_to_list_of_substitutions(default_value)
 
     @property
     def name(self) -> list[Substitution]:
-        return self.__name
+        return self._variable
 
     @property
     def default_value(self) -> list[Substitution] | None:
-        return self.__default_value
+        return self._fallback
+
+    @classmethod
+    def parse(cls, data: Sequence[SomeSubstitutionsType]):
+        kwargs = tag_kwargs(
+            data, ('name', 'default_value'), 'env substitution expects 1 or 2 arguments', required=1)
+        return cls, kwargs
 
     def describe(self) -> str:
-        return 'EnvVar({})'.format(' + '.join(sub.describe() for sub in self.name))
+        return f'EnvVar({joined(self._variable)})'
 
     def perform(self, context: LaunchContext) -> str:
-        default = None if self.default_value is None else perform_substitutions(context, self.default_value)
-        name = perform_substitutions(context, self.name)
-        value = context.environment.get(name, default)
-        if value is None:
-            raise SubstitutionFailure(f"environment variable '{name}' does not exist")
-        return value
+        # the default is performed even when unused: its own failures show either way
+        fallback = None if self._fallback is None else perform_substitutions(context, self._fallback)
+        variable = perform_substitutions(context, self._variable)
+        found = context.environment.get(variable, fallback)
+        if found is None:
+            raise SubstitutionFailure(f"environment variable '{variable}' does not exist")
+        return found

@@ -1,4 +1,4 @@
-"""`EqualsSubstitution` (`$(equals a b)`): 'true' when two values are equal."""
+"""`EqualsSubstitution`, `$(equals a b)`: whether two values are the same once performed."""
 
 from __future__ import annotations
 
@@ -6,6 +6,7 @@ import math
 from collections.abc import Iterable, Sequence
 from typing import TYPE_CHECKING, Any
 
+from .._private.operands import bool_text, tag_kwargs
 from ..frontend.expose import expose_substitution
 from ..substitution import Substitution
 from ..utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
@@ -15,66 +16,70 @@ if TYPE_CHECKING:
     from ..launch_context import LaunchContext
     from ..some_substitutions_type import SomeSubstitutionsType
 
-
-def _as_text(value: Any) -> Any:
-    if is_substitution(value):
-        return value
-    if value is None:
-        return ''
-    if isinstance(value, bool):
-        return 'true' if value else 'false'
-    return str(value)
+_TRUE_WORDS = frozenset(('true', '1'))
+_BOOL_WORDS = _TRUE_WORDS | {'false', '0'}
 
 
-def _is_bool_text(text: str) -> bool:
-    return isinstance(text, str) and text.lower() in ('true', 'false', '1', '0')
+def _operand(value: Any) -> list[Substitution]:
+    """Substitutions from a side given as anything: None is empty text, booleans are 'true'/'false'."""
+    if not is_substitution(value):
+        if value is None:
+            value = ''
+        elif isinstance(value, bool):
+            value = bool_text(value)
+        else:
+            value = str(value)
+    return normalize_to_list_of_substitutions(value)
 
 
-def _is_float_text(text: str) -> bool:
+def _number(text: str) -> float | None:
     try:
-        float(text)
+        return float(text)
     except ValueError:
-        return False
-    return True
+        return None
+
+
+def texts_equal(a: str, b: str) -> bool:
+    """Two performed texts compared as booleans when both spell one, as numbers when both are, else as text."""
+    if a.lower() in _BOOL_WORDS and b.lower() in _BOOL_WORDS:
+        return (a.lower() in _TRUE_WORDS) is (b.lower() in _TRUE_WORDS)
+    x, y = _number(a), _number(b)
+    if x is not None and y is not None:
+        return math.isclose(x, y)
+    return a == b
 
 
 @expose_substitution('equals')
 class EqualsSubstitution(Substitution):
-    """'true' or 'false': whether `left` equals `right` once performed.
+    """'true' when `left` and `right` are equal after substitution, else 'false'.
 
-    Plain values are compared as text (None as '', booleans as 'true'/'false'); two boolean texts
-    ('true', 'false', '1', '0', any case) compare as booleans, two numbers as floats (close enough).
+    'True' and '1' equal each other (booleans in any case), '2.0' equals '2' (numbers, within float
+    rounding); anything else must be the same text.
     """
 
     def __init__(self, left: Any | Iterable[Any] | None, right: Any | Iterable[Any] | None) -> None:
         super().__init__()
-        self.__left = normalize_to_list_of_substitutions(_as_text(left))
-        self.__right = normalize_to_list_of_substitutions(_as_text(right))
-
-    @classmethod
-    def parse(cls, data: Sequence[SomeSubstitutionsType]):
-        if len(data) != 2:
-            raise TypeError('and substitution expects 2 arguments')
-        return cls, {'left': data[0], 'right': data[1]}
+        self._sides = (_operand(left), _operand(right))
 
     @property
     def left(self) -> list[Substitution]:
-        return self.__left
+        return self._sides[0]
 
     @property
     def right(self) -> list[Substitution]:
-        return self.__right
+        return self._sides[1]
+
+    @classmethod
+    def parse(cls, data: Sequence[SomeSubstitutionsType]):
+        # ROS 2 words the count error of `equals` as that of `and`
+        return cls, tag_kwargs(data, ('left', 'right'), 'and substitution expects 2 arguments')
+
+    def _equal(self, context: LaunchContext) -> bool:
+        left, right = (perform_substitutions(context, side) for side in self._sides)
+        return texts_equal(left, right)
 
     def describe(self) -> str:
         return f'EqualsSubstitution({self.left} {self.right})'
 
     def perform(self, context: LaunchContext) -> str:
-        left = perform_substitutions(context, self.left)
-        right = perform_substitutions(context, self.right)
-        if _is_bool_text(left) and _is_bool_text(right):
-            equal = (left.lower() in ('true', '1')) == (right.lower() in ('true', '1'))
-        elif _is_float_text(left) and _is_float_text(right):
-            equal = math.isclose(float(left), float(right))
-        else:
-            equal = left == right
-        return 'true' if equal else 'false'
+        return bool_text(self._equal(context))

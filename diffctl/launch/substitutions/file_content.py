@@ -1,10 +1,11 @@
-"""`FileContent` (`$(file-content path)`): the text of a file."""
+"""`FileContent`, `$(file-content path)`: the text of a file."""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
+from .._private.operands import joined, tag_kwargs
 from ..frontend.expose import expose_substitution
 from ..substitution import Substitution
 from ..utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
@@ -18,29 +19,27 @@ if TYPE_CHECKING:
 
 @expose_substitution('file-content')
 class FileContent(Substitution):
-    """The content of the file at `path`; a missing file is a SubstitutionFailure."""
+    """Everything the file at `path` holds, read when performed; a missing file fails."""
 
     def __init__(self, path: SomeSubstitutionsType) -> None:
         super().__init__()
-        self.__path = normalize_to_list_of_substitutions(path)
-
-    @classmethod
-    def parse(cls, data: Sequence[SomeSubstitutionsType]):
-        if not data or len(data) != 1:
-            raise AttributeError('file content substitutions expect 1 argument')
-        return cls, {'path': data[0]}
+        self._where = normalize_to_list_of_substitutions(path)
 
     @property
     def path(self) -> list[Substitution]:
-        return self.__path
+        return self._where
+
+    @classmethod
+    def parse(cls, data: Sequence[SomeSubstitutionsType]):
+        return cls, tag_kwargs(data, ('path',), 'file content substitutions expect 1 argument', error=AttributeError)
 
     def describe(self) -> str:
-        return 'FileContent({})'.format(', '.join(sub.describe() for sub in self.path))
+        return f"FileContent({joined(self._where, ', ')})"
 
     def perform(self, context: LaunchContext) -> str:
-        path = perform_substitutions(context, self.path)
+        where = perform_substitutions(context, self._where)
         try:
-            with open(path) as f:
-                return f.read()
+            with open(where) as stream:
+                return stream.read()
         except FileNotFoundError:
-            raise SubstitutionFailure(f'File not found: {path}') from None
+            raise SubstitutionFailure(f'File not found: {where}') from None

@@ -1,10 +1,12 @@
-"""`FindExecutable` (`$(find-exec name)`): the path of an executable found on PATH."""
+"""`FindExecutable`, `$(find-exec name)`: an executable's path, looked up on PATH."""
 
 from __future__ import annotations
 
+import shutil
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
+from .._private.operands import joined, tag_kwargs
 from ..frontend.expose import expose_substitution
 from ..substitution import Substitution
 from ..utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
@@ -18,30 +20,26 @@ if TYPE_CHECKING:
 
 @expose_substitution('find-exec')
 class FindExecutable(Substitution):
-    """Where `name` is found on PATH; not found is a SubstitutionFailure."""
+    """The first executable called `name` on PATH (as `shutil.which` finds it); none fails."""
 
     def __init__(self, *, name: SomeSubstitutionsType) -> None:
         super().__init__()
-        self.__name = normalize_to_list_of_substitutions(name)
-
-    @classmethod
-    def parse(cls, data: Sequence[SomeSubstitutionsType]):
-        if len(data) != 1:
-            raise AttributeError('find-exec substitution expects 1 argument')
-        return cls, {'name': data[0]}
+        self._program = normalize_to_list_of_substitutions(name)
 
     @property
     def name(self) -> list[Substitution]:
-        return self.__name
+        return self._program
+
+    @classmethod
+    def parse(cls, data: Sequence[SomeSubstitutionsType]):
+        return cls, tag_kwargs(data, ('name',), 'find-exec substitution expects 1 argument', error=AttributeError)
 
     def describe(self) -> str:
-        return 'FindExec({})'.format(' + '.join(sub.describe() for sub in self.name))
+        return f'FindExec({joined(self._program)})'
 
     def perform(self, context: LaunchContext) -> str:
-        import shutil
-
-        name = perform_substitutions(context, self.name)
-        found = shutil.which(name)
-        if found is None:
-            raise SubstitutionFailure(f"executable '{name}' not found on the PATH")
-        return found
+        program = perform_substitutions(context, self._program)
+        location = shutil.which(program)
+        if location is None:
+            raise SubstitutionFailure(f"executable '{program}' not found on the PATH")
+        return location

@@ -1,11 +1,11 @@
-"""`LaunchConfiguration` (`$(var name [default])`): the value of a launch configuration."""
+"""`LaunchConfiguration`, `$(var name [default])`: an argument's or a `let`'s value."""
 
 from __future__ import annotations
 
-import collections.abc
 from collections.abc import Iterable, Sequence
 from typing import TYPE_CHECKING, Any
 
+from .._private.operands import joined, tag_kwargs
 from ..frontend.expose import expose_substitution
 from ..substitution import Substitution
 from ..utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
@@ -17,43 +17,39 @@ if TYPE_CHECKING:
     from ..some_substitutions_type import SomeSubstitutionsType
 
 
+def _default_parts(default: Any | Iterable[Any]) -> list[Substitution]:
+    """A default of any values: strings and substitutions stay, numbers and the like become their text."""
+    pieces = default if isinstance(default, Iterable) else [default]
+    return normalize_to_list_of_substitutions(
+        [piece if isinstance(piece, (str, Substitution)) else str(piece) for piece in pieces])
+
+
 @expose_substitution('var')
 class LaunchConfiguration(Substitution):
-    """The launch configuration `variable_name` (an argument or a `let`).
-
-    When it is not set, `default` is used (items that are neither strings nor substitutions are turned
-    into text with `str`); without a default that is a SubstitutionFailure.
-    """
+    """The launch configuration called `variable_name`, or `default` while there is none (else a failure)."""
 
     def __init__(self, variable_name: SomeSubstitutionsType, *, default: Any | Iterable[Any] | None = None) -> None:
         super().__init__()
-        self.__variable_name = normalize_to_list_of_substitutions(variable_name)
-        self.__default: list[Substitution] | None = None
-        if default is not None:
-            items = default if isinstance(default, collections.abc.Iterable) else (default,)
-            self.__default = normalize_to_list_of_substitutions(
-                [item if isinstance(item, (str, Substitution)) else str(item) for item in items])
-
-    @classmethod
-    def parse(cls, data: Sequence[SomeSubstitutionsType]):
-        if not 1 <= len(data) <= 2:
-            raise TypeError('var substitution expects 1 or 2 arguments')
-        kwargs = {'variable_name': data[0]}
-        if len(data) == 2:
-            kwargs['default'] = data[1]
-        return cls, kwargs
+        self._key = normalize_to_list_of_substitutions(variable_name)
+        self._fallback = None if default is None else _default_parts(default)
 
     @property
     def variable_name(self) -> list[Substitution]:
-        return self.__variable_name
+        return self._key
+
+    @classmethod
+    def parse(cls, data: Sequence[SomeSubstitutionsType]):
+        kwargs = tag_kwargs(data, ('variable_name', 'default'), 'var substitution expects 1 or 2 arguments', required=1)
+        return cls, kwargs
 
     def describe(self) -> str:
-        return 'LaunchConfig({})'.format(' + '.join(s.describe() for s in self.variable_name))
+        return f'LaunchConfig({joined(self._key)})'
 
     def perform(self, context: LaunchContext) -> str:
-        name = perform_substitutions(context, self.__variable_name)
-        if name in context.launch_configurations:
-            return context.launch_configurations[name]
-        if self.__default is None:
-            raise SubstitutionFailure(f"launch configuration '{name}' does not exist")
-        return perform_substitutions(context, self.__default)
+        key = perform_substitutions(context, self._key)
+        configurations = context.launch_configurations
+        if key in configurations:
+            return configurations[key]
+        if self._fallback is not None:
+            return perform_substitutions(context, self._fallback)
+        raise SubstitutionFailure(f"launch configuration '{key}' does not exist")

@@ -1,10 +1,11 @@
-"""`LaunchLogDir` (`$(launch_log_dir)`, `$(log_dir)`): the directory of this launch's log files."""
+"""`LaunchLogDir`, `$(launch_log_dir)` or `$(log_dir)`: where this launch writes its logs."""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
+from .._private.operands import tag_kwargs
 from ..frontend.expose import expose_substitution
 from ..substitution import Substitution
 
@@ -16,21 +17,16 @@ if TYPE_CHECKING:
 @expose_substitution('launch_log_dir')
 @expose_substitution('log_dir')
 class LaunchLogDir(Substitution):
-    """The absolute path of the current launch log directory."""
-
-    def __init__(self) -> None:
-        super().__init__()
+    """The log folder of the running launch (`launch.logging.launch_config.log_dir`), made on first use."""
 
     @classmethod
     def parse(cls, data: Sequence[SomeSubstitutionsType]):
-        if len(data) != 0:
-            raise TypeError("launch_log_dir/log_dir substitution doesn't expect arguments")
-        return cls, {}
+        return cls, tag_kwargs(data, (), "launch_log_dir/log_dir substitution doesn't expect arguments")
 
     def describe(self) -> str:
         return 'LaunchLogDir()'
 
     def perform(self, context: LaunchContext) -> str:
-        from ..logging import launch_config
+        from .. import logging as launch_logging
 
-        return launch_config.log_dir
+        return launch_logging.launch_config.log_dir

@@ -1,4 +1,4 @@
-"""`LocalSubstitution`: a value from the context's locals, e.g. `LocalSubstitution('event.name')`."""
+"""`LocalSubstitution`: something the context's locals hold, such as the event being handled."""
 
 from __future__ import annotations
 
@@ -12,24 +12,29 @@ if TYPE_CHECKING:
 
 
 class LocalSubstitution(Substitution):
-    """The Python expression `expression` evaluated on `context.locals` (`'event.name'` → locals.event.name)."""
+    """`expression` read on `context.locals`: 'event.returncode' is `context.locals.event.returncode`.
+
+    `description`, when given, is what `describe()` shows instead of the expression.
+    """
 
     def __init__(self, expression: str, description: str | None = None) -> None:
         super().__init__()
         ensure_argument_type(expression, str, 'expression', 'LocalSubstitution')
-        self.__expression = expression
-        self.__description = description
+        self._path = expression
+        self._label = description
 
     @property
     def expression(self) -> str:
-        return self.__expression
+        return self._path
 
     @property
     def description(self) -> str | None:
-        return self.__description
+        return self._label
 
     def describe(self) -> str:
-        return f"LocalVar('{self.expression if self.description is None else self.description}')"
+        shown = self._path if self._label is None else self._label
+        return f"LocalVar('{shown}')"
 
     def perform(self, context: LaunchContext) -> str:
-        return eval('context.locals.' + self.expression, {}, {'context': context})
+        # an expression, not only a dotted path: 'event.cmd[0]' works as it does in ROS 2
+        return eval(f'locals_.{self._path}', {}, {'locals_': context.locals})

@@ -1,10 +1,11 @@
-"""`NotEqualsSubstitution` (`$(not-equals a b)`): 'true' when two values differ."""
+"""`NotEqualsSubstitution`, `$(not-equals a b)`: whether two values differ once performed."""
 
 from __future__ import annotations
 
 from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any
 
+from .._private.operands import bool_text
 from ..frontend.expose import expose_substitution
 from .equals_substitution import EqualsSubstitution
 
@@ -14,7 +15,7 @@ if TYPE_CHECKING:
 
 @expose_substitution('not-equals')
 class NotEqualsSubstitution(EqualsSubstitution):
-    """The negation of `EqualsSubstitution`, with the same comparison rules."""
+    """'true' exactly when `EqualsSubstitution` of the same sides gives 'false'."""
 
     def __init__(self, left: Any | Iterable[Any] | None, right: Any | Iterable[Any] | None) -> None:
         super().__init__(left, right)
@@ -23,4 +24,4 @@ class NotEqualsSubstitution(EqualsSubstitution):
         return f'NotEqualsSubstitution({self.left} {self.right})'
 
     def perform(self, context: LaunchContext) -> str:
-        return 'false' if super().perform(context) == 'true' else 'true'
+        return bool_text(not self._equal(context))

@@ -1,4 +1,4 @@
-"""`PathJoinSubstitution`: path components joined with the platform's separator."""
+"""`PathJoinSubstitution`: a path built from pieces, some of them substitutions."""
 
 from __future__ import annotations
 
@@ -6,6 +6,7 @@ import os
 from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
+from .._private.operands import joined
 from ..substitution import Substitution
 from ..utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
 
@@ -14,17 +15,17 @@ if TYPE_CHECKING:
 
 
 class PathJoinSubstitution(Substitution):
-    """`os.path.join` of the performed components (each a string or a substitution)."""
+    """The performed pieces joined by `os.path.join` (an absolute piece restarts the path, as there)."""
 
     def __init__(self, substitutions: Iterable[str | Substitution]) -> None:
-        self.__substitutions = normalize_to_list_of_substitutions(substitutions)
+        self._pieces = normalize_to_list_of_substitutions(substitutions)
 
     @property
     def substitutions(self) -> Iterable[Substitution]:
-        return self.__substitutions
+        return self._pieces
 
     def describe(self) -> str:
-        return "PathJoin('{}')".format(' + '.join(s.describe() for s in self.substitutions))
+        return f"PathJoin('{joined(self._pieces)}')"
 
     def perform(self, context: LaunchContext) -> str:
-        return os.path.join(*(sub.perform(context) for sub in self.__substitutions))
+        return os.path.join(*[piece.perform(context) for piece in self._pieces])

@@ -1,11 +1,13 @@
-"""`PythonExpression` (`$(eval expr [modules])`): the value of a Python expression, as text."""
+"""`PythonExpression`, `$(eval expr [modules])`: a Python expression's value, as text."""
 
 from __future__ import annotations
 
 import collections.abc
+import importlib
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
+from .._private.operands import joined, tag_kwargs
 from ..frontend.expose import expose_substitution
 from ..substitution import Substitution
 from ..utilities.ensure_argument_type_impl import ensure_argument_type
@@ -17,53 +19,56 @@ if TYPE_CHECKING:
     from ..some_substitutions_type import SomeSubstitutionsType
 
 
+def _module_list(argument: Any) -> list[str]:
+    """`$(eval …)`'s second argument: module names separated by commas, in its first (literal) piece."""
+    pieces = list(argument)
+    if not pieces:
+        return []
+    return [name.strip() for name in pieces[0].perform(None).split(',')]
+
+
 @expose_substitution('eval')
 class PythonExpression(Substitution):
-    """`str(eval(expression))`, with `python_modules` imported and available by name.
+    """`str(eval(expression))` with each of `python_modules` imported under its name.
 
-    The names of `math` are also available unqualified (`ceil(1.3)`) when `math` is among the modules,
-    as it is by default. In markup the modules are one comma-separated argument.
+    `math` (the default) is special: its functions are also usable unqualified, `ceil(x)` as `math.ceil(x)`.
     """
 
     def __init__(self, expression: SomeSubstitutionsType, python_modules: SomeSubstitutionsType = ('math',)) -> None:
         super().__init__()
-        accepted = (str, Substitution, collections.abc.Iterable)
-        ensure_argument_type(expression, accepted, 'expression', 'PythonExpression')
-        ensure_argument_type(python_modules, accepted, 'python_modules', 'PythonExpression')
-        self.__expression = normalize_to_list_of_substitutions(expression)
-        self.__python_modules = normalize_to_list_of_substitutions(python_modules)
-
-    @classmethod
-    def parse(cls, data: Sequence[SomeSubstitutionsType]):
-        if not 1 <= len(data) <= 2:
-            raise TypeError('eval substitution expects 1 or 2 arguments')
-        kwargs = {'expression': data[0]}
-        if len(data) == 2:
-            # one comma-separated list of module names, given as text
-            modules = list(data[1])
-            kwargs['python_modules'] = [n.strip() for n in modules[0].perform(None).split(',')] if modules else []
-        return cls, kwargs
+        for value, argument in ((expression, 'expression'), (python_modules, 'python_modules')):
+            ensure_argument_type(value, (str, Substitution, collections.abc.Iterable), argument, 'PythonExpression')
+        self._source = normalize_to_list_of_substitutions(expression)
+        self._imports = normalize_to_list_of_substitutions(python_modules)
 
     @property
     def expression(self) -> list[Substitution]:
-        return self.__expression
+        return self._source
 
     @property
     def python_modules(self) -> list[Substitution]:
-        return self.__python_modules
+        return self._imports
+
+    @classmethod
+    def parse(cls, data: Sequence[SomeSubstitutionsType]):
+        kwargs = tag_kwargs(
+            data, ('expression', 'python_modules'), 'eval substitution expects 1 or 2 arguments', required=1)
+        if 'python_modules' in kwargs:
+            kwargs['python_modules'] = _module_list(kwargs['python_modules'])
+        return cls, kwargs
 
     def describe(self) -> str:
-        return 'PythonExpr({}, [{}])'.format(
-            ' + '.join(sub.describe() for sub in self.expression),
-            ', '.join(sub.describe() for sub in self.python_modules))
+        return f"PythonExpr({joined(self._source)}, [{joined(self._imports, ', ')}])"
+
+    def _namespace(self, context: LaunchContext) -> dict[str, Any]:
+        namespace: dict[str, Any] = {}
+        for piece in self._imports:
+            module = importlib.import_module(context.perform_substitution(piece))
+            if module.__name__ == 'math':
+                namespace.update(vars(module))
+            namespace[module.__name__] = module
+        return namespace
 
     def perform(self, context: LaunchContext) -> str:
-        import importlib
-
-        names: dict = {}
-        for module_name in (context.perform_substitution(sub) for sub in self.python_modules):
-            module = importlib.import_module(module_name)
-            if module.__name__ == 'math':
-                names.update(vars(module))
-            names[module.__name__] = module
-        return str(eval(perform_substitutions(context, self.expression), {}, names))
+        source = perform_substitutions(context, self._source)
+        return str(eval(source, {}, self._namespace(context)))

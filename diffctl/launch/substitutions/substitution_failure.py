@@ -1,8 +1,5 @@
-"""`SubstitutionFailure`: a substitution could not produce its text."""
+"""`SubstitutionFailure`, the error of a substitution that has no value."""
 
 
 class SubstitutionFailure(RuntimeError):
-    """Raised by `perform` when a substitution cannot be resolved (missing variable, failed command, …)."""
-
-    def __init__(self, msg):
-        super().__init__(msg)
+    """A substitution could not be performed: an unset configuration, a failing command, a missing file."""

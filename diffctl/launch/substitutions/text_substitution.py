@@ -1,4 +1,4 @@
-"""`TextSubstitution`: literal text."""
+"""`TextSubstitution`: a fixed piece of text among substitutions."""
 
 from __future__ import annotations
 
@@ -11,21 +11,20 @@ if TYPE_CHECKING:
 
 
 class TextSubstitution(Substitution):
-    """Stands for the given `text`, unchanged."""
+    """`text` itself, whatever the context."""
 
     def __init__(self, *, text: str) -> None:
         super().__init__()
         if not isinstance(text, str):
             raise TypeError(f"TextSubstitution expected Text object got '{type(text)}' instead.")
-        self.__text = text
+        self._literal = text
 
     @property
     def text(self) -> str:
-        """The literal text."""
-        return self.__text
+        return self._literal
 
     def describe(self) -> str:
-        return f"'{self.text}'"
+        return f"'{self._literal}'"
 
     def perform(self, context: LaunchContext) -> str:
-        return self.text
+        return self._literal

@@ -1,13 +1,13 @@
-"""`ThisLaunchFile` (`$(filename)`): the path of the launch file being run."""
+"""`ThisLaunchFile`, `$(filename)`: the launch file being loaded."""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
+from .._private.operands import launch_file_local, tag_kwargs
 from ..frontend.expose import expose_substitution
 from ..substitution import Substitution
-from .substitution_failure import SubstitutionFailure
 
 if TYPE_CHECKING:
     from ..launch_context import LaunchContext
@@ -16,21 +16,17 @@ if TYPE_CHECKING:
 
 @expose_substitution('filename')
 class ThisLaunchFile(Substitution):
-    """The absolute path of the current launch file; outside one (a script) it is a SubstitutionFailure."""
+    """The absolute path of the launch file whose include is being visited.
 
-    def __init__(self) -> None:
-        super().__init__()
+    Event handlers' actions and scripts have none: the substitution fails there.
+    """
 
     @classmethod
     def parse(cls, data: Sequence[SomeSubstitutionsType]):
-        if len(data) != 0:
-            raise TypeError("filename substitution doesn't expect arguments")
-        return cls, {}
+        return cls, tag_kwargs(data, (), "filename substitution doesn't expect arguments")
 
     def describe(self) -> str:
         return 'ThisLaunchFile()'
 
     def perform(self, context: LaunchContext) -> str:
-        if 'current_launch_file_path' not in context.get_locals_as_dict():
-            raise SubstitutionFailure('ThisLaunchFile used outside of a launch file (in a script)')
-        return context.locals.current_launch_file_path
+        return launch_file_local(context, 'current_launch_file_path', 'ThisLaunchFile')

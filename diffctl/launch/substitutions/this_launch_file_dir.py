@@ -1,13 +1,13 @@
-"""`ThisLaunchFileDir` (`$(dirname)`): the directory of the launch file being run."""
+"""`ThisLaunchFileDir`, `$(dirname)`: the folder of the launch file being loaded."""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
+from .._private.operands import launch_file_local, tag_kwargs
 from ..frontend.expose import expose_substitution
 from ..substitution import Substitution
-from .substitution_failure import SubstitutionFailure
 
 if TYPE_CHECKING:
     from ..launch_context import LaunchContext
@@ -16,21 +16,14 @@ if TYPE_CHECKING:
 
 @expose_substitution('dirname')
 class ThisLaunchFileDir(Substitution):
-    """The directory of the current launch file; outside one (a script) it is a SubstitutionFailure."""
-
-    def __init__(self) -> None:
-        super().__init__()
+    """The folder holding the launch file whose include is being visited (fails outside one)."""
 
     @classmethod
     def parse(cls, data: Sequence[SomeSubstitutionsType]):
-        if len(data) != 0:
-            raise TypeError("dirname substitution doesn't expect arguments")
-        return cls, {}
+        return cls, tag_kwargs(data, (), "dirname substitution doesn't expect arguments")
 
     def describe(self) -> str:
         return 'ThisLaunchFileDir()'
 
     def perform(self, context: LaunchContext) -> str:
-        if 'current_launch_file_directory' not in context.get_locals_as_dict():
-            raise SubstitutionFailure('ThisLaunchFileDir used outside of a launch file (in a script)')
-        return context.locals.current_launch_file_directory
+        return launch_file_local(context, 'current_launch_file_directory', 'ThisLaunchFileDir')
