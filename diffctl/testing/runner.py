@@ -48,12 +48,29 @@ class FileResult:
         return self.error is None and all(r.ok for r in self.runs)
 
 
-def _logs(proc_output: Any) -> dict[str, str]:
+def _logs(proc_output: Any, log_dir: Path) -> dict[str, str]:
+    """Each process's output (`<label>.log`), and the log files the launch wrote (launch.log, own_log files)."""
     logs: dict[str, str] = {}
     for name in proc_output.process_names():
         with contextlib.suppress(KeyError):
             logs[f"{name}.log"] = "".join(e.text.decode(errors="replace") for e in proc_output[name])
+    for path in sorted(log_dir.glob("*.log")):
+        logs.setdefault(path.name, path.read_text(errors="replace"))
     return logs
+
+
+@contextlib.contextmanager
+def _launch_log_dir() -> Iterator[Path]:
+    """launch's log directory for one run: a fresh temporary one (read into the run's record, then removed)."""
+    import diffctl.launch.logging as launch_logging
+
+    with tempfile.TemporaryDirectory(prefix="launch-test-log-") as folder:
+        launch_logging.reset()
+        launch_logging.launch_config.log_dir = folder
+        try:
+            yield Path(folder)
+        finally:
+            launch_logging.reset()
 
 
 def _with_failure_hook(hook: Callable[[str], None]) -> type:
@@ -107,14 +124,14 @@ class IsolatedLaunchTestRunner(LaunchTestRunner):
         self.records[test_run] = record
         started = time.monotonic()
         self._worker = None
-        with self._run_scope(test_run), self._artifacts_of(test_run):
+        with self._run_scope(test_run), self._artifacts_of(test_run), _launch_log_dir() as log_dir:
             try:
                 record.result = self._new_worker(test_run).run()
                 return record.result
             finally:
                 record.seconds = time.monotonic() - started
                 if self._worker is not None:
-                    record.logs = _logs(self._worker.proc_output)
+                    record.logs = _logs(self._worker.proc_output, log_dir)
 
     @contextlib.contextmanager
     def _artifacts_of(self, test_run: Any) -> Iterator[None]:
