@@ -30,7 +30,8 @@ def test_two_tests_at_once_do_not_hear_each_other(tmp_path: Path) -> None:
     assert r.returncode == 0, r.stdout + r.stderr
     buses = set(re.findall(r"bus (tcp/127\.0\.0\.1:\d+) domain (\d+)", r.stdout))
     assert len(buses) == 2 and len({d for _, d in buses}) == 2, buses  # two routers, two domains
-    assert took < 2 * 3.0 + 8  # side by side: each listens 3 s
+    each = [float(s) for s in re.findall(r"crosstalk_launch_test\.py: passed in ([0-9.]+) s", r.stdout)]
+    assert len(each) == 2 and took < sum(each), (took, each)  # side by side, not one after the other
 
 
 @pytest.mark.slow
@@ -44,7 +45,7 @@ def test_hanging_test_is_stopped_at_its_timeout_and_leaves_nothing(tmp_path: Pat
     took = time.monotonic() - started
     assert r.returncode == 1
     assert "timed out after 4 s" in r.stdout and "hanging" in r.stdout
-    assert took < 15
+    assert took < 60  # stopped, not left to its 600 s sleep (a bound for a loaded machine)
     left = _left(marker)
     assert not left, [p.info["cmdline"] for p in left]
 
@@ -108,7 +109,7 @@ def test_tests_forked_from_the_shared_zygote_time_out_and_die_with_diffctl_test(
     marker = f"{6000 + uuid.uuid4().int % 1000}.{uuid.uuid4().int % 9 + 1}"
     env = {**os.environ, "HANG_MARKER": marker}
     argv = [sys.executable, "-m", "diffctl", "test", "-j", "2", str(hang), str(hello)]
-    p = subprocess.Popen([*argv, "--timeout", "8"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+    p = subprocess.Popen([*argv, "--timeout", "20"], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                          env=env, start_new_session=True)
     try:
         seen: set[str] = set()
@@ -123,7 +124,7 @@ def test_tests_forked_from_the_shared_zygote_time_out_and_die_with_diffctl_test(
         p.stdout.close()
     assert p.returncode == 1, out
     assert any(str(hang) in c for c in seen) and any(str(hello) in c for c in seen), seen
-    assert "hello_world_launch_test.py: passed" in out and "timed out after 8 s" in out
+    assert "hello_world_launch_test.py: passed" in out and "timed out after 20 s" in out
     assert not _left(marker), "the hanging test's processes outlived its timeout"
 
     p = subprocess.Popen(argv, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, env=env,
@@ -139,7 +140,7 @@ def test_tests_forked_from_the_shared_zygote_time_out_and_die_with_diffctl_test(
         if p.poll() is None:
             p.kill()
             p.wait()
-    assert not _left(marker)
+    assert not _left(marker, 15.0)  # the forked test's launch ends it with launch's escalation (5 s + 5 s)
     deadline = time.monotonic() + 3
     while [c for c in _forked_tests() if str(tmp_path) in c] and time.monotonic() < deadline:
         time.sleep(0.1)
