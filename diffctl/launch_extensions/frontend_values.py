@@ -44,10 +44,12 @@ def mapping(entity: Any, name: str) -> dict[str, Any] | None:
 def action_entities(entity: Any, name: str) -> list[Any] | None:
     """The entities of `name: [{tag: {...}}, …]` (YAML) or of the entity's own children (XML, where actions
     nest as elements), ready for `parser.parse_action`; None when absent."""
-    if not is_yaml(entity):
+    if not is_yaml(entity) or name == "children":
         return entity.children
     try:
         wrapped = entity.get_attr(name, data_type=_list_of_entities(), optional=True)
+    except IndexError:
+        return []  # an empty list: launch_yaml looks at its first item to tell what it holds
     except TypeError:
         raise LaunchError(
             f"`{entity.type_name}.{name}` must be a list of actions, e.g. `{name}: [{{log: {{message: hi}}}}]`"

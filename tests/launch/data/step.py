@@ -2,7 +2,8 @@
 
     step.py RECORD NAME [--print TEXT] [--sleep S] [--exit N] [--ignore-signals]
 
-RECORD is a file the process appends NAME to when it starts ("-" for none).
+RECORD is a file the process appends NAME to when it starts ("-" for none), and NAME:printed once it has
+printed TEXT.
 """
 
 import argparse
@@ -26,6 +27,9 @@ if args.record != "-":
         f.write(args.name + "\n")
 if args.text:
     print(args.text, flush=True)
+    if args.record != "-":
+        with open(args.record, "a") as f:
+            f.write(args.name + ":printed\n")
 try:
     time.sleep(args.sleep)
 except KeyboardInterrupt:
