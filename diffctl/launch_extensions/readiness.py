@@ -43,6 +43,7 @@ from diffctl.launch_extensions.process_watch import ProcessRecord, process_names
 KINDS = ("started", "exited", "log", "topic", "service")
 PROCESS_KINDS = ("started", "exited", "log")
 PROBES_KEY = "diffctl_readiness_probes"
+FAILED_KEY = "diffctl_readiness_failed"  # what a wait that could not be met said (for a runner's exit code)
 PROBE_PERIOD_S = 0.1
 
 Probe = Callable[[str], bool]
@@ -184,12 +185,18 @@ class WaitFor(Action):
             return self.actions
         if isinstance(state, str):
             waiter.finish()
-            raise LaunchError(f"{self.describe()}: {state}")
+            raise _failed(context, f"{self.describe()}: {state}")
         waiter.start()
         return None
 
     def get_asyncio_future(self) -> asyncio.Future[None] | None:
         return self._future
+
+
+def _failed(context: LaunchContext, message: str) -> LaunchError:
+    """The error a wait that cannot be met raises (the launch fails), noted in the context's globals."""
+    context.extend_globals({FAILED_KEY: message})
+    return LaunchError(message)
 
 
 def _timeout(value: Any) -> float | None:
@@ -316,9 +323,10 @@ class _Waiter(BaseEventHandler):
             missing = sorted({w.kind for w in bus} - set(probes))
             if missing:
                 self.finish()
-                raise LaunchError(
-                    f"{self.action.describe()}: nothing answers {' and '.join(missing)} conditions here",
-                    hint="diffctl launch provides the bus's probes (readiness.provide_probes)",
+                raise _failed(
+                    self.context,
+                    f"{self.action.describe()}: nothing answers {' and '.join(missing)} conditions here "
+                    "(diffctl launch provides the bus's probes: readiness.provide_probes)",
                 )
             self.tasks.append(loop.create_task(self._poll(bus, probes)))
         if self.action.timeout_s is not None:
@@ -356,7 +364,7 @@ class _Waiter(BaseEventHandler):
             return None
         self.finish()
         if isinstance(state, str):
-            raise LaunchError(f"{self.action.describe()}: {state}")
+            raise _failed(context, f"{self.action.describe()}: {state}")
         context.extend_locals(self.locals)
         return self.action.actions
 
