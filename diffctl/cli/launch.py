@@ -1,16 +1,26 @@
-"""`diffctl launch`: read a launch file, resolve it, and start and supervise its processes (ros2 launch)."""
+"""`diffctl launch`: run a launch file on diffctl's launch (ros2/launch's API), supervised (ros2 launch).
+
+The command does what ros2launch does — find the file, include it with the `name:=value` arguments in a
+LaunchService, or describe it (`--print`: the introspector's text; `--show-args`: its arguments), running no
+user code beyond loading the file — and adds diffctl's launcher: an embedded Zenoh router, the fork server
+for diffctl's own components, a guard so nothing outlives the launcher, bus probes for `wait_for`, a status
+table on Enter or SIGUSR1, and its exit code policy (launch_outcome.py). Bad input (an unknown file, tag or
+argument) is one message and exit 2 before anything starts; an error while the launch runs (a custom action
+that raises, a substitution that fails) stops everything and exits 2 as well.
+"""
 
 from __future__ import annotations
 
 import gc
 import os
+import signal
 import sys
 from pathlib import Path
 from typing import Any
 
 import click
 
-from diffctl.errors import LaunchError, suggest
+from diffctl.errors import DiffctlError, LaunchError, suggest
 
 
 def _split_targets(targets: tuple[str, ...]) -> tuple[list[str], dict[str, str]]:
@@ -21,30 +31,10 @@ def _split_targets(targets: tuple[str, ...]) -> tuple[list[str], dict[str, str]]
             name, value = t.split(":=", 1)
             if not name:
                 raise LaunchError(f"launch argument {t!r} has no name", hint="write NAME:=VALUE")
-            arguments[name] = value
+            arguments[name] = value  # the last one wins, as in ros2 launch
     if not 1 <= len(positional) <= 2:
         raise click.UsageError("give a launch file: NAME, PATH, or PACKAGE FILE, then any NAME:=VALUE arguments")
     return positional, arguments
-
-
-def _bus_probes(kinds: set[str]) -> Any:
-    # Imported only when a description waits on topics or services: the engine itself knows processes only.
-    from diffctl.bus.probes import BusProbes
-
-    return BusProbes()
-
-
-def _lifecycle(post: Any) -> Any:
-    # The bus side of LifecycleNode, built when a launch first uses one: the engine itself imports no bus.
-    from diffctl.cli.launch_lifecycle import make
-
-    return make(post)
-
-
-def _ensure_router(output: Any) -> Any:
-    from diffctl.bus.router import ensure_router
-
-    return ensure_router()
 
 
 @click.command("launch")
@@ -53,9 +43,9 @@ def _ensure_router(output: Any) -> Any:
 @click.option(
     "-p",
     "--print",
-    "print_plan",
+    "print_description",
     is_flag=True,
-    help="Resolve everything and print the process tree without starting anything.",
+    help="Print the launch description (its entities, as ros2 launch --print) without running it.",
 )
 @click.option(
     "--log-dir",
@@ -97,10 +87,11 @@ def _ensure_router(output: Any) -> Any:
     default=None,
     help="The ROS workspace whose packages to use (default: $DIFFCTL_WORKSPACE, else the enclosing one).",
 )
+@click.option("-d", "--debug", is_flag=True, help="Put the launch in debug mode (more output, as ros2 launch -d).")
 def launch(
     target: tuple[str, ...],
     show_args: bool,
-    print_plan: bool,
+    print_description: bool,
     log_dir: Path | None,
     no_color: bool,
     output_default: str,
@@ -109,10 +100,11 @@ def launch(
     process_names: str,
     no_router: bool,
     workspace_dir: Path | None,
+    debug: bool,
 ) -> None:
     """Start a launch file and supervise its processes (ros2 launch).
 
-    NAME is launch/NAME.yaml or launch/NAME.launch.py of the project (YAML first); PATH is any YAML or
+    NAME is launch/NAME.yaml or launch/NAME.launch.py of the project (YAML first); PATH is any YAML, XML or
     Python launch file; PACKAGE FILE looks in that package's share directory (the packages of the workspace
     enclosing the current directory, or --workspace, come first; `diffctl pkg list` shows them all). Every
     process gets its own process group and dies with the launcher; Ctrl-C stops them all (SIGINT, then
@@ -125,86 +117,131 @@ def launch(
       diffctl launch diffctl_demo sim_control.launch.py
       diffctl launch ./my_robot.yaml --show-args
     """
-    from diffctl.launch_legacy.environment import default_log_dir
-
+    signal.signal(signal.SIGUSR1, signal.SIG_IGN)  # a status request before the table exists kills nothing
     positional, arguments = _split_targets(target)
-    _choose_workspace(workspace_dir)
-    # Launching: the fork server starts before the launcher imports its engine, so the server's imports run
-    # while the launcher's own do and the launch file is read and resolved (its first component waits for them).
-    run_dir = None if show_args or print_plan else log_dir or default_log_dir()
+    workspace = _prepare_environment(workspace_dir)
+    describing = show_args or print_description
+    # The fork server starts before the launcher imports the launch core: its imports run while the launcher's
+    # own do and the launch file is read (the first component waits for them).
+    run_dir = None if describing else (log_dir or _default_log_dir())
     server = None if run_dir is None else _start_fork_server(run_dir)
     try:
-        from diffctl.cli.show_args import arguments_text
-        from diffctl.console import make_console, warn
-        from diffctl.launch_legacy.loader import load
-        from diffctl.launch_legacy.render import PlanView
-        from diffctl.launch_legacy.resolver import Resolver, declared_arguments
+        if run_dir is not None:
+            _use_log_dir(run_dir, latest=log_dir is None)
+        _import_workspace_python(workspace)
         from diffctl.workspace import package_index
 
         path = package_index.find_launch_file(*positional)
-        description = load(path)
-        # Piped output is not cut to 80 columns: paths and commands must stay whole.
-        console = make_console(no_color=no_color, width=None if sys.stdout.isatty() else 200)
+        description = _load(path)
         if show_args:
-            print(arguments_text(declared_arguments(description, str(path))), end="")
-            return
-        if print_plan:
-            # A dry run of the engine: what starts, with handlers and timers previewed as of now.
-            plan = Resolver().resolve(description, arguments, str(path))
-            declared = [a.name for a in plan.arguments]
-            for name in arguments:
-                if name not in declared:
-                    warn(f"argument {name!r} is not declared by the launch file{suggest(name, declared)}")
-            for message in plan.warnings:
-                warn(message)
-            console.print(PlanView(plan))
-            return
-        from diffctl.launch_legacy.plan import Plan
+            from diffctl.cli.show_args import arguments_text
 
-        # The live run: the engine visits the description once, when the launch starts (see _run).
-        plan = Plan(str(path), [], (), {}, description=description, launch_arguments=arguments)
-        loop = _event_loop(server)
+            print(arguments_text(description.get_launch_arguments()), end="")
+            return
+        if print_description:
+            from diffctl.launch import LaunchIntrospector
+
+            print(LaunchIntrospector().format_launch_description(description))
+            return
+        _check_arguments(description, arguments, path)
     except BaseException as e:
         if server is not None:
             server.close(kill=True)
-        _ros_exit_code(e, exit_code_mode)
+        if exit_code_mode == "ros" and isinstance(e, LaunchError):
+            e.exit_code = 1  # ros2 launch: "Caught exception in launch", rc 1
         raise
     assert run_dir is not None
     # SystemExit, not ctx.exit: the entry point runs click with standalone_mode=False, which drops exit codes.
     raise SystemExit(
         _run(
-            plan,
-            loop,
+            path,
+            description,
+            arguments,
             run_dir,
-            log_given=log_dir is not None,
+            server=server,
             no_color=no_color,
             no_router=no_router,
-            options={
+            debug=debug,
+            policy={
                 "output_default": output_default,
                 "exit_code_mode": exit_code_mode,
                 "signal_scope": signal_scope,
                 "process_names": process_names,
-                "real_environ": True,
             },
         )
     )
 
 
-def _ros_exit_code(e: BaseException, exit_code_mode: str) -> None:
-    """--exit-code ros: an error in the launch file ends the launch with 1, as ros2 launch's "Caught exception
-    in launch" does (diffctl's own: 2, bad input)."""
-    if exit_code_mode == "ros" and isinstance(e, LaunchError):
-        e.exit_code = 1
+# ---- before anything starts ------------------------------------------------------------------------------------
+
+
+def _prepare_environment(workspace_dir: Path | None) -> Path | None:
+    """What every child and the launch file itself see: the workspace's packages and hooks, Jazzy's ROS_*
+    variables, this interpreter's tools first on PATH (`$(command 'xacro …')` and children find the venv's
+    `xacro` and `diffctl` unactivated), and line-buffered Python output."""
+    from diffctl.workspace import find_workspace, use_in_children
+
+    workspace = find_workspace(explicit=workspace_dir)
+    use_in_children(workspace)
+    tools = str(Path(sys.executable).parent)
+    parts = [p for p in os.environ.get("PATH", "").split(os.pathsep) if p]
+    if tools not in parts:
+        os.environ["PATH"] = os.pathsep.join([tools, *parts])
+    os.environ["PYTHONUNBUFFERED"] = "1"  # children's output line by line, as the launch shows it
+    return workspace
+
+
+def _import_workspace_python(workspace: Path | None) -> None:
+    """The workspace's Python packages importable by launch files, after diffctl's overlay (as a sourced
+    workspace's site-packages come after the overlay's .pth)."""
+    if workspace is None:
+        return
+    from diffctl.workspace import workspace_python_path
+
+    for folder in workspace_python_path(workspace):
+        if str(folder) not in sys.path:
+            sys.path.append(str(folder))
+
+
+def _default_log_dir() -> Path:
+    """ROS's layout: $ROS_LOG_DIR, else $ROS_HOME/log, else ~/.ros/log; one directory per run."""
+    import time
+
+    base = os.environ.get("ROS_LOG_DIR")
+    root = Path(base) if base else Path(os.environ.get("ROS_HOME") or Path.home() / ".ros") / "log"
+    stamp = time.strftime("%Y-%m-%d-%H-%M-%S") + f"-{int(time.time() * 1e6) % 1000000:06d}"
+    return root / f"{stamp}-{os.uname().nodename.split('.')[0]}-{os.getpid()}"
+
+
+def _use_log_dir(run_dir: Path, *, latest: bool) -> None:
+    """launch's log files (launch.log, one per process) go to `run_dir`, with a `latest` link beside it when
+    diffctl chose the directory (as ros2 launch makes one). Set before anything logs: loading a launch file
+    already opens launch.log."""
+    from diffctl.launch import logging as launch_logging
+
+    try:
+        run_dir.mkdir(parents=True, exist_ok=True)
+    except OSError as e:
+        raise LaunchError(
+            f"cannot create the log directory {run_dir}: {e.strerror}", hint="pass --log-dir DIR"
+        ) from None
+    launch_logging.launch_config.log_dir = str(run_dir)
+    if latest:
+        link = run_dir.parent / "latest"
+        try:
+            if link.is_symlink() or link.exists():
+                link.unlink()
+            link.symlink_to(run_dir.name)
+        except OSError:
+            pass  # a shared log folder where another run holds the link: only the link is lost
 
 
 def _start_fork_server(run_dir: Path) -> Any:
-    """The fork server, started in the environment the launch's children will get (None when turned off).
-    Only light modules are imported on the way: everything the launcher imports before it delays the
-    launch's first component."""
-    from diffctl.launch_legacy import fork_server
-    from diffctl.launch_legacy.environment import default_child_env
+    """The fork server, started in the environment the launch's children will get (None when turned off)."""
+    from diffctl.supervision import fork_server
 
-    env = default_child_env(_children_env(run_dir))
+    env = dict(os.environ, DIFFCTL_LOG_DIR=str(run_dir.resolve()))
+    os.environ["DIFFCTL_LOG_DIR"] = env["DIFFCTL_LOG_DIR"]  # `diffctl bag record` without -o writes beside the logs
     if not fork_server.enabled(env):
         return None
     from diffctl.cli.fork_preload import SPEC
@@ -212,83 +249,184 @@ def _start_fork_server(run_dir: Path) -> Any:
     return fork_server.ForkServer(env, preexec=fork_server.dies_with_launcher(), preload=SPEC)
 
 
-def _event_loop(server: Any) -> Any:
-    """The launcher's event loop, its spawner forking diffctl's components from `server` (if any)."""
-    from diffctl.launch_legacy.loop import EventLoop
+def _load(path: Path) -> Any:
+    """The file's LaunchDescription, by the frontend its name calls for; errors name the file (and line)."""
+    from diffctl.launch.launch_description_sources import get_launch_description_from_any_launch_file
 
-    return EventLoop(server=server)
+    try:
+        return get_launch_description_from_any_launch_file(str(path))
+    except DiffctlError:
+        raise
+    except Exception as e:
+        raise LaunchError(_one_line(e, path)) from None
 
 
-def _children_env(run_dir: Path) -> dict[str, str]:
-    # `diffctl bag record` without -o (and anything else that writes files) puts them next to the logs.
-    return {**os.environ, "DIFFCTL_LOG_DIR": str(run_dir.resolve())}
+def _one_line(e: BaseException, path: Path) -> str:
+    text = str(e).strip() or type(e).__name__
+    return text if str(path) in text else f"{path}: {text}"
 
 
-def _choose_workspace(workspace_dir: Path | None) -> None:
-    # Children inherit the environment: every process (and xacro run as a command) resolves packages
-    # in the same workspace, whatever its own working directory.
-    from diffctl.workspace import find_workspace, use_in_children
+def _check_arguments(description: Any, arguments: dict[str, str], path: Path) -> None:
+    """What ros2 launch finds only once it has started things: a missing required argument, a value not among
+    its choices. Also warns of an argument the file does not declare."""
+    from diffctl.console import warn
 
-    use_in_children(find_workspace(explicit=workspace_dir))
+    declared = {a.name: a for a in description.get_launch_arguments()}
+    for name in arguments:
+        if name not in declared:
+            warn(f"argument {name!r} is not declared by {path.name}{suggest(name, list(declared))}")
+    missing = [
+        a.name
+        for a in declared.values()
+        if a.default_value is None and a.name not in arguments and not getattr(a, "_conditionally_included", False)
+    ]
+    if missing:
+        raise LaunchError(
+            f"missing required launch argument{'s' if len(missing) > 1 else ''} " + ", ".join(repr(m) for m in missing),
+            source=str(path),
+            hint="its arguments: " + ", ".join(declared) + f" (see `diffctl launch {path} --show-args`)",
+        )
+    for name, value in arguments.items():
+        choices = getattr(declared.get(name), "choices", None)
+        if choices and value not in choices:
+            raise LaunchError(
+                f"argument {name!r} is {value!r}, not one of its choices",
+                source=str(path),
+                hint="valid: " + ", ".join(choices),
+            )
+
+
+# ---- the run ---------------------------------------------------------------------------------------------------
 
 
 def _run(
-    plan: Any, loop: Any, run_dir: Path, *, log_given: bool, no_color: bool, no_router: bool, options: dict[str, Any]
+    path: Path,
+    description: Any,
+    arguments: dict[str, str],
+    run_dir: Path,
+    *,
+    server: Any,
+    no_color: bool,
+    no_router: bool,
+    debug: bool,
+    policy: dict[str, str],
 ) -> int:
-    from diffctl.launch_legacy.fork_server import is_component
-    from diffctl.launch_legacy.output import Output, link_latest
-    from diffctl.launch_legacy.readiness import ProbePoller
-    from diffctl.launch_legacy.supervisor import Supervisor
+    from diffctl.cli.launch_outcome import LaunchOutcome
+    from diffctl.cli.launch_status import ProcessTable, StatusOnRequest
+    from diffctl.launch import LaunchDescription, LaunchService
+    from diffctl.launch.actions import IncludeLaunchDescription
+    from diffctl.launch.launch_description_source import LaunchDescriptionSource
+    from diffctl.launch_extensions import process_watch, readiness
+    from diffctl.supervision.launcher_spawner import LauncherSpawner
 
-    probes = None
-    output = None
+    probes = _LazyBusProbes()
     router = None
-    poller = None
+    spawner = LauncherSpawner(fork_server=server, signal_scope=policy["signal_scope"])
     try:
-        env = _children_env(run_dir)
-        supervisor = Supervisor(
-            plan, spawner=loop.spawner, output=None, log_dir=run_dir, env=env, lifecycle=_lifecycle, **options
+        service = LaunchService(
+            argv=[f"{k}:={v}" for k, v in arguments.items()],
+            noninteractive=not sys.stdin.isatty(),
+            debug=debug,
+            spawner=spawner,
         )
-        # The first visit of the description: a bad argument, file or substitution fails here, exit 2,
-        # before anything has started (not even the log directory).
-        try:
-            supervisor.prepare()
-        except LaunchError as e:
-            _ros_exit_code(e, options["exit_code_mode"])
-            raise
-        try:
-            output = supervisor.output = Output(log_dir=run_dir, no_color=no_color)
-        except OSError as e:
-            raise LaunchError(
-                f"cannot create the log directory {run_dir}: {e.strerror}", hint="pass --log-dir DIR"
-            ) from None
-        if not supervisor.may_start_components(is_component):
-            loop.spawner.drop_fork_server()  # nothing of diffctl's to fork: its imports would only take CPU
-        if not log_given:
-            link_latest(run_dir)
-        output.launcher("INFO", f"All log files can be found below {run_dir}")
-        router = None if no_router else _ensure_router(output)
-        kinds = supervisor.bus_waits()
-        probes = _bus_probes(kinds) if kinds else None
-        if probes is not None:
-            poller = ProbePoller(
-                {"topic": probes.topic_has_publisher, "service": probes.service_available}, notify=loop.wake
+        context = service.context
+        outcome, processes = LaunchOutcome(), ProcessTable()
+        for observer in (outcome, processes):
+            context.register_event_handler(observer, append=True)
+        process_watch.install(context)
+        readiness.provide_probes(context, {"topic": probes.topic_has_publisher, "service": probes.service_available})
+        service.include_launch_description(
+            LaunchDescription(
+                [
+                    StatusOnRequest(processes, no_color=no_color),
+                    _hangup_action(),
+                    IncludeLaunchDescription(
+                        LaunchDescriptionSource(description, str(path)), launch_arguments=list(arguments.items())
+                    ),
+                ]
             )
-            supervisor.use_poller(poller)
+        )
+        router = None if no_router else _ensure_router()
         # What is loaded by now lives until the launcher exits: kept out of the collector, the exit after a
         # Ctrl-C does not walk it all again in the interpreter's final collection.
         gc.collect()
         gc.freeze()
-        code = loop.run(supervisor)
-        output.launcher("INFO", f"logs: {run_dir}")
-        return code
+        code = service.run()
+        return _exit_code(code, outcome, context, policy["exit_code_mode"], run_dir)
     finally:
-        loop.spawner.close()  # the fork server too, when the router or anything before the run failed
-        if poller is not None:
-            poller.close()
-        if probes is not None:
-            probes.close()
+        spawner.close()  # the fork server and the guard, also when the run never began
+        probes.close()
         if router is not None:
             router.close()
-        if output is not None:
-            output.close()
+
+
+def _exit_code(code: int, outcome: Any, context: Any, mode: str, run_dir: Path) -> int:
+    """ros: what the LaunchService returned. diffctl: 1 for a failed required process or readiness condition
+    or (the launch having ended by itself) a failed process, 2 for an error in the launch (bad input)."""
+    from diffctl.launch import logging as launch_logging
+    from diffctl.launch_extensions.readiness import FAILED_KEY
+
+    logger = launch_logging.get_logger("launch")
+    logger.info(f"logs: {run_dir}")
+    if mode == "ros":
+        return code
+    failures = outcome.failures()
+    readiness = context.get_locals_as_dict().get(FAILED_KEY)
+    if readiness:
+        failures.append(str(readiness))
+    if failures:
+        logger.error("launch failed: " + "; ".join(failures))
+        return 1
+    return 2 if code != 0 else 0
+
+
+def _hangup_action() -> Any:
+    from diffctl.launch.action import Action
+
+    class HangupShutsDown(Action):
+        """SIGHUP (the terminal closed, a service manager's reload-less stop) shuts the launch down as Ctrl-C
+        does, instead of killing the launcher outright."""
+
+        def execute(self, context: Any) -> None:
+            from diffctl.launch.events import Shutdown
+
+            loop = context.asyncio_loop
+
+            def hangup(signum: int, frame: Any) -> None:
+                loop.call_soon_threadsafe(context.emit_event_sync, Shutdown(reason="SIGHUP received"))
+
+            signal.signal(signal.SIGHUP, hangup)  # Python-level: the LaunchService keeps its wakeup fd
+            return None
+
+    return HangupShutsDown()
+
+
+def _ensure_router() -> Any:
+    from diffctl.bus.router import ensure_router
+
+    return ensure_router()
+
+
+class _LazyBusProbes:
+    """`wait_for`'s topic and service conditions, answered through the bus, opened on first use (a launch
+    that waits on none never imports the bus)."""
+
+    def __init__(self) -> None:
+        self._probes: Any = None
+
+    def _get(self) -> Any:
+        if self._probes is None:
+            from diffctl.bus.probes import BusProbes
+
+            self._probes = BusProbes()
+        return self._probes
+
+    def topic_has_publisher(self, name: str) -> bool:
+        return bool(self._get().topic_has_publisher(name))
+
+    def service_available(self, name: str) -> bool:
+        return bool(self._get().service_available(name))
+
+    def close(self) -> None:
+        if self._probes is not None:
+            self._probes.close()

@@ -124,6 +124,11 @@ def _file_content(data: Sequence[SomeSubstitutionsType]) -> tuple[type, dict[str
 
 
 def install() -> None:
+    # The modules that expose `arg`, `let` and `file-content` (launch imports its actions on first use).
+    import diffctl.launch.actions.declare_launch_argument
+    import diffctl.launch.actions.set_launch_configuration
+    import diffctl.launch.substitutions.file_content  # noqa: F401
+
     _wrap_action("arg", _arg)
     _wrap_action("let", _let)
     original = expose.substitution_parse_methods["file-content"]

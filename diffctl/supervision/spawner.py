@@ -11,6 +11,7 @@ import subprocess
 import threading
 import time
 import weakref
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Literal, Protocol
 
@@ -109,7 +110,7 @@ class _Child:
     name: str
     loop: asyncio.AbstractEventLoop
     sink: OutputSink
-    popen: subprocess.Popen
+    popen: subprocess.Popen | None  # None: forked by the fork server
     complete: asyncio.Future
     readers: dict[int, str] = field(default_factory=dict)  # fd -> 'stdout' | 'stderr'
     stdin_fd: int | None = None
@@ -117,6 +118,7 @@ class _Child:
     returncode: int | None = None
     closed: bool = False
     signal_group: bool = True
+    on_leader_exit: Callable[[_Child], None] | None = None
 
     @property
     def pgid(self) -> int:
@@ -199,9 +201,12 @@ class _Child:
             _close(self.pidfd)
             self.pidfd = None
         self.returncode = code
-        self.popen.returncode = code  # Popen must not wait for it again
+        if self.popen is not None:
+            self.popen.returncode = code  # Popen must not wait for it again
         for fd in list(self.readers):
             self._read(fd)  # what the child wrote before exiting comes before its exit
+        if self.on_leader_exit is not None:
+            self.on_leader_exit(self)
         if not self.complete.done():
             self.complete.set_result(code)
 
@@ -239,6 +244,7 @@ class PosixSpawner:
         self.signal_groups = signal_groups
         self.logger = logger if logger is not None else logging.getLogger('launch.supervision')
         self._children: list[_Child] = []
+        self.preexec_fn: Callable[[], None] | None = None  # run in each exec'd child before exec
         _spawners.add(self)
 
     async def spawn(self, request: SpawnRequest, sink: OutputSink) -> _Child:
@@ -264,7 +270,7 @@ class PosixSpawner:
             stdin = {'pipe': subprocess.PIPE, 'inherit': None, 'devnull': subprocess.DEVNULL}[request.stdin]
             popen = subprocess.Popen(
                 argv, stdin=stdin, stdout=stdout, stderr=stderr, cwd=request.cwd, env=request.env,
-                start_new_session=True, close_fds=True)
+                start_new_session=True, close_fds=True, preexec_fn=self.preexec_fn)
         except BaseException:
             for fd, _ in parent_ends:
                 _close(fd)
@@ -291,8 +297,9 @@ class PosixSpawner:
         except (AttributeError, OSError):
             child.pidfd = None
         if child.pidfd is not None:
+            # Readable once the child has exited, already gone included; never handled inside spawn(), where
+            # its output would reach the launch before the caller has the child's pid.
             child.loop.add_reader(child.pidfd, child._on_pidfd)
-            child._on_pidfd()  # it may already be gone
             return
         # no pidfd (old kernel, other platform): a thread waits for it
         def wait() -> None:

@@ -21,24 +21,25 @@ def run_launch(path: Path, arguments: dict[str, str] | None = None, timeout_s: f
     """Run a launch file to its end on a LaunchService (shut down, and failed, after `timeout_s`); return the
     return code and the context."""
     service = LaunchService(argv=[f"{k}:={v}" for k, v in (arguments or {}).items()], noninteractive=True)
-    service.include_launch_description(
-        LaunchDescription(
-            [
-                IncludeLaunchDescription(
-                    AnyLaunchDescriptionSource(str(path)), launch_arguments=(arguments or {}).items()
-                )
-            ]
-        )
+    include = IncludeLaunchDescription(
+        AnyLaunchDescriptionSource(str(path)), launch_arguments=(arguments or {}).items()
     )
+    service.include_launch_description(LaunchDescription([include]))
+
+    async def bounded() -> int:
+        task = asyncio.ensure_future(service.run_async())
+        try:
+            return await asyncio.wait_for(asyncio.shield(task), timeout_s)
+        except TimeoutError:
+            pending = service.shutdown()
+            if pending is not None:
+                await pending
+            await task
+            raise AssertionError(f"{path.name} still running after {timeout_s} s") from None
+
     loop = asyncio.new_event_loop()
     try:
-        task = loop.create_task(service.run_async())
-        try:
-            code = loop.run_until_complete(asyncio.wait_for(asyncio.shield(task), timeout_s))
-        except TimeoutError:
-            service.shutdown()
-            loop.run_until_complete(task)
-            raise AssertionError(f"{path.name} still running after {timeout_s} s") from None
+        code = loop.run_until_complete(bounded())
     finally:
         loop.close()
     return code, service.context

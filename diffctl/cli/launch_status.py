@@ -1,0 +1,119 @@
+"""The status table `diffctl launch` prints on Enter or SIGUSR1: process, pid, state, restarts, uptime, exit code.
+
+A handler of the launch's process events keeps one row per process (by its name); `StatusOnRequest` is an
+action the CLI puts first in the launch: on the launch's loop it listens for SIGUSR1 and, on a terminal, for
+Enter, and prints the table each time.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import sys
+import time
+from dataclasses import dataclass
+from typing import Any
+
+from diffctl.console import make_console, table
+from diffctl.launch.action import Action
+from diffctl.launch.event_handler import BaseEventHandler
+from diffctl.launch.events import Shutdown
+from diffctl.launch.events.process import ProcessExited, ProcessStarted
+
+
+@dataclass
+class Row:
+    name: str
+    pid: int | None = None
+    state: str = "running"
+    restarts: int = -1
+    started_at: float | None = None
+    exit_code: int | None = None
+
+
+class ProcessTable(BaseEventHandler):
+    """One row per process of the launch, kept from its start and exit events."""
+
+    def __init__(self) -> None:
+        super().__init__(matcher=lambda e: isinstance(e, (ProcessStarted, ProcessExited, Shutdown)))
+        self.rows: dict[str, Row] = {}
+        self.shutting_down = False
+
+    def handle(self, event: Any, context: Any) -> None:
+        super().handle(event, context)
+        if isinstance(event, Shutdown):
+            self.shutting_down = True
+            return None
+        row = self.rows.setdefault(event.process_name, Row(event.process_name))
+        if isinstance(event, ProcessStarted):
+            row.pid, row.state, row.started_at, row.exit_code = event.pid, "running", time.monotonic(), None
+            row.restarts += 1
+        else:
+            row.exit_code = event.returncode
+            row.state = "stopped" if self.shutting_down else "exited" if event.returncode == 0 else "failed"
+            row.started_at = None
+        return None
+
+    def renderable(self) -> Any:
+        now = time.monotonic()
+        return table(
+            "processes",
+            ["process", "pid", "state", "restarts", "uptime", "exit code"],
+            [
+                (
+                    r.name,
+                    r.pid if r.pid is not None else "-",
+                    r.state,
+                    max(r.restarts, 0),
+                    _uptime(now - r.started_at) if r.started_at is not None else "-",
+                    r.exit_code if r.exit_code is not None else "-",
+                )
+                for r in self.rows.values()
+            ],
+        )
+
+
+def _uptime(seconds: float) -> str:
+    if seconds < 60:
+        return f"{seconds:.1f} s"
+    minutes, secs = divmod(int(seconds), 60)
+    hours, minutes = divmod(minutes, 60)
+    return f"{hours}:{minutes:02d}:{secs:02d}" if hours else f"{minutes}:{secs:02d}"
+
+
+class StatusOnRequest(Action):
+    """Print `table` on SIGUSR1, and on Enter when stdin is a terminal (the CLI's own action)."""
+
+    def __init__(self, processes: ProcessTable, *, no_color: bool = False) -> None:
+        super().__init__()
+        self.processes = processes
+        self.no_color = no_color
+
+    def execute(self, context: Any) -> None:
+        loop = context.asyncio_loop
+        # A Python-level handler, not loop.add_signal_handler: that would take over the wakeup fd through which
+        # the LaunchService hears SIGINT. The handler only hands the work to the loop.
+        signal.signal(signal.SIGUSR1, lambda signum, frame: loop.call_soon_threadsafe(self.show))
+        stdin = sys.stdin
+        if stdin is not None and stdin.isatty():
+            loop.add_reader(stdin.fileno(), self._on_stdin, stdin.fileno())
+        return None
+
+    def _on_stdin(self, fd: int) -> None:
+        try:
+            data = os.read(fd, 4096)
+        except OSError:
+            data = b""
+        if not data:
+            import asyncio
+
+            asyncio.get_event_loop().remove_reader(fd)  # end of input: nothing more to listen to
+        elif b"\n" in data:
+            self.show()
+
+    def show(self) -> None:
+        console = make_console(no_color=self.no_color, width=None if sys.stdout.isatty() else 200)
+        try:
+            console.print(self.processes.renderable())
+        except (OSError, SystemExit):
+            pass  # the screen is gone (`| head`): the launch goes on

@@ -1,0 +1,136 @@
+"""The launcher's side of the fork server: start the zygote, ask it for diffctl components, fall back to exec.
+
+Every diffctl component is `python -m diffctl …`, and most of its start-up is importing the same modules
+(numpy, pybullet, zenoh, rosbags, lxml, diffctl's own). The zygote (zygote.py) imports them once, before any
+Zenoh session or thread exists, and forks each component from that state. The zygote runs in the
+environment the launcher gives a process that sets nothing of its own, and only commands that exec would
+start identically are forked: `<this python> -m diffctl …`, not interactive, with exactly that environment
+(so a forked component's interpreter settings, PYTHON*, LD_*, and its /proc/PID/environ are what exec
+would have given it). Everything else, and every request the zygote cannot answer, is exec'd as before.
+DIFFCTL_FORK_SERVER=0 turns the server off.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import ctypes
+import json
+import os
+import signal
+import socket
+import subprocess
+import sys
+from collections.abc import Callable, Mapping, Sequence
+
+from diffctl.supervision.zygote import MAX_MESSAGE, PR_SET_PDEATHSIG, TITLE_ROOM, Preload
+
+ENABLE_ENV = "DIFFCTL_FORK_SERVER"
+REPLY_TIMEOUT_S = 60.0  # the first request waits for the zygote's imports, on a loaded machine too
+
+
+def enabled(env: Mapping[str, str]) -> bool:
+    return env.get(ENABLE_ENV, "1").strip().lower() not in ("0", "false", "no", "off")
+
+
+def is_component(argv: Sequence[str]) -> bool:
+    """`<this interpreter> -m diffctl …`: the command line of every diffctl component the launcher starts."""
+    return (
+        len(argv) >= 3
+        and os.path.abspath(argv[0]) == os.path.abspath(sys.executable)
+        and list(argv[1:3]) == ["-m", "diffctl"]
+    )
+
+
+def dies_with_launcher() -> Callable[[], None] | None:
+    """A preexec_fn arming PR_SET_PDEATHSIG=SIGKILL, for a fork server started before the launcher's spawner
+    exists (which arms the same for every child it execs); None off Linux."""
+    if not sys.platform.startswith("linux"):
+        return None
+    try:
+        prctl = ctypes.CDLL(None, use_errno=True).prctl
+    except OSError:
+        return None
+    parent = os.getpid()
+
+    def preexec() -> None:
+        prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+        if os.getppid() != parent:
+            os._exit(1)  # the launcher died before the death signal was armed
+
+    return preexec
+
+
+class ForkServer:
+    """One zygote per launch; `spawn` returns the component's pid, or None when it must be exec'd instead."""
+
+    def __init__(
+        self, env: Mapping[str, str], preexec: Callable[[], None] | None = None, preload: Preload | None = None
+    ) -> None:
+        """env: what the launcher gives a child that sets no variables of its own; preload: what the server
+        imports and warms up ahead (the CLI layer's list: the engine names no component)."""
+        self._env = dict(env)
+        ours, theirs = socket.socketpair(socket.AF_UNIX, socket.SOCK_SEQPACKET)
+        try:
+            self.process: subprocess.Popen[bytes] | None = subprocess.Popen(
+                [
+                    sys.executable,
+                    "-m",
+                    "diffctl.supervision.zygote",
+                    str(theirs.fileno()),
+                    (preload or Preload()).to_json(),
+                    " " * TITLE_ROOM,
+                ],
+                stdin=subprocess.DEVNULL,
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
+                env=self._env,
+                pass_fds=(theirs.fileno(),),
+                start_new_session=True,
+                preexec_fn=preexec,
+            )
+        finally:
+            theirs.close()
+        self._sock: socket.socket | None = ours
+        ours.settimeout(REPLY_TIMEOUT_S)
+
+    @property
+    def pid(self) -> int | None:
+        return self.process.pid if self.process is not None else None
+
+    def accepts(self, argv: list[str], env: Mapping[str, str], interactive: bool) -> bool:
+        return self._sock is not None and not interactive and is_component(argv) and dict(env) == self._env
+
+    def spawn(
+        self, argv: list[str], env: Mapping[str, str], cwd: str | None, stdout_w: int, stderr_w: int
+    ) -> int | None:
+        """Fork `argv` from the zygote with these pipe ends as its stdout and stderr; None: exec it instead."""
+        if self._sock is None:
+            return None
+        message = json.dumps({"argv": argv, "env": dict(env), "cwd": cwd}).encode()
+        if len(message) > MAX_MESSAGE:
+            return None
+        try:
+            socket.send_fds(self._sock, [message], [stdout_w, stderr_w])
+            reply = json.loads(self._sock.recv(4096) or b"{}")
+        except (OSError, ValueError):
+            self.close()  # a zygote that does not answer serves nobody: exec from now on
+            return None
+        pid = reply.get("pid")
+        return pid if isinstance(pid, int) and pid > 0 else None
+
+    def close(self, *, kill: bool = False) -> None:
+        """Closing our end ends the zygote once it has imported everything (its children are the launcher's,
+        not its own); kill=True ends it now."""
+        if self._sock is not None:
+            self._sock.close()
+            self._sock = None
+        if self.process is not None:
+            if kill:
+                self.process.kill()
+            try:
+                self.process.wait(timeout=2.0)
+            except subprocess.TimeoutExpired:
+                self.process.kill()
+                with contextlib.suppress(subprocess.TimeoutExpired):
+                    self.process.wait(timeout=2.0)
+            self.process = None

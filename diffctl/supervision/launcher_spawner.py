@@ -1,0 +1,269 @@
+"""The spawner of `diffctl launch`: the POSIX spawner, plus what makes sure nothing outlives the launcher.
+
+- every exec'd child arms PR_SET_PDEATHSIG=SIGKILL (it dies with the launcher, even a SIGKILLed one);
+- the launcher is a child subreaper (PR_SET_CHILD_SUBREAPER): orphaned grandchildren are re-parented to it
+  and reaped here, not left to init;
+- the guard process (guard.py) SIGKILLs every group still known if the launcher dies, which catches the
+  grandchildren a death signal does not reach (a `shell: true` process's own children);
+- a child that exits leaving members of its group behind (a shell's background job, which ignores SIGINT)
+  has them sent SIGTERM at once, and SIGKILL if they outlast `linger_kill_s`, each step logged;
+- diffctl's own components (`<python> -m diffctl …`) are forked from the fork server (fork_server.py) when
+  one is given: the same session, death signal, pipes, argv and environment, without the imports.
+
+`signal_scope='process'` signals the process alone instead of its group (ros2 launch's behaviour); groups
+are still reaped at the end.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import ctypes
+import glob
+import logging
+import os
+import signal
+import subprocess
+import sys
+from pathlib import Path
+from typing import Any
+
+from diffctl.supervision.fork_server import ForkServer
+from diffctl.supervision.spawner import OutputSink, PosixSpawner, SpawnRequest, _Child, _close, _group_alive
+
+logger = logging.getLogger("launch.supervision")
+
+PR_SET_PDEATHSIG = 1
+PR_SET_CHILD_SUBREAPER = 36
+LINGER_POLL_S = 0.05
+
+
+def _prctl() -> Any:
+    if not sys.platform.startswith("linux"):
+        return None
+    try:
+        return ctypes.CDLL(None, use_errno=True).prctl
+    except (OSError, AttributeError):
+        return None
+
+
+class LauncherSpawner(PosixSpawner):
+    def __init__(
+        self,
+        *,
+        fork_server: ForkServer | None = None,
+        guard: bool = True,
+        signal_scope: str = "group",
+        linger_kill_s: float = 5.0,
+        term_timeout_s: float = 2.0,
+    ) -> None:
+        super().__init__(term_timeout_s=term_timeout_s)
+        if signal_scope not in ("group", "process"):
+            raise ValueError(f"signal_scope {signal_scope!r}: 'group' or 'process'")
+        self.fork_server = fork_server
+        self.signal_scope = signal_scope
+        self.linger_kill_s = linger_kill_s
+        self._prctl = _prctl()
+        self._launcher = os.getpid()
+        self._guard_enabled = guard
+        self._guard: subprocess.Popen[bytes] | None = None
+        self._groups: set[int] = set()
+        self._direct: set[int] = set()
+        self._sigchld_loop: asyncio.AbstractEventLoop | None = None
+        self._previous_sigchld: Any = None
+        self._fork_lock: asyncio.Lock | None = None
+        if self._prctl is not None:
+            self._prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0)
+        self.preexec_fn = self._preexec if self._prctl is not None else None
+
+    # ---- starting ----------------------------------------------------------------------------------------------
+
+    def _preexec(self) -> None:
+        # In the child between fork and exec: the death signal, and the race with a launcher already gone.
+        self._prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+        if os.getppid() != self._launcher:
+            os._exit(1)
+
+    async def spawn(self, request: SpawnRequest, sink: OutputSink) -> _Child:
+        self._watch_orphans()
+        child = None
+        if self.fork_server is not None and not request.shell and not request.emulate_tty:
+            child = await self._fork(request, sink)
+        if child is None:
+            child = await super().spawn(request, sink)
+        child.on_leader_exit = self._leader_exited
+        self._direct.add(child.pid)
+        self._groups.add(child.pgid)
+        self._tell_guard(f"+{child.pgid}")
+        return child
+
+    async def _fork(self, request: SpawnRequest, sink: OutputSink) -> _Child | None:
+        server = self.fork_server
+        assert server is not None
+        env = request.env if request.env is not None else dict(os.environ)
+        if not server.accepts(request.cmd, env, False):
+            return None
+        if request.cwd is not None and not os.path.isdir(request.cwd):
+            return None  # exec reports the error as it always has
+        loop = asyncio.get_running_loop()
+        if self._fork_lock is None:
+            self._fork_lock = asyncio.Lock()
+        out_r, out_w = os.pipe()
+        err_r, err_w = os.pipe()
+        try:
+            # The first request waits for the server's imports: off the loop, which goes on starting the
+            # launch's other processes and hearing signals meanwhile; one request at a time on its socket.
+            async with self._fork_lock:
+                pid = await loop.run_in_executor(None, server.spawn, request.cmd, env, request.cwd, out_w, err_w)
+        finally:
+            _close(out_w)
+            _close(err_w)
+        if pid is None:
+            _close(out_r)
+            _close(err_r)
+            return None
+        child = _Child(
+            pid=pid,
+            name=request.name or "component",
+            loop=loop,
+            sink=sink,
+            popen=None,
+            complete=loop.create_future(),
+            signal_group=self.signal_groups,
+        )
+        for fd, stream in ((out_r, "stdout"), (err_r, "stderr")):
+            os.set_blocking(fd, False)
+            child.readers[fd] = stream
+            loop.add_reader(fd, child._read, fd)
+        self._children.append(child)
+        self._watch_exit(child)
+        return child
+
+    # ---- what a finished leader left behind ---------------------------------------------------------------------
+
+    def _leader_exited(self, child: _Child) -> None:
+        self._direct.discard(child.pid)
+        if not _group_alive(child.pgid):
+            self._forget(child.pgid)
+            return
+        logger.warning(f"[{child.name}] exited but left processes in its group; sending them SIGTERM")
+        _killpg(child.pgid, signal.SIGTERM)
+        started = child.loop.time()
+
+        def check() -> None:
+            if not _group_alive(child.pgid):
+                logger.info(f"[{child.name}] the rest of its process group is gone")
+                self._forget(child.pgid)
+            elif child.loop.time() - started >= self.linger_kill_s:
+                logger.warning(
+                    f"[{child.name}] its process group outlived SIGTERM by {self.linger_kill_s:g} s: SIGKILL"
+                )
+                _killpg(child.pgid, signal.SIGKILL)
+                child.loop.call_later(LINGER_POLL_S, check)
+            else:
+                child.loop.call_later(LINGER_POLL_S, check)
+
+        child.loop.call_later(LINGER_POLL_S, check)
+
+    def _forget(self, pgid: int) -> None:
+        if pgid in self._groups:
+            self._groups.discard(pgid)
+            self._tell_guard(f"-{pgid}")
+
+    # ---- orphans -----------------------------------------------------------------------------------------------
+
+    def _watch_orphans(self) -> None:
+        """Reap, on every SIGCHLD, the grandchildren re-parented to the launcher (a child subreaper).
+
+        A Python-level handler that hands the work to the loop: `loop.add_signal_handler` would take over the
+        signal wakeup fd the LaunchService hears SIGINT through."""
+        loop = asyncio.get_running_loop()
+        if self._sigchld_loop is loop or self._prctl is None:
+            return
+
+        def on_sigchld(signum: int, frame: Any) -> None:
+            with contextlib.suppress(RuntimeError):  # the loop is closed: the end of the launch reaps them
+                loop.call_soon_threadsafe(self.reap_orphans)
+
+        with contextlib.suppress(ValueError):  # not the main thread: orphans are reaped at the end
+            self._previous_sigchld = signal.signal(signal.SIGCHLD, on_sigchld)
+            self._sigchld_loop = loop
+
+    def reap_orphans(self) -> None:
+        keep = {c.pid for c in self._children if c.returncode is None}
+        for extra in (self._guard.pid if self._guard is not None else None, self.fork_server and self.fork_server.pid):
+            if extra:
+                keep.add(extra)
+        for path in glob.glob("/proc/self/task/*/children"):
+            try:
+                pids = [int(p) for p in Path(path).read_text().split()]
+            except OSError:
+                continue
+            for pid in pids:
+                if pid in keep:
+                    continue
+                try:
+                    if os.getpgid(pid) in self._groups:
+                        os.waitpid(pid, os.WNOHANG)
+                except (ProcessLookupError, ChildProcessError, PermissionError):
+                    pass
+
+    # ---- the guard ---------------------------------------------------------------------------------------------
+
+    def _tell_guard(self, line: str) -> None:
+        if not self._guard_enabled:
+            return
+        if self._guard is None:
+            self._guard = subprocess.Popen(
+                [sys.executable, "-I", "-S", str(Path(__file__).with_name("guard.py"))],
+                stdin=subprocess.PIPE,
+                stdout=subprocess.DEVNULL,
+                stderr=subprocess.DEVNULL,
+                start_new_session=True,
+                close_fds=True,
+            )
+        assert self._guard.stdin is not None
+        try:
+            self._guard.stdin.write(line.encode() + b"\n")
+            self._guard.stdin.flush()
+        except OSError:
+            pass  # a dead guard must not take the launcher down; the death signal still covers direct children
+
+    # ---- the end -----------------------------------------------------------------------------------------------
+
+    async def shutdown(self) -> None:
+        await super().shutdown()
+        self.reap_orphans()
+        for pgid in list(self._groups):
+            if not _group_alive(pgid):
+                self._forget(pgid)
+
+    def drop_fork_server(self) -> None:
+        """No component will be forked: stop the fork server now, its imports unfinished."""
+        if self.fork_server is not None:
+            self.fork_server.close(kill=True)
+            self.fork_server = None
+
+    def close(self) -> None:
+        """The launcher ends normally: end the fork server, release the guard without it killing anything."""
+        if self._sigchld_loop is not None:
+            with contextlib.suppress(ValueError, TypeError):
+                signal.signal(signal.SIGCHLD, self._previous_sigchld or signal.SIG_DFL)
+        self._sigchld_loop = None
+        if self.fork_server is not None:
+            self.fork_server.close()
+            self.fork_server = None
+        if self._guard is not None:
+            self._tell_guard("exit")
+            try:
+                assert self._guard.stdin is not None
+                self._guard.stdin.close()
+                self._guard.wait(timeout=2.0)
+            except (OSError, subprocess.TimeoutExpired):
+                self._guard.kill()
+            self._guard = None
+
+
+def _killpg(pgid: int, sig: int) -> None:
+    with contextlib.suppress(ProcessLookupError, PermissionError):
+        os.killpg(pgid, sig)

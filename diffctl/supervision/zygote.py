@@ -1,0 +1,269 @@
+"""The fork server process (zygote): import diffctl's heavy modules once, then fork components from it.
+
+Started by the launcher (fork_server.py) as `python -m diffctl.supervision.zygote FD ROOM` with one end of a socket
+pair as FD, in exactly the environment the launcher gives its children (so /proc/PID/environ of a forked
+component is what an exec'd one would show) and ROOM, blank space in argv that a component's command line
+is written over (so ps, pgrep and psutil show `python -m diffctl sim run …`, not the zygote).
+It imports numpy, pybullet, zenoh, rosbags, lxml and diffctl's component modules while it is still the only
+thread of a process that has opened no Zenoh session, then serves requests: argv, environment and working
+directory, with the child's stdout and stderr pipe ends passed as file descriptors. For each it forks twice,
+so the component is re-parented to the launcher (a child subreaper) and the launcher waits for it, signals
+its group and reaps it exactly as a process it had started itself. The component then takes its own
+session, arms PR_SET_PDEATHSIG once the launcher is its parent, puts its pipes on fds 1 and 2, closes every
+other descriptor, takes the requested environment and working directory, and runs `python -m diffctl`'s
+main as the interpreter would — uncaught exceptions, SystemExit, KeyboardInterrupt and atexit included.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import ctypes
+import gc
+import importlib
+import json
+import os
+import runpy
+import select
+import signal
+import socket
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+
+TITLE_ROOM = 4096  # bytes of argv a component's command line may take in ps
+MAX_MESSAGE = 1 << 20
+PR_SET_PDEATHSIG = 1
+
+
+@dataclass(frozen=True)
+class Preload:
+    """What the server imports before it serves (`modules`), what it imports while idle (`later`), and the
+    warm-up functions (`module:function`) it calls after the imports. The launch core names no component:
+    the list comes from the CLI layer (diffctl/cli/fork_preload.py), each component naming its own."""
+
+    modules: tuple[str, ...] = ()
+    later: tuple[str, ...] = ()
+    warm: tuple[str, ...] = ()
+
+    def to_json(self) -> str:
+        return json.dumps({"modules": self.modules, "later": self.later, "warm": self.warm})
+
+    @classmethod
+    def from_json(cls, text: str) -> Preload:
+        if not text.strip():
+            return cls()
+        raw = json.loads(text)
+        return cls(tuple(raw.get("modules", ())), tuple(raw.get("later", ())), tuple(raw.get("warm", ())))
+
+
+# The later imports wait for this much quiet: a launch asks for its first components in a burst, a few ms
+# apart, and an import between two of them (30-45 ms each) delayed the next one's start.
+LATER_QUIET_S = 0.3
+
+
+@dataclass(frozen=True)
+class Request:
+    argv: list[str]
+    env: dict[str, str]
+    cwd: str | None
+    stdout_fd: int
+    stderr_fd: int
+
+
+def preload(spec: Preload) -> None:
+    # OpenBLAS starts a worker thread when numpy loads; a single-threaded BLAS keeps this process at one
+    # thread, so fork() copies no lock another thread holds. Components get their own environment back.
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+    # No collection while importing: what the imports allocate stays for good (frozen below), and the
+    # collections the allocations would trigger cost 15-35 ms of the first component's wait.
+    gc.disable()
+    for name in spec.modules:
+        _import(name)
+    for target in spec.warm:
+        with contextlib.suppress(Exception):
+            module, _, function = target.partition(":")
+            getattr(importlib.import_module(module), function)()
+    # What is imported now lives as long as every component: out of the collector's sight, a component's
+    # collections (and its final one at exit, which otherwise walks every module object for a good part of a
+    # second on a busy machine) skip it, and its pages stay shared instead of being dirtied by the scans.
+    # Frozen without a collection first: that full collection costs 35-45 ms of the first component's wait
+    # and finds some 26 unreachable objects (kept for good, frozen); the later freeze collects.
+    gc.freeze()
+    gc.enable()
+    if sys.platform.startswith("linux"):
+        # pybullet prints its build time with C stdio: flush it here, or every component would print it again
+        # when its copy of the buffer is flushed at exit.
+        ctypes.CDLL(None).fflush(None)
+
+
+def _import(name: str) -> None:
+    with contextlib.suppress(Exception):
+        importlib.import_module(name)
+
+
+def _freeze() -> None:
+    gc.collect()
+    gc.freeze()
+
+
+def serve(sock: socket.socket, launcher_pid: int, later_modules: tuple[str, ...] = ()) -> Request | None:
+    """Answer requests until the launcher closes its end (None); in a forked component, its Request."""
+    later = list(later_modules)
+    last_request = time.monotonic()
+    while True:
+        if later:
+            quiet = time.monotonic() - last_request
+            if not select.select([sock], [], [], max(0.0, LATER_QUIET_S - quiet))[0]:
+                if time.monotonic() - last_request >= LATER_QUIET_S:
+                    _import(later.pop(0))  # nothing asked for a while: one more of the later components
+                    if not later:
+                        _freeze()
+                continue
+        last_request = time.monotonic()
+        try:
+            data, fds, _, _ = socket.recv_fds(sock, MAX_MESSAGE, 2)
+        except (OSError, ValueError):
+            return None
+        if not data:
+            return None
+        try:
+            message = json.loads(data)
+            if len(fds) != 2:
+                raise ValueError("expected the stdout and stderr descriptors")
+            request = Request(message["argv"], message["env"], message.get("cwd"), fds[0], fds[1])
+        except (ValueError, KeyError, TypeError) as e:
+            for fd in fds:
+                os.close(fd)
+            _reply(sock, {"error": f"bad request: {e}"})
+            continue
+        child = _fork_twice(sock, request, launcher_pid)
+        if isinstance(child, Request):
+            return child
+        os.close(request.stdout_fd)
+        os.close(request.stderr_fd)
+        _reply(sock, child)
+
+
+def _reply(sock: socket.socket, message: dict[str, object]) -> None:
+    with contextlib.suppress(OSError):
+        sock.send(json.dumps(message).encode())
+
+
+def _fork_twice(sock: socket.socket, request: Request, launcher_pid: int) -> Request | dict[str, object]:
+    """Fork an intermediate that forks the component and exits at once: the component is re-parented to the
+    launcher before its pid is reported, so the launcher's waitpid() never races the re-parenting."""
+    r, w = os.pipe()
+    try:
+        middle = os.fork()
+    except OSError as e:
+        os.close(r)
+        os.close(w)
+        return {"error": f"fork failed: {e.strerror}"}
+    if middle == 0:
+        os.close(r)
+        try:
+            pid = os.fork()
+        except OSError:
+            os._exit(1)
+        if pid == 0:
+            os.close(w)
+            sock.close()
+            _settle(launcher_pid)
+            return request
+        os.write(w, str(pid).encode())
+        os._exit(0)
+    os.close(w)
+    with os.fdopen(r, "rb") as pipe:
+        text = pipe.read()
+    os.waitpid(middle, 0)
+    return {"pid": int(text)} if text else {"error": "fork failed in the intermediate process"}
+
+
+def _settle(launcher_pid: int) -> None:
+    """In the component: its own session, then the launcher as parent before the death signal is armed
+    (a death signal armed earlier would fire when the intermediate exits)."""
+    os.setsid()
+    middle = os.getppid()
+    deadline = time.monotonic() + 10.0
+    while True:
+        parent = os.getppid()  # read once: the intermediate may exit between two reads
+        if parent == launcher_pid:
+            break
+        if parent != middle or time.monotonic() > deadline:
+            os._exit(1)  # re-parented elsewhere: the launcher is gone
+        time.sleep(0.0002)
+    if sys.platform.startswith("linux"):
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+        if os.getppid() != launcher_pid:
+            os._exit(1)  # the launcher died before the death signal was armed
+
+
+def become(request: Request, start_cwd: str) -> None:
+    """Turn this forked process into `python -m diffctl ARGS…` with the request's pipes, env and cwd."""
+    devnull = os.open(os.devnull, os.O_RDONLY)
+    os.dup2(devnull, 0)
+    os.dup2(request.stdout_fd, 1)
+    os.dup2(request.stderr_fd, 2)
+    os.closerange(3, _max_fd())
+    for sig in (signal.SIGTERM, signal.SIGHUP, signal.SIGUSR1, signal.SIGCHLD):
+        signal.signal(sig, signal.SIG_DFL)
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    os.environ.clear()
+    os.environ.update(request.env)
+    if request.cwd:
+        os.chdir(request.cwd)
+    if sys.path and sys.path[0] == start_cwd:
+        sys.path[0] = os.getcwd()  # `python -m` puts the working directory first on the path
+    sys.argv = [request.argv[0], *request.argv[3:]]
+    with contextlib.suppress(AttributeError):
+        sys.orig_argv = list(request.argv)  # type: ignore[misc]
+    retitle(request.argv)
+    if "numpy.random" in sys.modules:
+        sys.modules["numpy.random"].seed()  # numpy's global generator was seeded once, in the zygote
+    runpy.run_module("diffctl", run_name="__main__", alter_sys=True)
+
+
+def retitle(argv: list[str]) -> None:
+    """Write `argv` over this process's own argv memory, for /proc/PID/cmdline.
+
+    The words are joined by spaces and end in a NUL, and the last byte of the area is not a NUL: the kernel
+    then reads the command line up to that first NUL (its setproctitle rule), and ps and psutil split it
+    at the spaces. The environment block that follows argv is left alone."""
+    try:
+        fields = Path("/proc/self/stat").read_text().rsplit(")", 1)[1].split()
+        start, end = int(fields[45]), int(fields[46])  # arg_start, arg_end (fields 48 and 49 of proc(5))
+    except (OSError, IndexError, ValueError):
+        return
+    size = end - start
+    if size < 2:
+        return
+    text = " ".join(argv).encode()[: size - 2]
+    area = text + b"\0" * (size - len(text) - 1) + b" "
+    ctypes.memmove(start, area, size)
+
+
+def _max_fd() -> int:
+    try:
+        return int(os.sysconf("SC_OPEN_MAX"))
+    except (ValueError, OSError):
+        return 65536
+
+
+def main() -> None:
+    fd = int(sys.argv[1])
+    spec = Preload.from_json(sys.argv[2] if len(sys.argv) > 3 else "")
+    launcher_pid = os.getppid()
+    start_cwd = os.getcwd()
+    sock = socket.socket(fileno=fd)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # only the launcher's close or its death ends the server
+    preload(spec)
+    request = serve(sock, launcher_pid, spec.later)
+    if request is None:
+        os._exit(0)  # the launcher is done: nothing of this process needs finalising
+    become(request, start_cwd)
+
+
+if __name__ == "__main__":
+    main()
