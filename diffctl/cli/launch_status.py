@@ -31,13 +31,22 @@ class Row:
     exit_code: int | None = None
 
 
+# The start-up is over once this long passes without a process starting.
+SETTLED_S = 0.3
+
+
 class ProcessTable(BaseEventHandler):
-    """One row per process of the launch, kept from its start and exit events."""
+    """One row per process of the launch, kept from its start and exit events; says once how long the
+    start-up took (`all N processes started in T ms`, from the launch's start to the last start before a
+    quiet `SETTLED_S`)."""
 
     def __init__(self) -> None:
         super().__init__(matcher=lambda e: isinstance(e, (ProcessStarted, ProcessExited, Shutdown)))
         self.rows: dict[str, Row] = {}
         self.shutting_down = False
+        self.began_at: float | None = None
+        self.last_start_at: float | None = None
+        self.settled = False
 
     def handle(self, event: Any, context: Any) -> None:
         super().handle(event, context)
@@ -48,11 +57,24 @@ class ProcessTable(BaseEventHandler):
         if isinstance(event, ProcessStarted):
             row.pid, row.state, row.started_at, row.exit_code = event.pid, "running", time.monotonic(), None
             row.restarts += 1
+            self.last_start_at = row.started_at
+            if not self.settled:
+                context.asyncio_loop.call_later(SETTLED_S, self._maybe_settled, row.started_at)
         else:
             row.exit_code = event.returncode
             row.state = "stopped" if self.shutting_down else "exited" if event.returncode == 0 else "failed"
             row.started_at = None
         return None
+
+    def _maybe_settled(self, started_at: float) -> None:
+        if self.settled or self.shutting_down or started_at != self.last_start_at or self.began_at is None:
+            return
+        self.settled = True
+        from diffctl.launch import logging as launch_logging
+
+        running = sum(1 for r in self.rows.values() if r.restarts >= 0)
+        took_ms = (started_at - self.began_at) * 1000
+        launch_logging.get_logger("launch").info(f"all {running} processes started in {took_ms:.0f} ms")
 
     def renderable(self) -> Any:
         now = time.monotonic()
@@ -90,6 +112,7 @@ class StatusOnRequest(Action):
         self.no_color = no_color
 
     def execute(self, context: Any) -> None:
+        self.processes.began_at = time.monotonic()
         loop = context.asyncio_loop
         # A Python-level handler, not loop.add_signal_handler: that would take over the wakeup fd through which
         # the LaunchService hears SIGINT. The handler only hands the work to the loop.
