@@ -11,10 +11,12 @@ that raises, a substitution that fails) stops everything and exits 2 as well.
 
 from __future__ import annotations
 
+import asyncio
 import gc
 import os
 import signal
 import sys
+import time
 from pathlib import Path
 from typing import Any
 
@@ -117,7 +119,9 @@ def launch(
       diffctl launch diffctl_demo sim_control.launch.py
       diffctl launch ./my_robot.yaml --show-args
     """
-    signal.signal(signal.SIGUSR1, signal.SIG_IGN)  # a status request before the table exists kills nothing
+    # Status requests and hang-ups reach the launcher's signal manager once the launch runs (_LauncherSignals);
+    # until then a status request kills nothing.
+    signal.signal(signal.SIGUSR1, _no_op)
     positional, arguments = _split_targets(target)
     workspace = _prepare_environment(workspace_dir)
     describing = show_args or print_description
@@ -312,7 +316,7 @@ def _run(
     policy: dict[str, str],
 ) -> int:
     from diffctl.cli.launch_outcome import LaunchOutcome
-    from diffctl.cli.launch_status import ProcessTable, StatusOnRequest
+    from diffctl.cli.launch_status import ProcessTable
     from diffctl.launch import LaunchDescription, LaunchService
     from diffctl.launch.actions import IncludeLaunchDescription
     from diffctl.launch.launch_description_source import LaunchDescriptionSource
@@ -338,8 +342,6 @@ def _run(
         service.include_launch_description(
             LaunchDescription(
                 [
-                    StatusOnRequest(processes, no_color=no_color),
-                    _hangup_action(),
                     IncludeLaunchDescription(
                         LaunchDescriptionSource(description, str(path)), launch_arguments=list(arguments.items())
                     ),
@@ -351,8 +353,10 @@ def _run(
         # Ctrl-C does not walk it all again in the interpreter's final collection.
         gc.collect()
         gc.freeze()
-        code = service.run()
-        return _exit_code(code, outcome, context, policy["exit_code_mode"], run_dir)
+        with _LauncherSignals(service, processes, no_color=no_color) as signals:
+            processes.began_at = time.monotonic()
+            code = service.run()
+        return _exit_code(code, outcome, context, policy["exit_code_mode"], run_dir, signals.stopped_by)
     finally:
         spawner.close()  # the fork server and the guard, also when the run never began
         probes.close()
@@ -360,9 +364,10 @@ def _run(
             router.close()
 
 
-def _exit_code(code: int, outcome: Any, context: Any, mode: str, run_dir: Path) -> int:
+def _exit_code(code: int, outcome: Any, context: Any, mode: str, run_dir: Path, stopped_by: str | None) -> int:
     """ros: what the LaunchService returned. diffctl: 1 for a failed required process or readiness condition
-    or (the launch having ended by itself) a failed process, 2 for an error in the launch (bad input)."""
+    or (the launch having ended by itself) a failed process, 2 for an error in the launch (bad input); a
+    launch stopped by a signal (SIGTERM too, which cancels the run) that nothing else failed exits 0."""
     from diffctl.launch import logging as launch_logging
     from diffctl.launch_extensions.readiness import FAILED_KEY
 
@@ -377,28 +382,88 @@ def _exit_code(code: int, outcome: Any, context: Any, mode: str, run_dir: Path) 
     if failures:
         logger.error("launch failed: " + "; ".join(failures))
         return 1
+    if code != 0 and stopped_by == "SIGTERM" and outcome.shutdown_reason is None:
+        return 0  # canceled by SIGTERM, as a service manager stops it: not an error in the launch
     return 2 if code != 0 else 0
 
 
-def _hangup_action() -> Any:
-    from diffctl.launch.action import Action
+def _no_op(signum: int, frame: Any) -> None:
+    """A Python-level handler: the signal then reaches the signal managers' wakeup fd, and kills nothing."""
 
-    class HangupShutsDown(Action):
-        """SIGHUP (the terminal closed, a service manager's reload-less stop) shuts the launch down as Ctrl-C
-        does, instead of killing the launcher outright."""
 
-        def execute(self, context: Any) -> None:
-            from diffctl.launch.events import Shutdown
+class _LauncherSignals:
+    """The launcher's own signals, heard on the launch's loop beside the LaunchService's (whose signal manager
+    passes every signal on to this one, the outer): Enter and SIGUSR1 print the status table; SIGHUP shuts the
+    launch down as Ctrl-C does; a second Ctrl-C SIGKILLs every process group at once (the LaunchService
+    ignores it); SIGTERM (which cancels the run) is remembered, for the exit code."""
 
-            loop = context.asyncio_loop
+    def __init__(self, service: Any, processes: Any, *, no_color: bool) -> None:
+        from diffctl.launch.utilities.signal_management import AsyncSafeSignalManager
 
-            def hangup(signum: int, frame: Any) -> None:
-                loop.call_soon_threadsafe(context.emit_event_sync, Shutdown(reason="SIGHUP received"))
+        self.service = service
+        self.processes = processes
+        self.no_color = no_color
+        self.loop = asyncio.new_event_loop()
+        asyncio.set_event_loop(self.loop)  # the loop LaunchService.run() takes
+        self.manager = AsyncSafeSignalManager(self.loop)
+        self.interrupts = 0
+        self.stopped_by: str | None = None
+        self._stdin: int | None = None
+        self._pending: list[asyncio.Future[Any]] = []
 
-            signal.signal(signal.SIGHUP, hangup)  # Python-level: the LaunchService keeps its wakeup fd
-            return None
+    def __enter__(self) -> _LauncherSignals:
+        for signum in (signal.SIGUSR1, signal.SIGHUP):
+            signal.signal(signum, _no_op)
+        self.manager.__enter__()
+        self.manager.handle(signal.SIGUSR1, lambda signum: self._show())
+        self.manager.handle(signal.SIGHUP, self._hangup)
+        self.manager.handle(signal.SIGTERM, self._terminate)
+        self.manager.handle(signal.SIGINT, self._interrupt)
+        if sys.stdin is not None and sys.stdin.isatty():
+            self._stdin = sys.stdin.fileno()
+            self.loop.add_reader(self._stdin, self._on_stdin)
+        return self
 
-    return HangupShutsDown()
+    def __exit__(self, *exc: Any) -> None:
+        if self._stdin is not None:
+            self.loop.remove_reader(self._stdin)
+        self.manager.__exit__(*exc)
+        signal.signal(signal.SIGHUP, signal.SIG_DFL)
+
+    def _show(self) -> None:
+        from diffctl.cli.launch_status import show
+
+        show(self.processes, no_color=self.no_color)
+
+    def _on_stdin(self) -> None:
+        assert self._stdin is not None
+        try:
+            data = os.read(self._stdin, 4096)
+        except OSError:
+            data = b""
+        if not data:
+            self.loop.remove_reader(self._stdin)  # end of input: nothing more to listen to
+            self._stdin = None
+        elif b"\n" in data:
+            self._show()
+
+    def _hangup(self, signum: int) -> None:
+        self.stopped_by = self.stopped_by or "SIGHUP"
+        pending = self.service.shutdown()
+        if pending is not None:
+            self._pending.append(asyncio.ensure_future(pending))
+
+    def _terminate(self, signum: int) -> None:
+        self.stopped_by = self.stopped_by or signal.Signals(signum).name
+
+    def _interrupt(self, signum: int) -> None:
+        self.stopped_by = self.stopped_by or "SIGINT"
+        self.interrupts += 1
+        if self.interrupts == 2:
+            from diffctl.launch import logging as launch_logging
+
+            launch_logging.get_logger("launch").warning("ctrl-c again: sending SIGKILL to every process group")
+            self.service.spawner.signal_all(signal.SIGKILL)
 
 
 def _ensure_router() -> Any:

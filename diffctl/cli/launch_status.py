@@ -1,21 +1,17 @@
 """The status table `diffctl launch` prints on Enter or SIGUSR1: process, pid, state, restarts, uptime, exit code.
 
-A handler of the launch's process events keeps one row per process (by its name); `StatusOnRequest` is an
-action the CLI puts first in the launch: on the launch's loop it listens for SIGUSR1 and, on a terminal, for
-Enter, and prints the table each time.
+A handler of the launch's process events keeps one row per process (by its name), and says once how long the
+start-up took.
 """
 
 from __future__ import annotations
 
-import os
-import signal
 import sys
 import time
 from dataclasses import dataclass
 from typing import Any
 
 from diffctl.console import make_console, table
-from diffctl.launch.action import Action
 from diffctl.launch.event_handler import BaseEventHandler
 from diffctl.launch.events import Shutdown
 from diffctl.launch.events.process import ProcessExited, ProcessStarted
@@ -103,40 +99,10 @@ def _uptime(seconds: float) -> str:
     return f"{hours}:{minutes:02d}:{secs:02d}" if hours else f"{minutes}:{secs:02d}"
 
 
-class StatusOnRequest(Action):
-    """Print `table` on SIGUSR1, and on Enter when stdin is a terminal (the CLI's own action)."""
-
-    def __init__(self, processes: ProcessTable, *, no_color: bool = False) -> None:
-        super().__init__()
-        self.processes = processes
-        self.no_color = no_color
-
-    def execute(self, context: Any) -> None:
-        self.processes.began_at = time.monotonic()
-        loop = context.asyncio_loop
-        # A Python-level handler, not loop.add_signal_handler: that would take over the wakeup fd through which
-        # the LaunchService hears SIGINT. The handler only hands the work to the loop.
-        signal.signal(signal.SIGUSR1, lambda signum, frame: loop.call_soon_threadsafe(self.show))
-        stdin = sys.stdin
-        if stdin is not None and stdin.isatty():
-            loop.add_reader(stdin.fileno(), self._on_stdin, stdin.fileno())
-        return None
-
-    def _on_stdin(self, fd: int) -> None:
-        try:
-            data = os.read(fd, 4096)
-        except OSError:
-            data = b""
-        if not data:
-            import asyncio
-
-            asyncio.get_event_loop().remove_reader(fd)  # end of input: nothing more to listen to
-        elif b"\n" in data:
-            self.show()
-
-    def show(self) -> None:
-        console = make_console(no_color=self.no_color, width=None if sys.stdout.isatty() else 200)
-        try:
-            console.print(self.processes.renderable())
-        except (OSError, SystemExit):
-            pass  # the screen is gone (`| head`): the launch goes on
+def show(processes: ProcessTable, *, no_color: bool = False) -> None:
+    """Print the table (on Enter or SIGUSR1); a closed screen (`| head`) stops nothing."""
+    console = make_console(no_color=no_color, width=None if sys.stdout.isatty() else 200)
+    try:
+        console.print(processes.renderable())
+    except (OSError, SystemExit):
+        pass
