@@ -24,13 +24,16 @@ def parse_values(text: str | None, what: str = "VALUES") -> dict[str, Any]:
     except yaml.YAMLError as e:
         mark = getattr(e, "problem_mark", None)
         where = f" at line {mark.line + 1}, column {mark.column + 1}" if mark else ""
-        raise MessageError(f"{what} is not valid YAML{where}: {getattr(e, 'problem', e)}",
-                           hint="e.g. '{twist: {linear: {x: 0.5}, angular: {z: 0.2}}}'") from None
+        raise MessageError(
+            f"{what} is not valid YAML{where}: {getattr(e, 'problem', e)}",
+            hint="e.g. '{twist: {linear: {x: 0.5}, angular: {z: 0.2}}}'",
+        ) from None
     if data is None:
         return {}
     if not isinstance(data, dict):
-        raise MessageError(f"{what} must be a YAML mapping of fields, got {type(data).__name__} {data!r}",
-                           hint="e.g. '{data: hello}'")
+        raise MessageError(
+            f"{what} must be a YAML mapping of fields, got {type(data).__name__} {data!r}", hint="e.g. '{data: hello}'"
+        )
     return data
 
 
@@ -51,8 +54,13 @@ class ToolNode:
         from diffctl.client.node import Node
         from diffctl.client.parameter import Parameter
 
-        self._started = component.start(lambda: Node(
-            name, start_parameter_services=False, parameter_overrides=[Parameter("use_sim_time", value=use_sim_time)]))
+        self._started = component.start(
+            lambda: Node(
+                name,
+                start_parameter_services=False,
+                parameter_overrides=[Parameter("use_sim_time", value=use_sim_time)],
+            )
+        )
         self.node = self._started.node
         self.wire = self.node.bus_node
         self.fqn = self.wire.fqn
@@ -78,8 +86,9 @@ def resolve_name(g: Graph, name: str, names: list[str], what: str = "topic") -> 
             info(f"using {what} {matches[0]} for {name!r}")
             return matches[0]
         if len(matches) > 1:
-            raise ConfigError(f"{what} {name!r} matches several: {', '.join(matches)}",
-                              hint=f"give the full {what} name")
+            raise ConfigError(
+                f"{what} {name!r} matches several: {', '.join(matches)}", hint=f"give the full {what} name"
+            )
     return full
 
 
@@ -106,8 +115,10 @@ def wait_for_type(g: Graph, topic: str, typename: str | None, timeout_s: float |
             time.sleep(0.05)
             t = publisher_type(g, topic)
             if not t and deadline is not None and time.monotonic() > deadline:
-                raise ConfigError(f"no publisher on {topic} after {timeout_s:g} s and no TYPE given",
-                                  hint="pass the type, e.g. geometry_msgs/msg/TwistStamped")
+                raise ConfigError(
+                    f"no publisher on {topic} after {timeout_s:g} s and no TYPE given",
+                    hint="pass the type, e.g. geometry_msgs/msg/TwistStamped",
+                )
     if not types.exists(t):
         learn_type(g, topic, types.normalize(t))
     return types.check(t)

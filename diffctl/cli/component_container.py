@@ -149,8 +149,10 @@ def component_container(nodes_json: str, multi_threaded: bool, ros_args: tuple[s
             container.get_logger().error(f"Failed to load node '{request['plugin']}': {type(e).__name__}: {e}")
             continue
         manager.add(node)
-        print(f"Loaded node '{node.get_fully_qualified_name()}' in container "
-              f"'{container.get_fully_qualified_name()}'", flush=True)
+        print(
+            f"Loaded node '{node.get_fully_qualified_name()}' in container '{container.get_fully_qualified_name()}'",
+            flush=True,
+        )
     try:
         executor.spin()
     except (KeyboardInterrupt, ExternalShutdownException):

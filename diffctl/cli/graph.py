@@ -53,8 +53,12 @@ def node_info(name: str) -> None:
         raise ConfigError(f"unknown node {full}{suggest(full, nodes)}", hint="`diffctl node list` shows them")
     ents = g.node_entities(full)
     console.print(full, markup=False)
-    for title, kind in (("Subscribers", wire.KIND_SUB), ("Publishers", wire.KIND_PUB),
-                        ("Service Servers", wire.KIND_SERVICE), ("Service Clients", wire.KIND_CLIENT)):
+    for title, kind in (
+        ("Subscribers", wire.KIND_SUB),
+        ("Publishers", wire.KIND_PUB),
+        ("Service Servers", wire.KIND_SERVICE),
+        ("Service Clients", wire.KIND_CLIENT),
+    ):
         console.print(f"  {title}:", markup=False)
         for e in sorted({(e.topic, e.type) for e in ents if e.kind == kind}):
             console.print(f"    {e[0]}: {e[1]}", markup=False)
@@ -131,8 +135,9 @@ def service_call(name: str, args: tuple[str, ...], timeout: float) -> None:
     if typename is None:
         ts = services.get(full)
         if not ts:
-            raise ConfigError(f"unknown service {full} and no TYPE given",
-                              hint="`diffctl service list -t` shows services and types")
+            raise ConfigError(
+                f"unknown service {full} and no TYPE given", hint="`diffctl service list -t` shows services and types"
+            )
         typename = ts[0]
     srv = types.check_service(typename)
     req = types.request(srv, values)
@@ -143,8 +148,7 @@ def service_call(name: str, args: tuple[str, ...], timeout: float) -> None:
     console.print(f"requester: making request: {types.to_dict(req)}\n", markup=False)
     resp = client.call(req, timeout=timeout)
     console.print("response:", markup=False)
-    console.print(yaml.safe_dump(types.to_dict(resp), sort_keys=False, default_flow_style=False).rstrip(),
-                  markup=False)
+    console.print(yaml.safe_dump(types.to_dict(resp), sort_keys=False, default_flow_style=False).rstrip(), markup=False)
     n.close()
 
 

@@ -77,9 +77,9 @@ def _split_targets(targets: tuple[str, ...]) -> tuple[list[str], dict[str, str]]
 )
 @click.option(
     "--process-names",
-    type=click.Choice(["diffctl", "ros"]),
-    default="diffctl",
-    help="Process labels: the name, -2 for a second (diffctl), or name-N from one counter (ros2 launch).",
+    type=click.Choice(["ros"]),
+    default="ros",
+    help="Process labels: ros2 launch's name-N, N from one counter (the only labels launch gives today).",
 )
 @click.option("--no-router", is_flag=True, help="Do not start the embedded Zenoh router.")
 @click.option(
@@ -316,7 +316,7 @@ def _run(
     policy: dict[str, str],
 ) -> int:
     from diffctl.cli.launch_outcome import LaunchOutcome
-    from diffctl.cli.launch_status import ProcessTable
+    from diffctl.cli.launch_status import ProcessLogFiles, ProcessTable, StdoutOnScreen
     from diffctl.launch import LaunchDescription, LaunchService
     from diffctl.launch.actions import IncludeLaunchDescription
     from diffctl.launch.launch_description_source import LaunchDescriptionSource
@@ -325,7 +325,12 @@ def _run(
 
     probes = _LazyBusProbes()
     router = None
-    spawner = LauncherSpawner(fork_server=server, signal_scope=policy["signal_scope"])
+    files = None
+    from diffctl.launch import logging as launch_logging
+
+    spawner = LauncherSpawner(
+        fork_server=server, signal_scope=policy["signal_scope"], logger=launch_logging.get_logger("launch")
+    )
     try:
         service = LaunchService(
             argv=[f"{k}:={v}" for k, v in arguments.items()],
@@ -334,8 +339,11 @@ def _run(
             spawner=spawner,
         )
         context = service.context
-        outcome, processes = LaunchOutcome(), ProcessTable()
-        for observer in (outcome, processes):
+        outcome, processes, files = LaunchOutcome(), ProcessTable(), ProcessLogFiles(str(run_dir))
+        observers: list[Any] = [outcome, processes, files]
+        if policy["output_default"] == "screen":
+            observers.append(StdoutOnScreen())
+        for observer in observers:
             context.register_event_handler(observer, append=True)
         process_watch.install(context)
         readiness.provide_probes(context, {"topic": probes.topic_has_publisher, "service": probes.service_available})
@@ -360,6 +368,8 @@ def _run(
     finally:
         spawner.close()  # the fork server and the guard, also when the run never began
         probes.close()
+        if files is not None:
+            files.close()
         if router is not None:
             router.close()
 

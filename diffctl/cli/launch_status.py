@@ -1,11 +1,10 @@
-"""The status table `diffctl launch` prints on Enter or SIGUSR1: process, pid, state, restarts, uptime, exit code.
-
-A handler of the launch's process events keeps one row per process (by its name), and says once how long the
-start-up took.
+"""What `diffctl launch` keeps of its processes: the status table it prints on Enter or SIGUSR1 (process, pid,
+state, restarts, uptime, exit code; and once, how long the start-up took), and a log file per process.
 """
 
 from __future__ import annotations
 
+import os
 import sys
 import time
 from dataclasses import dataclass
@@ -14,7 +13,7 @@ from typing import Any
 from diffctl.console import make_console, table
 from diffctl.launch.event_handler import BaseEventHandler
 from diffctl.launch.events import Shutdown
-from diffctl.launch.events.process import ProcessExited, ProcessStarted
+from diffctl.launch.events.process import ProcessExited, ProcessIO, ProcessStarted, ProcessStdout
 
 
 @dataclass
@@ -106,3 +105,93 @@ def show(processes: ProcessTable, *, no_color: bool = False) -> None:
         console.print(processes.renderable())
     except (OSError, SystemExit):
         pass
+
+
+class ProcessLogFiles(BaseEventHandler):
+    """Everything each process prints, in `<log_dir>/<process name>.log`, whatever its `output` says (launch
+    itself puts a process's output in launch.log, or with `own_log` in files of its own)."""
+
+    def __init__(self, log_dir: str) -> None:
+        super().__init__(matcher=lambda e: isinstance(e, (ProcessIO, ProcessExited)))
+        self.log_dir = log_dir
+        self.files: dict[str, Any] = {}
+
+    def handle(self, event: Any, context: Any) -> None:
+        super().handle(event, context)
+        name = event.process_name
+        if isinstance(event, ProcessExited):
+            return None
+        file = self.files.get(name)
+        if file is None:
+            safe = "".join(c if c.isalnum() or c in "-_." else "_" for c in name.strip("/")) or "process"
+            try:
+                file = self.files[name] = open(os.path.join(self.log_dir, f"{safe}.log"), "ab", buffering=0)  # noqa: SIM115
+            except OSError:
+                return None
+        text = event.text if isinstance(event.text, bytes) else str(event.text).encode()
+        try:
+            file.write(text)
+        except OSError:
+            pass  # a full disk must not stop the launch
+        return None
+
+    def close(self) -> None:
+        for file in self.files.values():
+            file.close()
+        self.files.clear()
+
+
+class StdoutOnScreen(BaseEventHandler):
+    """`--output-default screen`: the standard output of a process whose `output` is `log` — ros2 launch's
+    default, which keeps stdout in launch.log only — is shown on the screen too, line by line, as `[name] line`
+    (what `output: screen` shows). Launch cannot tell a default `log` from one written in the file: both show."""
+
+    def __init__(self) -> None:
+        super().__init__(matcher=lambda e: isinstance(e, ProcessStdout))
+        self.shown: dict[int, bool] = {}
+        self.pending: dict[str, bytes] = {}
+        self.logger: Any = None
+
+    def handle(self, event: Any, context: Any) -> None:
+        super().handle(event, context)
+        action = event.action
+        show = self.shown.get(id(action))
+        if show is None:
+            show = self.shown[id(action)] = _logs_stdout_only(action, context)
+        if not show:
+            return None
+        name = event.process_name
+        text = self.pending.pop(name, b"") + (event.text if isinstance(event.text, bytes) else str(event.text).encode())
+        *lines, rest = text.split(b"\n")
+        if rest:
+            self.pending[name] = rest
+        for line in lines:
+            self._screen().info(f"[{name}] {line.decode('utf-8', 'replace')}")
+        return None
+
+    def _screen(self) -> Any:
+        if self.logger is None:
+            import logging
+
+            from diffctl.launch import logging as launch_logging
+
+            self.logger = logging.getLogger("diffctl.launch.stdout")
+            handler = launch_logging.launch_config.get_screen_handler()
+            handler.setFormatterFor(self.logger, logging.Formatter("{msg}", style="{"))
+            self.logger.addHandler(handler)
+            self.logger.propagate = False
+            self.logger.setLevel(logging.INFO)
+        return self.logger
+
+
+def _logs_stdout_only(action: Any, context: Any) -> bool:
+    """Whether the process's `output` is the text `log` (stdout to launch.log only)."""
+    output = getattr(action, "output", None)
+    if output is None or isinstance(output, dict):
+        return False
+    from diffctl.launch.utilities import perform_substitutions
+
+    try:
+        return perform_substitutions(context, output).strip() == "log"
+    except Exception:
+        return False

@@ -20,8 +20,11 @@ class LazyGroup(click.Group):
 
     def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
         # Listing must not import every subsystem (pybullet, zenoh): use the declared short help.
-        rows = [(name, self.lazy_help.get(name, "")) for name in self.list_commands(ctx)
-                if not self.lazy_help.get(name, "").startswith("(internal)")]
+        rows = [
+            (name, self.lazy_help.get(name, ""))
+            for name in self.list_commands(ctx)
+            if not self.lazy_help.get(name, "").startswith("(internal)")
+        ]
         if rows:
             with formatter.section("Commands"):
                 formatter.write_dl(rows)
@@ -44,6 +47,8 @@ class LazyGroup(click.Group):
 
         name = args[0] if args else ""
         if name and not name.startswith("-") and self.get_command(ctx, name) is None:
-            ctx.fail(f"no such command {name!r}{suggest(name, self.list_commands(ctx))}; "
-                     f"valid: {', '.join(self.list_commands(ctx))}")
+            ctx.fail(
+                f"no such command {name!r}{suggest(name, self.list_commands(ctx))}; "
+                f"valid: {', '.join(self.list_commands(ctx))}"
+            )
         return super().resolve_command(ctx, args)

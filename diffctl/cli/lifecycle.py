@@ -88,7 +88,8 @@ def lifecycle_list(node_name: str, all_: bool) -> None:
     for t in answer["available_transitions"]:
         click.echo(
             f"- {t['transition']['label']} [{t['transition']['id']}]\n"
-            f"\tStart: {t['start_state']['label']}\n\tGoal: {t['goal_state']['label']}")
+            f"\tStart: {t['start_state']['label']}\n\tGoal: {t['goal_state']['label']}"
+        )
 
 
 @lifecycle.command("set")

@@ -23,14 +23,27 @@ from diffctl.errors import BusError, ConfigError, suggest, yaml_error
 
 RCL = "rcl_interfaces/srv/"
 _GET_WORDS = {
-    "bool": "Boolean value is:", "integer": "Integer value is:", "double": "Double value is:",
-    "string": "String value is:", "byte_array": "Byte values are:", "bool_array": "Boolean values are:",
-    "integer_array": "Integer values are:", "double_array": "Double values are:", "string_array": "String values are:",
+    "bool": "Boolean value is:",
+    "integer": "Integer value is:",
+    "double": "Double value is:",
+    "string": "String value is:",
+    "byte_array": "Byte values are:",
+    "bool_array": "Boolean values are:",
+    "integer_array": "Integer values are:",
+    "double_array": "Double values are:",
+    "string_array": "String values are:",
 }
 _DESCRIBE_WORDS = {
-    "not_set": "not set", "bool": "boolean", "integer": "integer", "double": "double", "string": "string",
-    "byte_array": "byte array", "bool_array": "boolean array", "integer_array": "integer array",
-    "double_array": "double array", "string_array": "string array",
+    "not_set": "not set",
+    "bool": "boolean",
+    "integer": "integer",
+    "double": "double",
+    "string": "string",
+    "byte_array": "byte array",
+    "bool_array": "boolean array",
+    "integer_array": "integer array",
+    "double_array": "double array",
+    "string_array": "string array",
 }
 
 
@@ -41,14 +54,16 @@ def _kind(type_code: int) -> str:
 class _Remote:
     """Calls one node's parameter services from a CLI node (shared when one command asks several nodes)."""
 
-    def __init__(self, node_name: str, timeout_s: float, *, graph: Graph | None = None,
-                 me: bc.ToolNode | None = None) -> None:
+    def __init__(
+        self, node_name: str, timeout_s: float, *, graph: Graph | None = None, me: bc.ToolNode | None = None
+    ) -> None:
         g = graph or bc.graph()
         nodes = g.nodes()
         self.fqn = bc.resolve_name(g, node_name, nodes, "node")
         if self.fqn not in nodes:
-            raise ConfigError(f"unknown node {self.fqn}{suggest(self.fqn, nodes)}",
-                              hint="`diffctl node list` shows them")
+            raise ConfigError(
+                f"unknown node {self.fqn}{suggest(self.fqn, nodes)}", hint="`diffctl node list` shows them"
+            )
         self.timeout_s = timeout_s
         self._own = me is None
         self.me = me or bc.ToolNode(f"diffctl_param_{os.getpid()}")
@@ -59,8 +74,10 @@ class _Remote:
         client = node.create_client(cls(RCL + srv), f"{self.fqn}/{short}")
         try:
             if not client.wait_for_service(self.timeout_s):
-                raise BusError(f"node {self.fqn} offers no {short} service",
-                               hint="only nodes with parameter services answer `diffctl param`")
+                raise BusError(
+                    f"node {self.fqn} offers no {short} service",
+                    hint="only nodes with parameter services answer `diffctl param`",
+                )
             response = client.call(client.srv_type.Request(**request), timeout_sec=self.timeout_s)
             if response is None:
                 raise BusError(f"node {self.fqn} did not answer {short} within {self.timeout_s:g} s")
@@ -83,8 +100,9 @@ def _remote(node_name: str, timeout_s: float) -> _Remote:
     return _Remote(node_name, timeout_s)
 
 
-_TIMEOUT = click.option("--timeout", type=float, default=5.0, show_default=True,
-                        help="Seconds to wait for the node's services.")
+_TIMEOUT = click.option(
+    "--timeout", type=float, default=5.0, show_default=True, help="Seconds to wait for the node's services."
+)
 
 
 @click.group()
@@ -129,8 +147,11 @@ def param_list(node_name: str | None, param_type: bool, pattern: str | None, tim
                 continue  # a node without parameter services: ros2 param list skips it too
             if not node_name:
                 console.print(f"{remote.fqn}:", markup=False)
-            kinds = list(remote.call("get_parameter_types", "GetParameterTypes", names=names).types) \
-                if param_type and names else []
+            kinds = (
+                list(remote.call("get_parameter_types", "GetParameterTypes", names=names).types)
+                if param_type and names
+                else []
+            )
             for i, n in enumerate(names):
                 suffix = f" (type: {_kind(kinds[i])})" if param_type and kinds else ""
                 console.print(f"  {n}{suffix}", markup=False)
@@ -190,8 +211,9 @@ def param_set(node_name: str, name: str, value: str, timeout: float) -> None:
         resp = remote.call("set_parameters", "SetParameters", parameters=[parameter])
         result = resp.results[0]
         if not result.successful:
-            raise BusError(f"Setting parameter failed: {result.reason}" if result.reason
-                           else "Setting parameter failed")
+            raise BusError(
+                f"Setting parameter failed: {result.reason}" if result.reason else "Setting parameter failed"
+            )
         console.print("Set parameter successful", markup=False)
     finally:
         remote.close()
@@ -212,8 +234,10 @@ def param_describe(node_name: str, names: tuple[str, ...], timeout: float) -> No
     try:
         resp = remote.call("describe_parameters", "DescribeParameters", names=list(names))
         if not resp.descriptors:
-            raise ConfigError(f"node {remote.fqn} has no parameter named {' or '.join(names)}",
-                              hint=f"`diffctl param list {remote.fqn}` shows them")
+            raise ConfigError(
+                f"node {remote.fqn} has no parameter named {' or '.join(names)}",
+                hint=f"`diffctl param list {remote.fqn}` shows them",
+            )
         for msg in resp.descriptors:
             for line in _describe_lines(msg):
                 console.print(line, markup=False)
@@ -260,8 +284,13 @@ def nest(flat: dict[str, Any]) -> dict[str, Any]:
 
 @param.command("dump")
 @click.argument("node_name", metavar="NODE")
-@click.option("--output", "output", type=click.Path(dir_okay=False), default=None,
-              help="Write the YAML to this file instead of standard output.")
+@click.option(
+    "--output",
+    "output",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="Write the YAML to this file instead of standard output.",
+)
 @_TIMEOUT
 def param_dump(node_name: str, output: str | None, timeout: float) -> None:
     """Print NODE's parameters as a parameter file (`load` and `--params-file` read it back).
@@ -275,10 +304,12 @@ def param_dump(node_name: str, output: str | None, timeout: float) -> None:
         names = remote.names()
         values = remote.values(names) if names else []
         flat = {n: parameter_value_to_python(v) for n, v in zip(names, values, strict=False)}
-        flat = {n: ([b[0] for b in v] if isinstance(v, list) and v and isinstance(v[0], bytes) else v)
-                for n, v in flat.items() if v is not None}
-        text = yaml.safe_dump({remote.fqn: {"ros__parameters": nest(flat)}}, sort_keys=True,
-                              default_flow_style=False)
+        flat = {
+            n: ([b[0] for b in v] if isinstance(v, list) and v and isinstance(v[0], bytes) else v)
+            for n, v in flat.items()
+            if v is not None
+        }
+        text = yaml.safe_dump({remote.fqn: {"ros__parameters": nest(flat)}}, sort_keys=True, default_flow_style=False)
     finally:
         remote.close()
     if output:
@@ -303,8 +334,11 @@ def param_load(node_name: str, file: str, no_use_wildcard: bool, timeout: float)
     try:
         values = _file_values(file, remote.fqn, not no_use_wildcard)
         if not values:
-            raise ConfigError(f"no parameters for {remote.fqn} in the file", source=file,
-                              hint=f"sections are node names ({remote.fqn}) or /**, each with ros__parameters")
+            raise ConfigError(
+                f"no parameters for {remote.fqn} in the file",
+                source=file,
+                hint=f"sections are node names ({remote.fqn}) or /**, each with ros__parameters",
+            )
         params = []
         for name, value in values.items():
             try:
@@ -318,8 +352,9 @@ def param_load(node_name: str, file: str, no_use_wildcard: bool, timeout: float)
             if result.successful:
                 console.print(f"Set parameter {p.name} successful", markup=False)
             else:
-                console.print(f"Set parameter {p.name} failed" + (f": {result.reason}" if result.reason else ""),
-                              markup=False)
+                console.print(
+                    f"Set parameter {p.name} failed" + (f": {result.reason}" if result.reason else ""), markup=False
+                )
     finally:
         remote.close()
 

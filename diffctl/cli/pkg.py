@@ -56,9 +56,7 @@ def pkg_list() -> None:
     ws = find_workspace()
     scan = scan_workspace(ws) if ws is not None else None
     packages = list_packages(ws, scan=scan)
-    rows = [
-        (p.name, p.origin, p.build_type, str(p.source or p.prefix or p.share)) for p in packages
-    ]
+    rows = [(p.name, p.origin, p.build_type, str(p.source or p.prefix or p.share)) for p in packages]
     named = {p.name for p in packages}
     rows += [(name, "diffctl", "executables only", "") for name in sorted(component_packages() - named)]
     title = f"workspace: {ws}" if ws is not None else "no workspace (none encloses the current directory)"

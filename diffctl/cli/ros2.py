@@ -89,8 +89,7 @@ def main(argv: list[str] | None = None) -> None:
 
         hint = suggest(verb, list(VERBS))
         print(
-            f"error: ros2 verb {verb!r} is not available without ROS 2{hint}; "
-            f"diffctl's ros2 has: {', '.join(VERBS)}",
+            f"error: ros2 verb {verb!r} is not available without ROS 2{hint}; diffctl's ros2 has: {', '.join(VERBS)}",
             file=sys.stderr,
         )
         sys.exit(2)

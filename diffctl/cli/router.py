@@ -9,10 +9,20 @@ import click
 
 
 @click.command()
-@click.option("--listen", "listen", multiple=True, metavar="ENDPOINT",
-              help="Endpoint to listen on (repeatable). Default: $DIFFCTL_ROUTER or tcp/127.0.0.1:7447.")
-@click.option("--config", "config_file", type=click.Path(dir_okay=False), default=None,
-              help="A Zenoh JSON5 config file (TLS, user/password, access control, several listeners).")
+@click.option(
+    "--listen",
+    "listen",
+    multiple=True,
+    metavar="ENDPOINT",
+    help="Endpoint to listen on (repeatable). Default: $DIFFCTL_ROUTER or tcp/127.0.0.1:7447.",
+)
+@click.option(
+    "--config",
+    "config_file",
+    type=click.Path(dir_okay=False),
+    default=None,
+    help="A Zenoh JSON5 config file (TLS, user/password, access control, several listeners).",
+)
 def router(listen: tuple[str, ...], config_file: str | None) -> None:
     """Run a Zenoh router until Ctrl-C. Loopback only unless --listen or --config says otherwise.
 

@@ -47,8 +47,10 @@ def list_(show_types: bool, verbose: bool) -> None:
     g = bc.graph()
     topics = g.topics()
     if verbose:
-        for title, fn, noun in (("Published topics:", g.publishers, "publisher"),
-                                ("Subscribed topics:", g.subscribers, "subscriber")):
+        for title, fn, noun in (
+            ("Published topics:", g.publishers, "publisher"),
+            ("Subscribed topics:", g.subscribers, "subscriber"),
+        ):
             console.print(title)
             for name, ts in topics.items():
                 n = len(fn(name))
@@ -93,8 +95,9 @@ def _yaml(d: Any) -> str:
 @click.option("--field", default=None, help="Print only this field, e.g. twist.linear.")
 @click.option("--no-arr", is_flag=True, help="Print array lengths instead of array contents.")
 @click.option("--timeout", type=float, default=None, help="Give up after this many seconds without a message.")
-def echo(topic_name: str, typename: str | None, once: bool, field: str | None, no_arr: bool,
-         timeout: float | None) -> None:
+def echo(
+    topic_name: str, typename: str | None, once: bool, field: str | None, no_arr: bool, timeout: float | None
+) -> None:
     """Print messages of TOPIC as YAML documents separated by ---.
 
     \b
@@ -154,10 +157,17 @@ def _stamp_fields(msg: Any) -> list[Any]:
 @click.option("-r", "--rate", type=float, default=None, help="Publishing rate in Hz (default 1).")
 @click.option("-1", "--once", is_flag=True, help="Publish one message and exit.")
 @click.option("-t", "--times", type=int, default=None, help="Publish this many messages and exit.")
-@click.option("-w", "--wait-matching-subscriptions", "wait_subs", type=int, default=None,
-              help="Wait for this many subscribers before publishing (default 1 with --once/--times).")
-def pub(topic_name: str, args: tuple[str, ...], rate: float | None, once: bool, times: int | None,
-        wait_subs: int | None) -> None:
+@click.option(
+    "-w",
+    "--wait-matching-subscriptions",
+    "wait_subs",
+    type=int,
+    default=None,
+    help="Wait for this many subscribers before publishing (default 1 with --once/--times).",
+)
+def pub(
+    topic_name: str, args: tuple[str, ...], rate: float | None, once: bool, times: int | None, wait_subs: int | None
+) -> None:
     """Publish VALUES (ROS YAML) on TOPIC; TYPE may be left out when the graph knows the topic.
 
     A zero header stamp is filled with the current time (sim time when /clock runs).
@@ -170,8 +180,13 @@ def pub(topic_name: str, args: tuple[str, ...], rate: float | None, once: bool, 
     if len(args) > 2:
         raise ConfigError(f"too many arguments: {' '.join(args)}", hint="expected [TYPE] VALUES (quote VALUES)")
     typename, values_text = (args[0], args[1]) if len(args) == 2 else (None, args[0] if args else None)
-    if typename is None and values_text is not None and not values_text.lstrip().startswith(("{", "-")) \
-            and "/" in values_text and ":" not in values_text:
+    if (
+        typename is None
+        and values_text is not None
+        and not values_text.lstrip().startswith(("{", "-"))
+        and "/" in values_text
+        and ":" not in values_text
+    ):
         typename, values_text = values_text, None  # `topic pub /x pkg/msg/T` with no values
     if rate is not None and not (math.isfinite(rate) and rate > 0):
         raise ConfigError(f"--rate {rate!r} must be a positive number of Hz")
@@ -218,8 +233,11 @@ def pub(topic_name: str, args: tuple[str, ...], rate: float | None, once: bool, 
         publisher.publish(msg)
         n += 1
         if n == 1 or count is not None:
-            console.print(f"publisher: beginning loop\npublishing #{n}: {types.to_dict(msg)}" if n == 1
-                          else f"publishing #{n}", markup=False, highlight=False)
+            console.print(
+                f"publisher: beginning loop\npublishing #{n}: {types.to_dict(msg)}" if n == 1 else f"publishing #{n}",
+                markup=False,
+                highlight=False,
+            )
         if count is not None and n >= count:
             break
         nxt += period
@@ -264,8 +282,11 @@ def hz(topic_name: str, window: int, reports: int | None) -> None:
         d = [b - a for a, b in itertools.pairwise(ts)]
         mean = statistics.fmean(d)
         sd = statistics.pstdev(d) if len(d) > 1 else 0.0
-        console.print(f"average rate: {1.0 / mean:.3f}\n\tmin: {min(d):.3f}s max: {max(d):.3f}s "
-                      f"std dev: {sd:.5f}s window: {len(d)}", markup=False)
+        console.print(
+            f"average rate: {1.0 / mean:.3f}\n\tmin: {min(d):.3f}s max: {max(d):.3f}s "
+            f"std dev: {sd:.5f}s window: {len(d)}",
+            markup=False,
+        )
         done += 1
         if reports is not None and done >= reports:
             break
@@ -288,16 +309,18 @@ def info_(topic_name: str, verbose: bool) -> None:
     if not ts:
         raise ConfigError(f"unknown topic {name}", hint="`diffctl topic list` shows the topics that exist")
     pubs, subs = g.publishers(name), g.subscribers(name)
-    console.print(f"Type: {', '.join(ts)}\nPublisher count: {len(pubs)}\nSubscription count: {len(subs)}",
-                  markup=False)
+    console.print(f"Type: {', '.join(ts)}\nPublisher count: {len(pubs)}\nSubscription count: {len(subs)}", markup=False)
     if verbose:
         for title, ents in (("Publishers", pubs), ("Subscriptions", subs)):
             console.print(f"\n{title}:", markup=False)
             for e in ents:
-                console.print(f"Node name: {e.node}\nNode namespace: {e.namespace}\nTopic type: {e.type}\n"
-                              f"Topic type hash: {e.type_hash}\nEndpoint type: "
-                              f"{'PUBLISHER' if e in pubs else 'SUBSCRIPTION'}\nGID: {e.gid.hex('.')}\n"
-                              f"QoS profile:\n{qos_text(e.qos_profile)}\n", markup=False)
+                console.print(
+                    f"Node name: {e.node}\nNode namespace: {e.namespace}\nTopic type: {e.type}\n"
+                    f"Topic type hash: {e.type_hash}\nEndpoint type: "
+                    f"{'PUBLISHER' if e in pubs else 'SUBSCRIPTION'}\nGID: {e.gid.hex('.')}\n"
+                    f"QoS profile:\n{qos_text(e.qos_profile)}\n",
+                    markup=False,
+                )
     if len(ts) > 1:
         detail = "; ".join(bc.fmt_endpoint(e) for e in pubs + subs)
         warn(f"type mismatch on {name}: {' vs '.join(ts)} — these endpoints never exchange messages ({detail})")
@@ -312,10 +335,12 @@ def qos_text(q: wire.QoS | None) -> str:
         return "Infinite" if ns is None else f"{ns} nanoseconds"
 
     history = "KEEP_ALL" if q.keep_all else f"KEEP_LAST ({q.depth})"
-    return (f"  Reliability: {'RELIABLE' if q.reliable else 'BEST_EFFORT'}\n  History (Depth): {history}\n"
-            f"  Durability: {'TRANSIENT_LOCAL' if q.transient_local else 'VOLATILE'}\n"
-            f"  Lifespan: {duration(q.lifespan_ns)}\n  Deadline: {duration(q.deadline_ns)}\n"
-            "  Liveliness: AUTOMATIC\n  Liveliness lease duration: Infinite")
+    return (
+        f"  Reliability: {'RELIABLE' if q.reliable else 'BEST_EFFORT'}\n  History (Depth): {history}\n"
+        f"  Durability: {'TRANSIENT_LOCAL' if q.transient_local else 'VOLATILE'}\n"
+        f"  Lifespan: {duration(q.lifespan_ns)}\n  Deadline: {duration(q.deadline_ns)}\n"
+        "  Liveliness: AUTOMATIC\n  Liveliness lease duration: Infinite"
+    )
 
 
 @topic.command("type")
@@ -334,6 +359,3 @@ def type_(topic_name: str) -> None:
         raise ConfigError(f"unknown topic {name}", hint="`diffctl topic list` shows the topics that exist")
     for t in ts:
         console.print(t, markup=False)
-
-
-

@@ -31,8 +31,6 @@ from typing import Any
 from diffctl.supervision.fork_server import ForkServer
 from diffctl.supervision.spawner import OutputSink, PosixSpawner, SpawnRequest, _Child, _close, _group_alive
 
-logger = logging.getLogger("launch.supervision")
-
 PR_SET_PDEATHSIG = 1
 PR_SET_CHILD_SUBREAPER = 36
 LINGER_POLL_S = 0.05
@@ -56,8 +54,9 @@ class LauncherSpawner(PosixSpawner):
         signal_scope: str = "group",
         linger_kill_s: float = 5.0,
         term_timeout_s: float = 2.0,
+        logger: logging.Logger | None = None,
     ) -> None:
-        super().__init__(term_timeout_s=term_timeout_s)
+        super().__init__(term_timeout_s=term_timeout_s, logger=logger)
         if signal_scope not in ("group", "process"):
             raise ValueError(f"signal_scope {signal_scope!r}: 'group' or 'process'")
         self.fork_server = fork_server
@@ -146,16 +145,16 @@ class LauncherSpawner(PosixSpawner):
         if not _group_alive(child.pgid):
             self._forget(child.pgid)
             return
-        logger.warning(f"[{child.name}] exited but left processes in its group; sending them SIGTERM")
+        self.logger.warning(f"[{child.name}] exited but left processes in its group; sending them SIGTERM")
         _killpg(child.pgid, signal.SIGTERM)
         started = child.loop.time()
 
         def check() -> None:
             if not _group_alive(child.pgid):
-                logger.info(f"[{child.name}] the rest of its process group is gone")
+                self.logger.info(f"[{child.name}] the rest of its process group is gone")
                 self._forget(child.pgid)
             elif child.loop.time() - started >= self.linger_kill_s:
-                logger.warning(
+                self.logger.warning(
                     f"[{child.name}] its process group outlived SIGTERM by {self.linger_kill_s:g} s: SIGKILL"
                 )
                 _killpg(child.pgid, signal.SIGKILL)
