@@ -17,6 +17,7 @@ import os
 import signal
 import sys
 import time
+import traceback
 from pathlib import Path
 from typing import Any
 
@@ -254,20 +255,37 @@ def _start_fork_server(run_dir: Path) -> Any:
 
 
 def _load(path: Path) -> Any:
-    """The file's LaunchDescription, by the frontend its name calls for; errors name the file (and line)."""
+    """The file's LaunchDescription, by the frontend its name calls for; errors are one line naming the file
+    and line (what the frontend of the file's kind raised, not what the other frontends made of it)."""
+    from diffctl.launch.invalid_launch_file_error import InvalidLaunchFileError
     from diffctl.launch.launch_description_sources import get_launch_description_from_any_launch_file
 
     try:
         return get_launch_description_from_any_launch_file(str(path))
     except DiffctlError:
         raise
+    except InvalidLaunchFileError as e:
+        cause = e.__cause__ if e.__cause__ is not None else e
+        if isinstance(cause, DiffctlError):
+            raise cause from None
+        raise LaunchError(_one_line(cause, path)) from None
     except Exception as e:
         raise LaunchError(_one_line(e, path)) from None
 
 
 def _one_line(e: BaseException, path: Path) -> str:
-    text = str(e).strip() or type(e).__name__
-    return text if str(path) in text else f"{path}: {text}"
+    """`FILE:LINE: what`: the file's line where Python raised, when the error is not located already."""
+    text = " ".join(str(e).split()) or type(e).__name__
+    if str(path) in text:
+        return text
+    line = None
+    for frame in traceback.extract_tb(e.__traceback__):
+        if os.path.abspath(frame.filename) == os.path.abspath(path):
+            line = frame.lineno
+    if isinstance(e, SyntaxError) and e.lineno is not None:
+        line = e.lineno
+    where = f"{path}:{line}" if line is not None else str(path)
+    return f"{where}: {type(e).__name__}: {text}" if not isinstance(e, DiffctlError) else f"{where}: {text}"
 
 
 def _check_arguments(description: Any, arguments: dict[str, str], path: Path) -> None:

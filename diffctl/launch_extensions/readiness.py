@@ -72,7 +72,11 @@ class Condition:
 def _describe_target(target: Any) -> str:
     if isinstance(target, Action):
         names = process_names(target)
-        return min(names, key=len) if names else type(target).__name__
+        if names:
+            return min(names, key=len)
+        description = getattr(target, "process_description", None)
+        given = getattr(description, "name", None) or (getattr(description, "cmd", None) or [None])[0]
+        return _describe_target(given) if given else type(target).__name__
     return "".join(getattr(s, "text", None) or s.describe() for s in target)
 
 
@@ -166,6 +170,9 @@ class WaitFor(Action):
 
     def describe(self) -> str:
         return f"WaitFor({', '.join(c.describe() for c in self.conditions)})"
+
+    def __repr__(self) -> str:  # what launch's introspector (`--print`) shows of an action it does not know
+        return self.describe()
 
     def describe_conditional_sub_entities(self) -> list[tuple[str, Iterable[LaunchDescriptionEntity]]]:
         what = " and ".join(c.describe() for c in self.conditions)

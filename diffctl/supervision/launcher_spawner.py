@@ -25,6 +25,7 @@ import os
 import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 from typing import Any
 
@@ -71,6 +72,7 @@ class LauncherSpawner(PosixSpawner):
         self._sigchld_loop: asyncio.AbstractEventLoop | None = None
         self._previous_sigchld: Any = None
         self._fork_lock: asyncio.Lock | None = None
+        self._lingering: dict[int, str] = {}  # pgid → name: groups whose leader exited, sent SIGTERM
         if self._prctl is not None:
             self._prctl(PR_SET_CHILD_SUBREAPER, 1, 0, 0, 0)
         self.preexec_fn = self._preexec if self._prctl is not None else None
@@ -148,11 +150,13 @@ class LauncherSpawner(PosixSpawner):
         self.logger.warning(f"[{child.name}] exited but left processes in its group; sending them SIGTERM")
         _killpg(child.pgid, signal.SIGTERM)
         started = child.loop.time()
+        self._lingering[child.pgid] = child.name
 
         def check() -> None:
+            if child.pgid not in self._lingering:
+                return  # seen to by shutdown()
             if not _group_alive(child.pgid):
-                self.logger.info(f"[{child.name}] the rest of its process group is gone")
-                self._forget(child.pgid)
+                self._gone(child.pgid)
             elif child.loop.time() - started >= self.linger_kill_s:
                 self.logger.warning(
                     f"[{child.name}] its process group outlived SIGTERM by {self.linger_kill_s:g} s: SIGKILL"
@@ -163,6 +167,12 @@ class LauncherSpawner(PosixSpawner):
                 child.loop.call_later(LINGER_POLL_S, check)
 
         child.loop.call_later(LINGER_POLL_S, check)
+
+    def _gone(self, pgid: int) -> None:
+        name = self._lingering.pop(pgid, None)
+        if name is not None:
+            self.logger.info(f"[{name}] the rest of its process group is gone")
+        self._forget(pgid)
 
     def _forget(self, pgid: int) -> None:
         if pgid in self._groups:
@@ -231,6 +241,13 @@ class LauncherSpawner(PosixSpawner):
     # ---- the end -----------------------------------------------------------------------------------------------
 
     async def shutdown(self) -> None:
+        # What finished leaders left was sent SIGTERM already: the launch ends once it is gone (SIGKILL after
+        # `linger_kill_s`), not with a second round of signals.
+        deadline = time.monotonic() + self.linger_kill_s
+        while self._lingering and time.monotonic() < deadline:
+            await asyncio.sleep(LINGER_POLL_S)
+            for pgid in [p for p in self._lingering if not _group_alive(p)]:
+                self._gone(pgid)
         await super().shutdown()
         self.reap_orphans()
         for pgid in list(self._groups):

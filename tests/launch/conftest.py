@@ -1,4 +1,4 @@
-"""Fixtures for the launch engine: a real launcher run that can never leak, and fakes for the supervisor.
+"""`diffctl launch` as a user runs it: a real launcher run that can never leak.
 
 Every launcher started here gets a unique DIFFCTL_TEST_TAG in its environment, which all its descendants
 inherit; `tagged(tag)` finds any of them still alive (even orphans re-parented to init), and teardown
@@ -7,7 +7,6 @@ SIGKILLs them, so a failing test leaves nothing behind either.
 
 from __future__ import annotations
 
-import io
 import os
 import re
 import signal
@@ -20,15 +19,6 @@ from pathlib import Path
 
 import psutil
 import pytest
-
-from diffctl.launch_legacy.loader import load
-from diffctl.launch_legacy.output import Output
-from diffctl.launch_legacy.plan import Plan
-from diffctl.launch_legacy.process_state import Child
-from diffctl.launch_legacy.resolver import resolve
-from diffctl.launch_legacy.supervisor import Supervisor
-
-DATA = Path(__file__).parent / "data"
 
 
 def tagged(tag: str) -> list[psutil.Process]:
@@ -121,121 +111,3 @@ def launch_run(tmp_path: Path) -> Iterator:
     finally:
         for run in runs:
             run.close()
-
-
-# ---- fakes for unit tests of the supervisor ------------------------------------------------------------------
-
-
-class FakeClock:
-    def __init__(self) -> None:
-        self.t = 0.0
-
-    def monotonic(self) -> float:
-        return self.t
-
-
-class FakeSpawner:
-    """Records spawns and signals; a test ends processes with `exit(name, code)`."""
-
-    def __init__(self) -> None:
-        self.next_pid = 1000
-        self.alive: set[int] = set()
-        self.pids: dict[str, int] = {}
-        self.spawned: list[tuple[float, str, list[str]]] = []
-        self.envs: dict[str, dict[str, str]] = {}
-        self.signals: list[tuple[float, str, str]] = []
-        self.names: dict[int, str] = {}
-        self.cannot_start: set[str] = set()
-        self.dying: list[tuple[int, int]] = []
-        self.ignore: dict[str, set[int]] = {}  # process name → signals it survives
-        self.clock: FakeClock | None = None
-        self.supervisor: Supervisor | None = None
-
-    def spawn(self, name: str, argv: list[str], env: dict[str, str], cwd: str | None, interactive: bool) -> Child:
-        if name in self.cannot_start:
-            raise FileNotFoundError(2, "No such file or directory")
-        pid = self.next_pid
-        self.next_pid += 1
-        self.alive.add(pid)
-        self.pids[name] = pid
-        self.names[pid] = name
-        self.spawned.append((self.clock.t if self.clock else 0.0, name, argv))
-        self.envs[name] = env
-        return Child(pid, pid)
-
-    def signal_group(self, child: Child, sig: int) -> bool:
-        if child.pgid not in self.alive:
-            return False
-        name = self.names[child.pid]
-        self.signals.append((self.clock.t if self.clock else 0.0, name, signal.Signals(sig).name))
-        if sig != 0 and sig not in self.ignore.get(name, set()):
-            self.dying.append((child.pid, -sig))  # delivered later, as a real SIGCHLD would be
-        return True
-
-    def deliver(self) -> None:
-        while self.dying:
-            pid, code = self.dying.pop(0)
-            if pid in self.alive:
-                self.alive.discard(pid)
-                assert self.supervisor is not None
-                self.supervisor.on_exit(pid, code)
-
-    def group_alive(self, child: Child) -> bool:
-        return child.pgid in self.alive
-
-    def forget(self, child: Child) -> None:
-        pass
-
-    def exit(self, name: str, code: int) -> None:
-        pid = self.pids[name]
-        assert pid in self.alive, f"{name} is not running"
-        self.alive.discard(pid)
-        assert self.supervisor is not None
-        self.supervisor.on_exit(pid, code)
-
-    def starts(self, name: str) -> list[float]:
-        return [t for t, n, _ in self.spawned if n == name]
-
-
-class FakeRun:
-    def __init__(self, plan: Plan, tmp: Path) -> None:
-        self.clock = FakeClock()
-        self.spawner = FakeSpawner()
-        self.spawner.clock = self.clock
-        self.out = io.StringIO()
-        self.output = Output(stream=self.out, live=False, log_dir=tmp / "logs", no_color=True)
-        self.sup = Supervisor(
-            plan,
-            spawner=self.spawner,
-            output=self.output,
-            clock=self.clock,
-            log_dir=tmp / "logs",
-            env={"PATH": os.environ.get("PATH", "")},
-        )
-        self.spawner.supervisor = self.sup
-
-    def advance(self, dt: float, step: float = 0.05) -> None:
-        end = self.clock.t + dt
-        self.spawner.deliver()
-        while self.clock.t < end - 1e-9:
-            self.clock.t = min(end, self.clock.t + step)
-            self.sup.tick()
-            self.spawner.deliver()
-
-    def text(self) -> str:
-        return self.out.getvalue()
-
-
-@pytest.fixture
-def fake_run(tmp_path: Path):
-    """fake_run(text) → a FakeRun of that YAML (or, with suffix=".launch.py", Python) description, started."""
-
-    def make(text: str, arguments: dict[str, str] | None = None, start: bool = True, suffix: str = ".yaml") -> FakeRun:
-        path = tmp_path / f"case{len(list(tmp_path.glob('case*')))}{suffix}"
-        path.write_text(text)
-        run = FakeRun(resolve(load(path), arguments or {}, str(path)), tmp_path)
-        if start:
-            run.sup.start()
-        return run
-
-    return make

@@ -1,0 +1,332 @@
+"""`diffctl launch` with real processes: ordering, stopping, respawn, required processes, the exit codes, bad input.
+
+Each launcher runs `python -m diffctl launch … --no-router`; the fixture finds every descendant by an
+environment tag, so "nothing left behind" is checked against the whole system, orphans included.
+"""
+
+from __future__ import annotations
+
+import re
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+DATA = Path(__file__).parent / "data"
+STEP = DATA / "step.py"
+CHAIN = Path(__file__).parents[1] / "launch_extensions" / "data" / "chain.yaml"
+PY = f"python:={sys.executable}"
+
+
+def assert_nothing_left(run, within_s: float = 2.0) -> None:
+    deadline = time.monotonic() + within_s
+    while run.leftovers() and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert [p.cmdline() for p in run.leftovers()] == []
+
+
+def write(tmp_path: Path, text: str, name: str = "t.yaml") -> Path:
+    path = tmp_path / name
+    path.write_text(text)
+    return path
+
+
+def cli(*args: str, timeout_s: float = 60) -> subprocess.CompletedProcess[str]:
+    return subprocess.run(
+        [sys.executable, "-m", "diffctl", "launch", *args], capture_output=True, text=True, timeout=timeout_s
+    )
+
+
+def test_the_start_up_chain_runs_in_order_and_the_launch_ends_by_itself(launch_run, tmp_path) -> None:
+    record = tmp_path / "record"
+    run = launch_run(str(CHAIN), PY, f"step:={STEP}", f"record:={record}", "--no-router")
+    assert run.wait(60) == 0, run.text()
+    ran = record.read_text().split()
+    assert ran[:5] == ["sim", "sim:printed", "spawn_entity", "base_spawner", "jsb_spawner"]
+    assert sorted(ran[5:]) == ["viz", "viz_up"]
+    assert re.search(r"all \d+ processes started in \d+ ms", run.text())
+    assert_nothing_left(run)
+
+
+def test_ctrl_c_stops_every_group_escalating_for_a_stubborn_child(launch_run) -> None:
+    run = launch_run(str(DATA / "supervise.yaml"), PY, "--no-router", "--output-default", "log")
+    run.wait_for(r"all 4 processes started", timeout_s=60)
+    for name, line in (("stubborn", "ignoring SIGINT and SIGTERM"), ("talker", "hello")):
+        deadline = time.monotonic() + 30  # both print, into their own log files only
+        while not any(line in p.read_text() for p in run.log_dir.glob(f"{name}-*.log")):
+            assert time.monotonic() < deadline, f"{name} never printed {line!r}"
+            time.sleep(0.05)
+    run.signal(signal.SIGUSR1)
+    run.wait_for(r"process +┃ pid +┃ state +┃ restarts +┃ uptime +┃ exit code")
+    run.wait_for(r"│ talker-\d+ +│ \d+ +│ running +│ 0 +│ \d")
+    t0 = time.monotonic()
+    run.signal(signal.SIGINT)
+    assert run.wait(30) == 0, run.text()
+    took = time.monotonic() - t0
+    text = run.text()
+    assert re.search(
+        r"process\[stubborn-\d+\] failed to terminate '0.3' seconds after receiving 'SIGINT', "
+        r"escalating to 'SIGTERM'",
+        text,
+    ), text
+    assert re.search(r"escalating to 'SIGKILL'", text)
+    assert re.search(r"\[stubborn-\d+\]: process has died \[pid \d+, exit code -9", text)
+    assert took < 0.3 + 0.6 + 5, took  # generous: the machine is shared
+    talker = next(p for p in run.log_dir.glob("talker-*.log"))
+    assert talker.read_text() == "hello\n"  # every process has its own log file…
+    assert not re.search(r"\[talker-\d+\] hello", text)  # …and `output: log` keeps stdout off the screen
+    assert "user interrupted with ctrl-c (SIGINT)" in (run.log_dir / "launch.log").read_text()
+    assert f"logs: {run.log_dir}" in text
+    assert_nothing_left(run)
+
+
+def test_sigkill_of_the_launcher_takes_every_descendant_with_it(launch_run) -> None:
+    run = launch_run(str(DATA / "supervise.yaml"), PY, "--no-router")
+    run.wait_for(r"\[stubborn-\d+\] ignoring SIGINT and SIGTERM", timeout_s=60)
+    deadline = time.monotonic() + 10
+    while not any(" ".join(p.cmdline()) == "sleep 61" for p in run.leftovers()):
+        assert time.monotonic() < deadline, "the shell's grandchild never started"
+        time.sleep(0.05)
+    run.signal(signal.SIGKILL)
+    run.wait(5)
+    assert_nothing_left(run)  # the guard and the death signal, also for the shell's grandchild
+
+
+def test_ctrl_c_during_start_up_leaves_nothing_behind(launch_run, tmp_path) -> None:
+    lines = ["launch:"]
+    lines += [f"- executable: {{name: p{i}, cmd: 'sleep 60'}}" for i in range(40)]
+    lines += ["- wait_for: {started: p39, children: [{executable: {name: gated, cmd: 'sleep 60'}}]}"]
+    lines += ["- timer: {period: 1.5, children: [{executable: {name: late, cmd: 'sleep 60'}}]}"]
+    run = launch_run(str(write(tmp_path, "\n".join(lines) + "\n")), "--no-router")
+    run.wait_for(r"\[p0-\d+\]: process started")
+    run.signal(signal.SIGINT)
+    assert run.wait(30) == 0, run.text()
+    assert not re.search(r"\[late-\d+\]: process started", run.text())
+    assert_nothing_left(run)
+
+
+def test_respawn_retries_then_the_launch_reports_the_failure(launch_run, tmp_path) -> None:
+    record = tmp_path / "record"
+    path = write(
+        tmp_path,
+        f"""
+launch:
+- executable:
+    name: flaky
+    cmd: "{sys.executable} {STEP} {record} flaky --exit 3"
+    respawn: "true"
+    respawn_delay: 0.2
+    respawn_max_retries: 2
+""",
+    )
+    t0 = time.monotonic()
+    run = launch_run(str(path), "--no-router")
+    assert run.wait(30) == 1, run.text()
+    assert record.read_text().split() == ["flaky"] * 3
+    assert time.monotonic() - t0 > 0.4  # two respawn delays
+    assert re.search(r"launch failed: failed: flaky-\d+ \(exit code 3\)", run.text()), run.text()
+
+
+def test_a_required_process_that_dies_brings_everything_down(launch_run, tmp_path) -> None:
+    path = write(
+        tmp_path,
+        f"""
+launch:
+- executable: {{name: worker, cmd: "sleep 60"}}
+- executable:
+    name: sim
+    cmd: "{sys.executable} {STEP} - sim --print 'physics diverged' --sleep 0.3 --exit 4"
+    on_exit: shutdown
+""",
+    )
+    run = launch_run(str(path), "--no-router")
+    assert run.wait(30) == 1, run.text()
+    text = run.text()
+    assert re.search(r"launch failed: required process 'sim-\d+' ended with exit code 4", text), text
+    assert re.search(r"\[worker-\d+\]: process has died \[pid \d+, exit code -2", text)
+    assert_nothing_left(run)
+
+
+@pytest.mark.parametrize(
+    ("name", "text", "where", "pattern"),
+    [
+        ("bad.yaml", "launch:\n- executable: {cmd: 'sleep 60', name: ok}\n- nod: {pkg: a, exec: b}\n", 3, "nod"),
+        ("bad.launch.xml", '<launch>\n  <log mesage="x"/>\n</launch>\n', 2, "'message'"),
+        (
+            "bad.launch.py",
+            "from launch import LaunchDescription\n\ndef generate_launch_description():\n"
+            "    return LaunchDescription([undefined_name])\n",
+            4,
+            "undefined_name",
+        ),
+    ],
+)
+def test_a_bad_launch_file_is_one_line_naming_file_and_line_exit_2_nothing_started(
+    launch_run, tmp_path, name: str, text: str, where: int, pattern: str
+) -> None:
+    path = write(tmp_path, text, name)
+    run = launch_run(str(path))
+    assert run.wait(30) == 2, run.text()
+    errors = [line for line in run.text().splitlines() if line.startswith("error:")]
+    assert len(errors) == 1 and f"{path}:{where}" in errors[0] and pattern in errors[0], run.text()
+    assert "process started" not in run.text()
+    assert run.leftovers() == []
+
+
+@pytest.mark.parametrize(
+    ("body", "pattern"),
+    [
+        (  # a custom action that raises
+            "from launch import LaunchDescription\nfrom launch.action import Action\n\n"
+            "class Boom(Action):\n    def execute(self, context):\n        raise RuntimeError('boom')\n\n"
+            "def generate_launch_description():\n",
+            r"t\.launch\.py:6.*boom",
+        ),
+        (  # a substitution that fails
+            "from launch import LaunchDescription\nfrom launch.actions import LogInfo\n"
+            "from launch.substitutions import EnvironmentVariable\n\n\n\n\n"
+            "def generate_launch_description():\n",
+            r"DIFFCTL_T_NEVER_SET",
+        ),
+    ],
+)
+def test_an_error_while_the_launch_runs_stops_everything_and_exits_2(
+    launch_run, tmp_path, body: str, pattern: str
+) -> None:
+    failing = "Boom()" if "Boom" in body else "LogInfo(msg=EnvironmentVariable('DIFFCTL_T_NEVER_SET'))"
+    text = (
+        body
+        + "    from launch.actions import ExecuteProcess, TimerAction\n"
+        + "    return LaunchDescription([ExecuteProcess(cmd=['sleep', '60'], name='early'),\n"
+        + f"        TimerAction(period=0.5, actions=[{failing}])])\n"
+    )
+    run = launch_run(str(write(tmp_path, text, "t.launch.py")), "--no-router")
+    assert run.wait(30) == 2, run.text()
+    caught = [line for line in run.text().splitlines() if "Caught exception in launch" in line]
+    assert len(caught) == 1 and re.search(pattern, caught[0]), run.text()
+    assert_nothing_left(run)
+
+
+def test_arguments_are_checked_before_anything_starts(tmp_path) -> None:
+    path = write(
+        tmp_path,
+        "launch:\n- arg: {name: color, default: red, choices: [red, blue]}\n- arg: {name: robot}\n"
+        "- executable: {cmd: 'sleep 60', name: never}\n",
+    )
+    done = cli(str(path), "--no-router", "color:=blue")
+    assert done.returncode == 2 and "missing required launch argument 'robot'" in done.stderr, done.stderr
+    assert "its arguments: color, robot" in done.stderr
+    done = cli(str(path), "--no-router", "robot:=r2", "color:=green", "colour:=x")
+    assert done.returncode == 2 and "argument 'color' is 'green', not one of its choices" in done.stderr
+    assert "argument 'colour' is not declared by t.yaml (did you mean 'color'?)" in done.stderr
+    # ros2 launch (Jazzy): `Caught exception in launch … Argument "color" provided value "green" is not valid`, rc 1
+    done = cli(str(path), "--no-router", "--exit-code", "ros", "robot:=r2", "color:=green")
+    assert done.returncode == 1, done.stderr
+
+
+def test_show_args_prints_what_ros2_launch_show_args_prints(tmp_path) -> None:
+    # Expected text: `ros2 launch FILE --show-args` of the real Jazzy launch/launch_yaml on these very files.
+    path = write(
+        tmp_path,
+        "launch:\n"
+        "- arg: {name: robot, default: bot, description: robot name}\n"
+        "- arg: {name: mode, default: a, choice: [{value: a}, {value: b}]}\n"
+        "- arg: {name: pick, default: x, description: pick one, choice: [{value: x}, {value: y}]}\n"
+        "- arg: {name: req}\n",
+        "args.launch.yaml",
+    )
+    done = cli(str(path), "--show-args")
+    assert done.returncode == 0, done.stderr
+    assert done.stdout == (
+        "Arguments (pass arguments as '<name>:=<value>'):\n"
+        "\n    'robot':\n        robot name\n        (default: 'bot')\n"
+        "\n    'mode':\n        One of: ['a', 'b']\n        (default: 'a')\n"
+        "\n    'pick':\n        pick one. Valid choices are: ['x', 'y']\n        (default: 'x')\n"
+        "\n    'req':\n        no description given\n"
+    )
+    subs = write(
+        tmp_path,
+        'launch:\n- arg: {name: a, default: x}\n- arg: {name: b, default: "pre-$(var a)"}\n'
+        '- arg: {name: c, default: "$(env HOME)/x"}\n',
+        "subs.launch.yaml",
+    )
+    assert cli(str(subs), "--show-args").stdout.endswith(
+        "\n    'b':\n        no description given\n        (default: 'pre-' + LaunchConfig('a'))\n"
+        "\n    'c':\n        no description given\n        (default: EnvVar('HOME') + '/x')\n"
+    )
+    empty = write(tmp_path, "launch:\n- log: {message: x}\n", "none.launch.yaml")
+    assert (
+        cli(str(empty), "--show-args").stdout == "Arguments (pass arguments as '<name>:=<value>'):\n\n  No arguments.\n"
+    )
+
+
+def test_print_describes_the_entities_and_runs_no_user_code(tmp_path) -> None:
+    marker = tmp_path / "ran"
+    path = write(
+        tmp_path,
+        "from launch import LaunchDescription\nfrom launch.actions import ExecuteProcess, OpaqueFunction\n"
+        "from diffctl.launch_extensions import WaitFor\n\n"
+        "def touch(context):\n"
+        f"    open({str(marker)!r}, 'w').close()\n\n"
+        "def generate_launch_description():\n"
+        "    sim = ExecuteProcess(cmd=['sleep', '1'], name='sim')\n"
+        "    return LaunchDescription([sim, OpaqueFunction(function=touch),\n"
+        "        WaitFor([WaitFor.exited(sim)], actions=[ExecuteProcess(cmd=['true'], name='after')])])\n",
+        "p.launch.py",
+    )
+    done = cli(str(path), "--print")
+    assert done.returncode == 0, done.stderr
+    assert not marker.exists()  # ros2 launch --print calls no OpaqueFunction; nor does diffctl
+    assert "ExecuteProcess(cmd=['sleep', '1']" in done.stdout and "WaitFor(exited sim)" in done.stdout
+
+
+def test_a_background_job_left_by_a_finished_shell_gets_sigterm_at_once(launch_run, tmp_path) -> None:
+    # A non-interactive shell's background job ignores SIGINT; waiting out a timeout for it would only delay
+    # the inevitable.
+    path = write(tmp_path, "launch:\n- executable: {cmd: \"sh -c 'sleep 300 & sleep 1; exit 0'\", name: bg}\n")
+    run = launch_run(str(path), "--no-router")
+    run.wait_for(r"\[bg-\d+\] exited but left processes in its group; sending them SIGTERM", timeout_s=30)
+    run.wait_for(r"\[bg-\d+\] the rest of its process group is gone", timeout_s=30)
+    assert run.wait(30) == 0, run.text()
+    assert_nothing_left(run)
+
+
+def test_children_and_command_substitutions_find_the_venvs_tools_and_jazzys_environment(launch_run, tmp_path) -> None:
+    bindir = str(Path(sys.executable).parent)
+    path = write(
+        tmp_path,
+        "<launch>\n"
+        "  <log message=\"command: $(command 'sh -c \\'command -v xacro\\'') distro: $(env ROS_DISTRO)\"/>\n"
+        "  <executable cmd=\"sh -c 'command -v diffctl; echo $ROS_DISTRO $ROS_VERSION $ROS_PYTHON_VERSION'\""
+        ' name="child" output="screen"/>\n'
+        "</launch>\n",
+        "tools.launch.xml",
+    )
+    run = launch_run(str(path), "--no-router", env={"PATH": "/usr/bin:/bin", "ROS_DISTRO": ""})
+    assert run.wait(30) == 0, run.text()
+    text = run.text()
+    assert f"command: {bindir}/xacro\n distro: " in text or f"command: {bindir}/xacro" in text
+    assert re.search(rf"\[child-\d+\] {re.escape(bindir)}/diffctl", text)
+    assert re.search(r"\[child-\d+\] +2 3", text), text  # ROS_DISTRO given (empty) stays; the rest as Jazzy
+
+
+def test_the_flags_that_restore_ros2_launchs_behaviour(launch_run, tmp_path) -> None:
+    path = write(
+        tmp_path,
+        "launch:\n"
+        "- executable: {cmd: \"sh -c 'echo to-stdout; echo to-stderr >&2; sleep 60'\", name: talk}\n"
+        "- executable: {cmd: \"sh -c 'sleep 0.5; exit 3'\", name: fails}\n",
+    )
+    ours = launch_run(str(path), "--no-router")
+    ros = launch_run(str(path), "--no-router", "--output-default", "log", "--exit-code", "ros")
+    for run in (ours, ros):
+        run.wait_for(r"\[fails-\d+\]: process has died", timeout_s=30)
+        run.wait_for(r"\[talk-\d+\] to-stderr")
+        run.signal(signal.SIGINT)
+    assert ours.wait(30) == 0 and ros.wait(30) == 0  # a failure before Ctrl-C does not fail the launch
+    assert re.search(r"\[talk-\d+\] to-stdout", ours.text())
+    assert not re.search(r"\[talk-\d+\] to-stdout", ros.text())  # ros2 launch's: stdout to launch.log only
+    assert "to-stdout" in (ros.log_dir / "launch.log").read_text()
