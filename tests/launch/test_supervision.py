@@ -1,0 +1,171 @@
+"""diffctl's supervision behind launch's spawner interface: the fork server, the guard, the subreaper.
+
+Real processes throughout: a real zygote, real `python -m diffctl router` components (they run until
+signalled and show their own argv by listening where it says), observed through /proc and psutil.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import os
+import signal
+import subprocess
+import sys
+from collections.abc import Iterator
+from pathlib import Path
+
+import psutil
+import pytest
+
+from bench.ports import free_port, wait_port
+from diffctl.cli.fork_preload import SPEC
+from diffctl.supervision import SpawnRequest
+from diffctl.supervision.fork_server import ForkServer
+from diffctl.supervision.launcher_spawner import LauncherSpawner
+
+
+def _environ(pid: int) -> dict[str, str]:
+    raw = Path(f"/proc/{pid}/environ").read_bytes()
+    return dict(item.split("=", 1) for item in raw.decode(errors="replace").split("\0") if "=" in item)
+
+
+def _preloaded(pid: int) -> bool:
+    """A forked component maps what the zygote imported (pybullet), which `diffctl router` never imports."""
+    return "pybullet" in Path(f"/proc/{pid}/maps").read_text()
+
+
+class Sink:
+    def __init__(self) -> None:
+        self.out = b""
+        self.err = b""
+
+    def on_stdout(self, data: bytes) -> None:
+        self.out += data
+
+    def on_stderr(self, data: bytes) -> None:
+        self.err += data
+
+
+class Launcher:
+    """A LauncherSpawner with a fork server, driven on a loop of its own (as a LaunchService drives it)."""
+
+    def __init__(self) -> None:
+        self.env = dict(os.environ, DIFFCTL_FORK_TEST="yes", PYTHONUNBUFFERED="1")
+        self.loop = asyncio.new_event_loop()
+        self.spawner = LauncherSpawner(fork_server=ForkServer(self.env, preload=SPEC))
+        self.children: list = []
+
+    def run(self, coro, timeout_s: float = 60.0):
+        return self.loop.run_until_complete(asyncio.wait_for(coro, timeout_s))
+
+    def router(self, port: int, cwd: str | None = None, env: dict[str, str] | None = None):
+        cmd = [sys.executable, "-m", "diffctl", "router", "--listen", f"tcp/127.0.0.1:{port}"]
+        child = self.run(self.spawner.spawn(SpawnRequest(cmd=cmd, cwd=cwd, env=env or self.env), Sink()))
+        self.children.append(child)
+        return child
+
+    def exit_code(self, child) -> int:
+        return self.run(child.complete)
+
+    def close(self) -> None:
+        self.run(self.spawner.shutdown())
+        self.spawner.close()
+        self.loop.close()
+
+
+@pytest.fixture
+def launcher() -> Iterator[Launcher]:
+    launcher = Launcher()
+    try:
+        yield launcher
+    finally:
+        launcher.spawner.kill_all()
+        launcher.close()
+
+
+def test_forked_components_are_separate_children_of_the_launcher_in_their_own_groups(launcher, tmp_path) -> None:
+    ports = [free_port(), free_port()]
+    children = [launcher.router(ports[0], cwd=str(tmp_path)), launcher.router(ports[1])]
+    for port in ports:
+        wait_port(port, timeout_s=60)  # each listens where its own argv says
+    zygote = launcher.spawner.fork_server.pid
+    pids = [c.pid for c in children]
+    assert len(set(pids)) == 2 and zygote not in pids
+    for pid, port in zip(pids, ports, strict=True):
+        p = psutil.Process(pid)
+        assert _preloaded(pid), "not forked from the zygote"
+        assert p.ppid() == os.getpid()  # re-parented to the launcher: it waits for and reaps them
+        assert os.getpgid(pid) == pid and os.getsid(pid) == pid  # own session, own group
+        assert p.cmdline() == [sys.executable, "-m", "diffctl", "router", "--listen", f"tcp/127.0.0.1:{port}"]
+        assert _environ(pid)["DIFFCTL_FORK_TEST"] == "yes"
+    assert psutil.Process(pids[0]).cwd() == str(tmp_path)
+    assert psutil.Process(pids[1]).cwd() == os.getcwd()
+    # Signals reach each group on its own; each is reaped here with its own status.
+    children[0].send_signal(signal.SIGINT)
+    assert launcher.exit_code(children[0]) in (0, 130)
+    assert psutil.Process(pids[1]).is_running()
+    children[1].send_signal(signal.SIGKILL)
+    assert launcher.exit_code(children[1]) == -signal.SIGKILL
+
+
+def test_a_crashing_component_leaves_the_server_serving_and_a_different_environment_is_execd(launcher) -> None:
+    first = launcher.router(free_port())
+    os.kill(first.pid, signal.SIGSEGV)
+    assert launcher.exit_code(first) == -signal.SIGSEGV
+    assert psutil.Process(launcher.spawner.fork_server.pid).is_running()
+    port = free_port()
+    second = launcher.router(port)
+    wait_port(port, timeout_s=60)
+    assert _preloaded(second.pid)
+    port = free_port()
+    own = launcher.router(port, env={**launcher.env, "ONLY_THIS_ONE": "1"})
+    wait_port(port, timeout_s=60)
+    assert _environ(own.pid)["ONLY_THIS_ONE"] == "1" and not _preloaded(own.pid)
+    for child in (second, own):
+        child.send_signal(signal.SIGINT)
+        assert launcher.exit_code(child) in (0, 130)
+
+
+def test_the_supervision_modules_the_fork_server_loads_import_no_launch() -> None:
+    # The zygote and the launcher's side of it are loaded before the launch core (their imports overlap it).
+    code = (
+        "import sys, diffctl.supervision.zygote, diffctl.supervision.fork_server, diffctl.supervision.guard\n"
+        "print(sorted(m for m in sys.modules if m.startswith(('diffctl.launch', 'diffctl.supervision'))))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert eval(out) == [
+        "diffctl.supervision",
+        "diffctl.supervision.fork_server",
+        "diffctl.supervision.guard",
+        "diffctl.supervision.spawner",
+        "diffctl.supervision.zygote",
+    ]
+
+
+def test_the_launcher_forks_components_reaps_them_and_leaves_nothing(launch_run, tmp_path) -> None:
+    import re
+    import time
+
+    port = free_port()
+    launch = tmp_path / "forked.yaml"
+    launch.write_text(
+        "launch:\n"
+        f"- executable: {{cmd: '{sys.executable} -m diffctl router --listen tcp/127.0.0.1:{port}', name: zr}}\n"
+        f"- executable: {{cmd: '{sys.executable} -m diffctl pkg prefix no_such_package', name: bad,"
+        " output: screen}\n"
+        "- executable: {cmd: 'sleep 300', name: plain}\n"
+    )
+    run = launch_run(str(launch), "--no-router")
+    pid = int(run.wait_for(r"\[zr-\d+\]: process started with pid \[(\d+)\]", timeout_s=60).group(1))
+    wait_port(port, timeout_s=60)
+    assert _preloaded(pid) and psutil.Process(pid).ppid() == run.proc.pid
+    # A component's exit code and its one-line error come through as from an exec'd process.
+    run.wait_for(r"\[bad-\d+\]: process has died \[pid \d+, exit code 2", timeout_s=60)
+    assert re.search(r"\[bad-\d+\] .*no_such_package", run.text())
+    assert _environ(pid)["DIFFCTL_LOG_DIR"] == str(run.log_dir.resolve())  # for `bag record` without -o
+    run.signal(signal.SIGINT)
+    assert run.wait(60) == 0, run.text()  # stopped by Ctrl-C, as with exec'd processes
+    deadline = time.monotonic() + 10
+    while run.leftovers() and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert [p.cmdline() for p in run.leftovers()] == []  # the zygote too
