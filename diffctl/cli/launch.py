@@ -133,6 +133,7 @@ def launch(
     try:
         if run_dir is not None:
             _use_log_dir(run_dir, latest=log_dir is None)
+        _use_diffctls_launch()
         _import_workspace_python(workspace)
         from diffctl.workspace import package_index
 
@@ -194,6 +195,16 @@ def _prepare_environment(workspace_dir: Path | None) -> Path | None:
         os.environ["PATH"] = os.pathsep.join([tools, *parts])
     os.environ["PYTHONUNBUFFERED"] = "1"  # children's output line by line, as the launch shows it
     return workspace
+
+
+def _use_diffctls_launch() -> None:
+    """Launch files loaded here import diffctl's launch, launch_xml, launch_yaml and launch_ros under ROS's
+    names, also where a sourced ROS 2 comes first on PYTHONPATH: the launcher runs its own engine (the
+    processes it starts still get the sourced ROS first)."""
+    from diffctl.module_alias import alias
+
+    for name in ("launch", "launch_xml", "launch_yaml", "launch_ros"):
+        alias(name, f"diffctl.{name}")
 
 
 def _import_workspace_python(workspace: Path | None) -> None:

@@ -31,4 +31,4 @@ def test_a_sourced_ros_launch_does_not_replace_diffctls_engine(tmp_path: Path) -
     out = subprocess.run([sys.executable, "-m", "diffctl", "launch", "--print", str(tmp_path / "demo.launch.py")],
                          env=env, capture_output=True, text=True, timeout=120, cwd=tmp_path)
     assert out.returncode == 0, out.stdout + out.stderr
-    assert "greeter" in out.stdout and "talker" in out.stdout, out.stdout
+    assert "echo hello" in out.stdout and "talker" in out.stdout, out.stdout
