@@ -330,3 +330,37 @@ def test_the_flags_that_restore_ros2_launchs_behaviour(launch_run, tmp_path) -> 
     assert re.search(r"\[talk-\d+\] to-stdout", ours.text())
     assert not re.search(r"\[talk-\d+\] to-stdout", ros.text())  # ros2 launch's: stdout to launch.log only
     assert "to-stdout" in (ros.log_dir / "launch.log").read_text()
+
+
+@pytest.mark.slow
+def test_readiness_on_a_topic_through_the_embedded_router_and_sigterm(launch_run, tmp_path, monkeypatch) -> None:
+    from tests.conftest import free_port
+
+    monkeypatch.setenv("DIFFCTL_ROUTER", f"tcp/127.0.0.1:{free_port()}")
+    path = write(
+        tmp_path,
+        f"""
+launch:
+- wait_for:
+    topic: /launch_test_ready
+    timeout: 60
+    children:
+    - executable:
+        name: waiter
+        cmd: "{sys.executable} {STEP} - waiter --print 'topic is up' --sleep 60"
+        output: screen
+- timer:
+    period: 1.0
+    children:
+    - executable:
+        name: talker
+        cmd: "{sys.executable} -m diffctl topic pub /launch_test_ready std_msgs/msg/String '{{data: hi}}' --rate 5"
+""",
+    )
+    run = launch_run(str(path))
+    run.wait_for(r"\[waiter-\d+\] topic is up", timeout_s=60)
+    text = run.text()
+    assert re.search(r"\[talker-\d+\]: process started", text).start() < text.index("[waiter")  # type: ignore[union-attr]
+    run.signal(signal.SIGTERM)  # a service manager's stop: every process ends, and that is no failure
+    assert run.wait(30) == 0, run.text()
+    assert_nothing_left(run)

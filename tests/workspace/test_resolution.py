@@ -268,3 +268,29 @@ def test_the_cache_of_a_deleted_workspace_goes_when_another_arrives(tmp_path: Pa
     find_package("pkg_b", second)
     assert not cache_a.exists()
     assert (find_package("pkg_b", second).share / "package.xml").is_file()
+
+
+def test_the_package_index_maps_ros_names_to_diffctl_components() -> None:
+    import sys
+
+    from diffctl.workspace import package_index
+
+    repo = Path(__file__).resolve().parents[2]
+    argv = package_index.executable_argv("controller_manager", "ros2_control_node")
+    assert argv == [sys.executable, "-m", "diffctl", "control", "manager"]
+    assert package_index.executable_argv("ros_gz_bridge", "parameter_bridge")[-1] == "bridge"
+    assert package_index.share_dir("diffctl_demo") == repo
+    assert package_index.find_launch_file("teleop") == repo / "launch" / "teleop.yaml"
+
+
+def test_the_project_packages_resolve_from_an_installed_wheel_layout(tmp_path: Path, monkeypatch) -> None:
+    from diffctl.workspace import package_index
+
+    share = tmp_path / "share"
+    (share / "launch").mkdir(parents=True)
+    (share / "description").mkdir()
+    (share / "launch" / "demo.launch.py").write_text("")
+    monkeypatch.setenv("DIFFCTL_PROJECT_DIR", str(share))
+    assert package_index.share_dir("diffctl_demo_description") == share / "description"
+    assert package_index.find_launch_file("demo", cwd=tmp_path) == share / "launch" / "demo.launch.py"
+    assert package_index.find_launch_file("diffctl_demo", "demo.launch.py") == share / "launch" / "demo.launch.py"
