@@ -1,13 +1,13 @@
 """What the launch's fork server preloads for diffctl's components: the CLI layer names them, the engine not.
 
-The fork server (diffctl/launch_legacy/zygote.py) imports these modules once and calls the warm-up functions, then
+The fork server (diffctl/supervision/zygote.py) imports these modules once and calls the warm-up functions, then
 forks every `python -m diffctl …` component from that state. The lists were measured over a whole
 `diffctl launch sim_control` (PYTHONPROFILEIMPORTTIME); the warm-ups are each component's own start-up work.
 """
 
 from __future__ import annotations
 
-from diffctl.launch_legacy.zygote import Preload
+from diffctl.supervision.zygote import Preload
 
 # What the sim_control graph's components import at start-up (measured with PYTHONPROFILEIMPORTTIME over a
 # whole launch): third-party libraries first, then diffctl's command and component modules. A module that

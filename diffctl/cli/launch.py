@@ -273,15 +273,22 @@ def _load(path: Path) -> Any:
 
     try:
         return get_launch_description_from_any_launch_file(str(path))
-    except DiffctlError:
-        raise
     except InvalidLaunchFileError as e:
         cause = e.__cause__ if e.__cause__ is not None else e
-        if isinstance(cause, DiffctlError):
-            raise cause from None
-        raise LaunchError(_one_line(cause, path)) from None
+        raise _located(cause, path) from None
     except Exception as e:
-        raise LaunchError(_one_line(e, path)) from None
+        raise _located(e, path) from None
+
+
+def _located(e: BaseException, path: Path) -> DiffctlError:
+    """A DiffctlError naming where: the markup frontend's location of the failing tag, else the file's line."""
+    if isinstance(e, DiffctlError):
+        if e.source is None:
+            where = getattr(e, "launch_location", None)
+            file, _, line = str(where or path).rpartition(":") if where else (str(path), "", "")
+            e.source, e.line = (file, int(line)) if line.isdigit() else (str(where or path), None)
+        return e
+    return LaunchError(_one_line(e, path))
 
 
 def _one_line(e: BaseException, path: Path) -> str:

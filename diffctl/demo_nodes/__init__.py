@@ -4,7 +4,7 @@ Launch tests copied from the ROS docs start `Node(package='demo_nodes_cpp', exec
 behave as the Jazzy ones do: same node, topic and service names, QoS depths, rates, counters and log lines
 (the C++ talker counts from 1 and quotes with '…', the Python one counts from 0 and quotes with "…"). They are
 written on rclpy (diffctl's client, or a sourced ROS 2's) and start as `python -m diffctl.demo_nodes PKG EXE`.
-A package of the user's workspace or of an install tree with the same name always wins (diffctl.launch_legacy's
+A package of the user's workspace or of an install tree with the same name always wins (the workspace's
 package index asks here last).
 """
 

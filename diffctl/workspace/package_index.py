@@ -40,7 +40,7 @@ COMPONENTS: dict[tuple[str, str], tuple[str, ...]] = {
     ("twist_mux", "twist_mux"): ("twist-mux",),
     ("twist_stamper", "twist_stamper"): ("twist-stamper", "twist_stamper"),
     ("twist_stamper", "twist_unstamper"): ("twist-stamper", "twist_unstamper"),
-    # Containers of composable nodes: Python components in one process (diffctl/launch_legacy/composable.py)
+    # Containers of composable nodes: Python components in one process, loaded over its load_node service
     ("rclcpp_components", "component_container"): ("component-container",),
     ("rclcpp_components", "component_container_mt"): ("component-container", "--multi-threaded"),
     ("rclcpp_components", "component_container_isolated"): ("component-container", "--multi-threaded"),

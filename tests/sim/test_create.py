@@ -151,8 +151,7 @@ def test_create_spawns_from_a_namespaced_topic_renames_and_places(router: str, p
 
 
 def test_gz_spawn_model_launch_passes_creates_parameters(tmp_path: Path) -> None:
-    from diffctl.launch_legacy.loader import load
-    from diffctl.launch_legacy.resolver import resolve
+    from tests.launch_requests import started
 
     path = tmp_path / "spawn.launch.py"
     path.write_text(
@@ -168,10 +167,9 @@ def test_gz_spawn_model_launch_passes_creates_parameters(tmp_path: Path) -> None
         "    return LaunchDescription([IncludeLaunchDescription(PythonLaunchDescriptionSource(f),\n"
         "                              launch_arguments=args.items())])\n"
     )
-    (create,) = resolve(load(path), {}, str(path)).processes.values()
-    assert create.argv[-2:] == ("spawn", "entity")
-    (params,) = create.node.params
-    req = build_request({}, dict(params))
+    (create,) = started(path).started
+    assert create.argv[-2:] == ["spawn", "entity"]
+    req = build_request({}, create.params())
     assert (req.source, req.value, req.name, req.allow_renaming) == ("topic", "robot_description", "bot", True)
     assert req.pose == {"x": 0.0, "y": 0.0, "z": 0.3, "roll": 0.0, "pitch": 0.0, "yaw": -1.0}
     # as text, the way some launch files hand them over

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -10,18 +11,16 @@ import pytest
 
 from diffctl import ros_args
 from diffctl.bus import Node
-from diffctl.launch_legacy import commandline, loader, resolver
-from diffctl.launch_legacy.plan import StartProcess, walk
 from diffctl.teleop.cli import JOY_NODE, joy_settings
+from tests.launch_requests import started
 
 LAUNCH = Path(__file__).resolve().parents[2] / "launch" / "teleop.yaml"
 TUTORIAL = {"joy_config": "xbox", "publish_stamped_twist": "true", "joy_vel": "/diffbot_base_controller/cmd_vel"}
 
 
 def joy_command_line(arguments: dict[str, str], tmp_path: Path) -> list[str]:
-    plan = resolver.resolve(loader.load(LAUNCH), arguments, str(LAUNCH))
-    (spec,) = [s.spec for s in walk(plan.steps) if isinstance(s, StartProcess)]
-    return commandline.argv(spec, tmp_path, write=True)
+    (process,) = started(LAUNCH, arguments).started
+    return process.cmd
 
 
 @pytest.mark.parametrize(
@@ -72,4 +71,4 @@ def test_tutorial_line_runs_and_a_missing_pad_is_reported(router: str) -> None:
         start_new_session=True,
     )
     out = " ".join((r.stdout + r.stderr).split())
-    assert "[teleop_twist_joy_node]" in out and "no game pad number 99" in out, out
+    assert re.search(r"\[teleop_node-\d+\] error: device_id: no game pad number 99", out), out  # ros2 launch labels

@@ -8,9 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from diffctl.errors import LaunchError
-from diffctl.launch_legacy.loader import load
-from diffctl.launch_legacy.resolver import resolve
+from tests.launch_requests import Run, started
 from tests.workspace.conftest import package_xml, write_tree
 
 INCLUDE = """
@@ -28,10 +26,10 @@ def generate_launch_description():
 """
 
 
-def plan_for(tmp_path: Path, args: dict[str, str]):
+def run_for(tmp_path: Path, args: dict[str, str]) -> Run:
     path = tmp_path / "include.launch.py"
     path.write_text(INCLUDE.replace("{ARGS}", repr(args)))
-    return resolve(load(path), {}, str(path))
+    return started(path)
 
 
 def resource_path(env: dict[str, str | None]) -> list[str]:
@@ -42,11 +40,11 @@ def test_gz_args_reach_the_simulator_and_builtin_world_names_resolve(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     monkeypatch.setenv("GZ_SIM_RESOURCE_PATH", "/users/own/models")
-    plan = plan_for(tmp_path, {"gz_args": "-r -s -v 4 empty.sdf", "on_exit_shutdown": "True"})
-    (sim,) = plan.processes.values()
-    assert sim.argv[-6:] == ("run", "-r", "-s", "-v", "4", "empty.sdf")
-    assert sim.required  # on_exit_shutdown
-    paths = resource_path(dict(sim.env))
+    run = run_for(tmp_path, {"gz_args": "-r -s -v 4 empty.sdf", "on_exit_shutdown": "True"})
+    (sim,) = run.started
+    assert sim.argv[-6:] == ["run", "-r", "-s", "-v", "4", "empty.sdf"]
+    assert run.required_exit  # on_exit_shutdown
+    paths = resource_path(sim.env)
     assert paths[0] == "/users/own/models"  # the user's entries come before Gazebo's own worlds
     assert Path(paths[-1], "empty.sdf").is_file()
     from diffctl.sim.cli import find_world
@@ -60,18 +58,18 @@ def test_gz_args_reach_the_simulator_and_builtin_world_names_resolve(
 
 
 def test_gui_only_starts_nothing_and_any_on_exit_shutdown_text_shuts_down(tmp_path: Path) -> None:
-    assert not plan_for(tmp_path, {"gz_args": "-g -v4 "}).processes
-    assert not plan_for(tmp_path, {"gz_args": "-rg"}).processes
+    assert not run_for(tmp_path, {"gz_args": "-g -v4 "}).started
+    assert not run_for(tmp_path, {"gz_args": "-rg"}).started
     # ros_gz_sim (jazzy) tests the string: its default 'false', or 'maybe', still shuts the launch down
     for value in ("false", "maybe"):
-        (sim,) = plan_for(tmp_path, {"gz_args": "-r world.sdf", "on_exit_shutdown": value}).processes.values()
-        assert sim.required
-    (sim,) = plan_for(tmp_path, {"gz_args": "-v -v1 -r world.sdf", "on_exit_shutdown": ""}).processes.values()
-    assert not sim.required
+        run = run_for(tmp_path, {"gz_args": "-r world.sdf", "on_exit_shutdown": value})
+        assert len(run.started) == 1 and run.required_exit
+    run = run_for(tmp_path, {"gz_args": "-v -v1 -r world.sdf", "on_exit_shutdown": ""})
+    assert len(run.started) == 1 and not run.required_exit
 
 
 def test_deprecated_and_composition_arguments_are_accepted(tmp_path: Path) -> None:
-    plan = plan_for(
+    run = run_for(
         tmp_path,
         {
             "ign_args": "-r -s empty.sdf",
@@ -82,8 +80,8 @@ def test_deprecated_and_composition_arguments_are_accepted(tmp_path: Path) -> No
             "use_composition": "true",
         },
     )
-    (sim,) = plan.processes.values()
-    assert sim.argv[-3:] == ("-r", "-s", "empty.sdf")
+    (sim,) = run.started
+    assert sim.argv[-3:] == ["-r", "-s", "empty.sdf"]
 
 
 @pytest.mark.parametrize(
@@ -93,11 +91,11 @@ def test_deprecated_and_composition_arguments_are_accepted(tmp_path: Path) -> No
         ({"gz_args": "-r 'unclosed"}, "cannot be split"),
     ],
 )
-def test_bad_arguments_are_one_error(tmp_path: Path, args: dict[str, str], message: str) -> None:
-    with pytest.raises(LaunchError) as e:
-        plan_for(tmp_path, args)
-    assert message in str(e.value)
-    assert e.value.exit_code == 2
+def test_bad_arguments_are_one_error(tmp_path: Path, args: dict[str, str], message: str, caplog) -> None:
+    run = run_for(tmp_path, args)
+    assert run.code == 1 and not run.started
+    caught = [r.getMessage() for r in caplog.records if "Caught exception in launch" in r.getMessage()]
+    assert len(caught) == 1 and message in caught[0]
 
 
 def test_package_model_path_exports_join_the_resource_path(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
@@ -114,8 +112,8 @@ def test_package_model_path_exports_join_the_resource_path(tmp_path: Path, monke
         },
     )
     monkeypatch.chdir(ws)
-    (sim,) = plan_for(tmp_path, {"gz_args": "-r empty.sdf"}).processes.values()
-    exported = Path(resource_path(dict(sim.env))[0])
+    (sim,) = run_for(tmp_path, {"gz_args": "-r empty.sdf"}).started
+    exported = Path(resource_path(sim.env)[0])
     # model://my_models/models/box/model.sdf resolves under the exported folder, live from the sources
     assert (exported / "my_models" / "models" / "box" / "model.sdf").resolve() == (
         ws / "src/my_models/models/box/model.sdf"
@@ -123,20 +121,21 @@ def test_package_model_path_exports_join_the_resource_path(tmp_path: Path, monke
     assert sim.env["GZ_SIM_SYSTEM_PLUGIN_PATH"].endswith("my_models/plugins")
 
 
-def server_plan(tmp_path: Path, args: dict[str, str]):
+def server_run(tmp_path: Path, args: dict[str, str]) -> Run:
     path = tmp_path / "server.launch.py"
     path.write_text(INCLUDE.replace("gz_sim.launch.py", "gz_server.launch.py").replace("{ARGS}", repr(args)))
-    return resolve(load(path), {}, str(path))
+    return started(path)
 
 
-def test_gz_server_launch_runs_a_world_file_or_text(tmp_path: Path) -> None:
-    (sim,) = server_plan(tmp_path, {"world_sdf_file": "/worlds/w.sdf"}).processes.values()
-    assert sim.argv[-3:] == ("-r", "-s", "/worlds/w.sdf")
-    (sim,) = server_plan(tmp_path, {"start_paused": "True"}).processes.values()
-    assert sim.argv[-2:] == ("-s", "empty.sdf")
-    text = (Path(resource_path(dict(sim.env))[-1]) / "empty.sdf").read_text()
-    (sim,) = server_plan(tmp_path, {"world_sdf_string": text}).processes.values()
+def test_gz_server_launch_runs_a_world_file_or_text(tmp_path: Path, caplog) -> None:
+    (sim,) = server_run(tmp_path, {"world_sdf_file": "/worlds/w.sdf"}).started
+    assert sim.argv[-3:] == ["-r", "-s", "/worlds/w.sdf"]
+    (sim,) = server_run(tmp_path, {"start_paused": "True"}).started
+    assert sim.argv[-2:] == ["-s", "empty.sdf"]
+    text = (Path(resource_path(sim.env)[-1]) / "empty.sdf").read_text()
+    (sim,) = server_run(tmp_path, {"world_sdf_string": text}).started
     written = Path(sim.argv[-1])
     assert written.read_text() == text and (tmp_path / "cache") in written.parents  # diffctl's cache only
-    with pytest.raises(LaunchError, match="not both"):
-        server_plan(tmp_path, {"world_sdf_file": "/w.sdf", "world_sdf_string": text})
+    run = server_run(tmp_path, {"world_sdf_file": "/w.sdf", "world_sdf_string": text})
+    assert run.code == 1 and not run.started
+    assert any("not both" in r.getMessage() for r in caplog.records)

@@ -8,8 +8,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from diffctl.launch_legacy.loader import load
-from diffctl.launch_legacy.resolver import resolve
+from tests.launch_requests import started
 from tests.workspace.conftest import package_xml, write_tree
 
 REPO = Path(__file__).resolve().parents[2]
@@ -130,17 +129,17 @@ def test_the_tutorials_launch_file_resolves_in_the_readers_workspace(tmp_path: P
     from diffctl.workspace.package_index import find_launch_file
 
     path = find_launch_file("diff_sim", "sim_control_gz.launch.py")
-    plan = resolve(load(path), {}, str(path))
-    procs = plan.processes
-    world = procs["gz_sim"].argv[-1]
+    run = started(path, exits=lambda name: False)  # every process keeps running: what the launch starts first
+    world = run.one("gz_sim").argv[-1]
     assert Path(world).resolve() == ws / "src/diff_sim/worlds/empty.world"
-    (params,) = procs["robot_state_publisher"].node.params
-    controllers = Path(procs["spawner"].argv[-1])
+    params = run.one("robot_state_publisher").params()
+    controllers = Path(run.one("spawner").argv[-1])
     assert controllers.resolve() == ws / "src/diff_sim/config/diff_drive_controller.yaml"
     assert str(controllers) in params["robot_description"]  # the placeholder replaced with the share path
     assert "PARAMETERS_CONFIG_FILE_PLACEHOLDER" not in params["robot_description"]
-    assert procs["gz_sim"].required
-    assert procs["create"].argv[-4:] == ("-topic", "/robot_description", "-name", "robot")
+    assert run.one("create").argv[-4:] == ["-topic", "/robot_description", "-name", "robot"]
+    # the simulator is required: its exit alone shuts the launch down
+    assert started(path, exits=lambda name: name == "gz_sim").required_exit
 
 
 def test_the_same_from_the_command_line_from_anywhere(tmp_path: Path) -> None:
@@ -152,4 +151,4 @@ def test_the_same_from_the_command_line_from_anywhere(tmp_path: Path) -> None:
     )
     assert r.returncode == 0, r.stderr
     assert f"{ws}/src/diff_sim" not in r.stdout  # paths are the share tree's, as ROS gives install/ paths
-    assert "diff_sim/share/diff_sim/worlds/empty.world" in r.stdout
+    assert "diff_sim/share/diff_sim/config/rviz_config.rviz" in r.stdout

@@ -9,16 +9,13 @@ server runs Gazebo's empty.sdf, as `gz sim -s` does.
 import hashlib
 import os
 
+from launch.actions import AppendEnvironmentVariable, DeclareLaunchArgument, OpaqueFunction
+from launch.substitutions import LaunchConfiguration
+from launch_ros.actions import Node
+
 from diffctl.errors import LaunchError
-from diffctl.launch_legacy import (
-    AppendEnvironmentVariable,
-    DeclareLaunchArgument,
-    LaunchConfiguration,
-    LaunchDescription,
-    Node,
-    OpaqueFunction,
-)
 from diffctl.workspace.builtin import GAZEBO_WORLDS
+from launch import LaunchDescription
 
 TRUE_WORDS, FALSE_WORDS = ("true", "1", "yes", "on"), ("false", "0", "no", "off", "")
 

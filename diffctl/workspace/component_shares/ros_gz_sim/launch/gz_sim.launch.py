@@ -12,20 +12,15 @@ packages' `gazebo_ros` exports and then Gazebo's own worlds (shipped in this pac
 
 import shlex
 
+from launch.actions import AppendEnvironmentVariable, DeclareLaunchArgument, LogInfo, OpaqueFunction, Shutdown
+from launch.substitutions import LaunchConfiguration
+from launch_ros.actions import Node
+
 from diffctl.errors import LaunchError
-from diffctl.launch_legacy import (
-    AppendEnvironmentVariable,
-    DeclareLaunchArgument,
-    LaunchConfiguration,
-    LaunchDescription,
-    LogInfo,
-    Node,
-    OpaqueFunction,
-    Shutdown,
-)
 from diffctl.sim.cli import parse_gz_args
 from diffctl.workspace.builtin import GAZEBO_WORLDS
 from diffctl.workspace.gazebo_paths import gazebo_paths
+from launch import LaunchDescription
 
 TRUE_WORDS, FALSE_WORDS = ("true", "1", "yes", "on"), ("false", "0", "no", "off", "")
 

@@ -4,7 +4,11 @@ Arguments as in ros_gz_sim: world, file, string, topic, entity_name, allow_renam
 x, y, z, R, P, Y (default 0). `create` reads the parameters with its usual precedence.
 """
 
-from diffctl.launch_legacy import DeclareLaunchArgument, LaunchConfiguration, LaunchDescription, Node
+from launch.actions import DeclareLaunchArgument
+from launch.substitutions import LaunchConfiguration
+from launch_ros.actions import Node
+
+from launch import LaunchDescription
 
 
 def generate_launch_description():
