@@ -64,7 +64,7 @@ def _fork_server_start(launcher: int) -> float | None:
         return None
     for pid in map(int, children):
         try:
-            if b"diffctl.launch_legacy.zygote" in Path(f"/proc/{pid}/cmdline").read_bytes():
+            if b"diffctl.supervision.zygote" in Path(f"/proc/{pid}/cmdline").read_bytes():
                 return _started_at(pid)
         except OSError:
             continue
