@@ -285,10 +285,24 @@ def _located(e: BaseException, path: Path) -> DiffctlError:
     if isinstance(e, DiffctlError):
         if e.source is None:
             where = getattr(e, "launch_location", None)
-            file, _, line = str(where or path).rpartition(":") if where else (str(path), "", "")
-            e.source, e.line = (file, int(line)) if line.isdigit() else (str(where or path), None)
+            file, _, line = str(where).rpartition(":") if where else ("", "", "")
+            if file and line.isdigit():
+                e.source, e.line = file, int(line)
+            else:
+                e.source, e.line = str(path), _line_in(e, path)
         return e
     return LaunchError(_one_line(e, path))
+
+
+def _line_in(e: BaseException, path: Path) -> int | None:
+    """The line of `path` (a Python launch file) where `e` was raised, innermost first."""
+    line = None
+    for frame in traceback.extract_tb(e.__traceback__):
+        if os.path.realpath(frame.filename) == os.path.realpath(path):
+            line = frame.lineno
+    if isinstance(e, SyntaxError) and e.lineno is not None:
+        line = e.lineno
+    return line
 
 
 def _one_line(e: BaseException, path: Path) -> str:
@@ -296,12 +310,7 @@ def _one_line(e: BaseException, path: Path) -> str:
     text = " ".join(str(e).split()) or type(e).__name__
     if str(path) in text:
         return text
-    line = None
-    for frame in traceback.extract_tb(e.__traceback__):
-        if os.path.abspath(frame.filename) == os.path.abspath(path):
-            line = frame.lineno
-    if isinstance(e, SyntaxError) and e.lineno is not None:
-        line = e.lineno
+    line = _line_in(e, path)
     where = f"{path}:{line}" if line is not None else str(path)
     return f"{where}: {type(e).__name__}: {text}" if not isinstance(e, DiffctlError) else f"{where}: {text}"
 
