@@ -9,6 +9,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
+
 from diffctl.launch import LaunchDescription, LaunchService
 from diffctl.launch.actions import IncludeLaunchDescription
 from diffctl.launch.launch_description_sources import AnyLaunchDescriptionSource
