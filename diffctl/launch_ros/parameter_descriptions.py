@@ -4,11 +4,8 @@ name and a value, passed as `-p name:=value`) and ParameterFile (a YAML file, op
 from __future__ import annotations
 
 import os
-import tempfile
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
-
-import yaml
 
 from diffctl.launch.frontend.parse_substitution import parse_substitution
 from diffctl.launch.launch_context import LaunchContext
@@ -145,6 +142,10 @@ class ParameterFile:
         allow = bool(perform_typed_substitution(context, self.__allow_substs, bool))
         self.__evaluated_allow_substs = allow
         if allow:
+            import tempfile
+
+            import yaml
+
             text = perform_substitutions(context, parse_substitution(path.read_text()))
             try:
                 yaml.safe_load(text)

@@ -15,12 +15,8 @@ from __future__ import annotations
 
 import os
 import pathlib
-import tempfile
 from collections.abc import Iterable
-from importlib import metadata
 from typing import Any
-
-import yaml
 
 import diffctl.launch.logging
 from diffctl.client.names import validate_namespace, validate_node_name
@@ -89,17 +85,22 @@ class _Basename(Substitution):
         return os.path.basename(perform_substitutions(context, self.value))
 
 
-class _YamlDumper(yaml.SafeDumper):
-    """Lists for tuples: a parameters file any YAML reader (rcl's, the client's safe loader) takes."""
+def _yaml_dump(value: Any, stream: Any = None, **kwargs: Any) -> Any:
+    """yaml.dump with lists for tuples: what any YAML reader (rcl's, the client's safe loader) takes. YAML is
+    imported when a node first needs it (a launch of plain nodes never does)."""
+    import yaml
 
+    class Dumper(yaml.SafeDumper):
+        pass
 
-_YamlDumper.add_representer(tuple, lambda dumper, value: dumper.represent_list(list(value)))
+    Dumper.add_representer(tuple, lambda dumper, v: dumper.represent_list(list(v)))
+    return yaml.dump(value, stream, Dumper=Dumper, **kwargs)
 
 
 def _cmdline_value(value: Any) -> str:
     """A SetParameter value as `-p name:=value` text: a list in YAML's flow style, anything else as str()."""
     if isinstance(value, (tuple, list)):
-        return yaml.dump(list(value), Dumper=_YamlDumper, default_flow_style=True).strip()
+        return _yaml_dump(list(value), default_flow_style=True).strip()
     return str(value)
 
 
@@ -274,13 +275,15 @@ class Node(ExecuteProcess):
     def _create_params_file_from_dict(self, params: dict[str, Any]) -> str:
         """A parameters file for this node (its full name, or `/**` when not fully known) holding `params`."""
         section = self.node_name if self.is_node_name_fully_specified() else "/**"
+        import tempfile
+
         with tempfile.NamedTemporaryFile("w", prefix="launch_params_", delete=False) as f:
-            yaml.dump({section: {"ros__parameters": params}}, f, Dumper=_YamlDumper, default_flow_style=False)
+            _yaml_dump({section: {"ros__parameters": params}}, f, default_flow_style=False)
         return f.name
 
     def _get_parameter_rule(self, param: Parameter, context: LaunchContext) -> str:
         name, value = param.evaluate(context)
-        return f"{name}:={yaml.dump(value, Dumper=_YamlDumper)}"
+        return f"{name}:={_yaml_dump(value)}"
 
     def _perform_substitutions(self, context: LaunchContext) -> None:
         """Name, namespace, parameters and remappings, evaluated once, added to the command line."""
@@ -408,6 +411,8 @@ def get_extensions(logger: Any) -> dict[str, Any]:
     """Instances of the `launch_ros.node_action` extensions installed, by entry point name."""
     global g_entry_points_impl
     if g_entry_points_impl is None:
+        from importlib import metadata
+
         g_entry_points_impl = {ep.name: ep for ep in metadata.entry_points(group=EXTENSION_GROUP)}
     extensions: dict[str, Any] = {}
     for name, entry_point in g_entry_points_impl.items():

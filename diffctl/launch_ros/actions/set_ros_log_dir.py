@@ -5,7 +5,6 @@ from __future__ import annotations
 import os
 from typing import Any
 
-from diffctl.client.ros_logging import get_logging_directory
 from diffctl.launch.action import Action
 from diffctl.launch.frontend import Entity, Parser, expose_action
 from diffctl.launch.launch_context import LaunchContext
@@ -35,6 +34,8 @@ class SetROSLogDir(Action):
         return self.__log_dir
 
     def execute(self, context: LaunchContext) -> None:
+        from diffctl.client.ros_logging import get_logging_directory
+
         environment = context.environment
         current = environment.get("ROS_LOG_DIR") or str(get_logging_directory())
         log_dir = os.path.join(current, perform_substitutions(context, self.log_dir))

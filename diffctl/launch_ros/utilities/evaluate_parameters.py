@@ -5,8 +5,6 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-import yaml
-
 from diffctl.launch.launch_context import LaunchContext
 from diffctl.launch.substitution import Substitution
 from diffctl.launch.utilities import ensure_argument_type, perform_substitutions
@@ -39,6 +37,8 @@ def _not_uniform(name: str) -> TypeError:
 
 def _from_text(name: str, text: str) -> EvaluatedParameterValue:
     """One substituted string, read as YAML: a scalar, or a uniform list (as a tuple)."""
+    import yaml
+
     try:
         value = yaml.safe_load(text if text else "''")  # YAML reads '' as null: keep the empty string
     except yaml.YAMLError:
@@ -69,6 +69,8 @@ def evaluate_parameter_dict(context: LaunchContext, parameters: ParametersDict) 
         elif isinstance(value, tuple) and value and isinstance(value[0], Substitution):
             out[name] = _from_text(name, perform_substitutions(context, list(value)))
         elif isinstance(value, tuple) and value and isinstance(value[0], Sequence) and not isinstance(value[0], str):
+            import yaml
+
             items = [yaml.safe_load(perform_substitutions(context, list(item))) for item in value]
             if not _uniform(items):
                 raise _not_uniform(name)

@@ -12,8 +12,6 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-import yaml
-
 from diffctl.launch.some_substitutions_type import SomeSubstitutionsType_types_tuple
 from diffctl.launch.substitution import Substitution
 from diffctl.launch.substitutions import TextSubstitution
@@ -52,6 +50,8 @@ def _normalize_parameter_array_value(value: Any) -> ParameterValue:
         return tuple(bool(v) for v in value)
     if Substitution in kinds and kinds <= {str, Substitution}:
         return tuple(normalize_to_list_of_substitutions(value))
+    import yaml
+
     return tuple(
         normalize_to_list_of_substitutions(yaml.dump(v) if isinstance(v, (float, int, bool, str)) else v)
         for v in value
@@ -62,6 +62,8 @@ def _normalize_value(value: Any) -> ParameterValue:
     if isinstance(value, ParameterValueDescription):
         return value
     if isinstance(value, str):
+        import yaml  # a launch without such parameters never imports it
+
         return tuple(normalize_to_list_of_substitutions(yaml.dump(value)))
     if isinstance(value, Substitution):
         return (value,)

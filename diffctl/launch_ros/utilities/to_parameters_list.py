@@ -8,16 +8,16 @@ from __future__ import annotations
 
 import pathlib
 import warnings
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import yaml
-
-from diffctl.client.parameter import Parameter as RosParameter
 from diffctl.launch.launch_context import LaunchContext
 
 from ..parameters_type import EvaluatedParameters
 from .evaluate_parameters import evaluate_parameter_dict
 from .normalize_parameters import normalize_parameter_dict
+
+if TYPE_CHECKING:
+    from diffctl.client.parameter import Parameter as RosParameter
 
 
 def _sections(document: Any) -> dict[str, Any]:
@@ -41,6 +41,10 @@ def to_parameters_list(
     context: LaunchContext, node_name: str, namespace: str, evaluated_parameters: EvaluatedParameters
 ) -> list[RosParameter]:
     """One rclpy Parameter per value, in order (files contribute their `/**` and this node's sections)."""
+    import yaml
+
+    from diffctl.client.parameter import Parameter as RosParameter
+
     node_name = node_name.lstrip("/")
     if namespace and namespace != "/":
         node_name = f"{namespace.strip('/')}/{node_name}"
