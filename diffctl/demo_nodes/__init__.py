@@ -22,6 +22,8 @@ PROGRAMS: dict[tuple[str, str], str] = {
     ("demo_nodes_cpp", "set_and_get_parameters"): "parameters:set_and_get",
     ("demo_nodes_py", "talker"): "topics:py_talker",
     ("demo_nodes_py", "listener"): "topics:py_listener",
+    ("demo_nodes_py", "talker_qos"): "topics:py_talker_qos",
+    ("demo_nodes_py", "listener_qos"): "topics:py_listener_qos",
     ("demo_nodes_py", "add_two_ints_server"): "services:py_server",
     ("demo_nodes_py", "add_two_ints_client"): "services:py_client",
 }

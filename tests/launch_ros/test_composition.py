@@ -42,7 +42,7 @@ def test_components_load_into_a_running_container(router: str, tmp_path: Path, c
     loader = LoadComposableNodes(
         target_container="/box",
         composable_node_descriptions=[
-            ComposableNode(package="composition", plugin="composition::Talker", name="cpp"),
+            ComposableNode(package="image_tools", plugin="image_tools::ShowImage", name="cpp"),
             ComposableNode(package="demo", plugin="components:Greeter", name="second"),
         ],
     )
@@ -62,5 +62,36 @@ def test_components_load_into_a_running_container(router: str, tmp_path: Path, c
         "/group/second greeting=scoped chatter=/group/chatter",
         "/ns/first greeting=hello chatter=/ns/talk",
     ]
-    assert "Failed to load node 'cpp' of type 'composition::Talker' in container '/box'" in out
+    assert "Failed to load node 'cpp' of type 'image_tools::ShowImage' in container '/box'" in out
     assert [get_node_name_count(context, n) for n in ("/box", "/ns/first", "/group/second", "/cpp")] == [1, 1, 1, 0]
+
+
+@pytest.mark.slow
+def test_the_composition_tutorial_s_talker_and_listener_talk_in_one_container(router: str) -> None:
+    from diffctl.launch.actions import RegisterEventHandler
+    from diffctl.launch.event_handlers import OnProcessIO
+
+    heard: list[str] = []
+
+    def on_output(event) -> list | None:
+        heard.extend(line for line in event.text.decode().splitlines() if "I heard: [Hello World: 1]" in line)
+        return [Shutdown(reason="heard")] if heard else None
+
+    container = ComposableNodeContainer(
+        package="rclcpp_components",
+        executable="component_container",
+        name="ComponentManager",
+        namespace="",
+        output="screen",
+        composable_node_descriptions=[
+            ComposableNode(package="composition", plugin="composition::Talker"),
+            ComposableNode(package="composition", plugin="composition::Listener"),
+        ],
+    )
+    code, context = run([
+        RegisterEventHandler(OnProcessIO(target_action=container, on_stdout=on_output, on_stderr=on_output)),
+        container,
+    ])  # fmt: skip
+    assert code == 0
+    assert "[listener]: I heard: [Hello World: 1]" in heard[0]
+    assert [get_node_name_count(context, n) for n in ("/talker", "/listener")] == [1, 1]
