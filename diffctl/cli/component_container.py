@@ -6,7 +6,7 @@ As rclcpp's ComponentManager, the container node (`ComponentManager` unless rena
 `module:Class`, or the name an `rclpy_components` entry point gives (`my_pkg::Talker`); it takes the node
 options as keyword arguments (`cli_args`, `parameter_overrides`, …) and passes them to rclpy's Node. C++
 components cannot be loaded: that request fails with a message naming the plugin, and the container stays.
-`--nodes JSON` (plugins and their `--ros-args`, diffctl/launch_legacy/composable.py) loads nodes at start.
+`--nodes JSON` (plugins and their `--ros-args`, as the earlier engine gave them) loads nodes at start.
 """
 
 from __future__ import annotations

@@ -167,7 +167,7 @@ def shared_zygote(tests: list[TestFile]) -> Any:
     DIFFCTL_TEST_SHARED_ZYGOTE=0 turns it off."""
     if not any(t.kind != "pytest" for t in tests) or os.environ.get(SHARED_ZYGOTE_ENV, "1").strip() == "0":
         return None
-    from diffctl.launch_legacy.fork_server import ForkServer, dies_with_launcher, enabled
+    from diffctl.supervision.fork_server import ForkServer, dies_with_launcher, enabled
     from diffctl.testing.zygotes import test_preload
 
     if not enabled(os.environ) or not become_subreaper():

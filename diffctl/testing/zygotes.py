@@ -1,8 +1,8 @@
 """One preloaded interpreter for all the launch tests of a `diffctl test` run, so the test runner, launch and
 diffctl's modules are imported once per run instead of once per test file.
 
-`diffctl test` with launch tests to run starts one fork server (the legacy engine's zygote, until supervision
-has one) that imports what a test process imports (TEST_MODULES) and forks every launch test from it
+`diffctl test` with launch tests to run starts one fork server (supervision's zygote, the one `diffctl launch`
+uses) that imports what a test process imports (TEST_MODULES) and forks every launch test from it
 (`python -m diffctl test-child …`, re-parented to `diffctl test`, a child subreaper, which waits and kills it
 as a process it started). Each test keeps its own router and domain. The components a test's launch starts
 are exec'd: the new launch core has no fork-server spawner yet (supervision's business); when it has, the
@@ -11,7 +11,7 @@ test's LaunchService gets it.
 
 from __future__ import annotations
 
-from diffctl.launch_legacy.zygote import Preload
+from diffctl.supervision.zygote import Preload
 
 TEST_MODULES = (
     "pytest",
