@@ -1,15 +1,14 @@
-"""`AppendEnvironmentVariable` (`<append_env>`): append (or prepend) to an environment variable."""
+"""`AppendEnvironmentVariable`, `<append_env name=… value=… [prepend=…] [separator=…]/>`."""
 
 from __future__ import annotations
 
 import os
+from collections.abc import MutableMapping
 from typing import TYPE_CHECKING, Any
 
-from ..action import Action
+from .._private.entry_edits import EnvironmentEdit, operand
+from .._private.markup import typed_attribute
 from ..frontend.expose import expose_action
-from ..substitution import Substitution
-from ..utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
-from ..utilities.perform_substitutions_impl import perform_substitutions
 from ..utilities.type_utils import NormalizedValueType, normalize_typed_substitution, perform_typed_substitution
 
 if TYPE_CHECKING:
@@ -20,11 +19,19 @@ if TYPE_CHECKING:
 
 
 @expose_action('append_env')
-class AppendEnvironmentVariable(Action):
-    """Adds `value` to the end (or with `prepend`, the start) of `name`, joined by `separator`.
+class AppendEnvironmentVariable(EnvironmentEdit):
+    """Extends the variable `name` with `value`, after what it holds or (`prepend`) before it.
 
-    When the variable is not set it is set to `value`. `prepend` may be a substitution read as a boolean.
+    The two are joined by `separator` (the platform's path separator by default); a variable not set yet
+    simply becomes `value`. `prepend` may be a substitution, read as a boolean when executed.
     """
+
+    _attributes = ('name', 'value')
+    _optional_attributes = ('separator',)
+
+    name = operand('name', 'The variable, as substitutions.')
+    value = operand('value', 'What is added, as substitutions.')
+    separator = operand('separator', 'What goes between the old and the added text.')
 
     def __init__(
         self,
@@ -35,47 +42,27 @@ class AppendEnvironmentVariable(Action):
         **kwargs: Any,
     ) -> None:
         super().__init__(**kwargs)
-        self.__name = normalize_to_list_of_substitutions(name)
-        self.__value = normalize_to_list_of_substitutions(value)
-        self.__prepend = normalize_typed_substitution(prepend, bool)
-        self.__separator = normalize_to_list_of_substitutions(separator)
-
-    @classmethod
-    def parse(cls, entity: Entity, parser: Parser):
-        _, kwargs = super().parse(entity, parser)
-        kwargs['name'] = parser.parse_substitution(entity.get_attr('name'))
-        kwargs['value'] = parser.parse_substitution(entity.get_attr('value'))
-        prepend = entity.get_attr('prepend', optional=True, data_type=bool, can_be_str=True)
-        if prepend is not None:
-            kwargs['prepend'] = parser.parse_if_substitutions(prepend)
-        separator = entity.get_attr('separator', optional=True)
-        if separator is not None:
-            kwargs['separator'] = parser.parse_substitution(separator)
-        return cls, kwargs
-
-    @property
-    def name(self) -> list[Substitution]:
-        return self.__name
-
-    @property
-    def value(self) -> list[Substitution]:
-        return self.__value
+        self._take(name=name, value=value, separator=separator)
+        self._at_front = normalize_typed_substitution(prepend, bool)
 
     @property
     def prepend(self) -> NormalizedValueType:
-        return self.__prepend
+        return self._at_front
 
-    @property
-    def separator(self) -> list[Substitution]:
-        return self.__separator
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser):
+        made, kwargs = super().parse(entity, parser)
+        at_front = typed_attribute(entity, parser, 'prepend', bool, optional=True)
+        if at_front is not None:
+            kwargs['prepend'] = at_front
+        return made, kwargs
 
-    def execute(self, context: LaunchContext) -> None:
-        name = perform_substitutions(context, self.name)
-        value = perform_substitutions(context, self.value)
-        prepend = perform_typed_substitution(context, self.prepend, bool)
-        separator = perform_substitutions(context, self.separator)
-        current = context.environment.get(name)
-        if current is None:
-            context.environment[name] = value
+    def _apply(self, context: LaunchContext, table: MutableMapping[str, str], texts: dict[str, str]) -> None:
+        key, added, between = texts['name'], texts['value'], texts['separator']
+        before = table.get(key)
+        if before is None:
+            table[key] = added
+        elif perform_typed_substitution(context, self._at_front, bool):
+            table[key] = between.join((added, before))
         else:
-            context.environment[name] = value + separator + current if prepend else current + separator + value
+            table[key] = between.join((before, added))

@@ -1,31 +1,52 @@
-"""`DeclareLaunchArgument` (`<arg>`): declare an argument of a launch description."""
+"""`DeclareLaunchArgument`, `<arg name=… [default=…] [description=…]>` with `<choice value=…/>` children."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, NoReturn
 
 from .. import logging as launch_logging
 from ..action import Action
-from ..frontend.entity import Entity
 from ..frontend.expose import expose_action
 from ..substitution import Substitution
 from ..utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
 from ..utilities.perform_substitutions_impl import perform_substitutions
 
 if TYPE_CHECKING:
+    from ..frontend.entity import Entity
     from ..frontend.parser import Parser
     from ..launch_context import LaunchContext
     from ..some_substitutions_type import SomeSubstitutionsType
 
 
+
+def _complain(message: str) -> None:
+    # ROS 2 logs these besides raising them: `ros2 launch` users see them even where the error is caught
+    launch_logging.get_logger('launch.actions.declare_launch_argument').error(message)
+
+
+def _refuse(message: str) -> NoReturn:
+    _complain(message)
+    raise RuntimeError(message)
+
+
+def _help_text(description: str | None, choices: list[str] | None) -> str:
+    """The description shown by `--show-args`; choices are spelled out in it."""
+    if description is None:
+        return 'no description given' if choices is None else f'One of: {choices}'
+    if choices is None:
+        return description
+    stop = '' if description.endswith('.') else '.'
+    return f'{description}{stop} Valid choices are: {choices}'
+
+
 @expose_action('arg')
 class DeclareLaunchArgument(Action):
-    """Declares the launch argument `name`, stored in the launch configuration of the same name.
+    """An argument of the launch description: the launch configuration `name`, given from outside.
 
-    Declared arguments are listed by `LaunchDescription.get_launch_arguments()` (the command line's
-    `name:=value`, an include's arguments). With `default_value` the argument is optional; without one,
-    executing the action when no value was given is an error. With `choices`, a value outside them is an
-    error. `name` and `description` are plain text, since they are shown before anything runs.
+    `LaunchDescription.get_launch_arguments()` lists the declarations (the command line's `name:=value`
+    and an include's arguments fill them). When executed, a configuration already set wins; otherwise
+    `default_value` is used, and without one the launch fails. A value outside `choices` fails too.
+    `name` and `description` are plain text: they are shown before anything runs.
     """
 
     def __init__(
@@ -38,72 +59,63 @@ class DeclareLaunchArgument(Action):
         **kwargs: Any,
     ) -> None:
         super().__init__(**kwargs)
-        self.__name = name
-        self.__logger = launch_logging.get_logger('launch.actions.declare_launch_argument')
-        self.__default_value = None if default_value is None else normalize_to_list_of_substitutions(default_value)
         if choices is not None:
-            if len(choices) == 0:
-                message = 'Provided choices arg is empty. Use None to ignore the choice list.'
-                self.__logger.error(message)
-                raise RuntimeError(message)
-            plain_default = default_value is not None and not isinstance(default_value, (Substitution, list))
-            if plain_default and default_value not in choices:
-                message = f'Provided default_value "{default_value}" is not in provided choices "{choices}".'
-                self.__logger.error(message)
-                raise RuntimeError(message)
-        if description is None:
-            self.__description = 'no description given' if choices is None else 'One of: ' + str(choices)
-        else:
-            self.__description = description
-            if choices is not None:
-                if not self.__description.endswith('.'):
-                    self.__description += '.'
-                self.__description += ' Valid choices are: ' + str(choices)
-        self.__choices = choices
-        # set by LaunchDescription.get_launch_arguments(): whether a condition guards the declaration
+            if not choices:
+                _refuse('Provided choices arg is empty. Use None to ignore the choice list.')
+            literal = default_value is not None and not isinstance(default_value, (Substitution, list))
+            if literal and default_value not in choices:
+                _refuse(f'Provided default_value "{default_value}" is not in provided choices "{choices}".')
+        self._argument = name
+        self._fallback = None if default_value is None else normalize_to_list_of_substitutions(default_value)
+        self._help = _help_text(description, choices)
+        self._allowed = choices
+        # whether a condition guards the declaration; LaunchDescription.get_launch_arguments() sets it, and
+        # ROS 2's tools (ros2 launch --show-args, launch_testing) read it under this name
         self._conditionally_included = False
-
-    @classmethod
-    def parse(cls, entity: Entity, parser: Parser):
-        _, kwargs = super().parse(entity, parser)
-        kwargs['name'] = parser.escape_characters(entity.get_attr('name'))
-        default_value = entity.get_attr('default', optional=True)
-        if default_value is not None:
-            kwargs['default_value'] = parser.parse_substitution(default_value)
-        description = entity.get_attr('description', optional=True)
-        if description is not None:
-            kwargs['description'] = parser.escape_characters(description)
-        choices = entity.get_attr('choice', data_type=list[Entity], optional=True)
-        if choices is not None:
-            kwargs['choices'] = [parser.escape_characters(choice.get_attr('value')) for choice in choices]
-        return cls, kwargs
 
     @property
     def name(self) -> str:
-        return self.__name
+        return self._argument
 
     @property
     def default_value(self) -> list[Substitution] | None:
-        return self.__default_value
+        return self._fallback
 
     @property
     def description(self) -> str:
-        return self.__description
+        return self._help
 
     @property
     def choices(self) -> list[str] | None:
-        return self.__choices
+        return self._allowed
+
+    @classmethod
+    def parse(cls, entity: Entity, parser: Parser):
+        from ..frontend.entity import Entity as EntityType
+
+        _, kwargs = super().parse(entity, parser)
+        kwargs['name'] = parser.escape_characters(entity.get_attr('name'))
+        readers = {'default': ('default_value', parser.parse_substitution),
+                   'description': ('description', parser.escape_characters)}
+        for attribute, (keyword, read) in readers.items():
+            text = entity.get_attr(attribute, optional=True)
+            if text is not None:
+                kwargs[keyword] = read(text)
+        options = entity.get_attr('choice', data_type=list[EntityType], optional=True)
+        if options is not None:
+            kwargs['choices'] = [parser.escape_characters(option.get_attr('value')) for option in options]
+        return cls, kwargs
 
     def execute(self, context: LaunchContext) -> None:
-        configurations = context.launch_configurations
-        if self.name not in configurations:
-            if self.default_value is None:
-                self.__logger.error(
-                    f'Required launch argument "{self.name}" (description: "{self.description}") was not provided')
-                raise RuntimeError(f'Required launch argument "{self.name}" was not provided.')
-            configurations[self.name] = perform_substitutions(context, self.default_value)
-        if self.__choices is not None and configurations[self.name] not in self.__choices:
-            message = (f'Argument "{self.name}" provided value "{configurations[self.name]}" is not valid. '
-                       f'Valid options are: {self.__choices}')
-            self.__logger.error(message)
-            raise RuntimeError(message)
+        table = context.launch_configurations
+        if self._argument not in table:
+            if self._fallback is None:
+                _complain(
+                    f'Required launch argument "{self._argument}" (description: "{self._help}") was not provided')
+                raise RuntimeError(f'Required launch argument "{self._argument}" was not provided.')
+            table[self._argument] = perform_substitutions(context, self._fallback)
+        given = table[self._argument]
+        if self._allowed is not None and given not in self._allowed:
+            _refuse(
+                f'Argument "{self._argument}" provided value "{given}" is not valid. '
+                f'Valid options are: {self._allowed}')

@@ -1,4 +1,4 @@
-"""`EmitEvent`: emit an event."""
+"""`EmitEvent`: put an event on the launch's queue."""
 
 from __future__ import annotations
 
@@ -13,17 +13,17 @@ if TYPE_CHECKING:
 
 
 class EmitEvent(Action):
-    """Queues `event` for the launch service when executed."""
+    """Queues `event` when executed; it is handled after the event being handled now."""
 
     def __init__(self, *, event: Event, **kwargs: Any) -> None:
         super().__init__(**kwargs)
         if not is_a_subclass(event, Event):
             raise RuntimeError(f"EmitEvent() expected an event instance, got '{event}'.")
-        self.__event = event
+        self._queued = event
 
     @property
     def event(self) -> Event:
-        return self.__event
+        return self._queued
 
     def execute(self, context: LaunchContext) -> None:
-        context.emit_event_sync(self.__event)
+        context.emit_event_sync(self._queued)

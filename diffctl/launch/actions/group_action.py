@@ -1,37 +1,38 @@
-"""`GroupAction` (`<group>`): actions grouped under one condition and, by default, one scope."""
+"""`GroupAction`, `<group [scoped=…] [forwarding=…]>`: actions under one condition, usually one scope."""
 
 from __future__ import annotations
 
 from collections.abc import Iterable
 from typing import TYPE_CHECKING, Any
 
+from .._private.markup import kept_configurations
 from ..action import Action
-from ..frontend.entity import Entity
 from ..frontend.expose import expose_action
-from ..launch_description_entity import LaunchDescriptionEntity
 from .pop_environment import PopEnvironment
 from .pop_launch_configurations import PopLaunchConfigurations
 from .push_environment import PushEnvironment
 from .push_launch_configurations import PushLaunchConfigurations
 from .reset_environment import ResetEnvironment
-from .reset_launch_configurations import ResetLaunchConfigurations, parse_keeps
+from .reset_launch_configurations import ResetLaunchConfigurations
 from .set_launch_configuration import SetLaunchConfiguration
 
 if TYPE_CHECKING:
+    from ..frontend.entity import Entity
     from ..frontend.parser import Parser
     from ..launch_context import LaunchContext
+    from ..launch_description_entity import LaunchDescriptionEntity
     from ..some_substitutions_type import SomeSubstitutionsType
 
 
 @expose_action('group')
 class GroupAction(Action):
-    """Yields `actions`, optionally scoped and with launch configurations of their own.
+    """Visits `actions`, in a scope of their own unless `scoped` is false.
 
-    `scoped` (default): changes of launch configurations and environment made inside stay inside.
-    `forwarding` (default): a scoped group starts from the current configurations and environment;
-    without it, it starts from none (the configurations) and from the launch's initial environment.
-    `launch_configurations` are set at the start of the group (without forwarding, evaluated before the
-    configurations are cleared).
+    In a scope, launch configurations and environment changes made by the actions are undone at its end.
+    A scope `forwarding` (the default) starts from the current configurations and environment; otherwise
+    from no configurations and the environment the launch began with. `launch_configurations` (name →
+    value) are set first; without forwarding they are performed before the others are dropped.
+    Without a scope nothing is undone.
     """
 
     def __init__(
@@ -44,45 +45,42 @@ class GroupAction(Action):
         **left_over_kwargs: Any,
     ) -> None:
         super().__init__(**left_over_kwargs)
-        self.__actions = actions
-        self.__scoped = scoped
-        self.__forwarding = forwarding
-        self.__launch_configurations = launch_configurations if launch_configurations is not None else {}
-        self.__actions_to_return: list[LaunchDescriptionEntity] | None = None
+        self._members = actions
+        self._scope = (scoped, forwarding)
+        self._settings = launch_configurations or {}
+        self._expanded: list[LaunchDescriptionEntity] | None = None
 
     @classmethod
     def parse(cls, entity: Entity, parser: Parser):
         _, kwargs = super().parse(entity, parser)
-        scoped = entity.get_attr('scoped', data_type=bool, optional=True)
-        forwarding = entity.get_attr('forwarding', data_type=bool, optional=True)
-        if scoped is not None:
-            kwargs['scoped'] = scoped
-        if forwarding is not None:
-            kwargs['forwarding'] = forwarding
-        keeps = parse_keeps(entity, parser)
-        if keeps is not None:
-            kwargs['launch_configurations'] = keeps
-        kwargs['actions'] = [parser.parse_action(e) for e in entity.children if e.type_name != 'keep']
+        for flag in ('scoped', 'forwarding'):
+            value = entity.get_attr(flag, data_type=bool, optional=True)
+            if value is not None:
+                kwargs[flag] = value
+        kept = kept_configurations(entity, parser)
+        if kept is not None:
+            kwargs['launch_configurations'] = kept
+        kwargs['actions'] = [parser.parse_action(child) for child in entity.children if child.type_name != 'keep']
         return cls, kwargs
 
-    def get_sub_entities(self) -> list[LaunchDescriptionEntity]:
-        if self.__actions_to_return is None:
-            actions = list(self.__actions)
-            settings = [SetLaunchConfiguration(k, v) for k, v in self.__launch_configurations.items()]
-            if not self.__scoped:
-                self.__actions_to_return = [*settings, *actions]
-            elif self.__forwarding:
-                self.__actions_to_return = [
-                    PushLaunchConfigurations(), PushEnvironment(), *settings, *actions,
-                    PopEnvironment(), PopLaunchConfigurations(),
-                ]
-            else:
-                self.__actions_to_return = [
-                    PushLaunchConfigurations(), PushEnvironment(), ResetEnvironment(),
-                    ResetLaunchConfigurations(self.__launch_configurations), *actions,
-                    PopEnvironment(), PopLaunchConfigurations(),
-                ]
-        return self.__actions_to_return
+    def _expand(self) -> list[LaunchDescriptionEntity]:
+        scoped, forwarding = self._scope
+        body: list[LaunchDescriptionEntity] = list(self._members)
+        if scoped and not forwarding:
+            opening = [ResetEnvironment(), ResetLaunchConfigurations(self._settings)]
+        else:
+            opening = [SetLaunchConfiguration(name, value) for name, value in self._settings.items()]
+        if not scoped:
+            return opening + body
+        return [
+            PushLaunchConfigurations(), PushEnvironment(), *opening, *body, PopEnvironment(), PopLaunchConfigurations(),
+        ]
 
-    def execute(self, context: LaunchContext) -> list[LaunchDescriptionEntity] | None:
+    def get_sub_entities(self) -> list[LaunchDescriptionEntity]:
+        # made once: describing and executing the group see the same entities
+        if self._expanded is None:
+            self._expanded = self._expand()
+        return self._expanded
+
+    def execute(self, context: LaunchContext) -> list[LaunchDescriptionEntity]:
         return self.get_sub_entities()

@@ -1,4 +1,4 @@
-"""`OpaqueCoroutine`: run a coroutine function on the launch's loop."""
+"""`OpaqueCoroutine`: a coroutine run on the launch's loop, as a task the launch waits for."""
 
 from __future__ import annotations
 
@@ -12,15 +12,14 @@ from ..event_handlers.on_shutdown import OnShutdown
 from ..utilities.ensure_argument_type_impl import ensure_argument_type
 
 if TYPE_CHECKING:
-    from ..event import Event
     from ..launch_context import LaunchContext
     from ..launch_description_entity import LaunchDescriptionEntity
 
 
 class OpaqueCoroutine(Action):
-    """Starts `coroutine(context, *args, **kwargs)` as a task (without `context` when `ignore_context`).
+    """Starts `coroutine(context, *args, **kwargs)` (without `context` if `ignore_context`) as a task.
 
-    The launch waits for the task before it is idle; shutting down cancels it.
+    The launch is not idle while the task runs; a shutdown cancels it.
     """
 
     def __init__(
@@ -36,25 +35,28 @@ class OpaqueCoroutine(Action):
         if not asyncio.iscoroutinefunction(coroutine):
             raise TypeError(
                 f"OpaqueCoroutine expected a coroutine function for 'coroutine', got '{type(coroutine)}'")
-        ensure_argument_type(args, (collections.abc.Iterable, type(None)), 'args', 'OpaqueCoroutine')
-        ensure_argument_type(kwargs, (dict, type(None)), 'kwargs', 'OpaqueCoroutine')
-        ensure_argument_type(ignore_context, bool, 'ignore_context', 'OpaqueCoroutine')
-        self.__coroutine = coroutine
-        self.__args = args if args is not None else []
-        self.__kwargs = kwargs if kwargs is not None else {}
-        self.__ignore_context = ignore_context
-        self.__future: asyncio.Future | None = None
-
-    def __on_shutdown(self, event: Event, context: LaunchContext) -> None:
-        if self.__future is not None:
-            self.__future.cancel()
-        return None
+        for value, accepted, argument in (
+            (args, (collections.abc.Iterable, type(None)), 'args'),
+            (kwargs, (dict, type(None)), 'kwargs'),
+            (ignore_context, bool, 'ignore_context'),
+        ):
+            ensure_argument_type(value, accepted, argument, 'OpaqueCoroutine')
+        self._make = coroutine
+        self._positional = tuple(args or ())
+        self._named = dict(kwargs or {})
+        self._with_context = not ignore_context
+        self._task: asyncio.Task | None = None
 
     def execute(self, context: LaunchContext) -> list[LaunchDescriptionEntity] | None:
-        args = list(self.__args) if self.__ignore_context else [context, *self.__args]
-        self.__future = context.asyncio_loop.create_task(self.__coroutine(*args, **self.__kwargs))
-        context.register_event_handler(OnShutdown(on_shutdown=self.__on_shutdown))
+        leading = (context,) if self._with_context else ()
+        self._task = context.asyncio_loop.create_task(self._make(*leading, *self._positional, **self._named))
+        task = self._task
+
+        def stop(event: Any, context: LaunchContext) -> None:
+            task.cancel()
+
+        context.register_event_handler(OnShutdown(on_shutdown=stop))
         return None
 
     def get_asyncio_future(self) -> asyncio.Future | None:
-        return self.__future
+        return self._task

@@ -1,4 +1,4 @@
-"""`OpaqueFunction`: run a Python function while launching."""
+"""`OpaqueFunction`: Python code run while the launch is being visited."""
 
 from __future__ import annotations
 
@@ -15,7 +15,10 @@ if TYPE_CHECKING:
 
 
 class OpaqueFunction(Action):
-    """Calls `function(context, *args, **kwargs)` when executed; what it returns is visited next."""
+    """Calls `function(context, *args, **kwargs)` when executed; the entities it returns are visited next.
+
+    It runs on the launch's loop, so it must not block.
+    """
 
     def __init__(
         self,
@@ -30,9 +33,8 @@ class OpaqueFunction(Action):
             raise TypeError(f"OpaqueFunction expected a callable for 'function', got '{type(function)}'")
         ensure_argument_type(args, (collections.abc.Iterable, type(None)), 'args', 'OpaqueFunction')
         ensure_argument_type(kwargs, (dict, type(None)), 'kwargs', 'OpaqueFunction')
-        self.__function = function
-        self.__args = args if args is not None else []
-        self.__kwargs = kwargs if kwargs is not None else {}
+        self._call = (function, tuple(args or ()), dict(kwargs or {}))
 
     def execute(self, context: LaunchContext) -> list[LaunchDescriptionEntity] | None:
-        return self.__function(context, *self.__args, **self.__kwargs)
+        function, positional, named = self._call
+        return function(context, *positional, **named)

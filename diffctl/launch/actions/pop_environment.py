@@ -1,8 +1,8 @@
-"""`PopEnvironment`: Restore the environment saved by the last `PushEnvironment`."""
+"""`PopEnvironment`: one half of a scope (GroupAction brackets its actions with such pairs)."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from ..action import Action
 
@@ -11,10 +11,7 @@ if TYPE_CHECKING:
 
 
 class PopEnvironment(Action):
-    """Restore the environment saved by the last `PushEnvironment`."""
-
-    def __init__(self, **kwargs: Any) -> None:
-        super().__init__(**kwargs)
+    """Puts back the environment the last PushEnvironment saved (an error without one)."""
 
     def execute(self, context: LaunchContext) -> None:
         context._pop_environment()

@@ -1,8 +1,8 @@
-"""`PopLaunchConfigurations`: Restore the launch configurations saved by the last `PushLaunchConfigurations`."""
+"""`PopLaunchConfigurations`: one half of a scope (GroupAction brackets its actions with such pairs)."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from ..action import Action
 
@@ -11,10 +11,7 @@ if TYPE_CHECKING:
 
 
 class PopLaunchConfigurations(Action):
-    """Restore the launch configurations saved by the last `PushLaunchConfigurations`."""
-
-    def __init__(self, **kwargs: Any) -> None:
-        super().__init__(**kwargs)
+    """Puts back the launch configurations the last PushLaunchConfigurations saved (an error without one)."""
 
     def execute(self, context: LaunchContext) -> None:
         context._pop_launch_configurations()

@@ -1,8 +1,8 @@
-"""`PushEnvironment`: Save the environment on a stack (restored by `PopEnvironment`)."""
+"""`PushEnvironment`: one half of a scope (GroupAction brackets its actions with such pairs)."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from ..action import Action
 
@@ -11,10 +11,7 @@ if TYPE_CHECKING:
 
 
 class PushEnvironment(Action):
-    """Save the environment on a stack (restored by `PopEnvironment`)."""
-
-    def __init__(self, **kwargs: Any) -> None:
-        super().__init__(**kwargs)
+    """Saves the environment, for the next PopEnvironment to restore."""
 
     def execute(self, context: LaunchContext) -> None:
         context._push_environment()

@@ -1,8 +1,8 @@
-"""`PushLaunchConfigurations`: Save the launch configurations on a stack (restored by `PopLaunchConfigurations`)."""
+"""`PushLaunchConfigurations`: one half of a scope (GroupAction brackets its actions with such pairs)."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from ..action import Action
 
@@ -11,10 +11,7 @@ if TYPE_CHECKING:
 
 
 class PushLaunchConfigurations(Action):
-    """Save the launch configurations on a stack (restored by `PopLaunchConfigurations`)."""
-
-    def __init__(self, **kwargs: Any) -> None:
-        super().__init__(**kwargs)
+    """Saves the launch configurations, for the next PopLaunchConfigurations to restore."""
 
     def execute(self, context: LaunchContext) -> None:
         context._push_launch_configurations()

@@ -1,8 +1,8 @@
-"""`ResetEnvironment` (`<reset_env/>`): back to the environment the launch started with."""
+"""`ResetEnvironment`, `<reset_env/>`: the environment as it was when the launch began."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from ..action import Action
 from ..frontend.expose import expose_action
@@ -15,15 +15,11 @@ if TYPE_CHECKING:
 
 @expose_action('reset_env')
 class ResetEnvironment(Action):
-    """Undoes every environment change made by earlier actions (to `os.environ` as the context found it)."""
-
-    def __init__(self, **kwargs: Any) -> None:
-        super().__init__(**kwargs)
+    """Drops every environment change made since the launch context was created."""
 
     @classmethod
     def parse(cls, entity: Entity, parser: Parser):
-        _, kwargs = super().parse(entity, parser)
-        return cls, kwargs
+        return cls, super().parse(entity, parser)[1]
 
     def execute(self, context: LaunchContext) -> None:
         context._reset_environment()

@@ -1,4 +1,4 @@
-"""`Shutdown` (`<shutdown>`): end the launch."""
+"""`Shutdown`, `<shutdown [reason=…]/>`: end the launch."""
 
 from __future__ import annotations
 
@@ -15,12 +15,13 @@ if TYPE_CHECKING:
     from ..frontend.parser import Parser
     from ..launch_context import LaunchContext
 
-_logger = logging.getLogger(name='launch')
-
 
 @expose_action('shutdown')
 class Shutdown(EmitEvent):
-    """Emits a `launch.events.Shutdown` event with `reason`."""
+    """Emits `launch.events.Shutdown(reason=reason)`.
+
+    Run by an `on_exit` of a process (the "required node" idiom), it says which process ended the launch.
+    """
 
     def __init__(self, *, reason: str = 'reason not given', **kwargs: Any) -> None:
         super().__init__(event=ShutdownEvent(reason=reason), **kwargs)
@@ -29,12 +30,14 @@ class Shutdown(EmitEvent):
     def parse(cls, entity: Entity, parser: Parser):
         _, kwargs = super().parse(entity, parser)
         reason = entity.get_attr('reason', optional=True)
-        if reason:
+        if reason:  # an empty reason keeps the default
             kwargs['reason'] = parser.parse_substitution(reason)
         return cls, kwargs
 
     def execute(self, context: LaunchContext) -> None:
-        event = context.get_locals_as_dict().get('event')
-        if isinstance(event, ProcessExited):
-            _logger.info(f'process[{event.process_name}] was required: shutting down launched system')
+        cause = context.get_locals_as_dict().get('event')
+        if isinstance(cause, ProcessExited):
+            # the plain 'launch' logger, as in ROS 2: this line has no launch.log handler of its own
+            logging.getLogger('launch').info(
+                f'process[{cause.process_name}] was required: shutting down launched system')
         super().execute(context)
