@@ -34,8 +34,12 @@ def process_names(action: Any, event_name: str | None = None) -> set[str]:
         node = getattr(action, "node_name", None)
     except RuntimeError:  # launch_ros raises before the Node is executed
         node = None
-    if isinstance(node, str) and node and "<" not in node:
-        names |= {node, node.rsplit("/", 1)[-1]}
+    if isinstance(node, str) and node:
+        bare = node.rsplit("/", 1)[-1]
+        if "<" not in bare:  # launch_ros writes a placeholder for a name it was not given
+            names.add(bare)
+        if "<" not in node:
+            names.add(node)
     return names
 
 

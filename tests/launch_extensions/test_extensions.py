@@ -141,3 +141,20 @@ def test_a_malformed_extension_tag_is_one_error_naming_it(text: str, message: st
 
     with pytest.raises(Exception, match=message.replace("`", ".").replace("(", ".").replace(")", ".")):
         get_launch_description_from_any_launch_file(str(write(tmp_path, "launch:\n" + text + "\n")))
+
+
+def test_a_node_is_named_by_its_node_name(tmp_path: Path) -> None:
+    from tests.launch_requests import started
+
+    path = write(
+        tmp_path,
+        """
+launch:
+- node: {pkg: demo_nodes_py, exec: talker, name: chatty}
+- on_exit: {target: chatty, do: [{executable: {cmd: "true", name: after_exit}}]}
+- wait_for: {exited: chatty, children: [{executable: {cmd: "true", name: gated}}]}
+""",
+    )
+    run = started(path)  # every process a stand-in that exits at once
+    assert [s.base for s in run.started][0] == "talker"  # ros2 launch labels a node by its executable
+    assert sorted(s.base for s in run.started[1:]) == ["after_exit", "gated"]
