@@ -156,5 +156,5 @@ launch:
 """,
     )
     run = started(path)  # every process a stand-in that exits at once
-    assert [s.base for s in run.started][0] == "talker"  # ros2 launch labels a node by its executable
+    assert run.started[0].base == "talker"  # ros2 launch labels a node by its executable
     assert sorted(s.base for s in run.started[1:]) == ["after_exit", "gated"]
