@@ -3,6 +3,7 @@ killed here (and fails the test)."""
 
 from __future__ import annotations
 
+import logging
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -27,6 +28,25 @@ def no_children_left() -> Iterator[None]:
             pass
     psutil.wait_procs(left, timeout=5)
     assert not left, f"processes left running: {[p.pid for p in left]}"
+
+
+class Records(logging.Handler):
+    """The messages of one logger, whatever handlers launch.logging gave it."""
+
+    def __init__(self, name: str) -> None:
+        super().__init__()
+        self.messages: list[str] = []
+        self.logger = logging.getLogger(name)
+
+    def emit(self, record: logging.LogRecord) -> None:
+        self.messages.append(record.getMessage())
+
+    def __enter__(self) -> Records:
+        self.logger.addHandler(self)
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.logger.removeHandler(self)
 
 
 def run(entities: list, **service_kwargs) -> tuple[int, object]:

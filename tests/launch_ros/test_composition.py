@@ -10,16 +10,17 @@ from pathlib import Path
 
 import pytest
 
-from diffctl.launch.actions import ExecuteProcess, GroupAction, Shutdown
+from diffctl.launch.actions import ExecuteProcess, GroupAction, RegisterEventHandler, Shutdown
+from diffctl.launch.event_handlers import OnProcessIO
 from diffctl.launch_ros.actions import ComposableNodeContainer, LoadComposableNodes, PushRosNamespace, SetParameter
 from diffctl.launch_ros.descriptions import ComposableNode
 from diffctl.launch_ros.utilities import get_node_name_count
 
-from .conftest import DATA, run
+from .conftest import DATA, Records, run
 
 
 @pytest.mark.slow
-def test_components_load_into_a_running_container(router: str, tmp_path: Path, capfd: pytest.CaptureFixture) -> None:
+def test_components_load_into_a_running_container(router: str, tmp_path: Path) -> None:
     log = tmp_path / "components.log"
     env = {"PYTHONPATH": os.pathsep.join([str(DATA), os.environ.get("PYTHONPATH", "")]), "COMPONENT_LOG": str(log)}
     container = ComposableNodeContainer(
@@ -47,30 +48,34 @@ def test_components_load_into_a_running_container(router: str, tmp_path: Path, c
         ],
     )
     # ends the launch once the container lists both Python nodes
-    checker = ExecuteProcess(
-        cmd=[sys.executable, str(DATA / "list_container.py"), "/box", "2"], on_exit=[Shutdown()], output="screen"
-    )
-    code, context = run([
-        container,
-        GroupAction([PushRosNamespace("group"), SetParameter("greeting", "scoped"), loader], scoped=True),
-        checker,
-    ])  # fmt: skip
+    checker = ExecuteProcess(cmd=[sys.executable, str(DATA / "list_container.py"), "/box", "2"], on_exit=[Shutdown()])
+    listed: list[str] = []
+
+    def record(event) -> None:
+        listed.append(event.text.decode())
+
+    with Records("launch_ros.actions.load_composable_nodes") as records:
+        code, context = run([
+            RegisterEventHandler(OnProcessIO(target_action=checker, on_stdout=record)),
+            container,
+            GroupAction([PushRosNamespace("group"), SetParameter("greeting", "scoped"), loader], scoped=True),
+            checker,
+        ])  # fmt: skip
     assert code == 0
-    out = capfd.readouterr().out
-    assert "LOADED /group/second /ns/first" in out
+    assert "LOADED /group/second /ns/first" in "".join(listed)
     assert sorted(log.read_text().splitlines()) == [
         "/group/second greeting=scoped chatter=/group/chatter",
         "/ns/first greeting=hello chatter=/ns/talk",
     ]
-    assert "Failed to load node 'cpp' of type 'image_tools::ShowImage' in container '/box'" in out
+    assert (
+        "Failed to load node 'cpp' of type 'image_tools::ShowImage' in container '/box': "
+        "Failed to find class with the requested plugin name." in records.messages
+    )
     assert [get_node_name_count(context, n) for n in ("/box", "/ns/first", "/group/second", "/cpp")] == [1, 1, 1, 0]
 
 
 @pytest.mark.slow
 def test_the_composition_tutorial_s_talker_and_listener_talk_in_one_container(router: str) -> None:
-    from diffctl.launch.actions import RegisterEventHandler
-    from diffctl.launch.event_handlers import OnProcessIO
-
     heard: list[str] = []
 
     def on_output(event) -> list | None:

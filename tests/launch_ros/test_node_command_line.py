@@ -15,7 +15,7 @@ from diffctl.launch.substitutions import TextSubstitution
 from diffctl.launch_ros.actions import Node, PushRosNamespace, SetParameter, SetParametersFromFile, SetRemap
 from diffctl.launch_ros.descriptions import Parameter
 
-from .conftest import DATA, run
+from .conftest import DATA, Records, run
 
 ECHO = str(DATA / "echo_args.py")
 
@@ -113,9 +113,8 @@ def test_a_package_executable_starts_diffctl_s_component_named_after_the_executa
         (dict(executable="true", namespace="1ns"), "namespace must not have a token that starts with a number"),
     ],
 )
-def test_what_cannot_start_fails_the_launch_naming_it(
-    node: dict, message: str, caplog: pytest.LogCaptureFixture
-) -> None:
-    code, _ = run([Node(**node)])
+def test_what_cannot_start_fails_the_launch_naming_it(node: dict, message: str) -> None:
+    with Records("launch") as records:
+        code, _ = run([Node(**node)])
     assert code == 1
-    assert message in caplog.text
+    assert any(message in m for m in records.messages), records.messages
