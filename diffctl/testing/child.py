@@ -19,22 +19,25 @@ PARENT_ENV = "DIFFCTL_TEST_PARENT_PID"
 ISOLATED_ENV = "DIFFCTL_TEST_ISOLATED"  # the session is on a bus of its own already (pytest_isolation.py)
 
 
-def interrupt_when_parent_dies() -> None:
-    """SIGINT when the parent dies: a test's launch then shuts its processes down as on Ctrl-C (a SIGKILL
-    would leave them running)."""
+def die_with_parent(runner: str) -> None:
+    """The signal this process gets when its parent dies. A launch_test run is killed outright: its launch's
+    spawner (diffctl launch's) kills everything the launch started once it is gone (death signals, the
+    guard). A pytest run is interrupted: a launch_pytest launch (launch's own spawner) then shuts its
+    processes down as on Ctrl-C."""
     if not sys.platform.startswith("linux"):
         return
+    sig = signal.SIGKILL if runner == "launch_test" else signal.SIGINT
     try:
-        ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGINT, 0, 0, 0)
+        ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, sig, 0, 0, 0)
     except (OSError, AttributeError):
         pass
 
 
-def arm_death_signal() -> None:
+def arm_death_signal(runner: str) -> None:
     parent = os.environ.pop(PARENT_ENV, "")
     if not parent or not sys.platform.startswith("linux"):
         return
-    interrupt_when_parent_dies()
+    die_with_parent(runner)
     if os.getppid() != int(parent):
         os._exit(1)  # diffctl test died before the signal was armed
 
@@ -67,9 +70,9 @@ def run(runner: str, args: list[str]) -> int:
 
 
 def main() -> None:
-    arm_death_signal()
     if len(sys.argv) < 2:
         sys.exit("usage: python -m diffctl.testing.child launch_test|pytest|pytest-isolated [ARG ...]")
+    arm_death_signal(sys.argv[1])
     code = run(sys.argv[1], sys.argv[2:])
     sys.stdout.flush()
     sys.stderr.flush()

@@ -143,9 +143,11 @@ def test_child(runner: str, args: tuple[str, ...]) -> None:
     """(internal) RUNNER (launch_test, pytest) on ARGS in a test forked from `diffctl test`'s zygote."""
     import os
 
-    from diffctl.testing.child import interrupt_when_parent_dies, run
+    from diffctl.testing.child import die_with_parent, run
+    from diffctl.testing.zygotes import start_inherited
 
-    interrupt_when_parent_dies()  # the zygote, which dies with diffctl test
+    start_inherited()  # first, while this process is single-threaded: its launch's fork server
+    die_with_parent(runner)
     code = run(runner, list(args))
     sys.stdout.flush()
     sys.stderr.flush()

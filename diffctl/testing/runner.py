@@ -8,6 +8,7 @@ launch_testing's runner gives them) plus, per run, the processes' logs and its d
 from __future__ import annotations
 
 import contextlib
+import os
 import re
 import sys
 import tempfile
@@ -99,6 +100,7 @@ class IsolatedLaunchTestRunner(LaunchTestRunner):
         self.artifacts = artifacts
         self.records: dict[Any, RunRecord] = {}
         self._worker: _RunnerWorker | None = None
+        self._spawner: Any = None
         self._kept: Any = None
 
     @contextlib.contextmanager
@@ -114,10 +116,25 @@ class IsolatedLaunchTestRunner(LaunchTestRunner):
             yield
 
     def _new_worker(self, test_run: Any) -> _RunnerWorker:
+        from diffctl.launch import LaunchService
+
         result_class = TestResult if self._kept is None else _with_failure_hook(self._kept.on_failure)
+        service = LaunchService(debug=self._debug, spawner=self._spawner_for_run())
         self._worker = _RunnerWorker(test_run, self.generate_preamble(), self._launch_file_arguments, self._debug,
-                                     result_class=result_class)
+                                     result_class=result_class, launch_service=service)
         return self._worker
+
+    def _spawner_for_run(self) -> Any:
+        """diffctl launch's spawner: every process dies with the test (death signal, guard), orphans are
+        reaped, and diffctl's components are forked from the test's own fork server when it has one (a test
+        forked from `diffctl test`'s zygote; its first run)."""
+        from diffctl.launch import logging as launch_logging
+        from diffctl.supervision.launcher_spawner import LauncherSpawner
+        from diffctl.testing.zygotes import take_inherited
+
+        self._spawner = LauncherSpawner(fork_server=take_inherited(dict(os.environ)),
+                                        logger=launch_logging.get_logger("launch"))
+        return self._spawner
 
     def _run_one(self, test_run: Any) -> Any:
         record = RunRecord(test_run)
@@ -129,6 +146,9 @@ class IsolatedLaunchTestRunner(LaunchTestRunner):
                 record.result = self._new_worker(test_run).run()
                 return record.result
             finally:
+                if self._spawner is not None:
+                    self._spawner.close()  # its fork server and guard
+                    self._spawner = None
                 record.seconds = time.monotonic() - started
                 if self._worker is not None:
                     record.logs = _logs(self._worker.proc_output, log_dir)
