@@ -120,7 +120,8 @@ def received(out: Path) -> dict:
     launch writes differ from run to run)."""
     seen = json.loads(out.read_text())
     files = seen.pop("params_files")
-    seen["argv"] = [files.get(word, word) if word.startswith("/tmp/launch_params_") else word for word in seen["argv"]]
+    written = {path: content for path, content in files.items() if Path(path).name.startswith("launch_params_")}
+    seen["argv"] = [written.get(word, word) for word in seen["argv"]]
     return seen
 
 

@@ -11,6 +11,7 @@ from pathlib import Path
 import pytest
 
 from diffctl.launch.actions import GroupAction
+from diffctl.launch.logging import launch_config
 from diffctl.launch.substitutions import TextSubstitution
 from diffctl.launch_ros.actions import Node, PushRosNamespace, SetParameter, SetParametersFromFile, SetRemap
 from diffctl.launch_ros.descriptions import Parameter
@@ -71,6 +72,7 @@ def test_scope_settings_come_first_and_stay_in_their_group(tmp_path: Path) -> No
             "ros__parameters": {"rate_hz": 10, "frame": "base", "wheels.radius_m": 0.04, "wheels.names": ["l", "r"]}
         }
     }
+    assert Path(dict_file).parent == Path(launch_config.log_dir)  # kept with the run's logs, not in /tmp
     assert talker.node_name == "/robot/ns/talker"
     assert json.loads(outside.read_text())["argv"] == ["--ros-args"]  # nothing of the group leaked out
     assert not hasattr(context.locals, "ros_adapter")  # plain nodes: the launch made no ROS node of its own

@@ -273,11 +273,18 @@ class Node(ExecuteProcess):
         self.cmd.extend(normalize_to_list_of_substitutions(w) for w in words)
 
     def _create_params_file_from_dict(self, params: dict[str, Any]) -> str:
-        """A parameters file for this node (its full name, or `/**` when not fully known) holding `params`."""
+        """A parameters file for this node (its full name, or `/**` when not fully known) holding `params`.
+
+        It is kept (a respawned node reads it again), in the run's log directory rather than ROS's temporary
+        one: it goes with the logs of the run it belongs to, not into /tmp for good."""
         section = self.node_name if self.is_node_name_fully_specified() else "/**"
         import tempfile
 
-        with tempfile.NamedTemporaryFile("w", prefix="launch_params_", delete=False) as f:
+        try:
+            folder: str | None = diffctl.launch.logging.launch_config.log_dir
+        except OSError:  # no log directory can be made: the temporary folder, as ROS
+            folder = None
+        with tempfile.NamedTemporaryFile("w", prefix="launch_params_", dir=folder, delete=False) as f:
             _yaml_dump({section: {"ros__parameters": params}}, f, default_flow_style=False)
         return f.name
 
