@@ -9,10 +9,15 @@ signals and guards every process they started, along. The runners are called as 
 
 from __future__ import annotations
 
+import atexit
+import contextlib
 import ctypes
 import os
+import select
 import signal
 import sys
+import threading
+import time
 
 PR_SET_PDEATHSIG = 1
 PARENT_ENV = "DIFFCTL_TEST_PARENT_PID"
@@ -26,11 +31,31 @@ def die_with_parent(runner: str) -> None:
     processes down as on Ctrl-C."""
     if not sys.platform.startswith("linux"):
         return
-    sig = signal.SIGKILL if runner == "launch_test" else signal.SIGINT
+    sig = signal.SIGKILL if runner == "launch_test" else signal.SIGINT  # pytest: watch_parent finishes it
     try:
         ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, sig, 0, 0, 0)
     except (OSError, AttributeError):
         pass
+
+
+def watch_parent(grace_s: float = 3.0) -> None:
+    """For a pytest run: when the parent is gone, interrupt this process (a launch on its loop shuts down), and
+    end it `grace_s` later whatever it is doing (a test body blocked in its thread would keep it alive), with
+    its exit handlers run first (supervision's kills every process group a launch still has)."""
+    try:
+        parent = os.pidfd_open(os.getppid())
+    except (AttributeError, OSError):
+        return
+
+    def watch() -> None:
+        select.select([parent], [], [])
+        os.kill(os.getpid(), signal.SIGINT)
+        time.sleep(grace_s)
+        with contextlib.suppress(Exception):
+            atexit._run_exitfuncs()
+        os._exit(1)
+
+    threading.Thread(target=watch, name="watch_parent", daemon=True).start()
 
 
 def arm_death_signal(runner: str) -> None:
@@ -47,6 +72,7 @@ def _pytest(args: list[str], isolated: bool) -> int:
     test bodies share. Plain pytest files need no router."""
     import pytest
 
+    watch_parent()
     if not isolated:
         os.environ[ISOLATED_ENV] = "1"  # nothing to isolate: pytest_isolation.py starts no router
         return int(pytest.main(args))

@@ -146,7 +146,8 @@ def test_child(runner: str, args: tuple[str, ...]) -> None:
     from diffctl.testing.child import die_with_parent, run
     from diffctl.testing.zygotes import start_inherited
 
-    start_inherited()  # first, while this process is single-threaded: its launch's fork server
+    if runner == "launch_test":
+        start_inherited()  # first, while this process is single-threaded: its launch's fork server
     die_with_parent(runner)
     code = run(runner, list(args))
     sys.stdout.flush()

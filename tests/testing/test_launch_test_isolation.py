@@ -8,6 +8,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import tempfile
 import time
 import uuid
 from pathlib import Path
@@ -62,17 +63,21 @@ def _left(marker: str) -> list[psutil.Process]:
 @pytest.mark.slow
 @pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGKILL], ids=["ctrl-c", "killed"])
 def test_stopping_diffctl_test_stops_its_tests_and_their_processes(sig: int) -> None:
-    """Ctrl-C (exit 130), or diffctl test killed outright (a cancelled CI job): nothing it started is left."""
+    """Ctrl-C (exit 130), or diffctl test killed outright (a cancelled CI job): nothing it started is left, from a
+    launch_testing file (its launch on diffctl launch's spawner) nor from a launch_pytest one (its launch on launch's
+    own, in a pytest session whose test body never returns)."""
     marker = f"{5000 + uuid.uuid4().int % 1000}.{uuid.uuid4().int % 9 + 1}"
     env = {**os.environ, "HANG_MARKER": marker}
-    p = subprocess.Popen([sys.executable, "-m", "diffctl", "test", str(FILES / "hanging_launch_test.py")],
-                         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env,
-                         start_new_session=True)
+    tmp = Path(tempfile.mkdtemp(prefix="diffctl-hang-"))
+    shutil.copy(FILES / "pytest_hanging.py", tmp / "test_hanging_pytest.py")
+    p = subprocess.Popen([sys.executable, "-m", "diffctl", "test", "-j", "2", str(FILES / "hanging_launch_test.py"),
+                          str(tmp / "test_hanging_pytest.py")], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                         text=True, env=env, start_new_session=True)
     try:
-        deadline = time.monotonic() + 20
-        while not _left(marker)[:1] and time.monotonic() < deadline:
+        deadline = time.monotonic() + 30
+        while len(_left(marker)) < 6 and time.monotonic() < deadline:  # two shells, each with two sleeps
             time.sleep(0.1)
-        assert _left(marker), "the hanging test never started"
+        assert len(_left(marker)) == 6, "the hanging tests never started"
         os.kill(p.pid, sig)
         code = p.wait(10)
         assert code == (130 if sig == signal.SIGINT else -signal.SIGKILL)
@@ -81,6 +86,7 @@ def test_stopping_diffctl_test_stops_its_tests_and_their_processes(sig: int) -> 
             p.kill()
             p.wait()
         p.stdout.close()
+        shutil.rmtree(tmp, ignore_errors=True)
     left = _left(marker)
     assert not left, [(q.pid, q.ppid(), q.info["cmdline"]) for q in left]
 
