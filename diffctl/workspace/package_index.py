@@ -2,7 +2,8 @@
 
 Share directories come from `diffctl.workspace` (the user's workspace, install trees, diffctl's own
 packages, in that order). diffctl's own components stand under the ROS names they replace and start as
-`python -m diffctl …`; a package of the user's workspace or an install tree starts its `lib/<pkg>/<exe>`.
+`python -m diffctl …`; a package of the user's workspace or an install tree starts its `lib/<pkg>/<exe>`, in
+diffctl's graph over rmw_zenoh (ros_programs.py).
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ from pathlib import Path
 
 from diffctl import workspace
 from diffctl.errors import LaunchError, suggest
-from diffctl.workspace import builtin
+from diffctl.workspace import builtin, ros_programs
 
 # (package, executable) → diffctl subcommand
 COMPONENTS: dict[tuple[str, str], tuple[str, ...]] = {
@@ -131,7 +132,7 @@ def executable_argv(package: str, executable: str) -> list[str]:
     # package (a sourced /opt/ros must not start the real robot_state_publisher); then install trees.
     program = _program(_lib_dir(package, workspace_only=True), executable)
     if program is not None:
-        return [str(program)]
+        return ros_programs.real_program_argv(program)
     from diffctl.workspace.gui_tools import argv_for
 
     gui = argv_for(package, executable)  # rqt_*, joint_state_publisher_gui …: a counterpart or a stand-in
@@ -142,7 +143,14 @@ def executable_argv(package: str, executable: str) -> list[str]:
         return [sys.executable, "-m", "diffctl", *sub]
     program = _program(_lib_dir(package), executable)
     if program is not None:
-        return [str(program)]
+        if not os.environ.get("RMW_IMPLEMENTATION") and not ros_programs.has_rmw_zenoh():
+            raise LaunchError(
+                f"{package}/{executable} is ROS 2's own ({program}): it joins diffctl's graph over rmw_zenoh, "
+                f"which no install on AMENT_PREFIX_PATH has",
+                hint=f"install {ros_programs.apt_name(ros_programs.RMW_ZENOH)} and source /opt/ros/jazzy/setup.bash "
+                "again (or set RMW_IMPLEMENTATION to run it on another middleware, outside diffctl's graph)",
+            )
+        return ros_programs.real_program_argv(program)
     from diffctl import demo_nodes
 
     demo = demo_nodes.argv_for(package, executable)  # demo_nodes_cpp/py's talker…, where no real one is found
@@ -151,7 +159,7 @@ def executable_argv(package: str, executable: str) -> list[str]:
     if package not in known_packages():
         raise LaunchError(
             f"unknown package {package!r}{suggest(package, known_packages())}",
-            hint="packages with executables: " + ", ".join(sorted(component_packages())),
+            hint=ros_programs.how_to_get(package),
         )
     available = executables(package)
     if not available:
