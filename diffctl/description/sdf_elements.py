@@ -58,6 +58,7 @@ from diffctl.description.sdf_values import (
     required_attr,
     vec3_value,
 )
+from diffctl.description.urdf.meshes import pybullet_mesh
 from diffctl.errors import DescriptionError, suggest
 
 ToLink = Callable[[Pose, str | None, Element | None], Pose]
@@ -149,7 +150,7 @@ def _parse_mesh(doc: Doc, shape: Element) -> Mesh:
         from diffctl.description.urdf.meshes import convert_to_obj
 
         try:  # the same COLLADA → OBJ path URDF meshes take
-            return Mesh(str(convert_to_obj(path)), uri, scale)
+            return Mesh(str(pybullet_mesh(convert_to_obj(path)) or ""), uri, scale)
         except DescriptionError as e:
             why = e.message.rpartition("cannot be read: ")[2]
             fail(doc, uri_el, f"mesh {uri!r} ({path}) cannot be read: {why}")
@@ -158,7 +159,14 @@ def _parse_mesh(doc: Doc, shape: Element) -> Mesh:
             hint = "supported: " + ", ".join(MESH_SUFFIXES + CONVERTED_SUFFIXES) + " (convert it, e.g. with Blender)"
             fail(doc, uri_el, f"mesh {uri!r} has format {path.suffix!r}", hint=hint)
         return Mesh("", uri, scale)  # TF and outlines do not need the mesh itself
-    return Mesh(str(path), uri, scale)
+    if not doc.check_files:
+        return Mesh(str(path), uri, scale)
+    try:  # an ASCII STL is converted; a mesh with no triangle keeps no file (the simulator leaves it out)
+        usable = pybullet_mesh(path)
+    except DescriptionError as e:
+        why = e.message.rpartition("cannot be read: ")[2]
+        fail(doc, uri_el, f"mesh {uri!r} ({path}) cannot be read: {why}")
+    return Mesh(str(usable or ""), uri, scale)
 
 
 def _fuel_file(doc: Doc, uri: str, uri_el: Element) -> Path | None:

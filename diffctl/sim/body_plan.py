@@ -15,6 +15,11 @@ parsed model with `createMultiBody`. Planning rules:
 - each tree of links (links not connected by joints) becomes its own PyBullet body;
 - a cylinder turning about its own axis (a wheel) meets the world as a contact disc and a core (wheel_contact.py);
 - a shape with no volume (a size or radius <= 0, which SDF and URDF parsers accept) is left out, with a note;
+- PyBullet takes at most 16 shapes per link (`MAX_COMPOUND_SHAPES`: createCollisionShapeArray and
+  createVisualShapeArray silently keep the first 16, and a mesh past them crashes the process), and at most 127
+  links per multibody (`MAX_LINKS`: createMultiBody silently drops the rest). A link with more shapes is split
+  into links fixed to it (sharing its mass as a surface split does; static ones by surface too); a static model
+  needing more links becomes several bodies; a moving tree still too large is refused, naming the model;
 - principal moments of inertia are floored (`MIN_MOMENT_SHARE`): a zero one (sdformat accepts it) would make
   Bullet divide by zero about that axis.
 A moving PyBullet link with no mass is an error: some link needs an <inertial>.
@@ -22,6 +27,7 @@ A moving PyBullet link with no mass is an error: some link needs an <inertial>.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 from diffctl.description.model import (
@@ -55,6 +61,9 @@ class ShapeSpec:
 
 # The mass share each extra-surface PyBullet link takes from the link it was split from.
 SURFACE_SPLIT_MASS_SHARE = 0.1
+# PyBullet's fixed capacities (SharedMemoryPublic.h): shapes in one compound, links besides a body's base.
+MAX_COMPOUND_SHAPES = 16
+MAX_LINKS = 127
 
 
 @dataclass(frozen=True)
@@ -119,8 +128,10 @@ def degenerate(g: Geometry) -> str | None:
         return f"capsule radius {g.radius_m:g} length {g.length_m:g}"
     if isinstance(g, Sphere) and not g.radius_m > 0:
         return f"sphere radius {g.radius_m:g}"
-    if isinstance(g, Mesh) and (not g.path or not all(v != 0 for v in g.scale)):
-        return f"mesh {g.uri!r} scaled {' '.join(f'{v:g}' for v in g.scale)}" if g.path else f"mesh {g.uri!r}"
+    if isinstance(g, Mesh) and not g.path:
+        return f"mesh {g.uri!r} holds no triangle"
+    if isinstance(g, Mesh) and not all(v != 0 for v in g.scale):
+        return f"mesh {g.uri!r} scaled {' '.join(f'{v:g}' for v in g.scale)}"
     return None
 
 
@@ -169,7 +180,16 @@ class _Planner:
             else:
                 groups.append(self._group([root], self.by_name[root].pose_world, -1, None, static=anchor is not None))
             self._grow(groups, len(groups) - 1, root)
-            links = _split_surfaces(tuple(self._finish(g) for g in groups))
+            links = _split_shape_count(_split_surfaces(tuple(self._finish(g) for g in groups)))
+            if len(links) > MAX_LINKS + 1:
+                raise DescriptionError(
+                    f"model {self.m.name!r}: the tree rooted at link {root!r} needs {len(links) - 1} PyBullet "
+                    f"links besides its base, more than the {MAX_LINKS} one PyBullet body holds",
+                    source=self.m.source or None,
+                    field=f"model {self.m.name}",
+                    hint="merge links with fixed joints, give links fewer collisions and visuals (16 fit in one "
+                    "link), or make the model <static>",
+                )
             bodies.append(BodyPlan(links))
             for pb_index, g in enumerate(groups, start=-1):
                 for name in g["members"]:
@@ -182,7 +202,13 @@ class _Planner:
         base = self.by_name[self.m.root_link()]
         g = self._group([link.name for link in self.m.links], base.pose_world, -1, None, static=True)
         refs = {n: LinkRef(0, -1, g["frame"].inverse().compose(self.by_name[n].pose_world)) for n in g["members"]}
-        return ModelPlan((BodyPlan((self._finish(g),)),), refs, {}, tuple(self.notes))
+        chunks = _split_shape_count((self._finish(g),), by_surface=True)
+        # Nothing moves: more chunks than one body holds simply make more bodies, each a static base.
+        bodies = []
+        for start in range(0, len(chunks), MAX_LINKS + 1):
+            part = chunks[start : start + MAX_LINKS + 1]
+            bodies.append(BodyPlan(tuple(dataclasses.replace(lp, parent=-1) for lp in part)))
+        return ModelPlan(tuple(bodies), refs, {}, tuple(self.notes))
 
     @staticmethod
     def _group(members: list[str], frame: Pose, parent: int, joint: Joint | None, static: bool = False) -> dict:
@@ -259,6 +285,11 @@ class _Planner:
             self.notes.append(
                 f"joint {joint.name!r}: negative <dynamics> (damping {d.damping:g}, friction {d.friction:g}) "
                 "simulated as 0"
+            )
+        if joint is not None and joint.type in ("revolute", "prismatic") and joint.limits.lower > joint.limits.upper:
+            self.notes.append(
+                f"joint {joint.name!r}: <lower> {joint.limits.lower:g} is above <upper> {joint.limits.upper:g}: "
+                "no position limit simulated"
             )
         axis: Vec3 = (0.0, 0.0, 1.0)
         if joint is not None and joint.axis_world is not None:
@@ -343,6 +374,62 @@ def _split_surfaces(links: tuple[LinkPlan, ...]) -> tuple[LinkPlan, ...]:
             visuals=lp.visuals,
             surface=first_surface,
         )
+    return (*out, *extra)
+
+
+def _split_shape_count(links: tuple[LinkPlan, ...], *, by_surface: bool = False) -> tuple[LinkPlan, ...]:
+    """Each link with more than MAX_COMPOUND_SHAPES collisions or visuals keeps the first of each; the others
+    move to new links fixed to it (appended), sharing its mass properties exactly. `by_surface`: collisions of
+    different surfaces go to different links as well (a static body, which has no mass to share by surface)."""
+    out = list(links)
+    extra: list[LinkPlan] = []
+    n = MAX_COMPOUND_SHAPES
+    for i, lp in enumerate(links):
+        groups: dict[Surface, list[ShapeSpec]] = {}
+        for c in lp.collisions:
+            groups.setdefault((c.surface or lp.surface) if by_surface else lp.surface, []).append(c)
+        collision_chunks = [(sf, tuple(sh[k : k + n])) for sf, sh in groups.items() for k in range(0, len(sh), n)]
+        visual_chunks = [lp.visuals[k : k + n] for k in range(0, len(lp.visuals), n)]
+        count = max(len(collision_chunks), len(visual_chunks), 1)
+        if count == 1:
+            continue
+        share = 0.0 if lp.mass_kg <= 0.0 else min(SURFACE_SPLIT_MASS_SHARE, 0.5 / (count - 1))
+        keep = 1.0 - share * (count - 1)
+
+        chunks = [
+            (
+                collision_chunks[k][1] if k < len(collision_chunks) else (),
+                visual_chunks[k] if k < len(visual_chunks) else (),
+                collision_chunks[k][0] if k < len(collision_chunks) else lp.surface,
+            )
+            for k in range(count)
+        ]
+        shapes, visuals, surface = chunks[0]
+        out[i] = dataclasses.replace(
+            lp,
+            mass_kg=lp.mass_kg * keep,
+            inertia_diagonal=_scaled(lp.inertia_diagonal, keep),
+            collisions=shapes,
+            visuals=visuals,
+            surface=surface,
+        )
+        for shapes, visuals, surface in chunks[1:]:
+            extra.append(
+                LinkPlan(
+                    members=(),
+                    frame_world=lp.frame_world,
+                    parent=i - 1,
+                    joint=None,
+                    axis=(0.0, 0.0, 1.0),
+                    mass_kg=lp.mass_kg * share,
+                    inertial_frame=lp.inertial_frame,
+                    inertia_diagonal=_scaled(lp.inertia_diagonal, share),
+                    collisions=shapes,
+                    visuals=visuals,
+                    surface=surface,
+                    part_of=lp.members or lp.part_of,
+                )
+            )
     return (*out, *extra)
 
 

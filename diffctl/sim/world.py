@@ -199,7 +199,10 @@ class PhysicsWorld:
         if links:
             kw = {
                 "linkMasses": [lp.mass_kg for lp in links],
-                "linkCollisionShapeIndices": [self._collision_shape(lp.collisions, False) for lp in links],
+                # (a massless link is a static body's: its meshes collide as triangle meshes, as the base's)
+                "linkCollisionShapeIndices": [
+                    self._collision_shape(lp.collisions, static or lp.mass_kg == 0.0) for lp in links
+                ],
                 "linkVisualShapeIndices": [self._visual_shape(lp.visuals) for lp in links],
                 "linkPositions": [],
                 "linkOrientations": [],
