@@ -63,7 +63,7 @@ class TimeSource:
     """use_sim_time: the node's ROS clocks follow /clock (best effort, depth 1) while it is true."""
 
     def __init__(self, node: Node) -> None:
-        self._node = node
+        self._node: Node | None = node
         self._clocks: list[ROSClock] = []
         self._active = False
         self._sub: Any = None
@@ -86,6 +86,8 @@ class TimeSource:
         self._active = enabled
         for c in self._clocks:
             c._set_ros_time_is_active(enabled)
+        if self._node is None:  # detached: whoever detached it sets the time (set_ros_time_override)
+            return
         bus = self._node._bus
         if enabled and self._sub is None:
             if self._node._rclcpp:
@@ -109,6 +111,17 @@ class TimeSource:
         for c in self._clocks:
             c._set_override_ns(ns)
 
+    def detach_node(self) -> None:
+        """rclpy's: stop following the node's /clock and use_sim_time; the clocks keep their state, and their
+        time comes from `set_ros_time_override` from now on."""
+        node, self._node = self._node, None
+        if node is None:
+            return
+        if self._sub is not None:
+            node._bus.destroy(self._sub)
+            self._sub = None
+        node.remove_on_set_parameters_callback(self._on_parameters)
+
     def attach_clock(self, clock: ROSClock) -> None:
         if not isinstance(clock, ROSClock):
             raise ValueError("Only clocks with type ROS_TIME can be attached.")
@@ -124,7 +137,8 @@ class TimeSource:
                     self.ros_time_is_active = p.value
                 else:
                     ok, reason = False, "use_sim_time parameter set to something besides a bool"
-                    self._node.get_logger().error(reason)
+                    if self._node is not None:
+                        self._node.get_logger().error(reason)
                 break
         return cls("rcl_interfaces/msg/SetParametersResult")(successful=ok, reason=reason)
 
