@@ -14,10 +14,10 @@ from collections.abc import Callable
 from typing import Any
 
 from diffctl.client.interfaces import cls
-from diffctl.client.messages.runtime.set_message import set_message_fields
 from diffctl.client.parameter import Parameter
 from diffctl.control.lifecycle import State
 from diffctl.errors import ConfigError, RuntimeFailure
+from diffctl.interfaces.runtime.set_message import set_message_fields
 
 CM = "controller_manager_msgs/srv/"
 # One token of a ROS name (rcl_validate_topic_name): a letter or "_" first, then letters, digits and "_".

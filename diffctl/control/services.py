@@ -14,7 +14,6 @@ from typing import Any
 
 from diffctl.client.callback_groups import ReentrantCallbackGroup
 from diffctl.client.interfaces import cls
-from diffctl.client.messages.runtime.set_message import set_message_fields
 from diffctl.client.parameter import Parameter
 from diffctl.client.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from diffctl.control import plugin_registry
@@ -22,6 +21,7 @@ from diffctl.control.lifecycle import State, TransitionError
 from diffctl.control.manager import ControllerManager
 from diffctl.control.params import STRICTNESS, controller_spec
 from diffctl.errors import DiffctlError
+from diffctl.interfaces.runtime.set_message import set_message_fields
 
 CM = "controller_manager_msgs/srv/"
 ACTIVITY_TYPE = "controller_manager_msgs/msg/ControllerManagerActivity"

@@ -13,8 +13,6 @@ from typing import Any
 from diffctl.client.clock_type import ClockType
 from diffctl.client.duration import Duration
 from diffctl.client.interfaces import cls, deserialize
-from diffctl.client.messages.runtime.convert import message_to_ordereddict
-from diffctl.client.messages.runtime.set_message import set_message_fields
 from diffctl.client.parameter import Parameter
 from diffctl.client.ros_time import Time
 from diffctl.control import realtime_publisher
@@ -25,6 +23,8 @@ from diffctl.control.controller_interface import (
     StateInterface,
 )
 from diffctl.control.lifecycle import State
+from diffctl.interfaces.runtime.convert import message_to_ordereddict
+from diffctl.interfaces.runtime.set_message import set_message_fields
 
 NS = 1_000_000_000
 START_NS = 100 * NS
