@@ -300,8 +300,21 @@ def _flatten(d: dict[str, Any], prefix: str = "") -> dict[str, Any]:
         if isinstance(v, dict):
             out.update(_flatten(v, name + "."))
         else:
-            out[name] = v
+            out[name] = _rcl_sequence(name, v) if isinstance(v, list) else v
     return out
+
+
+def _rcl_sequence(name: str, value: list[Any]) -> list[Any]:
+    """A sequence as rcl's event parser reads it: a sequence inside it adds its items to the same array, so
+    `odom0_config: [[true, true, …]]` (a `- [ … ]` block item, common in robot_localization files) is the flat
+    array; after that inner sequence ends rcl expects a key, so anything else nested is its error."""
+    inner = [i for i, v in enumerate(value) if isinstance(v, list)]
+    if not inner:
+        return value
+    if inner == [len(value) - 1] and not any(isinstance(v, (list, dict)) for v in value[-1]):
+        return [*value[:-1], *value[-1]]
+    raise ConfigError(f"parameter {name!r}: a sequence of sequences is not a parameter value ({value!r})",
+                      hint="rcl reads one array per parameter: write the values as one list")
 
 
 @dataclass
