@@ -6,7 +6,9 @@ callback from the loader that returns the pose in the owning link's frame.
 
 from __future__ import annotations
 
+import dataclasses
 import math
+import re
 from collections.abc import Callable
 from pathlib import Path
 
@@ -39,7 +41,7 @@ from diffctl.description.model import (
     Surface,
     Visual,
 )
-from diffctl.description.pose import Pose
+from diffctl.description.pose import Pose, Vec3
 from diffctl.description.resources import is_remote, resolve_uri
 from diffctl.description.sdf_values import (
     Doc,
@@ -212,7 +214,30 @@ def parse_surface(doc: Doc, collision: Element) -> Surface:
 def parse_collision(doc: Doc, el: Element, to_link: ToLink) -> Collision:
     name = required_attr(doc, el, "name")
     pose, rel, pose_el = pose_child(doc, el)
-    return Collision(name, to_link(pose, rel, pose_el), parse_geometry(doc, el), parse_surface(doc, el))
+    pose_link = to_link(pose, rel, pose_el)
+    surface = parse_surface(doc, el)
+    fdir = _fdir1(doc, el, to_link, pose_link)
+    if fdir is not None:
+        surface = dataclasses.replace(surface, fdir1=fdir)
+    return Collision(name, pose_link, parse_geometry(doc, el), surface)
+
+
+def _fdir1(doc: Doc, collision: Element, to_link: ToLink, pose_link: Pose) -> Vec3 | None:
+    """`<surface><friction><ode><fdir1 gz:expressed_in="frame">x y z</fdir1>` in the link frame: in the named
+    frame (as it stands at load time), else in the collision's own frame (ODE's rule)."""
+    ode = collision
+    for tag in ("surface", "friction", "ode", "fdir1"):
+        found = child(ode, tag)
+        if found is None:
+            return None
+        ode = found
+    x, y, z = parse_floats(doc, ode, 3)
+    if x == y == z == 0.0:
+        return None  # ODE's "no direction"
+    # gz:expressed_in, with the gz prefix declared or not
+    frame = next((v for k, v in ode.attrib.items() if re.split("[}:]", str(k))[-1] == "expressed_in"), "")
+    rotation = to_link(Pose(), frame.strip(), ode) if frame.strip() else pose_link
+    return rotation.rotate((x, y, z))
 
 
 def parse_visual(doc: Doc, el: Element, to_link: ToLink) -> Visual:

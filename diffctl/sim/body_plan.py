@@ -14,6 +14,8 @@ parsed model with `createMultiBody`. Planning rules:
   base static, a moving one hangs the tree from a static anchor);
 - each tree of links (links not connected by joints) becomes its own PyBullet body;
 - a cylinder turning about its own axis (a wheel) meets the world as a contact disc and a core (wheel_contact.py);
+- a wheel contact with a friction direction (`fdir1`) and next to no friction across it (mecanum and omni
+  wheels: mu2 ~ 0) becomes a roller (mecanum_rollers.py);
 - a shape with no volume (a size or radius <= 0, which SDF and URDF parsers accept) is left out, with a note;
 - PyBullet takes at most 16 shapes per link (`MAX_COMPOUND_SHAPES`: createCollisionShapeArray and
   createVisualShapeArray silently keep the first 16, and a mesh past them crashes the process), and at most 127
@@ -37,6 +39,8 @@ from diffctl.description.model import (
     Cylinder,
     Geometry,
     Joint,
+    JointDynamics,
+    JointLimits,
     Mesh,
     Model,
     Sphere,
@@ -46,6 +50,7 @@ from diffctl.description.model import (
 from diffctl.description.pose import Pose, Vec3
 from diffctl.errors import DescriptionError
 from diffctl.sim.inertia import MassProperties, combine, from_inertial, principal
+from diffctl.sim.mecanum_rollers import ROLLER_MASS_SHARE, is_roller_surface, roller_frame
 from diffctl.sim.wheel_contact import rolls_about_own_axis, wheel_parts
 
 DEFAULT_RGBA = (0.7, 0.7, 0.7, 1.0)
@@ -57,6 +62,7 @@ class ShapeSpec:
     pose: Pose  # in the PyBullet link frame
     rgba: tuple[float, float, float, float] = DEFAULT_RGBA
     surface: Surface | None = None  # collisions only
+    fdir1: Vec3 | None = None  # the surface's friction direction, in the PyBullet link frame
 
 
 # The mass share each extra-surface PyBullet link takes from the link it was split from.
@@ -82,6 +88,8 @@ class LinkPlan:
     visuals: tuple[ShapeSpec, ...]
     surface: Surface
     part_of: tuple[str, ...] = ()  # for a surface split: the SDF links whose collisions it carries
+    # A roller (mecanum_rollers.py): (PyBullet index of the wheel it turns with, its speed ÷ the wheel's)
+    gear: tuple[int, float] | None = None
 
 
 @dataclass(frozen=True)
@@ -180,7 +188,8 @@ class _Planner:
             else:
                 groups.append(self._group([root], self.by_name[root].pose_world, -1, None, static=anchor is not None))
             self._grow(groups, len(groups) - 1, root)
-            links = _split_shape_count(_split_surfaces(tuple(self._finish(g) for g in groups)))
+            finished = _split_rollers(tuple(self._finish(g) for g in groups))
+            links = _split_shape_count(_split_surfaces(finished))
             if len(links) > MAX_LINKS + 1:
                 raise DescriptionError(
                     f"model {self.m.name!r}: the tree rooted at link {root!r} needs {len(links) - 1} PyBullet "
@@ -314,13 +323,17 @@ class _Planner:
 def _shape(element: Collision | Visual, link_in_frame: Pose) -> ShapeSpec:
     rgba = getattr(element, "rgba", None) or DEFAULT_RGBA
     surface = element.surface if isinstance(element, Collision) else None
-    return ShapeSpec(element.geometry, link_in_frame.compose(element.pose_link), rgba, surface)
+    fdir1 = link_in_frame.rotate(surface.fdir1) if surface is not None and surface.fdir1 is not None else None
+    return ShapeSpec(element.geometry, link_in_frame.compose(element.pose_link), rgba, surface, fdir1)
 
 
 def _wheel_contacts(collisions: list[ShapeSpec], axis: Vec3) -> list[ShapeSpec]:
     """Each cylinder turning about its own axis as a contact disc and a core (see wheel_contact.py)."""
     out: list[ShapeSpec] = []
     for c in collisions:
+        if c.surface is not None and is_roller_surface(c.surface):
+            out.append(c)  # a roller meets the ground as a sphere of its own (mecanum_rollers.py)
+            continue
         parts = wheel_parts(c.geometry) if isinstance(c.geometry, Cylinder) else None
         if parts is None or not rolls_about_own_axis(c.pose, axis):
             out.append(c)
@@ -374,6 +387,70 @@ def _split_surfaces(links: tuple[LinkPlan, ...]) -> tuple[LinkPlan, ...]:
             visuals=lp.visuals,
             surface=first_surface,
         )
+    return (*out, *extra)
+
+
+def _split_rollers(links: tuple[LinkPlan, ...]) -> tuple[LinkPlan, ...]:
+    """Each wheel contact that grips along one direction only moves to a roller link hung from the wheel's
+    parent and geared to the wheel (appended; see mecanum_rollers.py), with a share of the wheel's mass."""
+    out = list(links)
+    extra: list[LinkPlan] = []
+    for i, lp in enumerate(links):
+        joint = lp.joint
+        if joint is None or joint.type not in ("revolute", "continuous") or lp.mass_kg <= 0.0:
+            continue
+        axis_world = lp.frame_world.rotate(lp.axis)
+        keep: list[ShapeSpec] = []
+        rollers: list[tuple[ShapeSpec, Pose, float]] = []
+        for c in lp.collisions:
+            s, g = c.surface, c.geometry
+            if s is None or c.fdir1 is None or not is_roller_surface(s) or not isinstance(g, (Sphere, Cylinder)):
+                keep.append(c)
+                continue
+            center = lp.frame_world.compose(c.pose).xyz
+            frame = roller_frame(center, lp.frame_world.rotate(c.fdir1), axis_world, s.mu >= s.mu2)
+            if frame is None:
+                keep.append(c)
+            else:
+                rollers.append((c, *frame))
+        if not rollers:
+            continue
+        share = min(ROLLER_MASS_SHARE, 0.5 / len(rollers))
+        keep_share = 1.0 - share * len(rollers)
+        out[i] = dataclasses.replace(
+            lp,
+            collisions=tuple(keep),
+            mass_kg=lp.mass_kg * keep_share,
+            inertia_diagonal=_scaled(lp.inertia_diagonal, keep_share),
+        )
+        for c, frame, ratio in rollers:
+            s = c.surface or lp.surface
+            radius = c.geometry.radius_m  # type: ignore[union-attr]
+            grip = Surface(max(s.mu, s.mu2), 0.0, s.restitution)
+            extra.append(
+                LinkPlan(
+                    members=(),
+                    frame_world=frame,
+                    parent=lp.parent,
+                    joint=dataclasses.replace(
+                        joint,
+                        name=f"{joint.name}::roller",
+                        type="continuous",
+                        limits=JointLimits(),
+                        dynamics=JointDynamics(),
+                        mimic=None,
+                    ),
+                    axis=(1.0, 0.0, 0.0),
+                    mass_kg=lp.mass_kg * share,
+                    inertial_frame=Pose(),
+                    inertia_diagonal=(max(lp.inertia_diagonal) * share,) * 3,
+                    collisions=(ShapeSpec(Sphere(radius), Pose(), c.rgba, grip),),
+                    visuals=(),
+                    surface=grip,
+                    part_of=lp.members or lp.part_of,
+                    gear=(i - 1, ratio),
+                )
+            )
     return (*out, *extra)
 
 
