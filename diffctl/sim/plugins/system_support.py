@@ -19,9 +19,10 @@ _TOPIC_BAD = re.compile(r"[\s@]|:=|~")
 
 def valid_topic(topic: str) -> str:
     """gz-transport's TopicUtils::AsValidTopic, as far as names met in practice go: blanks become '_', the
-    characters it refuses are dropped, repeated slashes collapse."""
+    characters it refuses are dropped, repeated slashes collapse; then the name as the node resolves it."""
     t = _TOPIC_BAD.sub(lambda m: "_" if m.group().isspace() else "", topic)
-    return re.sub(r"/{2,}", "/", t)
+    return "/" + re.sub(r"/{2,}", "/", t).lstrip("/")  # gz-transport's fully qualified names start with '/'
+
 
 
 def find_joints(
