@@ -39,6 +39,7 @@ COMPONENTS: dict[tuple[str, str], tuple[str, ...]] = {
     **{("topic_tools", exe): ("topic-tools", exe)
        for exe in ("relay", "throttle", "drop", "delay", "mux", "demux", "relay_field")},
     ("twist_mux", "twist_mux"): ("twist-mux",),
+    ("joy_teleop", "joy_teleop"): ("joy-teleop",),
     **{("ros2_controllers_test_nodes", exe): ("ros2-controllers-test-nodes", exe)
        for exe in ("publisher_forward_position_controller", "publisher_joint_trajectory_controller")},
     ("twist_stamper", "twist_stamper"): ("twist-stamper", "twist_stamper"),
