@@ -100,8 +100,14 @@ class TimeSource:
             self._sub = None
 
     def _on_clock(self, data: bytes) -> None:
-        # builtin_interfaces/Time right after the CDR header: sec (int32), nanosec (uint32)
-        sec, nanosec = _CLOCK_STAMP.unpack_from(data, 4)
+        # builtin_interfaces/Time right after the little-endian CDR header: sec (int32), nanosec (uint32)
+        valid = len(data) >= 12 and data[:2] == b"\x00\x01"
+        if valid:
+            sec, nanosec = _CLOCK_STAMP.unpack_from(data, 4)
+            valid = sec >= 0 and nanosec < 1_000_000_000
+        if not valid:  # a time no clock can hold: dropped, the node's clock keeps its time
+            self._node._bus.throttled("clock", f"dropped a malformed sample on {CLOCK_TOPIC}")
+            return
         self.set_time_ns(sec * 1_000_000_000 + nanosec)
 
     def set_time_ns(self, ns: int) -> None:

@@ -256,8 +256,11 @@ def run(args: tuple[str, ...], gui: bool, rtf: float | None) -> None:
       diffctl sim run -r -v 3 config/worlds/empty.world
       diffctl sim run --gui --rtf 1 -r config/worlds/empty.world
     """
-    from diffctl.bus.log import Logger
+    from diffctl import ros_args
+    from diffctl.client import ros_logging
+    from diffctl.sim.log import Logger
 
+    ros_logging.configure_from_args(["--ros-args", *ros_args.current_argv()])
     g = parse_gz_args(list(args))
     if rtf is not None and (rtf != rtf or rtf < 0 or rtf == float("inf")):
         raise ConfigError(f"--rtf {rtf} must be a finite number >= 0 (0 = as fast as possible)")

@@ -19,10 +19,10 @@ import numpy as np
 import pybullet as pb
 
 from diffctl.bus import gz
-from diffctl.bus.log import Logger
 from diffctl.description.model import Model, World
 from diffctl.errors import DescriptionError, RuntimeFailure
 from diffctl.sim.entity import Entity
+from diffctl.sim.log import Logger
 from diffctl.sim.plugins.ackermann_steering import AckermannSteering, AckermannSteeringParams
 from diffctl.sim.plugins.apply_joint_force import ApplyJointForce
 from diffctl.sim.plugins.base import PluginContext, SystemPlugin, bool_param, rate_period_ns
