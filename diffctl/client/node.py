@@ -249,7 +249,9 @@ class Node:
         try:
             pub.publish_raw(serialize(event))
         except Exception as e:  # a closed session at shutdown must not fail the set that caused the event
-            self._bus.throttled("parameter_events", f"could not publish /parameter_events: {type(e).__name__}: {e}")
+            if not closing():
+                self._bus.throttled("parameter_events",
+                                    f"could not publish /parameter_events: {type(e).__name__}: {e}")
 
     # ------------------------------------------------------------------ identity
     @property

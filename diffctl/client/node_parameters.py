@@ -15,6 +15,7 @@ from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
+from diffctl.bus.session import before_close
 from diffctl.client.exceptions import (
     InvalidParameterTypeException,
     InvalidParameterValueException,
@@ -50,6 +51,18 @@ def _events() -> ThreadPoolExecutor:
         if _events_pool is None:
             _events_pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="parameter_events")
         return _events_pool
+
+
+def _drain_events() -> None:
+    """The events queued so far leave before the session closes (none is published while it closes)."""
+    if _events_pool is not None:
+        try:
+            _events_pool.submit(lambda: None).result(timeout=2.0)
+        except Exception:
+            pass
+
+
+before_close(_drain_events, first=True)
 
 
 def validate_parameter_name(name: str) -> bool:
