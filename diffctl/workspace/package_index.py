@@ -118,6 +118,48 @@ def _program(lib: Path | None, executable: str) -> Path | None:
     return candidate if candidate is not None and candidate.is_file() and os.access(candidate, os.X_OK) else None
 
 
+def _built_program(package: str, executable: str) -> Path | None:
+    """A workspace package's program as colcon built it: `install/<pkg>/lib/<pkg>/<exe>` (isolated) or
+    `install/lib/<pkg>/<exe>` (merged) of the workspace, or of an install on the prefix paths (a sourced
+    install/setup.bash). Its sources stay the package's share; the built program is what runs."""
+    try:
+        found = workspace.find_package(package)
+    except LaunchError:
+        return None
+    if found.origin != "workspace":
+        return None
+    roots = []
+    ws = workspace.find_workspace()
+    if ws is not None:
+        roots += [ws / "install" / package, ws / "install"]
+    from diffctl.workspace import prefixes
+
+    roots += [p.path for p in prefixes.install_prefixes()]
+    for root in roots:
+        program = _program(root / "lib" / package, executable)
+        if program is not None:
+            return program
+    return None
+
+
+def _compiled_program(package: str, executable: str) -> str | None:
+    """`CMakeLists.txt:N` where a workspace package declares `add_executable(<executable> …)`, else None."""
+    import re
+
+    try:
+        found = workspace.find_package(package)
+    except LaunchError:
+        return None
+    cmake = found.source / "CMakeLists.txt" if found.source is not None else None
+    if cmake is None or not cmake.is_file():
+        return None
+    declared = re.compile(r"^\s*add_executable\s*\(\s*" + re.escape(executable) + r"[\s)]", re.IGNORECASE)
+    for number, line in enumerate(cmake.read_text(errors="replace").splitlines(), 1):
+        if declared.match(line):
+            return f"{cmake}:{number}"
+    return None
+
+
 def executables(package: str) -> list[str]:
     from diffctl import demo_nodes
 
@@ -133,7 +175,7 @@ def executable_argv(package: str, executable: str) -> list[str]:
     launch_ros runs it, or a diffctl component)."""
     # The user's own package first; then diffctl's component of that name, even over an installed ROS
     # package (a sourced /opt/ros must not start the real robot_state_publisher); then install trees.
-    program = _program(_lib_dir(package, workspace_only=True), executable)
+    program = _program(_lib_dir(package, workspace_only=True), executable) or _built_program(package, executable)
     if program is not None:
         return ros_programs.real_program_argv(program)
     from diffctl.workspace.gui_tools import argv_for
@@ -163,6 +205,13 @@ def executable_argv(package: str, executable: str) -> list[str]:
         raise LaunchError(
             f"unknown package {package!r}{suggest(package, known_packages())}",
             hint=ros_programs.how_to_get(package),
+        )
+    compiled = _compiled_program(package, executable)
+    if compiled is not None:
+        raise LaunchError(
+            f"{package}/{executable} is a compiled program of your workspace ({compiled}) that is not built",
+            hint="build the workspace with colcon against a sourced ROS 2 (`colcon build`, then `source "
+            "install/setup.bash`): diffctl then starts install/lib/" + f"{package}/{executable} in its graph",
         )
     available = executables(package)
     if not available:

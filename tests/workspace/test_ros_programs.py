@@ -93,3 +93,29 @@ def test_without_rmw_zenoh_or_without_the_package_one_error_says_what_to_do(tmp_
     text = out.stdout + out.stderr
     assert "unknown package 'fake_planner'" in text and "ros-jazzy-fake-planner" in text, text
     assert "source /opt/ros/jazzy/setup.bash" in text and "Traceback" not in text
+
+
+def test_a_workspace_c_plus_plus_program_runs_once_built(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    from diffctl.errors import LaunchError
+    from diffctl.workspace import package_index
+
+    ws = tmp_path / "ws"
+    pkg = ws / "src" / "car_control"
+    (pkg / "src").mkdir(parents=True)
+    (pkg / "package.xml").write_text(package_xml("car_control"))
+    (pkg / "CMakeLists.txt").write_text("cmake_minimum_required(VERSION 3.8)\nproject(car_control)\n"
+                                        "find_package(rclcpp REQUIRED)\n"
+                                        "add_executable(vehicle_controller src/vehicle_controller.cpp)\n"
+                                        "install(TARGETS vehicle_controller DESTINATION lib/${PROJECT_NAME})\n")
+    monkeypatch.chdir(ws)
+    with pytest.raises(LaunchError) as e:
+        package_index.executable_argv("car_control", "vehicle_controller")
+    text = f"{e.value} {e.value.hint}"
+    assert "compiled program" in text and "CMakeLists.txt:4" in text and "colcon build" in text, text
+    # colcon built it (isolated layout): the built program runs, in diffctl's graph
+    built = ws / "install" / "car_control" / "lib" / "car_control" / "vehicle_controller"
+    built.parent.mkdir(parents=True)
+    built.write_text("#!/bin/sh\n")
+    built.chmod(0o755)
+    argv = package_index.executable_argv("car_control", "vehicle_controller")
+    assert argv[-1] == str(built) and "RMW_IMPLEMENTATION=rmw_zenoh_cpp" in argv
