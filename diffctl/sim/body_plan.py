@@ -16,6 +16,7 @@ parsed model with `createMultiBody`. Planning rules:
 - a cylinder turning about its own axis (a wheel) meets the world as a contact disc and a core (wheel_contact.py);
 - a wheel contact with a friction direction (`fdir1`) and next to no friction across it (mecanum and omni
   wheels: mu2 ~ 0) becomes a roller (mecanum_rollers.py);
+- a track link's (TrackController's) collisions ride on a belt link sliding along it (plugins/track_controller.py);
 - a shape with no volume (a size or radius <= 0, which SDF and URDF parsers accept) is left out, with a note;
 - PyBullet takes at most 16 shapes per link (`MAX_COMPOUND_SHAPES`: createCollisionShapeArray and
   createVisualShapeArray silently keep the first 16, and a mesh past them crashes the process), and at most 127
@@ -51,6 +52,7 @@ from diffctl.description.pose import Pose, Vec3
 from diffctl.errors import DescriptionError
 from diffctl.sim.inertia import MassProperties, combine, from_inertial, principal
 from diffctl.sim.mecanum_rollers import ROLLER_MASS_SHARE, is_roller_surface, roller_frame
+from diffctl.sim.plugins.system_names import system_kind
 from diffctl.sim.wheel_contact import rolls_about_own_axis, wheel_parts
 
 DEFAULT_RGBA = (0.7, 0.7, 0.7, 1.0)
@@ -67,6 +69,8 @@ class ShapeSpec:
 
 # The mass share each extra-surface PyBullet link takes from the link it was split from.
 SURFACE_SPLIT_MASS_SHARE = 0.1
+# The mass share a track's belt link takes from the PyBullet link its track belongs to.
+BELT_MASS_SHARE = 0.05
 # PyBullet's fixed capacities (SharedMemoryPublic.h): shapes in one compound, links besides a body's base.
 MAX_COMPOUND_SHAPES = 16
 MAX_LINKS = 127
@@ -90,6 +94,7 @@ class LinkPlan:
     part_of: tuple[str, ...] = ()  # for a surface split: the SDF links whose collisions it carries
     # A roller (mecanum_rollers.py): (PyBullet index of the wheel it turns with, its speed ÷ the wheel's)
     gear: tuple[int, float] | None = None
+    belt: str | None = None  # a track's belt (track_belts.py): the SDF link it moves along
 
 
 @dataclass(frozen=True)
@@ -170,6 +175,12 @@ class _Planner:
             child_of.add(j.child)
         self.roots = [link.name for link in model.links if link.name not in child_of]
         self.notes: list[str] = []
+        # links whose contact is a moving belt (TrackController's <link>, track_belts.py)
+        self.tracks = {
+            (p.get("link") or "").strip()
+            for p in model.plugins
+            if system_kind(p.filename, p.name) == "track-controller"
+        } & set(self.by_name)
 
     def plan(self) -> ModelPlan:
         if self.m.static:
@@ -188,7 +199,7 @@ class _Planner:
             else:
                 groups.append(self._group([root], self.by_name[root].pose_world, -1, None, static=anchor is not None))
             self._grow(groups, len(groups) - 1, root)
-            finished = _split_rollers(tuple(self._finish(g) for g in groups))
+            finished = _split_belts(_split_rollers(tuple(self._finish(g) for g in groups)), groups)
             links = _split_shape_count(_split_surfaces(finished))
             if len(links) > MAX_LINKS + 1:
                 raise DescriptionError(
@@ -266,6 +277,9 @@ class _Planner:
                     why = degenerate(c.geometry)
                     if why is not None:
                         self.notes.append(f"{kind} {c.name!r} of link {name!r} has no volume ({why}): left out")
+                    elif isinstance(c, Collision) and name in self.tracks and not g["static"]:
+                        g.setdefault("belts", {}).setdefault(name, []).append(_shape(c, in_frame))
+                        g.setdefault("track_axes", {})[name] = in_frame.rotate((1.0, 0.0, 0.0))
                     elif isinstance(c, Collision):
                         collisions.append(_shape(c, in_frame))
                         surfaces.append(c.surface)
@@ -387,6 +401,51 @@ def _split_surfaces(links: tuple[LinkPlan, ...]) -> tuple[LinkPlan, ...]:
             visuals=lp.visuals,
             surface=first_surface,
         )
+    return (*out, *extra)
+
+
+def _split_belts(links: tuple[LinkPlan, ...], groups: list[dict]) -> tuple[LinkPlan, ...]:
+    """A track link's collisions move to a belt link on a prismatic joint along the track (its link's x axis),
+    appended, fixed to the PyBullet link the track belongs to, with a share of its mass (track_belts.py)."""
+    out = list(links)
+    extra: list[LinkPlan] = []
+    for i, g in enumerate(groups):  # (links may hold rollers past the groups)
+        lp, belts = links[i], g.get("belts", {})
+        if not belts or lp.mass_kg <= 0.0:
+            continue
+        share = min(BELT_MASS_SHARE, 0.5 / len(belts))
+        keep = 1.0 - share * len(belts)
+        out[i] = dataclasses.replace(lp, mass_kg=lp.mass_kg * keep, inertia_diagonal=_scaled(lp.inertia_diagonal, keep))
+        for name, shapes in belts.items():
+            axis = g["track_axes"][name]
+            surface = shapes[0].surface or lp.surface
+            belt_joint = Joint(
+                name=f"{name}::belt",
+                type="prismatic",
+                parent=name,
+                child=name,
+                pose_world=lp.frame_world,
+                pose_child=Pose(),
+                axis_world=lp.frame_world.rotate(axis),
+                axis_child=axis,
+            )
+            extra.append(
+                LinkPlan(
+                    members=(),
+                    frame_world=lp.frame_world,
+                    parent=i - 1,
+                    joint=belt_joint,
+                    axis=axis,
+                    mass_kg=lp.mass_kg * share,
+                    inertial_frame=lp.inertial_frame,
+                    inertia_diagonal=_scaled(lp.inertia_diagonal, share),
+                    collisions=tuple(shapes),
+                    visuals=(),
+                    surface=surface,
+                    part_of=(name,),
+                    belt=name,
+                )
+            )
     return (*out, *extra)
 
 

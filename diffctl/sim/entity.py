@@ -62,6 +62,13 @@ class Entity:
         self.motion_commands = 0
         # Efforts systems added for the next step, summed as gz-sim sums JointForceCmd (applied before the step).
         self.pending_efforts: dict[str, tuple[JointHandle, float]] = {}
+        # Tracks' belt links (TrackController): SDF track link → (PyBullet body, link index).
+        self.belts: dict[str, tuple[int, int]] = {
+            lp.belt: (bodies[b], index)
+            for b, bp in enumerate(plan.bodies)
+            for index, lp in enumerate(bp.links, start=-1)
+            if lp.belt is not None
+        }
         # Spawn state, for world reset: base link frames and (zero) joint positions.
         self._initial = [(b, plan.bodies[i].links[0]) for i, b in enumerate(bodies)]
 

@@ -37,6 +37,8 @@ from diffctl.sim.plugins.mecanum_drive import MecanumDrive, MecanumDriveParams
 from diffctl.sim.plugins.odometry_publisher import OdometryPublisher
 from diffctl.sim.plugins.pose_publisher import PosePublisher
 from diffctl.sim.plugins.system_names import system_kind
+from diffctl.sim.plugins.track_controller import TrackController
+from diffctl.sim.plugins.tracked_vehicle import TrackedVehicle
 from diffctl.sim.plugins.velocity_control import VelocityControl
 from diffctl.sim.sensors import (
     AirPressure,
@@ -97,6 +99,8 @@ MODEL_SYSTEMS = {
     "velocity-control",
     "joint-trajectory-controller",
     "apply-joint-force",
+    "tracked-vehicle",
+    "track-controller",
     "joint-state-publisher",
     "odometry-publisher",
     "linearbatteryplugin",
@@ -254,9 +258,18 @@ class Simulation:
 
     def _add_systems(self, rt: ModelRuntime, description: str = "", prepared: PreparedManager | None = None) -> None:
         model = rt.entity.model
+        # A TrackedVehicle commands the tracks of its model: those are made first, whatever the plugin order.
+        tracks = [
+            TrackController(self.ctx, rt.entity, p)
+            for p in model.plugins
+            if system_name(p.filename, p.name) == "track-controller"
+        ]
+        rt.plugins.extend(tracks)
         for plugin in model.plugins:
             kind = system_name(plugin.filename, plugin.name)
-            if kind == "diff-drive":
+            if kind == "tracked-vehicle":
+                rt.plugins.append(TrackedVehicle(self.ctx, rt.entity, plugin, tracks))
+            elif kind == "diff-drive":
                 canonical = model.canonical_link or model.root_link()
                 params = DiffDriveParams.from_plugin(plugin, model.name, canonical, model.source)
                 rt.plugins.append(DiffDrive(self.ctx, rt.entity, params))

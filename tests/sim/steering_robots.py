@@ -92,3 +92,42 @@ def mecanum_robot(name: str = "omni", plugin_extra: str = "") -> str:
       <wheel_radius>{WHEEL_RADIUS_M}</wheel_radius>{plugin_extra}
     </plugin>"""
     return f"<model name='{name}'>{''.join(links)}{''.join(joints)}{plugin}</model>"
+
+
+TRACKS_SEPARATION_M = 0.5
+TRACK_HEIGHT_M = 0.1
+
+
+def tracked_robot(name: str = "tank") -> str:
+    """A body with two tracks on fixed joints, each a box with round ends, driven by TrackController systems under
+    a TrackedVehicle (as gz-sim's examples/worlds/tracked_vehicle_simple.sdf arranges them)."""
+    r = TRACK_HEIGHT_M / 2
+    links = [
+        f"<link name='body'><pose>0 0 {r + 0.05} 0 0 0</pose>{_inertial(8.0, 0.2)}"
+        "<collision name='c'><geometry><box><size>0.5 0.35 0.08</size></box></geometry></collision>"
+        "<visual name='v'><geometry><box><size>0.5 0.35 0.08</size></box></geometry></visual></link>"
+    ]
+    joints, tracks = [], []
+    for side, y in (("left", TRACKS_SEPARATION_M / 2), ("right", -TRACKS_SEPARATION_M / 2)):
+        shapes = (
+            f"<collision name='belt'><geometry><box><size>0.5 0.1 {TRACK_HEIGHT_M}</size></box></geometry></collision>"
+            + "".join(
+                f"<collision name='end{i}'><pose>{x} 0 0 1.5707963 0 0</pose><geometry><cylinder><radius>{r}</radius>"
+                "<length>0.1</length></cylinder></geometry></collision>"
+                for i, x in enumerate((-0.25, 0.25))
+            )
+        )
+        links.append(f"<link name='{side}_track'><pose>0 {y} {r} 0 0 0</pose>{_inertial(1.0, 0.02)}{shapes}</link>")
+        joints.append(
+            f"<joint name='{side}_track_j' type='fixed'><parent>body</parent><child>{side}_track</child></joint>"
+        )
+        tracks.append(
+            f'<plugin filename="gz-sim-track-controller-system" name="gz::sim::systems::TrackController">'
+            f"<link>{side}_track</link><min_velocity>-1.0</min_velocity><max_velocity>1.0</max_velocity></plugin>"
+        )
+    vehicle = f"""<plugin filename="gz-sim-tracked-vehicle-system" name="gz::sim::systems::TrackedVehicle">
+      <left_track><link>left_track</link></left_track><right_track><link>right_track</link></right_track>
+      <tracks_separation>{TRACKS_SEPARATION_M}</tracks_separation><track_height>{TRACK_HEIGHT_M}</track_height>
+      <steering_efficiency>0.5</steering_efficiency>
+    </plugin>"""
+    return f"<model name='{name}'>{''.join(links)}{''.join(joints)}{''.join(tracks)}{vehicle}</model>"

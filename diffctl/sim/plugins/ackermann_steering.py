@@ -223,4 +223,3 @@ class AckermannSteering(SystemPlugin):
             for obj in (self._sub, self._odom_pub, self._tf_pub):
                 if obj is not None:
                     t.release(obj)
-

@@ -17,8 +17,16 @@ from diffctl.sim.plugins.base import PluginContext, SystemPlugin, bool_param, fl
 from diffctl.sim.plugins.joint_position_controller import command_topic, pid_from
 from diffctl.sim.plugins.system_support import find_joints, int_param
 
-VELOCITY_PID = {"p_gain": 1.0, "i_gain": 0.0, "d_gain": 0.0, "i_max": 1.0, "i_min": -1.0, "cmd_max": 1000.0,
-                "cmd_min": -1000.0, "cmd_offset": 0.0}  # fmt: skip
+VELOCITY_PID = {
+    "p_gain": 1.0,
+    "i_gain": 0.0,
+    "d_gain": 0.0,
+    "i_max": 1.0,
+    "i_min": -1.0,
+    "cmd_max": 1000.0,
+    "cmd_min": -1000.0,
+    "cmd_offset": 0.0,
+}
 
 
 class JointController(SystemPlugin):
@@ -66,7 +74,7 @@ class JointController(SystemPlugin):
                 for h in self.joints:
                     self.entity.set_joint_velocity(h, self.target)
             return
-        (_pos, vel, _e), = self.entity.joint_states([self.joints[0]])
+        ((_pos, vel, _e),) = self.entity.joint_states([self.joints[0]])
         for h in self.joints:
             self.entity.add_joint_effort(h, self.pid.update(vel - self.target, self._dt_s))
 

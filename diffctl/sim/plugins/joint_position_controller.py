@@ -41,8 +41,16 @@ def pid_from(plugin: Plugin, source: str, defaults: dict[str, float], prefix: st
     return GzPid(*(num(tag) for tag in PID_TAGS))  # (GzPid's fields are in this order)
 
 
-POSITION_PID = {"p_gain": 1.0, "i_gain": 0.1, "d_gain": 0.01, "i_max": 1.0, "i_min": -1.0, "cmd_max": 1000.0,
-                "cmd_min": -1000.0, "cmd_offset": 0.0}  # fmt: skip
+POSITION_PID = {
+    "p_gain": 1.0,
+    "i_gain": 0.1,
+    "d_gain": 0.01,
+    "i_max": 1.0,
+    "i_min": -1.0,
+    "cmd_max": 1000.0,
+    "cmd_min": -1000.0,
+    "cmd_offset": 0.0,
+}
 
 
 class JointPositionController(SystemPlugin):
@@ -93,7 +101,7 @@ class JointPositionController(SystemPlugin):
         self.target = position  # a non-finite target makes the PID output 0, as gz-math's does
 
     def _step(self) -> None:
-        (pos, _vel, _e), = self.entity.joint_states([self.joints[0]])
+        ((pos, _vel, _e),) = self.entity.joint_states([self.joints[0]])
         error = pos - self.target
         if self.velocity_mode:
             limit = self.pid.cmd_max * self._dt_s

@@ -28,8 +28,16 @@ from diffctl.sim.plugins.gz_pid import GzPid
 from diffctl.sim.plugins.joint_position_controller import PID_TAGS
 from diffctl.sim.plugins.system_support import valid_topic
 
-PID_DEFAULTS = {"p_gain": 0.0, "i_gain": 0.0, "d_gain": 0.0, "i_max": -1.0, "i_min": 0.0, "cmd_max": -1.0,
-                "cmd_min": 0.0, "cmd_offset": 0.0}  # fmt: skip
+PID_DEFAULTS = {
+    "p_gain": 0.0,
+    "i_gain": 0.0,
+    "d_gain": 0.0,
+    "i_max": -1.0,
+    "i_min": 0.0,
+    "cmd_max": -1.0,
+    "cmd_min": 0.0,
+    "cmd_offset": 0.0,
+}
 SINGLE_AXIS = ("revolute", "continuous", "prismatic")
 
 
@@ -159,8 +167,12 @@ class JointTrajectoryController(SystemPlugin):
                 joint = self.joints.get(name)
                 if joint is None:
                     continue
-                for key, msg_key in (("position", "positions"), ("velocity", "velocities"),
-                                     ("acceleration", "accelerations"), ("effort", "effort")):  # fmt: skip
+                for key, msg_key in (
+                    ("position", "positions"),
+                    ("velocity", "velocities"),
+                    ("acceleration", "accelerations"),
+                    ("effort", "effort"),
+                ):
                     values = point.get(msg_key)
                     if values is not None and i < len(values) and math.isfinite(float(values[i])):
                         joint.target[key] = float(values[i])

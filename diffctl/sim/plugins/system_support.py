@@ -24,7 +24,6 @@ def valid_topic(topic: str) -> str:
     return "/" + re.sub(r"/{2,}", "/", t).lstrip("/")  # gz-transport's fully qualified names start with '/'
 
 
-
 def find_joints(
     ctx: PluginContext, entity: Entity, names: list[str] | tuple[str, ...], system: str
 ) -> list[JointHandle]:
