@@ -343,7 +343,10 @@ class NodeParameters:
             if descriptors is not None:
                 self.msg_descriptors[p.name] = descriptors[p.name]
             elif p.name not in self.msg_descriptors:
-                self.msg_descriptors[p.name] = _descriptor(dynamic_typing=True)
+                # An undeclared parameter being set: rclpy keeps it dynamically typed; rclcpp declares it
+                # implicitly, named and typed by its value.
+                self.msg_descriptors[p.name] = (_descriptor(name=p.name, type=p.type_.value) if self.rclcpp
+                                                else _descriptor(dynamic_typing=True))
             is_new = self.get_parameter_or(p.name).type_ == Parameter.Type.NOT_SET
             (new if is_new else changed).append(p)
             self.parameters[p.name] = p

@@ -4,7 +4,8 @@ The node is a diffctl.client Node named after the controller, in the manager's n
 process's global arguments and gets instead: the manager node's own arguments (its parameter files, -p rules
 and remaps — not `__node`, `__ns` or robot_description), then `--params-file` for each `<name>.params_file`,
 then `-p use_sim_time:=true` when the manager runs on sim time, then `<name>.node_options_args` (the
-spawner's --controller-ros-args). Its logger services are on, as controller_interface asks.
+spawner's --controller-ros-args). Its logger services are on, as controller_interface asks, and it declares
+what an rclcpp node declares (the read-only QoS overrides of /parameter_events, and /clock's on sim time).
 """
 
 from __future__ import annotations
@@ -49,7 +50,7 @@ def make_controller_node(name: str, namespace: str, arguments: Sequence[str], co
     from diffctl.client.node import Node
 
     return Node(name, namespace=namespace, cli_args=list(arguments), use_global_arguments=False,
-                context=context, enable_logger_service=True)
+                context=context, enable_logger_service=True, client_library="rclcpp")
 
 
 class ManagerTime:

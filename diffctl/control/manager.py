@@ -76,6 +76,9 @@ class ControllerManager:
         self._lock = threading.RLock()  # held by the real-time cycle and by structural changes
         self._admin = threading.RLock()  # serialises service calls
         self._active: tuple[ManagedController, ...] = ()
+        # The cycle's view of `_active`: (controller, its bound update, runs every cycle)
+        self._updates: tuple[tuple[ManagedController, Callable[[Any, Any], Any], bool], ...] = ()
+        self._period = _duration(0)  # the last cycle's period, handed on while it does not change
         self._pending: _PendingSwitch | None = None
         self.cycle_count = 0
         # Called whenever the controllers or the hardware components change state (the node's ~/activity
@@ -425,6 +428,8 @@ class ControllerManager:
         views = {n: ControllerView(mc.state, mc.claimed, mc.required_state) for n, mc in self.controllers.items()}
         order = chain_order(active, views, self.rm.reference_owner, state_owner=self.rm.exported_state_owner)
         self._active = tuple(self.controllers[n] for n in order)
+        rate = self.params.update_rate
+        self._updates = tuple((mc, mc.instance.update, mc.update_rate >= rate) for mc in self._active)
 
     # ---------------------------------------------------------------------------------------------- real time
     def read(self, time_ns: int, period_s: float) -> None:
@@ -440,20 +445,22 @@ class ControllerManager:
                 self._hardware_failed(failed)
 
     def cycle(self, time_ns: int, period_s: float) -> None:
-        """read → update → write, as the real-time loop runs them, under one acquisition of the lock."""
-        with self._lock:
-            rate = self.params.update_rate
-            failed = self.rm.read(time_ns, period_s, rate)
-            if failed:
-                self._hardware_failed(failed)
-            held = hold_publishing()
-            try:
+        """read → update → write, as the real-time loop runs them, under one acquisition of the lock; what the
+        controllers published goes to the publishing thread once the commands are written."""
+        held = hold_publishing()
+        try:
+            with self._lock:
+                rate = self.params.update_rate
+                rm = self.rm
+                failed = rm.read(time_ns, period_s, rate)
+                if failed:
+                    self._hardware_failed(failed)
                 self._update(time_ns, period_s, rate)
-            finally:
-                release_publishing(held)
-            failed = self.rm.write(time_ns, period_s, rate)
-            if failed:
-                self._hardware_failed(failed)
+                failed = rm.write(time_ns, period_s, rate)
+                if failed:
+                    self._hardware_failed(failed)
+        finally:
+            release_publishing(held)
 
     def _hardware_failed(self, failed: list[tuple[str, str]]) -> None:
         for comp, reason in failed:
@@ -484,29 +491,32 @@ class ControllerManager:
         """The controllers' updates (`_lock` held, publishing held: what they publish reaches the publishing
         thread once they all ran; woken in the middle of them, it would take the GIL from this loop)."""
         self.cycle_count += 1
-        failed: list[tuple[ManagedController, str]] = []
-        time = Time(nanoseconds=time_ns, clock_type=_ROS_TIME)
-        cycle_period = Duration(nanoseconds=round(period_s * 1e9))
-        for mc in self._active:
+        failed: list[tuple[ManagedController, str]] | None = None
+        time = _ros_time(time_ns)
+        period_ns = round(period_s * 1e9)
+        cycle_period = self._period if self._period._nanoseconds == period_ns else _duration(period_ns)
+        self._period = cycle_period
+        for mc, update, every_cycle in self._updates:
             period = cycle_period
-            if mc.update_rate < rate and mc.last_update_ns is not None:
+            if not every_cycle and mc.last_update_ns is not None:
                 # ros2_control: run on the cycle whose elapsed time is closest to the controller's period.
                 actual = (time_ns - mc.last_update_ns) * 1e-9
                 r = mc.update_rate
                 if abs(actual * r - 1.0) > abs((actual + 1.0 / rate) * r - 1.0):
                     continue
-                period = Duration(nanoseconds=time_ns - mc.last_update_ns)
+                period = _duration(time_ns - mc.last_update_ns)
             try:
-                ret = mc.instance.update(time, period)
-                reason = "update() returned ERROR"
+                ret = update(time, period)
             except Exception as e:
                 if not self.params.handle_exceptions:
                     raise
-                ret, reason = ReturnType.ERROR, f"update() raised {hook_message(e)}"
+                ret = e
             mc.last_update_ns = time_ns
             mc.update_count += 1
             if ret is not _OK:
-                failed.append((mc, reason))
+                reason = f"update() raised {hook_message(ret)}" if isinstance(ret, Exception) else (
+                    "update() returned ERROR")
+                failed = [*(failed or ()), (mc, reason)]
         if failed:
             self._controllers_failed(failed)
         if self._pending is not None:
@@ -553,6 +563,7 @@ class ControllerManager:
                 self._release_node(mc)
             self.controllers.clear()
             self._active = ()
+            self._updates = ()
             for name in list(self.rm.components):
                 try:
                     self.rm.set_state(name, State.FINALIZED)
@@ -603,6 +614,24 @@ def _controller_rate(mc: ManagedController, cm_rate: int, log: Any) -> int:
         )
         return achievable
     return raw
+
+
+_new = object.__new__
+
+
+def _ros_time(ns: int) -> Time:
+    """A client Time on the ROS clock, made without the constructor's checks (the manager's own clock values):
+    once per cycle, on the real-time thread."""
+    t = _new(Time)
+    t._nanoseconds = ns
+    t._clock_type = _ROS_TIME
+    return t
+
+
+def _duration(ns: int) -> Duration:
+    d = _new(Duration)
+    d._nanoseconds = ns
+    return d
 
 
 def _close(node: Any) -> None:

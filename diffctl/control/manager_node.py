@@ -2,9 +2,10 @@
 
 `make_manager_node` makes `/<ns>/<controller_manager_name>` with controller_manager's node options: undeclared
 parameters allowed and every override declared as given (so `<controller>.type`, `update_rate`, … from the
-parameter files appear as plain parameters, as in Jazzy), logger services on. Then the parameters of
-controller_manager_parameters.yaml (`MANAGER_DECLS`, generate_parameter_library's descriptors) are declared
-where no override did, and `overruns.print_warnings` with the manager's own default (true unless on sim time).
+parameter files appear as plain parameters, as in Jazzy), logger services on, an rclcpp node's declarations.
+Then the parameters of controller_manager_parameters.yaml (`MANAGER_DECLS`, generate_parameter_library's
+descriptors) are declared where no override did, and `overruns.print_warnings` with the manager's own default
+(true unless on sim time).
 `manager_flat_params` reads the values back for `params.manager_params`.
 """
 
@@ -114,7 +115,8 @@ def make_manager_node(name: str, namespace: str, arguments: Sequence[str], *, co
 
     node = Node(name, namespace=namespace, cli_args=list(arguments), context=context,
                 use_global_arguments=use_global_arguments, allow_undeclared_parameters=True,
-                automatically_declare_parameters_from_overrides=True, enable_logger_service=True)
+                automatically_declare_parameters_from_overrides=True, enable_logger_service=True,
+                client_library="rclcpp")
     if not node.has_parameter("overruns.print_warnings"):
         use_sim_time = node.get_parameter("use_sim_time").value is True
         node.declare_parameter("overruns.print_warnings", not use_sim_time,

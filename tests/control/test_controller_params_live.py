@@ -54,7 +54,7 @@ def test_controller_parameters_over_the_cli_and_runtime_limits(router, procs, tm
 
     # set: a value out of the declared range, or breaking a rule, is refused with the reason; nothing changed.
     rc, out = param(procs, "set", CTRL, "wheel_radius", "-0.1")
-    assert rc != 0 and "out of range" in out, out
+    assert rc != 0 and "comply with floating point range" in out, out
     rc, out = param(procs, "set", CTRL, "linear.x.max_acceleration", "-2.0")
     assert rc != 0 and "linear.x.max_acceleration" in out, out
     assert param(procs, "get", CTRL, "wheel_radius")[1].strip() == "Double value is: 0.04"

@@ -128,6 +128,14 @@ class JointStateBroadcasterParams:
         return p, warnings
 
 
+def _picker(indices: list[int]) -> Any:
+    """values → the tuple of values[i] for i in `indices` (one C call per cycle)."""
+    if not indices:
+        return lambda _values: ()
+    get = operator.itemgetter(*indices)
+    return get if len(indices) > 1 else lambda values: (get(values),)
+
+
 def description_joint_names(description: str) -> list[str] | None:
     """Joint names of the robot description in document order, or None when it cannot be read."""
     if not description.strip():
@@ -148,7 +156,8 @@ class JointStateBroadcaster(ControllerInterface):
         self._endpoints = OwnedEndpoints()
         self._js_pub: Any = None
         self._djs_pub: Any = None
-        self._fast: list[tuple[Any, CdrTemplate, list[Any]]] = []  # (publisher, template, handles of its leaves)
+        self._handles: list[Any] = []
+        self._fast: list[tuple[Any, CdrTemplate, Any]] = []  # (publisher, template, values → its leaves' values)
         self.joint_names: list[str] = []
 
     def on_init(self) -> None:
@@ -217,15 +226,18 @@ class JointStateBroadcaster(ControllerInterface):
         ]  # fmt: skip
         self.joint_names = published + extra
         stamp = [("header.stamp.sec", "i"), ("header.stamp.nanosec", "I")]
+        # Every state interface's value is read once per cycle (in the claimed order); each message picks its own.
+        self._handles = handles = [si for sis in by_joint.values() for si in sis]
+        position = {id(si): k for k, si in enumerate(handles)}
         self._fast = []
         if self._js_pub is not None:
             template = CdrTemplate(js, JOINT_STATE, stamp + [(f"{f}[{i}]", "d") for f, i, _ in js_leaves])
-            self._fast.append((self._js_pub, template, [si for _, _, si in js_leaves]))
+            self._fast.append((self._js_pub, template, _picker([position[id(si)] for _, _, si in js_leaves])))
         if self._djs_pub is not None:
             leaves = [f"interface_values[{j}].values[{k}]" for j, sis in enumerate(by_joint.values())
                       for k in range(len(sis))]  # fmt: skip
             template = CdrTemplate(djs, DYNAMIC_JOINT_STATE, stamp + [(leaf, "d") for leaf in leaves])
-            self._fast.append((self._djs_pub, template, [si for sis in by_joint.values() for si in sis]))
+            self._fast.append((self._djs_pub, template, tuple))
 
     def on_deactivate(self, previous_state: Any) -> None:
         self._fast = []
@@ -237,9 +249,10 @@ class JointStateBroadcaster(ControllerInterface):
         self._close_endpoints()
 
     def update(self, time: Any, period: Any) -> ReturnType:
-        sec, nanosec = divmod(time.nanoseconds, _NS)
-        for pub, template, handles in self._fast:
-            pub.publish_values(template, [sec, nanosec, *map(_VALUE, handles)])
+        stamp = divmod(time.nanoseconds, _NS)
+        values = tuple(map(_VALUE, self._handles))
+        for pub, template, pick in self._fast:
+            pub.publish_values(template, stamp + pick(values))
         return _OK
 
     def _close_endpoints(self) -> None:

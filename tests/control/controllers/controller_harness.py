@@ -126,7 +126,7 @@ def make_node(name: str, params: dict[str, Any], namespace: str = "/") -> Any:
     overrides = [Parameter(k, value=v) for k, v in params.items()]
     overrides.append(Parameter("use_sim_time", value=True))
     return Node(name, namespace=namespace, parameter_overrides=overrides, use_global_arguments=False,
-                enable_rosout=False)
+                enable_rosout=False, client_library="rclcpp")
 
 
 def make_controller(cls_: type[ControllerInterface], name: str, params: dict[str, Any], namespace: str = "/",

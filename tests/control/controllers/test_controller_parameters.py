@@ -117,7 +117,7 @@ def test_cmd_vel_timeout_changed_at_runtime():
     [
         ({"cmd_vel_timeout": "soon"}, "Wrong parameter type"),
         ({"cmd_vel_timeout": -1.0}, "NAME.cmd_vel_timeout: -1.0 must be ≥ 0.0"),
-        ({"wheel_radius": 0.0}, "out of range"),
+        ({"wheel_radius": 0.0}, "doesn't comply with floating point range"),
         ({"linear.x.max_acceleration": -1.0}, "NAME.linear.x.max_acceleration: -1.0 must be ≥ 0"),
         ({"linear.x.max_velocity": 1.0, "linear.x.min_velocity": 2.0}, "min_velocity"),
         ({"base_frame_id": "odom"}, "the frames must differ"),
