@@ -13,7 +13,6 @@ import json
 import math
 import os
 import sys
-import tempfile
 import traceback
 from pathlib import Path
 
@@ -51,16 +50,16 @@ def main() -> None:
     # The protocol keeps the real stdout; whatever PyBullet's C code prints goes to stderr instead.
     out = os.fdopen(os.dup(1), "w")
     os.dup2(2, 1)
+    directory = Path(sys.argv[1])  # the test's temporary folder: mesh files are written there once
     world = PhysicsWorld(Physics())  # one client for every case (connecting costs more than most cases)
-    with tempfile.TemporaryDirectory(prefix="diffctl-fuzz-") as tmp:
-        for line in sys.stdin:
-            case = json.loads(line)
-            print(json.dumps({"id": case["id"], "started": True}), file=out, flush=True)
-            try:
-                outcome, detail = run_case(case, Path(tmp), world)
-            except Exception:
-                outcome, detail = "error", traceback.format_exc(limit=6)
-            print(json.dumps({"id": case["id"], "outcome": outcome, "detail": detail}), file=out, flush=True)
+    for line in sys.stdin:
+        case = json.loads(line)
+        print(json.dumps({"id": case["id"], "started": True}), file=out, flush=True)
+        try:
+            outcome, detail = run_case(case, directory, world)
+        except Exception:
+            outcome, detail = "error", traceback.format_exc(limit=6)
+        print(json.dumps({"id": case["id"], "outcome": outcome, "detail": detail}), file=out, flush=True)
 
 
 if __name__ == "__main__":

@@ -177,12 +177,13 @@ RECIPES = st.tuples(
 class Worker:
     """The child process, restarted after it dies."""
 
-    def __init__(self) -> None:
+    def __init__(self, directory: Path) -> None:
+        self.directory = directory
         self.proc: subprocess.Popen | None = None
 
     def _start(self) -> subprocess.Popen:
         return subprocess.Popen(
-            [sys.executable, str(WORKER)],
+            [sys.executable, str(WORKER), str(self.directory)],
             cwd=REPO,
             stdin=subprocess.PIPE,
             stdout=subprocess.PIPE,
@@ -216,11 +217,14 @@ class Worker:
         if self.proc is not None:
             self.proc.kill()
             self.proc.wait()
+            for stream in (self.proc.stdin, self.proc.stdout):
+                if stream is not None:
+                    stream.close()
 
 
 @pytest.fixture(scope="module")
-def worker():
-    w = Worker()
+def worker(tmp_path_factory: pytest.TempPathFactory):
+    w = Worker(tmp_path_factory.mktemp("fuzz"))
     yield w
     w.close()
 
