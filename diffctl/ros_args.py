@@ -260,10 +260,31 @@ def _read_yaml_file(path: str | Path) -> Any:
     return data
 
 
+_sections_cache: dict[tuple[str, int, int, int, int], list[tuple[str, dict[str, Any]]]] = {}
+
+
 def _file_sections(path: str | Path) -> list[tuple[str, dict[str, Any]]]:
     """(node key, flattened parameters) of every `ros__parameters` map in file order; keys nested above it
     join with `/` (`robot1: {controller_manager: {ros__parameters: …}}` is `robot1/controller_manager`), as
-    rcl_yaml_param_parser reads them."""
+    rcl_yaml_param_parser reads them. A file read before and unchanged since (same size and modification time)
+    is not parsed again: a controller manager's every controller node reads the manager's files."""
+    try:
+        st = Path(path).stat()
+        key: tuple[str, int, int, int, int] | None = (
+            str(Path(path).resolve()), st.st_ino, st.st_mtime_ns, st.st_ctime_ns, st.st_size)
+    except OSError:
+        key = None
+    if key is not None and key in _sections_cache:
+        return [(k, {n: list(v) if isinstance(v, list) else v for n, v in params.items()})
+                for k, params in _sections_cache[key]]
+    sections = _parse_sections(path)
+    if key is not None:
+        _sections_cache[key] = sections
+        return _file_sections(path)
+    return sections
+
+
+def _parse_sections(path: str | Path) -> list[tuple[str, dict[str, Any]]]:
     out: list[tuple[str, dict[str, Any]]] = []
 
     def walk(d: dict[Any, Any], parts: list[str]) -> None:

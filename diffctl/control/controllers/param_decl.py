@@ -263,11 +263,15 @@ def declare_all(node: Any, decls: Mapping[str, ParamDecl], controller: str) -> d
     """Validate the node's overrides against `decls`, then declare each parameter on the node with its
     descriptor and the validated value. Returns the typed values (raises ParameterError)."""
     values = read_declared(decls, overrides(node), controller)
+    batch = []
     for name, d in decls.items():
         if node.has_parameter(name):
             values[name] = node.get_parameter(name).value
-            continue
-        declare(node, d, values[name])
+        elif d.type.endswith("_array") and len(values[name]) == 0:
+            declare(node, d, values[name])
+        else:
+            batch.append((name, values[name], d.descriptor()))
+    node.declare_parameters("", batch, ignore_override=True)  # one call for the lot, as the library declares
     return values
 
 
