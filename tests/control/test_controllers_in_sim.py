@@ -175,11 +175,11 @@ def test_joint_trajectory_controller_follows_a_goal_on_the_simulated_rrbot(route
             point.time_from_start.sec, point.time_from_start.nanosec = int(t_s), int((t_s % 1) * 1e9)
             goal.trajectory.points.append(point)
         feedback: list[Any] = []
-        t0 = hosted.sim_time_s
         sent = sender.send_goal_async(goal, feedback_callback=feedback.append)
         hosted.run_until(sent.done, "the goal's acceptance")
         handle = sent.result()
         assert handle.accepted
+        t0 = handle.stamp.sec + handle.stamp.nanosec * 1e-9  # accepted at this sim time (the manager's clock)
         result = handle.get_result_async()
         hosted.run_until(result.done, "the goal's result")
         outcome = result.result()
