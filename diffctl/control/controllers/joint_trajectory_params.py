@@ -16,27 +16,10 @@ from dataclasses import dataclass
 from typing import Any
 
 from diffctl.control.controllers.param_decl import Check, ParamDecl, read_declared, table
+from diffctl.control.controllers.param_rules import CUSTOM, RuleCheck
 from diffctl.control.math.pid import PidGains
 
 ALLOWED_INTERFACES = ("position", "velocity", "acceleration", "effort")
-
-
-class RuleCheck(Check):
-    """generate_parameter_library validators the shared table does not know (`size_gt<>`, `subset_of<>`) and
-    the controller's two interface-combination rules."""
-
-    def reason(self, value: Any) -> str | None:
-        kind, args = self.kind, self.args
-        if kind == "size_gt":
-            return None if len(value) > args[0] else f"{value!r} must have more than {args[0]} entries"
-        if kind == "subset_of":
-            bad = [v for v in value if v not in args[0]]
-            return f"{value!r}: {bad[0]!r} is not one of {list(args[0])}" if bad else None
-        if kind == "joint_trajectory_controller::command_interface_type_combinations":
-            return command_combination_problem(value)
-        if kind == "joint_trajectory_controller::state_interface_type_combinations":
-            return state_combination_problem(value)
-        return super().reason(value)
 
 
 def command_combination_problem(kinds: Sequence[str]) -> str | None:
@@ -60,6 +43,8 @@ def state_combination_problem(kinds: Sequence[str]) -> str | None:
     return None
 
 
+CUSTOM["joint_trajectory_controller::command_interface_type_combinations"] = command_combination_problem
+CUSTOM["joint_trajectory_controller::state_interface_type_combinations"] = state_combination_problem
 _UNIQUE = Check("unique", ())
 _SIZE_GT_0 = RuleCheck("size_gt", (0,))
 
