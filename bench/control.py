@@ -29,7 +29,6 @@ BUDGET = {"control_jitter_p99_ms": ("<=", 1.0), "control_update_us": ("<=", 100.
 
 
 def run(duration_s: float = 10.0, rate_hz: int = 100) -> dict:
-    from diffctl import ros_args
     from diffctl.bus.session import close_session
     from diffctl.control.ros2_control_node import ControlNode, ManagerOptions
     from diffctl.control.switching import STRICT
@@ -57,12 +56,12 @@ def run(duration_s: float = 10.0, rate_hz: int = 100) -> dict:
         opts = ManagerOptions(
             str(SDF), [str(CONFIG)], "mock_components/GenericSystem", {"calculate_dynamics": "true"}
         )
-        ra = ros_args.parse(["-p", "use_sim_time:=false", "-p", f"update_rate:={rate_hz}"], "controller_manager")
-        node = ControlNode(opts, ra)
+        node = ControlNode(opts, ["-p", "use_sim_time:=false", "-p", f"update_rate:={rate_hz}"])
         node.start()
         cm = node.cm
         assert cm is not None
         cm.set_controller_param("diffbot_base_controller", "type", "diff_drive_controller/DiffDriveController")
+        cm.set_controller_param("diffbot_base_controller", "params_file", [str(CONFIG)])
         for name in ("diffbot_base_controller", "joint_state_broadcaster"):
             cm.load_controller(name)
             cm.configure_controller(name)

@@ -23,6 +23,7 @@ This module is the one resolution path of every node's name, namespace, remappin
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -153,28 +154,93 @@ def current_argv() -> list[str]:
 
 
 def parse_value(text: str) -> Any:
-    """A `-p name:=value` value, typed as ROS does (YAML scalar rules: 1 → int, true → bool, [..] → list)."""
+    """A `-p name:=value` value, typed as rcl types it (rcl_parse_yaml_value: the params files' scalar rules)."""
     import yaml  # here, not at the top: every `diffctl` command imports this module, most never parse YAML
 
     try:
-        return yaml.safe_load(text) if text != "" else ""
+        return _load_yaml(text) if text != "" else ""
     except yaml.YAMLError:
         return text
 
 
+_TRUE = frozenset(["Y", "y", "yes", "Yes", "YES", "true", "True", "TRUE", "on", "On", "ON"])
+_FALSE = frozenset(["N", "n", "no", "No", "NO", "false", "False", "FALSE", "off", "Off", "OFF"])
+_SPECIAL_FLOATS = {f"{sign}{dot}": float(f"{sign or '+'}{word}")
+                   for sign in ("", "+", "-") for dot, word in
+                   ((".inf", "inf"), (".Inf", "inf"), (".INF", "inf")) } | {
+    n: float("nan") for n in (".nan", ".NaN", ".NAN")}
+_C_INT = re.compile(r"^[ \t\n\v\f\r]*[+-]?(0[xX][0-9a-fA-F]+|0[0-7]*|[1-9][0-9]*)$")
+_C_FLOAT = re.compile(r"^[ \t\n\v\f\r]*[+-]?(?:(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?"
+                      r"|0[xX](?:[0-9a-fA-F]+\.?[0-9a-fA-F]*|\.[0-9a-fA-F]+)(?:[pP][+-]?[0-9]+)?"
+                      r"|inf(?:inity)?|nan(?:\([0-9A-Za-z_]*\))?)$", re.IGNORECASE)
+INT64_MIN, INT64_MAX = -(2**63), 2**63 - 1
+
+
+def rcl_scalar(text: str) -> Any:
+    """A plain (unquoted, untagged) YAML scalar as rcl_yaml_param_parser types it: its eleven true and false
+    words, then what C's strtoll(base 0) reads whole (0x1F hex, 010 octal), then what strtod reads whole
+    (1e-9, .5, inf, 0x1p3) or YAML's .inf/.nan, else the text. PyYAML's YAML 1.1 rules differ (1e-9 is a
+    string there, 1_000 an int); a file ROS reads must load the same here."""
+    if text in _TRUE:
+        return True
+    if text in _FALSE:
+        return False
+    if _C_INT.match(text):
+        body = text.strip()
+        sign = -1 if body.startswith("-") else 1
+        digits = body.lstrip("+-")
+        value = sign * (int(digits, 16) if digits[:2] in ("0x", "0X") else int(digits, 8) if digits.startswith("0")
+                        else int(digits))
+        if INT64_MIN <= value <= INT64_MAX:  # strtoll sets ERANGE beyond: rcl tries a double next
+            return value
+    if text in _SPECIAL_FLOATS:
+        return _SPECIAL_FLOATS[text]
+    if _C_FLOAT.match(text):
+        body = text.strip()
+        try:
+            value = float.fromhex(body) if "x" in body.lower() and "n" not in body.lower() else float(body)
+        except ValueError:
+            return text
+        if math.isinf(value) and "inf" not in body.lower():
+            return text  # overflow: strtod's ERANGE, a string for rcl
+        return value
+    return text
+
+
+def _rcl_loader(base: Any) -> Any:
+    """`base` (a PyYAML safe loader) with rcl's typing of plain scalars; quoted or tagged scalars stay YAML's.
+    An empty value stays None (rcl refuses it; diffctl's readers report it where the value is used)."""
+
+    class RclLoader(base):
+        def construct_undefined_plain(self, node: Any) -> Any:
+            return rcl_scalar(node.value) if node.value != "" else None
+
+    RclLoader.yaml_implicit_resolvers = {}  # every plain scalar resolves to the one tag below
+    RclLoader.add_implicit_resolver("tag:diffctl,rcl-scalar", re.compile(r"(?s).*"), None)
+    RclLoader.add_constructor("tag:diffctl,rcl-scalar", RclLoader.construct_undefined_plain)
+    return RclLoader
+
+
+_loaders: dict[str, Any] = {}
+
+
 def _load_yaml(text: str) -> Any:
-    """PyYAML's safe loading on libyaml's parser when PyYAML has it (8× faster on a controllers file: every
-    node and controller reads its file at start-up); the error of bad input is the pure-Python parser's, the
-    one with the line and column every other file of diffctl reports."""
+    """A params file or value as rcl reads it (rcl_scalar), through PyYAML's safe loading on libyaml's parser
+    when PyYAML has it (8× faster on a controllers file: every node and controller reads its file at
+    start-up); the error of bad input is the pure-Python parser's, the one with the line and column every
+    other file of diffctl reports."""
     import yaml
 
-    loader = getattr(yaml, "CSafeLoader", None)
-    if loader is not None:
+    if not _loaders:
+        _loaders["py"] = _rcl_loader(yaml.SafeLoader)
+        if hasattr(yaml, "CSafeLoader"):
+            _loaders["c"] = _rcl_loader(yaml.CSafeLoader)
+    if "c" in _loaders:
         try:
-            return yaml.load(text, Loader=loader)  # CSafeLoader: the safe loader on libyaml
+            return yaml.load(text, Loader=_loaders["c"])
         except yaml.YAMLError:
             pass
-    return yaml.safe_load(text)
+    return yaml.load(text, Loader=_loaders["py"])
 
 
 def _read_yaml_file(path: str | Path) -> Any:
@@ -194,10 +260,31 @@ def _read_yaml_file(path: str | Path) -> Any:
     return data
 
 
+_sections_cache: dict[tuple[str, int, int, int, int], list[tuple[str, dict[str, Any]]]] = {}
+
+
 def _file_sections(path: str | Path) -> list[tuple[str, dict[str, Any]]]:
     """(node key, flattened parameters) of every `ros__parameters` map in file order; keys nested above it
     join with `/` (`robot1: {controller_manager: {ros__parameters: …}}` is `robot1/controller_manager`), as
-    rcl_yaml_param_parser reads them."""
+    rcl_yaml_param_parser reads them. A file read before and unchanged since (same size and modification time)
+    is not parsed again: a controller manager's every controller node reads the manager's files."""
+    try:
+        st = Path(path).stat()
+        key: tuple[str, int, int, int, int] | None = (
+            str(Path(path).resolve()), st.st_ino, st.st_mtime_ns, st.st_ctime_ns, st.st_size)
+    except OSError:
+        key = None
+    if key is not None and key in _sections_cache:
+        return [(k, {n: list(v) if isinstance(v, list) else v for n, v in params.items()})
+                for k, params in _sections_cache[key]]
+    sections = _parse_sections(path)
+    if key is not None:
+        _sections_cache[key] = sections
+        return _file_sections(path)
+    return sections
+
+
+def _parse_sections(path: str | Path) -> list[tuple[str, dict[str, Any]]]:
     out: list[tuple[str, dict[str, Any]]] = []
 
     def walk(d: dict[Any, Any], parts: list[str]) -> None:
@@ -234,8 +321,21 @@ def _flatten(d: dict[str, Any], prefix: str = "") -> dict[str, Any]:
         if isinstance(v, dict):
             out.update(_flatten(v, name + "."))
         else:
-            out[name] = v
+            out[name] = _rcl_sequence(name, v) if isinstance(v, list) else v
     return out
+
+
+def _rcl_sequence(name: str, value: list[Any]) -> list[Any]:
+    """A sequence as rcl's event parser reads it: a sequence inside it adds its items to the same array, so
+    `odom0_config: [[true, true, …]]` (a `- [ … ]` block item, common in robot_localization files) is the flat
+    array; after that inner sequence ends rcl expects a key, so anything else nested is its error."""
+    inner = [i for i, v in enumerate(value) if isinstance(v, list)]
+    if not inner:
+        return value
+    if inner == [len(value) - 1] and not any(isinstance(v, (list, dict)) for v in value[-1]):
+        return [*value[:-1], *value[-1]]
+    raise ConfigError(f"parameter {name!r}: a sequence of sequences is not a parameter value ({value!r})",
+                      hint="rcl reads one array per parameter: write the values as one list")
 
 
 @dataclass

@@ -136,7 +136,11 @@ class Participant:
             return
         self._last_warned[key] = (now, 0)
         text += f" ({suppressed} more suppressed)" if suppressed else ""
-        (self.log.error if level == "ERROR" else self.log.warning)(text)
+        # two call sites: an rclpy logger fixes each call site's severity on its first call
+        if level == "ERROR":
+            self.log.error(text)
+        else:
+            self.log.warning(text)
 
     # ------------------------------------------------------------------ endpoints
     def _keep(self, obj: Any) -> Any:

@@ -109,8 +109,24 @@ CLIENT_MESSAGES: tuple[str, ...] = (
     "std_msgs/msg/String",
     "sensor_msgs/msg/JointState",
     "rosgraph_msgs/msg/Clock",
+    # the controller manager's and its controllers' (declarations, ~/activity, diff_drive, joint_state_broadcaster)
+    "rcl_interfaces/msg/Parameter",
+    "rcl_interfaces/msg/ParameterValue",
+    "rcl_interfaces/msg/FloatingPointRange",
+    "rcl_interfaces/msg/IntegerRange",
+    "controller_manager_msgs/msg/ControllerManagerActivity",
+    "nav_msgs/msg/Odometry",
+    "geometry_msgs/msg/TwistStamped",
+    "control_msgs/msg/DynamicJointState",
+    "control_msgs/msg/InterfaceValue",
 )
 CLIENT_SERVICES: tuple[str, ...] = (
+    *(f"controller_manager_msgs/srv/{s}" for s in (
+        "ListControllers", "LoadController", "ConfigureController", "SwitchController", "CleanupController",
+        "UnloadController", "ListControllerTypes", "ListHardwareComponents", "ListHardwareInterfaces",
+        "SetHardwareComponentState", "ReloadControllerLibraries")),
+    "rcl_interfaces/srv/GetLoggerLevels",
+    "rcl_interfaces/srv/SetLoggerLevels",
     "rcl_interfaces/srv/DescribeParameters",
     "rcl_interfaces/srv/GetParameters",
     "rcl_interfaces/srv/GetParameterTypes",

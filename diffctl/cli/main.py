@@ -57,6 +57,11 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "diffctl.twist_stamper.cli:twist_stamper",
         "twist_stamper's twist_stamper and twist_unstamper (Twist <-> TwistStamped).",
     ),
+    "joy-teleop": ("diffctl.joy_teleop.cli:joy_teleop", "joy_teleop: Joy messages to configured topics and calls."),
+    "ros2-controllers-test-nodes": (
+        "diffctl.ros2_controllers_test_nodes.cli:ros2_controllers_test_nodes",
+        "ros2_controllers_test_nodes' goal publishers (forward position, joint trajectory).",
+    ),
     "test": ("diffctl.testing.cli:test", "Run launch tests and pytest files (launch_test, colcon test)."),
     "test-child": ("diffctl.testing.cli:test_child", "(internal) one launch test forked by `diffctl test -j`."),
     "component-container": (

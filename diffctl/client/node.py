@@ -63,7 +63,7 @@ class TimeSource:
     """use_sim_time: the node's ROS clocks follow /clock (best effort, depth 1) while it is true."""
 
     def __init__(self, node: Node) -> None:
-        self._node = node
+        self._node: Node | None = node
         self._clocks: list[ROSClock] = []
         self._active = False
         self._sub: Any = None
@@ -86,6 +86,8 @@ class TimeSource:
         self._active = enabled
         for c in self._clocks:
             c._set_ros_time_is_active(enabled)
+        if self._node is None:  # detached: whoever detached it sets the time (set_ros_time_override)
+            return
         bus = self._node._bus
         if enabled and self._sub is None:
             if self._node._rclcpp:
@@ -98,8 +100,14 @@ class TimeSource:
             self._sub = None
 
     def _on_clock(self, data: bytes) -> None:
-        # builtin_interfaces/Time right after the CDR header: sec (int32), nanosec (uint32)
-        sec, nanosec = _CLOCK_STAMP.unpack_from(data, 4)
+        # builtin_interfaces/Time right after the little-endian CDR header: sec (int32), nanosec (uint32)
+        valid = len(data) >= 12 and data[:2] == b"\x00\x01"
+        if valid:
+            sec, nanosec = _CLOCK_STAMP.unpack_from(data, 4)
+            valid = sec >= 0 and nanosec < 1_000_000_000
+        if not valid:  # a time no clock can hold: dropped, the node's clock keeps its time
+            self._node._bus.throttled("clock", f"dropped a malformed sample on {CLOCK_TOPIC}")
+            return
         self.set_time_ns(sec * 1_000_000_000 + nanosec)
 
     def set_time_ns(self, ns: int) -> None:
@@ -108,6 +116,17 @@ class TimeSource:
         self._last_ns = ns
         for c in self._clocks:
             c._set_override_ns(ns)
+
+    def detach_node(self) -> None:
+        """rclpy's: stop following the node's /clock and use_sim_time; the clocks keep their state, and their
+        time comes from `set_ros_time_override` from now on."""
+        node, self._node = self._node, None
+        if node is None:
+            return
+        if self._sub is not None:
+            node._bus.destroy(self._sub)
+            self._sub = None
+        node.remove_on_set_parameters_callback(self._on_parameters)
 
     def attach_clock(self, clock: ROSClock) -> None:
         if not isinstance(clock, ROSClock):
@@ -124,7 +143,8 @@ class TimeSource:
                     self.ros_time_is_active = p.value
                 else:
                     ok, reason = False, "use_sim_time parameter set to something besides a bool"
-                    self._node.get_logger().error(reason)
+                    if self._node is not None:
+                        self._node.get_logger().error(reason)
                 break
         return cls("rcl_interfaces/msg/SetParametersResult")(successful=ok, reason=reason)
 
@@ -229,7 +249,9 @@ class Node:
         try:
             pub.publish_raw(serialize(event))
         except Exception as e:  # a closed session at shutdown must not fail the set that caused the event
-            self._bus.throttled("parameter_events", f"could not publish /parameter_events: {type(e).__name__}: {e}")
+            if not closing():
+                self._bus.throttled("parameter_events",
+                                    f"could not publish /parameter_events: {type(e).__name__}: {e}")
 
     # ------------------------------------------------------------------ identity
     @property

@@ -15,6 +15,7 @@ from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
+from diffctl.bus.session import before_close
 from diffctl.client.exceptions import (
     InvalidParameterTypeException,
     InvalidParameterValueException,
@@ -50,6 +51,18 @@ def _events() -> ThreadPoolExecutor:
         if _events_pool is None:
             _events_pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="parameter_events")
         return _events_pool
+
+
+def _drain_events() -> None:
+    """The events queued so far leave before the session closes (none is published while it closes)."""
+    if _events_pool is not None:
+        try:
+            _events_pool.submit(lambda: None).result(timeout=2.0)
+        except Exception:
+            pass
+
+
+before_close(_drain_events, first=True)
 
 
 def validate_parameter_name(name: str) -> bool:
@@ -330,7 +343,10 @@ class NodeParameters:
             if descriptors is not None:
                 self.msg_descriptors[p.name] = descriptors[p.name]
             elif p.name not in self.msg_descriptors:
-                self.msg_descriptors[p.name] = _descriptor(dynamic_typing=True)
+                # An undeclared parameter being set: rclpy keeps it dynamically typed; rclcpp declares it
+                # implicitly, named and typed by its value.
+                self.msg_descriptors[p.name] = (_descriptor(name=p.name, type=p.type_.value) if self.rclcpp
+                                                else _descriptor(dynamic_typing=True))
             is_new = self.get_parameter_or(p.name).type_ == Parameter.Type.NOT_SET
             (new if is_new else changed).append(p)
             self.parameters[p.name] = p

@@ -13,6 +13,7 @@ from diffctl.client.interfaces import deserialize, serialize
 from diffctl.client.node_entity import NodeEntity
 from diffctl.client.service_introspection import REQUEST_RECEIVED, RESPONSE_SENT, ServiceEvents
 from diffctl.client.timer import await_or_execute
+from diffctl.errors import MessageError
 
 
 class Service(NodeEntity):
@@ -50,7 +51,13 @@ class Service(NodeEntity):
                 return None
             query = self._queue.popleft()
         payload = query.payload.to_bytes() if query.payload is not None else b""
-        request = deserialize(payload, self.srv_type.Request)
+        try:
+            request = deserialize(payload, self.srv_type.Request)
+        except MessageError as e:  # the caller's fault: answered with the error, the node goes on
+            self._node._bus.throttled(f"badreq{self.service_name}",
+                                      f"service {self.service_name}: dropped a malformed request: {e}")
+            query.reply_err(f"MessageError: {e}")
+            return None
         if self._events._pub is not None:
             self._events.publish(REQUEST_RECEIVED, *_caller(query), request)
 

@@ -15,6 +15,7 @@ from diffctl.client.interfaces import deserialize
 from diffctl.client.node_entity import NodeEntity
 from diffctl.client.qos import HistoryPolicy
 from diffctl.client.timer import await_or_execute
+from diffctl.errors import MessageError
 
 
 class Subscription(NodeEntity):
@@ -77,7 +78,11 @@ class Subscription(NodeEntity):
             if not self._queue:
                 return None
             data, info, rx = self._queue.popleft()
-        msg = data if self.raw else deserialize(data, self.msg_type)
+        try:
+            msg = data if self.raw else deserialize(data, self.msg_type)
+        except MessageError as e:  # a malformed sample is the sender's fault: dropped, the node goes on
+            self._node._bus.throttled(f"bad{self._bus_topic}", f"dropped a malformed sample on {self._bus_topic}: {e}")
+            return None
         callback = self._callback
         if self._callback_type is Subscription.CallbackType.MessageOnly:
             args: tuple[Any, ...] = (msg,)

@@ -7,8 +7,8 @@ the place of every changing field (a *leaf*) is found in them, and a cycle packs
 between the constant stretches in a single `struct.Struct.pack` call.
 
 A leaf's place is found by changing it and serializing again (no knowledge of CDR's layout is repeated
-here), and the result is checked against the bus's serializer for every leaf at build time: a template
-that would give other bytes than `types.serialize` raises instead of being used.
+here), and the result is checked against the client's serializer for every leaf at build time: a template
+that would give other bytes than `serialize` raises instead of being used.
 """
 
 from __future__ import annotations
@@ -75,19 +75,19 @@ class CdrTemplate:
     """
 
     def __init__(self, msg: Any, typename: str, leaves: Sequence[tuple[str, str]]) -> None:
-        from diffctl.interfaces import types
+        from diffctl.client.interfaces import serialize
 
         self.typename = typename
         self.leaves = tuple(leaves)
         places = [_resolve(msg, path) for path, _ in self.leaves]
         saved = [_get(c, k) for c, k in places]
-        base = types.serialize(msg, typename)
+        base = serialize(msg)
         offsets: list[int] = []
         try:
             for i, ((path, code), (c, k)) in enumerate(zip(self.leaves, places, strict=True)):
                 _set(c, k, _probe_value(code, saved[i], i))
                 try:
-                    probed = types.serialize(msg, typename)
+                    probed = serialize(msg)
                 except Exception as e:  # the field does not take this kind of value
                     raise TemplateError(f"{typename}: {path} is not a {code!r} field: {e}") from e
                 finally:
@@ -124,7 +124,7 @@ class CdrTemplate:
         self._check(msg, places, saved, base)
 
     def _check(self, msg: Any, places: list[tuple[Any, Any]], saved: list[Any], base: bytes) -> None:
-        from diffctl.interfaces import types
+        from diffctl.client.interfaces import serialize
 
         if self.encode(saved) != base:
             raise TemplateError(f"{self.typename}: the template does not reproduce the message")
@@ -132,7 +132,7 @@ class CdrTemplate:
         try:
             for (c, k), p in zip(places, probes, strict=True):
                 _set(c, k, p)
-            expected = types.serialize(msg, self.typename)
+            expected = serialize(msg)
         finally:
             for (c, k), v in zip(places, saved, strict=True):
                 _set(c, k, v)

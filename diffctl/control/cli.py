@@ -44,17 +44,24 @@ def _timeout_option(f: Any) -> Any:
 
 @contextmanager
 def _client(manager: str, wait_s: float, service: str) -> Iterator[Any]:
-    from diffctl.bus import Node
+    from diffctl import ros_args
+    from diffctl.client.context import get_default_context
+    from diffctl.client.node import Node
     from diffctl.control.cm_client import ManagerClient, manager_fqn
 
     manager_fqn(manager)  # a bad -c is bad input (exit 2), told before the bus is asked anything
-    node = Node(f"_diffctl_control_{os.getpid()}")
+    context = get_default_context()
+    if not context.ok():
+        context.init(["ros2", "--ros-args", *ros_args.current_argv()])
+    node = Node(f"_diffctl_control_{os.getpid()}", context=context, start_parameter_services=False)
+    cm = ManagerClient(node, manager)
     try:
-        cm = ManagerClient(node, manager)
         cm.wait(service, wait_s) if wait_s > 0 else cm.wait(service, 0.01)
         yield cm
     finally:
-        node.close()
+        cm.close()
+        node.destroy_node()
+        context.try_shutdown()
 
 
 def _styled(state: str) -> Any:

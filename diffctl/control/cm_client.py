@@ -1,7 +1,9 @@
 """A client of one controller manager's services, shared by the spawner and the `diffctl control` verbs.
 
-Each call retries on a timeout (3 attempts, as the spawner does) and raises RuntimeFailure with the
-service name when the manager cannot be reached.
+It works on a client Node (rclpy's API), which it spins itself while it waits for an answer, as
+controller_manager_services.py does with rclpy.spin_until_future_complete. Each call retries on a timeout
+(3 attempts, as the spawner does) and raises RuntimeFailure with the service name when the manager cannot be
+reached.
 """
 
 from __future__ import annotations
@@ -11,9 +13,11 @@ import time
 from collections.abc import Callable
 from typing import Any
 
+from diffctl.client.interfaces import cls
+from diffctl.client.parameter import Parameter
 from diffctl.control.lifecycle import State
-from diffctl.control.parameter_msgs import P_STRING, P_STRING_ARRAY
-from diffctl.errors import BusError, ConfigError, RuntimeFailure, ServiceTimeout
+from diffctl.errors import ConfigError, RuntimeFailure
+from diffctl.interfaces.runtime.set_message import set_message_fields
 
 CM = "controller_manager_msgs/srv/"
 # One token of a ROS name (rcl_validate_topic_name): a letter or "_" first, then letters, digits and "_".
@@ -54,15 +58,23 @@ class ManagerClient:
     def __init__(
         self, node: Any, manager: str = "controller_manager", call_timeout_s: float = 10.0, attempts: int = 3
     ) -> None:
+        from diffctl.client.executors import SingleThreadedExecutor
+
         self.node = node
-        self.manager = manager_fqn(manager, node.namespace)
+        self.log = node.get_logger()
+        self.manager = manager_fqn(manager, node.get_namespace())
         self.call_timeout_s = call_timeout_s
         self.attempts = attempts
         self._clients: dict[str, Any] = {}
+        self._executor = SingleThreadedExecutor(context=node.context)
+        self._executor.add_node(node)
+
+    def close(self) -> None:
+        self._executor.shutdown(timeout_sec=1.0)
 
     def client(self, service: str) -> Any:
         if service not in self._clients:
-            self._clients[service] = self.node.create_client(f"{self.manager}/{service}", SRV_TYPES[service])
+            self._clients[service] = self.node.create_client(cls(SRV_TYPES[service]), f"{self.manager}/{service}")
         return self._clients[service]
 
     def wait(
@@ -75,14 +87,14 @@ class ManagerClient:
         """Wait for `service`: forever when timeout_s == 0 (saying so, warning every 10 s), else up to timeout_s."""
         cli = self.client(service)
         name = f"{self.manager}/{service}"
-        if cli.wait_for_service(timeout=0.0):
+        if cli.service_is_ready():
             return
         if say:
             say(f"waiting for service {name} to become available...")
         start = time.monotonic()
         while True:
             step = 10.0 if timeout_s == 0 else max(0.0, min(10.0, timeout_s - (time.monotonic() - start)))
-            if cli.wait_for_service(timeout=step):
+            if cli.wait_for_service(timeout_sec=step):
                 return
             if timeout_s and time.monotonic() - start >= timeout_s:
                 raise RuntimeFailure(
@@ -92,27 +104,32 @@ class ManagerClient:
             if warn:
                 warn(f"Could not contact service {name}")
 
-    def call(self, service: str, request: dict[str, Any] | None = None, timeout_s: float | None = None) -> Any:
+    def call(self, service: str, request: Any = None, timeout_s: float | None = None) -> Any:
+        """The response to `request` (the request message, or a dict of its fields)."""
         cli = self.client(service)
         timeout = timeout_s or self.call_timeout_s
-        last: Exception | None = None
+        msg = request
+        if not isinstance(request, cli.srv_type.Request):
+            msg = cli.srv_type.Request()
+            if request:
+                set_message_fields(msg, request)
         for k in range(1, self.attempts + 1):
-            try:
-                return cli.call(request or {}, timeout=timeout)
-            except ServiceTimeout as e:
-                last = e
-                self.node.log.warn(
-                    f"Failed getting a result from calling {self.manager}/{service} in "
-                    f"{timeout:g} s. (Attempt {k} of {self.attempts}.)"
-                )
-            except BusError as e:
-                raise RuntimeFailure(
-                    f"{self.manager}/{service}: {e.message}",
-                    hint="is the controller manager running? `diffctl service list` shows it",
-                ) from e
-        raise RuntimeFailure(
-            f"could not get a result from {self.manager}/{service} after {self.attempts} attempts: {last}"
-        )
+            future = cli.call_async(msg)
+            self._executor.spin_until_future_complete(future, timeout_sec=timeout)
+            if future.done():
+                error = future.exception()
+                if error is not None:
+                    raise RuntimeFailure(
+                        f"{self.manager}/{service}: {error}",
+                        hint="is the controller manager running? `diffctl service list` shows it",
+                    ) from error
+                return future.result()
+            cli.remove_pending_request(future)
+            self.log.warn(
+                f"Failed getting a result from calling {self.manager}/{service} in "
+                f"{timeout:g} s. (Attempt {k} of {self.attempts}.)"
+            )
+        raise RuntimeFailure(f"could not get a result from {self.manager}/{service} after {self.attempts} attempts")
 
     # --- typed helpers -----------------------------------------------------------------------------------
     def list_controllers(self) -> list[Any]:
@@ -142,19 +159,23 @@ class ManagerClient:
         resp = self.call("switch_controller", req, timeout_s=max(self.call_timeout_s, timeout_s + 2.0))
         return bool(resp.ok), str(resp.message)
 
-    def set_controller_params(self, name: str, type_name: str | None, params_files: list[str]) -> None:
-        params = [
-            {"name": f"{name}.params_file", "value": {"type": P_STRING_ARRAY, "string_array_value": list(params_files)}}
-        ]
-        if type_name:
-            params.append({"name": f"{name}.type", "value": {"type": P_STRING, "string_value": type_name}})
-        resp = self.call("set_parameters", {"parameters": params})
+    def set_parameters(self, values: dict[str, Any]) -> None:
+        """Set parameters of the manager node (raises RuntimeFailure with the node's reason)."""
+        params = [Parameter(k, value=v).to_parameter_msg() for k, v in values.items()]
+        resp = self.call("set_parameters", cls(SRV_TYPES["set_parameters"]).Request(parameters=params))
         for p, r in zip(params, resp.results, strict=False):
             if not r.successful:
-                raise RuntimeFailure(f"could not set {p['name']} on {self.manager}: {r.reason}")
+                raise RuntimeFailure(f"could not set {p.name} on {self.manager}: {r.reason}")
+
+    def set_controller_params(self, name: str, type_name: str | None, params_files: list[str]) -> None:
+        values: dict[str, Any] = {f"{name}.params_file": list(params_files)}
+        if type_name:
+            values[f"{name}.type"] = type_name
+        self.set_parameters(values)
 
     def set_hardware_state(self, name: str, state: State) -> tuple[bool, str]:
         resp = self.call(
             "set_hardware_component_state", {"name": name, "target_state": {"id": state.id, "label": state.value}}
         )
         return bool(resp.ok), str(resp.state.label)
+

@@ -1,87 +1,78 @@
-"""The node handle a controller gets: a bus Node named /<controller>, its parameters, and the manager's clock.
+"""A controller's node, made as controller_manager makes it (ControllerManager::determine_controller_node_options).
 
-Parameters are the bus Node's (declared with descriptors, served by the six parameter services, changes
-announced on /parameter_events): a controller declares its table in on_init and may register a set-callback
-to refuse a change or take it on its next update.
-
-The controller's time is the manager's: wall time, or sim time (the newest of the current cycle's time
-and /clock), so a command stamped by a teleop node on the same clock is compared with the same clock
-the controller's update() runs on.
+The node is a diffctl.client Node named after the controller, in the manager's namespace, that ignores the
+process's global arguments and gets instead: the manager node's own arguments (its parameter files, -p rules
+and remaps — not `__node`, `__ns` or robot_description), then `--params-file` for each `<name>.params_file`,
+then `-p use_sim_time:=true` when the manager runs on sim time, then `<name>.node_options_args` (the
+spawner's --controller-ros-args). Its logger services are on, as controller_interface asks, and it declares
+what an rclcpp node declares (the read-only QoS overrides of /parameter_events, and /clock's on sim time).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Sequence
 from typing import Any
 
-from diffctl.bus import Node
+_REMAP_OR_PARAM_FLAGS = ("-r", "--remap", "-p", "--param")
 
 
-class BusControllerNode:
-    def __init__(
-        self,
-        name: str,
-        namespace: str,
-        params: dict[str, Any],
-        now_ns: Callable[[], int],
-        remaps: dict[str, str] | None = None,
-    ) -> None:
-        # The node's own /clock subscription is not needed: time comes from the manager.
-        self._node = Node(name, namespace, params=params, use_sim_time=False, remaps=remaps)
-        self.name = name
-        self.params = self._node.params
-        self.log = self._node.log
-        self._now_ns = now_ns
+def controller_node_arguments(
+    manager_arguments: Sequence[str],
+    params_files: Sequence[str] = (),
+    use_sim_time: bool = False,
+    node_options_args: Sequence[str] = (),
+) -> list[str]:
+    """The controller node's arguments (`--ros-args …`), from the manager's and the controller's settings."""
+    out: list[str] = []
+    for arg in manager_arguments:
+        if "__ns" in arg or "__node" in arg or "robot_description" in arg:
+            if out and out[-1] in _REMAP_OR_PARAM_FLAGS:
+                out.pop()  # the flag whose value this is goes with it
+            continue
+        out.append(arg)
+    extra: list[str] = []
+    for f in params_files:
+        extra += ["--params-file", f]
+    if use_sim_time:
+        extra += ["-p", "use_sim_time:=true"]
+    if extra and "--ros-args" not in out:
+        out.append("--ros-args")
+    out += extra
+    if node_options_args:
+        if "--ros-args" not in node_options_args:
+            out.append("--ros-args")
+        out += list(node_options_args)
+    return out
 
-    @property
-    def fqn(self) -> str:
-        return self._node.fqn
 
-    def create_publisher(self, topic: str, type_name: str, latched: bool = False, depth: int = 10) -> Any:
-        """A publisher for the control loop: serialized there, put on the bus by the publishing thread
-        (realtime_tools' RealtimePublisher, which ros2_controllers' controllers publish through)."""
-        from diffctl.control.realtime_publisher import RealtimePublisher
+def make_controller_node(name: str, namespace: str, arguments: Sequence[str], context: Any = None) -> Any:
+    """The controller's client Node (raises the client's exceptions on bad arguments)."""
+    from diffctl.client.node import Node
 
-        return RealtimePublisher(self._node.create_publisher(topic, type_name, latched=latched, depth=depth))
+    return Node(name, namespace=namespace, cli_args=list(arguments), use_global_arguments=False,
+                context=context, enable_logger_service=True, client_library="rclcpp")
 
-    def create_subscription(
-        self, topic: str, type_name: str, callback: Callable[[Any], None], latched: bool = False, depth: int = 10
-    ) -> Any:
-        return self._node.create_subscription(topic, type_name, callback, latched=latched, depth=depth)
 
-    # --- parameters ----------------------------------------------------------------------------------------
-    @property
-    def parameters(self) -> Any:
-        return self._node.parameters
+class ManagerTime:
+    """Nodes whose ROS clock is the manager's cycle time instead of /clock: the simulator-hosted manager's and
+    its controllers', so their `now()` is the sim time of the cycle being run, with or without a bridge carrying
+    /clock (a zero-stamped command means that time, and a respawning bridge stops nothing)."""
 
-    def declare_parameter(self, name: str, default: Any, descriptor: Any = None) -> Any:
-        return self._node.declare_parameter(name, default, descriptor)
+    def __init__(self) -> None:
+        self._clocks: dict[int, Any] = {}
 
-    def get_parameter(self, name: str) -> Any:
-        return self._node.get_parameter(name)
+    def follow(self, node: Any) -> None:
+        # rclpy's TimeSource.detach_node on the node's own time source: its clock stops following /clock.
+        node._time_source.detach_node()
+        self._clocks[id(node)] = node.get_clock()
 
-    def set_parameters(self, values: dict[str, Any]) -> list[str | None]:
-        return self._node.set_parameters(values)
+    def forget(self, node: Any) -> None:
+        self._clocks.pop(id(node), None)
 
-    def add_on_set_parameters_callback(self, cb: Callable[[dict[str, Any]], str | None]) -> None:
-        self._node.add_on_set_parameters_callback(cb)
+    def set_ns(self, time_ns: int) -> None:
+        from diffctl.client.clock_type import ClockType
+        from diffctl.client.ros_time import Time
 
-    def now_ns(self) -> int:
-        return self._now_ns()
-
-    def now(self) -> Any:
-        from diffctl.interfaces.types import time_msg
-
-        return time_msg(self._now_ns())
-
-    def resolve(self, name: str) -> str:
-        return self._node.resolve(name)
-
-    def close(self) -> None:
-        self._node.close()
-
-    def __getattr__(self, item: str) -> Any:
-        # Anything else a controller may want of a node (graph, create_timer, session) comes from the bus Node.
-        if item.startswith("_"):
-            raise AttributeError(item)
-        return getattr(self._node, item)
+        t = Time(nanoseconds=time_ns, clock_type=ClockType.ROS_TIME)
+        for clock in self._clocks.values():
+            clock.set_ros_time_override(t)

@@ -9,9 +9,10 @@ A hook that raises makes the transition fail; the controller stays where it was 
 from __future__ import annotations
 
 import enum
-from dataclasses import dataclass, field
+from collections.abc import Callable
+from typing import Any
 
-from diffctl.control.controller_interface import ControllerInterface
+from diffctl.control.controller_interface import CallbackReturn, ControllerInterface
 from diffctl.errors import RuntimeFailure
 
 
@@ -21,6 +22,13 @@ class State(enum.StrEnum):
     INACTIVE = "inactive"
     ACTIVE = "active"
     FINALIZED = "finalized"
+
+    @property
+    def label(self) -> str:
+        return self.value
+
+    def __repr__(self) -> str:
+        return f"State({self.value})"
 
     @property
     def id(self) -> int:
@@ -56,28 +64,40 @@ def hook_message(exc: BaseException) -> str:
     return text if type(exc).__module__.startswith("diffctl") else f"{type(exc).__name__}: {text}"
 
 
-@dataclass(eq=False)
 class ManagedController:
-    """A loaded controller as the manager tracks it."""
+    """A loaded controller as the manager tracks it; its lifecycle state is the controller's own."""
 
-    name: str
-    type_name: str
-    instance: ControllerInterface
-    state: State = State.UNCONFIGURED
-    update_rate: int = 0  # effective Hz; 0 = every manager cycle
-    claimed: list[str] = field(default_factory=list)
-    required_command: list[str] = field(default_factory=list)
-    required_state: list[str] = field(default_factory=list)
-    last_update_ns: int | None = None
-    update_count: int = 0
-    last_error: str = ""
-    fallback_controllers: tuple[str, ...] = ()
+    def __init__(self, name: str, type_name: str, instance: ControllerInterface, state: State = State.UNCONFIGURED,
+                 update_rate: int = 0, fallback_controllers: tuple[str, ...] = ()) -> None:
+        self.name = name
+        self.type_name = type_name
+        self.instance = instance
+        self.state = state
+        self.update_rate = update_rate  # effective Hz
+        self.fallback_controllers = fallback_controllers
+        self.claimed: list[str] = []
+        self.required_command: list[str] = []
+        self.required_state: list[str] = []
+        self.last_update_ns: int | None = None
+        self.update_count = 0
+        self.last_error = ""
 
-    def _call(self, what: str, hook) -> None:
+    @property
+    def state(self) -> State:
+        return self.instance._state or State.UNKNOWN
+
+    @state.setter
+    def state(self, value: State) -> None:
+        self.instance._state = value
+
+    def call(self, what: str, hook: Callable[[State], Any]) -> None:
+        """Run a transition hook with the state it leaves; raise TransitionError when it fails."""
         try:
-            hook()
+            result = hook(self.state)
         except Exception as e:
             raise TransitionError(f"controller '{self.name}': {what} failed: {hook_message(e)}") from e
+        if result is not None and result is not CallbackReturn.SUCCESS:
+            raise TransitionError(f"controller '{self.name}': {what} returned {result.name}")
 
     def configure(self) -> None:
         if self.state is State.INACTIVE:
@@ -87,7 +107,7 @@ class ManagedController:
                 f"controller '{self.name}' can not be configured from '{self.state.value}' state"
                 + (" (deactivate it first)" if self.state is State.ACTIVE else "")
             )
-        self._call("on_configure", self.instance.on_configure)
+        self.call("on_configure", self.instance.on_configure)
         self.state = State.INACTIVE
 
     def cleanup(self) -> None:
@@ -96,7 +116,7 @@ class ManagedController:
                 f"controller '{self.name}' can not be cleaned up from '{self.state.value}' state "
                 "(only an inactive controller can)"
             )
-        self._call("on_cleanup", self.instance.on_cleanup)
+        self.call("on_cleanup", self.instance.on_cleanup)
         self.state = State.UNCONFIGURED
 
     def shutdown(self) -> None:
@@ -106,6 +126,7 @@ class ManagedController:
             self.cleanup()
         if self.state is not State.FINALIZED:
             try:
-                self.instance.on_shutdown()
+                self.call("on_shutdown", self.instance.on_shutdown)
             finally:
                 self.state = State.FINALIZED
+                self.instance.release_interfaces()

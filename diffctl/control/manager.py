@@ -1,7 +1,8 @@
 """The controller manager core: loaded controllers, hardware, switching and the read → update → write cycle.
 
-Bus-free: the node that exposes it (ros2_control_node.py) gives it a logger and a factory for controller
-nodes, and drives `read/update/write` from its real-time loop. Administrative calls (load, configure,
+Node-free: the node that exposes it (ros2_control_node.py, or the simulator's gz_ros2_control plugin) gives
+it a logger, a factory for controller nodes (client Nodes, see controller_node.py) and the executor they are
+spun by, and drives `read/update/write` from its real-time loop. Administrative calls (load, configure,
 switch, …) come from service threads; they are serialised among themselves, and a switch is carried out
 by the real-time loop at the end of `update()` (as controller_manager does), the caller waiting for it.
 When no loop runs (unit tests, before start-up) a switch is carried out at once.
@@ -9,31 +10,39 @@ When no loop runs (unit tests, before start-up) a switch is carried out at once.
 
 from __future__ import annotations
 
+import dataclasses
 import threading
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
+from diffctl.client.clock_type import ClockType
+from diffctl.client.duration import Duration
+from diffctl.client.ros_time import Time
 from diffctl.control.controller_interface import (
+    CallbackReturn,
     CommandInterface,
-    ControllerNode,
+    ControllerInterfaceParams,
     InterfaceConfiguration,
-    Logger,
     ReturnType,
     StateInterface,
 )
+from diffctl.control.controller_node import controller_node_arguments
 from diffctl.control.hardware_interface import HardwareComponent, HardwareInfo
 from diffctl.control.lifecycle import ManagedController, State, TransitionError, hook_message
-from diffctl.control.params import ManagerParams, controller_node_params, node_options, with_controller_param
+from diffctl.control.params import ControllerSpec, ManagerParams, with_controller_param
 from diffctl.control.plugin_registry import controller_class
 from diffctl.control.realtime_publisher import hold as hold_publishing
 from diffctl.control.realtime_publisher import release as release_publishing
 from diffctl.control.resource_manager import ResourceManager
 from diffctl.control.switching import STRICT, ControllerView, SwitchPlan, chain_order, plan_switch
-from diffctl.errors import ConfigError, ParameterError
+from diffctl.errors import ConfigError
 
-NodeFactory = Callable[[str, dict[str, Any]], ControllerNode]
+# (controller name, its node's arguments) → the controller's client Node
+NodeFactory = Callable[[str, list[str]], Any]
 _OK = ReturnType.OK
+_ROS_TIME = ClockType.ROS_TIME
 
 
 @dataclass
@@ -49,14 +58,16 @@ class ControllerManager:
         self,
         params: ManagerParams,
         *,
-        log: Logger,
+        log: Any,
         node_factory: NodeFactory,
         robot_description: str = "",
         cancel: threading.Event | None = None,
+        executor: Any = None,
     ) -> None:
         self.params = params
-        self.log = log
+        self.log = log  # an rclpy-API logger (debug/info/warn/error)
         self.node_factory = node_factory
+        self.executor = executor  # spins the controllers' nodes (their subscriptions, parameter services)
         self.robot_description = robot_description
         self.cancel = cancel
         self.rm = ResourceManager(log.warn)
@@ -65,11 +76,15 @@ class ControllerManager:
         self._lock = threading.RLock()  # held by the real-time cycle and by structural changes
         self._admin = threading.RLock()  # serialises service calls
         self._active: tuple[ManagedController, ...] = ()
+        # The cycle's view of `_active`: (controller, its bound update, runs every cycle)
+        self._updates: tuple[tuple[ManagedController, Callable[[Any, Any], Any], bool], ...] = ()
+        self._period = _duration(0)  # the last cycle's period, handed on while it does not change
         self._pending: _PendingSwitch | None = None
         self.cycle_count = 0
         # Called whenever the controllers or the hardware components change state (the node's ~/activity
         # publisher, as controller_manager's publish_activity).
         self.on_activity: Callable[[], None] | None = None
+        self.on_node_released: Callable[[Any], None] | None = None  # a controller's node is about to go
 
     def _activity(self) -> None:
         if self.on_activity is not None:
@@ -127,6 +142,11 @@ class ControllerManager:
         with self._admin:
             self.params = with_controller_param(self.params, name, key, value)
 
+    def set_controller_spec(self, spec: ControllerSpec) -> None:
+        """What the manager node's parameters say of one controller (`<name>.type`, `.params_file`, …)."""
+        with self._admin:
+            self.params = dataclasses.replace(self.params, controllers={**self.params.controllers, spec.name: spec})
+
     def load_controller(self, name: str, type_name: str | None = None) -> ManagedController:
         with self._admin:
             if name in self.controllers:
@@ -140,23 +160,33 @@ class ControllerManager:
                 )
             try:
                 cls = controller_class(ctype)
-                params = controller_node_params(name, self.params)
-                extra_params, remaps = node_options(spec)
-                params.update(extra_params)
-                rate = _controller_rate(name, params, self.update_rate, self.log)
             except ConfigError as e:
                 raise TransitionError(f"could not load controller '{name}': {e}") from e
-            node = self.node_factory(name, params, remaps=remaps) if remaps else self.node_factory(name, params)
-            inst = cls()
-            inst.name, inst.node, inst.update_rate = name, node, rate
-            inst.robot_description = self.robot_description
+            files = spec.params_files if spec else ()
+            for f in files:
+                if not Path(f).is_file():
+                    raise TransitionError(f"could not load controller '{name}': parameter file {f!r} not found "
+                                          f"(from {name}.params_file)")
+            arguments = controller_node_arguments(
+                self.params.node_arguments, files, self.params.use_sim_time, spec.node_options_args if spec else ()
+            )
             try:
-                inst.on_init()
+                node = self.node_factory(name, arguments)
+            except Exception as e:
+                raise TransitionError(f"could not load controller '{name}': {hook_message(e)}") from e
+            inst = cls()
+            try:
+                ret = inst.init(ControllerInterfaceParams(name, self.robot_description, self.update_rate, node))
+                if ret is not CallbackReturn.SUCCESS:
+                    raise TransitionError(f"on_init returned {ret.name}")
             except Exception as e:
                 _close(node)
                 raise TransitionError(f"could not initialize controller '{name}': {hook_message(e)}") from e
             fallbacks = spec.fallback_controllers if spec else ()
-            mc = ManagedController(name, ctype, inst, State.UNCONFIGURED, rate, fallback_controllers=fallbacks)
+            mc = ManagedController(name, ctype, inst, State.UNCONFIGURED, self.update_rate,
+                                   fallback_controllers=fallbacks)
+            if self.executor is not None:
+                self.executor.add_node(node)
             with self._lock:
                 self.controllers[name] = mc
             self.log.info(f"loaded controller '{name}' ({ctype})")
@@ -173,13 +203,26 @@ class ControllerManager:
     def configure_controller(self, name: str) -> None:
         with self._admin:
             mc = self._get(name)
+            if mc.state is State.UNCONFIGURED:
+                mc.update_rate = _controller_rate(mc, self.update_rate, self.log)
             try:
                 mc.configure()
             finally:
                 self._activity()
-            if getattr(mc.instance, "is_chainable", False):  # its references become claimable command interfaces
-                with self._lock:
-                    self.rm.import_reference_interfaces(name, mc.instance.reference_interfaces)
+            inst = mc.instance
+            if inst.is_chainable():  # what it exports becomes claimable command / readable state interfaces
+                try:
+                    references = inst.export_reference_interfaces()
+                    states = inst.export_state_interfaces()
+                    with self._lock:
+                        self.rm.import_reference_interfaces(name, references)
+                        self.rm.import_exported_state_interfaces(name, states)
+                except Exception as e:
+                    with self._lock:
+                        self.rm.remove_reference_interfaces(name)
+                    mc.cleanup()
+                    raise TransitionError(f"controller '{name}': exporting its interfaces failed: {hook_message(e)}"
+                                          ) from e
             mc.required_command = self._resolve(mc.instance.command_interface_configuration(), command=True)
             mc.required_state = self._resolve(mc.instance.state_interface_configuration(), command=False)
             self.log.info(f"configured controller '{name}'")
@@ -202,7 +245,7 @@ class ControllerManager:
                 with self._lock:
                     del self.controllers[name]
                     self.rm.remove_reference_interfaces(name)
-                _close(mc.instance.node)
+                self._release_node(mc)
                 self._activity()
             self.log.info(f"unloaded controller '{name}'")
 
@@ -250,6 +293,10 @@ class ControllerManager:
                 return pending.ok, pending.message
             with self._lock:
                 self._pending = pending
+            if activate_asap:
+                self.log.debug("Requested atomic controller switch from realtime loop")
+            else:
+                self.log.info("Requested controller switch from non-realtime loop")
             timeout = timeout_s if timeout_s > 0 else 1.0
             if not pending.done.wait(timeout):
                 with self._lock:
@@ -278,10 +325,12 @@ class ControllerManager:
             command_available=self.rm.command_available,
             state_available=self.rm.state_available,
             reference_owner=self.rm.reference_owner,
+            state_owner=self.rm.exported_state_owner,
         )
 
     def _execute(self, pending: _PendingSwitch) -> None:
-        """Carry out a checked switch (real-time thread, `_lock` held): mode switch → deactivate → activate."""
+        """Carry out a checked switch (real-time thread, `_lock` held): mode switch → deactivate → chained modes
+        → activate, as controller_manager's manage_switch."""
         plan = pending.plan
         start = [i for n in plan.activate for i in self.controllers[n].required_command]
         stop = [i for n in plan.deactivate for i in self.controllers[n].claimed]
@@ -292,10 +341,20 @@ class ControllerManager:
         for n in plan.deactivate:
             self._deactivate(self.controllers[n])
         if not reason:
+            # A controller about to be activated takes the chained mode it will have once the switch is done.
+            claims_after = {i: c for i, c in self.rm.claimed.items()}
+            for n in plan.activate:
+                claims_after.update(dict.fromkeys(self.controllers[n].required_command, n))
+            for n in plan.activate:
+                inst = self.controllers[n].instance
+                chained = any(claims_after.get(r.name) for r in getattr(inst, "reference_interfaces", ()))
+                if inst.is_chainable() and inst.is_in_chained_mode() != chained:
+                    inst.set_chained_mode(chained)
             for n in plan.activate:
                 err = self._activate(self.controllers[n])
                 if err:
                     failures.append(err)
+        failures += self._sync_chained_modes()
         self._refresh_active()
         pending.ok = not failures
         pending.message = "; ".join(failures)
@@ -307,6 +366,28 @@ class ControllerManager:
             self.log.info("switch: " + ", ".join(done))
         pending.done.set()
 
+    def _sync_chained_modes(self) -> list[str]:
+        """Put every chainable controller in chained mode exactly while an active controller claims its
+        references; an active one is restarted for it (deactivate → mode → activate), as controller_manager
+        does. The failures, if any."""
+        failures = []
+        for mc in self.controllers.values():
+            inst = mc.instance
+            if not inst.is_chainable():
+                continue
+            chained = any(self.rm.claimed.get(r.name) for r in inst.reference_interfaces)
+            if inst.is_in_chained_mode() == chained:
+                continue
+            active = mc.state is State.ACTIVE
+            if active:
+                self._deactivate(mc)
+            inst.set_chained_mode(chained)
+            if active:
+                err = self._activate(mc)
+                if err:
+                    failures.append(err)
+        return failures
+
     def _activate(self, mc: ManagedController) -> str | None:
         inst = mc.instance
         try:
@@ -317,12 +398,12 @@ class ControllerManager:
         inst.command_interfaces = cmds
         inst.state_interfaces = [self.rm.state_interfaces[n] for n in mc.required_state]
         try:
-            inst.on_activate()
-        except Exception as e:
+            mc.call("on_activate", inst.on_activate)
+        except TransitionError as e:
             self.rm.release(mc.claimed)
             mc.claimed = []
-            inst.command_interfaces, inst.state_interfaces = [], []
-            return f"could not activate controller '{mc.name}': on_activate failed: {hook_message(e)}"
+            inst.release_interfaces()
+            return f"could not activate {str(e).removeprefix('controller ')}"
         mc.state = State.ACTIVE
         self.rm.set_reference_available(mc.name, True)
         mc.last_update_ns = None
@@ -331,24 +412,24 @@ class ControllerManager:
 
     def _deactivate(self, mc: ManagedController) -> None:
         try:
-            mc.instance.on_deactivate()
-        except Exception as e:
-            self.log.error(f"controller '{mc.name}': on_deactivate failed: {hook_message(e)}")
+            mc.call("on_deactivate", mc.instance.on_deactivate)
+        except TransitionError as e:
+            self.log.error(str(e))
         self.rm.release(mc.claimed)
         mc.claimed = []
-        mc.instance.command_interfaces, mc.instance.state_interfaces = [], []
+        mc.instance.release_interfaces()
         self.rm.set_reference_available(mc.name, False)
         mc.state = State.INACTIVE
 
     def _refresh_active(self) -> None:
-        # Controllers chained in front of others update first, so a following one reads this cycle's references.
+        # Controllers chained in front of others update first, so a following one reads this cycle's references;
+        # exporters of state interfaces before their readers.
         active = [n for n, mc in self.controllers.items() if mc.state is State.ACTIVE]
-        views = {n: ControllerView(mc.state, mc.claimed) for n, mc in self.controllers.items()}
-        self._active = tuple(self.controllers[n] for n in chain_order(active, views, self.rm.reference_owner))
-        for mc in self.controllers.values():  # chained mode while a controller claims its references
-            chained = any(self.rm.claimed.get(r.name) for r in getattr(mc.instance, "reference_interfaces", ()))
-            if getattr(mc.instance, "is_chainable", False) and mc.instance.is_in_chained_mode() != chained:
-                mc.instance.set_chained_mode(chained)
+        views = {n: ControllerView(mc.state, mc.claimed, mc.required_state) for n, mc in self.controllers.items()}
+        order = chain_order(active, views, self.rm.reference_owner, state_owner=self.rm.exported_state_owner)
+        self._active = tuple(self.controllers[n] for n in order)
+        rate = self.params.update_rate
+        self._updates = tuple((mc, mc.instance.update, mc.update_rate >= rate) for mc in self._active)
 
     # ---------------------------------------------------------------------------------------------- real time
     def read(self, time_ns: int, period_s: float) -> None:
@@ -364,20 +445,22 @@ class ControllerManager:
                 self._hardware_failed(failed)
 
     def cycle(self, time_ns: int, period_s: float) -> None:
-        """read → update → write, as the real-time loop runs them, under one acquisition of the lock."""
-        with self._lock:
-            rate = self.params.update_rate
-            failed = self.rm.read(time_ns, period_s, rate)
-            if failed:
-                self._hardware_failed(failed)
-            held = hold_publishing()
-            try:
+        """read → update → write, as the real-time loop runs them, under one acquisition of the lock; what the
+        controllers published goes to the publishing thread once the commands are written."""
+        held = hold_publishing()
+        try:
+            with self._lock:
+                rate = self.params.update_rate
+                rm = self.rm
+                failed = rm.read(time_ns, period_s, rate)
+                if failed:
+                    self._hardware_failed(failed)
                 self._update(time_ns, period_s, rate)
-            finally:
-                release_publishing(held)
-            failed = self.rm.write(time_ns, period_s, rate)
-            if failed:
-                self._hardware_failed(failed)
+                failed = rm.write(time_ns, period_s, rate)
+                if failed:
+                    self._hardware_failed(failed)
+        finally:
+            release_publishing(held)
 
     def _hardware_failed(self, failed: list[tuple[str, str]]) -> None:
         for comp, reason in failed:
@@ -392,6 +475,7 @@ class ControllerManager:
                 mc.last_error = f"hardware '{comp}' {reason}"
                 self._deactivate(mc)
             self.rm.fail_component(comp)
+        self._sync_chained_modes()
         self._refresh_active()
         self._activity()
 
@@ -407,27 +491,32 @@ class ControllerManager:
         """The controllers' updates (`_lock` held, publishing held: what they publish reaches the publishing
         thread once they all ran; woken in the middle of them, it would take the GIL from this loop)."""
         self.cycle_count += 1
-        failed: list[tuple[ManagedController, str]] = []
-        for mc in self._active:
-            period = period_s
-            if mc.update_rate and mc.update_rate < rate and mc.last_update_ns is not None:
+        failed: list[tuple[ManagedController, str]] | None = None
+        time = _ros_time(time_ns)
+        period_ns = round(period_s * 1e9)
+        cycle_period = self._period if self._period._nanoseconds == period_ns else _duration(period_ns)
+        self._period = cycle_period
+        for mc, update, every_cycle in self._updates:
+            period = cycle_period
+            if not every_cycle and mc.last_update_ns is not None:
                 # ros2_control: run on the cycle whose elapsed time is closest to the controller's period.
                 actual = (time_ns - mc.last_update_ns) * 1e-9
                 r = mc.update_rate
                 if abs(actual * r - 1.0) > abs((actual + 1.0 / rate) * r - 1.0):
                     continue
-                period = actual
+                period = _duration(time_ns - mc.last_update_ns)
             try:
-                ret = mc.instance.update(time_ns, period)
-                reason = "update() returned ERROR"
+                ret = update(time, period)
             except Exception as e:
                 if not self.params.handle_exceptions:
                     raise
-                ret, reason = ReturnType.ERROR, f"update() raised {hook_message(e)}"
+                ret = e
             mc.last_update_ns = time_ns
             mc.update_count += 1
             if ret is not _OK:
-                failed.append((mc, reason))
+                reason = f"update() raised {hook_message(ret)}" if isinstance(ret, Exception) else (
+                    "update() returned ERROR")
+                failed = [*(failed or ()), (mc, reason)]
         if failed:
             self._controllers_failed(failed)
         if self._pending is not None:
@@ -440,11 +529,12 @@ class ControllerManager:
             mc.last_error = reason
             self.log.error(f"controller '{mc.name}' {reason}: deactivating it")
             try:
-                mc.instance.on_error()
-            except Exception as e:
-                self.log.error(f"controller '{mc.name}': on_error raised {hook_message(e)}")
+                mc.call("on_error", mc.instance.on_error)
+            except TransitionError as e:
+                self.log.error(str(e))
             self._deactivate(mc)
             fallbacks.extend(mc.fallback_controllers)
+        self._sync_chained_modes()
         self._refresh_active()
         if fallbacks:
             plan = self._plan(fallbacks, [], STRICT)
@@ -470,14 +560,25 @@ class ControllerManager:
                     mc.shutdown()
                 except Exception as e:
                     self.log.warn(f"controller '{mc.name}': shutdown: {hook_message(e)}")
-                _close(mc.instance.node)
+                self._release_node(mc)
             self.controllers.clear()
             self._active = ()
+            self._updates = ()
             for name in list(self.rm.components):
                 try:
                     self.rm.set_state(name, State.FINALIZED)
                 except Exception as e:
                     self.log.warn(f"hardware '{name}': shutdown: {hook_message(e)}")
+
+    def _release_node(self, mc: ManagedController) -> None:
+        node = mc.instance._node
+        if node is None:
+            return
+        if self.executor is not None:
+            self.executor.remove_node(node)
+        if self.on_node_released is not None:
+            self.on_node_released(node)
+        _close(node)
 
     # ---------------------------------------------------------------------------------------------- views
     def interface_users(self) -> dict[str, str]:
@@ -489,32 +590,52 @@ class ControllerManager:
         return float("nan") if it is None else it.value
 
 
-def _controller_rate(name: str, params: dict[str, Any], cm_rate: int, log: Logger) -> int:
-    raw = params.get("update_rate", 0)
-    if isinstance(raw, bool) or not isinstance(raw, int) or raw < 0:
-        raise ParameterError(
-            f"{raw!r} is not a valid rate (an integer ≥ 0 in Hz; 0 = the manager's rate)", field=f"{name}.update_rate"
-        )
+def _controller_rate(mc: ManagedController, cm_rate: int, log: Any) -> int:
+    """The rate a controller runs at, from its node's `update_rate`, as controller_interface's configure decides
+    it (raises TransitionError on a negative rate)."""
+    raw = mc.instance.get_node().get_parameter("update_rate").value
+    if raw < 0:
+        raise TransitionError(f"controller '{mc.name}': Update rate cannot be a negative value!")
     if raw == 0 or raw == cm_rate:
         return cm_rate
     if raw > cm_rate:
         log.warn(
-            f"controller '{name}': update_rate {raw} Hz is above the manager's {cm_rate} Hz; "
-            f"it will run at {cm_rate} Hz"
+            f"controller '{mc.name}': The update rate of the controller : '{raw} Hz' cannot be higher than the "
+            f"update rate of the controller manager : '{cm_rate} Hz'. Setting it to the update rate of the "
+            "controller manager."
         )
         return cm_rate
     if cm_rate % raw:
+        achievable = cm_rate // round(cm_rate / raw)
         log.warn(
-            f"controller '{name}': update_rate {raw} Hz does not divide the manager's {cm_rate} Hz; "
-            "its period will vary"
+            f"controller '{mc.name}': The requested update rate of '{raw}' Hz is not achievable with the controller "
+            f"manager update rate of '{cm_rate}' Hz. Setting it to the closest achievable frequency "
+            f"'{achievable}' Hz."
         )
+        return achievable
     return raw
 
 
+_new = object.__new__
+
+
+def _ros_time(ns: int) -> Time:
+    """A client Time on the ROS clock, made without the constructor's checks (the manager's own clock values):
+    once per cycle, on the real-time thread."""
+    t = _new(Time)
+    t._nanoseconds = ns
+    t._clock_type = _ROS_TIME
+    return t
+
+
+def _duration(ns: int) -> Duration:
+    d = _new(Duration)
+    d._nanoseconds = ns
+    return d
+
+
 def _close(node: Any) -> None:
-    close = getattr(node, "close", None)
-    if close is not None:
-        try:
-            close()
-        except Exception:  # a controller node that fails to close must not block unloading
-            pass
+    try:
+        node.destroy_node()
+    except Exception:  # a controller node that fails to close must not block unloading
+        pass

@@ -1,15 +1,17 @@
-"""Controller-manager parameters (`controller_manager.ros__parameters`) and per-controller parameter merging.
+"""Controller-manager parameters (`controller_manager.ros__parameters`) validated into `ManagerParams`.
 
-The manager's parameters come, as in ros2_control_node, from its `--params-file`s (the gz_ros2_control
-`<parameters>` files become exactly that) and `-p` overrides. They are validated once, here, into a frozen
-`ManagerParams`; a controller's own parameters are the sections for its node name in the same files plus
-the files named by `<name>.params_file`, flattened to dotted keys.
+The manager's parameters come, as in ros2_control_node, from its node's arguments: `--params-file`s (the
+gz_ros2_control `<parameters>` files become exactly that) and `-p` rules. The manager node declares them
+(controller_manager_parameters.yaml's, see manager_node.py); their values are validated once, here, into a
+frozen `ManagerParams`, with the per-controller settings (`<name>.type`, `.params_file`,
+`.fallback_controllers`, `.node_options_args`). A controller's own parameters are its node's business
+(controller_node.py).
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -34,7 +36,7 @@ _MANAGER_KEYS = {
     "lock_memory",
     "robot_description",
 }
-_CONTROLLER_KEYS = {"type", "params_file", "update_rate", "fallback_controllers", "is_async", "node_options_args"}
+_CONTROLLER_KEYS = {"type", "params_file", "fallback_controllers", "node_options_args"}
 
 
 @dataclass(frozen=True)
@@ -44,7 +46,6 @@ class ControllerSpec:
     name: str
     type: str | None = None
     params_files: tuple[str, ...] = ()
-    update_rate: int | None = None
     fallback_controllers: tuple[str, ...] = ()
     node_options_args: tuple[str, ...] = ()  # the spawner's --controller-ros-args: the node's remaps, -p values
 
@@ -60,12 +61,9 @@ class ManagerParams:
     hardware_inactive: tuple[str, ...] = ()
     thread_priority: int = 50
     controllers: Mapping[str, ControllerSpec] = field(default_factory=dict)
-    params_files: tuple[str, ...] = ()  # the manager's own files; controllers inherit them
+    # The manager node's own arguments (`--ros-args --params-file …`): its controllers' nodes inherit them.
+    node_arguments: tuple[str, ...] = ()
     source: str = "controller_manager parameters"
-    namespace: str = "/"  # the manager's, and so its controllers' (whose file sections match /ns/<name>)
-    # The manager process's own arguments as rcl holds them (its files and -p rules in command-line order):
-    # they are every node's of the process, the controllers' too. None: the table of `params_files` alone.
-    overrides: ParameterOverrides | None = field(default=None, compare=False)
 
     @property
     def period_s(self) -> float:
@@ -102,8 +100,7 @@ def _rate(value: Any, key: str, source: str, *, allow_zero: bool = False) -> int
 
 
 def manager_params(
-    flat: Mapping[str, Any], *, source: str = "controller_manager parameters", params_files: tuple[str, ...] = (),
-    namespace: str = "/", overrides: ParameterOverrides | None = None,
+    flat: Mapping[str, Any], *, source: str = "controller_manager parameters", node_arguments: Sequence[str] = (),
 ) -> ManagerParams:
     """Validate the manager node's flattened parameters into a `ManagerParams` (raises ParameterError)."""
     kw: dict[str, Any] = {}
@@ -144,8 +141,7 @@ def manager_params(
                 specs.setdefault(name, {})[sub] = value
             # Other dotted keys (a controller's own parameters written under the manager) are left to it.
     controllers = {name: controller_spec(name, d, source) for name, d in specs.items()}
-    return ManagerParams(**kw, controllers=controllers, params_files=params_files, source=source,
-                         namespace=namespace, overrides=overrides)
+    return ManagerParams(**kw, controllers=controllers, node_arguments=tuple(node_arguments), source=source)
 
 
 def controller_spec(name: str, d: Mapping[str, Any], source: str) -> ControllerSpec:
@@ -157,24 +153,13 @@ def controller_spec(name: str, d: Mapping[str, Any], source: str) -> ControllerS
             field=f"{name}.type",
         )
     files = _str_list(d["params_file"], f"{name}.params_file", source) if "params_file" in d else ()
-    rate = _rate(d["update_rate"], f"{name}.update_rate", source, allow_zero=True) if "update_rate" in d else None
     fallbacks = (
         _str_list(d["fallback_controllers"], f"{name}.fallback_controllers", source)
         if "fallback_controllers" in d
         else ()
     )
     options = _str_list(d["node_options_args"], f"{name}.node_options_args", source) if "node_options_args" in d else ()
-    return ControllerSpec(name, ctype, files, rate, fallbacks, options)
-
-
-def node_options(spec: ControllerSpec | None) -> tuple[dict[str, Any], dict[str, str]]:
-    """`<name>.node_options_args` (`-r ~/cmd_vel:=/cmd_vel`, `-p k:=v`) → the controller node's params and remaps."""
-    if spec is None or not spec.node_options_args:
-        return {}, {}
-    from diffctl import ros_args
-
-    ra = ros_args.parse(list(spec.node_options_args), spec.name)
-    return dict(ra.params), dict(ra.remaps)
+    return ControllerSpec(name, ctype, files, fallbacks, options)
 
 
 def with_controller_param(params: ManagerParams, name: str, key: str, value: Any) -> ManagerParams:
@@ -183,7 +168,6 @@ def with_controller_param(params: ManagerParams, name: str, key: str, value: Any
     d: dict[str, Any] = {
         "type": old.type,
         "params_file": list(old.params_files),
-        "update_rate": old.update_rate,
         "fallback_controllers": list(old.fallback_controllers),
         "node_options_args": list(old.node_options_args),
     }
@@ -201,34 +185,6 @@ def load_manager_files(files: list[str] | tuple[str, ...], node: str = "/control
     for f in files:
         table.add_file(f)
     return table.for_node(node_fqn(node))
-
-
-def controller_node_params(
-    name: str, params: ManagerParams, extra_files: tuple[str, ...] = (), inherited: Mapping[str, Any] | None = None
-) -> dict[str, Any]:
-    """A controller node's parameters, as controller_manager builds its node: the manager's files are the
-    process's (global) arguments, the controller's `params_file`s its node's own (local) ones; each file's
-    sections are those whose key matches the controller's fully qualified name (`/ns/<name>`)."""
-    out: dict[str, Any] = dict(inherited or {})
-    spec = params.controllers.get(name, ControllerSpec(name))
-    fqn = node_fqn(name, params.namespace)
-    layers = (params.params_files, (*spec.params_files, *extra_files))
-    for i, files in enumerate(layers):
-        if i == 0 and params.overrides is not None:
-            out.update(params.overrides.for_node(fqn))
-            continue
-        table = ParameterOverrides()
-        for f in files:
-            if not Path(f).is_file():
-                raise ParameterError("parameter file not found", source=f, field=f"{name}.params_file")
-            table.add_file(f)
-        out.update(table.for_node(fqn))
-    if params.use_sim_time:  # controller_manager appends `-p use_sim_time:=true` to the node's arguments
-        out["use_sim_time"] = True
-    out.setdefault("use_sim_time", params.use_sim_time)
-    if spec.update_rate is not None:
-        out["update_rate"] = spec.update_rate
-    return out
 
 
 def section_type(path: str, name: str, namespace: str = "/", fatal: Any = None) -> str | None:

@@ -140,7 +140,9 @@ class WallTicker:
 
 
 class SimClockTicker:
-    """Cycles on sim time from /clock: sleep until previous + period of the node's clock."""
+    """Cycles on sim time: waits until previous + period on the node's ROS clock (which follows /clock)."""
+
+    POLL_S = 0.0005
 
     def __init__(self, update_rate: int, clock: object) -> None:
         self.period_ns = 1_000_000_000 // update_rate
@@ -148,17 +150,19 @@ class SimClockTicker:
         self._prev: int | None = None
 
     def wait(self, stop: threading.Event) -> tuple[int, float] | None:
+        now_ns = self.clock.now_ns  # type: ignore[attr-defined]
         if self._prev is None:
-            while not self.clock.started:  # type: ignore[attr-defined]
+            while now_ns() == 0:  # no /clock yet
                 if stop.wait(0.05):
                     return None
-            self._prev = self.clock.now_ns()  # type: ignore[attr-defined]
-        if not self.clock.sleep_until(self._prev + self.period_ns, stop):  # type: ignore[attr-defined]
-            return None
-        now = self.clock.now_ns()  # type: ignore[attr-defined]
-        if now < self._prev:  # the world was reset: start over
-            self._prev = now
-            return None
+            self._prev = now_ns()
+        while now_ns() < self._prev + self.period_ns:
+            if stop.wait(self.POLL_S):
+                return None
+            if now_ns() < self._prev:  # the world was reset: start over
+                self._prev = now_ns()
+                return None
+        now = now_ns()
         period = (now - self._prev) / 1e9
         self._prev = now
         return now, period

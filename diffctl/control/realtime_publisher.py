@@ -14,7 +14,7 @@ queued without waking the publishing thread; `release` wakes it once, after the 
 once per message in the middle of them, where it would take the GIL (and the CPU) from the loop. Samples
 from any other thread wake it at once.
 
-This module imports nothing of the bus until a message has to be serialized, so the manager can use it.
+The publisher wrapped is a client (rclpy-API) Publisher, as `get_node().create_publisher(…)` returns it.
 """
 
 from __future__ import annotations
@@ -81,10 +81,8 @@ class PublishingThread:
             except IndexError:
                 self._signal.acquire()  # until a producer appends and signals (or signalled meanwhile)
                 continue
-            if getattr(publisher, "closed", False):
-                continue
             try:
-                publisher.publish_raw(data if template is None else template.encode(data))
+                publisher.publish(data if template is None else template.encode(data))
             except Exception:  # a publisher closed meanwhile (controller unloaded, shutdown): nothing to send to
                 pass
 
@@ -100,7 +98,7 @@ class _Marker:
     def __init__(self, done: threading.Event) -> None:
         self._done = done
 
-    def publish_raw(self, _cdr: bytes) -> None:
+    def publish(self, _cdr: bytes) -> None:
         self._done.set()
 
 
@@ -137,34 +135,27 @@ def publishing_thread() -> PublishingThread:
 
 
 class RealtimePublisher:
-    """A bus publisher whose `publish` returns as soon as the message is serialized."""
+    """realtime_tools::RealtimePublisher: wraps a client Publisher; `publish` returns once the message is
+    serialized (`msg_type`, `topic_name`, `get_subscription_count()` … are the wrapped publisher's)."""
 
     def __init__(self, publisher: Any, thread: PublishingThread | None = None) -> None:
-        from diffctl.interfaces import types
+        from diffctl.client.interfaces import serialize
 
-        self._pub = publisher
+        self.publisher = publisher
         self._thread = thread or publishing_thread()
-        self._types = types
-        self._type = publisher.type
+        self._serialize = serialize
         # publish_values(template, values) is thread.submit(publisher, template, values): bound here so a
         # cycle's call is one frame, not two.
         self.publish_values = functools.partial(self._thread.submit, publisher)
 
     def publish(self, msg: Any) -> None:
-        types = self._types
-        if isinstance(msg, dict):
-            msg = types.new(self._type, msg)
-        self._thread.submit(self._pub, None, types.serialize(msg, self._type))
+        self._thread.submit(self.publisher, None, self._serialize(msg))
 
     def publish_values(self, template: Any, values: Sequence[Any]) -> None:
         """Publish the message `template` (a CdrTemplate) describes with its leaves set to `values`, which
         must not change afterwards (a fresh list or tuple); packed on the publishing thread. (Replaced per
         instance by a partial of the thread's submit, which does the same.)"""
-        self._thread.submit(self._pub, template, values)
-
-    def close(self) -> None:
-        self._pub.close()
+        self._thread.submit(self.publisher, template, values)
 
     def __getattr__(self, item: str) -> Any:
-        # topic, type, subscription_count, matching, … are the wrapped publisher's
-        return getattr(self._pub, item)
+        return getattr(self.publisher, item)

@@ -8,7 +8,8 @@ controllers that use it, and it goes to unconfigured.
 
 Reference interfaces of chainable controllers (`<controller>/linear/velocity`) are command interfaces too,
 owned by that controller instead of a component: imported when it is configured, available while it is
-active, claimed like any other by the controller chained in front of it, removed at cleanup.
+active, claimed like any other by the controller chained in front of it, removed at cleanup. The state
+interfaces a chainable controller exports are state interfaces owned the same way (shared, never claimed).
 """
 
 from __future__ import annotations
@@ -51,7 +52,8 @@ class ResourceManager:
         self.owner: dict[str, str] = {}  # interface name → component name
         self.claimed: dict[str, str] = {}  # command interface → controller name
         self.reference_owner: dict[str, str] = {}  # reference interface → the controller exporting it
-        self._reference_available: set[str] = set()
+        self.exported_state_owner: dict[str, str] = {}  # a controller's exported state interface → it
+        self._reference_available: set[str] = set()  # the exported interfaces of active controllers
         self._warn = log or (lambda _t: None)
         self._active: tuple[HardwareHandle, ...] = ()
         self._readable: tuple[HardwareHandle, ...] = ()
@@ -149,6 +151,8 @@ class ResourceManager:
 
     # --- availability and claims -------------------------------------------------------------------------
     def state_available(self, name: str) -> bool:
+        if name in self.exported_state_owner:
+            return name in self._reference_available
         o = self.owner.get(name)
         return (
             name in self.state_interfaces
@@ -174,15 +178,35 @@ class ResourceManager:
             self.command_interfaces[h.name] = h
             self.reference_owner[h.name] = controller
 
+    def import_exported_state_interfaces(self, controller: str, handles: Iterable[StateInterface]) -> None:
+        for name in [n for n, c in self.exported_state_owner.items() if c == controller]:
+            del self.exported_state_owner[name]
+            self.state_interfaces.pop(name, None)
+        for h in handles:
+            if h.name in self.state_interfaces:
+                raise TransitionError(
+                    f"controller '{controller}' exports state interface '{h.name}', which already exists "
+                    f"(owned by '{self.owner.get(h.name) or self.exported_state_owner.get(h.name)}')"
+                )
+            self.state_interfaces[h.name] = h
+            self.exported_state_owner[h.name] = controller
+
     def remove_reference_interfaces(self, controller: str) -> None:
+        """Forget everything `controller` exports (its reference and its state interfaces)."""
         for name in [n for n, c in self.reference_owner.items() if c == controller]:
             del self.reference_owner[name]
             self.command_interfaces.pop(name, None)
             self._reference_available.discard(name)
             self.claimed.pop(name, None)
+        for name in [n for n, c in self.exported_state_owner.items() if c == controller]:
+            del self.exported_state_owner[name]
+            self.state_interfaces.pop(name, None)
+            self._reference_available.discard(name)
 
     def set_reference_available(self, controller: str, available: bool) -> None:
+        """The controller's exported interfaces become available (it is active) or not."""
         names = {n for n, c in self.reference_owner.items() if c == controller}
+        names |= {n for n, c in self.exported_state_owner.items() if c == controller}
         if available:
             self._reference_available |= names
         else:

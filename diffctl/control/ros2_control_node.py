@@ -1,10 +1,12 @@
 """`diffctl control manager`: the ros2_control_node process around a ControllerManager.
 
-Start-up as in Jazzy: the robot description comes from `--description FILE` or the latched
-`/robot_description` topic (the manager waits for it, saying so); only then are hardware loaded, the
-services created and the real-time loop started. Parameters: the gz_ros2_control plugin's `<parameters>`
-files, then `--param-file`s, then `--ros-args` (`--params-file`, `-p`). Bad input is refused before
-anything starts; Ctrl-C deactivates and unloads every controller and finalizes the hardware.
+As in Jazzy: the manager's node (`controller_manager`, renamed/namespaced by `--ros-args -r __node:=`/`__ns:=`)
+is made from the process's ROS arguments, with diffctl's `--param-file`s (and, when `--description FILE` is
+given, that description's gz_ros2_control `<parameters>` files) as `--params-file`s before them. The robot
+description comes from `--description FILE` or the latched `robot_description` topic (the manager waits for
+it, saying so); only then are hardware loaded, the services created and the real-time loop started. A
+multi-threaded executor spins the manager's and the controllers' nodes. Bad input is refused before anything
+starts; Ctrl-C deactivates and unloads every controller and finalizes the hardware.
 """
 
 from __future__ import annotations
@@ -12,15 +14,15 @@ from __future__ import annotations
 import gc
 import sys
 import threading
-import time
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from diffctl import ros_args
-from diffctl.control.controller_node import BusControllerNode
+from diffctl.control.controller_node import make_controller_node
 from diffctl.control.manager import ControllerManager
-from diffctl.control.params import load_manager_files, manager_params
+from diffctl.control.manager_node import make_manager_node, manager_flat_params
+from diffctl.control.params import manager_params
 from diffctl.control.plugin_registry import hardware_for
 from diffctl.control.realtime_loop import (
     LoopStats,
@@ -35,6 +37,7 @@ from diffctl.control.services import ManagerServices
 from diffctl.errors import ConfigError
 
 SWITCH_INTERVAL_S = 0.0002
+NODE_NAME = "controller_manager"
 
 
 @dataclass
@@ -48,104 +51,84 @@ class ManagerOptions:
 class ControlNode:
     """The manager node: waits for a description, then runs the manager until shutdown."""
 
-    def __init__(self, opts: ManagerOptions, rargs: ros_args.RosArgs | None = None) -> None:
-        from diffctl.bus import Node
+    def __init__(self, opts: ManagerOptions, ros_argv: list[str] | None = None) -> None:
+        from diffctl.client.context import get_default_context
+        from diffctl.client.executors import MultiThreadedExecutor
 
         self.opts = opts
-        self.ra = rargs or ros_args.current("controller_manager")
+        ros_argv = ros_args.current_argv() if ros_argv is None else list(ros_argv)
         for f in opts.param_files:
             if not Path(f).is_file():
                 raise ConfigError("parameter file not found", source=f, hint="--param-file takes an existing YAML")
-        self.name = self.ra.node_name or "controller_manager"
-        self.fqn = ros_args.node_fqn(self.name, self.ra.namespace or "/")
-        self.base_flat = {**load_manager_files(opts.param_files, self.fqn), **self.ra.params}
-        manager_params(self.base_flat, source="controller manager parameters")  # refuse bad values up front
         self.description: str | None = None
-        self.description_source = "robot_description"
         self.infos: list[Any] = []
-        self.gz_files: list[str] = []
+        self.problems: list[str] = []
+        gz_files: list[str] = []
         if opts.description_file:
             p = Path(opts.description_file)
             if not p.is_file():
                 raise ConfigError("robot description file not found", source=str(p))
             from diffctl.description.robot_files import read_description_text  # a xacro file expands first
 
-            self._prepare(read_description_text(p), str(p))
-        self.node = Node(self.name, self.ra.namespace or "/", remaps=self.ra.remaps, params=dict(self.base_flat))
-        self.log = self.node.log
+            gz_files = self._prepare(read_description_text(p), str(p))
+        files = [*gz_files, *opts.param_files]
+        self.arguments = ["--ros-args", *(w for f in files for w in ("--params-file", f)), *ros_argv]
+        # Bad values are refused before anything starts (the node is not made yet: no router needed).
+        ra = ros_args.parse(ros_args.split_argv(self.arguments)[1], NODE_NAME)
+        manager_params(ra.params, source="controller manager parameters")
+        self.context = get_default_context()
+        if not self.context.ok():
+            self.context.init(["ros2_control_node", "--ros-args", *ros_argv])
+        self.node = make_manager_node(NODE_NAME, "/", self.arguments, context=self.context,
+                                      use_global_arguments=False)
+        self.log = self.node.get_logger()
+        # Refuse bad values before anything starts.
+        self.params = manager_params(manager_flat_params(self.node), source="controller manager parameters",
+                                     node_arguments=self.arguments)
+        self.executor = MultiThreadedExecutor(num_threads=2, context=self.context)
+        self.executor.add_node(self.node)
         self.cm: ControllerManager | None = None
         self.services: ManagerServices | None = None
         self.stats = LoopStats()
         self.stop = threading.Event()
         self._got_description = threading.Event()
         self._loop_thread: threading.Thread | None = None
-        self._last_cycle_ns = 0
+        self._spin_thread: threading.Thread | None = None
         self.ticker: Ticker | None = None
+        self.failed: ConfigError | None = None
 
-    # --- description → hardware and parameters --------------------------------------------------------
-    def _prepare(self, text: str, source: str) -> None:
-        """Parse everything the description gives before anything starts (raises ConfigError subclasses)."""
+    # --- description → hardware --------------------------------------------------------------------------
+    def _prepare(self, text: str, source: str) -> list[str]:
+        """Parse what the description gives before anything starts (raises ConfigError subclasses); returns its
+        gz_ros2_control `<parameters>` files."""
         extra = dict(self.opts.hardware_params)
         self.infos = hardware_infos(text, source, plugin_override=self.opts.hardware_plugin, extra_params=extra)
         for info in self.infos:
             hardware_for(info)  # an unknown plugin is bad input: refuse it before starting anything
-        files, problems = parameter_files(text, source)
-        self.gz_files = files
-        self.problems = problems
-        self.description, self.description_source = text, source
-
-    def _flat_params(self) -> dict[str, Any]:
-        return {**load_manager_files(self.gz_files, self.fqn), **self.base_flat}
-
-    def now_ns(self) -> int:
-        if self.cm is not None and self.cm.params.use_sim_time:
-            return max(self._last_cycle_ns, self.node.clock.now_ns())
-        return time.time_ns()
-
-    def _on_cycle_time(self, t_ns: int) -> None:
-        self._last_cycle_ns = t_ns
+        files, self.problems = parameter_files(text, source)
+        self.description = text
+        return files
 
     def start(self) -> None:
         """Build the manager from the description, load hardware, create services, start the loop."""
         assert self.description is not None
-        for p in getattr(self, "problems", []):
-            if self.opts.param_files or self.ra.params_files:
+        for p in self.problems:
+            if self.opts.param_files or "--params-file" in self.arguments:
                 self.log.info(f"{p}; using the parameter files given on the command line")
             else:
                 self.log.warn(p)
-        flat = self._flat_params()
-        files = tuple(self.gz_files) + tuple(self.opts.param_files) + tuple(self.ra.params_files)
-        # The process's arguments, every node's of it: diffctl's --param-file and the plugin's files first, then
-        # --ros-args' files and -p rules in their order (the controllers' global arguments, as in Jazzy).
-        process = ros_args.ParameterOverrides()
-        for f in (*self.gz_files, *self.opts.param_files):
-            process.add_file(f)
-        for key, entry in self.ra.overrides.entries.items():
-            process.entries.setdefault(key, {}).update(entry)
-        params = manager_params(flat, source="controller manager parameters", params_files=files,
-                                namespace=self.node.namespace, overrides=process)
-        self.node.params.update(flat)
-        if params.use_sim_time and not self.node.clock.use_sim_time:
-            self.node.clock.use_sim_time = True
-            self.node.create_subscription("/clock", "rosgraph_msgs/msg/Clock", self.node.clock.on_clock)
+        params = self.params
+        namespace = self.node.get_namespace()
 
-        process_argv = ros_args.current_argv()
+        def factory(name: str, arguments: list[str]) -> Any:
+            return make_controller_node(name, namespace, arguments, context=self.context)
 
-        def factory(name: str, p: dict[str, Any], remaps: dict[str, str] | None = None) -> BusControllerNode:
-            # The node's own rules (--controller-ros-args) first, then the process's that apply to it
-            # (unprefixed, or prefixed with its name: `diffbot_base_controller:~/cmd_vel:=/cmd_vel`).
-            own = dict(remaps or {})
-            for k, v in ros_args.parse(process_argv, name, self.node.namespace).remaps.items():
-                own.setdefault(k, v)
-            return BusControllerNode(name, self.node.namespace, p, self.now_ns, remaps=own)
-
-        self.cm = ControllerManager(
-            params, log=self.log, node_factory=factory, robot_description=self.description, cancel=self.stop
-        )
+        self.cm = ControllerManager(params, log=self.log, node_factory=factory, robot_description=self.description,
+                                    cancel=self.stop, executor=self.executor)
         self.cm.load_hardware(self.infos)
         self.services = ManagerServices(self.node, self.cm)
         self.ticker = self._make_ticker()
-        # A waking control thread waits for the GIL up to the switch interval (5 ms by default) while a bus
+        # A waking control thread waits for the GIL up to the switch interval (5 ms by default) while another
         # thread runs: shorten it so a period's jitter stays well under a millisecond. Objects alive after
         # start-up never become garbage; freezing them keeps full collections short inside the loop.
         sys.setswitchinterval(SWITCH_INTERVAL_S)
@@ -162,10 +145,11 @@ class ControlNode:
     def _make_ticker(self) -> Ticker:
         assert self.cm is not None
         if self.cm.params.use_sim_time:
-            return SimClockTicker(self.cm.update_rate, self.node.clock)
+            return SimClockTicker(self.cm.update_rate, self.node.get_clock())
 
         def overrun(text: str) -> None:
-            self.log.throttled("overrun", text, 1.0)
+            if self.node.get_parameter_or("overruns.print_warnings").value is not False:
+                self.log.warn(text, throttle_duration_sec=1.0)
 
         return WallTicker(self.cm.update_rate, self.stats, overrun, self.cm.params.manage_overruns)
 
@@ -178,53 +162,76 @@ class ControlNode:
         else:
             self.log.info(f"control loop on SCHED_FIFO priority {cm.params.thread_priority}")
         try:
-            run(cm.cycle, self.ticker, self.stop, self.stats, self._on_cycle_time)  # read → update → write
+            run(cm.cycle, self.ticker, self.stop, self.stats)  # read → update → write
         except Exception as e:  # the loop dying silently would freeze the robot with no word
             self.log.error(f"the control loop stopped: {type(e).__name__}: {e}")
-            self.node.request_shutdown()
+            self.stop.set()
 
     # --- process lifetime ------------------------------------------------------------------------------
     def _on_description(self, msg: Any) -> None:
         if self._got_description.is_set():
-            self.log.warn("ignoring a second robot_description: the manager was already initialised")
+            self.log.warn(
+                "ResourceManager has already loaded a urdf and is initialized. Ignoring attempt to reload a robot "
+                "description."
+            )
             return
+        self.log.info("Received robot description from topic.")
         try:
-            self._prepare(str(msg.data), "robot_description topic")
+            files = self._prepare(str(msg.data), "robot_description topic")
         except ConfigError as e:
             self.log.error(f"robot_description: {e}")
             self.failed = e
-            self.node.request_shutdown()
-            return
+            self.stop.set()
+        else:
+            if files and "--params-file" not in self.arguments:
+                self.problems.append(
+                    f"the description's gz_ros2_control <parameters> ({', '.join(files)}) are the simulator's: "
+                    "ros2_control_node reads its own parameter files (--ros-args --params-file FILE)"
+                )
         self._got_description.set()
+
+    def _spin(self) -> None:
+        from diffctl.client.executors import ExternalShutdownException
+
+        try:
+            while not self.stop.is_set() and self.context.ok():
+                self.executor.spin_once(timeout_sec=0.1)
+        except ExternalShutdownException:
+            pass
+        finally:
+            self.stop.set()
 
     def serve(self) -> None:
         """Run until SIGINT/SIGTERM; raises the ConfigError that stopped start-up, if any."""
         import signal
 
-        self.failed: ConfigError | None = None
+        from diffctl.client.interfaces import cls
+        from diffctl.client.qos import DurabilityPolicy, QoSProfile
 
         def on_signal(*_: object) -> None:
             self.stop.set()
-            self.node.request_shutdown()
 
         for sig in (signal.SIGINT, signal.SIGTERM):
             signal.signal(sig, on_signal)
+        self._spin_thread = threading.Thread(target=self._spin, name="controller_manager_executor", daemon=True)
+        self._spin_thread.start()
         try:
             if self.description is None:
-                self.node.create_subscription(
-                    "robot_description", "std_msgs/msg/String", self._on_description, latched=True
-                )
+                # Relative, as current Jazzy: /robot_description at the root, /<ns>/robot_description in a namespace.
+                self.node.create_subscription(cls("std_msgs/msg/String"), "robot_description", self._on_description,
+                                              QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL))
                 ticks = 0
-                while not self._got_description.wait(0.1) and not self.node.shutting_down:
-                    if ticks % 50 == 0:
+                while not self._got_description.wait(0.1) and not self.stop.is_set():
+                    if ticks % 10 == 0:
                         self.log.warn("Waiting for data on 'robot_description' topic to finish initialization")
                     ticks += 1
                 if self.failed is not None:
                     raise self.failed
-                if self.node.shutting_down:
+                if self.stop.is_set():
                     return
             self.start()
-            self.node.spin()
+            while not self.stop.wait(0.25):
+                pass
         finally:
             self.shutdown()
 
@@ -237,10 +244,14 @@ class ControlNode:
             self.cm.shutdown()
         if self.services is not None:
             self.services.close()
+        if self._spin_thread is not None:
+            self._spin_thread.join(2.0)
         stats = self.stats.summary(1.0 / self.cm.update_rate) if self.cm is not None else {}
         if stats.get("overruns"):
             self.log.warn(f"{stats['overruns']} overruns in {stats['cycles']} cycles")
-        self.node.close()
+        self.executor.shutdown(timeout_sec=1.0)
+        self.node.destroy_node()
+        self.context.try_shutdown()
 
 
 def main(opts: ManagerOptions) -> None:

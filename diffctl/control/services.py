@@ -1,7 +1,10 @@
-"""The controller manager's services (controller_manager_msgs); its parameters are the node's (rcl_interfaces).
+"""The controller manager's services (controller_manager_msgs) and ~/activity, on its client Node.
 
 Handlers translate requests into ControllerManager calls and back; a failed call answers ok=false and
-the manager logs why, as controller_manager does.
+the manager logs why, as controller_manager does. load_controller reads the controller's settings from the
+manager node's parameters at that moment (`<name>.type`, `.params_file`, declaring `.fallback_controllers`
+and `.node_options_args` as controller_manager does), and a switch with strictness 0 uses
+`defaults.switch_controller.strictness`.
 """
 
 from __future__ import annotations
@@ -9,27 +12,36 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
+from diffctl.client.callback_groups import ReentrantCallbackGroup
+from diffctl.client.interfaces import cls
+from diffctl.client.parameter import Parameter
+from diffctl.client.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from diffctl.control import plugin_registry
 from diffctl.control.lifecycle import State, TransitionError
 from diffctl.control.manager import ControllerManager
+from diffctl.control.params import STRICTNESS, controller_spec
 from diffctl.errors import DiffctlError
+from diffctl.interfaces.runtime.set_message import set_message_fields
 
 CM = "controller_manager_msgs/srv/"
 ACTIVITY_TYPE = "controller_manager_msgs/msg/ControllerManagerActivity"
+# controller_manager's ~/activity: QoS(1).reliable().transient_local()
+ACTIVITY_QOS = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+
 
 class ManagerServices:
-    """Registers every service of the manager node on `node` (a bus Node named controller_manager)."""
+    """Registers every service of the manager node on `node` (the manager's client Node)."""
 
     def __init__(self, node: Any, cm: ControllerManager) -> None:
         self.node = node
         self.cm = cm
-        self.log = node.log
+        self.log = node.get_logger()
         handlers: dict[str, tuple[str, Callable[[Any], Any]]] = {
             "list_controllers": ("ListControllers", self.list_controllers),
             "list_controller_types": ("ListControllerTypes", self.list_controller_types),
             "list_hardware_components": ("ListHardwareComponents", self.list_hardware_components),
             "list_hardware_interfaces": ("ListHardwareInterfaces", self.list_hardware_interfaces),
-            "load_controller": ("LoadController", self._simple(cm.load_controller)),
+            "load_controller": ("LoadController", self._simple(self.load_controller)),
             "configure_controller": ("ConfigureController", self._simple(cm.configure_controller)),
             "cleanup_controller": ("CleanupController", self._simple(cm.cleanup_controller)),
             "unload_controller": ("UnloadController", self._simple(cm.unload_controller)),
@@ -37,35 +49,58 @@ class ManagerServices:
             "set_hardware_component_state": ("SetHardwareComponentState", self.set_hardware_component_state),
             "reload_controller_libraries": ("ReloadControllerLibraries", self.reload_controller_libraries),
         }
-        # Parameters first: a spawner sets `<controller>.type` the moment it sees the services.
-        self._declare_parameters()
-        self.services = [node.create_service(f"~/{name}", CM + srv, h) for name, (srv, h) in handlers.items()]
-        # controller_manager: QoS(1).reliable().transient_local(), published on every change of a controller's
-        # or a hardware component's state; a late subscriber gets the last one.
-        self.activity = node.create_publisher("~/activity", ACTIVITY_TYPE, latched=True, depth=1, reliable=True)
+        # One reentrant group: the listings answer while a switch waits for the control loop (controller_manager
+        # serialises its services, so `list_controllers` would hang behind a switch in a paused simulation); the
+        # manager serialises the changes itself.
+        group = ReentrantCallbackGroup()
+        self.services = [node.create_service(cls(CM + srv), f"~/{name}", _answering(h), callback_group=group)
+                         for name, (srv, h) in handlers.items()]
+        # Published on every change of a controller's or a hardware component's state; a late subscriber gets
+        # the last one.
+        self.activity = node.create_publisher(cls(ACTIVITY_TYPE), "~/activity", ACTIVITY_QOS)
         cm.on_activity = self.publish_activity
         self.publish_activity()  # the hardware brought up before the publisher existed
 
     def close(self) -> None:
         self.cm.on_activity = None
         for s in self.services:
-            s.close()
+            s.destroy()
+        self.activity.destroy()
 
     def publish_activity(self) -> None:
         """controller_manager_msgs/ControllerManagerActivity: every controller's and component's lifecycle state."""
-        t_ns = self.node.clock.now_ns()
+        t_ns = self.node.get_clock().now().nanoseconds
         with self.cm._lock:
             controllers = [{"name": n, "state": {"id": mc.state.id, "label": mc.state.value}}
                            for n, mc in self.cm.controllers.items()]
             components = [{"name": n, "state": {"id": h.state.id, "label": h.state.value}}
                           for n, h in self.cm.rm.components.items()]
-        self.activity.publish({
+        msg = cls(ACTIVITY_TYPE)()
+        set_message_fields(msg, {
             "header": {"stamp": {"sec": t_ns // 1_000_000_000, "nanosec": t_ns % 1_000_000_000}, "frame_id": ""},
             "controllers": controllers,
             "hardware_components": components,
         })
+        self.activity.publish(msg)
 
     # --- controller_manager_msgs ------------------------------------------------------------------------
+    def load_controller(self, name: str) -> None:
+        """controller_manager's load_controller(name): its settings are the node's parameters now."""
+        node = self.node
+        if not node.has_parameter(f"{name}.type"):
+            node.declare_parameter(f"{name}.type", Parameter.Type.STRING)
+        for key in ("fallback_controllers", "node_options_args"):
+            if not node.has_parameter(f"{name}.{key}"):
+                node.declare_parameter(f"{name}.{key}", Parameter.Type.STRING_ARRAY)
+                node.set_parameters([Parameter(f"{name}.{key}", Parameter.Type.STRING_ARRAY, [])])
+        settings = {}
+        for key in ("type", "params_file", "fallback_controllers", "node_options_args"):
+            p = node.get_parameter_or(f"{name}.{key}")
+            if p.type_ != Parameter.Type.NOT_SET:
+                settings[key] = list(p.value) if isinstance(p.value, list | tuple) else p.value
+        self.cm.set_controller_spec(controller_spec(name, settings, f"{node.get_fully_qualified_name()} parameters"))
+        self.cm.load_controller(name)
+
     def _simple(self, fn: Callable[[str], Any]) -> Callable[[Any], dict[str, Any]]:
         def handler(req: Any) -> dict[str, Any]:
             try:
@@ -159,10 +194,14 @@ class ManagerServices:
 
     def switch_controller(self, req: Any) -> dict[str, Any]:
         timeout_s = int(req.timeout.sec) + int(req.timeout.nanosec) * 1e-9
+        strictness = int(req.strictness)
+        if strictness == 0:  # the node's default, as it is now
+            default = self.node.get_parameter_or("defaults.switch_controller.strictness").value
+            strictness = STRICTNESS.get(default, STRICTNESS["best_effort"])
         ok, msg = self.cm.switch_controller(
             list(req.activate_controllers),
             list(req.deactivate_controllers),
-            int(req.strictness),
+            strictness,
             bool(req.activate_asap),
             timeout_s,
         )
@@ -199,25 +238,12 @@ class ManagerServices:
         plugin_registry.rescan()
         return {"ok": True}
 
-    # --- the manager's own parameters (served by the node's parameter services, as every node's) --------
-    def _declare_parameters(self) -> None:
-        from diffctl.bus.parameters import ParameterDescriptor
 
-        self.node.declare_parameter(
-            "update_rate",
-            self.cm.update_rate,
-            ParameterDescriptor(description="controller manager update rate in Hz", read_only=True),
-        )
-        self.node.add_on_set_parameters_callback(self._on_set_parameters)
 
-    def _on_set_parameters(self, changes: dict[str, Any]) -> str | None:
-        """`<controller>.type`, `.params_file`, … set at runtime (the spawner does) reach the manager."""
-        settings = ("type", "params_file", "update_rate", "fallback_controllers", "node_options_args")
-        for name, value in changes.items():
-            prefix, _, key = name.rpartition(".")
-            if prefix and key in settings:
-                try:
-                    self.cm.set_controller_param(prefix, key, value)
-                except DiffctlError as e:
-                    return str(e)
-        return None
+def _answering(handler: Callable[[Any], dict[str, Any]]) -> Callable[[Any, Any], Any]:
+    """An rclpy service callback filling the response from a handler's dict of its fields."""
+    def callback(request: Any, response: Any) -> Any:
+        set_message_fields(response, handler(request))
+        return response
+
+    return callback

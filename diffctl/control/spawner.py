@@ -28,7 +28,6 @@ from pathlib import Path
 import click
 
 from diffctl.control.cm_client import ManagerClient
-from diffctl.control.parameter_msgs import P_STRING, P_STRING_ARRAY
 from diffctl.control.params import section_type
 from diffctl.control.switching import STRICT
 from diffctl.errors import ParameterError, RuntimeFailure
@@ -118,7 +117,8 @@ def spawn(
     """The spawner; raises RuntimeFailure (exit 1) with the reason when anything fails. True when it is done
     and may exit at once: every controller reached its state and it was not asked to stay (-u)."""
     from diffctl import ros_args
-    from diffctl.bus import Node
+    from diffctl.client.context import get_default_context
+    from diffctl.client.node import Node
 
     ra = ros_args.current(f"spawner_{names[0]}")
     # `--ros-args --params-file` files count as --param-file (controller_manager 4.44+): a launch file's
@@ -133,15 +133,18 @@ def spawn(
             raise click.UsageError("give the spawner's namespace with -n/--namespace or with -r __ns:=, not both")
         spawner_ns = namespace if namespace.startswith("/") else "/" + namespace
     options = controller_node_options(controller_ros_args or [])
-    node = Node(ra.node_name or f"spawner_{names[0]}", spawner_ns, remaps=ra.remaps, params=ra.params)
-    log = node.log
+    context = get_default_context()
+    if not context.ok():
+        context.init(["spawner", "--ros-args", *ros_args.current_argv()])
+    node = Node(f"spawner_{names[0]}", namespace=None if namespace is None else spawner_ns, context=context)
+    log = node.get_logger()
     types = {}
     for name in names:
         for f in param_files:
             try:
-                t = section_type(f, name, spawner_ns, log.fatal)
+                t = section_type(f, name, node.get_namespace(), log.fatal)
             except ParameterError as e:
-                node.close()
+                node.destroy_node()
                 raise RuntimeFailure(str(e)) from None
             if t:
                 types[name] = t
@@ -180,19 +183,13 @@ def spawn(
             _unload(cm, log, names, deactivate=not (inactive or load_only), switch_timeout_s=switch_timeout_s)
         # Interrupted without -u: ROS's spawner exits 0.
     finally:
-        node.close()
+        cm.close()
+        node.destroy_node()
     return False
 
 
 def _set_node_options(cm: ManagerClient, name: str, options: list[str]) -> None:
-    key = f"{name}.node_options_args"
-    resp = cm.call(
-        "set_parameters",
-        {"parameters": [{"name": key, "value": {"type": P_STRING_ARRAY, "string_array_value": options}}]},
-    )
-    for r in resp.results:
-        if not r.successful:
-            raise RuntimeFailure(f"could not set {key} on {cm.manager}: {r.reason}")
+    cm.set_parameters({f"{name}.node_options_args": options})
 
 
 def _load_and_configure(
@@ -213,10 +210,7 @@ def _load_and_configure(
         if param_files:
             cm.set_controller_params(name, type_name, param_files)
         elif type_name:
-            cm.call(
-                "set_parameters",
-                {"parameters": [{"name": f"{name}.type", "value": {"type": P_STRING, "string_value": type_name}}]},
-            )
+            cm.set_parameters({f"{name}.type": type_name})
         if not cm.ok("load_controller", name):
             raise RuntimeFailure(
                 f"Failed loading controller {name}",

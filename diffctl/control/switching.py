@@ -9,7 +9,9 @@ command interfaces are exclusive, state interfaces shared.
 Chaining (controller_manager's chained controllers): a controller that claims another's reference interfaces
 ("preceding") needs that "following" controller active, or activated in the same request (it is then
 activated first); a following controller can not be deactivated while a preceding one that stays active
-claims its references. `chain_order` sorts controllers so preceding ones update before those they feed.
+claims its references. The same holds for a controller reading another's exported state interfaces.
+`chain_order` sorts controllers so preceding ones update before those they feed, and exporters of state
+interfaces before their readers.
 """
 
 from __future__ import annotations
@@ -55,10 +57,13 @@ def plan_switch(
     command_available: Callable[[str], bool],
     state_available: Callable[[str], bool],
     reference_owner: Mapping[str, str] | None = None,
+    state_owner: Mapping[str, str] | None = None,
 ) -> SwitchPlan:
-    """Check a switch request; `claimed` maps command interface → controller currently holding it, and
-    `reference_owner` reference interface → the chainable controller exporting it."""
+    """Check a switch request; `claimed` maps command interface → controller currently holding it,
+    `reference_owner` reference interface → the chainable controller exporting it, `state_owner` a
+    controller's exported state interface → that controller."""
     reference_owner = reference_owner or {}
+    state_owner = state_owner or {}
     warnings: list[str] = []
     if strictness in (AUTO, FORCE_AUTO):
         warnings.append(f"{STRICTNESS_NAMES[strictness]} strictness is not currently implemented; using BEST_EFFORT")
@@ -115,6 +120,18 @@ def plan_switch(
                 "(claims its reference interfaces); deactivate that one too",
                 warnings=warnings,
             )
+        readers = sorted(
+            r for r, v in controllers.items()
+            if v.state is State.ACTIVE and r not in leaving and r != name
+            and any(state_owner.get(i) == name for i in v.state_interfaces)
+        )  # fmt: skip
+        if readers:
+            return SwitchPlan(
+                False,
+                f"could not deactivate controller '{name}': controller '{readers[0]}' reads its exported state "
+                "interfaces; deactivate that one too",
+                warnings=warnings,
+            )
     taken_by_new: dict[str, str] = {}
     for name in act:
         view = controllers[name]
@@ -155,13 +172,17 @@ def plan_switch(
                 )
             taken_by_new[iface] = name
         for iface in view.state_interfaces:
-            if not state_available(iface):
+            provider = state_owner.get(iface)
+            if provider is not None and provider in act and provider != name:
+                continue  # activated first, in this same request
+            if not state_available(iface) or provider in leaving:
                 return SwitchPlan(
                     False,
                     f"could not activate controller '{name}': state interface '{iface}' is not available",
                     warnings=warnings,
                 )
-    return SwitchPlan(True, "", chain_order(act, controllers, reference_owner, following_first=True), deact, warnings)
+    order = chain_order(act, controllers, reference_owner, state_owner=state_owner, following_first=True)
+    return SwitchPlan(True, "", order, deact, warnings)
 
 
 def chain_order(
@@ -169,24 +190,36 @@ def chain_order(
     controllers: Mapping[str, ControllerView],
     reference_owner: Mapping[str, str],
     *,
+    state_owner: Mapping[str, str] | None = None,
     following_first: bool = False,
 ) -> list[str]:
-    """`names` with every controller before the ones it is chained in front of (stable otherwise); with
-    `following_first`, the reverse (activation order: a controller before those that feed it)."""
-    feeds = {n: {reference_owner[i] for i in controllers[n].command_interfaces if i in reference_owner} for n in names}
+    """`names` in update order (stable otherwise): a controller before the ones it is chained in front of, and
+    after the ones whose exported state interfaces it reads. With `following_first`, activation order: the
+    controllers a controller claims references of, or reads states of, before it."""
+    state_owner = state_owner or {}
+    before: dict[str, set[str]] = {n: set() for n in names}
+    for n in names:
+        view = controllers[n]
+        for i in view.command_interfaces:
+            owner = reference_owner.get(i)
+            if owner in before and owner != n:
+                (before[n] if following_first else before[owner]).add(owner if following_first else n)
+        for i in view.state_interfaces:
+            owner = state_owner.get(i)
+            if owner in before and owner != n:
+                before[n].add(owner)
     out: list[str] = []
     placed: set[str] = set()
 
     def place(n: str, path: tuple[str, ...]) -> None:
         if n in placed or n in path:
             return
-        # Everything that feeds n (is chained in front of it) comes first.
         for m in names:
-            if n in feeds[m]:
+            if m in before[n]:
                 place(m, (*path, n))
         placed.add(n)
         out.append(n)
 
     for n in names:
         place(n, ())
-    return list(reversed(out)) if following_first else out
+    return out

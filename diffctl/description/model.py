@@ -70,6 +70,9 @@ class Surface:
     mu: float = 1.0
     mu2: float = 1.0
     restitution: float = 0.0
+    # <ode><fdir1>: the direction `mu` acts along (`mu2` across it), in the link frame at load time (its
+    # gz:expressed_in frame resolved; without one, ODE's collision frame); None when not given
+    fdir1: Vec3 | None = None
 
 
 @dataclass(frozen=True)

@@ -6,7 +6,9 @@ callback from the loader that returns the pose in the owning link's frame.
 
 from __future__ import annotations
 
+import dataclasses
 import math
+import re
 from collections.abc import Callable
 from pathlib import Path
 
@@ -39,7 +41,7 @@ from diffctl.description.model import (
     Surface,
     Visual,
 )
-from diffctl.description.pose import Pose
+from diffctl.description.pose import Pose, Vec3
 from diffctl.description.resources import is_remote, resolve_uri
 from diffctl.description.sdf_values import (
     Doc,
@@ -58,6 +60,7 @@ from diffctl.description.sdf_values import (
     required_attr,
     vec3_value,
 )
+from diffctl.description.urdf.meshes import pybullet_mesh
 from diffctl.errors import DescriptionError, suggest
 
 ToLink = Callable[[Pose, str | None, Element | None], Pose]
@@ -149,7 +152,7 @@ def _parse_mesh(doc: Doc, shape: Element) -> Mesh:
         from diffctl.description.urdf.meshes import convert_to_obj
 
         try:  # the same COLLADA → OBJ path URDF meshes take
-            return Mesh(str(convert_to_obj(path)), uri, scale)
+            return Mesh(str(pybullet_mesh(convert_to_obj(path)) or ""), uri, scale)
         except DescriptionError as e:
             why = e.message.rpartition("cannot be read: ")[2]
             fail(doc, uri_el, f"mesh {uri!r} ({path}) cannot be read: {why}")
@@ -158,7 +161,14 @@ def _parse_mesh(doc: Doc, shape: Element) -> Mesh:
             hint = "supported: " + ", ".join(MESH_SUFFIXES + CONVERTED_SUFFIXES) + " (convert it, e.g. with Blender)"
             fail(doc, uri_el, f"mesh {uri!r} has format {path.suffix!r}", hint=hint)
         return Mesh("", uri, scale)  # TF and outlines do not need the mesh itself
-    return Mesh(str(path), uri, scale)
+    if not doc.check_files:
+        return Mesh(str(path), uri, scale)
+    try:  # an ASCII STL is converted; a mesh with no triangle keeps no file (the simulator leaves it out)
+        usable = pybullet_mesh(path)
+    except DescriptionError as e:
+        why = e.message.rpartition("cannot be read: ")[2]
+        fail(doc, uri_el, f"mesh {uri!r} ({path}) cannot be read: {why}")
+    return Mesh(str(usable or ""), uri, scale)
 
 
 def _fuel_file(doc: Doc, uri: str, uri_el: Element) -> Path | None:
@@ -204,7 +214,30 @@ def parse_surface(doc: Doc, collision: Element) -> Surface:
 def parse_collision(doc: Doc, el: Element, to_link: ToLink) -> Collision:
     name = required_attr(doc, el, "name")
     pose, rel, pose_el = pose_child(doc, el)
-    return Collision(name, to_link(pose, rel, pose_el), parse_geometry(doc, el), parse_surface(doc, el))
+    pose_link = to_link(pose, rel, pose_el)
+    surface = parse_surface(doc, el)
+    fdir = _fdir1(doc, el, to_link, pose_link)
+    if fdir is not None:
+        surface = dataclasses.replace(surface, fdir1=fdir)
+    return Collision(name, pose_link, parse_geometry(doc, el), surface)
+
+
+def _fdir1(doc: Doc, collision: Element, to_link: ToLink, pose_link: Pose) -> Vec3 | None:
+    """`<surface><friction><ode><fdir1 gz:expressed_in="frame">x y z</fdir1>` in the link frame: in the named
+    frame (as it stands at load time), else in the collision's own frame (ODE's rule)."""
+    ode = collision
+    for tag in ("surface", "friction", "ode", "fdir1"):
+        found = child(ode, tag)
+        if found is None:
+            return None
+        ode = found
+    x, y, z = parse_floats(doc, ode, 3)
+    if x == y == z == 0.0:
+        return None  # ODE's "no direction"
+    # gz:expressed_in, with the gz prefix declared or not
+    frame = next((v for k, v in ode.attrib.items() if re.split("[}:]", str(k))[-1] == "expressed_in"), "")
+    rotation = to_link(Pose(), frame.strip(), ode) if frame.strip() else pose_link
+    return rotation.rotate((x, y, z))
 
 
 def parse_visual(doc: Doc, el: Element, to_link: ToLink) -> Visual:

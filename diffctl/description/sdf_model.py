@@ -379,8 +379,7 @@ def _limits(doc: Doc, axis_el: Element, kind: str) -> JointLimits:
     velocity = float_value(doc, lim, "velocity", -1.0, allow_inf=True)
     if kind == "continuous":
         lower, upper = -1e16, 1e16  # Gazebo ignores position limits on continuous joints
-    elif lower > upper:
-        fail(doc, lim, f"<lower> {lower:g} is above <upper> {upper:g}")
+    # (sdformat and urdfdom keep <lower> above <upper> as written; the simulator then applies no position limit)
     # SDF: a negative effort or velocity limit means "no limit".
     return JointLimits(lower, upper, math.inf if effort < 0 else effort, math.inf if velocity < 0 else velocity)
 

@@ -8,6 +8,7 @@ that is not positive all stop the load with the offending text quoted.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 from pathlib import Path
 from typing import NoReturn
@@ -105,6 +106,39 @@ def parse_floats(doc: Doc, el: Element, n: int | tuple[int, ...], what: str = ""
     return values
 
 
+_C_DOUBLE = re.compile(
+    r"[+-]?(?:inf(?:inity)?|nan|0x(?:[0-9a-f]+\.?[0-9a-f]*|\.[0-9a-f]+)(?:p[+-]?\d+)?|(?:\d+\.?\d*|\.\d+)(?:e[+-]?\d+)?)",
+    re.IGNORECASE,
+)
+_C_INT = re.compile(r"[+-]?(?:0x[0-9a-f]+|\d+)", re.IGNORECASE)
+
+
+def c_double(text: str) -> float | None:
+    """A number as sdformat reads a double: std::stod of the trimmed text, i.e. the longest number it starts
+    with ("0.5m" is 0.5), hex floats included; "true"/"false" are 1 and 0. None when it starts with none."""
+    t = text.strip()
+    if t.lower() in ("true", "false"):
+        return float(t.lower() == "true")
+    m = _C_DOUBLE.match(t)
+    if m is None:
+        return None
+    number = m.group(0)
+    return float.fromhex(number) if "x" in number.lower() else float(number)
+
+
+def c_int(text: str) -> int | None:
+    """An integer as sdformat reads one: std::stoi's leading integer ("10.0" is 10), base 16 after "0x";
+    "true"/"false" are 1 and 0."""
+    t = text.strip()
+    if t.lower() in ("true", "false"):
+        return int(t.lower() == "true")
+    m = _C_INT.match(t)
+    if m is None:
+        return None
+    number = m.group(0)
+    return int(number, 16) if "x" in number.lower() else int(number)
+
+
 def float_value(
     doc: Doc,
     parent: Element,
@@ -122,9 +156,10 @@ def float_value(
             fail(doc, parent, f"<{parent.tag}> needs a <{tag}> element")
         return default
     text = (el.text or "").strip()
-    try:
-        value = float(text)
-    except ValueError:
+    if not text and default is not None:
+        return default  # sdformat: an empty optional element takes its default
+    value = c_double(text)
+    if value is None:
         fail(doc, el, f"<{tag}> must be a number, got {text!r}")
     if math.isnan(value) or (math.isinf(value) and not allow_inf):
         fail(doc, el, f"<{tag}> must be a finite number, got {text!r}")
@@ -140,9 +175,8 @@ def int_value(doc: Doc, parent: Element, tag: str, default: int, *, minimum: int
     if el is None:
         return default
     text = (el.text or "").strip()
-    try:
-        value = int(text)
-    except ValueError:
+    value = c_int(text)
+    if value is None:
         fail(doc, el, f"<{tag}> must be an integer, got {text!r}")
     if minimum is not None and value < minimum:
         fail(doc, el, f"<{tag}> must be >= {minimum}, got {text!r}")

@@ -1,9 +1,9 @@
 """The state estimation nodes' parameters, declared on the node as robot_localization declares them.
 
 Names, types and defaults are upstream's; sensors are read as odom0, odom1, … (then pose, twist, imu) up to
-the first index not set. What upstream cannot run with (a config vector that is not 15 booleans, a
-covariance that is neither 15 nor 225 numbers, a frequency that is not positive) is one ConfigError naming
-the parameter and its value.
+the first index not set. What upstream cannot run with (a covariance that is neither 15 nor 225 numbers, a
+frequency that is not positive) is one ConfigError naming the parameter and its value; a sensor's config vector
+of another length than 15, which upstream runs with, is padded or cut with a warning.
 """
 
 from __future__ import annotations
@@ -79,12 +79,17 @@ def _typed(node: Any, name: str, type_name: str) -> Any:
     return node.declare_parameter(name, getattr(Parameter.Type, type_name)).value
 
 
-def _vector(node: Any, name: str, default: list, length: int) -> list:
-    value = list(node.declare_parameter(name, default).value)
-    if len(value) != length:
-        raise ConfigError(f"parameter {name!r} must have {length} elements "
-                          f"(x, y, z, roll, pitch, yaw, vx, …), got {len(value)}: {value}")
-    return value
+def _update_vector(node: Any, name: str, warnings: list[str]) -> list[bool]:
+    """A sensor's `<name>_config`. Upstream reads whatever length is given and indexes it up to 15 (a 9-element
+    IMU vector is common and runs there, its missing entries read as off): shorter vectors are padded with
+    false and longer ones cut, with a warning rather than a refusal."""
+    value = [bool(v) for v in node.declare_parameter(name, [False] * STATE_SIZE).value]
+    if len(value) != STATE_SIZE:
+        warnings.append(f"parameter {name} has {len(value)} elements, not {STATE_SIZE} (x, y, z, roll, pitch, yaw, "
+                        f"vx, vy, vz, vroll, vpitch, vyaw, ax, ay, az): "
+                        + ("the missing ones are taken as false" if len(value) < STATE_SIZE
+                           else "the elements past the 15th are ignored"))
+    return (value + [False] * STATE_SIZE)[:STATE_SIZE]
 
 
 def _covariance(node: Any, name: str, infos: list[str]) -> np.ndarray | None:
@@ -189,7 +194,7 @@ def _sensors(node: Any, kind: str, p: FilterParams) -> list[SensorConfig]:
         s.queue_size = declare(f"{name}_queue_size", 10).value
         if s.queue_size < 1:
             raise ConfigError(f"parameter {name}_queue_size must be at least 1, got {s.queue_size}")
-        s.update = [bool(v) for v in _vector(node, f"{name}_config", [False] * STATE_SIZE, STATE_SIZE)]
+        s.update = _update_vector(node, f"{name}_config", p.warnings)
         out.append(s)
 
 

@@ -14,7 +14,15 @@ parsed model with `createMultiBody`. Planning rules:
   base static, a moving one hangs the tree from a static anchor);
 - each tree of links (links not connected by joints) becomes its own PyBullet body;
 - a cylinder turning about its own axis (a wheel) meets the world as a contact disc and a core (wheel_contact.py);
+- a wheel contact with a friction direction (`fdir1`) and next to no friction across it (mecanum and omni
+  wheels: mu2 ~ 0) becomes a roller (mecanum_rollers.py);
+- a track link's (TrackController's) collisions ride on a belt link sliding along it (plugins/track_controller.py);
 - a shape with no volume (a size or radius <= 0, which SDF and URDF parsers accept) is left out, with a note;
+- PyBullet takes at most 16 shapes per link (`MAX_COMPOUND_SHAPES`: createCollisionShapeArray and
+  createVisualShapeArray silently keep the first 16, and a mesh past them crashes the process), and at most 127
+  links per multibody (`MAX_LINKS`: createMultiBody silently drops the rest). A link with more shapes is split
+  into links fixed to it (sharing its mass as a surface split does; static ones by surface too); a static model
+  needing more links becomes several bodies; a moving tree still too large is refused, naming the model;
 - principal moments of inertia are floored (`MIN_MOMENT_SHARE`): a zero one (sdformat accepts it) would make
   Bullet divide by zero about that axis.
 A moving PyBullet link with no mass is an error: some link needs an <inertial>.
@@ -22,6 +30,7 @@ A moving PyBullet link with no mass is an error: some link needs an <inertial>.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 from diffctl.description.model import (
@@ -31,6 +40,8 @@ from diffctl.description.model import (
     Cylinder,
     Geometry,
     Joint,
+    JointDynamics,
+    JointLimits,
     Mesh,
     Model,
     Sphere,
@@ -40,6 +51,8 @@ from diffctl.description.model import (
 from diffctl.description.pose import Pose, Vec3
 from diffctl.errors import DescriptionError
 from diffctl.sim.inertia import MassProperties, combine, from_inertial, principal
+from diffctl.sim.mecanum_rollers import ROLLER_MASS_SHARE, is_roller_surface, roller_frame
+from diffctl.sim.plugins.system_names import system_kind
 from diffctl.sim.wheel_contact import rolls_about_own_axis, wheel_parts
 
 DEFAULT_RGBA = (0.7, 0.7, 0.7, 1.0)
@@ -51,10 +64,16 @@ class ShapeSpec:
     pose: Pose  # in the PyBullet link frame
     rgba: tuple[float, float, float, float] = DEFAULT_RGBA
     surface: Surface | None = None  # collisions only
+    fdir1: Vec3 | None = None  # the surface's friction direction, in the PyBullet link frame
 
 
 # The mass share each extra-surface PyBullet link takes from the link it was split from.
 SURFACE_SPLIT_MASS_SHARE = 0.1
+# The mass share a track's belt link takes from the PyBullet link its track belongs to.
+BELT_MASS_SHARE = 0.05
+# PyBullet's fixed capacities (SharedMemoryPublic.h): shapes in one compound, links besides a body's base.
+MAX_COMPOUND_SHAPES = 16
+MAX_LINKS = 127
 
 
 @dataclass(frozen=True)
@@ -73,6 +92,9 @@ class LinkPlan:
     visuals: tuple[ShapeSpec, ...]
     surface: Surface
     part_of: tuple[str, ...] = ()  # for a surface split: the SDF links whose collisions it carries
+    # A roller (mecanum_rollers.py): (PyBullet index of the wheel it turns with, its speed ÷ the wheel's)
+    gear: tuple[int, float] | None = None
+    belt: str | None = None  # a track's belt (track_belts.py): the SDF link it moves along
 
 
 @dataclass(frozen=True)
@@ -119,8 +141,10 @@ def degenerate(g: Geometry) -> str | None:
         return f"capsule radius {g.radius_m:g} length {g.length_m:g}"
     if isinstance(g, Sphere) and not g.radius_m > 0:
         return f"sphere radius {g.radius_m:g}"
-    if isinstance(g, Mesh) and (not g.path or not all(v != 0 for v in g.scale)):
-        return f"mesh {g.uri!r} scaled {' '.join(f'{v:g}' for v in g.scale)}" if g.path else f"mesh {g.uri!r}"
+    if isinstance(g, Mesh) and not g.path:
+        return f"mesh {g.uri!r} holds no triangle"
+    if isinstance(g, Mesh) and not all(v != 0 for v in g.scale):
+        return f"mesh {g.uri!r} scaled {' '.join(f'{v:g}' for v in g.scale)}"
     return None
 
 
@@ -151,6 +175,12 @@ class _Planner:
             child_of.add(j.child)
         self.roots = [link.name for link in model.links if link.name not in child_of]
         self.notes: list[str] = []
+        # links whose contact is a moving belt (TrackController's <link>, track_belts.py)
+        self.tracks = {
+            (p.get("link") or "").strip()
+            for p in model.plugins
+            if system_kind(p.filename, p.name) == "track-controller"
+        } & set(self.by_name)
 
     def plan(self) -> ModelPlan:
         if self.m.static:
@@ -169,7 +199,17 @@ class _Planner:
             else:
                 groups.append(self._group([root], self.by_name[root].pose_world, -1, None, static=anchor is not None))
             self._grow(groups, len(groups) - 1, root)
-            links = _split_surfaces(tuple(self._finish(g) for g in groups))
+            finished = _split_belts(_split_rollers(tuple(self._finish(g) for g in groups)), groups)
+            links = _split_shape_count(_split_surfaces(finished))
+            if len(links) > MAX_LINKS + 1:
+                raise DescriptionError(
+                    f"model {self.m.name!r}: the tree rooted at link {root!r} needs {len(links) - 1} PyBullet "
+                    f"links besides its base, more than the {MAX_LINKS} one PyBullet body holds",
+                    source=self.m.source or None,
+                    field=f"model {self.m.name}",
+                    hint="merge links with fixed joints, give links fewer collisions and visuals (16 fit in one "
+                    "link), or make the model <static>",
+                )
             bodies.append(BodyPlan(links))
             for pb_index, g in enumerate(groups, start=-1):
                 for name in g["members"]:
@@ -182,7 +222,13 @@ class _Planner:
         base = self.by_name[self.m.root_link()]
         g = self._group([link.name for link in self.m.links], base.pose_world, -1, None, static=True)
         refs = {n: LinkRef(0, -1, g["frame"].inverse().compose(self.by_name[n].pose_world)) for n in g["members"]}
-        return ModelPlan((BodyPlan((self._finish(g),)),), refs, {}, tuple(self.notes))
+        chunks = _split_shape_count((self._finish(g),), by_surface=True)
+        # Nothing moves: more chunks than one body holds simply make more bodies, each a static base.
+        bodies = []
+        for start in range(0, len(chunks), MAX_LINKS + 1):
+            part = chunks[start : start + MAX_LINKS + 1]
+            bodies.append(BodyPlan(tuple(dataclasses.replace(lp, parent=-1) for lp in part)))
+        return ModelPlan(tuple(bodies), refs, {}, tuple(self.notes))
 
     @staticmethod
     def _group(members: list[str], frame: Pose, parent: int, joint: Joint | None, static: bool = False) -> dict:
@@ -231,6 +277,9 @@ class _Planner:
                     why = degenerate(c.geometry)
                     if why is not None:
                         self.notes.append(f"{kind} {c.name!r} of link {name!r} has no volume ({why}): left out")
+                    elif isinstance(c, Collision) and name in self.tracks and not g["static"]:
+                        g.setdefault("belts", {}).setdefault(name, []).append(_shape(c, in_frame))
+                        g.setdefault("track_axes", {})[name] = in_frame.rotate((1.0, 0.0, 0.0))
                     elif isinstance(c, Collision):
                         collisions.append(_shape(c, in_frame))
                         surfaces.append(c.surface)
@@ -260,6 +309,11 @@ class _Planner:
                 f"joint {joint.name!r}: negative <dynamics> (damping {d.damping:g}, friction {d.friction:g}) "
                 "simulated as 0"
             )
+        if joint is not None and joint.type in ("revolute", "prismatic") and joint.limits.lower > joint.limits.upper:
+            self.notes.append(
+                f"joint {joint.name!r}: <lower> {joint.limits.lower:g} is above <upper> {joint.limits.upper:g}: "
+                "no position limit simulated"
+            )
         axis: Vec3 = (0.0, 0.0, 1.0)
         if joint is not None and joint.axis_world is not None:
             axis = frame.inverse().rotate(joint.axis_world)
@@ -283,13 +337,17 @@ class _Planner:
 def _shape(element: Collision | Visual, link_in_frame: Pose) -> ShapeSpec:
     rgba = getattr(element, "rgba", None) or DEFAULT_RGBA
     surface = element.surface if isinstance(element, Collision) else None
-    return ShapeSpec(element.geometry, link_in_frame.compose(element.pose_link), rgba, surface)
+    fdir1 = link_in_frame.rotate(surface.fdir1) if surface is not None and surface.fdir1 is not None else None
+    return ShapeSpec(element.geometry, link_in_frame.compose(element.pose_link), rgba, surface, fdir1)
 
 
 def _wheel_contacts(collisions: list[ShapeSpec], axis: Vec3) -> list[ShapeSpec]:
     """Each cylinder turning about its own axis as a contact disc and a core (see wheel_contact.py)."""
     out: list[ShapeSpec] = []
     for c in collisions:
+        if c.surface is not None and is_roller_surface(c.surface):
+            out.append(c)  # a roller meets the ground as a sphere of its own (mecanum_rollers.py)
+            continue
         parts = wheel_parts(c.geometry) if isinstance(c.geometry, Cylinder) else None
         if parts is None or not rolls_about_own_axis(c.pose, axis):
             out.append(c)
@@ -343,6 +401,171 @@ def _split_surfaces(links: tuple[LinkPlan, ...]) -> tuple[LinkPlan, ...]:
             visuals=lp.visuals,
             surface=first_surface,
         )
+    return (*out, *extra)
+
+
+def _split_belts(links: tuple[LinkPlan, ...], groups: list[dict]) -> tuple[LinkPlan, ...]:
+    """A track link's collisions move to a belt link on a prismatic joint along the track (its link's x axis),
+    appended, fixed to the PyBullet link the track belongs to, with a share of its mass (track_belts.py)."""
+    out = list(links)
+    extra: list[LinkPlan] = []
+    for i, g in enumerate(groups):  # (links may hold rollers past the groups)
+        lp, belts = links[i], g.get("belts", {})
+        if not belts or lp.mass_kg <= 0.0:
+            continue
+        share = min(BELT_MASS_SHARE, 0.5 / len(belts))
+        keep = 1.0 - share * len(belts)
+        out[i] = dataclasses.replace(lp, mass_kg=lp.mass_kg * keep, inertia_diagonal=_scaled(lp.inertia_diagonal, keep))
+        for name, shapes in belts.items():
+            axis = g["track_axes"][name]
+            surface = shapes[0].surface or lp.surface
+            belt_joint = Joint(
+                name=f"{name}::belt",
+                type="prismatic",
+                parent=name,
+                child=name,
+                pose_world=lp.frame_world,
+                pose_child=Pose(),
+                axis_world=lp.frame_world.rotate(axis),
+                axis_child=axis,
+            )
+            extra.append(
+                LinkPlan(
+                    members=(),
+                    frame_world=lp.frame_world,
+                    parent=i - 1,
+                    joint=belt_joint,
+                    axis=axis,
+                    mass_kg=lp.mass_kg * share,
+                    inertial_frame=lp.inertial_frame,
+                    inertia_diagonal=_scaled(lp.inertia_diagonal, share),
+                    collisions=tuple(shapes),
+                    visuals=(),
+                    surface=surface,
+                    part_of=(name,),
+                    belt=name,
+                )
+            )
+    return (*out, *extra)
+
+
+def _split_rollers(links: tuple[LinkPlan, ...]) -> tuple[LinkPlan, ...]:
+    """Each wheel contact that grips along one direction only moves to a roller link hung from the wheel's
+    parent and geared to the wheel (appended; see mecanum_rollers.py), with a share of the wheel's mass."""
+    out = list(links)
+    extra: list[LinkPlan] = []
+    for i, lp in enumerate(links):
+        joint = lp.joint
+        if joint is None or joint.type not in ("revolute", "continuous") or lp.mass_kg <= 0.0:
+            continue
+        axis_world = lp.frame_world.rotate(lp.axis)
+        keep: list[ShapeSpec] = []
+        rollers: list[tuple[ShapeSpec, Pose, float]] = []
+        for c in lp.collisions:
+            s, g = c.surface, c.geometry
+            if s is None or c.fdir1 is None or not is_roller_surface(s) or not isinstance(g, (Sphere, Cylinder)):
+                keep.append(c)
+                continue
+            center = lp.frame_world.compose(c.pose).xyz
+            frame = roller_frame(center, lp.frame_world.rotate(c.fdir1), axis_world, s.mu >= s.mu2)
+            if frame is None:
+                keep.append(c)
+            else:
+                rollers.append((c, *frame))
+        if not rollers:
+            continue
+        share = min(ROLLER_MASS_SHARE, 0.5 / len(rollers))
+        keep_share = 1.0 - share * len(rollers)
+        out[i] = dataclasses.replace(
+            lp,
+            collisions=tuple(keep),
+            mass_kg=lp.mass_kg * keep_share,
+            inertia_diagonal=_scaled(lp.inertia_diagonal, keep_share),
+        )
+        for c, frame, ratio in rollers:
+            s = c.surface or lp.surface
+            radius = c.geometry.radius_m  # type: ignore[union-attr]
+            grip = Surface(max(s.mu, s.mu2), 0.0, s.restitution)
+            extra.append(
+                LinkPlan(
+                    members=(),
+                    frame_world=frame,
+                    parent=lp.parent,
+                    joint=dataclasses.replace(
+                        joint,
+                        name=f"{joint.name}::roller",
+                        type="continuous",
+                        limits=JointLimits(),
+                        dynamics=JointDynamics(),
+                        mimic=None,
+                    ),
+                    axis=(1.0, 0.0, 0.0),
+                    mass_kg=lp.mass_kg * share,
+                    inertial_frame=Pose(),
+                    inertia_diagonal=(max(lp.inertia_diagonal) * share,) * 3,
+                    collisions=(ShapeSpec(Sphere(radius), Pose(), c.rgba, grip),),
+                    visuals=(),
+                    surface=grip,
+                    part_of=lp.members or lp.part_of,
+                    gear=(i - 1, ratio),
+                )
+            )
+    return (*out, *extra)
+
+
+def _split_shape_count(links: tuple[LinkPlan, ...], *, by_surface: bool = False) -> tuple[LinkPlan, ...]:
+    """Each link with more than MAX_COMPOUND_SHAPES collisions or visuals keeps the first of each; the others
+    move to new links fixed to it (appended), sharing its mass properties exactly. `by_surface`: collisions of
+    different surfaces go to different links as well (a static body, which has no mass to share by surface)."""
+    out = list(links)
+    extra: list[LinkPlan] = []
+    n = MAX_COMPOUND_SHAPES
+    for i, lp in enumerate(links):
+        groups: dict[Surface, list[ShapeSpec]] = {}
+        for c in lp.collisions:
+            groups.setdefault((c.surface or lp.surface) if by_surface else lp.surface, []).append(c)
+        collision_chunks = [(sf, tuple(sh[k : k + n])) for sf, sh in groups.items() for k in range(0, len(sh), n)]
+        visual_chunks = [lp.visuals[k : k + n] for k in range(0, len(lp.visuals), n)]
+        count = max(len(collision_chunks), len(visual_chunks), 1)
+        if count == 1:
+            continue
+        share = 0.0 if lp.mass_kg <= 0.0 else min(SURFACE_SPLIT_MASS_SHARE, 0.5 / (count - 1))
+        keep = 1.0 - share * (count - 1)
+
+        chunks = [
+            (
+                collision_chunks[k][1] if k < len(collision_chunks) else (),
+                visual_chunks[k] if k < len(visual_chunks) else (),
+                collision_chunks[k][0] if k < len(collision_chunks) else lp.surface,
+            )
+            for k in range(count)
+        ]
+        shapes, visuals, surface = chunks[0]
+        out[i] = dataclasses.replace(
+            lp,
+            mass_kg=lp.mass_kg * keep,
+            inertia_diagonal=_scaled(lp.inertia_diagonal, keep),
+            collisions=shapes,
+            visuals=visuals,
+            surface=surface,
+        )
+        for shapes, visuals, surface in chunks[1:]:
+            extra.append(
+                LinkPlan(
+                    members=(),
+                    frame_world=lp.frame_world,
+                    parent=i - 1,
+                    joint=None,
+                    axis=(0.0, 0.0, 1.0),
+                    mass_kg=lp.mass_kg * share,
+                    inertial_frame=lp.inertial_frame,
+                    inertia_diagonal=_scaled(lp.inertia_diagonal, share),
+                    collisions=shapes,
+                    visuals=visuals,
+                    surface=surface,
+                    part_of=lp.members or lp.part_of,
+                )
+            )
     return (*out, *extra)
 
 

@@ -35,6 +35,7 @@ class GzArgs:
     iterations: int | None = None
     seed: int | None = None
     rtf: float | None = None
+    gui: bool = False
 
 
 # `gz sim`'s options as gz-sim 8's Ruby front end declares them (src/cmd/cmdsim.rb.in): name → the type of
@@ -68,6 +69,9 @@ _LONG: dict[str, str | None] = {
     "render-engine-api-backend": "str",
     "version": None,
     "seed": "int",
+    # diffctl's own, also read inside a gz_args string (ros_gz_sim's gz_sim.launch.py hands them over in one)
+    "rtf": "float",
+    "gui": None,
 }
 _RUBY_INTEGER = re.compile(
     r"[-+]?(?:0[bB][01]+(?:_[01]+)*|0[xX][\da-fA-F]+(?:_[\da-fA-F]+)*|0[oO]?[0-7]*(?:_[0-7]+)*|[1-9]\d*(?:_\d+)*)"
@@ -149,6 +153,12 @@ def _apply(out: GzArgs, flag: str, kind: str | None, attached: str | None, words
         out.server_only = True
     elif flag == "-g":
         out.gui_only = True
+    elif flag == "--gui":
+        out.gui = True
+    elif flag == "--rtf":
+        if value is None or not _RUBY_FLOAT.fullmatch(value):
+            raise ConfigError(f"sim run: invalid argument: --rtf {value}", hint="a number >= 0, e.g. 1 (0 = max)")
+        out.rtf = float(value)
     elif flag in ("-v", "--verbose"):
         # gz hands the text to atoi(): "-v" alone is 3, a word that is no number is 0; past 4 is as loud as 4
         out.verbosity = max(0, min(4, _atoi(value))) if value is not None else 3
@@ -256,9 +266,14 @@ def run(args: tuple[str, ...], gui: bool, rtf: float | None) -> None:
       diffctl sim run -r -v 3 config/worlds/empty.world
       diffctl sim run --gui --rtf 1 -r config/worlds/empty.world
     """
-    from diffctl.bus.log import Logger
+    from diffctl import ros_args
+    from diffctl.client import ros_logging
+    from diffctl.sim.log import Logger
 
+    ros_logging.configure_from_args(["--ros-args", *ros_args.current_argv()])
     g = parse_gz_args(list(args))
+    rtf = rtf if rtf is not None else g.rtf
+    gui = gui or g.gui
     if rtf is not None and (rtf != rtf or rtf < 0 or rtf == float("inf")):
         raise ConfigError(f"--rtf {rtf} must be a finite number >= 0 (0 = as fast as possible)")
     g.rtf = rtf

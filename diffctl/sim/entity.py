@@ -60,6 +60,15 @@ class Entity:
         self.settling = False  # some held joint still awaits its anchor (PhysicsWorld.step calls settle_holds)
         # Non-zero velocity or effort commands so far (gz's LinearBatteryPlugin starts draining on the first).
         self.motion_commands = 0
+        # Efforts systems added for the next step, summed as gz-sim sums JointForceCmd (applied before the step).
+        self.pending_efforts: dict[str, tuple[JointHandle, float]] = {}
+        # Tracks' belt links (TrackController): SDF track link → (PyBullet body, link index).
+        self.belts: dict[str, tuple[int, int]] = {
+            lp.belt: (bodies[b], index)
+            for b, bp in enumerate(plan.bodies)
+            for index, lp in enumerate(bp.links, start=-1)
+            if lp.belt is not None
+        }
         # Spawn state, for world reset: base link frames and (zero) joint positions.
         self._initial = [(b, plan.bodies[i].links[0]) for i, b in enumerate(bodies)]
 
@@ -173,6 +182,18 @@ class Entity:
         pb.setJointMotorControl2(h.body, h.index, pb.VELOCITY_CONTROL, force=0.0, physicsClientId=self.client)
         pb.setJointMotorControl2(h.body, h.index, pb.TORQUE_CONTROL, force=e, physicsClientId=self.client)
 
+    def add_joint_effort(self, h: JointHandle, effort: float) -> None:
+        """Add `effort` to what the joint gets in the next step (Gazebo systems' JointForceCmd)."""
+        if math.isfinite(effort):
+            _, total = self.pending_efforts.get(h.name, (h, 0.0))
+            self.pending_efforts[h.name] = (h, total + effort)
+
+    def apply_efforts(self) -> None:
+        """Hand the summed efforts to the physics for the coming step (PhysicsWorld.step calls it)."""
+        for h, effort in self.pending_efforts.values():
+            self.set_joint_effort(h, effort)
+        self.pending_efforts.clear()
+
     def reset_joint(self, h: JointHandle, *, position: float | None = None, velocity: float | None = None) -> None:
         """Set a joint's position and/or velocity outright (gz's JointPositionReset / JointVelocityReset)."""
         pos, vel, _f, _t = pb.getJointState(h.body, h.index, physicsClientId=self.client)
@@ -248,3 +269,7 @@ class Entity:
                 pb.resetJointState(h.body, h.index, 0.0, 0.0, physicsClientId=cid)
             if h.name in self._held:
                 self._unanchor(h)
+        for body, plan in zip(self.bodies, self.plan.bodies, strict=True):
+            for index, lp in enumerate(plan.links, start=-1):
+                if lp.gear is not None:  # a mecanum roller goes back to zero with its wheel
+                    pb.resetJointState(body, index, 0.0, 0.0, physicsClientId=cid)

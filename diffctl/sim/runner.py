@@ -19,18 +19,27 @@ import numpy as np
 import pybullet as pb
 
 from diffctl.bus import gz
-from diffctl.bus.log import Logger
 from diffctl.description.model import Model, World
 from diffctl.errors import DescriptionError, RuntimeFailure
 from diffctl.sim.entity import Entity
+from diffctl.sim.log import Logger
+from diffctl.sim.plugins.ackermann_steering import AckermannSteering, AckermannSteeringParams
+from diffctl.sim.plugins.apply_joint_force import ApplyJointForce
 from diffctl.sim.plugins.base import PluginContext, SystemPlugin, bool_param, rate_period_ns
 from diffctl.sim.plugins.diff_drive import DiffDrive, DiffDriveParams
 from diffctl.sim.plugins.gz_ros2_control import GzRos2Control, PreparedManager
+from diffctl.sim.plugins.joint_controller import JointController
+from diffctl.sim.plugins.joint_position_controller import JointPositionController
 from diffctl.sim.plugins.joint_state_publisher import JointStatePublisher
+from diffctl.sim.plugins.joint_trajectory_controller import JointTrajectoryController
 from diffctl.sim.plugins.linear_battery import LinearBatteryPlugin
+from diffctl.sim.plugins.mecanum_drive import MecanumDrive, MecanumDriveParams
 from diffctl.sim.plugins.odometry_publisher import OdometryPublisher
 from diffctl.sim.plugins.pose_publisher import PosePublisher
 from diffctl.sim.plugins.system_names import system_kind
+from diffctl.sim.plugins.track_controller import TrackController
+from diffctl.sim.plugins.tracked_vehicle import TrackedVehicle
+from diffctl.sim.plugins.velocity_control import VelocityControl
 from diffctl.sim.sensors import (
     AirPressure,
     Camera,
@@ -73,8 +82,25 @@ NATIVE_SYSTEMS = {
     "contact",
 }
 CONTROL_SYSTEMS = ("gz_ros2_control", "ign_ros2_control")
+# Systems built from the plugin element alone.
+JOINT_SYSTEMS: dict[str, Any] = {
+    "joint-position-controller": JointPositionController,
+    "joint-controller": JointController,
+    "velocity-control": VelocityControl,
+    "joint-trajectory-controller": JointTrajectoryController,
+    "apply-joint-force": ApplyJointForce,
+}
 MODEL_SYSTEMS = {
     "diff-drive",
+    "mecanum-drive",
+    "ackermann-steering",
+    "joint-position-controller",
+    "joint-controller",
+    "velocity-control",
+    "joint-trajectory-controller",
+    "apply-joint-force",
+    "tracked-vehicle",
+    "track-controller",
     "joint-state-publisher",
     "odometry-publisher",
     "linearbatteryplugin",
@@ -232,12 +258,31 @@ class Simulation:
 
     def _add_systems(self, rt: ModelRuntime, description: str = "", prepared: PreparedManager | None = None) -> None:
         model = rt.entity.model
+        # A TrackedVehicle commands the tracks of its model: those are made first, whatever the plugin order.
+        tracks = [
+            TrackController(self.ctx, rt.entity, p)
+            for p in model.plugins
+            if system_name(p.filename, p.name) == "track-controller"
+        ]
+        rt.plugins.extend(tracks)
         for plugin in model.plugins:
             kind = system_name(plugin.filename, plugin.name)
-            if kind == "diff-drive":
+            if kind == "tracked-vehicle":
+                rt.plugins.append(TrackedVehicle(self.ctx, rt.entity, plugin, tracks))
+            elif kind == "diff-drive":
                 canonical = model.canonical_link or model.root_link()
                 params = DiffDriveParams.from_plugin(plugin, model.name, canonical, model.source)
                 rt.plugins.append(DiffDrive(self.ctx, rt.entity, params))
+            elif kind == "mecanum-drive":
+                canonical = model.canonical_link or model.root_link()
+                mecanum = MecanumDriveParams.from_plugin(plugin, model.name, canonical, model.source)
+                rt.plugins.append(MecanumDrive(self.ctx, rt.entity, mecanum))
+            elif kind == "ackermann-steering":
+                canonical = model.canonical_link or model.root_link()
+                ackermann = AckermannSteeringParams.from_plugin(plugin, model.name, canonical, model.source)
+                rt.plugins.append(AckermannSteering(self.ctx, rt.entity, ackermann))
+            elif kind in JOINT_SYSTEMS:
+                rt.plugins.append(JOINT_SYSTEMS[kind](self.ctx, rt.entity, plugin))
             elif kind == "joint-state-publisher":
                 rt.plugins.append(JointStatePublisher(self.ctx, rt.entity, plugin))
             elif kind == "pose-publisher":

@@ -20,8 +20,8 @@ from typing import Any
 import zenoh
 
 from diffctl.bus import gz
-from diffctl.bus.log import Logger
 from diffctl.errors import DiffctlError, MessageError
+from diffctl.sim.log import Logger
 
 
 class Outbox:

@@ -21,7 +21,7 @@ from diffctl.sim.body_plan import BodyPlan, LinkPlan, ShapeSpec, plan_model
 from diffctl.sim.entity import Entity
 from diffctl.sim.flat_planes import FlatPlane
 from diffctl.sim.link_gravity import GravityOff
-from diffctl.sim.mimic import Mimics
+from diffctl.sim.mimic import GEAR_ERP, GEAR_MAX_FORCE, Mimics
 
 # PyBullet defaults to 50. 10 gave the same drive trajectories (to 0.1 mm over 6 s) for a third of the cost,
 # but left held wheels slipping: a car standing on held wheels turned 0.002 rad a minute at 10, 0.00015 at 20.
@@ -170,6 +170,8 @@ class PhysicsWorld:
         for e in self.entities.values():
             if e.settling:
                 e.settle_holds()
+            if e.pending_efforts:
+                e.apply_efforts()
         pb.stepSimulation(physicsClientId=self.client)
 
     def close(self) -> None:
@@ -199,7 +201,10 @@ class PhysicsWorld:
         if links:
             kw = {
                 "linkMasses": [lp.mass_kg for lp in links],
-                "linkCollisionShapeIndices": [self._collision_shape(lp.collisions, False) for lp in links],
+                # (a massless link is a static body's: its meshes collide as triangle meshes, as the base's)
+                "linkCollisionShapeIndices": [
+                    self._collision_shape(lp.collisions, static or lp.mass_kg == 0.0) for lp in links
+                ],
                 "linkVisualShapeIndices": [self._visual_shape(lp.visuals) for lp in links],
                 "linkPositions": [],
                 "linkOrientations": [],
@@ -231,7 +236,18 @@ class PhysicsWorld:
             raise DescriptionError("PyBullet refused to build the body (createMultiBody failed)")
         for index, lp in enumerate(plan.links, start=-1):
             self._dynamics(body, index, lp)
+            if lp.gear is not None:
+                self._roller(body, index, *lp.gear)
         return body
+
+    def _roller(self, body: int, index: int, wheel: int, ratio: float) -> None:
+        """A mecanum roller (mecanum_rollers.py): no friction along its own axis, turning with its wheel."""
+        cid = self.client
+        pb.changeDynamics(body, index, anisotropicFriction=[0.0, 1.0, 1.0], physicsClientId=cid)
+        # btMultiBodyGearConstraint keeps q_roller + gearRatio · q_wheel at 0
+        o = [0.0, 0.0, 0.0]
+        c = pb.createConstraint(body, index, body, wheel, pb.JOINT_GEAR, [1.0, 0.0, 0.0], o, o, physicsClientId=cid)
+        pb.changeConstraint(c, gearRatio=-ratio, erp=GEAR_ERP, maxForce=GEAR_MAX_FORCE, physicsClientId=cid)
 
     def _dynamics(self, body: int, index: int, lp: LinkPlan) -> None:
         cid = self.client

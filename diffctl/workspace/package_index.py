@@ -2,7 +2,8 @@
 
 Share directories come from `diffctl.workspace` (the user's workspace, install trees, diffctl's own
 packages, in that order). diffctl's own components stand under the ROS names they replace and start as
-`python -m diffctl …`; a package of the user's workspace or an install tree starts its `lib/<pkg>/<exe>`.
+`python -m diffctl …`; a package of the user's workspace or an install tree starts its `lib/<pkg>/<exe>`, in
+diffctl's graph over rmw_zenoh (ros_programs.py).
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ from pathlib import Path
 
 from diffctl import workspace
 from diffctl.errors import LaunchError, suggest
-from diffctl.workspace import builtin
+from diffctl.workspace import builtin, ros_programs
 
 # (package, executable) → diffctl subcommand
 COMPONENTS: dict[tuple[str, str], tuple[str, ...]] = {
@@ -38,6 +39,9 @@ COMPONENTS: dict[tuple[str, str], tuple[str, ...]] = {
     **{("topic_tools", exe): ("topic-tools", exe)
        for exe in ("relay", "throttle", "drop", "delay", "mux", "demux", "relay_field")},
     ("twist_mux", "twist_mux"): ("twist-mux",),
+    ("joy_teleop", "joy_teleop"): ("joy-teleop",),
+    **{("ros2_controllers_test_nodes", exe): ("ros2-controllers-test-nodes", exe)
+       for exe in ("publisher_forward_position_controller", "publisher_joint_trajectory_controller")},
     ("twist_stamper", "twist_stamper"): ("twist-stamper", "twist_stamper"),
     ("twist_stamper", "twist_unstamper"): ("twist-stamper", "twist_unstamper"),
     # Containers of composable nodes: Python components in one process, loaded over its load_node service
@@ -114,6 +118,48 @@ def _program(lib: Path | None, executable: str) -> Path | None:
     return candidate if candidate is not None and candidate.is_file() and os.access(candidate, os.X_OK) else None
 
 
+def _built_program(package: str, executable: str) -> Path | None:
+    """A workspace package's program as colcon built it: `install/<pkg>/lib/<pkg>/<exe>` (isolated) or
+    `install/lib/<pkg>/<exe>` (merged) of the workspace, or of an install on the prefix paths (a sourced
+    install/setup.bash). Its sources stay the package's share; the built program is what runs."""
+    try:
+        found = workspace.find_package(package)
+    except LaunchError:
+        return None
+    if found.origin != "workspace":
+        return None
+    roots = []
+    ws = workspace.find_workspace()
+    if ws is not None:
+        roots += [ws / "install" / package, ws / "install"]
+    from diffctl.workspace import prefixes
+
+    roots += [p.path for p in prefixes.install_prefixes()]
+    for root in roots:
+        program = _program(root / "lib" / package, executable)
+        if program is not None:
+            return program
+    return None
+
+
+def _compiled_program(package: str, executable: str) -> str | None:
+    """`CMakeLists.txt:N` where a workspace package declares `add_executable(<executable> …)`, else None."""
+    import re
+
+    try:
+        found = workspace.find_package(package)
+    except LaunchError:
+        return None
+    cmake = found.source / "CMakeLists.txt" if found.source is not None else None
+    if cmake is None or not cmake.is_file():
+        return None
+    declared = re.compile(r"^\s*add_executable\s*\(\s*" + re.escape(executable) + r"[\s)]", re.IGNORECASE)
+    for number, line in enumerate(cmake.read_text(errors="replace").splitlines(), 1):
+        if declared.match(line):
+            return f"{cmake}:{number}"
+    return None
+
+
 def executables(package: str) -> list[str]:
     from diffctl import demo_nodes
 
@@ -129,9 +175,9 @@ def executable_argv(package: str, executable: str) -> list[str]:
     launch_ros runs it, or a diffctl component)."""
     # The user's own package first; then diffctl's component of that name, even over an installed ROS
     # package (a sourced /opt/ros must not start the real robot_state_publisher); then install trees.
-    program = _program(_lib_dir(package, workspace_only=True), executable)
+    program = _program(_lib_dir(package, workspace_only=True), executable) or _built_program(package, executable)
     if program is not None:
-        return [str(program)]
+        return ros_programs.real_program_argv(program)
     from diffctl.workspace.gui_tools import argv_for
 
     gui = argv_for(package, executable)  # rqt_*, joint_state_publisher_gui …: a counterpart or a stand-in
@@ -142,7 +188,14 @@ def executable_argv(package: str, executable: str) -> list[str]:
         return [sys.executable, "-m", "diffctl", *sub]
     program = _program(_lib_dir(package), executable)
     if program is not None:
-        return [str(program)]
+        if not os.environ.get("RMW_IMPLEMENTATION") and not ros_programs.has_rmw_zenoh():
+            raise LaunchError(
+                f"{package}/{executable} is ROS 2's own ({program}): it joins diffctl's graph over rmw_zenoh, "
+                f"which no install on AMENT_PREFIX_PATH has",
+                hint=f"install {ros_programs.apt_name(ros_programs.RMW_ZENOH)} and source /opt/ros/jazzy/setup.bash "
+                "again (or set RMW_IMPLEMENTATION to run it on another middleware, outside diffctl's graph)",
+            )
+        return ros_programs.real_program_argv(program)
     from diffctl import demo_nodes
 
     demo = demo_nodes.argv_for(package, executable)  # demo_nodes_cpp/py's talker…, where no real one is found
@@ -151,7 +204,14 @@ def executable_argv(package: str, executable: str) -> list[str]:
     if package not in known_packages():
         raise LaunchError(
             f"unknown package {package!r}{suggest(package, known_packages())}",
-            hint="packages with executables: " + ", ".join(sorted(component_packages())),
+            hint=ros_programs.how_to_get(package),
+        )
+    compiled = _compiled_program(package, executable)
+    if compiled is not None:
+        raise LaunchError(
+            f"{package}/{executable} is a compiled program of your workspace ({compiled}) that is not built",
+            hint="build the workspace with colcon against a sourced ROS 2 (`colcon build`, then `source "
+            "install/setup.bash`): diffctl then starts install/lib/" + f"{package}/{executable} in its graph",
         )
     available = executables(package)
     if not available:

@@ -17,6 +17,7 @@ from diffctl.workspace import builtin, prefixes
 from diffctl.workspace.discovery import WORKSPACE_ENV, crawl, find_workspace
 from diffctl.workspace.install_rules import InstallIndex, cmake_install_index
 from diffctl.workspace.package_xml import NAME_RE, PackageManifest, read_manifest
+from diffctl.workspace.ros_programs import how_to_get
 from diffctl.workspace.setup_py import python_install_index
 from diffctl.workspace.share_tree import materialize, workspace_cache
 
@@ -163,7 +164,7 @@ def _not_found(name: str, scan: WorkspaceScan | None, stale: list[str]) -> Packa
         extra += "; unreadable: " + "; ".join(scan.broken)
     return PackageNotFoundError(
         f"package {name!r} not found{suggest(name, known)}",
-        hint="searched: " + ", ".join(searched) + extra,
+        hint=how_to_get(name) + "; searched: " + ", ".join(searched) + extra,
     )
 
 

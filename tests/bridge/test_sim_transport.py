@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from diffctl.bus import gz, open_session
-from diffctl.bus.log import Logger
+from diffctl.sim.log import Logger
 from diffctl.sim.transport import SimTransport
 from tests.waiting import wait_for
 

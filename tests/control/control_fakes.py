@@ -1,4 +1,5 @@
-"""Fake controllers, a recording node and hardware info builders for manager unit tests (no bus)."""
+"""A test controller plugin, a recording logger and hardware info builders for manager unit tests (the
+controllers' nodes are real client nodes: `client_bus` must be active)."""
 
 from __future__ import annotations
 
@@ -6,34 +7,34 @@ import math
 from typing import Any
 
 from diffctl.control.controller_interface import ControllerInterface, InterfaceConfiguration, ReturnType
+from diffctl.control.controllers.param_decl import overrides
 from diffctl.control.hardware_interface import ComponentInfo, HardwareInfo, InterfaceInfo
 from diffctl.control.manager import ControllerManager
 from diffctl.control.params import manager_params
 from diffctl.control.plugin_registry import register_controller
-from tests.control.controllers.controller_fakes import RecordingLog
+from tests.control.controllers.controller_harness import make_node
 
 
-class FakeNode:
-    def __init__(self, name: str, params: dict[str, Any]) -> None:
-        self.name = name
-        self.params = params
-        self.log = RecordingLog()
-        self.closed = False
+class RecordingLog:
+    """The manager's logger, recorded (it takes any object with debug/info/warn/error)."""
 
-    def create_publisher(self, *a: Any, **k: Any) -> None:
-        return None
+    def __init__(self) -> None:
+        self.lines: list[tuple[str, str]] = []
 
-    def create_subscription(self, *a: Any, **k: Any) -> None:
-        return None
+    def debug(self, text: str, **_kw: Any) -> None:
+        self.lines.append(("DEBUG", text))
 
-    def now_ns(self) -> int:
-        return 0
+    def info(self, text: str, **_kw: Any) -> None:
+        self.lines.append(("INFO", text))
 
-    def resolve(self, name: str) -> str:
-        return name
+    def warn(self, text: str, **_kw: Any) -> None:
+        self.lines.append(("WARN", text))
 
-    def close(self) -> None:
-        self.closed = True
+    def error(self, text: str, **_kw: Any) -> None:
+        self.lines.append(("ERROR", text))
+
+    def text(self, level: str | None = None) -> str:
+        return "\n".join(t for lv, t in self.lines if level is None or lv == level)
 
 
 class FakeController(ControllerInterface):
@@ -52,39 +53,40 @@ class FakeController(ControllerInterface):
             raise RuntimeError(f"{name} exploded")
 
     def on_init(self) -> None:
-        self.raise_in = set(self.node.params.get("raise_in", []))
+        self.params = overrides(self.get_node())  # its behaviour, from its node's overrides
+        self.raise_in = set(self.params.get("raise_in", []))
         self._hook("on_init")
 
     def command_interface_configuration(self) -> InterfaceConfiguration:
-        cmds = self.node.params.get("commands")
+        cmds = self.params.get("commands")
         return InterfaceConfiguration.all() if cmds == "all" else InterfaceConfiguration.individual(cmds or [])
 
     def state_interface_configuration(self) -> InterfaceConfiguration:
-        return InterfaceConfiguration.individual(self.node.params.get("states", []))
+        return InterfaceConfiguration.individual(self.params.get("states", []))
 
-    def on_configure(self) -> None:
+    def on_configure(self, previous_state: Any) -> None:
         self._hook("on_configure")
 
-    def on_activate(self) -> None:
+    def on_activate(self, previous_state: Any) -> None:
         self._hook("on_activate")
 
-    def on_deactivate(self) -> None:
+    def on_deactivate(self, previous_state: Any) -> None:
         self._hook("on_deactivate")
         for c in self.command_interfaces:
             c.set_value(0.0)
 
-    def on_cleanup(self) -> None:
+    def on_cleanup(self, previous_state: Any) -> None:
         self._hook("on_cleanup")
 
-    def on_shutdown(self) -> None:
+    def on_shutdown(self, previous_state: Any) -> None:
         self._hook("on_shutdown")
 
-    def update(self, time_ns: int, period_s: float) -> ReturnType:
-        self.updates.append((time_ns, period_s))
+    def update(self, time: Any, period: Any) -> ReturnType:
+        self.updates.append((time.nanoseconds, period.nanoseconds * 1e-9))
         if "update" in self.raise_in:
             raise ValueError("update exploded")
         for c in self.command_interfaces:
-            c.set_value(float(self.node.params.get("command_value", 1.0)))
+            c.set_value(float(self.params.get("command_value", 1.0)))
         return self.result
 
 
@@ -129,10 +131,10 @@ def make_manager(
     for name in ctrl_params:
         params[f"{name}.type"] = "test_controllers/Fake"
     log = RecordingLog()
-    nodes: dict[str, FakeNode] = {}
+    nodes: dict[str, Any] = {}
 
-    def factory(name: str, p: dict[str, Any]) -> FakeNode:
-        nodes[name] = FakeNode(name, {**p, **ctrl_params.get(name, {})})
+    def factory(name: str, _arguments: list[str]) -> Any:
+        nodes[name] = make_node(name, ctrl_params.get(name, {}))
         return nodes[name]
 
     cm = ControllerManager(manager_params(params), log=log, node_factory=factory)

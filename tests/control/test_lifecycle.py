@@ -1,4 +1,5 @@
-"""Every controller lifecycle transition, switch strictness and interface conflict, on mock hardware (no bus)."""
+"""Every controller lifecycle transition, switch strictness and interface conflict, on mock hardware (the
+controllers on real client nodes)."""
 
 from __future__ import annotations
 
@@ -12,6 +13,7 @@ from diffctl.control.controller_interface import ReturnType
 from diffctl.control.lifecycle import State, TransitionError
 from diffctl.control.switching import AUTO, BEST_EFFORT, STRICT
 
+pytestmark = pytest.mark.usefixtures("client_bus")
 L_VEL, R_VEL = "left_wheel/velocity", "right_wheel/velocity"
 L_POS = "left_wheel/position"
 
@@ -32,7 +34,7 @@ def test_on_init_failure_leaves_nothing_loaded() -> None:
     cm, _ = make_manager({"a": {"raise_in": ["on_init"]}})
     with pytest.raises(TransitionError, match="on_init exploded"):
         cm.load_controller("a")
-    assert "a" not in cm.controllers and cm.nodes["a"].closed
+    assert "a" not in cm.controllers and cm.nodes["a"]._destroyed
 
 
 def test_configure_cleanup_unload_transitions() -> None:
@@ -60,7 +62,7 @@ def test_configure_cleanup_unload_transitions() -> None:
     cm.configure_controller("a")
     cm.unload_controller("a")  # inactive → cleanup → shutdown
     assert mc.instance.calls[-2:] == ["on_cleanup", "on_shutdown"]
-    assert mc.state is State.FINALIZED and "a" not in cm.controllers and cm.nodes["a"].closed
+    assert mc.state is State.FINALIZED and "a" not in cm.controllers and cm.nodes["a"]._destroyed
     with pytest.raises(TransitionError, match="not loaded"):
         cm.configure_controller("a")
 
@@ -228,9 +230,9 @@ def test_initial_hardware_states_from_parameters() -> None:
 
 
 def test_controller_update_rate_divides_the_manager_rate() -> None:
-    cm, log = make_manager({"slow": {}, "fast": {}}, **{"slow.update_rate": 20, "fast.update_rate": 500})
+    cm, log = make_manager({"slow": {"update_rate": 20}, "fast": {"update_rate": 500}})
     loaded(cm, "slow", "fast")
-    assert "above the manager's 100 Hz" in log.text("WARN")
+    assert "cannot be higher than the update rate of the controller manager : '100 Hz'" in log.text("WARN")
     cm.switch_controller(["slow", "fast"], [], STRICT)
     for k in range(1, 21):
         cm.update(k * 10_000_000, 0.01)

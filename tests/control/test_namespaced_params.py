@@ -1,10 +1,18 @@
-"""Parameter files for namespaced controller managers, as rcl and controller_manager's spawner read them."""
+"""Parameter files for namespaced controller managers, as rcl and controller_manager's spawner read them: the
+controllers' real client nodes, made with the arguments controller_manager gives them."""
 
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
-from diffctl.control.params import controller_node_params, load_manager_files, manager_params, section_type
+import pytest
+
+from diffctl.control.controller_node import controller_node_arguments, make_controller_node
+from diffctl.control.controllers.param_decl import overrides
+from diffctl.control.params import load_manager_files, section_type
+
+pytestmark = pytest.mark.usefixtures("client_bus")
 
 REPO = Path(__file__).resolve().parents[2]
 TUTORIAL = str(REPO / "config" / "diff_drive_controller.yaml")
@@ -28,22 +36,32 @@ PER_ROBOT = """
 """
 
 
+def controller_params(name: str, namespace: str, manager_arguments: list[str], params_files: tuple[str, ...] = (),
+                      use_sim_time: bool = False) -> dict[str, Any]:
+    """What a controller's node gets, as the manager makes it."""
+    arguments = controller_node_arguments(manager_arguments, params_files, use_sim_time)
+    node = make_controller_node(name, namespace, arguments)
+    try:
+        return overrides(node)
+    finally:
+        node.destroy_node()
+
+
 def test_each_robot_takes_its_own_section(tmp_path: Path) -> None:
     f = tmp_path / "robots.yaml"
     f.write_text(PER_ROBOT)
     assert load_manager_files([str(f)], "/robot1/controller_manager")["update_rate"] == 10
     assert load_manager_files([str(f)], "/robot2/controller_manager")["update_rate"] == 40
     for ns, radius in (("/robot1", 0.1), ("/robot2", 0.2)):
-        params = manager_params({}, params_files=(str(f),), namespace=ns)
-        assert controller_node_params("ctrl", params)["wheel_radius"] == radius
+        assert controller_params("ctrl", ns, ["--ros-args", "--params-file", str(f)])["wheel_radius"] == radius
 
 
 def test_bare_keys_reach_the_root_namespace_only_and_wildcards_every_robot() -> None:
     assert load_manager_files([TUTORIAL], "/controller_manager")["update_rate"] == 20
     assert load_manager_files([TUTORIAL], "/robot1/controller_manager") == {}
     assert load_manager_files([FLEET], "/robot3/controller_manager")["update_rate"] == 20
-    params = manager_params({}, params_files=(FLEET,), namespace="/robot3")
-    assert controller_node_params("diffbot_base_controller", params)["wheel_radius"] == 0.04
+    got = controller_params("diffbot_base_controller", "/robot3", ["--ros-args", "--params-file", FLEET])
+    assert got["wheel_radius"] == 0.04
 
 
 def test_the_spawner_finds_a_type_as_jazzys_spawner_does() -> None:
@@ -56,15 +74,13 @@ def test_the_spawner_finds_a_type_as_jazzys_spawner_does() -> None:
 
 
 def test_the_managers_own_arguments_reach_its_controllers(tmp_path: Path) -> None:
-    # rclcpp: the process's --ros-args are every node's; a controller's params_file is its own (local) layer.
-    from diffctl import ros_args
-
+    # controller_manager: the manager node's arguments, then the controller's params_file (later wins), then
+    # use_sim_time; `__node`/`__ns` rules stay the manager's.
     own = tmp_path / "own.yaml"
     own.write_text("ctrl:\n  ros__parameters:\n    wheel_radius: 0.3\n")
-    process = ros_args.parse(["--params-file", FLEET, "-p", "ctrl:wheel_radius:=0.2", "-p", "publish_rate:=5.0"],
-                             "controller_manager").overrides
-    params = manager_params({"ctrl.params_file": [str(own)]}, params_files=(FLEET,), overrides=process)
-    got = controller_node_params("ctrl", params)
-    assert (got["wheel_radius"], got["publish_rate"]) == (0.3, 5.0)
-    bare = manager_params({}, params_files=(FLEET,), overrides=process)
-    assert controller_node_params("ctrl", bare)["wheel_radius"] == 0.2
+    manager = ["--ros-args", "--params-file", FLEET, "-p", "ctrl:wheel_radius:=0.2", "-p", "publish_rate:=5.0",
+               "-r", "__node:=my_cm", "-r", "__ns:=/robot9"]
+    got = controller_params("ctrl", "/", manager, (str(own),), use_sim_time=True)
+    assert (got["wheel_radius"], got["publish_rate"], got["use_sim_time"]) == (0.3, 5.0, True)
+    assert controller_params("ctrl", "/", manager)["wheel_radius"] == 0.2
+    assert "__node" not in " ".join(controller_node_arguments(manager))

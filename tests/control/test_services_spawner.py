@@ -27,7 +27,7 @@ def run(procs, *args: str, timeout_s: float = 20.0) -> tuple[int, str]:
     return p.returncode, out
 
 
-def wait_for(pred, timeout_s: float = 10.0) -> None:
+def wait_for_log(pred, timeout_s: float = 10.0) -> None:
     deadline = time.monotonic() + timeout_s
     while not pred():
         assert time.monotonic() < deadline, "timed out"
@@ -36,10 +36,23 @@ def wait_for(pred, timeout_s: float = 10.0) -> None:
 
 @pytest.mark.slow
 def test_services_appear_with_the_description_and_serve_every_verb(router, procs, tmp_path, monkeypatch) -> None:
-    from diffctl.bus import Node
-    from diffctl.control.cm_client import ManagerClient
+    from diffctl.client import runtime
+    from diffctl.client.signals import SignalHandlerOptions
 
     monkeypatch.setenv("ROS_HOME", str(tmp_path))
+    runtime.init(args=["test_services"], signal_handler_options=SignalHandlerOptions.NO)
+    try:
+        _services_and_verbs(procs, tmp_path)
+    finally:
+        runtime.try_shutdown()
+
+
+def _services_and_verbs(procs, tmp_path: Path) -> None:
+    from diffctl.client.interfaces import cls
+    from diffctl.client.node import Node
+    from diffctl.client.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
+    from diffctl.control.cm_client import ManagerClient
+
     log = tmp_path / "manager.log"
     cm_proc = procs.diffctl(
         "control",
@@ -62,15 +75,23 @@ def test_services_appear_with_the_description_and_serve_every_verb(router, procs
     node = Node("test_cm_client")
     cm = ManagerClient(node)
     # Jazzy: no services until a robot_description arrives; the manager says it is waiting.
-    wait_for(lambda: "Waiting for data on 'robot_description'" in log.read_text())
-    assert not cm.client("list_controllers").wait_for_service(timeout=0.5)
-    desc = node.create_publisher("/robot_description", "std_msgs/msg/String", latched=True)
-    desc.publish({"data": SDF.read_text()})
+    wait_for_log(lambda: "Waiting for data on 'robot_description'" in log.read_text())
+    assert not cm.client("list_controllers").wait_for_service(timeout_sec=0.5)
+    latched = QoSProfile(depth=1, reliability=ReliabilityPolicy.RELIABLE, durability=DurabilityPolicy.TRANSIENT_LOCAL)
+    desc = node.create_publisher(cls("std_msgs/msg/String"), "/robot_description", latched)
+    desc.publish(cls("std_msgs/msg/String")(data=SDF.read_text()))
     cm.wait("list_controllers", 10.0)
-    # ~/activity: transient local, so this late subscriber still gets the state the manager came up with.
+    # ~/activity: transient local, so this late subscriber still gets the state the manager came up with
+    # (its callback runs while the client spins the node for its calls).
     activity: list = []
-    node.create_subscription("/controller_manager/activity", "controller_manager_msgs/msg/ControllerManagerActivity",
-                             activity.append, latched=True)
+    node.create_subscription(cls("controller_manager_msgs/msg/ControllerManagerActivity"),
+                             "/controller_manager/activity", activity.append, latched)
+
+    def wait_for(pred, timeout_s: float = 10.0) -> None:
+        deadline = time.monotonic() + timeout_s
+        while not pred():
+            assert time.monotonic() < deadline, "timed out"
+            cm._executor.spin_once(timeout_sec=0.05)
 
     def last_activity() -> tuple[dict[str, str], dict[str, str]]:
         a = activity[-1]
@@ -102,8 +123,8 @@ def test_services_appear_with_the_description_and_serve_every_verb(router, procs
     assert (ctrl.state, ctrl.type, ctrl.update_rate) == ("active", "diff_drive_controller/DiffDriveController", 50)
     assert sorted(ctrl.claimed_interfaces) == ["base_link_to_left_wheel/velocity", "base_link_to_right_wheel/velocity"]
     wait_for(lambda: last_activity()[0] == {"diffbot_base_controller": "active"})
-    wait_for(lambda: node.graph.subscribers("/remapped_cmd_vel"))
-    assert not node.graph.subscribers("/diffbot_base_controller/cmd_vel")
+    wait_for(lambda: node.count_subscribers("/remapped_cmd_vel"))
+    assert not node.count_subscribers("/diffbot_base_controller/cmd_vel")
 
     # Failures exit 1 with the reason.
     rc, out = run(procs, "spawn", "controller", "no_such_controller")
@@ -166,5 +187,6 @@ def test_services_appear_with_the_description_and_serve_every_verb(router, procs
     out, _ = p.communicate(timeout=10)
     assert p.returncode == 0, out
     assert cm.controller_state("joint_state_broadcaster") is None
-    node.close()
+    cm.close()
+    node.destroy_node()
     assert procs.stop(cm_proc) == 0

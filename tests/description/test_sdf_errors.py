@@ -182,6 +182,25 @@ def test_values_sdformat_accepts_load() -> None:
     )
     m = parse_model(text, source="robot.sdf")
     assert m.link("a").inertial.ixx == 0.0 and m.link("a").collisions[0].geometry.size_m == (0.0, 1.0, 1.0)
+    # numbers as sdformat reads them (std::stod / std::stoi of the trimmed text: the number it starts with;
+    # "true"/"false" are 1/0; an empty optional element is its default)
+    from diffctl.description.sdf_values import c_double, c_int
+
+    assert [c_double(t) for t in ("0.5m", " 2e3 ", "0x1p3", "true", ".5", "1e")] == [0.5, 2000.0, 8.0, 1.0, 0.5, 1.0]
+    assert [c_int(t) for t in ("10.0", "0x10", "-3 ", "false")] == [10, 16, -3, 0]
+    assert c_double("abc") is None and c_int("x1") is None
+    lidar = parse_model(
+        model(
+            "<link name='a'><inertial><mass></mass></inertial><sensor name='s' type='gpu_lidar'><lidar><scan>"
+            "<horizontal><samples>360.0</samples><min_angle>-3.14</min_angle><max_angle>3.14</max_angle>"
+            "</horizontal></scan><range><min>0.1</min><max>10 m</max></range></lidar></sensor></link>",
+            static=True,
+        ),
+        source="robot.sdf",
+    )
+    assert lidar.link("a").inertial.mass_kg == 1.0  # sdformat's default mass
+    (spec,) = [s.lidar for s in lidar.sensors()]
+    assert (spec.horizontal_samples, spec.range_max_m) == (360, 10.0)
 
 
 def test_missing_files_and_includes(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:

@@ -148,7 +148,8 @@ def test_includes_model_uri_relative_uri_placement_frame_and_world_relative_to(t
         "<?xml version='1.0'?><model><name>wheel</name><sdf version='1.8'>wheel.sdf</sdf></model>",
     )
     _write(models / "wheel" / "wheel.sdf", WHEEL)
-    _write(models / "wheel" / "meshes" / "hub.stl", "solid hub\nendsolid hub\n")
+    hub = _write(models / "wheel" / "meshes" / "hub.stl", "")
+    hub.write_bytes(bytes(80) + (1).to_bytes(4, "little") + bytes(50))  # one (flat) triangle: binary STL
     _write(
         tmp_path / "parts" / "crate.sdf",
         """<sdf version="1.7"><model name="crate"><static>true</static>

@@ -205,7 +205,7 @@ def test_mesh_of_an_unknown_package(
     assert parse_description(text, source="robot.urdf").link("a").collisions == ()
     err = _take(errors)
     assert "robot.urdf:3: mesh: mesh 'package://no_such_pkg/m.stl' not found: package 'no_such_pkg' not found" in err
-    assert "(searched: " in err and "the model loads without this collision" in err
+    assert "searched: " in err and "the model loads without this collision" in err
     # TF and the visualizer do not need the file: the kinematic view keeps the URI as written
     model = parse_description(text, simulation=False, check_files=False)
     assert model.link("a").collisions[0].geometry.uri == "package://no_such_pkg/m.stl"

@@ -1,6 +1,6 @@
-"""Run in a child interpreter with rosidl's Jazzy modules on sys.path: .msg/.srv → .idl → RIHS01 hashes.
+"""Run in a child interpreter with rosidl's Jazzy modules on sys.path: .msg/.srv/.action → .idl → RIHS01 hashes.
 
-argv: a JSON file {"packages": {pkg: dir with msg/ srv/}, "includes": {pkg: dir with msg/*.json}, "out": dir}.
+argv: a JSON file {"packages": {pkg: dir with msg/ srv/ action/}, "includes": {pkg: dir with msg/*.json}, "out": dir}.
 Prints {type name: hash} for every type rosidl generated, as JSON on stdout's last line.
 """
 
@@ -8,6 +8,7 @@ import json
 import sys
 from pathlib import Path
 
+from rosidl_adapter.action import convert_action_to_idl
 from rosidl_adapter.msg import convert_msg_to_idl
 from rosidl_adapter.srv import convert_srv_to_idl
 from rosidl_generator_type_description import generate_type_hash
@@ -24,7 +25,8 @@ def main() -> None:
         src_dir = Path(src)
         idl_dir = out / "idl" / pkg
         tuples = []
-        for kind, convert in (("msg", convert_msg_to_idl), ("srv", convert_srv_to_idl)):
+        for kind, convert in (("msg", convert_msg_to_idl), ("srv", convert_srv_to_idl),
+                              ("action", convert_action_to_idl)):
             for f in sorted((src_dir / kind).glob(f"*.{kind}")):
                 convert(src_dir, pkg, Path(kind) / f.name, idl_dir / kind)
                 tuples.append(f"{idl_dir}:{kind}/{f.stem}.idl")

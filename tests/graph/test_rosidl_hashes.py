@@ -52,3 +52,22 @@ def test_every_package_diffctl_defines_has_an_oracle() -> None:
     wheel_packages = {name.split("/")[0] for name in wheel_types}
     covered = wheel_packages | set(rosidl_oracle.packages())
     assert {n.split("/")[0] for n in typedefs.own_names()} - covered == set()
+
+
+def test_the_actions_diffctl_ships_hash_as_rosidl_does(rosidl_hashes: dict[str, str]) -> None:
+    # The controllers' actions (control_msgs' FollowJointTrajectory, GripperCommand, ParallelGripperCommand) come
+    # from diffctl/interfaces/jazzy through the registry: every part of each — goal, result, feedback, the two
+    # services with their events, the feedback message and the action itself — hashes as rosidl's does.
+    from diffctl.interfaces import registry
+
+    actions = [f"control_msgs/action/{a}" for a in ("FollowJointTrajectory", "GripperCommand",
+                                                     "ParallelGripperCommand")]
+    parts = [f"{a}{s}" for a in actions for s in (
+        "", "_Goal", "_Result", "_Feedback", "_FeedbackMessage", "_SendGoal", "_SendGoal_Request",
+        "_SendGoal_Response", "_SendGoal_Event", "_GetResult", "_GetResult_Request", "_GetResult_Response",
+        "_GetResult_Event")]
+    for a in actions:
+        registry.lookup(f"{a}_Goal")
+    wrong = [f"{t}: {types.type_hash(t)} != rosidl {rosidl_hashes.get(t)}" for t in parts
+             if types.type_hash(t) != rosidl_hashes.get(t)]
+    assert not wrong, "\n".join(wrong)

@@ -33,6 +33,9 @@ def finish(p: subprocess.Popen, timeout_s: float = 180.0) -> tuple[int, str]:
 @pytest.mark.slow
 def test_spawner_flags_on_a_named_manager(router, procs, tmp_path, monkeypatch) -> None:
     from diffctl.bus import Node
+    from diffctl.client import runtime
+    from diffctl.client.node import Node as ClientNode
+    from diffctl.client.signals import SignalHandlerOptions
     from diffctl.control.cm_client import ManagerClient
 
     monkeypatch.setenv("ROS_HOME", str(tmp_path))
@@ -54,8 +57,20 @@ def test_spawner_flags_on_a_named_manager(router, procs, tmp_path, monkeypatch) 
     )
     node = Node("test_spawner_flags")
     node.create_publisher("/robot_description", "std_msgs/msg/String", latched=True).publish({"data": SDF.read_text()})
-    cm = ManagerClient(node, "/my_ctrl_mgr")
-    cm.wait("list_controllers", 180.0)
+    runtime.init(args=["test_spawner_flags"], signal_handler_options=SignalHandlerOptions.NO)
+    try:
+        client = ClientNode("test_spawner_flags_client")
+        cm = ManagerClient(client, "/my_ctrl_mgr")
+        cm.wait("list_controllers", 180.0)
+        _flags(procs, tmp_path, node, cm)
+        cm.close()
+        client.destroy_node()
+    finally:
+        runtime.try_shutdown()
+    node.close()
+
+
+def _flags(procs, tmp_path, node, cm) -> None:
 
     # A relative -c, a remap and a parameter for the controller's own node, as a launch file passes them.
     code, out = finish(
@@ -161,4 +176,3 @@ def test_spawner_flags_on_a_named_manager(router, procs, tmp_path, monkeypatch) 
     )
     assert code == 0, out
     assert cm.controller_state("jsb4") == "inactive"
-    node.close()

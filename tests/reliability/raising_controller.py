@@ -6,18 +6,23 @@ Installed for a test through a throw-away distribution (entry point group `diffc
 
 from __future__ import annotations
 
+from typing import Any
+
 from diffctl.control.controller_interface import ControllerInterface, InterfaceConfiguration, ReturnType
 
 
 class RaisingController(ControllerInterface):
     def on_init(self) -> None:
-        self.fail_after = int(self.param("fail_after", 20))
+        self.fail_after = self.auto_declare("fail_after", 20)
         self.cycles = 0
+
+    def command_interface_configuration(self) -> InterfaceConfiguration:
+        return InterfaceConfiguration.none()
 
     def state_interface_configuration(self) -> InterfaceConfiguration:
         return InterfaceConfiguration.individual(["base_link_to_left_wheel/velocity"])
 
-    def update(self, time_ns: int, period_s: float) -> ReturnType:
+    def update(self, time: Any, period: Any) -> ReturnType:
         self.cycles += 1
         if self.cycles > self.fail_after:
             raise RuntimeError(f"injected fault after {self.fail_after} cycles")

@@ -46,7 +46,12 @@ def _diag(value: float, size: int = 36, step: int = 7) -> list[float]:
 @pytest.fixture(params=["ekf_node", "ukf_node"])
 def driver(request, router: str, procs, tmp_path: Path):
     params = tmp_path / "params.yaml"
-    params.write_text(yaml.safe_dump({"/**": {"ros__parameters": {**UPSTREAM_PARAMS, "use_sim_time": True}}}))
+    # imu0_config as community files write it: nine entries, as the one item of a block list (`- [...]`);
+    # rcl flattens the list and upstream reads past its end as false, so the node runs upstream's test the same
+    imu0 = [UPSTREAM_PARAMS["imu0_config"][:9]]
+    assert not any(UPSTREAM_PARAMS["imu0_config"][9:])
+    values = {**UPSTREAM_PARAMS, "imu0_config": imu0, "use_sim_time": True}
+    params.write_text(yaml.safe_dump({"/**": {"ros__parameters": values}}))
     node = procs.diffctl("run", "robot_localization", request.param, "--ros-args", "--params-file", str(params))
     d = Driver()
     d.watch("/odometry/filtered", ODOM)

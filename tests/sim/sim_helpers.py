@@ -28,16 +28,18 @@ def car_world(pose: Pose | None = None, path: Path = CAR) -> tuple[PhysicsWorld,
     return pw, car
 
 
-def sdf_world(body: str, name: str = "test") -> World:
-    return parse_world(
-        f"""<?xml version="1.0"?>
+def sdf_world_text(body: str, name: str = "test") -> str:
+    return f"""<?xml version="1.0"?>
 <sdf version="1.8"><world name="{name}">
   <physics name="1ms" type="ignored">
     <max_step_size>0.001</max_step_size><real_time_factor>1</real_time_factor>
   </physics>
   {body}
 </world></sdf>"""
-    )
+
+
+def sdf_world(body: str, name: str = "test") -> World:
+    return parse_world(sdf_world_text(body, name))
 
 
 def ground() -> str:

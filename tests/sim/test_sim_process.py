@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
 from typing import Any
@@ -63,8 +64,8 @@ def test_bad_input_exits_2_with_one_line(tmp_path: Path) -> None:
     r = run_cli("sim", "run", "-r", str(bad))
     assert r.returncode == 2 and "bad.world:1" in r.stderr and "pose" in r.stderr
     assert "Traceback" not in r.stderr
-    r = run_cli("sim", "run", "-v9", str(EMPTY_WORLD))
-    assert r.returncode == 2 and "verbosity" in r.stderr
+    r = run_cli("sim", "run", "--seed", "x", str(EMPTY_WORLD))  # (-v9 is gz sim's loudest, as atoi reads it)
+    assert r.returncode == 2 and "invalid argument: --seed x" in r.stderr
 
 
 @pytest.mark.slow
@@ -166,7 +167,10 @@ def _controlled_run(procs: Any, session: Any, tmp_path: Path, batches: list[int]
 
     desc = tmp_path / "car.sdf"
     desc.write_text(CAR_CONTROL.read_text().replace("PARAMETERS_CONFIG_FILE_PLACEHOLDER", str(CONTROLLERS)))
-    sim, _ = start_sim(procs, "--rtf", "0")  # paused
+    # The manager's debug messages say when the spawner's switch request waits for a control cycle.
+    sim, _ = start_sim(procs, "--rtf", "0", "--ros-args", "--log-level", "controller_manager:=debug", "--")  # paused
+    lines: list[str] = []
+    threading.Thread(target=lambda: lines.extend(iter(sim.stdout.readline, "")), daemon=True).start()
     node = Node("driver")
     try:
         assert run_cli("spawn", "entity", "--file", str(desc), "--name", "robot").returncode == 0
@@ -192,9 +196,10 @@ def _controlled_run(procs: Any, session: Any, tmp_path: Path, batches: list[int]
             return states == ["inactive", "inactive"]
 
         wait_for(configured, what="both controllers configured")
-        time.sleep(1.0)  # the spawner's switch request is then waiting for a control cycle
+        wait_for(lambda: any("Requested atomic controller switch" in line for line in lines),
+                 what="the spawner's switch request waiting for a control cycle")
         assert query(session, "gz/world/empty/control", {"multi_step": 1})["sim_time_ns"] == 1_000_000
-        assert spawner.wait(30) == 0, spawner.stdout.read()
+        assert spawner.wait(30) == 0, spawner.stdout.read() + "".join(lines)
         pub = node.create_publisher("/diffbot_base_controller/cmd_vel", "geometry_msgs/msg/TwistStamped")
         wait_for(lambda: pub.subscription_count > 0, what="the controller's subscription")
         pub.publish({"twist": {"linear": {"x": 0.4}, "angular": {"z": 0.5}}})

@@ -30,7 +30,9 @@ def test_the_users_program_then_diffctls_component_then_an_installed_one(
                      ("turtlesim", "turtlesim_node")):
         install_tree(opt, pkg)
         program(opt / "lib" / pkg / exe)
+    install_tree(opt, "rmw_zenoh_cpp")  # the real programs join diffctl's graph over it
     monkeypatch.setenv("AMENT_PREFIX_PATH", str(opt))
+    monkeypatch.delenv("RMW_IMPLEMENTATION", raising=False)
     ws = tmp_path / "ws"
     write_tree(
         ws / "src" / "controller_manager",
@@ -42,14 +44,15 @@ def test_the_users_program_then_diffctls_component_then_an_installed_one(
     )
     program(ws / "src/controller_manager/scripts/spawner")
     monkeypatch.chdir(ws)
-    (spawner,) = package_index.executable_argv("controller_manager", "spawner")
+    *env, spawner = package_index.executable_argv("controller_manager", "spawner")
+    assert env[0] == "env" and "RMW_IMPLEMENTATION=rmw_zenoh_cpp" in env
     assert Path(spawner).resolve() == ws / "src/controller_manager/scripts/spawner"  # the user's own
     assert package_index.executable_argv("robot_state_publisher", "robot_state_publisher") == [
         sys.executable, "-m", "diffctl", "robot-state-publisher",
     ]  # diffctl's, not /opt/ros's
-    assert package_index.executable_argv("turtlesim", "turtlesim_node") == [
-        str(opt / "lib/turtlesim/turtlesim_node")
-    ]  # a package diffctl does not replace: the installed program
+    assert package_index.executable_argv("turtlesim", "turtlesim_node")[-1] == str(
+        opt / "lib/turtlesim/turtlesim_node"
+    )  # a package diffctl does not replace: the installed program
     assert "turtlesim_node" in package_index.executables("turtlesim")
 
 
@@ -72,8 +75,9 @@ def test_demo_nodes_yield_to_an_installed_or_workspace_package(tmp_path: Path, m
     assert {"talker", "listener", "parameter_blackboard"} <= set(package_index.executables("demo_nodes_cpp"))
     # a sourced ROS 2 with the real demo_nodes_cpp: its program
     opt = install_tree(tmp_path / "opt", "demo_nodes_cpp")
+    install_tree(opt, "rmw_zenoh_cpp")
     program(opt / "lib/demo_nodes_cpp/talker")
     monkeypatch.setenv("AMENT_PREFIX_PATH", os.fspath(opt))
-    assert package_index.executable_argv("demo_nodes_cpp", "talker") == [str(opt / "lib/demo_nodes_cpp/talker")]
+    assert package_index.executable_argv("demo_nodes_cpp", "talker")[-1] == str(opt / "lib/demo_nodes_cpp/talker")
     with pytest.raises(LaunchError, match="no executable 'talkr'"):
         package_index.executable_argv("demo_nodes_cpp", "talkr")

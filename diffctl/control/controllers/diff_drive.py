@@ -20,8 +20,7 @@ what that controller wrote this cycle and ~/cmd_vel is not read.
 
 Parameters are declared on the controller's node from `diff_drive_params.DECLS`. A running controller takes
 changes of its limits, cmd_vel_timeout and multipliers on its next update (as rolling's parameter listener);
-read-only ones are refused by the node, values that break a rule by the controller; the rest apply at the
-next configure.
+values that break a rule are refused by the controller; the rest apply at the next configure.
 
 Each update: limiter (jerk → acceleration → velocity) on the references, odometry (open loop from the limited
 command, or mean wheel position / velocity feedback; non-finite feedback → ERROR, which makes the manager
@@ -34,6 +33,8 @@ import dataclasses
 import math
 from typing import Any
 
+from diffctl.client.interfaces import cls
+from diffctl.client.qos import qos_profile_system_default
 from diffctl.control.cdr_template import CdrTemplate
 from diffctl.control.controller_interface import (
     ChainableControllerInterface,
@@ -45,13 +46,20 @@ from diffctl.control.controller_interface import (
 from diffctl.control.controllers.command_sanity import MAX_ANGULAR_RADPS, MAX_LINEAR_MPS, rejection
 from diffctl.control.controllers.diff_drive_params import DECLS, RUNTIME, DiffDriveParams
 from diffctl.control.controllers.owned_endpoints import OwnedEndpoints
-from diffctl.control.controllers.param_decl import declare_all, read_declared
+from diffctl.control.controllers.param_decl import (
+    changed_values,
+    current_values,
+    declare_all,
+    overrides,
+    read_declared,
+    set_result,
+)
 from diffctl.control.controllers.throttled_log import ThrottledLog
 from diffctl.control.math.kinematics import wheel_velocities_radps
 from diffctl.control.math.odometry import Odometry
 from diffctl.control.math.speed_limiter import SpeedLimiter
+from diffctl.control.realtime_publisher import RealtimePublisher
 from diffctl.errors import ParameterError, RuntimeFailure
-from diffctl.interfaces import types
 
 NAN = math.nan
 _OK = ReturnType.OK
@@ -93,38 +101,41 @@ class DiffDriveController(ChainableControllerInterface):
         self._right_commands: list[CommandInterface] = []
         self._left_feedback: list[StateInterface] = []
         self._right_feedback: list[StateInterface] = []
+        self.exported_reference_interface_names = ["linear/velocity", "angular/velocity"]
         self._reset_buffers(0)
 
     # --- parameters and interfaces ----------------------------------------------------------------------
     def on_init(self) -> None:
-        params, warnings = DiffDriveParams.from_params(dict(self.node.params), self.name)
+        node = self.get_node()
+        self._logger = node.get_logger()
+        given = overrides(node)
+        params, warnings = DiffDriveParams.from_params(given, self.get_name())
         for text in warnings:
-            self.node.log.warn(text)
-        declare_all(self.node, DECLS, self.name)
+            self._logger.warn(text)
+        declare_all(node, DECLS, self.get_name())
         self.params = params
-        self._params_source = dict(self.node.params)
-        add_callback = getattr(self.node, "add_on_set_parameters_callback", None)
-        if add_callback is not None:
-            add_callback(self._on_set_parameters)
+        self._params_source = current_values(node, DECLS)
+        node.add_on_set_parameters_callback(self._on_set_parameters)
 
-    def reference_interface_names(self) -> list[str]:
-        return ["linear/velocity", "angular/velocity"]
+    def _now_ns(self) -> int:
+        return self.get_node().get_clock().now().nanoseconds
 
-    def on_set_chained_mode(self, chained: bool) -> None:
-        # controller_manager restarts a controller to switch its mode (deactivate → mode → activate): the
-        # wheels stop and the buffers start over, so no command of the previous source lingers.
-        self._halt()
-        self._reset_buffers(self.node.now_ns())
+    def on_set_chained_mode(self, chained_mode: bool) -> bool:
+        # The manager switches the mode while the controller is inactive (it restarts an active one): the
+        # buffers start over, so no command of the previous source lingers.
+        self._reset_buffers(self._now_ns())
+        return True
 
-    def _on_set_parameters(self, changes: dict[str, Any]) -> str | None:
-        """Refuse a change that breaks a rule; hand limits and timeout to the next update (bus thread)."""
-        mine = {k: v for k, v in changes.items() if k in DECLS}
+    def _on_set_parameters(self, parameters: list[Any]) -> Any:
+        """Refuse a change that breaks a rule; hand limits and timeout to the next update (executor thread)."""
+        mine = {p.name for p in parameters if p.name in DECLS}
         if not mine:
-            return None
+            return set_result(None)
         try:
-            new = DiffDriveParams.from_values(read_declared(DECLS, {**self.node.params, **mine}, self.name), self.name)
+            values = read_declared(DECLS, changed_values(self.get_node(), DECLS, parameters), self.get_name())
+            new = DiffDriveParams.from_values(values, self.get_name())
         except ParameterError as e:
-            return str(e)
+            return set_result(str(e))
         if RUNTIME.intersection(mine) and self.params is not None:
             p = self.params
             self._runtime_params = dataclasses.replace(
@@ -136,7 +147,7 @@ class DiffDriveController(ChainableControllerInterface):
                 linear=new.linear,
                 angular=new.angular,
             )
-        return None
+        return set_result(None)
 
     def _take_runtime_params(self) -> None:
         p, self._runtime_params = self._runtime_params, None
@@ -150,11 +161,11 @@ class DiffDriveController(ChainableControllerInterface):
             self.odometry.wheel_separation_m = p.effective_wheel_separation_m
             self.odometry.left_wheel_radius_m = p.left_wheel_radius_m
             self.odometry.right_wheel_radius_m = p.right_wheel_radius_m
-        self.node.log.info("Parameters were updated")
+        self._logger.info("Parameters were updated")
 
     def _p(self) -> DiffDriveParams:
         if self.params is None:
-            raise RuntimeFailure(f"controller '{self.name}' has no parameters: on_init was not run")
+            raise RuntimeFailure(f"controller '{self.get_name()}' has no parameters: on_init was not run")
         return self.params
 
     def command_interface_configuration(self) -> InterfaceConfiguration:
@@ -169,12 +180,14 @@ class DiffDriveController(ChainableControllerInterface):
         return InterfaceConfiguration.individual([f"{w}/{iface}" for w in (*p.left_wheel_names, *p.right_wheel_names)])
 
     # --- lifecycle ----------------------------------------------------------------------------------------
-    def on_configure(self) -> None:
-        if self.node.params != self._params_source:
+    def on_configure(self, previous_state: Any) -> None:
+        node = self.get_node()
+        now = current_values(node, DECLS)
+        if now != self._params_source:
             # The reference re-reads parameters that changed since on_init.
-            self.params, _ = DiffDriveParams.from_params(self.node.params, self.name)
-            self._params_source = dict(self.node.params)
-            self.node.log.info("Parameters were updated")
+            self.params = DiffDriveParams.from_values(read_declared(DECLS, now, self.get_name()), self.get_name())
+            self._params_source = now
+            self._logger.info("Parameters were updated")
         self._runtime_params = None
         p = self._p()
         self._limiter_linear = SpeedLimiter(p.linear)
@@ -189,34 +202,27 @@ class DiffDriveController(ChainableControllerInterface):
         self._publish_period_ns = round(_NS / p.publish_rate_hz)
         self._last_publish_ns = None
         self._odom_needs_init = True
-        self._reset_buffers(self.node.now_ns())
+        self._reset_buffers(self._now_ns())
 
-        prefix = p.frame_prefix(getattr(self.node, "namespace", "/"))
+        prefix = p.frame_prefix(node.get_namespace())
         odom_frame, base_frame = prefix + p.odom_frame_id, prefix + p.base_frame_id
         self._close_endpoints()
-        self._odom_msg = types.new(
-            ODOMETRY,
-            {
-                "header": {"frame_id": odom_frame},
-                "child_frame_id": base_frame,
-                "pose": {"pose": {"orientation": {"w": 1.0}}},
-            },
-        )
+        self._odom_msg = odom = cls(ODOMETRY)()
+        odom.header.frame_id, odom.child_frame_id = odom_frame, base_frame
+        odom.pose.pose.orientation.w = 1.0
         for i in range(6):
-            self._odom_msg.pose.covariance[7 * i] = p.pose_covariance_diagonal[i]
-            self._odom_msg.twist.covariance[7 * i] = p.twist_covariance_diagonal[i]
-        self._odom_pub = self._endpoints.keep(self.node.create_publisher("~/odom", ODOMETRY))
-        self._tf_msg = types.new(
-            TF_MESSAGE,
-            {"transforms": [{"header": {"frame_id": odom_frame}, "child_frame_id": base_frame}]},
-        )
+            odom.pose.covariance[7 * i] = p.pose_covariance_diagonal[i]
+            odom.twist.covariance[7 * i] = p.twist_covariance_diagonal[i]
+        self._odom_pub = self._publisher(ODOMETRY, "~/odom")
+        transform = cls("geometry_msgs/msg/TransformStamped")()
+        transform.header.frame_id, transform.child_frame_id = odom_frame, base_frame
+        transform.transform.rotation.w = 1.0
+        self._tf_msg = cls(TF_MESSAGE)(transforms=[transform])
         self._tf = self._tf_msg.transforms[0]
-        self._tf.transform.rotation.w = 1.0
-        self._tf_pub = self._endpoints.keep(self.node.create_publisher("/tf", TF_MESSAGE)) if p.enable_odom_tf else None
-        self._cmd_out_msg = types.new(TWIST_STAMPED, {"header": {"frame_id": base_frame}})
-        self._cmd_out_pub = None
-        if p.publish_limited_velocity:
-            self._cmd_out_pub = self._endpoints.keep(self.node.create_publisher("~/cmd_vel_out", TWIST_STAMPED))
+        self._tf_pub = self._publisher(TF_MESSAGE, "/tf") if p.enable_odom_tf else None
+        self._cmd_out_msg = cls(TWIST_STAMPED)()
+        self._cmd_out_msg.header.frame_id = base_frame
+        self._cmd_out_pub = self._publisher(TWIST_STAMPED, "~/cmd_vel_out") if p.publish_limited_velocity else None
         # The controllers' bus publishers take a template's values: each message's fixed layout becomes a
         # template, and a cycle hands over the stamp and the numbers that change (packed by the publishing
         # thread; frames, covariances and zeros stay as built above).
@@ -238,11 +244,16 @@ class DiffDriveController(ChainableControllerInterface):
             self._cmd_out_cdr = CdrTemplate(self._cmd_out_msg, TWIST_STAMPED, [
                 *stamp, *_leaves("twist.linear", "x"), *_leaves("twist.angular", "z"),
             ])  # fmt: skip
-        self._log = ThrottledLog(self.node.log)
-        self._endpoints.keep(self.node.create_subscription("~/cmd_vel", TWIST_STAMPED, self._on_cmd_vel))
-        self.export_reference_interfaces()
+        self._log = ThrottledLog(self._logger)
+        self._endpoints.keep(
+            node.create_subscription(cls(TWIST_STAMPED), "~/cmd_vel", self._on_cmd_vel, qos_profile_system_default)
+        )
 
-    def on_activate(self) -> None:
+    def _publisher(self, type_name: str, topic: str) -> RealtimePublisher:
+        pub = self.get_node().create_publisher(cls(type_name), topic, qos_profile_system_default)
+        return self._endpoints.keep(RealtimePublisher(pub))
+
+    def on_activate(self, previous_state: Any) -> None:
         p = self._p()
         commands = {ci.name: ci for ci in self.command_interfaces}
         states = {si.name: si for si in self.state_interfaces}
@@ -265,21 +276,21 @@ class DiffDriveController(ChainableControllerInterface):
             self._right_feedback = take(states, p.right_wheel_names, p.feedback_interface, "state")
         self._subscriber_active = True
 
-    def on_deactivate(self) -> None:
+    def on_deactivate(self, previous_state: Any) -> None:
         self._subscriber_active = False
         self._halt()
-        self._reset_buffers(self.node.now_ns())
+        self._reset_buffers(self._now_ns())
         self._left_commands, self._right_commands = [], []
         self._left_feedback, self._right_feedback = [], []
 
-    def on_cleanup(self) -> None:
+    def on_cleanup(self, previous_state: Any) -> None:
         self._reset()
         self._close_endpoints()
 
-    def on_error(self) -> None:
+    def on_error(self, previous_state: Any) -> None:
         self._reset()
 
-    def on_shutdown(self) -> None:
+    def on_shutdown(self, previous_state: Any) -> None:
         self._subscriber_active = False
         self._close_endpoints()
 
@@ -288,7 +299,7 @@ class DiffDriveController(ChainableControllerInterface):
             self.odometry.reset_pose()
         self._odom_needs_init = True
         self._subscriber_active = False
-        self._reset_buffers(self.node.now_ns())
+        self._reset_buffers(self._now_ns())
 
     def _reset_buffers(self, now_ns: int) -> None:
         # No command yet: NaN references write nothing until a command arrives or the timeout brakes.
@@ -318,7 +329,7 @@ class DiffDriveController(ChainableControllerInterface):
         if why is not None:
             self._log.warn("bad", f"Ignoring a velocity command: {why}; the wheels keep the previous command")
             return
-        now_ns = self.node.now_ns()
+        now_ns = self._now_ns()
         stamp_ns = msg.header.stamp.sec * _NS + msg.header.stamp.nanosec
         if stamp_ns == 0:
             self._log.once(
@@ -341,13 +352,14 @@ class DiffDriveController(ChainableControllerInterface):
             self._command = (linear, angular, stamp_ns, True)  # one atomic store, read whole by update()
 
     # --- real-time loop ---------------------------------------------------------------------------------------
-    def _update_reference_from_subscribers(self, time_ns: int, ref_linear: Any, ref_angular: Any) -> None:
+    def update_reference_from_subscribers(self, time: Any, period: Any) -> ReturnType:
+        ref_linear, ref_angular = self.reference_interfaces
         linear, angular, stamp_ns, real = self._command
-        if self._timeout_ns and time_ns - stamp_ns > self._timeout_ns:
+        if self._timeout_ns and time.nanoseconds - stamp_ns > self._timeout_ns:
             ref_linear.value = ref_angular.value = 0.0
             if real and self._braking_logged_for != stamp_ns:  # a received command expired
                 self._braking_logged_for = stamp_ns
-                self.node.log.warn("Velocity command timed out. Braking.")
+                self._logger.warn("Velocity command timed out. Braking.")
         elif _isfinite(linear) and _isfinite(angular):
             ref_linear.value, ref_angular.value = linear, angular
         elif real:
@@ -356,13 +368,13 @@ class DiffDriveController(ChainableControllerInterface):
                 "Command message contains NaNs. Not updating reference interfaces. "
                 f"(linear.x = {linear!r}, angular.z = {angular!r})",
             )
+        return _OK
 
-    def update(self, time_ns: int, period_s: float) -> ReturnType:
+    def update_and_write_commands(self, time: Any, period: Any) -> ReturnType:
         if self._runtime_params is not None:
             self._take_runtime_params()
+        time_ns, period_s = time.nanoseconds, period.nanoseconds * 1e-9
         ref_linear_handle, ref_angular_handle = self.reference_interfaces
-        if not self._chained_mode:
-            self._update_reference_from_subscribers(time_ns, ref_linear_handle, ref_angular_handle)
         ref_linear, ref_angular = ref_linear_handle.value, ref_angular_handle.value
         if not (_isfinite(ref_linear) and _isfinite(ref_angular)):
             return _OK  # no command yet (or a chained controller wrote none)
@@ -404,7 +416,7 @@ class DiffDriveController(ChainableControllerInterface):
         for i, (lh, rh) in enumerate(zip(self._left_feedback, self._right_feedback, strict=True)):
             lv, rv = lh.get_value(), rh.get_value()
             if not (math.isfinite(lv) and math.isfinite(rv)):
-                self.node.log.error(
+                self._logger.error(
                     f"Either the left or right wheel {p.feedback_interface} is invalid for index [{i}] "
                     f"({lh.name} = {lv!r}, {rh.name} = {rv!r})"
                 )

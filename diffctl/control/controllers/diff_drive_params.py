@@ -2,12 +2,15 @@
 
 `DECLS` is diff_drive_controller's `src/diff_drive_controller_parameter.yaml` as a table (ros-controls/
 ros2_controllers, branch jazzy, v4.42.1 / commit ed360c9, read through the reference notes): type, default,
-read_only, validation. The same table declares the parameters on the controller's node (so `param
-describe` shows them) and validates the values `DiffDriveParams.from_params` builds the dataclass from; the
-few rules beyond single values (wheel lists of equal length, distinct frames, consistent limits) follow.
+description, validation (nothing is read-only there). The same table declares the parameters on the
+controller's node (so `param list/describe` show what the real controller declares) and validates the values
+`DiffDriveParams.from_params` builds the dataclass from; diffctl's checks beyond the YAML's (`also`: distinct
+wheel names, positive multipliers and rate, covariances of six entries ≥ 0, …) refuse what would break the
+controller later, and the rules between values (wheel lists of equal length, distinct frames, consistent limits)
+follow.
 
 Defaults are the reference's: base_frame_id "base_link", cmd_vel_timeout 0.5 s (0 disables it), publish_rate
-50 Hz, every limit NaN (off). Read-only, as in the YAML: the wheel names, wheel_separation and wheel_radius.
+50 Hz, every limit NaN (off).
 Deprecated keys load, as Jazzy loads them:
   - `<axis>.has_velocity_limits` / `has_acceleration_limits` / `has_jerk_limits` (default true): false switches
     that group off, whatever numbers the group's limits hold (e.g. `max_jerk: 0.0`), with Jazzy's
@@ -24,7 +27,6 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from diffctl.control.controllers.param_decl import (
-    BASE_DECLS,
     Check,
     ParamDecl,
     read_declared,
@@ -64,102 +66,97 @@ _REMOVED = {
     "use_stamped_vel": "removed in Jazzy: ~/cmd_vel only accepts geometry_msgs/msg/TwistStamped",
 }
 _POSITIVE = (Check("gt", (0.0,)),)
-_NAMES = (Check("not_empty", ()), Check("unique", ()))
+
+
+_DEPRECATED_FLAG = "deprecated, set the respective limits to ``.NAN`` for deactivation"
+_AXIS_TEXT = {  # (linear.x, angular.z) descriptions; the velocity and jerk limits have none
+    "max_acceleration": ("Maximum acceleration in forward direction.", "Maximum acceleration in positive direction."),
+    "max_deceleration": ("Maximum deceleration in forward direction.", "Maximum deceleration in positive direction."),
+    "max_acceleration_reverse": (
+        "Maximum acceleration in reverse direction. If not set, -max_acceleration will be used.",
+        "Maximum acceleration in negative direction. If not set, -max_acceleration will be used.",
+    ),
+    "max_deceleration_reverse": (
+        "Maximum deceleration in reverse direction. If not set, -max_deceleration will be used.",
+        "Maximum deceleration in negative direction. If not set, -max_deceleration will be used.",
+    ),
+}
+_AXIS_ORDER = ("max_velocity", "min_velocity", "max_acceleration", "max_deceleration", "min_acceleration",
+               "max_acceleration_reverse", "max_deceleration_reverse", "max_jerk", "min_jerk")
+_GT_EQ_OR_NAN = (Check("control_filters::gt_eq_or_nan", (0.0,)),)
+_LT_EQ_OR_NAN = (Check("control_filters::lt_eq_or_nan", (0.0,)),)
 
 
 def _axis_decls(axis: str) -> list[ParamDecl]:
-    units = _AXIS_UNITS[axis]
-    out = [
-        ParamDecl(f"{axis}.{flag}", "bool", True, "deprecated, set the respective limits to ``.NAN`` for deactivation")
-        for flag in _GROUPS
-    ]
-    for name, _sign, unit in _LIMIT_FIELDS:
-        out.append(ParamDecl(f"{axis}.{name}", "double", NAN, f"{name.replace('_', ' ')} in {units[unit]}; NaN: none."))
-    out.append(
-        ParamDecl(
-            f"{axis}.min_acceleration",
-            "double",
-            NAN,
-            "deprecated, use max_deceleration",
-        )
-    )
+    out = [ParamDecl(f"{axis}.{flag}", "bool", True, _DEPRECATED_FLAG) for flag in _GROUPS]
+    signs = {name: sign for name, sign, _unit in _LIMIT_FIELDS}
+    for name in _AXIS_ORDER:
+        if name == "min_acceleration":
+            out.append(ParamDecl(f"{axis}.{name}", "double", NAN, "deprecated, use max_deceleration"))
+            continue
+        text = _AXIS_TEXT.get(name, ("", ""))[0 if axis == "linear.x" else 1]
+        checks = _GT_EQ_OR_NAN if signs[name] > 0 or name == "max_velocity" else _LT_EQ_OR_NAN
+        out.append(ParamDecl(f"{axis}.{name}", "double", NAN, text, checks=checks))
     return out
 
 
+_COVARIANCE = (Check("size_eq", (6,)), Check("lower_element_bounds", (0.0,)))
+_NOT_EMPTY = (Check("not_empty", ()),)
+# diff_drive_controller_parameter.yaml, in its order; `also` holds diffctl's checks beyond the YAML's.
 DECLS: dict[str, ParamDecl] = table(
     [
-        *BASE_DECLS,
-        ParamDecl("left_wheel_names", "string_array", [], "Joints of the left wheels.", True, _NAMES),
-        ParamDecl("right_wheel_names", "string_array", [], "Joints of the right wheels.", True, _NAMES),
-        ParamDecl("wheel_separation", "double", 0.0, "Distance between left and right wheels in m.", True, _POSITIVE),
-        ParamDecl("wheel_radius", "double", 0.0, "Wheel radius in m.", True, _POSITIVE),
-        ParamDecl(
-            "wheel_separation_multiplier", "double", 1.0, "Correction factor of wheel_separation.", False, _POSITIVE
-        ),
-        ParamDecl(
-            "left_wheel_radius_multiplier",
-            "double",
-            1.0,
-            "Correction factor of the left wheels' radius.",
-            False,
-            _POSITIVE,
-        ),
-        ParamDecl(
-            "right_wheel_radius_multiplier",
-            "double",
-            1.0,
-            "Correction factor of the right wheels' radius.",
-            False,
-            _POSITIVE,
-        ),
-        ParamDecl("tf_frame_prefix_enable", "bool", True, "Prefix odom_frame_id and base_frame_id."),
-        ParamDecl("tf_frame_prefix", "string", "", "The prefix; empty: the controller's namespace."),
-        ParamDecl("odom_frame_id", "string", "odom", "Frame of the odometry.", False, (Check("not_empty", ()),)),
-        ParamDecl(
-            "base_frame_id",
-            "string",
-            "base_link",
-            "The robot's base frame, child of odom_frame_id.",
-            False,
-            (Check("not_empty", ()),),
-        ),
-        ParamDecl(
-            "pose_covariance_diagonal",
-            "double_array",
-            [0.0] * 6,
-            "Diagonal of the odometry pose covariance.",
-            False,
-            (Check("size_eq", (6,)), Check("lower_element_bounds", (0.0,))),
-        ),
-        ParamDecl(
-            "twist_covariance_diagonal",
-            "double_array",
-            [0.0] * 6,
-            "Diagonal of the odometry twist covariance.",
-            False,
-            (Check("size_eq", (6,)), Check("lower_element_bounds", (0.0,))),
-        ),
-        ParamDecl("open_loop", "bool", False, "Odometry from the commands instead of wheel feedback."),
-        ParamDecl("position_feedback", "bool", True, "Wheel feedback is position (else velocity)."),
-        ParamDecl("enable_odom_tf", "bool", True, "Publish odom_frame_id → base_frame_id on /tf."),
-        ParamDecl(
-            "cmd_vel_timeout",
-            "double",
-            0.5,
-            "Seconds after which a command is stale; 0 disables it.",
-            False,
-            (Check("gt_eq", (0.0,)),),
-        ),
-        ParamDecl("publish_limited_velocity", "bool", False, "Publish the limited command on ~/cmd_vel_out."),
-        ParamDecl(
-            "velocity_rolling_window_size",
-            "int",
-            10,
-            "Samples averaged into the odometry twist.",
-            False,
-            (Check("bounds", (1, 100_000)),),
-        ),
-        ParamDecl("publish_rate", "double", 50.0, "Rate of ~/odom and /tf in Hz.", False, _POSITIVE),
+        ParamDecl("left_wheel_names", "string_array", [], "Names of the left side wheels' joints", checks=_NOT_EMPTY,
+                  also=(Check("unique", ()),)),
+        ParamDecl("right_wheel_names", "string_array", [], "Names of the right side wheels' joints",
+                  checks=_NOT_EMPTY, also=(Check("unique", ()),)),
+        ParamDecl("wheel_separation", "double", 0.0,
+                  "Shortest distance between the left and right wheels. If this parameter is wrong, the robot will "
+                  "not behave correctly in curves.", checks=_POSITIVE),
+        ParamDecl("wheel_radius", "double", 0.0,
+                  "Radius of a wheel, i.e., wheels size, used for transformation of linear velocity into wheel "
+                  "rotations. If this parameter is wrong the robot will move faster or slower than expected.",
+                  checks=_POSITIVE),
+        ParamDecl("wheel_separation_multiplier", "double", 1.0,
+                  "Correction factor when the actual wheel separation differs from the nominal value in the "
+                  "``wheel_separation`` parameter.", also=_POSITIVE),
+        ParamDecl("left_wheel_radius_multiplier", "double", 1.0,
+                  "Correction factor when radius of left wheels differs from the nominal value in "
+                  "``wheel_radius`` parameter.", also=_POSITIVE),
+        ParamDecl("right_wheel_radius_multiplier", "double", 1.0,
+                  "Correction factor when radius of right wheels differs from the nominal value in "
+                  "``wheel_radius`` parameter.", also=_POSITIVE),
+        ParamDecl("tf_frame_prefix_enable", "bool", True, "Enables or disables appending tf_prefix to tf frame id's."),
+        ParamDecl("tf_frame_prefix", "string", "",
+                  "(optional) Prefix to be appended to the tf frames, will be added to odom_id and base_frame_id "
+                  "before publishing. If the parameter is empty, controller's namespace will be used."),
+        ParamDecl("odom_frame_id", "string", "odom",
+                  "Name of the frame for odometry. This frame is parent of ``base_frame_id`` when controller "
+                  "publishes odometry.", also=_NOT_EMPTY),
+        ParamDecl("base_frame_id", "string", "base_link",
+                  "Name of the robot's base frame that is child of the odometry frame.", also=_NOT_EMPTY),
+        ParamDecl("pose_covariance_diagonal", "double_array", [0.0] * 6,
+                  "Odometry covariance for the encoder output of the robot for the pose. These values should be "
+                  "tuned to your robot's sample odometry data, but these values are a good place to start: "
+                  "``[0.001, 0.001, 0.001, 0.001, 0.001, 0.01]``.", also=_COVARIANCE),
+        ParamDecl("twist_covariance_diagonal", "double_array", [0.0] * 6,
+                  "Odometry covariance for the encoder output of the robot for the speed. These values should be "
+                  "tuned to your robot's sample odometry data, but these values are a good place to start: "
+                  "``[0.001, 0.001, 0.001, 0.001, 0.001, 0.01]``.", also=_COVARIANCE),
+        ParamDecl("open_loop", "bool", False,
+                  "If set to true the odometry of the robot will be calculated from the commanded values and not "
+                  "from feedback."),
+        ParamDecl("position_feedback", "bool", True, "Is there position feedback from hardware."),
+        ParamDecl("enable_odom_tf", "bool", True,
+                  "Publish transformation between ``odom_frame_id`` and ``base_frame_id``."),
+        ParamDecl("cmd_vel_timeout", "double", 0.5,
+                  "Timeout in seconds after which a command received on the ``cmd_vel`` topic is considered stale. "
+                  "A value of 0.0 disables the timeout.", also=(Check("gt_eq", (0.0,)),)),
+        ParamDecl("publish_limited_velocity", "bool", False, "Publish limited velocity value."),
+        ParamDecl("velocity_rolling_window_size", "int", 10,
+                  "Size of the rolling window for calculation of mean velocity use in odometry.",
+                  also=(Check("bounds", (1, 100_000)),)),
+        ParamDecl("publish_rate", "double", 50.0, "Publishing rate (Hz) of the odometry and TF messages.",
+                  also=_POSITIVE),
         *_axis_decls("linear.x"),
         *_axis_decls("angular.z"),
     ]

@@ -2,8 +2,8 @@
 
 The simplest controllers: `~/commands` (std_msgs/msg/Float64MultiArray) holds one value per joint, in the order
 of `joints`, written to `<joint>/<interface_name>` every update. Parameters as forward_command_controller's
-`src/forward_command_controller_parameters.yaml` (ros2_controllers, jazzy): `joints` and `interface_name`,
-both read-only and non-empty; JointGroupVelocityController fixes `interface_name` to `velocity`. A "joint" may
+`src/forward_command_controller_parameters.yaml` (ros2_controllers, jazzy): `joints` and `interface_name`
+(diffctl refuses them empty); JointGroupVelocityController fixes `interface_name` to `velocity`. A "joint" may
 be another controller's reference interface prefix (`diff_drive/linear` with interface `velocity`), which
 chains this controller in front of that one.
 
@@ -18,14 +18,16 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from diffctl.client.interfaces import cls
+from diffctl.client.qos import qos_profile_system_default
 from diffctl.control.controller_interface import ControllerInterface, InterfaceConfiguration, ReturnType
 from diffctl.control.controllers.command_sanity import MAX_JOINT_VELOCITY, rejection
 from diffctl.control.controllers.owned_endpoints import OwnedEndpoints
 from diffctl.control.controllers.param_decl import (
-    BASE_DECLS,
     Check,
     ParamDecl,
     declare_all,
+    overrides,
     read_declared,
     table,
     unknown_key_warnings,
@@ -36,23 +38,18 @@ from diffctl.errors import RuntimeFailure
 FLOAT64_MULTI_ARRAY = "std_msgs/msg/Float64MultiArray"
 _NOT_EMPTY = (Check("not_empty", ()),)
 
+# forward_command_controller_parameters.yaml (ros2_controllers, jazzy).
 DECLS = table(
     [
-        *BASE_DECLS,
-        ParamDecl("joints", "string_array", [], "Joints to command.", True, (*_NOT_EMPTY, Check("unique", ()))),
-        ParamDecl("interface_name", "string", "", "Command interface of every joint.", True, _NOT_EMPTY),
+        ParamDecl("joints", "string_array", [], "Name of the joints to control",
+                  also=(*_NOT_EMPTY, Check("unique", ()))),
+        ParamDecl("interface_name", "string", "", "Name of the interface to command", also=_NOT_EMPTY),
     ]
 )
 VELOCITY_DECLS = {
     **DECLS,
-    "interface_name": ParamDecl(
-        "interface_name",
-        "string",
-        "velocity",
-        "Command interface of every joint.",
-        True,
-        (Check("one_of", (["velocity"],)),),
-    ),
+    "interface_name": ParamDecl("interface_name", "string", "velocity", "Name of the interface to command",
+                                also=(Check("one_of", (["velocity"],)),)),
 }
 
 
@@ -82,14 +79,15 @@ class ForwardCommandController(ControllerInterface):
         self._active = False
 
     def on_init(self) -> None:
-        self.params, warnings = ForwardCommandParams.from_params(dict(self.node.params), self.name, self.DECLS)
+        node = self.get_node()
+        self.params, warnings = ForwardCommandParams.from_params(overrides(node), self.get_name(), self.DECLS)
         for text in warnings:
-            self.node.log.warn(text)
-        declare_all(self.node, self.DECLS, self.name)
+            node.get_logger().warn(text)
+        declare_all(node, self.DECLS, self.get_name())
 
     def _names(self) -> list[str]:
         if self.params is None:
-            raise RuntimeFailure(f"controller '{self.name}' has no parameters: on_init was not run")
+            raise RuntimeFailure(f"controller '{self.get_name()}' has no parameters: on_init was not run")
         return [f"{j}/{self.params.interface_name}" for j in self.params.joints]
 
     def command_interface_configuration(self) -> InterfaceConfiguration:
@@ -98,13 +96,15 @@ class ForwardCommandController(ControllerInterface):
     def state_interface_configuration(self) -> InterfaceConfiguration:
         return InterfaceConfiguration.none()
 
-    def on_configure(self) -> None:
+    def on_configure(self, previous_state: Any) -> None:
         self._endpoints.close_all()
-        self._log = ThrottledLog(self.node.log)
+        node = self.get_node()
+        self._log = ThrottledLog(node.get_logger())
         self._command = None
-        self._endpoints.keep(self.node.create_subscription("~/commands", FLOAT64_MULTI_ARRAY, self._on_commands))
+        self._endpoints.keep(node.create_subscription(
+            cls(FLOAT64_MULTI_ARRAY), "~/commands", self._on_commands, qos_profile_system_default))
 
-    def on_activate(self) -> None:
+    def on_activate(self, previous_state: Any) -> None:
         by_name = {ci.name: ci for ci in self.command_interfaces}
         missing = [n for n in self._names() if n not in by_name]
         if missing:
@@ -113,7 +113,7 @@ class ForwardCommandController(ControllerInterface):
         self._command = None  # a command sent while inactive must not move anything on activation
         self._active = True
 
-    def on_deactivate(self) -> None:
+    def on_deactivate(self, previous_state: Any) -> None:
         self._active = False
         if self.zero_on_deactivate:
             for handle in self._handles:
@@ -121,10 +121,10 @@ class ForwardCommandController(ControllerInterface):
         self._handles = []
         self._command = None
 
-    def on_cleanup(self) -> None:
+    def on_cleanup(self, previous_state: Any) -> None:
         self._endpoints.close_all()
 
-    def on_shutdown(self) -> None:
+    def on_shutdown(self, previous_state: Any) -> None:
         self._endpoints.close_all()
 
     def _on_commands(self, msg: Any) -> None:
@@ -146,7 +146,7 @@ class ForwardCommandController(ControllerInterface):
             return
         self._command = tuple(float(v) for v in data)
 
-    def update(self, time_ns: int, period_s: float) -> ReturnType:
+    def update(self, time: Any, period: Any) -> ReturnType:
         command = self._command
         if command is not None:
             for handle, value in zip(self._handles, command, strict=False):

@@ -19,22 +19,22 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-import numpy as np
-
+from diffctl.client.interfaces import cls
+from diffctl.client.qos import qos_profile_system_default
 from diffctl.control.cdr_template import CdrTemplate
 from diffctl.control.controller_interface import ControllerInterface, InterfaceConfiguration, ReturnType
 from diffctl.control.controllers.owned_endpoints import OwnedEndpoints
 from diffctl.control.controllers.param_decl import (
-    BASE_DECLS,
     Check,
     ParamDecl,
     declare_all,
+    overrides,
     read_declared,
     table,
     unknown_key_warnings,
 )
+from diffctl.control.realtime_publisher import RealtimePublisher
 from diffctl.errors import ParameterError, RuntimeFailure
-from diffctl.interfaces import types
 
 JOINT_STATE = "sensor_msgs/msg/JointState"
 DYNAMIC_JOINT_STATE = "control_msgs/msg/DynamicJointState"
@@ -45,22 +45,38 @@ _OK = ReturnType.OK
 _NAME = (Check("not_empty", ()),)
 _UNIQUE = (Check("unique", ()),)
 
-# joint_state_broadcaster's `src/joint_state_broadcaster_parameters.yaml` (ros2_controllers, jazzy): every
-# parameter is read-only: they shape the interfaces claimed and the messages built at activation.
+_BOTH = ("If either ``joints`` or ``interfaces`` is left empty, all available state interfaces will be "
+         "published.")
+# joint_state_broadcaster's `src/joint_state_broadcaster_parameters.yaml` (ros2_controllers, jazzy), in its
+# order: every parameter is read-only (they shape the interfaces claimed and the messages built at activation).
 DECLS = table(
     [
-        *BASE_DECLS,
-        ParamDecl("use_local_topics", "bool", False, "Publish ~/joint_states instead of /joint_states.", True),
-        ParamDecl("joints", "string_array", [], "Joints to publish (with interfaces); empty: all.", True, _UNIQUE),
-        ParamDecl("extra_joints", "string_array", [], "Joints added with state 0.", True, _UNIQUE),
-        ParamDecl("interfaces", "string_array", [], "Interfaces to publish (with joints); empty: all.", True, _UNIQUE),
-        *(
-            ParamDecl(f"map_interface_to_joint_state.{f}", "string", f, f"Interface published as {f}.", True, _NAME)
-            for f in _FIELDS
-        ),
-        ParamDecl("use_urdf_to_filter", "bool", True, "Publish only joints of the robot description.", True),
-        ParamDecl("frame_id", "string", "base_link", "header.frame_id of the messages.", True),
-        ParamDecl("publish_dynamic_joint_states", "bool", True, "Publish dynamic_joint_states too.", True),
+        ParamDecl("use_local_topics", "bool", False,
+                  "Defining if ``joint_states`` and ``dynamic_joint_states`` messages should be published into local "
+                  "namespace, e.g., ``/my_state_broadcaster/joint_states``.", True),
+        ParamDecl("joints", "string_array", [],
+                  "Parameter to support broadcasting of only specific joints and interfaces. It has to be used in "
+                  f"combination with the ``interfaces`` parameter. {_BOTH} Joint state broadcaster asks for access "
+                  "to all defined interfaces on all defined joints.", True, also=_UNIQUE),
+        ParamDecl("extra_joints", "string_array", [],
+                  "Names of extra joints to be added to ``joint_states`` and ``dynamic_joint_states`` with state "
+                  "set to 0.", True, also=_UNIQUE),
+        ParamDecl("interfaces", "string_array", [],
+                  "Parameter to support broadcasting of only specific joints and interfaces. It has to be used in "
+                  f"combination with the ``joints`` parameter. {_BOTH} If this parameter contains ``position``, "
+                  "``velocity``, or ``effort``, the corresponding ``map_interface_to_joint_state.<field>`` setting "
+                  "is ignored because the standard interface is already requested directly. A warning is printed "
+                  "only when such an ignored mapping is set to a different custom interface name.", True,
+                  also=_UNIQUE),
+        *(ParamDecl(f"map_interface_to_joint_state.{f}", "string", f, "", True, also=_NAME) for f in _FIELDS),
+        ParamDecl("use_urdf_to_filter", "bool", True,
+                  "Uses the robot_description to filter the ``joint_states`` topic. If true, the broadcaster will "
+                  "publish the data of the joints present in the URDF alone. If false, the broadcaster will publish "
+                  "the data of any interface that has type ``position``, ``velocity``, or ``effort``.", True),
+        ParamDecl("frame_id", "string", "base_link",
+                  "The frame_id to be used in the published joint states. This parameter allows rviz2 to visualize "
+                  "the effort of the joints.", True),
+        ParamDecl("publish_dynamic_joint_states", "bool", True, "Whether to publish dynamic joint states.", True),
     ]
 )
 
@@ -112,6 +128,14 @@ class JointStateBroadcasterParams:
         return p, warnings
 
 
+def _picker(indices: list[int]) -> Any:
+    """values → the tuple of values[i] for i in `indices` (one C call per cycle)."""
+    if not indices:
+        return lambda _values: ()
+    get = operator.itemgetter(*indices)
+    return get if len(indices) > 1 else lambda values: (get(values),)
+
+
 def description_joint_names(description: str) -> list[str] | None:
     """Joint names of the robot description in document order, or None when it cannot be read."""
     if not description.strip():
@@ -132,15 +156,16 @@ class JointStateBroadcaster(ControllerInterface):
         self._endpoints = OwnedEndpoints()
         self._js_pub: Any = None
         self._djs_pub: Any = None
-        self._plan: list[tuple[np.ndarray, int, Any]] = []
-        self._fast: list[tuple[Any, CdrTemplate, list[Any]]] = []  # (publisher, template, handles of its leaves)
+        self._handles: list[Any] = []
+        self._fast: list[tuple[Any, CdrTemplate, Any]] = []  # (publisher, template, values → its leaves' values)
         self.joint_names: list[str] = []
 
     def on_init(self) -> None:
-        self.params, warnings = JointStateBroadcasterParams.from_params(dict(self.node.params), self.name)
+        node = self.get_node()
+        self.params, warnings = JointStateBroadcasterParams.from_params(overrides(node), self.get_name())
         for text in warnings:
-            self.node.log.warn(text)
-        declare_all(self.node, DECLS, self.name)
+            node.get_logger().warn(text)
+        declare_all(node, DECLS, self.get_name())
 
     def command_interface_configuration(self) -> InterfaceConfiguration:
         return InterfaceConfiguration.none()
@@ -151,17 +176,19 @@ class JointStateBroadcaster(ControllerInterface):
             return InterfaceConfiguration.all()
         return InterfaceConfiguration.individual([f"{j}/{i}" for j in p.joints for i in p.interfaces])
 
-    def on_configure(self) -> None:
+    def on_configure(self, previous_state: Any) -> None:
         self._close_endpoints()
         # Relative, as upstream: a broadcaster in /robot1 publishes /robot1/joint_states (multi-robot setups).
         local = "~/" if self.params.use_local_topics else ""
-        self._js_pub = self._endpoints.keep(self.node.create_publisher(f"{local}joint_states", JOINT_STATE))
+        self._js_pub = self._publisher(JOINT_STATE, f"{local}joint_states")
         if self.params.publish_dynamic_joint_states:
-            self._djs_pub = self._endpoints.keep(
-                self.node.create_publisher(f"{local}dynamic_joint_states", DYNAMIC_JOINT_STATE)
-            )
+            self._djs_pub = self._publisher(DYNAMIC_JOINT_STATE, f"{local}dynamic_joint_states")
 
-    def on_activate(self) -> None:
+    def _publisher(self, type_name: str, topic: str) -> RealtimePublisher:
+        pub = self.get_node().create_publisher(cls(type_name), topic, qos_profile_system_default)
+        return self._endpoints.keep(RealtimePublisher(pub))
+
+    def on_activate(self, previous_state: Any) -> None:
         p = self.params
         if not self.state_interfaces:
             raise RuntimeFailure("None of the requested interfaces exist. Controller will not run.")
@@ -174,81 +201,59 @@ class JointStateBroadcaster(ControllerInterface):
         if p.joints:
             published = [j for j in p.joints if j in published]
         elif p.use_urdf_to_filter:
-            order = description_joint_names(self.robot_description)
+            order = description_joint_names(self.get_robot_description())
             if order is not None:
                 published = [j for j in dict.fromkeys(order) if j in published]
         extra = [j for j in p.extra_joints if j not in by_joint]
 
-        n = len(published) + len(extra)
-        js = types.new(JOINT_STATE, {"header": {"frame_id": p.frame_id}, "name": [*published, *extra]})
-        arrays = {f: np.full(n, math.nan) for f in _FIELDS}
+        # Each message's fixed layout becomes a template; a cycle hands over the stamp and the state values,
+        # packed by the publishing thread (names, frames and the extra joints' zeros stay as built here).
+        js = cls(JOINT_STATE)(name=[*published, *extra])
+        js.header.frame_id = p.frame_id
         for f in _FIELDS:
-            arrays[f][len(published) :] = 0.0
-            setattr(js, f, arrays[f])
-        plan: list[tuple[np.ndarray, int, Any]] = []
-        js_leaves: list[tuple[str, int, Any]] = []  # (field, index, handle)
-        for index, joint in enumerate(published):
-            for si in by_joint[joint]:
-                field = fields.get(si.interface_name)
-                if field is not None:
-                    plan.append((arrays[field], index, si))
-                    js_leaves.append((field, index, si))
+            setattr(js, f, [math.nan] * len(published) + [0.0] * len(extra))
+        js_leaves = [(field, index, si) for index, joint in enumerate(published) for si in by_joint[joint]
+                     if (field := fields.get(si.interface_name)) is not None]  # fmt: skip
+        js_leaves.sort(key=lambda leaf: (_FIELDS.index(leaf[0]), leaf[1]))  # the message's byte order
 
-        djs = types.new(DYNAMIC_JOINT_STATE, {"header": {"frame_id": p.frame_id}})
-        djs.joint_names = [*by_joint, *extra]
-        value_class = types.get_class("control_msgs/msg/InterfaceValue")
-        for sis in by_joint.values():
-            values = np.full(len(sis), math.nan)
-            djs.interface_values.append(value_class(interface_names=[si.interface_name for si in sis], values=values))
-            plan.extend((values, k, si) for k, si in enumerate(sis))
-        for _ in extra:
-            djs.interface_values.append(value_class(interface_names=list(_FIELDS), values=np.zeros(3)))
-
-        self._joint_state, self._dynamic_joint_state, self._plan = js, djs, plan
+        djs = cls(DYNAMIC_JOINT_STATE)(joint_names=[*by_joint, *extra])
+        djs.header.frame_id = p.frame_id
+        value_class = cls("control_msgs/msg/InterfaceValue")
+        djs.interface_values = [
+            *(value_class(interface_names=[si.interface_name for si in sis], values=[math.nan] * len(sis))
+              for sis in by_joint.values()),
+            *(value_class(interface_names=list(_FIELDS), values=[0.0] * 3) for _ in extra),
+        ]  # fmt: skip
         self.joint_names = published + extra
+        stamp = [("header.stamp.sec", "i"), ("header.stamp.nanosec", "I")]
+        # Every state interface's value is read once per cycle (in the claimed order); each message picks its own.
+        self._handles = handles = [si for sis in by_joint.values() for si in sis]
+        position = {id(si): k for k, si in enumerate(handles)}
         self._fast = []
-        if all(hasattr(pub, "publish_values") for pub in (self._js_pub, self._djs_pub) if pub is not None):
-            # The controllers' bus publishers take a template's values: each message's fixed layout becomes a
-            # template, and a cycle hands over the stamp and the state values (packed by the publishing
-            # thread; the arrays above are then left as activated).
-            stamp = [("header.stamp.sec", "i"), ("header.stamp.nanosec", "I")]
-            js_leaves.sort(key=lambda leaf: (_FIELDS.index(leaf[0]), leaf[1]))  # the message's byte order
-            template = CdrTemplate(js, JOINT_STATE, stamp + [(f"{f}[{i}]", "d") for f, i, _ in js_leaves])
-            if self._js_pub is not None:
-                self._fast.append((self._js_pub, template, [si for _, _, si in js_leaves]))
-            if self._djs_pub is not None:
-                leaves = [f"interface_values[{j}].values[{k}]" for j, sis in enumerate(by_joint.values())
-                          for k in range(len(sis))]  # fmt: skip
-                template = CdrTemplate(djs, DYNAMIC_JOINT_STATE, stamp + [(leaf, "d") for leaf in leaves])
-                self._fast.append((self._djs_pub, template, [si for sis in by_joint.values() for si in sis]))
-
-    def on_deactivate(self) -> None:
-        self._plan = []
-        self._fast = []
-
-    def on_cleanup(self) -> None:
-        self._close_endpoints()
-
-    def on_shutdown(self) -> None:
-        self._close_endpoints()
-
-    def update(self, time_ns: int, period_s: float) -> ReturnType:
-        sec, nanosec = divmod(time_ns, _NS)
-        if self._fast:
-            for pub, template, handles in self._fast:
-                pub.publish_values(template, [sec, nanosec, *map(_VALUE, handles)])
-            return _OK
-        for array, index, handle in self._plan:
-            array[index] = handle.get_value()
-        stamp = self._joint_state.header.stamp
-        stamp.sec, stamp.nanosec = sec, nanosec
         if self._js_pub is not None:
-            self._js_pub.publish(self._joint_state)
+            template = CdrTemplate(js, JOINT_STATE, stamp + [(f"{f}[{i}]", "d") for f, i, _ in js_leaves])
+            self._fast.append((self._js_pub, template, _picker([position[id(si)] for _, _, si in js_leaves])))
         if self._djs_pub is not None:
-            stamp = self._dynamic_joint_state.header.stamp
-            stamp.sec, stamp.nanosec = sec, nanosec
-            self._djs_pub.publish(self._dynamic_joint_state)
-        return ReturnType.OK
+            leaves = [f"interface_values[{j}].values[{k}]" for j, sis in enumerate(by_joint.values())
+                      for k in range(len(sis))]  # fmt: skip
+            template = CdrTemplate(djs, DYNAMIC_JOINT_STATE, stamp + [(leaf, "d") for leaf in leaves])
+            self._fast.append((self._djs_pub, template, tuple))
+
+    def on_deactivate(self, previous_state: Any) -> None:
+        self._fast = []
+
+    def on_cleanup(self, previous_state: Any) -> None:
+        self._close_endpoints()
+
+    def on_shutdown(self, previous_state: Any) -> None:
+        self._close_endpoints()
+
+    def update(self, time: Any, period: Any) -> ReturnType:
+        stamp = divmod(time.nanoseconds, _NS)
+        values = tuple(map(_VALUE, self._handles))
+        for pub, template, pick in self._fast:
+            pub.publish_values(template, stamp + pick(values))
+        return _OK
 
     def _close_endpoints(self) -> None:
         self._endpoints.close_all()

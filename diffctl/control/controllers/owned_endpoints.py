@@ -1,4 +1,4 @@
-"""The publishers and subscriptions a controller created, so cleanup can close exactly those."""
+"""The publishers and subscriptions a controller created, so cleanup can destroy exactly those."""
 
 from __future__ import annotations
 
@@ -17,7 +17,5 @@ class OwnedEndpoints:
 
     def close_all(self) -> None:
         for endpoint in self._items:
-            close = getattr(endpoint, "close", None)
-            if close is not None:
-                close()
+            endpoint.destroy()  # rclpy's Publisher/Subscription.destroy(): off the node and the wire
         self._items.clear()

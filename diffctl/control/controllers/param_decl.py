@@ -1,16 +1,20 @@
 """Parameter declaration tables: one `ParamDecl` per entry of a ros2_controllers `*_parameters.yaml`.
 
-generate_parameter_library turns such a YAML (type, default_value, description, read_only, validation) into
-both the node's declarations and the checks applied to every value; a table of `ParamDecl` does the same
-here, in one place:
-  - `read_declared(table, params, controller)` validates the node's values (file overrides, or the defaults)
-    into a dict of typed values, raising ParameterError naming `<controller>.<parameter>`;
-  - `declare_all(node, table, controller)` declares every entry on the controller's node with a
-    ParameterDescriptor built from the same entry (read_only, ranges, the validation as text), so
-    `param describe/get/set` see exactly what the controller validates against.
+generate_parameter_library turns such a YAML (type, default_value, description, read_only, validation,
+additional_constraints) into both the node's declarations and the checks applied to every value; a table of
+`ParamDecl` does the same here, in one place:
+  - `read_declared(table, params, controller)` validates values (the node's overrides, or the defaults) into a
+    dict of typed values, raising ParameterError naming `<controller>.<parameter>`;
+  - `declare_all(node, table, controller)` validates the node's overrides, then declares every entry on the
+    controller's client Node with the ParameterDescriptor the library would give it: the description, read_only,
+    additional_constraints as written, and the range its validators imply (`bounds<>`, `gt_eq<>`/`lt_eq<>`,
+    `gt<>`/`lt<>` just past the limit) on doubles and integers; the node then enforces the range itself;
+  - `validate_changes(node, table, controller)` refuses a `param set` that breaks a rule, as the library's
+    parameter listener does.
 Validators have generate_parameter_library's names (`gt<>`, `gt_eq<>`, `lt<>`, `lt_eq<>`, `bounds<>`,
-`not_empty<>`, `unique<>`, `size_eq<>`, `one_of<>`, `lower_element_bounds<>`). A double accepts an integer
-(rclcpp would refuse `wheel_radius: 1`; nobody means anything else by it).
+`not_empty<>`, `unique<>`, `size_eq<>`, `one_of<>`, `lower_element_bounds<>`) and control_toolbox's
+`control_filters::gt_eq_or_nan<>` / `lt_eq_or_nan<>`. A double accepts an integer (rclcpp would refuse
+`wheel_radius: 1`; nobody means anything else by it).
 """
 
 from __future__ import annotations
@@ -34,7 +38,8 @@ _ROS_TYPE = {
     "double_array": "double_array",
     "string_array": "string_array",
 }
-# Keys the controller manager owns on every controller node (`<name>.type`, `.params_file`, …): never unknown.
+# Keys the controller manager owns on every controller node (`<name>.type`, `.params_file`, …) and the ones
+# controller_interface declares on it: never unknown.
 MANAGER_KEYS = frozenset(
     {"type", "update_rate", "use_sim_time", "params_file", "is_async", "thread_priority", "fallback_controllers"}
 )
@@ -57,9 +62,19 @@ class Check:
     def text(self) -> str:
         return f"{self.kind}<>: {list(self.args)}"
 
+    @property
+    def base_name(self) -> str:
+        return self.kind.rpartition("::")[2]
+
     def reason(self, value: Any) -> str | None:
         """Why `value` fails this check, or None when it passes."""
         k, a = self.kind, self.args
+        if k in _OR_NAN:
+            if isinstance(value, list):
+                return next((r for r in (self.reason(v) for v in value) if r), None)
+            if value != value:  # NaN: "not set", always allowed
+                return None
+            return Check(_OR_NAN[k], a).reason(value)
         if k in _COMPARE:
             if isinstance(value, list):  # element-wise on arrays, as the library's *_element_* forms
                 return next((r for r in (self.reason(v) for v in value) if r), None)
@@ -91,6 +106,9 @@ _COMPARE: dict[str, tuple[Any, Any]] = {
 }
 
 
+_OR_NAN = {"control_filters::gt_eq_or_nan": "gt_eq", "control_filters::lt_eq_or_nan": "lt_eq"}
+
+
 @dataclass(frozen=True)
 class ParamDecl:
     """One parameter as its `*_parameters.yaml` declares it."""
@@ -100,48 +118,57 @@ class ParamDecl:
     default: Any
     description: str = ""
     read_only: bool = False
-    checks: tuple[Check, ...] = ()
+    checks: tuple[Check, ...] = ()  # the YAML's validation (they shape the descriptor)
+    additional_constraints: str = ""
+    also: tuple[Check, ...] = ()  # diffctl's checks beyond the YAML's (not announced)
 
     @property
     def ros_type(self) -> str:
         return _ROS_TYPE[self.type]
 
     def descriptor(self) -> Any:
-        """The ParameterDescriptor a node announces for this parameter."""
-        from diffctl.bus.parameters import ParameterDescriptor
+        """The ParameterDescriptor generate_parameter_library declares this parameter with."""
+        from diffctl.client.interfaces import cls
 
-        fp: tuple[float, float, float] | None = None
-        ir: tuple[int, int, int] | None = None
-        # A NaN default means "unset" and a ROS range would refuse it, so such parameters announce no range.
-        ranged = not (self.type == "double" and self.default != self.default)
-        for c in self.checks if ranged else ():
-            lo, hi = _range_of(c, integer=self.type == "int")
-            if lo is None:
-                continue
-            if self.type == "double":
-                fp = (float(lo), float(hi), 0.0)
-            elif self.type == "int":
-                ir = (int(lo), int(hi), 0)
-        return ParameterDescriptor(
-            type=self.ros_type,
-            description=self.description,
-            read_only=self.read_only,
-            floating_point_range=fp,
-            integer_range=ir,
-            additional_constraints="; ".join(c.text for c in self.checks),
+        d = cls("rcl_interfaces/msg/ParameterDescriptor")(
+            description=self.description, read_only=self.read_only, additional_constraints=self.additional_constraints
         )
+        lo, hi = self.range()
+        if lo is None and hi is None:
+            return d
+        if self.type.startswith("double"):
+            d.floating_point_range = [cls("rcl_interfaces/msg/FloatingPointRange")(
+                from_value=-_DOUBLE_MAX if lo is None else float(lo),
+                to_value=_DOUBLE_MAX if hi is None else float(hi), step=0.0)]
+        elif self.type.startswith("int"):
+            d.integer_range = [cls("rcl_interfaces/msg/IntegerRange")(
+                from_value=-_INT_MAX - 1 if lo is None else int(lo), to_value=_INT_MAX if hi is None else int(hi),
+                step=0)]
+        return d
 
-
-def _range_of(c: Check, *, integer: bool) -> tuple[float | None, float | None]:
-    """The descriptor range a check implies (ranges are inclusive, so only the inclusive checks give one)."""
-    top, bottom = (_INT_MAX, -_INT_MAX - 1) if integer else (_DOUBLE_MAX, -_DOUBLE_MAX)
-    if c.kind == "bounds":
-        return c.args[0], c.args[1]
-    if c.kind == "gt_eq":
-        return c.args[0], top
-    if c.kind == "lt_eq":
-        return bottom, c.args[0]
-    return None, None
+    def range(self) -> tuple[float | None, float | None]:
+        """The range the validators imply, as the library computes it (the last validator giving a bound wins;
+        an exclusive limit becomes the next representable value inside it)."""
+        lo: float | None = None
+        hi: float | None = None
+        integer = self.type.startswith("int")
+        for c in self.checks:
+            name, base = c.kind, c.base_name
+            if not ("bounds" in name or "lt" in name or "gt" in name):
+                continue
+            if len(c.args) == 2:
+                lo, hi = c.args
+            elif len(c.args) != 1:
+                continue
+            elif "lower" in name or base == "gt_eq":
+                lo = c.args[0]
+            elif base == "gt":
+                lo = c.args[0] + 1 if integer else math.nextafter(c.args[0], math.inf)
+            elif "upper" in name or base == "lt_eq":
+                hi = c.args[0]
+            elif base == "lt":
+                hi = c.args[0] - 1 if integer else math.nextafter(c.args[0], -math.inf)
+        return lo, hi
 
 
 def _is_number(v: Any) -> bool:
@@ -186,11 +213,12 @@ def check(decl: ParamDecl, raw: Any, controller: str) -> Any:
     except ValueError as e:
         raise ParameterError(str(e), field=f"{controller}.{decl.name}", hint=_valid_text(decl)) from None
     unset = decl.type == "double" and value != value and decl.default != decl.default  # NaN: "no value"
-    if decl.type == "double" and decl.checks and not unset and not math.isfinite(value):
+    checks = decl.checks + decl.also
+    if decl.type == "double" and checks and not unset and not math.isfinite(value):
         raise ParameterError(
             f"{raw!r} is not a finite number", field=f"{controller}.{decl.name}", hint=_valid_text(decl)
         )
-    for c in () if unset else decl.checks:
+    for c in () if unset else checks:
         why = c.reason(value)
         if why is not None:
             if why.startswith(repr(value)):  # quote the value as the user wrote it (1, not 1.0)
@@ -200,7 +228,7 @@ def check(decl: ParamDecl, raw: Any, controller: str) -> Any:
 
 
 def _valid_text(decl: ParamDecl) -> str:
-    rules = ", ".join(c.text for c in decl.checks)
+    rules = ", ".join(c.text for c in decl.checks + decl.also)
     return f"{decl.type}{', ' + rules if rules else ''}; default {decl.default!r}"
 
 
@@ -225,40 +253,62 @@ def unknown_key_warnings(
     ]
 
 
-def declare_all(node: Any, decls: Mapping[str, ParamDecl], controller: str) -> dict[str, Any]:
-    """Validate the node's values against `decls`, then declare each on the node with its descriptor.
+def overrides(node: Any) -> dict[str, Any]:
+    """The values a node was started with (its parameter files and -p rules, for its name), by parameter name
+    (rclcpp's NodeParametersInterface::get_parameter_overrides)."""
+    return {name: p.value for name, p in getattr(node, "_parameter_overrides", {}).items()}
 
-    Returns the typed values. A node without the parameter API (a test double) is only validated.
-    """
-    values = read_declared(decls, node.params, controller)
-    declare = getattr(node, "declare_parameter", None)
-    if declare is None:
-        return values
-    overrides = getattr(getattr(node, "parameters", None), "overrides", {})
+
+def declare_all(node: Any, decls: Mapping[str, ParamDecl], controller: str) -> dict[str, Any]:
+    """Validate the node's overrides against `decls`, then declare each parameter on the node with its
+    descriptor and the validated value. Returns the typed values (raises ParameterError)."""
+    values = read_declared(decls, overrides(node), controller)
+    batch = []
     for name, d in decls.items():
-        if name in overrides:
-            overrides[name] = values[name]  # the typed override: 10.0 given for an integer is 10
-        values[name] = declare(name, values[name], d.descriptor())
+        if node.has_parameter(name):
+            values[name] = node.get_parameter(name).value
+        elif d.type.endswith("_array") and len(values[name]) == 0:
+            declare(node, d, values[name])
+        else:
+            batch.append((name, values[name], d.descriptor()))
+    node.declare_parameters("", batch, ignore_override=True)  # one call for the lot, as the library declares
     return values
 
 
-# Declared by controller_interface on every controller node (controller_interface_base.cpp).
-BASE_DECLS: tuple[ParamDecl, ...] = (
-    ParamDecl(
-        "update_rate",
-        "int",
-        0,
-        "Rate of the controller's update() in Hz; 0 = the manager's rate.",
-        read_only=True,
-        checks=(Check("gt_eq", (0,)),),
-    ),
-    ParamDecl("is_async", "bool", False, "Whether the controller runs asynchronously.", read_only=True),
-    ParamDecl(
-        "thread_priority",
-        "int",
-        50,
-        "Priority of an async controller's thread.",
-        read_only=True,
-        checks=(Check("bounds", (0, 99)),),
-    ),
-)
+def declare(node: Any, decl: ParamDecl, value: Any) -> None:
+    """Declare one parameter with its descriptor and `value` (not the node's override: it was validated).
+    An empty array is declared by its type, set, then given its descriptor: rclpy types a value by its contents
+    and would take `[]` for a byte array."""
+    if not (decl.type.endswith("_array") and len(value) == 0):
+        node.declare_parameter(decl.name, value, decl.descriptor(), ignore_override=True)
+        return
+    from diffctl.client.parameter import Parameter
+
+    kind = Parameter.Type[decl.ros_type.upper()]
+    descriptor = decl.descriptor()
+    writable = decl.descriptor()
+    writable.read_only = False
+    node.declare_parameter(decl.name, kind, writable, ignore_override=True)
+    node.set_parameters([Parameter(decl.name, kind, [])])
+    if descriptor.read_only:
+        descriptor.type = kind.value
+        node.set_descriptor(decl.name, descriptor)
+
+
+def set_result(reason: str | None) -> Any:
+    """rcl_interfaces/SetParametersResult: successful unless `reason`."""
+    from diffctl.client.interfaces import cls
+
+    return cls("rcl_interfaces/msg/SetParametersResult")(successful=reason is None, reason=reason or "")
+
+
+def current_values(node: Any, decls: Mapping[str, ParamDecl]) -> dict[str, Any]:
+    """The node's present values of the declared parameters."""
+    return {name: node.get_parameter(name).value for name in decls if node.has_parameter(name)}
+
+
+def changed_values(node: Any, decls: Mapping[str, ParamDecl], parameters: Iterable[Any]) -> dict[str, Any]:
+    """The node's values with `parameters` (a set request) applied, limited to the table's names."""
+    values = current_values(node, decls)
+    values.update({p.name: p.value for p in parameters if p.name in decls})
+    return values

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import hashlib
 import os
+import re
 from pathlib import Path
 
 from diffctl.description.missing_mesh import MeshNotFound
@@ -70,6 +71,39 @@ def convert_to_obj(path: Path) -> Path:
     tmp = out.with_suffix(f".{os.getpid()}.tmp")
     tmp.write_text(trimesh.exchange.obj.export_obj(mesh, include_normals=False))  # PyBullet computes its own
     tmp.replace(out)  # atomic: a concurrent loader never reads half a file
+    return out
+
+
+_FACE_LINE = re.compile(rb"(?m)^[ \t]*f[ \t]+[-+]?\d")
+_checked: dict[tuple[Path, int, int], Path | None] = {}
+
+
+def pybullet_mesh(path: Path) -> Path | None:
+    """The file PyBullet should load for an OBJ or STL, or None when it holds no triangle.
+
+    PyBullet reads binary STL only: an ASCII STL (common in ROS packages), or a binary one whose size disagrees
+    with its triangle count, made it crash (segfault) as a collision; such files are converted to OBJ. A mesh
+    with no triangle crashes it too, or fails its shape creation: there is nothing to simulate (the caller
+    leaves the shape out)."""
+    try:
+        st = path.stat()
+    except OSError:
+        return path  # the loader reports a file that cannot be read
+    key = (path, st.st_mtime_ns, st.st_size)
+    if key in _checked:
+        return _checked[key]
+    out: Path | None = path
+    if path.suffix.lower() == ".stl":
+        with path.open("rb") as f:
+            head = f.read(84)
+        count = int.from_bytes(head[80:84], "little") if len(head) == 84 else -1
+        if count < 0 or st.st_size != 84 + 50 * count:
+            out = convert_to_obj(path)  # ASCII (or odd) STL: trimesh reads it
+        elif count == 0:
+            out = None
+    if out is not None and out.suffix.lower() == ".obj" and not _FACE_LINE.search(out.read_bytes()):
+        out = None
+    _checked[key] = out
     return out
 
 

@@ -5,9 +5,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from diffctl.bus.log import Logger
 from diffctl.description.model import Plugin
 from diffctl.errors import DescriptionError
+from diffctl.sim.log import Logger
 from diffctl.sim.stepper import Stepper
 from diffctl.sim.transport import SimTransport
 

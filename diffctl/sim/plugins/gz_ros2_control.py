@@ -3,9 +3,11 @@
 As gz_ros2_control does (reference ros2_control.md §4, workspace_urdf.md §5): when a model whose description
 carries `<plugin filename="gz_ros2_control-system" name="gz_ros2_control::GazeboSimROS2ControlPlugin">` is
 spawned, the simulator builds a controller manager named `<controller_manager_name>` (default
-controller_manager) in `<ros><namespace>`, with the plugin's `<parameters>` files (later ones override) as its
-parameter files and `<ros><remapping>`s applied to it and its controllers, `use_sim_time` forced on, and a
-GazeboSimSystem hardware bound to the model's joints for every `<ros2_control>` block that asks for it.
+controller_manager) in `<ros><namespace>`, whose node arguments are gz_ros2_control's (`--ros-args`, a
+`--params-file` per `<parameters>` file, later ones overriding, and a `-r` per `<ros><remapping>`; its
+controllers inherit them), `use_sim_time` forced on, and a GazeboSimSystem hardware bound to the model's joints
+for every `<ros2_control>` block that asks for it. The managers' and controllers' client Nodes are spun by one
+multi-threaded executor of the simulator process.
 Every 1/update_rate of sim time the physics loop calls read → update → write synchronously on the sim thread,
 so results do not depend on machine speed and no message crosses a process boundary. The manager serves the
 same `/controller_manager/*` services as `diffctl control manager`. A controller that raises is deactivated
@@ -22,15 +24,15 @@ from typing import Any
 
 from lxml import etree
 
-from diffctl.control.controller_node import BusControllerNode
+from diffctl.control.controller_node import ManagerTime, make_controller_node
 from diffctl.control.hardware_interface import HardwareInfo
 from diffctl.control.manager import ControllerManager
-from diffctl.control.params import load_manager_files, manager_params
+from diffctl.control.manager_node import make_manager_node, manager_flat_params
+from diffctl.control.params import manager_params
 from diffctl.control.robot_hardware import PLACEHOLDER, infos_from_blocks
 from diffctl.control.services import ManagerServices
 from diffctl.description.model import Model, Plugin
 from diffctl.errors import ConfigError, DescriptionError
-from diffctl.ros_args import node_fqn
 from diffctl.sim.entity import Entity
 from diffctl.sim.plugins.base import PluginContext, SystemPlugin, bool_param, float_param
 from diffctl.sim.plugins.gazebo_sim_system import PLUGIN_ALIASES, GazeboSimSystem
@@ -123,7 +125,6 @@ class PreparedManager:
     `close` releases one that was never adopted (the spawn failed first)."""
 
     def __init__(self, ctx: PluginContext, model: Model, plugin: Plugin, description: str = "") -> None:
-        from diffctl.bus import Node
 
         self.plugin = plugin
         self.adopted = False
@@ -141,43 +142,48 @@ class PreparedManager:
             )
         self.infos = infos_from_blocks(blocks, source or None)
         name = self.params.controller_manager_name
-        remaps = dict(self.params.remappings)
-        fqn = node_fqn(name, self.params.namespace)
-        flat = {**load_manager_files(self.params.parameters, fqn), "use_sim_time": True}
-        cm_params = manager_params(
-            flat,
-            source=f"{name} parameters",
-            params_files=self.params.parameters,
-            namespace=self.params.namespace or "/",
-        )
+        arguments = ["--ros-args", *(w for f in self.params.parameters for w in ("--params-file", f))]
+        if self.params.remappings:
+            arguments += ["--ros-args", *(w for src, dst in self.params.remappings for w in ("-r", f"{src}:={dst}"))]
         self.stop = threading.Event()
         self.node: Any = None
         self.cm: ControllerManager | None = None
         if ctx.transport is None:
             raise ConfigError("the gz_ros2_control plugin needs the bus (the simulator runs without one)")
-        self.node = Node(name, self.params.namespace, remaps=remaps, params=dict(flat), use_sim_time=False)
+        from diffctl.client.parameter import Parameter
+
+        context, self.executor = hosted_executor()
+        # Its own arguments only: the simulator process's (`-r __node:=gz_sim` from a launch file) are not its.
         try:
-            self.node.clock.use_sim_time = True
-            self.node.clock.set_sim_ns(ctx.stepper.sim_time_ns)
-            namespace = self.node.namespace
-            stepper = ctx.stepper
+            self.node = make_manager_node(name, self.params.namespace or "/", arguments, context=context,
+                                          use_global_arguments=False)
+        except Exception:
+            release_hosted()
+            raise
+        self.time = ManagerTime()
+        try:
+            self.node.set_parameters([Parameter("use_sim_time", Parameter.Type.BOOL, True)])
+            self.time.follow(self.node)
+            self.time.set_ns(ctx.stepper.sim_time_ns)
+            flat = {**manager_flat_params(self.node), "use_sim_time": True}
+            cm_params = manager_params(flat, source=f"{name} parameters", node_arguments=arguments)
+            namespace = self.node.get_namespace()
 
-            plugin_remaps = remaps
-
-            def controller_node(
-                cname: str, p: dict[str, Any], remaps: dict[str, str] | None = None
-            ) -> BusControllerNode:
-                # The plugin's <remapping>s apply to every controller; --controller-ros-args to its own.
-                own = {**plugin_remaps, **(remaps or {})}
-                return BusControllerNode(cname, namespace, p, lambda: stepper.sim_time_ns, remaps=own)
+            def controller_node(cname: str, node_arguments: list[str]) -> Any:
+                node = make_controller_node(cname, namespace, node_arguments, context=context)
+                self.time.follow(node)
+                self.time.set_ns(ctx.stepper.sim_time_ns)
+                return node
 
             self.cm = ControllerManager(
                 cm_params,
-                log=self.node.log,
+                log=self.node.get_logger(),
                 node_factory=controller_node,
                 robot_description=description,
                 cancel=self.stop,
+                executor=self.executor,
             )
+            self.cm.on_node_released = self.time.forget
         except Exception:
             self.close()
             raise
@@ -188,9 +194,78 @@ class PreparedManager:
             return
         self.stop.set()
         if self.node is not None:
-            self.node.close()
+            self.node.destroy_node()
             self.node = None
+            release_hosted()
         self.cm = None
+
+
+@dataclass
+class _Hosted:
+    context: Any
+    executor: Any
+    thread: threading.Thread
+    owns_context: bool  # made ready here: shut down with the last manager
+    users: int = 0
+
+
+_hosted: _Hosted | None = None
+_hosted_lock = threading.Lock()
+
+
+def hosted_executor() -> tuple[Any, Any]:
+    """(context, executor) of the simulator process's controller managers: the default client context (made
+    ready with the process's ROS arguments if nobody did, without signal handlers: the simulator has its own)
+    and one multi-threaded executor spinning their nodes in a daemon thread, as gz_ros2_control's. Made anew
+    when the previous one stopped (its session closed); each caller calls `release_hosted` once done."""
+    global _hosted
+    with _hosted_lock:
+        if _hosted is None or not _hosted.thread.is_alive():
+            import sys
+
+            from diffctl import ros_args
+            from diffctl.client.context import get_default_context
+            from diffctl.client.executors import ExternalShutdownException, MultiThreadedExecutor
+
+            context = get_default_context()
+            owns = not context.ok()
+            if owns:
+                context.init([sys.argv[0], "--ros-args", *ros_args.current_argv()])
+            executor = MultiThreadedExecutor(num_threads=2, context=context)
+
+            def spin() -> None:
+                try:
+                    executor.spin()
+                except ExternalShutdownException:
+                    pass
+
+            thread = threading.Thread(target=spin, name="gz_ros2_control_executor", daemon=True)
+            thread.start()
+            _hosted = _Hosted(context, executor, thread, owns)
+        _hosted.users += 1
+        return _hosted.context, _hosted.executor
+
+
+def release_hosted() -> None:
+    """One user of `hosted_executor` is done; the last one stops the executor (and the context it made)."""
+    global _hosted
+    with _hosted_lock:
+        h = _hosted
+        if h is None:
+            return
+        h.users -= 1
+        if h.users > 0:
+            return
+        _hosted = None
+    h.executor.shutdown(timeout_sec=1.0)
+    if h.owns_context:
+        from diffctl.client import runtime
+        from diffctl.client.context import get_default_context
+
+        if get_default_context() is h.context:
+            runtime.try_shutdown()  # hands the default context over: a later init makes a fresh one
+        else:
+            h.context.try_shutdown()
 
 
 class GzRos2Control(SystemPlugin):
@@ -218,13 +293,14 @@ class GzRos2Control(SystemPlugin):
             prepared = PreparedManager(ctx, entity.model, plugin, description)
         prepared.adopted = True
         self.params, self.infos, self.stop = prepared.params, prepared.infos, prepared.stop
-        self.node, self.cm = prepared.node, prepared.cm
-        self.node.clock.set_sim_ns(ctx.stepper.sim_time_ns)  # sim time went on while it was prepared
+        self.node, self.cm, self.executor = prepared.node, prepared.cm, prepared.executor
+        self.time = prepared.time
         warn_skipped(ctx, entity.name, prepared.skipped)
         try:
             assert self.cm is not None
             self.cm.load_hardware(self.infos, self._hardware)
             self.services = ManagerServices(self.node, self.cm)
+            self.executor.add_node(self.node)
             self.cm.loop_running = True
             self._start_loop()
         except Exception:
@@ -232,7 +308,8 @@ class GzRos2Control(SystemPlugin):
             raise
         ctx.stepper.step_hooks.append(self._each_step)
         ctx.log.info(
-            f"controller manager {self.node.fqn} for model {entity.name!r}: {self.cm.update_rate} Hz of sim time, "
+            f"controller manager {self.node.get_fully_qualified_name()} for model {entity.name!r}: "
+            f"{self.cm.update_rate} Hz of sim time, "
             f"hardware [{', '.join(f'{i.name} ({i.plugin_name})' for i in self.infos)}]"
         )
 
@@ -265,7 +342,7 @@ class GzRos2Control(SystemPlugin):
         if period_s <= 0:  # the world was reset: time went back
             period_s = self.period_ns * 1e-9
         self._last_ns = sim_time_ns
-        self.node.clock.set_sim_ns(sim_time_ns)
+        self.time.set_ns(sim_time_ns)
         try:
             cm.cycle(sim_time_ns, period_s)  # read → update → write under one lock, as the real-time loop
         except Exception as e:  # the simulation goes on; the manager already deactivated what it could
@@ -299,6 +376,8 @@ class GzRos2Control(SystemPlugin):
             self.services.close()
             self.services = None
         if self.node is not None:
-            self.node.close()
+            self.executor.remove_node(self.node)
+            self.node.destroy_node()
             self.node = None
+            release_hosted()
         self.cm = None

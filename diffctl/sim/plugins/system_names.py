@@ -28,6 +28,15 @@ SYSTEM_CLASSES: dict[str, str] = {
     "linearbatteryplugin": "LinearBatteryPlugin",
     "thermal": "Thermal",
     "thermal-sensor": "ThermalSensor",
+    "mecanum-drive": "MecanumDrive",
+    "ackermann-steering": "AckermannSteering",
+    "joint-position-controller": "JointPositionController",
+    "joint-controller": "JointController",
+    "velocity-control": "VelocityControl",
+    "joint-trajectory-controller": "JointTrajectoryController",
+    "apply-joint-force": "ApplyJointForce",
+    "tracked-vehicle": "TrackedVehicle",
+    "track-controller": "TrackController",
 }
 _BY_CLASS = {cls: kind for kind, cls in SYSTEM_CLASSES.items()}
 _PREFIX = re.compile(r"^(?:gz-sim\d*-|ignition-gazebo\d*-)")

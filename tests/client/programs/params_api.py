@@ -60,6 +60,12 @@ obs("declare out of range", lambda: node.declare_parameter("r3", 11, ParameterDe
     integer_range=[IntegerRange(from_value=0, to_value=10, step=1)])))
 frng = ParameterDescriptor(floating_point_range=[FloatingPointRange(from_value=0.0, to_value=1.0, step=0.25)])
 obs("declare float ranged", lambda: node.declare_parameter("f", 0.5, frng))
+both = ParameterDescriptor(integer_range=[IntegerRange(from_value=0, to_value=10, step=1)],
+                           floating_point_range=[FloatingPointRange(from_value=0.0, to_value=1.0, step=0.0)])
+obs("declare both ranges", lambda: node.declare_parameter("both", 5, both))
+obs("set both ranges out", lambda: node.set_parameters([Parameter("both", value=11)]))
+obs("describe both ranges", lambda: [[len(d.integer_range), len(d.floating_point_range)]
+                                     for d in node.describe_parameters(["both"])])
 obs("declare dynamic", lambda: node.declare_parameter("dyn", 1, ParameterDescriptor(dynamic_typing=True)))
 obs("declare bad name", lambda: node.declare_parameter("bad..name", 1))
 obs("get undeclared", lambda: node.get_parameter("nope"))

@@ -13,9 +13,13 @@ params = os.path.join(tempfile.mkdtemp(), "params.yaml")
 with open(params, "w") as f:
     f.write("/**:\n  ros__parameters:\n    shared: 1\n    rate: 5.0\n"
             "talker:\n  ros__parameters:\n    rate: 10.0\n    nested:\n      gain: 2\n"
+            # scalars typed as rcl types them (PyYAML's YAML 1.1 rules differ on several)
+            "    tiny: 1e-9\n    hexa: 0x10\n    octal: 010\n    word: Yes\n    quoted: '1e-9'\n"
+            "    big: 99999999999999999999\n    under: 1_000\n    covariance: [1e-9, 2E-3, .inf]\n"
+            "    odom0_config:\n      - [true, false,\n         true]\n"
             "/robots/listener:\n  ros__parameters:\n    shared: 3\n")
 rclpy.init(args=[sys.argv[0], "--ros-args", "-r", "chatter:=talk", "-r", "listener:__ns:=/robots",
-                 "--params-file", params, "-p", "shared:=2", "-p", "talker:label:=mine",
+                 "--params-file", params, "-p", "shared:=2", "-p", "talker:label:=mine", "-p", "talker:exp:=1e-3",
                  "-r", "renamed_later:__node:=never", "--log-level", "info"])
 out = []
 
@@ -29,7 +33,8 @@ def describe(node, *names):
 
 
 talker = Node("talker", automatically_declare_parameters_from_overrides=True)
-out.append(["talker", describe(talker, "shared", "rate", "nested.gain", "label")])
+out.append(["talker", describe(talker, "shared", "rate", "nested.gain", "label", "tiny", "hexa", "octal", "word",
+                                 "quoted", "big", "under", "covariance", "odom0_config", "exp")])
 listener = Node("listener", automatically_declare_parameters_from_overrides=True)
 out.append(["listener", describe(listener, "shared", "rate", "label")])
 local = Node("local", cli_args=["--ros-args", "-r", "__node:=renamed", "-p", "shared:=9", "-r", "chatter:=mine"],

@@ -1,14 +1,16 @@
 """A forward command controller chained in front of diff_drive_controller through its reference interfaces
 `<controller>/linear/velocity` and `<controller>/angular/velocity`: the real manager, resource manager and
-mock hardware, the real controllers, controller nodes without a bus."""
+mock hardware, the real controllers on real client nodes."""
 
 from __future__ import annotations
 
 from typing import Any
 
 import pytest
-from controller_fakes import NS, FakeNode, RecordingLog
+from controller_harness import NS, Probe, RecordingThread, make_node
 
+from diffctl.client.ros_logging import get_logger
+from diffctl.control import realtime_publisher
 from diffctl.control.hardware_interface import ComponentInfo, HardwareInfo, InterfaceInfo
 from diffctl.control.lifecycle import State
 from diffctl.control.manager import ControllerManager
@@ -24,6 +26,7 @@ DDC = {
 }
 FWD = {"joints": ["ddc/linear", "ddc/angular"], "interface_name": "velocity"}
 REFS = ["ddc/linear/velocity", "ddc/angular/velocity"]
+pytestmark = pytest.mark.usefixtures("client_bus")
 
 
 def hardware() -> HardwareInfo:
@@ -42,20 +45,21 @@ def hardware() -> HardwareInfo:
 
 class Rig:
     def __init__(self) -> None:
-        self.nodes: dict[str, FakeNode] = {}
+        self.nodes: dict[str, Probe] = {}
         own = {"ddc": DDC, "fwd": FWD}
+        recorder = realtime_publisher._thread = RecordingThread()
 
-        def factory(name: str, p: dict[str, Any]) -> FakeNode:
-            self.nodes[name] = FakeNode(name, {**p, **own[name]})
-            return self.nodes[name]
+        def factory(name: str, _arguments: list[str]) -> Any:
+            node = make_node(name, own[name])
+            self.nodes[name] = Probe(node, recorder)
+            return node
 
         params = {
             "update_rate": 100,
             "ddc.type": "diff_drive_controller/DiffDriveController",
             "fwd.type": "forward_command_controller/ForwardCommandController",
         }
-        self.log = RecordingLog()
-        self.cm = ControllerManager(manager_params(params), log=self.log, node_factory=factory)
+        self.cm = ControllerManager(manager_params(params), log=get_logger("test_chained"), node_factory=factory)
         self.cm.load_hardware([hardware()])
         for name in ("ddc", "fwd"):
             self.cm.load_controller(name)

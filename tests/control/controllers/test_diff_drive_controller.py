@@ -1,5 +1,6 @@
-"""DiffDriveController driven directly (fake node, real interface handles): odometry, timeout braking, stale
-and bad commands, deactivation, feedback modes, several wheels per side, publishing and the cost of update()."""
+"""DiffDriveController driven directly (a real client node, real interface handles): odometry, timeout braking,
+stale and bad commands, deactivation, feedback modes, several wheels per side, publishing and the cost of
+update()."""
 
 from __future__ import annotations
 
@@ -8,11 +9,14 @@ import math
 import time
 
 import pytest
-from controller_fakes import NS, hand_interfaces, make_controller
+from controller_harness import NS, activate, configure, hand_interfaces, make_controller, update
 
 from diffctl.control.controller_interface import ReturnType
 from diffctl.control.controllers.diff_drive import DiffDriveController
-from diffctl.interfaces import types
+from diffctl.control.lifecycle import State
+from diffctl.control.realtime_publisher import PublishingThread, RealtimePublisher
+
+pytestmark = pytest.mark.usefixtures("client_bus")
 
 NAME = "diffbot_base_controller"
 CMD = f"/{NAME}/cmd_vel"
@@ -29,11 +33,12 @@ class Drive:
     """An active controller plus a tiny 'hardware' that integrates the wheel commands (mock calculate_dynamics)."""
 
     def __init__(self, rate_hz: int = 100, namespace: str = "/", **params):
-        self.c = make_controller(DiffDriveController, NAME, {**BASE, **params}, namespace=namespace)
-        self.node = self.c.node
-        self.c.on_configure()
+        self.c = make_controller(DiffDriveController, NAME, {**BASE, **params}, namespace=namespace,
+                                 update_rate=rate_hz)
+        self.node = self.c.probe
+        configure(self.c)
         self.cmd, self.state = hand_interfaces(self.c)
-        self.c.on_activate()
+        activate(self.c)
         self.period_s = 1.0 / rate_hz
         self.t_ns = self.node.time_ns
         self.positions = {w: 0.0 for w in (*self.c.params.left_wheel_names, *self.c.params.right_wheel_names)}
@@ -47,7 +52,7 @@ class Drive:
         )
 
     def step(self) -> ReturnType:
-        result = self.c.update(self.t_ns, self.period_s)
+        result = update(self.c, self.t_ns, self.period_s)
         for wheel in self.positions:  # the hardware moves the wheels during the next period
             cmd = self.cmd[f"{wheel}/velocity"].value
             if math.isfinite(cmd):
@@ -233,13 +238,13 @@ def test_absurd_commands_change_nothing(v, w):
 def test_deactivate_writes_zero_and_stops_accepting_commands():
     d = Drive(open_loop=True)
     d.run(0.5, v=0.2)
-    d.c.on_deactivate()
+    d.c.on_deactivate(State.ACTIVE)
     assert d.cmd["left_wheel/velocity"].value == 0.0 and d.cmd["right_wheel/velocity"].value == 0.0
     d.send(0.2, 0.0)
     assert "subscriber is inactive" in d.node.log.text("WARN")
     x = d.odom.x_m
     d.cmd, d.state = hand_interfaces(d.c, {"left_wheel/velocity": 0.0})
-    d.c.on_activate()  # reactivated: no command until a new one arrives; odometry was kept
+    activate(d.c)  # reactivated: no command until a new one arrives; odometry was kept
     d.run(0.2)
     assert d.wheel("left_wheel") == 0.0 and d.odom.x_m == pytest.approx(x)
 
@@ -250,10 +255,10 @@ def test_nan_feedback_returns_error_and_error_resets_odometry():
     assert d.odom.x_m > 0.05
     d.state["right_wheel/position"].value = math.nan
     d.send(0.2, 0.0)
-    assert d.c.update(d.t_ns, d.period_s) is ReturnType.ERROR
+    assert update(d.c, d.t_ns, d.period_s) is ReturnType.ERROR
     assert "Either the left or right wheel position is invalid for index [0]" in d.node.log.text("ERROR")
-    d.c.on_error()
-    d.c.on_deactivate()
+    d.c.on_error(State.ACTIVE)
+    d.c.on_deactivate(State.ACTIVE)
     assert d.odom.x_m == 0.0 and d.wheel("left_wheel") == 0.0
 
 
@@ -271,33 +276,32 @@ def test_several_wheels_per_side_with_multipliers_and_mean_feedback():
     assert [d.wheel(n) for n in ("fl", "rl", "fr", "rr")] == pytest.approx([left, left, right, right])
     # one slipping rear-left wheel: odometry uses the mean of the side
     d.state["rl/velocity"].value = 0.0
-    d.c.update(d.t_ns, d.period_s)
+    update(d.c, d.t_ns, d.period_s)
     assert d.odom.linear_mps < 0.2
 
 
 def test_cleanup_closes_endpoints_and_reconfigure_works():
     d = Drive(open_loop=True)
-    d.c.on_deactivate()
-    d.c.on_cleanup()
-    assert all(p.closed for p in d.node.publishers.values()) and d.node.subscriptions[CMD].closed
-    d.c.on_configure()
-    assert not d.node.subscriptions[CMD].closed
-
-
-def serialize_as(type_name: str, msg) -> None:
-    types.serialize(msg, type_name)
+    d.c.on_deactivate(State.ACTIVE)
+    d.c.on_cleanup(State.INACTIVE)
+    assert not d.node.publishers and CMD not in d.node.subscriptions
+    configure(d.c)
+    assert CMD in d.node.subscriptions and f"/{NAME}/odom" in d.node.publishers
 
 
 def test_update_cost_per_tick():
-    """update() on the real message path (serialization included), position feedback, publishing at 50 Hz."""
+    """update() on the real message path (the template packing included), position feedback, publishing at
+    50 Hz."""
     d = Drive(publish_limited_velocity=True)
-    for pub in d.node.publishers.values():  # keep the serialization, drop the test-only dict snapshots
-        pub.publish = functools.partial(serialize_as, pub.type_name)
+    thread = PublishingThread()  # the real one: samples queued here, put on the bus by its own thread
+    for rp in d.c._endpoints._items:
+        if isinstance(rp, RealtimePublisher):
+            rp._thread, rp.publish_values = thread, functools.partial(thread.submit, rp.publisher)
     d.send(0.2, 0.1)
     costs = []
     for _ in range(600):
         t0 = time.perf_counter()
-        d.c.update(d.t_ns, d.period_s)
+        update(d.c, d.t_ns, d.period_s)
         costs.append(time.perf_counter() - t0)
         d.t_ns += round(d.period_s * NS)
     costs.sort()

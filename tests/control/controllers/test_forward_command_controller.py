@@ -1,14 +1,18 @@
-"""JointGroupVelocityController driven directly: forwarding, bad commands dropped, zero on deactivate."""
+"""JointGroupVelocityController driven directly (a real client node): forwarding, bad commands dropped, zero on
+deactivate."""
 
 from __future__ import annotations
 
 import math
 
 import pytest
-from controller_fakes import NS, hand_interfaces, make_controller
+from controller_harness import NS, activate, configure, hand_interfaces, make_controller, update
 
 from diffctl.control.controllers.forward_command import JointGroupVelocityController
+from diffctl.control.lifecycle import State
 from diffctl.errors import ParameterError
+
+pytestmark = pytest.mark.usefixtures("client_bus")
 
 NAME = "forward_velocity_controller"
 TOPIC = f"/{NAME}/commands"
@@ -16,9 +20,9 @@ TOPIC = f"/{NAME}/commands"
 
 def active():
     c = make_controller(JointGroupVelocityController, NAME, {"joints": ["left", "right"]})
-    c.on_configure()
+    configure(c)
     cmd, _ = hand_interfaces(c)
-    c.on_activate()
+    activate(c)
     return c, cmd
 
 
@@ -36,10 +40,10 @@ def test_forwards_the_last_command_every_update():
     c, cmd = active()
     for h in cmd.values():
         h.value = math.nan
-    c.update(NS, 0.01)
+    update(c, NS, 0.01)
     assert all(math.isnan(v) for v in values(cmd))  # nothing written before the first command
-    c.node.deliver(TOPIC, {"data": [1.5, -2.0]})
-    c.update(NS, 0.01)
+    c.probe.deliver(TOPIC, {"data": [1.5, -2.0]})
+    update(c, NS, 0.01)
     assert values(cmd) == [1.5, -2.0]
 
 
@@ -55,24 +59,24 @@ def test_forwards_the_last_command_every_update():
 )
 def test_bad_commands_are_dropped(data, reason):
     c, cmd = active()
-    c.node.deliver(TOPIC, {"data": [0.5, 0.5]})
-    c.node.deliver(TOPIC, {"data": data})
-    c.update(NS, 0.01)
+    c.probe.deliver(TOPIC, {"data": [0.5, 0.5]})
+    c.probe.deliver(TOPIC, {"data": data})
+    update(c, NS, 0.01)
     assert values(cmd) == [0.5, 0.5]
-    assert reason in c.node.log.text("WARN")
+    assert reason in c.probe.log.text("WARN")
 
 
 def test_deactivate_writes_zero_and_reactivation_waits_for_a_new_command():
     c, cmd = active()
-    c.node.deliver(TOPIC, {"data": [0.5, 0.5]})
-    c.update(NS, 0.01)
-    c.on_deactivate()
+    c.probe.deliver(TOPIC, {"data": [0.5, 0.5]})
+    update(c, NS, 0.01)
+    c.on_deactivate(State.ACTIVE)
     assert values(cmd) == [0.0, 0.0]
-    c.node.deliver(TOPIC, {"data": [3.0, 3.0]})
-    assert "subscriber is inactive" in c.node.log.text("WARN")
+    c.probe.deliver(TOPIC, {"data": [3.0, 3.0]})
+    assert "subscriber is inactive" in c.probe.log.text("WARN")
     cmd, _ = hand_interfaces(c)
-    c.on_activate()
-    c.update(NS, 0.01)
+    activate(c)
+    update(c, NS, 0.01)
     assert values(cmd) == [0.0, 0.0]
 
 

@@ -1,5 +1,6 @@
-"""JointStateBroadcaster driven directly: claimed interfaces, /joint_states and /dynamic_joint_states content,
-joint order and filtering by the robot description, extra joints, interface mapping, local topics."""
+"""JointStateBroadcaster driven directly (a real client node): claimed interfaces, /joint_states and
+/dynamic_joint_states content, joint order and filtering by the robot description, extra joints, interface
+mapping, local topics."""
 
 from __future__ import annotations
 
@@ -7,11 +8,13 @@ import math
 from pathlib import Path
 
 import pytest
-from controller_fakes import NS, hand_interfaces, make_controller
+from controller_harness import NS, activate, configure, hand_interfaces, make_controller, update
 
 from diffctl.control.controller_interface import StateInterface
 from diffctl.control.controllers.joint_state_broadcaster import JointStateBroadcaster
 from diffctl.errors import ParameterError, RuntimeFailure
+
+pytestmark = pytest.mark.usefixtures("client_bus")
 
 REPO = Path(__file__).resolve().parents[3]
 NAME = "joint_state_broadcaster"
@@ -25,12 +28,11 @@ HW = {
 
 
 def broadcaster(params: dict | None = None, hw: dict[str, float] | None = None, description: str = ""):
-    c = make_controller(JointStateBroadcaster, NAME, params or {})
-    c.robot_description = description
-    c.on_configure()
+    c = make_controller(JointStateBroadcaster, NAME, params or {}, robot_description=description)
+    configure(c)
     c.state_interfaces = [StateInterface(n, v) for n, v in (hw or HW).items()]  # "all": what the hardware has
     c.command_interfaces = []
-    c.on_activate()
+    activate(c)
     return c
 
 
@@ -42,18 +44,18 @@ def test_claims_nothing_to_command_and_all_or_the_cross_product_of_states():
     assert c.state_interface_configuration().names == ["a/position", "a/effort", "b/position", "b/effort"]
     c = make_controller(JointStateBroadcaster, NAME, {"joints": ["a"]})
     assert c.state_interface_configuration().type == "all"
-    assert "both 'joints' and 'interfaces' are needed" in c.node.log.text("WARN")
+    assert "both 'joints' and 'interfaces' are needed" in c.probe.log.text("WARN")
 
 
 def test_joint_states_content_with_nan_for_missing_interfaces():
     c = broadcaster()
-    c.update(12 * NS + 34, 0.01)
-    js = c.node.sent("/joint_states")[-1]
+    update(c, 12 * NS + 34, 0.01)
+    js = c.probe.sent("/joint_states")[-1]
     assert js["name"] == ["base_link_to_left_wheel", "base_link_to_right_wheel"]  # the IMU is not a joint state
     assert js["position"] == [1.5, -0.5] and js["velocity"] == [2.0, 3.0]
     assert all(math.isnan(e) for e in js["effort"])
     assert js["header"]["stamp"] == {"sec": 12, "nanosec": 34} and js["header"]["frame_id"] == "base_link"
-    djs = c.node.sent("/dynamic_joint_states")[-1]
+    djs = c.probe.sent("/dynamic_joint_states")[-1]
     assert djs["joint_names"] == ["base_link_to_left_wheel", "imu_sensor", "base_link_to_right_wheel"]
     assert djs["interface_values"][1] == {"interface_names": ["orientation.x"], "values": [0.1]}
 
@@ -63,10 +65,10 @@ def test_values_follow_the_hardware_every_update():
     handle = next(si for si in c.state_interfaces if si.name == "base_link_to_right_wheel/velocity")
     for v in (0.0, 4.25):
         handle.value = v
-        c.update(NS, 0.01)
-        assert c.node.sent("/joint_states")[-1]["velocity"][1] == v
-        assert c.node.sent("/dynamic_joint_states")[-1]["interface_values"][2]["values"][1] == v
-    assert len(c.node.sent("/joint_states")) == 2
+        update(c, NS, 0.01)
+        assert c.probe.sent("/joint_states")[-1]["velocity"][1] == v
+        assert c.probe.sent("/dynamic_joint_states")[-1]["interface_values"][2]["values"][1] == v
+    assert len(c.probe.sent("/joint_states")) == 2
 
 
 def test_description_orders_and_filters_joints():
@@ -78,11 +80,11 @@ def test_description_orders_and_filters_joints():
         "not_in_model/position": 7.0,
     }
     c = broadcaster(hw=hw, description=sdf)
-    c.update(NS, 0.01)
-    assert c.node.sent("/joint_states")[-1]["name"] == ["base_link_to_left_wheel", "base_link_to_right_wheel"]
+    update(c, NS, 0.01)
+    assert c.probe.sent("/joint_states")[-1]["name"] == ["base_link_to_left_wheel", "base_link_to_right_wheel"]
     c = broadcaster({"use_urdf_to_filter": False}, hw=hw, description=sdf)
-    c.update(NS, 0.01)
-    assert c.node.sent("/joint_states")[-1]["name"] == [
+    update(c, NS, 0.01)
+    assert c.probe.sent("/joint_states")[-1]["name"] == [
         "base_link_to_right_wheel",
         "base_link_to_left_wheel",
         "not_in_model",
@@ -92,9 +94,9 @@ def test_description_orders_and_filters_joints():
 def test_joints_param_sets_the_order():
     hw = {"a/position": 1.0, "b/position": 2.0}
     c = broadcaster({"joints": ["b", "a"], "interfaces": ["position"]}, hw=hw)
-    c.update(NS, 0.01)
-    assert c.node.sent("/joint_states")[-1]["name"] == ["b", "a"]
-    assert c.node.sent("/joint_states")[-1]["position"] == [2.0, 1.0]
+    update(c, NS, 0.01)
+    assert c.probe.sent("/joint_states")[-1]["name"] == ["b", "a"]
+    assert c.probe.sent("/joint_states")[-1]["position"] == [2.0, 1.0]
 
 
 def test_extra_joints_mapping_local_topics_and_frame_id():
@@ -107,20 +109,20 @@ def test_extra_joints_mapping_local_topics_and_frame_id():
         "publish_dynamic_joint_states": False,
     }
     c = broadcaster(params, hw=hw)
-    c.update(NS, 0.01)
-    js = c.node.sent(f"/{NAME}/joint_states")[-1]
+    update(c, NS, 0.01)
+    js = c.probe.sent(f"/{NAME}/joint_states")[-1]
     assert js["name"] == ["wheel", "caster"]
     assert js["position"] == [0.7, 0.0] and js["velocity"] == [1.0, 0.0] and js["effort"][1] == 0.0
     assert js["header"]["frame_id"] == "chassis"
-    assert "/joint_states" not in c.node.publishers and f"/{NAME}/dynamic_joint_states" not in c.node.publishers
+    assert "/joint_states" not in c.probe.publishers and f"/{NAME}/dynamic_joint_states" not in c.probe.publishers
 
 
 def test_no_state_interfaces_fails_activation():
     c = make_controller(JointStateBroadcaster, NAME, {})
-    c.on_configure()
+    configure(c)
     hand_interfaces(c)
     with pytest.raises(RuntimeFailure, match="None of the requested interfaces exist"):
-        c.on_activate()
+        activate(c)
 
 
 @pytest.mark.parametrize(

@@ -1,0 +1,95 @@
+"""What Gazebo's model systems share: joints found by name (a missing one is warned about, as gz-sim does, and
+the system idles), gz topic names made valid, and the wheel-odometry messages drive systems publish."""
+
+from __future__ import annotations
+
+import math
+import re
+from typing import Any
+
+from diffctl.bus import gz
+from diffctl.description.model import Plugin
+from diffctl.errors import DescriptionError
+from diffctl.sim.entity import Entity, JointHandle
+from diffctl.sim.plugins.base import PluginContext, float_param
+from diffctl.sim.plugins.diff_drive_math import Limits
+
+_TOPIC_BAD = re.compile(r"[\s@]|:=|~")
+
+
+def valid_topic(topic: str) -> str:
+    """gz-transport's TopicUtils::AsValidTopic, as far as names met in practice go: blanks become '_', the
+    characters it refuses are dropped, repeated slashes collapse; then the name as the node resolves it."""
+    t = _TOPIC_BAD.sub(lambda m: "_" if m.group().isspace() else "", topic)
+    return "/" + re.sub(r"/{2,}", "/", t).lstrip("/")  # gz-transport's fully qualified names start with '/'
+
+
+def find_joints(
+    ctx: PluginContext, entity: Entity, names: list[str] | tuple[str, ...], system: str
+) -> list[JointHandle]:
+    """The moving joints named, in order; each missing one is one warning (the system then does without it)."""
+    out = []
+    for name in names:
+        if name in entity.joints:
+            out.append(entity.joints[name])
+            continue
+        # gz-sim's JointPositionController also finds a scoped joint by its last name
+        tail = [h for n, h in entity.joints.items() if n.rsplit("::", 1)[-1] == name]
+        if tail:
+            out.append(tail[0])
+            continue
+        ctx.log.warn(f"{system}: failed to find joint [{name}] for model [{entity.name}]")
+    return out
+
+
+def int_param(plugin: Plugin, tag: str, default: int, *, source: str) -> int:
+    text = plugin.get(tag)
+    if text is None:
+        return default
+    m = re.match(r"\s*([-+]?\d+)", text)  # std::stoi reads the leading integer
+    if m is None:
+        raise DescriptionError(
+            f"plugin {plugin.name!r}: <{tag}> {text!r} is not an integer",
+            source=source or None,
+            field=f"plugin {plugin.filename}: {tag}",
+        )
+    return int(m.group(1))
+
+
+def speed_limits(plugin: Plugin, source: str) -> Limits:
+    """gz-math SpeedLimiter bounds from `[min|max]_[velocity|acceleration|jerk]`; an absent one is unbounded."""
+    values = [
+        float_param(plugin, f"{m}_{kind}", None, source=source)
+        for kind in ("velocity", "acceleration", "jerk")
+        for m in ("min", "max")
+    ]
+    return Limits(*values)
+
+
+def finite_or_none(*values: float) -> bool:
+    return all(math.isfinite(v) for v in values)
+
+
+def odometry_messages(
+    sim_time_ns: int,
+    frame_id: str,
+    child_frame_id: str | None,
+    pose_xy_yaw: tuple[float, float, float],
+    twist: tuple[float, float, float],
+) -> tuple[dict[str, Any], dict[str, Any]]:
+    """(gz.msgs.Odometry, gz.msgs.Pose_V) as gz-sim's drive systems publish them: planar pose, twist
+    (linear x, linear y, angular z), and one tf pose carrying the odometry's header."""
+    x, y, yaw = pose_xy_yaw
+    header = gz.header(sim_time_ns, frame_id, child_frame_id)
+    position = {"x": x, "y": y, "z": 0.0}
+    orientation = {"x": 0.0, "y": 0.0, "z": math.sin(yaw / 2.0), "w": math.cos(yaw / 2.0)}
+    odom = {
+        "header": header,
+        "pose": {"position": position, "orientation": orientation},
+        "twist": {"linear": {"x": twist[0], "y": twist[1], "z": 0.0}, "angular": {"x": 0.0, "y": 0.0, "z": twist[2]}},
+    }
+    tf = {
+        "header": gz.header(sim_time_ns),
+        "pose": [{"header": header, "position": position, "orientation": orientation}],
+    }
+    return odom, tf

@@ -1,0 +1,175 @@
+"""Gazebo's TrackedVehicle system (`gz-sim-tracked-vehicle-system`): a twist turned into left and right track speeds.
+
+SDF parameters as gz-sim 8 reads them: `left_track` and `right_track` (repeatable; each with `link`, and
+optionally `velocity_topic` and `center_of_rotation_topic`, the topics of the track's TrackController),
+`tracks_separation` and `track_height` (required), `steering_efficiency` (0.5; gz.msgs.Double on
+`steering_efficiency_topic`, default /model/<m>/steering_efficiency), `linear_velocity` and `angular_velocity`
+limiters (each with `[min|max]_[velocity|acceleration|jerk]`), `odom_publish_frequency` (50 Hz), `topic`
+(/model/<m>/cmd_vel), `odom_topic`, `tf_topic`, `frame_id`, `child_frame_id`, `body_link`.
+Track speeds: v ∓ ω · separation / (2 · steering efficiency), sent to each track's velocity topic (and to the
+TrackController of the same model directly) whenever they change; odometry is dead reckoning from those commanded
+speeds (gz-sim's), as a differential drive with wheels of radius track_height / 2.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from lxml import etree
+
+from diffctl.description.model import Plugin
+from diffctl.errors import DescriptionError
+from diffctl.sim.entity import Entity
+from diffctl.sim.plugins.base import PluginContext, SystemPlugin, float_param, rate_period_ns
+from diffctl.sim.plugins.diff_drive_math import Limits, Odometry, limit_speed
+from diffctl.sim.plugins.system_support import odometry_messages, valid_topic
+from diffctl.sim.plugins.track_controller import TrackController
+
+
+def _limits(root: etree._Element, tag: str) -> Limits:
+    el = root.find(tag)
+    if el is None:
+        return Limits()
+
+    def num(name: str) -> float | None:
+        text = el.findtext(name)
+        return None if text is None else float(text)
+
+    return Limits(*(num(f"{m}_{kind}") for kind in ("velocity", "acceleration", "jerk") for m in ("min", "max")))
+
+
+class TrackedVehicle(SystemPlugin):
+    def __init__(self, ctx: PluginContext, entity: Entity, plugin: Plugin, tracks: list[TrackController]) -> None:
+        self.ctx, self.entity = ctx, entity
+        source, name = entity.model.source, entity.name
+        root = etree.fromstring(plugin.xml.encode()) if plugin.xml else etree.Element("plugin")
+        try:
+            self.linear, self.angular = _limits(root, "linear_velocity"), _limits(root, "angular_velocity")
+        except ValueError as e:
+            message = f"plugin {plugin.name!r}: a velocity limit is not a number ({e})"
+            raise DescriptionError(message, source=source or None) from None
+        self.sides: dict[str, list[tuple[str, str]]] = {}
+        for side in ("left", "right"):
+            self.sides[side] = []
+            for el in root.findall(f"{side}_track"):
+                link = (el.findtext("link") or "").strip()
+                topic = el.findtext("velocity_topic") or f"/model/{name}/link/{link}/track_cmd_vel"
+                self.sides[side].append((link, valid_topic(topic)))
+        for tag in ("tracks_separation", "track_height"):
+            if plugin.get(tag) is None:
+                ctx.log.warn(f"TrackedVehicle on model {name!r}: <{tag}> is required; the system does nothing")
+        self.separation_m = float_param(plugin, "tracks_separation", 1.0, source=source) or 1.0
+        self.track_height_m = float_param(plugin, "track_height", 0.2, source=source) or 0.2
+        self.efficiency = float_param(plugin, "steering_efficiency", 0.5, source=source) or 0.5
+        self.active = bool(
+            self.sides["left"]
+            and self.sides["right"]
+            and plugin.get("tracks_separation")
+            and plugin.get("track_height")
+        )
+        body = plugin.get("body_link") or entity.model.canonical_link or entity.model.root_link()
+        self.frame_id = plugin.get("frame_id") or f"{name}/odom"
+        self.child_frame_id = plugin.get("child_frame_id") or f"{name}/{body}"
+        self.tracks = {t.link: t for t in tracks}
+        self.target = (0.0, 0.0)
+        self._last = [(0.0, 0.0), (0.0, 0.0)]
+        self._new = False
+        self._speeds = (0.0, 0.0)
+        self._wheel = [0.0, 0.0]  # integrated commanded track travel, as wheel angles
+        self.odom = Odometry(self.separation_m, self.track_height_m / 2)
+        self._dt_s = ctx.stepper.step_ns * 1e-9
+        self._subs: list[Any] = []
+        self._pubs: dict[str, Any] = {}
+        self._odom_pub = self._tf_pub = None
+        self._task = None
+        if not self.active:
+            return
+        t = ctx.transport
+        if t is not None:
+            self._subs.append(
+                t.subscribe(
+                    valid_topic(plugin.get("topic") or f"/model/{name}/cmd_vel"), "gz.msgs.Twist", self.on_twist
+                )
+            )
+            se_topic = valid_topic(plugin.get("steering_efficiency_topic") or f"/model/{name}/steering_efficiency")
+            self._subs.append(t.subscribe(se_topic, "gz.msgs.Double", self.on_efficiency))
+            self._odom_pub = t.publisher(
+                valid_topic(plugin.get("odom_topic") or f"/model/{name}/odometry"), "gz.msgs.Odometry"
+            )
+            self._tf_pub = t.publisher(valid_topic(plugin.get("tf_topic") or f"/model/{name}/tf"), "gz.msgs.Pose_V")
+            for side in self.sides.values():
+                for link, topic in side:
+                    if link not in self.tracks:
+                        self._pubs[link] = t.publisher(topic, "gz.msgs.Double")
+        ctx.stepper.step_hooks.append(self._step)
+        hz = float_param(plugin, "odom_publish_frequency", 50.0, source=source) or 50.0
+        self._task = ctx.stepper.add_task(f"tracked:{name}", rate_period_ns(hz, ctx.stepper.step_ns), self._odometry)
+
+    def on_twist(self, fields: dict[str, Any]) -> None:
+        lin, ang = fields.get("linear") or {}, fields.get("angular") or {}
+        self.command(float(lin.get("x", 0.0) or 0.0), float(ang.get("z", 0.0) or 0.0))
+
+    def on_efficiency(self, fields: dict[str, Any]) -> None:
+        value = float(fields.get("data", 0.0) or 0.0)
+        if math.isfinite(value) and value > 0:
+            self.efficiency = value
+            self._new = True
+
+    def command(self, linear_m_s: float, angular_rad_s: float) -> None:
+        if math.isfinite(linear_m_s) and math.isfinite(angular_rad_s):
+            self.target = (linear_m_s, angular_rad_s)
+            self._new = True
+
+    def _step(self) -> None:
+        (v0, w0), (v1, w1) = self._last
+        v = limit_speed(self.target[0], v0, v1, self._dt_s, self.linear)
+        w = limit_speed(self.target[1], w0, w1, self._dt_s, self.angular)
+        send = self._new or abs(v - v0) > 1e-6 or abs(w - w0) > 1e-6
+        self._new = False
+        self._last = [(v, w), (v0, w0)]
+        if send:
+            turn = w * self.separation_m / (2.0 * self.efficiency)
+            self._speeds = (v - turn, v + turn)
+            for side, speed in zip(("left", "right"), self._speeds, strict=True):
+                for link, _topic in self.sides[side]:
+                    track = self.tracks.get(link)
+                    if track is not None:
+                        track.command(speed)
+                    elif link in self._pubs:
+                        self._pubs[link].publish({"data": speed})
+        radius = self.track_height_m / 2
+        self._wheel = [
+            self._wheel[0] + self._speeds[0] / radius * self._dt_s,
+            self._wheel[1] + self._speeds[1] / radius * self._dt_s,
+        ]
+
+    def _odometry(self, sim_time_ns: int) -> None:
+        self.odom.update(self._wheel[0], self._wheel[1], sim_time_ns * 1e-9)
+        if not ((self._odom_pub and self._odom_pub.matched) or (self._tf_pub and self._tf_pub.matched)):
+            return
+        o = self.odom
+        pose, twist = (o.x_m, o.y_m, o.heading_rad), (o.linear_m_s, 0.0, o.angular_rad_s)
+        odom, tf = odometry_messages(sim_time_ns, self.frame_id, self.child_frame_id, pose, twist)
+        if self._odom_pub is not None:
+            self._odom_pub.publish(odom)
+        if self._tf_pub is not None:
+            self._tf_pub.publish(tf)
+
+    def reset(self) -> None:
+        self.odom.reset()
+        self.target, self._speeds = (0.0, 0.0), (0.0, 0.0)
+        self._last = [(0.0, 0.0), (0.0, 0.0)]
+        self._wheel = [0.0, 0.0]
+        self._new = True
+
+    def close(self) -> None:
+        if self._step in self.ctx.stepper.step_hooks:
+            self.ctx.stepper.step_hooks.remove(self._step)
+        if self._task is not None:
+            self.ctx.stepper.remove_task(self._task)
+        t = self.ctx.transport
+        if t is not None:
+            for obj in (*self._subs, *self._pubs.values(), self._odom_pub, self._tf_pub):
+                if obj is not None:
+                    t.release(obj)
