@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from ..action import Action
 
@@ -12,6 +12,9 @@ if TYPE_CHECKING:
 
 class PopLaunchConfigurations(Action):
     """Puts back the launch configurations the last PushLaunchConfigurations saved (an error without one)."""
+
+    def __init__(self, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
 
     def execute(self, context: LaunchContext) -> None:
         context._pop_launch_configurations()

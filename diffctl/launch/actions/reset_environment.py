@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from ..action import Action
 from ..frontend.expose import expose_action
@@ -20,6 +20,9 @@ class ResetEnvironment(Action):
     @classmethod
     def parse(cls, entity: Entity, parser: Parser):
         return cls, super().parse(entity, parser)[1]
+
+    def __init__(self, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
 
     def execute(self, context: LaunchContext) -> None:
         context._reset_environment()

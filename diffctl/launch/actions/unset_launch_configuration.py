@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 from .._private.entry_edits import ConfigurationEdit, operand, remove
+from ..action import Action
 
 if TYPE_CHECKING:
     from ..some_substitutions_type import SomeSubstitutionsType
@@ -14,6 +15,7 @@ class UnsetLaunchConfiguration(ConfigurationEdit):
     """Removes the launch configuration `name`; nothing happens when there is none."""
 
     _apply = staticmethod(remove)
+    parse = staticmethod(Action.parse)  # no markup tag of its own
 
     name = operand('name', 'The configuration, as substitutions.')
 

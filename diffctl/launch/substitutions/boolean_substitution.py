@@ -96,6 +96,9 @@ class OrSubstitution(_Pair):
 class _Variadic(_Logic):
     """An operator over any number of operands, given positionally."""
 
+    def __init__(self, *args: SomeSubstitutionsType) -> None:
+        super().__init__(*args)
+
     @property
     def args(self) -> list[list[Substitution]]:
         return self._operands

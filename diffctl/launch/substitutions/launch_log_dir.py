@@ -30,3 +30,6 @@ class LaunchLogDir(Substitution):
         from .. import logging as launch_logging
 
         return launch_logging.launch_config.log_dir
+
+    def __init__(self) -> None:
+        super().__init__()

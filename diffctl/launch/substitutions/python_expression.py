@@ -34,7 +34,9 @@ class PythonExpression(Substitution):
     `math` (the default) is special: its functions are also usable unqualified, `ceil(x)` as `math.ceil(x)`.
     """
 
-    def __init__(self, expression: SomeSubstitutionsType, python_modules: SomeSubstitutionsType = ('math',)) -> None:
+    def __init__(
+        self, expression: SomeSubstitutionsType, python_modules: SomeSubstitutionsType = ['math'],  # noqa: B006
+    ) -> None:
         super().__init__()
         for value, argument in ((expression, 'expression'), (python_modules, 'python_modules')):
             ensure_argument_type(value, (str, Substitution, collections.abc.Iterable), argument, 'PythonExpression')

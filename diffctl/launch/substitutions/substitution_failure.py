@@ -3,3 +3,6 @@
 
 class SubstitutionFailure(RuntimeError):
     """A substitution could not be performed: an unset configuration, a failing command, a missing file."""
+
+    def __init__(self, msg) -> None:
+        super().__init__(msg)

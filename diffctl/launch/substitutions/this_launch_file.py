@@ -30,3 +30,6 @@ class ThisLaunchFile(Substitution):
 
     def perform(self, context: LaunchContext) -> str:
         return launch_file_local(context, 'current_launch_file_path', 'ThisLaunchFile')
+
+    def __init__(self) -> None:
+        super().__init__()

@@ -27,3 +27,6 @@ class ThisLaunchFileDir(Substitution):
 
     def perform(self, context: LaunchContext) -> str:
         return launch_file_local(context, 'current_launch_file_directory', 'ThisLaunchFileDir')
+
+    def __init__(self) -> None:
+        super().__init__()

@@ -53,7 +53,7 @@ class AsyncSafeSignalManager:
         self.__sockets = (reader, writer)
         return self
 
-    def __exit__(self, exc_type, exc_value, traceback) -> None:
+    def __exit__(self, exc_type, exc_value, exc_traceback) -> None:
         if self.__sockets is None:
             return
         reader, writer = self.__sockets
