@@ -14,95 +14,97 @@ if TYPE_CHECKING:
     from .launch_context import LaunchContext
 
 
-class Action(LaunchDescriptionEntity):
-    """An intention to do something; visiting it runs `execute` unless its `condition` is false.
+def _name_the_source(action: Action, problem: Exception) -> None:
+    """Give an exception the markup location of the action it came from (`launch_location`), once."""
+    where = getattr(action, '_frontend_location', None)  # set by frontend.Parser.parse_action
+    if where is None or getattr(problem, 'launch_location', None) is not None:
+        return
+    try:
+        problem.launch_location = where
+        if where not in str(problem):
+            problem.add_note(f'raised by the action at {where}')
+    except (AttributeError, TypeError):
+        pass  # an exception type that takes no attributes keeps its message
 
-    After `execute`, an `ExecutionComplete` event is emitted when some handler wants it: at once, or when
-    the action's asyncio future is done.
+
+def _announce_completion(action: Action, context: LaunchContext) -> None:
+    from .events.execution_complete import ExecutionComplete
+
+    done = ExecutionComplete(action=action)
+    if not context.would_handle_event(done):
+        return  # nobody listens: no event at all
+    future = action.get_asyncio_future()
+    if future is None:
+        context.emit_event_sync(done)
+    else:
+        future.add_done_callback(lambda _: context.emit_event_sync(done))
+
+
+class Action(LaunchDescriptionEntity):
+    """Something to do: visiting runs `execute` when the `condition` (if any) holds.
+
+    When a registered handler would take an `ExecutionComplete` of this action, one is emitted after
+    `execute`: straight away, or when the future of `get_asyncio_future()` is done.
     """
 
     def __init__(self, *, condition: Condition | None = None) -> None:
-        self.__condition = condition
+        self._guard = condition
+
+    @property
+    def condition(self) -> Condition | None:
+        return self._guard
 
     @staticmethod
     def parse(entity: Entity, parser: Parser):
-        """(Action, kwargs) from the attributes every tag accepts: `if` and `unless`.
+        """`(Action, kwargs)` with the condition every tag may have (`if` or `unless`, not both).
 
-        Subclasses' `parse` start from it; it is not exposed as a tag itself.
+        The actions' own `parse` methods start from it; it is no tag of its own.
         """
         from .conditions.if_condition import IfCondition
         from .conditions.unless_condition import UnlessCondition
 
-        if_text = entity.get_attr('if', optional=True)
-        unless_text = entity.get_attr('unless', optional=True)
-        kwargs: dict[str, Condition] = {}
-        if if_text is not None and unless_text is not None:
+        found = [
+            (kind, entity.get_attr(attribute, optional=True))
+            for attribute, kind in (('if', IfCondition), ('unless', UnlessCondition))
+        ]
+        given = [(kind, text) for kind, text in found if text is not None]
+        if len(given) > 1:
             raise RuntimeError("if and unless conditions can't be used simultaneously")
-        if if_text is not None:
-            kwargs['condition'] = IfCondition(predicate_expression=parser.parse_substitution(if_text))
-        if unless_text is not None:
-            kwargs['condition'] = UnlessCondition(predicate_expression=parser.parse_substitution(unless_text))
+        kwargs = {}
+        for kind, text in given:
+            kwargs['condition'] = kind(predicate_expression=parser.parse_substitution(text))
         return Action, kwargs
 
-    @property
-    def condition(self) -> Condition | None:
-        """The condition guarding this action, if any."""
-        return self.__condition
-
     def describe(self) -> str:
-        return self.__repr__()
+        return repr(self)
 
     def get_sub_entities(self) -> list[LaunchDescriptionEntity]:
-        """Entities this action yields (none by default)."""
+        """The entities this action gives when executed, as far as known beforehand (none here)."""
         return []
 
     def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
-        return self.get_sub_entities() if self.condition is None else []
+        return [] if self._guard is not None else self.get_sub_entities()
 
     def describe_conditional_sub_entities(self) -> list[tuple[str, Iterable[LaunchDescriptionEntity]]]:
-        if self.condition is None:
+        if self._guard is None:
             return []
         return [(f'Conditionally included by {self.describe()}', self.get_sub_entities())]
 
+    def execute(self, context: LaunchContext) -> list[LaunchDescriptionEntity] | None:
+        """The action's work; the entities returned are visited next (nothing is done here)."""
+        return None
+
     def visit(self, context: LaunchContext) -> list[LaunchDescriptionEntity] | None:
-        """Execute the action when its condition allows, then report its completion."""
         try:
-            if self.__condition is not None and not self.__condition.evaluate(context):
+            if self._guard is not None and not self._guard.evaluate(context):
                 return None
-        except Exception as exc:
-            self.__locate(exc)
+        except Exception as problem:
+            _name_the_source(self, problem)
             raise
         try:
             return self.execute(context)
-        except Exception as exc:
-            self.__locate(exc)
+        except Exception as problem:
+            _name_the_source(self, problem)
             raise
         finally:
-            self.__report_completion(context)
-
-    def __locate(self, exc: Exception) -> None:
-        # an action read from a markup file names its file and line in what it raises (see frontend.Parser)
-        location = getattr(self, '_frontend_location', None)
-        if location is not None and getattr(exc, 'launch_location', None) is None:
-            try:
-                exc.launch_location = location
-                if location not in str(exc):
-                    exc.add_note(f'raised by the action at {location}')
-            except (AttributeError, TypeError):
-                pass
-
-    def __report_completion(self, context: LaunchContext) -> None:
-        from .events.execution_complete import ExecutionComplete
-
-        event = ExecutionComplete(action=self)
-        if not context.would_handle_event(event):
-            return
-        future = self.get_asyncio_future()
-        if future is None:
-            context.emit_event_sync(event)
-        else:
-            future.add_done_callback(lambda _: context.emit_event_sync(event))
-
-    def execute(self, context: LaunchContext) -> list[LaunchDescriptionEntity] | None:
-        """What the action does; returns entities to visit next. Does nothing by default."""
-        return None
+            _announce_completion(self, context)

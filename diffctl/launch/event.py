@@ -1,7 +1,7 @@
-"""`Event`: something that happened while launching, matched by event handlers."""
+"""`Event`: something that happened during a launch, offered to every matching event handler."""
 
 
 class Event:
-    """Base of every launch event; `name` identifies the kind of event."""
+    """Base of the events; `name` says which kind (handlers may match on it, see `event_named`)."""
 
     name = 'launch.Event'

@@ -13,55 +13,51 @@ if TYPE_CHECKING:
 
 
 class BaseEventHandler:
-    """Matches events with `matcher(event)` and handles them with `handle(event, context)`.
+    """Takes the events `matcher(event)` accepts; `handle(event, context)` returns entities to visit.
 
-    While the entities a handler returns are visited, `context.locals.event` is the event being
-    handled (e.g. `LocalSubstitution('event.name')`). With `handle_once` the handler unregisters
-    itself the first time it handles an event.
+    While they are visited, `context.locals.event` is the event (`LocalSubstitution('event.pid')`).
+    A `handle_once` handler unregisters itself when it handles its first event.
     """
 
     def __init__(self, *, matcher: Callable[[Event], bool], handle_once: bool = False):
-        self.__matcher = matcher
-        self.__handle_once = handle_once
+        self._accepts = matcher
+        self._once = handle_once
 
     @property
     def handle_once(self) -> bool:
-        """Whether the handler unregisters after handling one event."""
-        return self.__handle_once
+        return self._once
 
     @property
     def handler_description(self) -> str | None:
-        """Text describing what the handler does (subclasses say)."""
+        """What handling does, in words (None here; subclasses say)."""
         return None
 
     @property
     def matcher_description(self) -> str | None:
-        """Text describing which events the handler takes (subclasses say)."""
+        """Which events are taken, in words (None here; subclasses say)."""
         return None
 
     def matches(self, event: Event) -> bool:
-        """True when this handler takes `event`."""
-        return self.__matcher(event)
-
-    def describe(self) -> tuple[str, list[SomeEntitiesType]]:
-        """(text, entities the handler would yield when known in advance)."""
-        text = (f"{type(self).__name__}(matcher='{self.matcher_description}', "
-                f"handler='{self.handler_description}', handle_once={self.handle_once})")
-        return text, []
+        return self._accepts(event)
 
     def handle(self, event: Event, context: LaunchContext) -> SomeEntitiesType | None:
-        """Set `event` in the context's locals and unregister a handle-once handler.
+        """Make `event` a local and, for a handle-once handler, unregister it.
 
-        Subclasses call this first, then return the entities to visit.
+        Subclasses call it before computing what to return.
         """
-        context.extend_locals({'event': event})
-        if self.handle_once:
+        if self._once:
             context.unregister_event_handler(self)
+        context.extend_locals({'event': event})
         return None
+
+    def describe(self) -> tuple[str, list[SomeEntitiesType]]:
+        """A line about the handler, and the entities it would give when they are known beforehand."""
+        kind, takes, does = type(self).__name__, self.matcher_description, self.handler_description
+        return f"{kind}(matcher='{takes}', handler='{does}', handle_once={self._once})", []
 
 
 class EventHandler(BaseEventHandler):
-    """An event handler yielding fixed `entities` for every event its matcher takes."""
+    """Gives the same `entities` for every event `matcher` accepts."""
 
     def __init__(
         self,
@@ -71,19 +67,18 @@ class EventHandler(BaseEventHandler):
         handle_once: bool = False,
     ) -> None:
         super().__init__(matcher=matcher, handle_once=handle_once)
-        self.__entities = entities
+        self._gives = entities
 
     @property
     def entities(self) -> SomeEntitiesType | None:
-        """What the handler yields."""
-        return self.__entities
+        return self._gives
 
     def describe(self) -> tuple[str, list[SomeEntitiesType]]:
-        text, entities = super().describe()
-        if self.entities:
-            entities.extend(self.entities)
-        return text, entities
+        line, known = super().describe()
+        if self._gives:
+            known += list(self._gives)
+        return line, known
 
     def handle(self, event: Event, context: LaunchContext) -> SomeEntitiesType | None:
         super().handle(event, context)
-        return self.entities
+        return self._gives

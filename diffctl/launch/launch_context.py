@@ -5,7 +5,7 @@ from __future__ import annotations
 import asyncio
 import collections
 import os
-from collections.abc import Iterable, MutableMapping
+from collections.abc import Callable, Iterable, MutableMapping
 from typing import Any
 
 from . import logging as launch_logging
@@ -14,192 +14,203 @@ from .event_handler import BaseEventHandler
 from .substitution import Substitution
 
 
-class _ReadOnlyLocals:
-    """`context.locals`: the locals dictionary read as attributes (`context.locals.event`)."""
+class _LocalsView:
+    """`context.locals`: the locals read as attributes; writing is refused."""
 
     def __init__(self, values: dict[str, Any]) -> None:
         object.__setattr__(self, '_values', values)
 
     def __getattr__(self, key: str) -> Any:
         values = object.__getattribute__(self, '_values')
-        if key not in values:
+        try:
+            return values[key]
+        except KeyError:
+            listed = ', '.join(values)
             raise AttributeError(
-                "context.locals does not contain attribute '{}', it contains: [{}]".format(
-                    key, ', '.join(values.keys())))
-        return values[key]
+                f"context.locals does not contain attribute '{key}', it contains: [{listed}]") from None
 
     def __setattr__(self, key: str, value: Any) -> None:
         raise AttributeError(f"can't set attribute '{key}', locals are read-only")
 
 
-class LaunchContext:
-    """What entities see while a launch runs.
+class _Saves:
+    """Snapshots of one part of the context, taken and put back in last-in first-out order."""
 
-    - `locals`: variables set by whoever yielded the entity (an event handler sets `event`, an include
-      sets `current_launch_file_path`, …); they are scoped to the entities being yielded, `globals`
-      (set with `extend_globals`) are seen everywhere.
-    - `launch_configurations`: the launch arguments and `let`s, by name.
-    - `environment`: this process's environment (`os.environ`), which processes inherit.
-    - events: `emit_event` queues one for the service; `register_event_handler` adds a handler.
-    - `asyncio_loop` while the service runs, `argv`, `noninteractive`, `is_shutdown`.
+    def __init__(self, label: str, take: Callable[[], Any], put_back: Callable[[Any], None]) -> None:
+        self._label = label
+        self._take = take
+        self._put_back = put_back
+        self._kept: list[Any] = []
+
+    def save(self) -> None:
+        self._kept.append(self._take())
+
+    def restore(self) -> None:
+        if not self._kept:
+            raise RuntimeError(f'{self._label} stack unexpectedly empty')
+        self._put_back(self._kept.pop())
+
+
+def _set_process_environment(values: dict[str, str]) -> None:
+    # os.environ must stay the same object: it writes through to the C environment children inherit
+    os.environ.clear()
+    os.environ.update(values)
+
+
+class LaunchContext:
+    """What the entities of a launch see and change while it runs.
+
+    - `launch_configurations`: arguments and `let`s by name.
+    - `environment`: the environment processes inherit, which is this process's `os.environ`.
+    - `locals`: names given by whoever produced the entity being visited (an event handler gives
+      `event`, an include `current_launch_file_path`, …); they last until that producer's scope ends.
+      `extend_globals` gives names seen everywhere, from then on.
+    - `emit_event` / `emit_event_sync` queue events for the LaunchService; `register_event_handler`
+      adds a handler (ahead of the others, or behind them with `append=True`).
+    - `asyncio_loop` while a LaunchService runs, `argv`, `noninteractive`, `is_shutdown`.
     """
 
     def __init__(self, *, argv: Iterable[str] | None = None, noninteractive: bool = False) -> None:
-        self.__argv = argv if argv is not None else []
-        self.__noninteractive = noninteractive
+        self._argv = [] if argv is None else argv
+        self._noninteractive = noninteractive
+        self._ending = False
+        self._loop: asyncio.AbstractEventLoop | None = None
 
-        self._event_queue: asyncio.Queue = asyncio.Queue()
-        self._event_handlers: collections.deque = collections.deque()
-        self._completion_futures: list[asyncio.Future] = []
+        # used by the LaunchService: the event queue, the handlers, and futures the launch waits for
+        self._queue: asyncio.Queue = asyncio.Queue()
+        self._handlers: collections.deque[BaseEventHandler] = collections.deque()
+        self._awaited: list[asyncio.Future] = []
 
-        self.__globals: dict[str, Any] = {}
-        self.__locals: dict[str, Any] = {}
-        self.__locals_stack: list[dict[str, Any]] = []
-        self.__combined: dict[str, Any] | None = None
+        self._globals: dict[str, Any] = {}
+        self._frame: dict[str, Any] = {}
+        self._merged: dict[str, Any] | None = None  # globals under locals, made when asked for
+        self._configurations: dict[str, str] = {}
+        self._first_environment = os.environ.copy()
 
-        self.__launch_configurations: dict[str, str] = {}
-        self.__launch_configurations_stack: list[dict[str, str]] = []
-
-        self.__environment_stack: list[dict[str, str]] = []
-        self.__environment_at_start = os.environ.copy()
-
-        self.__is_shutdown = False
-        self.__asyncio_loop: asyncio.AbstractEventLoop | None = None
-        self.__logger = launch_logging.get_logger('launch.launch_context')
+        self._saves = {
+            'locals': _Saves('locals', lambda: dict(self._frame), self._set_frame),
+            'environment': _Saves('environment', os.environ.copy, _set_process_environment),
+            'launch_configurations': _Saves(
+                'launch_configurations', lambda: self._configurations.copy(), self._set_configurations),
+        }
+        self._logger = None  # fetched when first needed: making it sets up the log files
 
     # ---- the run -------------------------------------------------------------------------------------------
 
     @property
     def argv(self):
-        """The arguments given to the launch service."""
-        return self.__argv
+        """The arguments the LaunchService was given."""
+        return self._argv
 
     @property
     def noninteractive(self) -> bool:
-        """True when the launch runs without a terminal (processes then get SIGINT from launch itself)."""
-        return self.__noninteractive
-
-    def _set_is_shutdown(self, state: bool) -> None:
-        self.__is_shutdown = state
+        """No terminal: on shutdown, processes get their SIGINT from launch rather than from a terminal."""
+        return self._noninteractive
 
     @property
     def is_shutdown(self) -> bool:
-        """True once the launch has begun shutting down."""
-        return self.__is_shutdown
-
-    def _set_asyncio_loop(self, loop: asyncio.AbstractEventLoop | None) -> None:
-        self.__asyncio_loop = loop
+        """Whether the launch has begun to end (nothing new is started then)."""
+        return self._ending
 
     @property
     def asyncio_loop(self) -> asyncio.AbstractEventLoop | None:
-        """The loop running the launch, None while it does not run."""
-        return self.__asyncio_loop
+        """The loop running the launch; None while none does."""
+        return self._loop
+
+    def _running_on(self, loop: asyncio.AbstractEventLoop | None) -> None:
+        self._loop = loop
+
+    def _mark_ending(self) -> None:
+        self._ending = True
 
     def add_completion_future(self, completion_future: asyncio.Future) -> None:
-        """Make the launch wait for `completion_future` before it considers itself idle."""
-        self._completion_futures.append(completion_future)
+        """Keep the launch from counting as idle until `completion_future` is done."""
+        self._awaited.append(completion_future)
+
+    # ---- saving and restoring (Push*/Pop* actions, the LaunchService around each handler) ---------------
+
+    def _save(self, part: str) -> None:
+        self._saves[part].save()
+
+    def _restore(self, part: str) -> None:
+        self._saves[part].restore()
+
+    def _restore_first_environment(self) -> None:
+        _set_process_environment(self._first_environment)
+
+    def _set_frame(self, frame: dict[str, Any]) -> None:
+        self._frame = frame
+        self._merged = None
+
+    def _set_configurations(self, configurations: dict[str, str]) -> None:
+        # the saved dict itself comes back: a reference taken inside the scope keeps the inner values
+        self._configurations = configurations
 
     # ---- locals --------------------------------------------------------------------------------------------
 
-    def _push_locals(self) -> None:
-        self.__locals_stack.append(dict(self.__locals))
-
-    def _pop_locals(self) -> None:
-        if not self.__locals_stack:
-            raise RuntimeError('locals stack unexpectedly empty')
-        self.__locals = self.__locals_stack.pop()
-        self.__combined = None
-
     def extend_globals(self, extensions: dict[str, Any]) -> None:
-        """Add variables seen in `locals` from now on, everywhere (a local of the same name hides one)."""
-        self.__globals.update(extensions)
-        self.__combined = None
+        """Names seen in `locals` everywhere from now on (a local of the same name hides one)."""
+        self._globals.update(extensions)
+        self._merged = None
 
     def extend_locals(self, extensions: dict[str, Any]) -> None:
-        """Add variables to `locals` until the current scope is popped."""
-        self.__locals.update(extensions)
-        self.__combined = None
-
-    def _clear_combined_locals_cache(self) -> None:
-        self.__combined = None
+        """Names seen in `locals` until the current scope ends."""
+        self._frame.update(extensions)
+        self._merged = None
 
     def get_locals_as_dict(self) -> dict[str, Any]:
-        """Globals and locals (locals winning) as one dictionary."""
-        if self.__combined is None:
-            self.__combined = {**self.__globals, **self.__locals}
-        return self.__combined
+        """Globals and locals in one dictionary, locals winning."""
+        if self._merged is None:
+            self._merged = {**self._globals, **self._frame}
+        return self._merged
 
     @property
     def locals(self) -> Any:
-        """Read-only attribute access to `get_locals_as_dict()`."""
-        return _ReadOnlyLocals(self.get_locals_as_dict())
+        """`get_locals_as_dict()` read as attributes: `context.locals.event`."""
+        return _LocalsView(self.get_locals_as_dict())
 
-    # ---- environment ---------------------------------------------------------------------------------------
-
-    def _push_environment(self) -> None:
-        self.__environment_stack.append(os.environ.copy())
-
-    def _pop_environment(self) -> None:
-        if not self.__environment_stack:
-            raise RuntimeError('environment stack unexpectedly empty')
-        self.__replace_environment(self.__environment_stack.pop())
-
-    def _reset_environment(self) -> None:
-        self.__replace_environment(self.__environment_at_start)
-
-    @staticmethod
-    def __replace_environment(values: dict[str, str]) -> None:
-        # os.environ must stay the os._Environ object (it writes through to the C environment)
-        os.environ.clear()
-        os.environ.update(values)
-
-    @property
-    def environment(self) -> MutableMapping[str, str]:
-        """The environment processes inherit: this process's `os.environ`."""
-        return os.environ
-
-    # ---- launch configurations -----------------------------------------------------------------------------
-
-    def _push_launch_configurations(self) -> None:
-        self.__launch_configurations_stack.append(self.__launch_configurations.copy())
-
-    def _pop_launch_configurations(self) -> None:
-        if not self.__launch_configurations_stack:
-            raise RuntimeError('launch_configurations stack unexpectedly empty')
-        self.__launch_configurations = self.__launch_configurations_stack.pop()
+    # ---- configurations and environment ----------------------------------------------------------------
 
     @property
     def launch_configurations(self) -> dict[str, str]:
-        """Launch configurations (arguments, `let`s) by name."""
-        return self.__launch_configurations
+        return self._configurations
+
+    @property
+    def environment(self) -> MutableMapping[str, str]:
+        return os.environ
 
     # ---- events --------------------------------------------------------------------------------------------
 
-    def would_handle_event(self, event: Event) -> bool:
-        """True when some registered handler matches `event`."""
-        return any(handler.matches(event) for handler in self._event_handlers)
-
     def register_event_handler(self, event_handler: BaseEventHandler, append: bool = False) -> None:
-        """Register a handler: it is asked before the ones already there, or after them with `append`."""
+        """Add a handler, asked before those registered earlier — or after them, with `append`."""
         if append:
-            self._event_handlers.append(event_handler)
+            self._handlers.append(event_handler)
         else:
-            self._event_handlers.appendleft(event_handler)
+            self._handlers.appendleft(event_handler)
 
     def unregister_event_handler(self, event_handler: BaseEventHandler) -> None:
-        """Remove a registered handler (ValueError when it is not registered)."""
-        self._event_handlers.remove(event_handler)
+        """Remove a handler; ValueError when it is not registered."""
+        self._handlers.remove(event_handler)
+
+    def would_handle_event(self, event: Event) -> bool:
+        """Whether some registered handler takes `event`."""
+        return any(handler.matches(event) for handler in self._handlers)
+
+    def _debug(self, message: str) -> None:
+        if self._logger is None:
+            self._logger = launch_logging.get_logger('launch.launch_context')
+        self._logger.debug(message)
 
     def emit_event_sync(self, event: Event) -> None:
-        """Queue `event` for the launch service, from the loop's thread, without awaiting."""
-        self.__logger.debug(f"emitting event synchronously: '{event.name}'")
-        self._event_queue.put_nowait(event)
+        """Queue `event` without waiting (on the loop's thread, or before the launch runs)."""
+        self._debug(f"emitting event synchronously: '{event.name}'")
+        self._queue.put_nowait(event)
 
     async def emit_event(self, event: Event) -> None:
-        """Queue `event` for the launch service."""
-        self.__logger.debug(f"emitting event: '{event.name}'")
-        await self._event_queue.put(event)
+        """Queue `event`."""
+        self._debug(f"emitting event: '{event.name}'")
+        await self._queue.put(event)
 
     def perform_substitution(self, substitution: Substitution) -> str:
-        """The text of `substitution` in this context."""
+        """What `substitution` stands for in this context."""
         return substitution.perform(self)

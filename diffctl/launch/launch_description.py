@@ -14,13 +14,45 @@ if TYPE_CHECKING:
     from .actions.include_launch_description import IncludeLaunchDescription
     from .launch_context import LaunchContext
 
+Declaration = tuple['DeclareLaunchArgument', 'list[IncludeLaunchDescription] | None']
+
+
+class _ArgumentSearch:
+    """Finds the argument declarations of a tree of entities, as far as it is known without launching.
+
+    It walks what entities always give and, marked conditional, what they give under a condition;
+    included files count when they load without a context. A ResetLaunchConfigurations ends the walk of
+    its level: what follows it cannot be set from outside.
+    """
+
+    def __init__(self) -> None:
+        self.found: list[Declaration] = []
+        self.seen: set[str] = set()
+
+    def walk(self, entities: Iterable[LaunchDescriptionEntity], conditional: bool,
+             through: list[IncludeLaunchDescription] | None) -> None:
+        from .actions.declare_launch_argument import DeclareLaunchArgument
+        from .actions.include_launch_description import IncludeLaunchDescription
+        from .actions.reset_launch_configurations import ResetLaunchConfigurations
+
+        for entity in entities:
+            if isinstance(entity, DeclareLaunchArgument) and entity.name not in self.seen:
+                self.seen.add(entity.name)
+                # tools (--show-args, launch_testing) read this flag on the declaration itself
+                entity._conditionally_included = conditional or entity.condition is not None
+                self.found.append((entity, through))
+            if isinstance(entity, ResetLaunchConfigurations):
+                return
+            below = [*(through or []), entity] if isinstance(entity, IncludeLaunchDescription) else through
+            self.walk(entity.describe_sub_entities(), False, below)
+            for _, maybe in entity.describe_conditional_sub_entities():
+                self.walk(maybe, True, below)
+
 
 class LaunchDescription(LaunchDescriptionEntity):
-    """An ordered collection of entities; visiting it yields them.
+    """A list of entities, visited in order; it declares the arguments its DeclareLaunchArguments name.
 
-    `get_launch_arguments()` finds the `DeclareLaunchArgument`s reachable without launching: in the
-    entities, what they always yield, what they yield under a condition, and what included files declare
-    (when they can be loaded without a context).
+    `deprecated_reason`, when given, is warned about each time the description is visited.
     """
 
     def __init__(
@@ -29,80 +61,50 @@ class LaunchDescription(LaunchDescriptionEntity):
         *,
         deprecated_reason: str | None = None,
     ) -> None:
-        self.__entities = list(initial_entities) if initial_entities is not None else []
-        self.__deprecated_reason = deprecated_reason
-
-    def visit(self, context: LaunchContext) -> list[LaunchDescriptionEntity] | None:
-        if self.__deprecated_reason is not None:
-            where = context.get_locals_as_dict().get('current_launch_file_path')
-            if where is not None:
-                message = f'launch file [{where}] is deprecated: {self.__deprecated_reason}'
-            else:
-                message = f'deprecated launch description: {self.__deprecated_reason}'
-            launch_logging.get_logger().warning(message)
-        return self.__entities
-
-    def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
-        return self.__entities
-
-    def get_launch_arguments(self, conditional_inclusion: bool = False) -> list[DeclareLaunchArgument]:
-        """The declared arguments, first declaration of each name only (see the class doc)."""
-        return [argument for argument, _ in
-                self.get_launch_arguments_with_include_launch_description_actions(conditional_inclusion)]
-
-    def get_launch_arguments_with_include_launch_description_actions(
-        self, conditional_inclusion: bool = False
-    ) -> list[tuple[DeclareLaunchArgument, list[IncludeLaunchDescription] | None]]:
-        """(declaration, the includes it sits under, or None at this level) for each declared argument.
-
-        Each declaration's `_conditionally_included` is set: whether a condition guards it (or
-        `conditional_inclusion` for the top level). Declarations after a `ResetLaunchConfigurations`
-        are not reachable by the caller's arguments and are not listed. Included files that cannot be
-        loaded without a context are skipped.
-        """
-        from .actions.declare_launch_argument import DeclareLaunchArgument
-        from .actions.include_launch_description import IncludeLaunchDescription
-        from .actions.reset_launch_configurations import ResetLaunchConfigurations
-
-        found: list[tuple[DeclareLaunchArgument, list[IncludeLaunchDescription] | None]] = []
-        names = set()
-
-        def walk(entities: Iterable[LaunchDescriptionEntity], conditional: bool,
-                 includes: list[IncludeLaunchDescription] | None) -> None:
-            for entity in entities:
-                if isinstance(entity, DeclareLaunchArgument) and entity.name not in names:
-                    names.add(entity.name)
-                    entity._conditionally_included = conditional or entity.condition is not None
-                    found.append((entity, includes))
-                if isinstance(entity, ResetLaunchConfigurations):
-                    return
-                inner = includes
-                if isinstance(entity, IncludeLaunchDescription):
-                    inner = [*(includes or []), entity]
-                walk(entity.describe_sub_entities(), False, inner)
-                for _, conditional_entities in entity.describe_conditional_sub_entities():
-                    walk(conditional_entities, True, inner)
-
-        walk(self.entities, conditional_inclusion, None)
-        return found
+        self._members: list[LaunchDescriptionEntity] = list(initial_entities or [])
+        self._deprecation = deprecated_reason
 
     @property
     def entities(self) -> list[LaunchDescriptionEntity]:
-        return self.__entities
-
-    def add_entity(self, entity: LaunchDescriptionEntity) -> None:
-        """Append an entity."""
-        self.__entities.append(entity)
-
-    def add_action(self, action: Action) -> None:
-        """Append an action."""
-        self.add_entity(action)
+        return self._members
 
     @property
     def deprecated(self) -> bool:
-        return self.__deprecated_reason is not None
+        return self._deprecation is not None
 
     @property
     def deprecated_reason(self) -> str | None:
-        """Why this description is deprecated, or None when it is not."""
-        return self.__deprecated_reason
+        return self._deprecation
+
+    def add_entity(self, entity: LaunchDescriptionEntity) -> None:
+        self._members.append(entity)
+
+    def add_action(self, action: Action) -> None:
+        self._members.append(action)
+
+    def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
+        return self._members
+
+    def visit(self, context: LaunchContext) -> list[LaunchDescriptionEntity] | None:
+        if self._deprecation is not None:
+            path = context.get_locals_as_dict().get('current_launch_file_path')
+            what = 'deprecated launch description' if path is None else f'launch file [{path}] is deprecated'
+            launch_logging.get_logger().warning(f'{what}: {self._deprecation}')
+        return self._members
+
+    def get_launch_arguments_with_include_launch_description_actions(
+        self, conditional_inclusion: bool = False
+    ) -> list[Declaration]:
+        """Each argument declared (first declaration of a name), with the includes it is declared under.
+
+        The includes are None for a declaration of this description itself. `conditional_inclusion` marks
+        this level as conditional; every declaration's `_conditionally_included` is set on the way.
+        """
+        search = _ArgumentSearch()
+        search.walk(self._members, conditional_inclusion, None)
+        return search.found
+
+    def get_launch_arguments(self, conditional_inclusion: bool = False) -> list[DeclareLaunchArgument]:
+        """The arguments declared, here and in what is included (first declaration of a name only)."""
+        return [declaration for declaration, _ in
+                self.get_launch_arguments_with_include_launch_description_actions(conditional_inclusion)]

@@ -1,4 +1,4 @@
-"""`LaunchDescriptionEntity`: the base of everything a launch description holds."""
+"""`LaunchDescriptionEntity`: anything a launch description may hold."""
 
 from __future__ import annotations
 
@@ -12,34 +12,33 @@ if TYPE_CHECKING:
 
 
 class LaunchDescriptionEntity:
-    """One item of a launch description: an action, a launch description, or anything visitable.
+    """An item of a launch description: an action, a description, or any visitable thing.
 
-    Two walks use these methods. Describing (``ros2 launch --print``, argument discovery) calls
-    `describe`, `describe_sub_entities` and `describe_conditional_sub_entities` and needs no context.
-    Launching calls `visit` with the `LaunchContext`; the entities it returns are visited next, and
-    `get_asyncio_future` tells the service whether this entity still has work in flight.
+    Two walks use an entity. Describing (`ros2 launch --print`, finding the arguments) needs no context:
+    `describe`, `describe_sub_entities`, `describe_conditional_sub_entities`. Launching calls
+    `visit(context)`, then visits what it returned, and watches `get_asyncio_future()` for work in flight.
     """
 
     def describe(self) -> str:
-        """Text describing this entity; subclasses provide it."""
+        """This entity in words; every kind of entity says it."""
         raise NotImplementedError()
 
     def describe_sub_entities(self) -> list[LaunchDescriptionEntity]:
-        """Entities always produced when this one is visited (empty by default)."""
+        """The entities visiting this one always gives (none here)."""
         return []
 
     def describe_conditional_sub_entities(self) -> list[tuple[str, Iterable[LaunchDescriptionEntity]]]:
-        """(condition text, entities) pairs: entities produced only when that condition holds."""
+        """(the condition in words, the entities given when it holds) pairs (none here)."""
         return []
 
     def visit(self, context: LaunchContext) -> list[LaunchDescriptionEntity] | None:
-        """Do this entity's work in `context` and return entities to visit next, or None.
+        """Do this entity's part and return the entities to visit next (None: nothing).
 
-        Runs on the launch loop: it must not block. Long work belongs in a task on
-        `context.asyncio_loop`, reported through `get_asyncio_future`.
+        It runs on the launch's loop and must not block; longer work goes in a task on
+        `context.asyncio_loop`, announced by `get_asyncio_future`.
         """
         return None
 
     def get_asyncio_future(self) -> asyncio.Future | None:
-        """A future done when this entity's asynchronous work is over, or None when it has none."""
+        """The future of this entity's unfinished work; None when there is none."""
         return None

@@ -1,4 +1,4 @@
-"""`SomeSubstitutionsType`: a string, a substitution, or an iterable mixing both."""
+"""`SomeSubstitutionsType`: what parameters taking "substitutions" accept — text, substitutions, or a mix."""
 
 import collections.abc
 from collections.abc import Iterable
@@ -6,14 +6,5 @@ from typing import Union
 
 from .substitution import Substitution
 
-SomeSubstitutionsType = Union[
-    str,
-    Substitution,
-    Iterable[str | Substitution],
-]
-
-SomeSubstitutionsType_types_tuple = (
-    str,
-    Substitution,
-    collections.abc.Iterable,
-)
+SomeSubstitutionsType = Union[str, Substitution, Iterable[Union[str, Substitution]]]
+SomeSubstitutionsType_types_tuple = (str, Substitution, collections.abc.Iterable)  # for isinstance checks

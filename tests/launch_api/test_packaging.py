@@ -22,7 +22,7 @@ def test_ros_names_are_the_same_modules() -> None:
         import launch.actions.execute_process as ros
         import diffctl.launch.actions.execute_process as ours
         from launch.actions import ExecuteProcess
-        from launch.actions.execute_local import _Output  # private names too
+        from launch.actions.execute_local import _Run  # private names too
         from launch_xml.launch_description_sources import XMLLaunchDescriptionSource
         from diffctl.launch_xml.launch_description_sources import XMLLaunchDescriptionSource as Ours
         assert ros is ours and ExecuteProcess is ours.ExecuteProcess and XMLLaunchDescriptionSource is Ours

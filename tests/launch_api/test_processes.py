@@ -180,3 +180,26 @@ def test_signals_to_the_process_only_when_asked() -> None:
     assert parent.return_code == -signal.SIGINT
     grandchild = int(next(line for line in seen if line.startswith('grandchild')).split()[1])
     assert gone(grandchild)  # ended with the run, as a leftover of the group
+
+
+def test_launch_prefix_goes_where_the_filter_matches() -> None:
+    from diffctl.launch.actions import SetLaunchConfiguration
+
+    # the prefix is `env VAR=1`: it runs what follows it, with VAR set, so the child tells whether it ran
+    show = 'import os; print(os.environ.get("DIFFCTL_PREFIXED"))'
+    python = ExecuteProcess(cmd=[sys.executable, '-c', show], cached_output=True)
+    shell = ExecuteProcess(cmd=['sh', '-c', 'echo "$DIFFCTL_PREFIXED"'], cached_output=True)
+    explicit = ExecuteProcess(cmd=['sh', '-c', 'echo "$DIFFCTL_PREFIXED"'], prefix='env DIFFCTL_PREFIXED=2',
+                              cached_output=True)
+    service = LaunchService()
+    service.include_launch_description(LaunchDescription([
+        SetLaunchConfiguration('launch-prefix', 'env DIFFCTL_PREFIXED=1'),
+        SetLaunchConfiguration('launch-prefix-filter', 'pyth'),  # matched at the start of the base name
+        python, shell, explicit,
+    ]))
+    assert service.run() == 0
+    assert python.process_details['cmd'][:2] == ['env', 'DIFFCTL_PREFIXED=1']
+    assert python.get_stdout().split() == ['1']
+    assert python.process_details['name'].startswith('env-')  # named after the prefixed command's first word
+    assert shell.process_details['cmd'][0] == 'sh' and shell.get_stdout().split() == []
+    assert explicit.get_stdout().split() == ['2']  # a prefix given to the action ignores the filter

@@ -1,7 +1,7 @@
 """The actions that change one entry of a table of the context: the environment, the launch configurations.
 
 Set, append, unset: each performs its operands (the entry's name first) when executed and applies one
-edit to its table. The operands are kept here in a dict; the public classes expose them as properties.
+edit to its table. The operands live in `_fields`; the public classes show them with `field` properties.
 """
 
 from __future__ import annotations
@@ -20,11 +20,6 @@ if TYPE_CHECKING:
     from ..launch_context import LaunchContext
 
 
-def operand(key: str, doc: str) -> property:
-    """A read-only property showing the operand `key` (a list of substitutions)."""
-    return property(lambda self: self._operands[key], doc=doc)
-
-
 class EntryEdit(Action):
     """Base of those actions. Subclasses say which table, which markup attributes, and what the edit is."""
 
@@ -33,7 +28,7 @@ class EntryEdit(Action):
     _optional_attributes: ClassVar[tuple[str, ...]] = ()
 
     def _take(self, **operands: Any) -> None:
-        self._operands = {key: normalize_to_list_of_substitutions(value) for key, value in operands.items()}
+        self._fields = {key: normalize_to_list_of_substitutions(value) for key, value in operands.items()}
 
     @classmethod
     def parse(cls, entity: Entity, parser: Parser):
@@ -48,7 +43,7 @@ class EntryEdit(Action):
         raise NotImplementedError
 
     def execute(self, context: LaunchContext) -> None:
-        texts = {key: perform_substitutions(context, subs) for key, subs in self._operands.items()}
+        texts = {key: perform_substitutions(context, subs) for key, subs in self._fields.items()}
         self._apply(context, self._table(context), texts)
 
 

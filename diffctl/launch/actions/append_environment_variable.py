@@ -6,7 +6,8 @@ import os
 from collections.abc import MutableMapping
 from typing import TYPE_CHECKING, Any
 
-from .._private.entry_edits import EnvironmentEdit, operand
+from .._private.entry_edits import EnvironmentEdit
+from .._private.fields import field
 from .._private.markup import typed_attribute
 from ..frontend.expose import expose_action
 from ..utilities.type_utils import NormalizedValueType, normalize_typed_substitution, perform_typed_substitution
@@ -29,9 +30,9 @@ class AppendEnvironmentVariable(EnvironmentEdit):
     _attributes = ('name', 'value')
     _optional_attributes = ('separator',)
 
-    name = operand('name', 'The variable, as substitutions.')
-    value = operand('value', 'What is added, as substitutions.')
-    separator = operand('separator', 'What goes between the old and the added text.')
+    name = field('name', 'The variable, as substitutions.')
+    value = field('value', 'What is added, as substitutions.')
+    separator = field('separator', 'What goes between the old and the added text.')
 
     def __init__(
         self,

@@ -1,4 +1,4 @@
-"""`ExecuteLocal`: run a process on this machine, report its events, shut it down with escalation."""
+"""`ExecuteLocal`: run a process on this machine, report what it does, and stop it with escalation."""
 
 from __future__ import annotations
 
@@ -10,6 +10,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from .. import logging as launch_logging
+from .._private.process_output import HeldBack, LineLog
 from .._private.spawning import spawner_for
 from ..action import Action
 from ..conditions.evaluate_condition_expression_impl import evaluate_condition_expression
@@ -21,8 +22,6 @@ from ..event_handlers.on_shutdown import OnShutdown
 from ..events.matchers import matches_action
 from ..events.process.process_exited import ProcessExited
 from ..events.process.process_started import ProcessStarted
-from ..events.process.process_stderr import ProcessStderr
-from ..events.process.process_stdout import ProcessStdout
 from ..events.process.shutdown_process import ShutdownProcess
 from ..events.process.signal_process import SignalProcess
 from ..substitutions.launch_configuration import LaunchConfiguration
@@ -46,98 +45,46 @@ if TYPE_CHECKING:
     from ..some_entities_type import SomeEntitiesType
     from ..some_substitutions_type import SomeSubstitutionsType
 
-_ESCALATION = "process[{}] failed to terminate '{}' seconds after receiving '{}', escalating to '{}'"
+OnExit = Callable[[ProcessExited, 'LaunchContext'], 'SomeEntitiesType | None']
 
 
-class _Output:
-    """One output stream of a process, logged line by line.
-
-    Partial lines wait for the rest. Cached, the whole output is kept for `get_stdout()`; otherwise only
-    the unfinished line is. Once closed (the process ended for good), chunks are logged as they come.
-    """
-
-    def __init__(self, cached: bool) -> None:
-        self.cached = cached
-        self.text = ''
-        self.logged_up_to = 0  # cached: end of the last logged line
-        self.closed = False
-
-    def add(self, chunk: str, log: Callable[[str], None]) -> None:
-        if self.closed and not self.cached:
-            log(chunk)
-            return
-        self.text += chunk
-        start = self.logged_up_to if self.cached else 0
-        end = self.text.rfind(os.linesep, start)
-        if end < 0:
-            return
-        complete = self.text[start:end]
-        for line in complete.split(os.linesep):
-            log(line)
-        end += len(os.linesep)
-        if self.cached:
-            self.logged_up_to = end
-        else:
-            self.text = self.text[end:]
-
-    def flush(self, log: Callable[[str], None], *, final: bool) -> None:
-        """Log what is left of an unfinished line; `final`: no respawn will write here again."""
-        if self.cached:
-            rest = self.text[self.logged_up_to:]
-            for line in rest.splitlines(keepends=True):
-                log(line)
-            self.logged_up_to = len(self.text)
-            return
-        if self.text:
-            log(self.text)
-        self.text = ''
-        self.closed = self.closed or final
+def _shown(cmd: list[str]) -> str:
+    """A command line for messages: its words, blank ones left out."""
+    return ' '.join(word for word in cmd if word.strip())
 
 
-class _Sink:
-    """Turns a child's output into ProcessStdout / ProcessStderr events, none before ProcessStarted."""
+class _Run:
+    """What one execution of the action has going: futures, loggers, the child, the escalation timers."""
 
-    def __init__(self, context: LaunchContext, event_args: dict[str, Any]) -> None:
-        self.context = context
-        self.event_args = event_args
-        self.early: list[tuple[type, bytes]] | None = []  # output read before the start was reported
-
-    def started(self) -> None:
-        early, self.early = self.early, None
-        for kind, data in early or ():
-            self.context.emit_event_sync(kind(text=data, **self.event_args))
-
-    def __emit(self, kind: type, data: bytes) -> None:
-        if self.early is not None:
-            self.early.append((kind, data))
-        else:
-            self.context.emit_event_sync(kind(text=data, **self.event_args))
-
-    def on_stdout(self, data: bytes) -> None:
-        self.__emit(ProcessStdout, data)
-
-    def on_stderr(self, data: bytes) -> None:
-        self.__emit(ProcessStderr, data)
+    def __init__(self, loop: asyncio.AbstractEventLoop, name: str) -> None:
+        self.done = loop.create_future()  # the process is over for good (no respawn to come)
+        self.stopping = loop.create_future()  # a shutdown of the process has begun
+        self.log = launch_logging.get_logger(name)
+        self.out: logging.Logger | None = None
+        self.err: logging.Logger | None = None
+        self.child: Any | None = None
+        self.timers: list[TimerAction] = []
+        self.respawns = 0
 
 
 class ExecuteLocal(Action):
     """Runs the process an `Executable` describes, on this machine.
 
-    Once executed it handles `ShutdownProcess` and `Shutdown` (SIGINT, then SIGTERM after
-    `sigterm_timeout` and SIGKILL after `sigkill_timeout` more seconds), `SignalProcess` and `ProcessStdin`
-    events for its process, and emits `ProcessStarted`, `ProcessStdout`/`ProcessStderr` and
-    `ProcessExited`. On a launch shutdown due to SIGINT with a terminal, it sends no SIGINT itself: the
-    terminal already did (diffctl's launcher forwards the SIGINT to its children's process groups).
+    Once executed it emits ProcessStarted, ProcessStdout / ProcessStderr and ProcessExited, and acts on
+    ShutdownProcess, SignalProcess and the launch's Shutdown: SIGINT first, SIGTERM `sigterm_timeout`
+    seconds later, SIGKILL after `sigkill_timeout` more. On a shutdown caused by a SIGINT with a terminal
+    it sends no SIGINT of its own, the terminal did (diffctl's launcher passes that SIGINT on to every
+    process group, as a terminal does to its own).
 
-    - `output`: where output goes ('log', 'screen', 'both', 'own_log', 'full', or a dict; see
-      `launch.logging.get_output_loggers`); the `OVERRIDE_LAUNCH_PROCESS_OUTPUT` environment variable
-      overrides it. `output_format` formats each line (`{line}`, `{this}`).
-    - `emulate_tty`: run with a pseudo-terminal; the `emulate_tty` launch configuration overrides it.
-    - `cached_output`: keep the output for `get_stdout()` / `get_stderr()`.
-    - `log_cmd`: log the final command before starting it.
+    - `output`: 'log', 'screen', 'both', 'own_log', 'full' or a dict (see
+      `launch.logging.get_output_loggers`), overridden by `OVERRIDE_LAUNCH_PROCESS_OUTPUT`; `output_format`
+      makes each line (`{line}`, `{this}` the action).
+    - `emulate_tty`: a pseudo-terminal for the process (the `emulate_tty` launch configuration wins).
+    - `cached_output`: keep all output for `get_stdout()` / `get_stderr()`.
+    - `log_cmd`: log the final command line before starting.
     - `on_exit`: entities, or a callable `(ProcessExited, context)`, for when the process exits.
-    - `respawn` (bool or substitution), `respawn_delay` (s), `respawn_max_retries` (negative: no limit):
-      start the process again when it exits while the launch is not shutting down.
+    - `respawn` (a boolean, possibly a substitution), `respawn_delay` (seconds), `respawn_max_retries`
+      (negative: no limit): start again after an exit while the launch is not shutting down.
     """
 
     def __init__(
@@ -152,327 +99,307 @@ class ExecuteLocal(Action):
         output_format: str = '[{this.process_description.final_name}] {line}',
         cached_output: bool = False,
         log_cmd: bool = False,
-        on_exit: SomeEntitiesType | Callable[[ProcessExited, LaunchContext], SomeEntitiesType | None] | None = None,
+        on_exit: SomeEntitiesType | OnExit | None = None,
         respawn: bool | SomeSubstitutionsType = False,
         respawn_delay: float | None = None,
         respawn_max_retries: int = -1,
         **kwargs: Any,
     ) -> None:
         super().__init__(**kwargs)
-        self.__process_description = process_description
-        self.__shell = shell
-        self.__sigterm_timeout = normalize_to_list_of_substitutions(sigterm_timeout)
-        self.__sigkill_timeout = normalize_to_list_of_substitutions(sigkill_timeout)
-        self.__emulate_tty = emulate_tty
+        self._description = process_description
+        self._shell = shell
+        self._emulate_tty = emulate_tty
+        self._term_after = normalize_to_list_of_substitutions(sigterm_timeout)
+        self._kill_after = normalize_to_list_of_substitutions(sigkill_timeout)
         chosen = os.environ.get('OVERRIDE_LAUNCH_PROCESS_OUTPUT', output)
-        self.__output = chosen if isinstance(chosen, dict) else normalize_to_list_of_substitutions(chosen)
-        self.__output_format = output_format
-        self.__log_cmd = log_cmd
-        self.__cached_output = cached_output
-        self.__on_exit = on_exit
-        self.__respawn = normalize_typed_substitution(respawn, bool)
-        self.__respawn_delay = respawn_delay
-        self.__respawn_max_retries = respawn_max_retries
-        self.__respawn_retries = 0
-
-        self.__process_event_args: dict[str, Any] | None = None
-        self._subprocess_protocol: Any | None = None
-        self._subprocess_transport: Any | None = None
-        self.__completed_future: asyncio.Future | None = None
-        self.__shutdown_future: asyncio.Future | None = None
-        self.__sigterm_timer: TimerAction | None = None
-        self.__sigkill_timer: TimerAction | None = None
-        self.__stdout = _Output(cached_output)
-        self.__stderr = _Output(cached_output)
-        self.__logger = launch_logging.get_logger('launch.actions.execute_local')
-        self.__stdout_logger: logging.Logger | None = None
-        self.__stderr_logger: logging.Logger | None = None
-        self.__executed = False
+        self._output = chosen if isinstance(chosen, dict) else normalize_to_list_of_substitutions(chosen)
+        self._line_format = output_format
+        self._log_cmd = log_cmd
+        self._keep_output = cached_output
+        self._on_exit = on_exit
+        self._respawn = normalize_typed_substitution(respawn, bool)
+        self._respawn_delay = respawn_delay
+        self._respawn_limit = respawn_max_retries
+        self._details: dict[str, Any] | None = None
+        self._streams = {'stdout': LineLog(cached_output), 'stderr': LineLog(cached_output)}
+        self._run: _Run | None = None
+        self._executed = False
 
     @property
     def process_description(self) -> Executable:
-        return self.__process_description
+        return self._description
 
     @property
     def shell(self) -> bool:
-        return self.__shell
+        return self._shell
 
     @property
     def emulate_tty(self) -> bool:
-        return self.__emulate_tty
-
-    @property
-    def sigkill_timeout(self):
-        return self.__sigkill_timeout
+        return self._emulate_tty
 
     @property
     def sigterm_timeout(self):
-        return self.__sigterm_timeout
+        return self._term_after
+
+    @property
+    def sigkill_timeout(self):
+        return self._kill_after
 
     @property
     def output(self):
-        return self.__output
+        return self._output
 
     @property
     def process_details(self) -> dict[str, Any] | None:
-        """name, cmd, cwd, env, pid (and the action) of the process; None before execution."""
-        return self.__process_event_args
+        """action, name, cmd, cwd, env of the process once prepared, and its pid once started; else None."""
+        return self._details
+
+    @property
+    def return_code(self) -> int | None:
+        """The exit code; None before the process started and while it runs."""
+        child = None if self._run is None else self._run.child
+        return None if child is None else child.get_returncode()
 
     def get_sub_entities(self) -> list[LaunchDescriptionEntity]:
-        return self.__on_exit if isinstance(self.__on_exit, list) else []
+        return self._on_exit if isinstance(self._on_exit, list) else []
 
-    # ---- shutting the process down -------------------------------------------------------------------------
+    def get_asyncio_future(self) -> asyncio.Future | None:
+        return None if self._run is None else self._run.done
 
-    def _shutdown_process(self, context: LaunchContext, *, send_sigint: bool) -> list[Action] | None:
-        if self.__shutdown_future is None or self.__shutdown_future.done():
-            return None  # not executed, or already shutting down
-        if self.__completed_future is None or self.__completed_future.done():
-            self.__shutdown_future.set_result(None)  # over (or never to start)
-            return None
-        if self.process_details is None or self._subprocess_transport is None:
-            # not started yet: shut it down as soon as it is
-            context.register_event_handler(OnProcessStart(
-                on_start=lambda event, context: self._shutdown_process(context, send_sigint=send_sigint)))
-            return None
-        self.__shutdown_future.set_result(None)
-        context.extend_locals({'process_name': self.process_details['name']})
-        actions = self.__escalation_timers()
-        if send_sigint:
-            actions.append(EmitEvent(event=SignalProcess(
-                signal_number=signal.SIGINT, process_matcher=matches_action(self))))
-        return actions
+    def get_stdout(self) -> str:
+        """The process's standard output so far (with `cached_output=True` only)."""
+        return self._kept('stdout')
 
-    def __escalation_timers(self) -> list[Action]:
-        def report(context: LaunchContext, message: str, timeout: list[Any]) -> None:
-            self.__logger.error(message.format(
-                context.locals.process_name, perform_substitutions(context, timeout)))
+    def get_stderr(self) -> str:
+        """The process's standard error so far (with `cached_output=True` only)."""
+        return self._kept('stderr')
 
-        term_after = self.__sigterm_timeout
-        kill_after = [PythonExpression(('float(', *self.__sigterm_timeout, ') + float(', *self.__sigkill_timeout, ')'))]
-        self.__sigterm_timer = TimerAction(
-            period=term_after,
-            actions=[
-                OpaqueFunction(function=report, args=(_ESCALATION.format('{}', '{}', 'SIGINT', 'SIGTERM'), term_after)),
-                EmitEvent(event=SignalProcess(signal_number=signal.SIGTERM, process_matcher=matches_action(self))),
-            ],
-            cancel_on_shutdown=False,
-        )
-        self.__sigkill_timer = TimerAction(
-            period=kill_after,
-            actions=[
-                OpaqueFunction(
-                    function=report, args=(_ESCALATION.format('{}', '{}', 'SIGTERM', 'SIGKILL'), kill_after)),
-                EmitEvent(event=SignalProcess(signal_number='SIGKILL', process_matcher=matches_action(self))),
-            ],
-            cancel_on_shutdown=False,
-        )
-        return [self.__sigterm_timer, self.__sigkill_timer]
+    def _kept(self, stream: str) -> str:
+        if not self._keep_output:
+            raise RuntimeError(
+                f"cached output must be true to be able to get {stream}, proc '{self._description.name}'")
+        return self._streams[stream].text
 
-    def __on_shutdown_process_event(self, context: LaunchContext) -> list[Action] | None:
-        if not context.locals.event.process_matcher(self):
-            return None
-        return self._shutdown_process(context, send_sigint=True)
-
-    def __on_signal_process_event(self, context: LaunchContext) -> None:
-        event = context.locals.event
-        if not event.process_matcher(self):
-            return None
-        if self.process_details is None:
-            raise RuntimeError('Signal event received before execution.')
-        if self._subprocess_transport is None:
-            raise RuntimeError('Signal event received before subprocess transport available.')
-        name = self.process_details['name']
-        if self._subprocess_protocol.complete.done():
-            self.__logger.debug(
-                f"signal '{event.signal_name}' not set to '{name}' because it is already closing")
-            return None
-        self.__logger.info(f"sending signal '{event.signal_name}' to process[{name}]")
-        try:
-            if event.signal_name == 'SIGKILL':
-                self._subprocess_transport.kill()
-            else:
-                self._subprocess_transport.send_signal(event.signal)
-        except ProcessLookupError:
-            self.__logger.debug(
-                f"signal '{event.signal_name}' not sent to '{name}' because it has closed already")
-        return None
-
-    def __on_shutdown(self, event: Event, context: LaunchContext) -> list[Action] | None:
-        # with a terminal, a SIGINT shutdown means the processes got the SIGINT already
-        return self._shutdown_process(context, send_sigint=not event.due_to_sigint or context.noninteractive)
-
-    # ---- output --------------------------------------------------------------------------------------------
-
-    def __on_process_stdin(self, event: ProcessIO) -> None:
-        self.__logger.warning(f"in ExecuteProcess('{id(self)}').__on_process_stdin_event()")
-        return None
-
-    def __line_logger(self, logger: logging.Logger) -> Callable[[str], None]:
-        return lambda line: logger.info(self.__output_format.format(line=line, this=self))
-
-    def __on_stdout(self, event: ProcessIO) -> None:
-        self.__stdout.add(event.text.decode(errors='replace'), self.__line_logger(self.__stdout_logger))
-
-    def __on_stderr(self, event: ProcessIO) -> None:
-        self.__stderr.add(event.text.decode(errors='replace'), self.__line_logger(self.__stderr_logger))
-
-    def __flush_output(self, event: Event, context: LaunchContext) -> None:
-        final = self.__shutdown_future is None or self.__shutdown_future.done()
-        self.__stdout.flush(self.__line_logger(self.__stdout_logger), final=final)
-        self.__stderr.flush(self.__line_logger(self.__stderr_logger), final=final)
-
-    # ---- running -------------------------------------------------------------------------------------------
-
-    def __cleanup(self) -> None:
-        for timer in (self.__sigterm_timer, self.__sigkill_timer):
-            if timer is not None:
-                timer.cancel()
-        if self._subprocess_transport is not None:
-            self._subprocess_transport.close()
-        self.__completed_future.set_result(None)
-
-    async def __execute_process(self, context: LaunchContext) -> None:
-        from diffctl.supervision import SpawnRequest
-
-        args = self.__process_event_args
-        if args is None:
-            raise RuntimeError('process_event_args unexpectedly None')
-        cmd, cwd, env = args['cmd'], args['cwd'], args['env']
-        if self.__log_cmd:
-            self.__logger.info("process details: cmd='{}', cwd='{}', custom_env?={}".format(
-                ' '.join(part for part in cmd if part.strip()), cwd, 'True' if env is not None else 'False'))
-        emulate_tty = self.__emulate_tty
-        if 'emulate_tty' in context.launch_configurations:
-            emulate_tty = evaluate_condition_expression(
-                context, normalize_to_list_of_substitutions(context.launch_configurations['emulate_tty']))
-        process_logger = launch_logging.get_logger(args['name'])
-        request = SpawnRequest(cmd=list(cmd), cwd=cwd, env=env, shell=self.__shell, emulate_tty=emulate_tty,
-                               name=args['name'])
-        sink = _Sink(context, args)
-        try:
-            child = await spawner_for(context).spawn(request, sink)
-        except Exception:
-            self.__logger.error(f'exception occurred while executing process:\n{traceback.format_exc()}')
-            self.__cleanup()
-            return
-        # asyncio's subprocess transport reports a start a few loop iterations after the fork (its pipes are
-        # connected first); code that registers an OnProcessStart right after the launch visited this action
-        # (launch_pytest's tools.wait_for_start) relies on that
-        for _ in range(3):
-            await asyncio.sleep(0)
-        pid = child.get_pid()
-        process_logger.info(f'process started with pid [{pid}]')
-        args['pid'] = pid
-        self._subprocess_transport = child
-        self._subprocess_protocol = child
-        await context.emit_event(ProcessStarted(**args))
-        sink.started()
-
-        returncode = await child.complete
-        if returncode == 0:
-            process_logger.info(f'process has finished cleanly [pid {pid}]')
-        else:
-            process_logger.error("process has died [pid {}, exit code {}, cmd '{}'].".format(
-                pid, returncode, ' '.join(part for part in cmd if part.strip())))
-        await context.emit_event(ProcessExited(returncode=returncode, **args))
-
-        if self.__should_respawn(context):
-            self.__respawn_retries += 1
-            if self.__respawn_delay is not None and self.__respawn_delay > 0.0:
-                # wait, but stop waiting when the launch shuts the process down
-                await asyncio.wait((self.__shutdown_future,), timeout=self.__respawn_delay)
-            if not self.__shutdown_future.done():
-                child.close()
-                context.asyncio_loop.create_task(self.__execute_process(context))
-                return
-        self.__cleanup()
-
-    def __should_respawn(self, context: LaunchContext) -> bool:
-        return (
-            not context.is_shutdown
-            and self.__shutdown_future is not None
-            and not self.__shutdown_future.done()
-            and bool(self.__respawn)
-            and (self.__respawn_max_retries < 0 or self.__respawn_retries < self.__respawn_max_retries)
-        )
+    # ---- starting ----------------------------------------------------------------------------------------------
 
     def prepare(self, context: LaunchContext) -> None:
-        """Perform the substitutions of the description; fills `process_details` (without the pid)."""
-        self.__process_description.prepare(context, self)
-        description = self.__process_description
-        self.__process_event_args = {
-            'action': self,
-            'name': description.final_name,
-            'cmd': description.final_cmd,
-            'cwd': description.final_cwd,
-            'env': description.final_env,
+        """Perform the description's substitutions; `process_details` is filled in, but for the pid."""
+        self._description.prepare(context, self)
+        made = self._description
+        self._details = {
+            'action': self, 'name': made.final_name, 'cmd': made.final_cmd, 'cwd': made.final_cwd,
+            'env': made.final_env,
         }
-        self.__respawn = perform_typed_substitution(context, self.__respawn, bool)
+        self._respawn = perform_typed_substitution(context, self._respawn, bool)
 
-    def execute(self, context: LaunchContext) -> list[LaunchDescriptionEntity] | None:
-        """Prepare, register the process's event handlers, and start it in a task on the launch loop."""
-        self.prepare(context)
-        name = self.__process_description.final_name
-        if self.__executed:
-            raise RuntimeError(f"ExecuteLocal action '{name}': executed more than once: {self.describe()}")
-        self.__executed = True
-        if context.is_shutdown:
-            return None  # the launch is ending: do not start anything
-
-        event_handlers = [
+    def _handlers(self) -> list:
+        """The handlers the action needs while its process may run (registered in this order)."""
+        return [
             EventHandler(
                 matcher=lambda event: is_a_subclass(event, ShutdownProcess),
-                entities=OpaqueFunction(function=self.__on_shutdown_process_event),
+                entities=OpaqueFunction(function=self._on_shutdown_process),
             ),
             EventHandler(
                 matcher=lambda event: is_a_subclass(event, SignalProcess),
-                entities=OpaqueFunction(function=self.__on_signal_process_event),
+                entities=OpaqueFunction(function=self._on_signal_process),
             ),
             OnProcessIO(
-                target_action=self,
-                on_stdin=self.__on_process_stdin,
-                on_stdout=self.__on_stdout,
-                on_stderr=self.__on_stderr,
-            ),
-            OnShutdown(on_shutdown=self.__on_shutdown),
-            OnProcessExit(target_action=self, on_exit=self.__on_exit),
-            OnProcessExit(target_action=self, on_exit=self.__flush_output),
+                target_action=self, on_stdin=self._on_stdin, on_stdout=self._on_stdout, on_stderr=self._on_stderr),
+            OnShutdown(on_shutdown=self._on_launch_shutdown),
+            OnProcessExit(target_action=self, on_exit=self._on_exit),
+            OnProcessExit(target_action=self, on_exit=self._flush_output),
         ]
-        for handler in event_handlers:
+
+    def execute(self, context: LaunchContext) -> list[LaunchDescriptionEntity] | None:
+        """Prepare, register the process's handlers, and start it in a task on the launch's loop."""
+        self.prepare(context)
+        name = self._description.final_name
+        if self._executed:
+            raise RuntimeError(f"ExecuteLocal action '{name}': executed more than once: {self.describe()}")
+        self._executed = True
+        if context.is_shutdown:
+            return None  # the launch is ending: nothing new starts
+        handlers = self._handlers()
+        for handler in handlers:
             context.register_event_handler(handler)
         try:
-            self.__completed_future = context.asyncio_loop.create_future()
-            self.__shutdown_future = context.asyncio_loop.create_future()
-            self.__logger = launch_logging.get_logger(name)
-            output = self.__output if isinstance(self.__output, dict) else perform_substitutions(context, self.__output)
-            self.__stdout_logger, self.__stderr_logger = launch_logging.get_output_loggers(name, output)
-            context.asyncio_loop.create_task(self.__execute_process(context))
+            run = self._run = _Run(context.asyncio_loop, name)
+            output = self._output if isinstance(self._output, dict) else perform_substitutions(context, self._output)
+            run.out, run.err = launch_logging.get_output_loggers(name, output)
+            context.asyncio_loop.create_task(self._live(context))
         except Exception:
-            for handler in event_handlers:
+            for handler in handlers:
                 context.unregister_event_handler(handler)
             raise
         return None
 
-    def get_asyncio_future(self) -> asyncio.Future | None:
-        return self.__completed_future
+    def _use_tty(self, context: LaunchContext) -> bool:
+        configured = context.launch_configurations.get('emulate_tty')
+        if configured is None:
+            return self._emulate_tty
+        return evaluate_condition_expression(context, normalize_to_list_of_substitutions(configured))
 
-    def get_stdout(self) -> str:
-        """All the process's standard output so far (needs `cached_output=True`)."""
-        if not self.__cached_output:
-            raise RuntimeError(
-                f"cached output must be true to be able to get stdout, proc '{self.__process_description.name}'")
-        return self.__stdout.text
+    async def _live(self, context: LaunchContext) -> None:
+        """One life of the process: start, report, wait for its end, then respawn or finish."""
+        from diffctl.supervision import SpawnRequest
 
-    def get_stderr(self) -> str:
-        """All the process's standard error so far (needs `cached_output=True`)."""
-        if not self.__cached_output:
-            raise RuntimeError(
-                f"cached output must be true to be able to get stderr, proc '{self.__process_description.name}'")
-        return self.__stderr.text
+        details, run = self._details, self._run
+        if details is None:
+            raise RuntimeError('process_event_args unexpectedly None')
+        name, cmd, cwd, env = details['name'], details['cmd'], details['cwd'], details['env']
+        if self._log_cmd:
+            run.log.info(f"process details: cmd='{_shown(cmd)}', cwd='{cwd}', custom_env?={env is not None}")
+        request = SpawnRequest(
+            cmd=list(cmd), cwd=cwd, env=env, shell=self._shell, emulate_tty=self._use_tty(context), name=name)
+        output = HeldBack(context, details)
+        try:
+            child = await spawner_for(context).spawn(request, output)
+        except Exception:
+            run.log.error(f'exception occurred while executing process:\n{traceback.format_exc()}')
+            self._finish()
+            return
+        # asyncio's own subprocess transport reports a start a few loop turns after the fork (it connects the
+        # pipes first); code that registers an OnProcessStart just after the launch visited this action
+        # (launch_pytest's tools.wait_for_start) counts on that
+        for _ in range(3):
+            await asyncio.sleep(0)
+        pid = details['pid'] = child.get_pid()
+        run.log.info(f'process started with pid [{pid}]')
+        run.child = child
+        await context.emit_event(ProcessStarted(**details))
+        output.release()
 
-    @property
-    def return_code(self) -> int | None:
-        """The exit code, None while the process runs (or before it starts)."""
-        if self._subprocess_transport is None:
+        code = await child.complete
+        if code == 0:
+            run.log.info(f'process has finished cleanly [pid {pid}]')
+        else:
+            run.log.error(
+                f"process has died [pid {pid}, exit code {code}, cmd '{_shown(cmd)}'].")
+        await context.emit_event(ProcessExited(returncode=code, **details))
+
+        if self._respawn_due(context):
+            run.respawns += 1
+            if self._respawn_delay is not None and self._respawn_delay > 0.0:
+                # a shutdown of the process ends the wait early
+                await asyncio.wait((run.stopping,), timeout=self._respawn_delay)
+            if not run.stopping.done():
+                child.close()
+                context.asyncio_loop.create_task(self._live(context))
+                return
+        self._finish()
+
+    def _respawn_due(self, context: LaunchContext) -> bool:
+        run = self._run
+        if context.is_shutdown or run.stopping.done() or not self._respawn:
+            return False
+        return self._respawn_limit < 0 or run.respawns < self._respawn_limit
+
+    def _finish(self) -> None:
+        run = self._run
+        for timer in run.timers:
+            timer.cancel()
+        if run.child is not None:
+            run.child.close()
+        run.done.set_result(None)
+
+    # ---- stopping ----------------------------------------------------------------------------------------------
+
+    def _shutdown_process(self, context: LaunchContext, *, send_sigint: bool) -> list[Action] | None:
+        """Begin stopping the process: SIGINT (when `send_sigint`), escalated by timers while it lingers.
+
+        Returns the actions doing it. Called again, or before the process started (then it waits for the
+        start), or after its end, it does what is left to do.
+        """
+        run = self._run
+        if run is None or run.stopping.done():
             return None
-        return self._subprocess_transport.get_returncode()
+        if run.done.done():
+            run.stopping.set_result(None)
+            return None
+        if self._details is None or run.child is None:
+            context.register_event_handler(OnProcessStart(
+                on_start=lambda event, context: self._shutdown_process(context, send_sigint=send_sigint)))
+            return None
+        run.stopping.set_result(None)
+        context.extend_locals({'process_name': self._details['name']})
+        run.timers = self._escalation()
+        steps: list[Action] = list(run.timers)
+        if send_sigint:
+            steps.append(EmitEvent(event=SignalProcess(
+                signal_number=signal.SIGINT, process_matcher=matches_action(self))))
+        return steps
+
+    def _escalation(self) -> list[TimerAction]:
+        """SIGTERM after `sigterm_timeout`, SIGKILL after both timeouts, each step logged."""
+        both = [PythonExpression(('float(', *self._term_after, ') + float(', *self._kill_after, ')'))]
+        steps = (
+            (self._term_after, 'SIGINT', signal.SIGTERM, 'SIGTERM'),
+            (both, 'SIGTERM', 'SIGKILL', 'SIGKILL'),
+        )
+        timers = []
+        for delay, before, sent, sent_name in steps:
+            timers.append(TimerAction(
+                period=delay,
+                actions=[
+                    OpaqueFunction(function=self._complain, args=(delay, before, sent_name)),
+                    EmitEvent(event=SignalProcess(signal_number=sent, process_matcher=matches_action(self))),
+                ],
+                cancel_on_shutdown=False,
+            ))
+        return timers
+
+    def _complain(self, context: LaunchContext, delay: list, before: str, after: str) -> None:
+        self._run.log.error(
+            f"process[{context.locals.process_name}] failed to terminate '{perform_substitutions(context, delay)}' "
+            f"seconds after receiving '{before}', escalating to '{after}'")
+
+    def _on_shutdown_process(self, context: LaunchContext) -> list[Action] | None:
+        if context.locals.event.process_matcher(self):
+            return self._shutdown_process(context, send_sigint=True)
+        return None
+
+    def _on_launch_shutdown(self, event: Event, context: LaunchContext) -> list[Action] | None:
+        # with a terminal, a shutdown due to SIGINT means the processes had their SIGINT already
+        return self._shutdown_process(context, send_sigint=not event.due_to_sigint or context.noninteractive)
+
+    def _on_signal_process(self, context: LaunchContext) -> None:
+        event = context.locals.event
+        if not event.process_matcher(self):
+            return
+        if self._details is None:
+            raise RuntimeError('Signal event received before execution.')
+        child = self._run.child
+        if child is None:
+            raise RuntimeError('Signal event received before subprocess transport available.')
+        name, what = self._details['name'], event.signal_name
+        if child.complete.done():
+            self._run.log.debug(f"signal '{what}' not set to '{name}' because it is already closing")
+            return
+        self._run.log.info(f"sending signal '{what}' to process[{name}]")
+        try:
+            if what == 'SIGKILL':
+                child.kill()
+            else:
+                child.send_signal(event.signal)
+        except ProcessLookupError:
+            self._run.log.debug(f"signal '{what}' not sent to '{name}' because it has closed already")
+
+    # ---- output ------------------------------------------------------------------------------------------------
+
+    def _writer(self, logger: logging.Logger) -> Callable[[str], None]:
+        return lambda line: logger.info(self._line_format.format(line=line, this=self))
+
+    def _on_stdin(self, event: ProcessIO) -> None:
+        self._run.log.warning(f"in ExecuteProcess('{id(self)}').__on_process_stdin_event()")
+
+    def _on_stdout(self, event: ProcessIO) -> None:
+        self._streams['stdout'].add(event.text.decode(errors='replace'), self._writer(self._run.out))
+
+    def _on_stderr(self, event: ProcessIO) -> None:
+        self._streams['stderr'].add(event.text.decode(errors='replace'), self._writer(self._run.err))
+
+    def _flush_output(self, event: Event, context: LaunchContext) -> None:
+        run = self._run
+        final = run.stopping.done()
+        self._streams['stdout'].flush(self._writer(run.out), final=final)
+        self._streams['stderr'].flush(self._writer(run.err), final=final)

@@ -17,4 +17,4 @@ class PopEnvironment(Action):
         super().__init__(**kwargs)
 
     def execute(self, context: LaunchContext) -> None:
-        context._pop_environment()
+        context._restore('environment')

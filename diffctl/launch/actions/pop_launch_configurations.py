@@ -17,4 +17,4 @@ class PopLaunchConfigurations(Action):
         super().__init__(**kwargs)
 
     def execute(self, context: LaunchContext) -> None:
-        context._pop_launch_configurations()
+        context._restore('launch_configurations')

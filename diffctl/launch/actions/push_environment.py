@@ -17,4 +17,4 @@ class PushEnvironment(Action):
         super().__init__(**kwargs)
 
     def execute(self, context: LaunchContext) -> None:
-        context._push_environment()
+        context._save('environment')

@@ -17,4 +17,4 @@ class PushLaunchConfigurations(Action):
         super().__init__(**kwargs)
 
     def execute(self, context: LaunchContext) -> None:
-        context._push_launch_configurations()
+        context._save('launch_configurations')

@@ -25,4 +25,4 @@ class ResetEnvironment(Action):
         super().__init__(**kwargs)
 
     def execute(self, context: LaunchContext) -> None:
-        context._reset_environment()
+        context._restore_first_environment()

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from .._private.entry_edits import ConfigurationEdit, assign, operand
+from .._private.entry_edits import ConfigurationEdit, assign
+from .._private.fields import field
 from ..frontend.expose import expose_action
 
 if TYPE_CHECKING:
@@ -21,8 +22,8 @@ class SetLaunchConfiguration(ConfigurationEdit):
     _attributes = ('name', 'value')
     _apply = staticmethod(assign)
 
-    name = operand('name', 'The configuration, as substitutions.')
-    value = operand('value', 'Its new value, as substitutions.')
+    name = field('name', 'The configuration, as substitutions.')
+    value = field('value', 'Its new value, as substitutions.')
 
     def __init__(self, name: SomeSubstitutionsType, value: SomeSubstitutionsType, **kwargs: Any) -> None:
         super().__init__(**kwargs)

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from .._private.entry_edits import EnvironmentEdit, operand, remove
+from .._private.entry_edits import EnvironmentEdit, remove
+from .._private.fields import field
 from ..frontend.expose import expose_action
 
 if TYPE_CHECKING:
@@ -17,7 +18,7 @@ class UnsetEnvironmentVariable(EnvironmentEdit):
 
     _apply = staticmethod(remove)
 
-    name = operand('name', 'The variable, as substitutions.')
+    name = field('name', 'The variable, as substitutions.')
 
     def __init__(self, name: SomeSubstitutionsType, **kwargs: Any) -> None:
         super().__init__(**kwargs)

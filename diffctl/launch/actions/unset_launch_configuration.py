@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING, Any
 
-from .._private.entry_edits import ConfigurationEdit, operand, remove
+from .._private.entry_edits import ConfigurationEdit, remove
+from .._private.fields import field
 from ..action import Action
 
 if TYPE_CHECKING:
@@ -17,7 +18,7 @@ class UnsetLaunchConfiguration(ConfigurationEdit):
     _apply = staticmethod(remove)
     parse = staticmethod(Action.parse)  # no markup tag of its own
 
-    name = operand('name', 'The configuration, as substitutions.')
+    name = field('name', 'The configuration, as substitutions.')
 
     def __init__(self, name: SomeSubstitutionsType, **kwargs: Any) -> None:
         super().__init__(**kwargs)

@@ -1,4 +1,4 @@
-"""`Executable`: the description of a process to run (command, prefix, name, cwd, environment)."""
+"""`Executable`: what a process action runs — command, prefix, name, folder, environment."""
 
 from __future__ import annotations
 
@@ -7,8 +7,9 @@ import os
 import re
 import shlex
 from collections.abc import Iterable
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
+from .._private.fields import field
 from ..substitutions.launch_configuration import LaunchConfiguration
 from ..utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
 from ..utilities.perform_substitutions_impl import perform_substitutions
@@ -17,31 +18,29 @@ if TYPE_CHECKING:
     from ..action import Action
     from ..launch_context import LaunchContext
     from ..some_substitutions_type import SomeSubstitutionsType
-    from ..substitution import Substitution
 
-# one counter for the whole process: final names are unique across every launch of it
-_instance_numbers = itertools.count(1)
-
-_Pairs = list[tuple[list['Substitution'], list['Substitution']]]
+# Numbers the final names: one sequence for the whole Python process, so names stay unique across runs.
+_numbers = itertools.count(1)
 
 
-def _pairs(mapping: dict | None) -> _Pairs | None:
-    if mapping is None:
-        return None
-    return [(normalize_to_list_of_substitutions(k), normalize_to_list_of_substitutions(v)) for k, v in mapping.items()]
+def _subs(value: Any) -> Any:
+    return None if value is None else normalize_to_list_of_substitutions(value)
+
+
+def _subs_pairs(mapping: dict | None) -> list | None:
+    return None if mapping is None else [(_subs(key), _subs(value)) for key, value in mapping.items()]
 
 
 class Executable:
-    """A process the launch may run; `prepare` performs its substitutions into the `final_*` values.
+    """A process to run; `prepare(context, action)` performs its substitutions into the `final_*` values.
 
-    - `cmd`: the executable and its arguments, each a string, a substitution or a list of them;
-      `arguments` are appended to it.
-    - `prefix`: words put before the command (gdb, valgrind, …); by default the `launch-prefix` launch
-      configuration, applied only when the executable's name matches the `launch-prefix-filter` regular
-      expression (when that configuration is set).
-    - `name`: the label of the process (default: the executable's base name); the final name gets a
-      unique `-N` suffix.
-    - `env`: the complete environment (None: the launch's environment); `additional_env` is added to it.
+    - `cmd` (each item text, a substitution, or a list of them) and then `arguments` make the command.
+    - `prefix` goes before it (gdb, valgrind, …). Without one, the `launch-prefix` launch configuration
+      does, for executables whose name matches the `launch-prefix-filter` regular expression (all, when
+      it is unset).
+    - `name` labels the process (the command's first word's base name by default); the final name adds a
+      `-N` that makes it unique.
+    - `env` replaces the launch's environment, `additional_env` adds to it.
     """
 
     def __init__(
@@ -55,87 +54,60 @@ class Executable:
         additional_env: dict[SomeSubstitutionsType, SomeSubstitutionsType] | None = None,
         arguments: Iterable[SomeSubstitutionsType] | None = None,
     ) -> None:
-        self.__cmd = [normalize_to_list_of_substitutions(x) for x in cmd]
-        if arguments is not None:
-            self.__cmd += [normalize_to_list_of_substitutions(x) for x in arguments]
-        if prefix is None:
-            self.__prefix = normalize_to_list_of_substitutions(LaunchConfiguration('launch-prefix', default=''))
-            self.__prefix_filter = normalize_to_list_of_substitutions(
-                LaunchConfiguration('launch-prefix-filter', default=''))
+        words = [*cmd, *(arguments or ())]
+        launch_wide = prefix is None  # the launch configurations decide the prefix, filter included
+        self._fields: dict[str, Any] = {
+            'cmd': [_subs(word) for word in words],
+            'prefix': _subs(LaunchConfiguration('launch-prefix', default='') if launch_wide else prefix),
+            'name': _subs(name),
+            'cwd': _subs(cwd),
+            'env': _subs_pairs(env),
+            'additional_env': _subs_pairs(additional_env),
+            'arguments': arguments,
+            'final_name': None, 'final_cmd': None, 'final_cwd': None, 'final_env': None,
+        }
+        self._prefix_filter = _subs(LaunchConfiguration('launch-prefix-filter', default='')) if launch_wide else None
+
+    name = field('name')
+    prefix = field('prefix')
+    cmd = field('cmd')
+    cwd = field('cwd')
+    env = field('env')
+    additional_env = field('additional_env')
+    arguments = field('arguments')
+    final_name = field('final_name')
+    final_cmd = field('final_cmd')
+    final_cwd = field('final_cwd')
+    final_env = field('final_env')
+
+    def _command(self, context: LaunchContext) -> list[str]:
+        command = [perform_substitutions(context, word) for word in self._fields['cmd']]
+        if self._prefix_filter is not None:
+            pattern = perform_substitutions(context, self._prefix_filter)
+            if re.match(pattern, os.path.basename(command[0])) is None:
+                return command  # an empty filter matches every name
+        return shlex.split(perform_substitutions(context, self._fields['prefix'])) + command
+
+    def _environment(self, context: LaunchContext) -> dict[str, str]:
+        given = self._fields['env']
+        if given is None:
+            environment = dict(context.environment)
         else:
-            self.__prefix = normalize_to_list_of_substitutions(prefix)
-            self.__prefix_filter = None
-        self.__name = None if name is None else normalize_to_list_of_substitutions(name)
-        self.__cwd = None if cwd is None else normalize_to_list_of_substitutions(cwd)
-        self.__env = _pairs(env)
-        self.__additional_env = _pairs(additional_env)
-        self.__arguments = arguments
-        self.__final_cmd: list[str] | None = None
-        self.__final_cwd: str | None = None
-        self.__final_env: dict[str, str] | None = None
-        self.__final_name: str | None = None
-
-    @property
-    def name(self):
-        return self.__name
-
-    @property
-    def prefix(self):
-        return self.__prefix
-
-    @property
-    def cmd(self):
-        return self.__cmd
-
-    @property
-    def cwd(self):
-        return self.__cwd
-
-    @property
-    def env(self):
-        return self.__env
-
-    @property
-    def additional_env(self):
-        return self.__additional_env
-
-    @property
-    def arguments(self):
-        return self.__arguments
-
-    @property
-    def final_name(self):
-        return self.__final_name
-
-    @property
-    def final_cmd(self):
-        return self.__final_cmd
-
-    @property
-    def final_cwd(self):
-        return self.__final_cwd
-
-    @property
-    def final_env(self):
-        return self.__final_env
+            environment = {perform_substitutions(context, k): perform_substitutions(context, v) for k, v in given}
+        for key, value in self._fields['additional_env'] or ():
+            environment[perform_substitutions(context, key)] = perform_substitutions(context, value)
+        return environment
 
     def prepare(self, context: LaunchContext, action: Action) -> None:
-        """Perform the substitutions of the description in `context` (`action` is for subclasses)."""
-        cmd = [perform_substitutions(context, part) for part in self.__cmd]
-        apply_prefix = True
-        if self.__prefix_filter is not None:
-            pattern = perform_substitutions(context, self.__prefix_filter)
-            apply_prefix = re.match(pattern, os.path.basename(cmd[0])) is not None
-        if apply_prefix:
-            cmd = shlex.split(perform_substitutions(context, self.__prefix)) + cmd
-        self.__final_cmd = cmd
-        name = os.path.basename(cmd[0]) if self.__name is None else perform_substitutions(context, self.__name)
-        self.__final_name = f'{name}-{next(_instance_numbers)}'
-        self.__final_cwd = None if self.__cwd is None else perform_substitutions(context, self.__cwd)
-        if self.__env is None:
-            env = dict(context.environment)
-        else:
-            env = {perform_substitutions(context, k): perform_substitutions(context, v) for k, v in self.__env}
-        for k, v in self.__additional_env or ():
-            env[perform_substitutions(context, k)] = perform_substitutions(context, v)
-        self.__final_env = env
+        """Perform every substitution in `context` (`action` is there for subclasses)."""
+        command = self._command(context)
+        label = self._fields['name']
+        # the base name of the first word, prefix included, when no name is given
+        base = os.path.basename(command[0]) if label is None else perform_substitutions(context, label)
+        folder = self._fields['cwd']
+        self._fields.update(
+            final_cmd=command,
+            final_name=f'{base}-{next(_numbers)}',
+            final_cwd=None if folder is None else perform_substitutions(context, folder),
+            final_env=self._environment(context),
+        )

@@ -1,19 +1,13 @@
-"""Ready-made event handlers for launch's events."""
+"""Event handlers for launch's own events: process start, output and exit, completion, shutdown."""
 
-from .event_named import event_named
-from .on_execution_complete import OnExecutionComplete
-from .on_include_launch_description import OnIncludeLaunchDescription
-from .on_process_exit import OnProcessExit
-from .on_process_io import OnProcessIO
-from .on_process_start import OnProcessStart
-from .on_shutdown import OnShutdown
+from .._private.lazy import lazy_exports
 
-__all__ = [
-    'OnExecutionComplete',
-    'OnIncludeLaunchDescription',
-    'OnProcessExit',
-    'OnProcessIO',
-    'OnProcessStart',
-    'OnShutdown',
-    'event_named',
-]
+__getattr__, __dir__, __all__ = lazy_exports(__name__, globals(), {
+    '.on_process_start': ('OnProcessStart',),
+    '.on_process_io': ('OnProcessIO',),
+    '.on_process_exit': ('OnProcessExit',),
+    '.on_execution_complete': ('OnExecutionComplete',),
+    '.on_include_launch_description': ('OnIncludeLaunchDescription',),
+    '.on_shutdown': ('OnShutdown',),
+    '.event_named': ('event_named',),
+})

@@ -1,4 +1,4 @@
-"""`event_named`: a matcher on the event's name."""
+"""`event_named`: a matcher on the kind of event."""
 
 from __future__ import annotations
 
@@ -8,5 +8,9 @@ from ..event import Event
 
 
 def event_named(name: str) -> Callable[[Event], bool]:
-    """A matcher true for events whose `name` is `name`."""
-    return lambda event: event.name == name
+    """A matcher for `EventHandler`: true for the events whose `name` is `name`."""
+
+    def named(event: Event) -> bool:
+        return event.name == name
+
+    return named

@@ -1,9 +1,8 @@
-"""`OnActionEventBase`: handlers of an event kind emitted about an action (a process start, an exit, …)."""
+"""`OnActionEventBase`: handlers of one kind of event about actions (a process started, exited, …)."""
 
 from __future__ import annotations
 
-import collections.abc
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from typing import TYPE_CHECKING, Any
 
 from ..event import Event
@@ -16,11 +15,33 @@ if TYPE_CHECKING:
     from ..launch_context import LaunchContext
 
 
-class OnActionEventBase(BaseEventHandler):
-    """Handles events of `target_event_cls` whose `event.action` the `action_matcher` selects.
+def _action_test(chosen: Any) -> Callable[[Any], bool]:
+    """What `action_matcher` says about an event's action: anything (None), itself (an action), or a call."""
+    if chosen is None:
+        return lambda action: True
+    if callable(chosen):
+        return chosen
+    return lambda action: action is chosen
 
-    `action_matcher` is an action of `target_action_cls` (that very action), a callable taking the action,
-    or None (any action). `on_event` is entities to yield, or a callable `(event, context)` returning them.
+
+def _fixed_entities(on_event: Any) -> list[LaunchDescriptionEntity]:
+    if not isinstance(on_event, Iterable):
+        return [on_event]
+    listed = list(on_event)
+    for item in listed:
+        if not isinstance(item, LaunchDescriptionEntity):
+            raise TypeError(
+                "expected all items in 'on_event' iterable to be of type "
+                f"'LaunchDescriptionEntity' but got '{type(item)}'")
+    return listed
+
+
+class OnActionEventBase(BaseEventHandler):
+    """Takes the events of `target_event_cls` about the actions `action_matcher` chooses.
+
+    `action_matcher`: None for any action, one `target_action_cls` instance for that very action, or a
+    predicate on the action. `on_event`: the entities to give, or a callable `(event, context)` that
+    returns them.
     """
 
     def __init__(
@@ -34,55 +55,30 @@ class OnActionEventBase(BaseEventHandler):
     ) -> None:
         if not issubclass(target_event_cls, Event):
             raise TypeError("'target_event_cls' must be a subclass of 'Event'")
-        if not isinstance(action_matcher, (target_action_cls, type(None))) and not callable(action_matcher):
+        if action_matcher is not None and not callable(action_matcher) \
+                and not isinstance(action_matcher, target_action_cls):
             raise TypeError(f"action_matcher must be an '{target_action_cls.__name__}' instance or a callable")
-        self.__target_action_cls = target_action_cls
-        self.__target_event_cls = target_event_cls
-        self.__action_matcher = action_matcher
-
-        def matcher(event: Event) -> bool:
-            if not isinstance(event, target_event_cls):
-                return False
-            if callable(action_matcher):
-                return action_matcher(event.action)
-            if isinstance(action_matcher, target_action_cls):
-                return event.action is action_matcher
-            return True
-
-        super().__init__(matcher=matcher, **kwargs)
-        self.__actions_on_event: list[LaunchDescriptionEntity] = []
-        self.__on_event: Callable[[Event, LaunchContext], SomeEntitiesType | None] | None = None
-        if callable(on_event):
-            self.__on_event = on_event
-        elif isinstance(on_event, collections.abc.Iterable):
-            entities = list(on_event)
-            for entity in entities:
-                if not isinstance(entity, LaunchDescriptionEntity):
-                    raise TypeError(
-                        "expected all items in 'on_event' iterable to be of type "
-                        f"'LaunchDescriptionEntity' but got '{type(entity)}'")
-            self.__actions_on_event = entities
-        else:
-            self.__actions_on_event = [on_event]
+        chooses = _action_test(action_matcher)
+        super().__init__(
+            matcher=lambda event: isinstance(event, target_event_cls) and chooses(event.action), **kwargs)
+        self._kinds = (target_event_cls, target_action_cls, action_matcher is not None)
+        self._reaction = on_event if callable(on_event) else None
+        self._given = [] if callable(on_event) else _fixed_entities(on_event)
 
     def handle(self, event: Event, context: LaunchContext) -> SomeEntitiesType | None:
         super().handle(event, context)
-        if self.__actions_on_event:
-            return self.__actions_on_event
-        return self.__on_event(event, context)
+        return self._given if self._given else self._reaction(event, context)
 
     def describe(self) -> tuple[str, list[SomeEntitiesType]]:
-        text, entities = super().describe()
-        entities.extend(self.__actions_on_event)
-        return text, entities
+        line, known = super().describe()
+        return line, known + self._given
 
     @property
     def handler_description(self) -> str:
-        return '<actions>' if self.__actions_on_event else f'{self.__on_event}'
+        return '<actions>' if self._given else str(self._reaction)
 
     @property
     def matcher_description(self) -> str:
-        kind = self.__target_event_cls.__name__
-        if self.__action_matcher is None:
-            return f'event == {kind}'
-        return f'event == {kind} and {self.__target_action_cls.__name__}(event.action)'
+        event_type, action_type, narrowed = self._kinds
+        text = f'event == {event_type.__name__}'
+        return f'{text} and {action_type.__name__}(event.action)' if narrowed else text

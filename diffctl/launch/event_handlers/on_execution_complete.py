@@ -1,4 +1,4 @@
-"""`OnExecutionComplete`: handle the completion of actions."""
+"""`OnExecutionComplete`: react when an action is done."""
 
 from __future__ import annotations
 
@@ -15,7 +15,10 @@ if TYPE_CHECKING:
 
 
 class OnExecutionComplete(OnActionEventBase):
-    """Yields `on_completion` when `target_action` (or any action, when None) completes."""
+    """Gives `on_completion` when `target_action` (any action, with none) completes.
+
+    Registering one is what makes actions emit ExecutionComplete at all.
+    """
 
     def __init__(
         self,
@@ -27,9 +30,5 @@ class OnExecutionComplete(OnActionEventBase):
         from ..action import Action
 
         super().__init__(
-            action_matcher=target_action,
-            on_event=on_completion,
-            target_event_cls=ExecutionComplete,
-            target_action_cls=Action,
-            **kwargs,
-        )
+            action_matcher=target_action, on_event=on_completion, target_event_cls=ExecutionComplete,
+            target_action_cls=Action, **kwargs)

@@ -1,4 +1,4 @@
-"""`OnIncludeLaunchDescription`: the service's handler visiting included launch descriptions."""
+"""`OnIncludeLaunchDescription`: how a LaunchService visits the descriptions included into it."""
 
 from __future__ import annotations
 
@@ -9,17 +9,19 @@ from ..events.include_launch_description import IncludeLaunchDescription
 from ..utilities.class_tools_impl import is_a_subclass
 
 
+def _carried(context: Any) -> list:
+    return [context.locals.event.launch_description]
+
+
 class OnIncludeLaunchDescription(EventHandler):
-    """Yields the launch description carried by each `IncludeLaunchDescription` event."""
+    """Gives the launch description an `IncludeLaunchDescription` event carries."""
 
     def __init__(self, **kwargs: Any) -> None:
         from ..actions.opaque_function import OpaqueFunction
 
         super().__init__(
             matcher=lambda event: is_a_subclass(event, IncludeLaunchDescription),
-            entities=OpaqueFunction(function=lambda context: [context.locals.event.launch_description]),
-            **kwargs,
-        )
+            entities=OpaqueFunction(function=_carried), **kwargs)
 
     @property
     def handler_description(self) -> str:

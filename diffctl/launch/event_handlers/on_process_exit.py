@@ -1,4 +1,4 @@
-"""`OnProcessExit`: handle the exit of processes."""
+"""`OnProcessExit`: react when a process exits."""
 
 from __future__ import annotations
 
@@ -10,26 +10,25 @@ from ..some_entities_type import SomeEntitiesType
 from .on_action_event_base import OnActionEventBase
 
 if TYPE_CHECKING:
-    from ..actions.execute_local import ExecuteLocal
+    from ..action import Action
     from ..launch_context import LaunchContext
 
 
 class OnProcessExit(OnActionEventBase):
-    """Yields `on_exit` (entities, or a callable `(event, context)`) when `target_action` (or any) exits."""
+    """Gives `on_exit` when the process of `target_action` exits; with no target, for every process.
+
+    `on_exit` is entities, or a callable `(event, context)` returning them.
+    """
 
     def __init__(
         self,
         *,
-        target_action: Callable[[ExecuteLocal], bool] | ExecuteLocal | None = None,
+        target_action: Callable[[Action], bool] | Action | None = None,
         on_exit: SomeEntitiesType | Callable[[ProcessExited, LaunchContext], SomeEntitiesType | None],
         **kwargs: Any,
     ) -> None:
         from ..actions.execute_local import ExecuteLocal
 
         super().__init__(
-            action_matcher=target_action,
-            on_event=on_exit,
-            target_event_cls=ProcessExited,
-            target_action_cls=ExecuteLocal,
-            **kwargs,
-        )
+            action_matcher=target_action, on_event=on_exit, target_event_cls=ProcessExited,
+            target_action_cls=ExecuteLocal, **kwargs)

@@ -1,4 +1,4 @@
-"""`OnProcessIO`: handle output (or input) of processes."""
+"""`OnProcessIO`: react to what processes write (or are given to read)."""
 
 from __future__ import annotations
 
@@ -17,7 +17,10 @@ IOCallback = Callable[[ProcessIO], SomeEntitiesType | None]
 
 
 class OnProcessIO(OnActionEventBase):
-    """Calls `on_stdout` / `on_stderr` / `on_stdin` with each chunk of `target_action`'s (or any) stream."""
+    """Hands each chunk of `target_action`'s streams (any process's, with none) to its stream's callback.
+
+    The callbacks take the event only; a stream without one is ignored.
+    """
 
     def __init__(
         self,
@@ -30,19 +33,14 @@ class OnProcessIO(OnActionEventBase):
     ) -> None:
         from ..actions.execute_local import ExecuteLocal
 
-        def dispatch(event: ProcessIO, _: LaunchContext) -> SomeEntitiesType | None:
-            if event.from_stdout and on_stdout is not None:
-                return on_stdout(event)
-            if event.from_stderr and on_stderr is not None:
-                return on_stderr(event)
-            if event.from_stdin and on_stdin is not None:
-                return on_stdin(event)
+        by_stream = (('from_stdout', on_stdout), ('from_stderr', on_stderr), ('from_stdin', on_stdin))
+
+        def route(event: ProcessIO, context: LaunchContext) -> SomeEntitiesType | None:
+            for stream, callback in by_stream:
+                if callback is not None and getattr(event, stream):
+                    return callback(event)
             return None
 
         super().__init__(
-            action_matcher=target_action,
-            on_event=dispatch,
-            target_event_cls=ProcessIO,
-            target_action_cls=ExecuteLocal,
-            **kwargs,
-        )
+            action_matcher=target_action, on_event=route, target_event_cls=ProcessIO,
+            target_action_cls=ExecuteLocal, **kwargs)

@@ -1,4 +1,4 @@
-"""`OnProcessStart`: handle the start of processes."""
+"""`OnProcessStart`: react when a process starts (its pid is known)."""
 
 from __future__ import annotations
 
@@ -15,7 +15,10 @@ if TYPE_CHECKING:
 
 
 class OnProcessStart(OnActionEventBase):
-    """Yields `on_start` (entities, or a callable `(event, context)`) when `target_action` (or any) starts."""
+    """Gives `on_start` when the process of `target_action` starts (its pid is known); any process without one.
+
+    `on_start` is entities, or a callable `(event, context)` returning them.
+    """
 
     def __init__(
         self,
@@ -27,9 +30,5 @@ class OnProcessStart(OnActionEventBase):
         from ..actions.execute_process import ExecuteProcess
 
         super().__init__(
-            action_matcher=target_action,
-            on_event=on_start,
-            target_event_cls=ProcessStarted,
-            target_action_cls=ExecuteProcess,
-            **kwargs,
-        )
+            action_matcher=target_action, on_event=on_start, target_event_cls=ProcessStarted,
+            target_action_cls=ExecuteProcess, **kwargs)

@@ -1,4 +1,4 @@
-"""`OnShutdown`: handle the launch's shutdown."""
+"""`OnShutdown`: react when the launch begins to end."""
 
 from __future__ import annotations
 
@@ -16,15 +16,15 @@ if TYPE_CHECKING:
 
 
 def gen_handler(entities: SomeEntitiesType) -> Callable[[Shutdown, LaunchContext], SomeEntitiesType]:
-    """A handler callable that always returns `entities`."""
-    def handler(event: Shutdown, context: LaunchContext) -> SomeEntitiesType:
-        return entities
-
-    return handler
+    """A callable `(event, context)` giving `entities` whatever it is called with."""
+    return lambda event, context: entities
 
 
 class OnShutdown(BaseEventHandler):
-    """Yields `on_shutdown` (entities, or a callable `(event, context)`) when the launch shuts down."""
+    """Gives `on_shutdown` (entities, or a callable `(event, context)`) for the Shutdown event.
+
+    By the time it runs the launch counts as shut down: processes it would start do not start.
+    """
 
     def __init__(
         self,
@@ -33,15 +33,15 @@ class OnShutdown(BaseEventHandler):
         **kwargs: Any,
     ) -> None:
         super().__init__(matcher=lambda event: is_a_subclass(event, Shutdown), **kwargs)
-        self.__on_shutdown = on_shutdown if callable(on_shutdown) else gen_handler(on_shutdown)
+        self._reaction = on_shutdown if callable(on_shutdown) else gen_handler(on_shutdown)
 
     def handle(self, event: Event, context: LaunchContext) -> SomeEntitiesType | None:
         super().handle(event, context)
-        return self.__on_shutdown(event, context)
+        return self._reaction(event, context)
 
     @property
     def handler_description(self) -> str:
-        return f'{self.__on_shutdown}'
+        return str(self._reaction)
 
     @property
     def matcher_description(self) -> str:

@@ -1,17 +1,12 @@
-"""The events launch itself emits and handles."""
+"""Events of the launch itself; those about processes are in `launch.events.process`."""
 
-from . import process
-from .execution_complete import ExecutionComplete
-from .include_launch_description import IncludeLaunchDescription
-from .matchers import matches_action
-from .shutdown import Shutdown
-from .timer_event import TimerEvent
+from .._private.lazy import lazy_exports
 
-__all__ = [
-    'ExecutionComplete',
-    'IncludeLaunchDescription',
-    'Shutdown',
-    'TimerEvent',
-    'matches_action',
-    'process',
-]
+__getattr__, __dir__, __all__ = lazy_exports(__name__, globals(), {
+    '.': ('process/',),
+    '.shutdown': ('Shutdown',),
+    '.timer_event': ('TimerEvent',),
+    '.execution_complete': ('ExecutionComplete',),
+    '.include_launch_description': ('IncludeLaunchDescription',),
+    '.matchers': ('matches_action',),
+})

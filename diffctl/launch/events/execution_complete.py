@@ -1,9 +1,10 @@
-"""`ExecutionComplete`: an action finished executing (including its asynchronous part)."""
+"""`ExecutionComplete`: an action is done, asynchronous part included."""
 
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from .._private.fields import field
 from ..event import Event
 
 if TYPE_CHECKING:
@@ -11,14 +12,11 @@ if TYPE_CHECKING:
 
 
 class ExecutionComplete(Event):
-    """Emitted after an action executed, when some handler wants it."""
+    """Emitted for an action once it executed and its future (if any) is done, when a handler wants it."""
 
     name = 'launch.events.ExecutionComplete'
 
-    def __init__(self, *, action: Action) -> None:
-        self.__action = action
+    action = field('action', 'The action that completed.')
 
-    @property
-    def action(self) -> Action:
-        """The action that completed."""
-        return self.__action
+    def __init__(self, *, action: Action) -> None:
+        self._fields = {'action': action}

@@ -1,9 +1,10 @@
-"""`IncludeLaunchDescription` (event): a launch description to add to the running launch."""
+"""`IncludeLaunchDescription`, the event: a launch description for the running launch to visit."""
 
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from .._private.fields import field
 from ..event import Event
 
 if TYPE_CHECKING:
@@ -11,14 +12,11 @@ if TYPE_CHECKING:
 
 
 class IncludeLaunchDescription(Event):
-    """Asks the launch service to visit `launch_description` (what `LaunchService.include_launch_description` emits)."""
+    """Carries a description to visit; `LaunchService.include_launch_description` emits one."""
 
     name = 'launch.events.IncludeLaunchDescription'
 
-    def __init__(self, launch_description: LaunchDescription) -> None:
-        self.__launch_description = launch_description
+    launch_description = field('launch_description', 'The description to visit.')
 
-    @property
-    def launch_description(self) -> LaunchDescription:
-        """The description to include."""
-        return self.__launch_description
+    def __init__(self, launch_description: LaunchDescription) -> None:
+        self._fields = {'launch_description': launch_description}

@@ -1,4 +1,4 @@
-"""Matchers selecting the action an event is about."""
+"""`matches_action`: select the events about one action."""
 
 from __future__ import annotations
 
@@ -10,5 +10,9 @@ if TYPE_CHECKING:
 
 
 def matches_action(target_action: Action) -> Callable[[Action], bool]:
-    """A matcher true for `target_action` only."""
-    return lambda action: action == target_action
+    """A predicate on actions, true for `target_action` (by equality) only."""
+
+    def is_target(action: Action) -> bool:
+        return action == target_action
+
+    return is_target

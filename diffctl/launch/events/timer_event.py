@@ -1,9 +1,10 @@
-"""`TimerEvent`: a `TimerAction`'s period elapsed."""
+"""`TimerEvent`: a timer's delay is over."""
 
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from .._private.fields import field
 from ..event import Event
 
 if TYPE_CHECKING:
@@ -11,14 +12,11 @@ if TYPE_CHECKING:
 
 
 class TimerEvent(Event):
-    """Emitted by a timer that was not canceled before its period ended."""
+    """Emitted by a `TimerAction` that was not canceled in time."""
 
     name = 'launch.events.TimerEvent'
 
-    def __init__(self, *, timer_action: TimerAction) -> None:
-        self.__timer_action = timer_action
+    timer_action = field('timer_action', 'The timer whose delay is over.')
 
-    @property
-    def timer_action(self) -> TimerAction:
-        """The timer that fired."""
-        return self.__timer_action
+    def __init__(self, *, timer_action: TimerAction) -> None:
+        self._fields = {'timer_action': timer_action}

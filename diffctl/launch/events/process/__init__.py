@@ -1,29 +1,19 @@
-"""Events about processes started by `ExecuteLocal` / `ExecuteProcess`, and events targeting them."""
+"""Events about the processes ExecuteLocal / ExecuteProcess run, and the events sent to them."""
 
-from .process_exited import ProcessExited
-from .process_io import ProcessIO
-from .process_matchers import matches_executable, matches_name, matches_pid
-from .process_started import ProcessStarted
-from .process_stderr import ProcessStderr
-from .process_stdin import ProcessStdin
-from .process_stdout import ProcessStdout
-from .process_targeted_event import ProcessTargetedEvent
-from .running_process_event import RunningProcessEvent
-from .shutdown_process import ShutdownProcess
-from .signal_process import SignalProcess
+from ..._private.lazy import lazy_exports
 
-__all__ = [
-    'ProcessExited',
-    'ProcessIO',
-    'ProcessStarted',
-    'ProcessStderr',
-    'ProcessStdin',
-    'ProcessStdout',
-    'ProcessTargetedEvent',
-    'RunningProcessEvent',
-    'ShutdownProcess',
-    'SignalProcess',
-    'matches_executable',
-    'matches_name',
-    'matches_pid',
-]
+__getattr__, __dir__, __all__ = lazy_exports(__name__, globals(), {
+    # what a running process reports
+    '.running_process_event': ('RunningProcessEvent',),
+    '.process_started': ('ProcessStarted',),
+    '.process_exited': ('ProcessExited',),
+    '.process_io': ('ProcessIO',),
+    '.process_stdin': ('ProcessStdin',),
+    '.process_stdout': ('ProcessStdout',),
+    '.process_stderr': ('ProcessStderr',),
+    # what is asked of processes
+    '.process_targeted_event': ('ProcessTargetedEvent',),
+    '.shutdown_process': ('ShutdownProcess',),
+    '.signal_process': ('SignalProcess',),
+    '.process_matchers': ('matches_pid', 'matches_name', 'matches_executable'),
+})

@@ -1,32 +1,33 @@
-"""Matchers selecting a process action by pid, name or executable."""
+"""Predicates choosing process actions by pid, unique name or executable (for `process_matcher`)."""
 
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from ...actions.execute_process import ExecuteProcess
 
 
-def _started_and(predicate: Callable[[dict], bool]) -> Callable[[ExecuteProcess], bool]:
-    def matcher(action: ExecuteProcess) -> bool:
+def _on_details(test: Callable[[dict[str, Any]], bool]) -> Callable[[ExecuteProcess], bool]:
+    # an action not executed yet has no details: no such predicate chooses it
+    def choose(action: ExecuteProcess) -> bool:
         details = action.process_details
-        return details is not None and predicate(details)  # not started yet: matches nothing
+        return False if details is None else test(details)
 
-    return matcher
+    return choose
 
 
 def matches_pid(pid: int) -> Callable[[ExecuteProcess], bool]:
-    """A matcher true for the process with this pid."""
-    return _started_and(lambda details: details['pid'] == pid)
+    """True for the action whose process has this pid."""
+    return _on_details(lambda details: details['pid'] == pid)
 
 
 def matches_name(name: str) -> Callable[[ExecuteProcess], bool]:
-    """A matcher true for the process with this final (unique) name."""
-    return _started_and(lambda details: details['name'] == name)
+    """True for the action whose process has this unique name ('talker-1')."""
+    return _on_details(lambda details: details['name'] == name)
 
 
 def matches_executable(executable: str) -> Callable[[ExecuteProcess], bool]:
-    """A matcher true when the command's first word ends with `executable` ('ls' matches '/usr/bin/ls')."""
-    return _started_and(lambda details: details['cmd'][0].endswith(executable))
+    """True when the command's first word ends with `executable` ('ls' chooses '/usr/bin/ls')."""
+    return _on_details(lambda details: details['cmd'][0].endswith(executable))

@@ -1,10 +1,10 @@
-"""`ProcessStarted`: a process began running."""
+"""`ProcessStarted`: a process exists."""
 
 from .running_process_event import RunningProcessEvent
 
 
 class ProcessStarted(RunningProcessEvent):
-    """Emitted once the process exists (its pid is known)."""
+    """Emitted once the process runs and its pid is known (which says nothing of it being ready)."""
 
     name = 'launch.events.process.ProcessStarted'
 

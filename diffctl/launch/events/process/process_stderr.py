@@ -1,10 +1,10 @@
-"""`ProcessStderr`: data on a process's stderr."""
+"""`ProcessStderr`: bytes read from the process's standard error."""
 
 from .process_io import ProcessIO
 
 
 class ProcessStderr(ProcessIO):
-    """A chunk of bytes on the process's stderr."""
+    """A chunk read from the process's standard error (fd 2)."""
 
     name = 'launch.events.process.ProcessStderr'
 

@@ -1,10 +1,10 @@
-"""`ProcessStdin`: data on a process's stdin."""
+"""`ProcessStdin`: bytes written to the process's standard input."""
 
 from .process_io import ProcessIO
 
 
 class ProcessStdin(ProcessIO):
-    """A chunk of bytes on the process's stdin."""
+    """A chunk written to the process's standard input (fd 0)."""
 
     name = 'launch.events.process.ProcessStdin'
 

@@ -1,10 +1,10 @@
-"""`ProcessStdout`: data on a process's stdout."""
+"""`ProcessStdout`: bytes read from the process's standard output."""
 
 from .process_io import ProcessIO
 
 
 class ProcessStdout(ProcessIO):
-    """A chunk of bytes on the process's stdout."""
+    """A chunk read from the process's standard output (fd 1)."""
 
     name = 'launch.events.process.ProcessStdout'
 

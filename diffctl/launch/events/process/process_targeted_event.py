@@ -1,10 +1,11 @@
-"""`ProcessTargetedEvent`: an event meant for the process actions its matcher selects."""
+"""`ProcessTargetedEvent`: an event addressed to some of the running process actions."""
 
 from __future__ import annotations
 
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
+from ..._private.fields import field
 from ...event import Event
 
 if TYPE_CHECKING:
@@ -12,15 +13,12 @@ if TYPE_CHECKING:
 
 
 class ProcessTargetedEvent(Event):
-    """Base of events for processes; `process_matcher(action)` selects them (see `matches_*`)."""
+    """Every process action asks `process_matcher(itself)` whether the event is for it (`matches_*`)."""
 
     name = 'launch.events.process.ProcessTargetedEvent'
 
+    process_matcher = field('process_matcher', 'The predicate choosing the process actions addressed.')
+
     def __init__(self, *, process_matcher: Callable[[ExecuteLocal], bool]) -> None:
         super().__init__()
-        self.__process_matcher = process_matcher
-
-    @property
-    def process_matcher(self) -> Callable[[ExecuteLocal], bool]:
-        """The predicate selecting the process actions concerned."""
-        return self.__process_matcher
+        self._fields = {'process_matcher': process_matcher}

@@ -1,9 +1,10 @@
-"""`RunningProcessEvent`: base of the events about one running process."""
+"""`RunningProcessEvent`: what every event about one process carries."""
 
 from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from ..._private.fields import field
 from ...event import Event
 
 if TYPE_CHECKING:
@@ -11,9 +12,20 @@ if TYPE_CHECKING:
 
 
 class RunningProcessEvent(Event):
-    """Carries the action, the final name, command, working directory, environment and pid of a process."""
+    """The process's action, its unique name, and the command, folder, environment and pid it runs with.
+
+    cmd, cwd and env are as started, substitutions performed (env None: the launch's environment).
+    """
 
     name = 'launch.events.process.RunningProcessEvent'
+
+    action = field('action', 'The action running the process.')
+    execute_process_action = field('action', 'The action running the process (its older name).')
+    process_name = field('name', "The name of this process, unique in the launch ('talker-1').")
+    cmd = field('cmd', 'The command line.')
+    cwd = field('cwd', 'The working folder, or None.')
+    env = field('env', 'The environment, or None.')
+    pid = field('pid', 'The process id.')
 
     def __init__(
         self,
@@ -26,44 +38,4 @@ class RunningProcessEvent(Event):
         pid: int,
     ) -> None:
         super().__init__()
-        self.__action = action
-        self.__name = name
-        self.__cmd = cmd
-        self.__cwd = cwd
-        self.__env = env
-        self.__pid = pid
-
-    @property
-    def action(self) -> ExecuteProcess:
-        """The action that runs the process."""
-        return self.__action
-
-    @property
-    def execute_process_action(self) -> ExecuteProcess:
-        """The action that runs the process (older name)."""
-        return self.__action
-
-    @property
-    def process_name(self) -> str:
-        """The unique name of this process instance."""
-        return self.__name
-
-    @property
-    def cmd(self) -> list[str]:
-        """The command, substitutions performed."""
-        return self.__cmd
-
-    @property
-    def cwd(self) -> str | None:
-        """The working directory, substitutions performed."""
-        return self.__cwd
-
-    @property
-    def env(self) -> dict[str, str] | None:
-        """The environment, substitutions performed."""
-        return self.__env
-
-    @property
-    def pid(self) -> int:
-        """The process id."""
-        return self.__pid
+        self._fields = {'action': action, 'name': name, 'cmd': cmd, 'cwd': cwd, 'env': env, 'pid': pid}

@@ -1,4 +1,4 @@
-"""`ShutdownProcess`: ask processes to shut down (SIGINT, then SIGTERM and SIGKILL if they linger)."""
+"""`ShutdownProcess`: ask processes to stop, with the escalation a launch shutdown uses."""
 
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ if TYPE_CHECKING:
 
 
 class ShutdownProcess(ProcessTargetedEvent):
-    """Starts the shutdown of the matched processes, as `ExecuteLocal` does on launch shutdown."""
+    """The processes addressed get SIGINT, then SIGTERM and SIGKILL while they linger."""
 
     name = 'launch.events.process.ShutdownProcess'
 

@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
-import signal as signal_module
+import signal as signals
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
+from ..._private.fields import field
 from ...utilities.ensure_argument_type_impl import ensure_argument_type
 from .process_targeted_event import ProcessTargetedEvent
 
@@ -14,23 +15,21 @@ if TYPE_CHECKING:
 
 
 class SignalProcess(ProcessTargetedEvent):
-    """Send `signal_number` (a `signal.Signals`, or the string 'SIGKILL') to the matched processes."""
+    """The processes addressed get `signal_number`: a `signal.Signals`, or 'SIGKILL' spelled as text."""
 
     name = 'launch.events.process.SignalProcess'
 
+    signal = field('signal', 'The signal as given.')
+
     def __init__(
-        self, *, signal_number: str | signal_module.Signals, process_matcher: Callable[[ExecuteLocal], bool]
+        self, *, signal_number: str | signals.Signals, process_matcher: Callable[[ExecuteLocal], bool]
     ) -> None:
         super().__init__(process_matcher=process_matcher)
-        ensure_argument_type(signal_number, (str, signal_module.Signals), 'signal_number', 'SignalProcess')
-        self.__signal = signal_number
-
-    @property
-    def signal(self) -> str | signal_module.Signals:
-        """The signal as given."""
-        return self.__signal
+        ensure_argument_type(signal_number, (str, signals.Signals), 'signal_number', 'SignalProcess')
+        self._fields['signal'] = signal_number
 
     @property
     def signal_name(self) -> str:
-        """Its name, e.g. 'SIGINT'."""
-        return self.__signal if isinstance(self.__signal, str) else self.__signal.name
+        """The signal's name, such as 'SIGINT'."""
+        given = self._fields['signal']
+        return given if isinstance(given, str) else given.name
