@@ -16,6 +16,8 @@ from diffctl.launch.utilities import ensure_argument_type, normalize_to_list_of_
 from diffctl.launch.utilities.type_utils import (
     AllowedTypesType,
     SomeValueType,
+    coerce_to_type,
+    is_normalized_substitution,
     normalize_typed_substitution,
     perform_typed_substitution,
 )
@@ -54,8 +56,24 @@ class ParameterValue:
     def evaluate(self, context: LaunchContext) -> EvaluatedParameterValue:
         """Perform the substitutions and coerce the result; later calls give the same value."""
         if self.__evaluated is _UNSET:
-            self.__evaluated = perform_typed_substitution(context, self.__value, self.__value_type)
+            if self.__value_type is None and is_normalized_substitution(self.__value):
+                self.__evaluated = _yaml_or_text(perform_substitutions(context, self.__value))
+            else:
+                self.__evaluated = perform_typed_substitution(context, self.__value, self.__value_type)
         return self.__evaluated
+
+
+def _yaml_or_text(text: str) -> Any:
+    """An untyped value's performed text by YAML's rules, as launch_ros reads it; text that is no YAML at all
+    (a robot description read by `let file`, an SDF or URDF) is passed on as the string, where launch_ros
+    fails converting it. Valid YAML of a type no parameter has still fails."""
+    import yaml
+
+    try:
+        yaml.safe_load(text)
+    except yaml.YAMLError:
+        return text
+    return coerce_to_type(text, None)
 
 
 class Parameter:

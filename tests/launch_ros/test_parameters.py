@@ -31,6 +31,12 @@ def T(text: str) -> TextSubstitution:
         ([[T("1")], [T("2")]], (1, 2)),  # a list of substituted items
         (T("[true, false]"), (True, False)),
         (ParameterValue(T("[1, 2]"), value_type=str), "[1, 2]"),
+        # diffctl: text that is no YAML at all (an SDF read by `let file`) is the string, where ROS fails
+        (
+            ParameterValue(T("<sdf>\n<!-- car: a two-wheel: drive -->\n</sdf>")),
+            "<sdf>\n<!-- car: a two-wheel: drive -->\n</sdf>",
+        ),
+        (ParameterValue(T("2.5")), 2.5),
         (b"\x00\xff", b"\x00\xff"),
     ],
 )
