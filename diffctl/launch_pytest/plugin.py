@@ -83,21 +83,10 @@ def pytest_fixture_setup(fixturedef: Any, request: Any) -> Any:
     if not getattr(fixturedef.func, "_launch_pytest_fixture", False):
         yield
         return
-    from diffctl.launch import LaunchDescription
-
-    options = fixturedef.func._launch_pytest_fixture_options
+    launch_service, event_loop = (request.getfixturevalue(name) for name in ("launch_service", "event_loop"))
     eprefix = f"When running launch_pytest fixture '{fixturedef.func.__name__}':"
-    launch_service = request.getfixturevalue("launch_service")
-    event_loop = request.getfixturevalue("event_loop")
-    outcome = yield
-    value = outcome.get_result()
-    bad_value = (f"{eprefix} return value must be either a launch description or a sequence which first item "
-                 "is a launch description")
-    description = value
-    if isinstance(value, Sequence) and not isinstance(value, str):
-        assert len(value) > 0, bad_value
-        description = value[0]
-    assert isinstance(description, LaunchDescription), bad_value
+    description = _description_in((yield).get_result(), eprefix)
+    options = fixturedef.func._launch_pytest_fixture_options
     launch_service.include_launch_description(description)
     task = event_loop.create_task(launch_service.run_async(shutdown_when_idle=options["shutdown_when_idle"]))
     ready = get_ready_to_test_action(description)
@@ -107,6 +96,19 @@ def pytest_fixture_setup(fixturedef: Any, request: Any) -> Any:
     fixturedef.addfinalizer(functools.partial(finalize_launch_service, launch_service, eprefix=eprefix,
                                               auto_shutdown=options["auto_shutdown"]))
     run_until_complete(event_loop, _ready_or_ended(ready_event, task))
+
+
+def _description_in(value: Any, eprefix: str) -> Any:
+    """The LaunchDescription a launch fixture returned, alone or first of a sequence."""
+    from diffctl.launch import LaunchDescription
+
+    first = value[0] if isinstance(value, Sequence) and not isinstance(value, str) and len(value) else value
+    if not isinstance(first, LaunchDescription):
+        raise AssertionError(
+            f"{eprefix} return value must be either a launch description or a sequence which first item is a "
+            "launch description"
+        )
+    return first
 
 
 def _import_launch() -> None:

@@ -21,14 +21,11 @@ def unittestResultsToXml(*, name: str = "launch_test", test_results: dict[Any, A
 
 def unittestResultToXml(name: str, test_result: Any) -> ET.Element:
     """One result (its testCases and testTimes: a launch_testing result) as a <testsuite>."""
-    suite = ET.Element("testsuite", name=name)
-    suite.set("tests", str(test_result.testsRun))
-    suite.set("failures", str(len(test_result.failures)))
-    suite.set("errors", str(len(test_result.errors)))
-    suite.set("skipped", str(len(test_result.skipped)))
+    counts = {"tests": test_result.testsRun}
+    counts.update((outcome, len(getattr(test_result, outcome))) for outcome in ("failures", "errors", "skipped"))
+    suite = ET.Element("testsuite", {"name": name, **{key: str(n) for key, n in counts.items()}})
     suite.set("time", str(round(sum(test_result.testTimes.values()), 3)))
-    for case in test_result.testCases:
-        suite.append(unittestCaseToXml(test_result, case))
+    suite.extend(unittestCaseToXml(test_result, case) for case in test_result.testCases)
     return suite
 
 

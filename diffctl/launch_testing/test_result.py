@@ -7,6 +7,9 @@ import time
 import unittest
 from typing import Any
 
+# unittest.TestResult's lists of (case, text) outcomes, merged when one result takes in another
+_OUTCOME_LISTS = ("failures", "errors", "skipped", "expectedFailures", "unexpectedSuccesses")
+
 
 class FailResult(unittest.TestResult):
     """A run whose processes stopped before its tests finished: every test of it fails with `message`."""
@@ -76,9 +79,6 @@ class TestResult(unittest.TextTestResult):
     def append(self, results: TestResult) -> None:
         """Take in another result's cases and outcomes (a run's post-shutdown results into its active ones)."""
         self.__spans.update(results.__spans)
-        self.failures += results.failures
-        self.errors += results.errors
         self.testsRun += results.testsRun
-        self.skipped += results.skipped
-        self.expectedFailures += results.expectedFailures
-        self.unexpectedSuccesses += results.unexpectedSuccesses
+        for outcome in _OUTCOME_LISTS:
+            getattr(self, outcome).extend(getattr(results, outcome))
