@@ -1,4 +1,4 @@
-"""`LaunchDescriptionSource`: a launch description and where it comes from."""
+"""`LaunchDescriptionSource`: a launch description, and where it comes from."""
 
 from __future__ import annotations
 
@@ -16,10 +16,11 @@ if TYPE_CHECKING:
 
 
 class LaunchDescriptionSource:
-    """A launch description given directly, or loaded on demand from `location` by a subclass.
+    """A launch description given as it is, or loaded from `location` when first needed.
 
-    `location` may hold substitutions, performed when the description is first needed. `method` says how
-    the description was obtained (e.g. 'interpreted python launch file').
+    Loading is the subclasses' part: they implement `_get_launch_description(location)`, the extension
+    point ROS 2's own sources use too. `location` may hold substitutions, performed when it is loaded;
+    `method` says how the description is obtained ('interpreted python launch file', …).
     """
 
     def __init__(
@@ -28,48 +29,47 @@ class LaunchDescriptionSource:
         location: SomeSubstitutionsType = '<string>',
         method: str = 'unspecified mechanism from a script',
     ) -> None:
-        self.__launch_description = launch_description
-        self.__expanded_location: str | None = None
-        self.__location = normalize_to_list_of_substitutions(location)
-        self.__method = method
-        self.__logger = launch_logging.get_logger('launch.launch_description_source')
-
-    def try_get_launch_description_without_context(self) -> LaunchDescription | None:
-        """The description, loaded with a fresh context if needed; None when that fails."""
-        if self.__launch_description is not None:
-            return self.__launch_description
-        from .launch_context import LaunchContext
-
-        try:
-            location = perform_substitutions(LaunchContext(), self.__location)
-            return self._get_launch_description(location)
-        except Exception as exc:
-            self.__logger.debug(traceback.format_exc())
-            self.__logger.debug('Failed to load the launch file without a context: ' + str(exc))
-        return None
-
-    def get_launch_description(self, context: LaunchContext) -> LaunchDescription:
-        """The description, loaded (once) from the location performed in `context`."""
-        if self.__expanded_location is None:
-            self.__expanded_location = perform_substitutions(context, self.__location)
-        if self.__launch_description is None:
-            self.__launch_description = self._get_launch_description(self.__expanded_location)
-        return self.__launch_description
-
-    def _get_launch_description(self, location: str) -> LaunchDescription:
-        """Load the description from `location`; subclasses implement it."""
-        if self.__launch_description is None:
-            raise RuntimeError(
-                'LaunchDescriptionSource.get_launch_description(): called without launch description being set')
-        return self.__launch_description
+        self._description = launch_description
+        self._where = normalize_to_list_of_substitutions(location)
+        self._where_performed: str | None = None
+        self._how = method
 
     @property
     def location(self) -> str:
-        """The performed location once loaded; before, its substitutions as text joined by ' + '."""
-        if self.__expanded_location is None:
-            return ' + '.join(str(sub) for sub in self.__location)
-        return self.__expanded_location
+        """Where from, once performed; before that, the substitutions' texts joined by ' + '."""
+        if self._where_performed is not None:
+            return self._where_performed
+        return ' + '.join(str(piece) for piece in self._where)
 
     @property
     def method(self) -> str:
-        return self.__method
+        return self._how
+
+    def _get_launch_description(self, location: str) -> LaunchDescription:
+        """Load the description from `location` (subclasses); this base only has the one it was given."""
+        if self._description is None:
+            raise RuntimeError(
+                'LaunchDescriptionSource.get_launch_description(): called without launch description being set')
+        return self._description
+
+    def get_launch_description(self, context: LaunchContext) -> LaunchDescription:
+        """The description, loaded once, from the location as performed in `context`."""
+        if self._where_performed is None:
+            self._where_performed = perform_substitutions(context, self._where)
+        if self._description is None:
+            self._description = self._get_launch_description(self._where_performed)
+        return self._description
+
+    def try_get_launch_description_without_context(self) -> LaunchDescription | None:
+        """The description, loaded with a context of its own if need be; None when that fails."""
+        if self._description is not None:
+            return self._description
+        from .launch_context import LaunchContext
+
+        try:
+            return self._get_launch_description(perform_substitutions(LaunchContext(), self._where))
+        except Exception as problem:
+            logger = launch_logging.get_logger('launch.launch_description_source')
+            logger.debug(traceback.format_exc())
+            logger.debug(f'Failed to load the launch file without a context: {problem}')
+        return None

@@ -1,15 +1,10 @@
-"""Markup frontends: the `Parser`, the `Entity` interface, and the `expose_*` registry."""
+"""Markup frontends: the `Parser` they share, the `Entity` interface, the `expose_*` registry."""
 
-from . import type_utils
-from .entity import Entity
-from .expose import expose_action, expose_substitution
-from .parser import InvalidFrontendLaunchFileError, Parser
+from .._private.lazy import lazy_exports
 
-__all__ = [
-    'Entity',
-    'InvalidFrontendLaunchFileError',
-    'Parser',
-    'expose_action',
-    'expose_substitution',
-    'type_utils',
-]
+__getattr__, __dir__, __all__ = lazy_exports(__name__, globals(), {
+    '.': ('type_utils/',),
+    '.parser': ('Parser', 'InvalidFrontendLaunchFileError'),
+    '.entity': ('Entity',),
+    '.expose': ('expose_action', 'expose_substitution'),
+})

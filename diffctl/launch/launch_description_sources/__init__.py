@@ -1,29 +1,16 @@
-"""Launch description sources: Python launch files, markup launch files, or either."""
+"""Where launch descriptions come from: Python launch files, markup launch files, or either kind."""
 
-from ..invalid_launch_file_error import InvalidLaunchFileError
-from .any_launch_description_source import AnyLaunchDescriptionSource
-from .any_launch_file_utilities import get_launch_description_from_any_launch_file
-from .frontend_launch_description_source import FrontendLaunchDescriptionSource
-from .frontend_launch_file_utilities import (
-    InvalidFrontendLaunchFileError,
-    get_launch_description_from_frontend_launch_file,
-)
-from .python_launch_description_source import PythonLaunchDescriptionSource
-from .python_launch_file_utilities import (
-    InvalidPythonLaunchFileError,
-    get_launch_description_from_python_launch_file,
-    load_python_launch_file_as_module,
-)
+from .._private.lazy import lazy_exports
 
-__all__ = [
-    'AnyLaunchDescriptionSource',
-    'FrontendLaunchDescriptionSource',
-    'InvalidFrontendLaunchFileError',
-    'InvalidLaunchFileError',
-    'InvalidPythonLaunchFileError',
-    'PythonLaunchDescriptionSource',
-    'get_launch_description_from_any_launch_file',
-    'get_launch_description_from_frontend_launch_file',
-    'get_launch_description_from_python_launch_file',
-    'load_python_launch_file_as_module',
-]
+__getattr__, __dir__, __all__ = lazy_exports(__name__, globals(), {
+    '.any_launch_description_source': ('AnyLaunchDescriptionSource',),
+    '.any_launch_file_utilities': ('get_launch_description_from_any_launch_file',),
+    '.python_launch_description_source': ('PythonLaunchDescriptionSource',),
+    '.python_launch_file_utilities': (
+        'get_launch_description_from_python_launch_file', 'load_python_launch_file_as_module',
+        'InvalidPythonLaunchFileError'),
+    '.frontend_launch_description_source': ('FrontendLaunchDescriptionSource',),
+    '.frontend_launch_file_utilities': (
+        'get_launch_description_from_frontend_launch_file', 'InvalidFrontendLaunchFileError'),
+    '..invalid_launch_file_error': ('InvalidLaunchFileError',),
+})

@@ -1,9 +1,9 @@
-"""Launch's logging: one screen handler, a `launch.log` file per run, and loggers for process output.
+"""Launch's logging: one screen handler, a `launch.log` per run, and loggers for processes' output.
 
-Importing this module makes every logger created afterwards a `LaunchLogger` (it does not propagate to
-the root logger: each logger gets the handlers it should write to from `get_logger` or
-`get_output_loggers`), as ros2/launch does. The log directory is `$ROS_LOG_DIR`, else `$ROS_HOME/log`,
-else `~/.ros/log`, with one unique sub-folder per run (and a `latest` link to it), made on first use.
+While this module is loaded, loggers created are `LaunchLogger`s, which do not propagate: each gets the
+handlers it writes to from `get_logger` or `get_output_loggers`, as in ros2/launch. The run's folder is
+below `$ROS_LOG_DIR`, else `$ROS_HOME/log`, else `~/.ros/log`: a new one per run, with a `latest` link to
+it, made when first needed.
 """
 
 from __future__ import annotations
@@ -13,55 +13,60 @@ import locale
 import logging
 import os
 import sys
+import warnings
 from typing import Any, ClassVar
 
 from . import handlers
 
-__all__ = [
-    'get_logger',
-    'get_output_loggers',
-    'handlers',
-    'launch_config',
-    'reset',
-]
+__all__ = ['get_logger', 'get_output_loggers', 'handlers', 'launch_config', 'reset']
 
-_SCREEN_FORMATS = {
-    'default': '[{levelname}] [{name}]: {msg}',
-    'default_with_timestamp': '{created:.7f} [{levelname}] [{name}]: {msg}',
+# format aliases, by what they format; any other text is a `logging.Formatter` format
+_ALIASES = {
+    'screen': {
+        'default': '[{levelname}] [{name}]: {msg}',
+        'default_with_timestamp': '{created:.7f} [{levelname}] [{name}]: {msg}',
+    },
+    'log': {'default': '{created:.7f} [{levelname}] [{name}]: {msg}'},
 }
-_LOG_FORMATS = {'default': '{created:.7f} [{levelname}] [{name}]: {msg}'}
+_OVERRIDES = {'screen': 'OVERRIDE_LAUNCH_SCREEN_FORMAT', 'log': 'OVERRIDE_LAUNCH_LOG_FORMAT'}
 
 
-def _get_logging_directory() -> str:
-    base = os.environ.get('ROS_LOG_DIR')
-    if not base:
-        base = os.path.join(os.environ.get('ROS_HOME') or os.path.join('~', '.ros'), 'log')
-    return os.path.normpath(os.path.expanduser(base))
+def _logs_root() -> str:
+    chosen = os.environ.get('ROS_LOG_DIR') or os.path.join(os.environ.get('ROS_HOME') or '~/.ros', 'log')
+    return os.path.normpath(os.path.expanduser(chosen))
 
 
-def _make_unique_log_dir(*, base_path: str) -> str:
+def _new_run_folder(root: str) -> str:
+    """A folder of its own for this run: time, host and process id in its name."""
     import socket
 
     while True:
         stamp = datetime.datetime.now().strftime('%Y-%m-%d-%H-%M-%S-%f')
-        candidate = os.path.join(base_path, f'{stamp}-{socket.gethostname()}-{os.getpid()}')
-        if not os.path.isdir(candidate):
-            os.makedirs(candidate, exist_ok=True)
-            return candidate
+        folder = os.path.join(root, f'{stamp}-{socket.gethostname()}-{os.getpid()}')
+        if not os.path.isdir(folder):
+            os.makedirs(folder, exist_ok=True)
+            return folder
 
 
-def _renew_latest_log_dir(*, log_dir: str) -> bool:
-    latest = os.path.join(os.path.dirname(log_dir), 'latest')
-    if os.path.lexists(latest):
-        if not os.path.islink(latest):
-            return False
+def _point_latest_at(folder: str) -> bool:
+    """Make `latest` beside `folder` a link to it; False where `latest` is something else than a link."""
+    latest = os.path.join(os.path.dirname(folder), 'latest')
+    if os.path.islink(latest):
         os.unlink(latest)
-    os.symlink(log_dir, latest, target_is_directory=True)
+    elif os.path.lexists(latest):
+        return False
+    os.symlink(folder, latest, target_is_directory=True)
     return True
 
 
-class _ReplacingStream:
-    """Writes to a text stream, replacing what the locale's encoding cannot represent instead of failing."""
+def _override(kind: str) -> str | None:
+    """The format an OVERRIDE_LAUNCH_* variable imposes (its backslash escapes read), if set."""
+    text = os.environ.get(_OVERRIDES[kind])
+    return text.encode('latin1').decode('unicode_escape') if text else None
+
+
+class _Lenient:
+    """A text stream that writes what the locale's encoding cannot represent as replacements."""
 
     def __init__(self, stream: Any) -> None:
         self.stream = stream
@@ -74,159 +79,145 @@ class _ReplacingStream:
         self.stream.flush()
 
 
-def _override(variable: str) -> str | None:
-    value = os.environ.get(variable)
-    if not value:
-        return None
-    return value.encode('latin1').decode('unicode_escape')
-
-
 class LaunchConfig:
-    """The logging configuration of a launch: level, log directory, formats and the shared handlers."""
+    """The logging setup of the launch: the level, the run's folder, the formats, the shared handlers."""
 
     def __init__(self) -> None:
         self.reset()
 
     def reset(self) -> None:
-        """Back to defaults: level INFO, default formats, no handlers, a log directory chosen anew."""
-        self._log_dir: str | None = None
+        """The defaults again: INFO, default formats, no handler made yet, a run folder still to choose."""
         self.file_handlers: dict[str, logging.Handler] = {}
         self.screen_handler: logging.Handler | None = None
         self.screen_formatter: logging.Formatter | None = None
         self.file_formatter: logging.Formatter | None = None
-        self._log_handler_factory = None
-        logging.root.setLevel(logging.INFO)
+        self._folder: str | None = None
+        self._file_handler_maker = None
+        self.level = logging.INFO
         self.set_screen_format('default')
         self.set_log_format('default')
 
-    @property
-    def level(self) -> int:
-        return logging.root.getEffectiveLevel()
-
-    @level.setter
-    def level(self, new_level: int) -> None:
-        """The level of every launch logger (set on the root logger)."""
-        logging.root.setLevel(new_level)
+    # the level lives on the root logger, which launch's loggers inherit it from
+    level = property(
+        lambda self: logging.root.getEffectiveLevel(),
+        lambda self, new_level: logging.root.setLevel(new_level),
+        doc='The level of every launch logger.')
 
     @property
     def log_dir(self) -> str:
-        """The directory of this run's log files, made (with its `latest` link) on first use."""
-        if self._log_dir is None:
-            self._log_dir = _make_unique_log_dir(base_path=_get_logging_directory())
-            import warnings
-
+        """The run's log folder; it and the `latest` link are made when first asked for."""
+        if self._folder is None:
+            self._folder = _new_run_folder(_logs_root())
             try:
-                if not _renew_latest_log_dir(log_dir=self._log_dir):
+                linked = _point_latest_at(self._folder)
+            except OSError as problem:
+                warnings.warn(f'Cannot create a symlink to latest log directory: {problem}\n', stacklevel=1)
+            else:
+                if not linked:
                     warnings.warn('Cannot create a symlink to latest log directory', stacklevel=1)
-            except OSError as e:
-                warnings.warn(f'Cannot create a symlink to latest log directory: {e}\n', stacklevel=1)
-        return self._log_dir
+        return self._folder
 
     @log_dir.setter
     def log_dir(self, new_log_dir: str | None) -> None:
-        """Use an existing directory for the log files (None: choose one again on next use)."""
+        """An existing folder for the log files (None: pick a new one when next needed)."""
         if new_log_dir is not None:
             if self.file_handlers:
-                import warnings
-
                 warnings.warn(
-                    f'Loggers have been already configured to output to log files below {self._log_dir}. '
+                    f'Loggers have been already configured to output to log files below {self._folder}. '
                     'Proceed at your own risk.', stacklevel=1)
             if not os.path.isdir(new_log_dir):
                 raise ValueError(f'{new_log_dir} is not a directory')
-        self._log_dir = new_log_dir
+        self._folder = new_log_dir
 
     @property
     def log_handler_factory(self):
-        """Callable `(path, encoding=...) -> handler` making log file handlers (default: watched files)."""
-        if self._log_handler_factory is None:
-            self._log_handler_factory = handlers.WatchedFileHandler if os.name != 'nt' else handlers.FileHandler
-        return self._log_handler_factory
+        """What makes the log files' handlers: `(path, encoding=…) -> handler`; watched files by default."""
+        if self._file_handler_maker is None:
+            self._file_handler_maker = handlers.FileHandler if os.name == 'nt' else handlers.WatchedFileHandler
+        return self._file_handler_maker
 
     @log_handler_factory.setter
     def log_handler_factory(self, new_log_handler_factory) -> None:
-        self._log_handler_factory = new_log_handler_factory
+        self._file_handler_maker = new_log_handler_factory
+
+    def _formatter(self, kind: str, fmt: str | None, style: str | None) -> logging.Formatter | None:
+        imposed = _override(kind)
+        if imposed is not None:
+            fmt, style = imposed, '{'
+        if fmt is None:
+            return None
+        known = _ALIASES[kind].get(fmt)
+        if known is not None:
+            if style is not None:
+                raise ValueError(f'Cannot set a custom format style for the "{fmt}" {kind} format.')
+            fmt = known
+        return logging.Formatter(fmt, style=style or '{')
 
     def set_screen_format(self, screen_format: str | None, *, screen_style: str | None = None) -> None:
-        """Format of screen messages: 'default', 'default_with_timestamp', or a `logging.Formatter` format.
+        """The screen's format: 'default', 'default_with_timestamp', or a format of `logging.Formatter`.
 
-        `OVERRIDE_LAUNCH_SCREEN_FORMAT` (with '{' style) wins over the argument. An alias takes no style.
+        `OVERRIDE_LAUNCH_SCREEN_FORMAT` ('{' style) wins over the argument. An alias takes no style.
         """
-        override = _override('OVERRIDE_LAUNCH_SCREEN_FORMAT')
-        if override is not None:
-            screen_format, screen_style = override, '{'
-        if screen_format is None:
-            self.screen_formatter = None
-            return
-        if screen_format in _SCREEN_FORMATS:
-            if screen_style is not None:
-                raise ValueError(f'Cannot set a custom format style for the "{screen_format}" screen format.')
-            screen_format = _SCREEN_FORMATS[screen_format]
-        self.screen_formatter = logging.Formatter(screen_format, style=screen_style or '{')
-        if self.screen_handler is not None:
+        self.screen_formatter = self._formatter('screen', screen_format, screen_style)
+        if self.screen_formatter is not None and self.screen_handler is not None:
             self.screen_handler.setFormatter(self.screen_formatter)
-
-    def get_screen_handler(self) -> logging.Handler:
-        """The one handler writing to the screen (the `sys.stdout` of when it was first asked for)."""
-        if self.screen_handler is None:
-            self.screen_handler = handlers.StreamHandler(_ReplacingStream(sys.stdout))
-            self.screen_handler.setFormatter(self.screen_formatter)
-        return self.screen_handler
 
     def set_log_format(self, log_format: str | None, *, log_style: str | None = None) -> None:
-        """Format of the main log file: 'default' or a `logging.Formatter` format.
+        """The format of launch.log: 'default' or a format of `logging.Formatter`.
 
-        `OVERRIDE_LAUNCH_LOG_FORMAT` (with '{' style) wins over the argument. The alias takes no style.
+        `OVERRIDE_LAUNCH_LOG_FORMAT` ('{' style) wins over the argument. The alias takes no style.
         """
-        override = _override('OVERRIDE_LAUNCH_LOG_FORMAT')
-        if override is not None:
-            log_format, log_style = override, '{'
-        if log_format is None:
-            self.file_formatter = None
-            return
-        if log_format in _LOG_FORMATS:
-            if log_style is not None:
-                raise ValueError(f'Cannot set a custom format style for the "{log_format}" log format.')
-            log_format = _LOG_FORMATS[log_format]
-        self.file_formatter = logging.Formatter(log_format, style=log_style or '{')
-        for handler in self.file_handlers.values():
-            handler.setFormatter(self.file_formatter)
+        self.file_formatter = self._formatter('log', log_format, log_style)
+        if self.file_formatter is not None:
+            for handler in self.file_handlers.values():
+                handler.setFormatter(self.file_formatter)
+
+    def get_screen_handler(self) -> logging.Handler:
+        """The handler writing to the screen: the `sys.stdout` of when it was first asked for."""
+        if self.screen_handler is None:
+            made = handlers.StreamHandler(_Lenient(sys.stdout))
+            made.setFormatter(self.screen_formatter)
+            self.screen_handler = made
+        return self.screen_handler
 
     def get_log_file_path(self, file_name: str = 'launch.log') -> str:
-        """Absolute path of a log file of this run."""
+        """Where a log file of this run goes."""
         return os.path.join(self.log_dir, file_name)
 
     def get_log_file_handler(self, file_name: str = 'launch.log') -> logging.Handler:
-        """The handler writing to a log file of this run, made once per file."""
-        handler = self.file_handlers.get(file_name)
-        if handler is None:
-            handler = self.log_handler_factory(self.get_log_file_path(file_name), encoding='utf-8')
-            handler.setFormatter(self.file_formatter)
-            self.file_handlers[file_name] = handler
-        return handler
+        """The handler of a log file of this run, made once per file."""
+        if file_name not in self.file_handlers:
+            made = self.log_handler_factory(self.get_log_file_path(file_name), encoding='utf-8')
+            made.setFormatter(self.file_formatter)
+            self.file_handlers[file_name] = made
+        return self.file_handlers[file_name]
 
 
 launch_config = LaunchConfig()
 
 
 def log_launch_config(*, logger: logging.Logger = logging.root) -> None:
-    """Tell the user where the log files are and which level is in force."""
+    """Say where the log files are (once some are written) and which level is in force."""
     if launch_config.file_handlers:
         logger.info(f'All log files can be found below {launch_config.log_dir}')
-    level = logging.getLevelName(logging.root.getEffectiveLevel())
-    logger.info(f'Default logging verbosity is set to {level}')
+    logger.info(f'Default logging verbosity is set to {logging.getLevelName(logging.root.getEffectiveLevel())}')
+
+
+def _attach(logger: logging.Logger, handler: logging.Handler) -> None:
+    if handler not in logger.handlers:
+        logger.addHandler(handler)
 
 
 def get_logger(name: str | None = None) -> logging.Logger:
-    """The logger `name`, writing to the screen and to this run's `launch.log`."""
+    """The logger `name`, writing to the screen and to the run's launch.log."""
     logger = logging.getLogger(name)
-    for handler in (launch_config.get_screen_handler(), launch_config.get_log_file_handler()):
-        if handler not in logger.handlers:
-            logger.addHandler(handler)
+    _attach(logger, launch_config.get_screen_handler())
+    _attach(logger, launch_config.get_log_file_handler())
     return logger
 
 
-_ALIASES = {
+# what each output alias sends where: {source: destinations}, 'both' meaning stdout and stderr
+_OUTPUT_ALIASES = {
     'screen': {'both': {'screen'}},
     'log': {'both': {'log'}, 'stderr': {'screen'}},
     'both': {'both': {'log', 'screen'}},
@@ -235,66 +226,67 @@ _ALIASES = {
 }
 
 
-def _normalize_output_configuration(config: Any) -> dict[str, set]:
-    normalized: dict[str, set] = {'both': set(), 'stdout': set(), 'stderr': set()}
+def _destinations(config: Any) -> dict[str, set[str]]:
+    """An output configuration, alias or dict, as destinations by source (ValueError when malformed)."""
+    routes: dict[str, set[str]] = {'both': set(), 'stdout': set(), 'stderr': set()}
     if isinstance(config, str):
-        if config not in _ALIASES:
+        if config not in _OUTPUT_ALIASES:
             raise ValueError(f'{config} is not a valid standard output config i.e. "screen", "log" or "both"')
-        for source, destinations in _ALIASES[config].items():
-            normalized[source] = set(destinations)
-        return normalized
-    if not isinstance(config, dict):
+        config = _OUTPUT_ALIASES[config]
+    elif not isinstance(config, dict):
         raise ValueError(f'{config} is not a valid output configuration')
-    for source, destinations in config.items():
-        if source not in normalized:
+    for source, wanted in config.items():
+        if source not in routes:
             raise ValueError(f'{source} is not a valid output source i.e. "stdout", "stderr" or "both"')
-        if isinstance(destinations, str):
-            destinations = {destinations}
-        for destination in destinations:
-            if destination not in ('screen', 'log', 'own_log'):
-                raise ValueError(
-                    f'{destination} is not a valid output destination i.e. "screen", "log" or "own_log"')
-        normalized[source] = set(destinations)
-    return normalized
+        wanted = {wanted} if isinstance(wanted, str) else set(wanted)
+        unknown = [destination for destination in wanted if destination not in ('screen', 'log', 'own_log')]
+        if unknown:
+            raise ValueError(
+                f'{unknown[0]} is not a valid output destination i.e. "screen", "log" or "own_log"')
+        routes[source] = wanted
+    return routes
+
+
+def _wire(logger: logging.Logger, process_name: str, source: str, routes: dict[str, set[str]]) -> None:
+    if 'screen' in routes['both'] | routes[source]:
+        screen = launch_config.get_screen_handler()
+        if screen not in logger.handlers:
+            screen.setFormatterFor(logger, logging.Formatter('{msg}', style='{'))  # bare lines on screen
+            logger.addHandler(screen)
+    if 'log' in routes['both'] | routes[source]:
+        main = launch_config.get_log_file_handler()
+        if main not in logger.handlers:
+            main.setFormatterFor(logger, logging.Formatter('{created:.7f} {msg}', style='{'))
+            logger.addHandler(main)
+    if 'own_log' in routes[source]:
+        own = launch_config.get_log_file_handler(f'{process_name}-{source}.log')
+        own.setFormatter(logging.Formatter(fmt=None))
+        _attach(logger, own)
+    if 'own_log' in routes['both']:
+        combined = launch_config.get_log_file_handler(f'{process_name}.log')
+        combined.setFormatter(logging.Formatter('{msg}', style='{'))
+        _attach(logger, combined)
 
 
 def get_output_loggers(process_name: str, output_config: Any) -> tuple[logging.Logger, logging.Logger]:
-    """The (stdout, stderr) loggers of a process, wired as `output_config` says.
+    """The (stdout, stderr) loggers of a process, writing where `output_config` says.
 
-    `output_config` is an alias — 'screen' (both to the screen), 'log' (both to launch.log, stderr also to
-    the screen), 'both' (both to the screen and launch.log), 'own_log' (each to `<name>-stdout.log` /
-    `<name>-stderr.log` and both to `<name>.log`), 'full' (all of these) — or a dict from 'stdout',
-    'stderr' or 'both' to one or a set of 'screen', 'log', 'own_log'. ValueError for anything else.
+    `output_config`: an alias — 'screen' (both streams to the screen), 'log' (both to launch.log, stderr
+    also to the screen), 'both' (both to the screen and launch.log), 'own_log' (each to
+    `<name>-stdout.log` / `<name>-stderr.log`, both to `<name>.log`), 'full' (all of that) — or a dict
+    from 'stdout', 'stderr' or 'both' to one or several of 'screen', 'log', 'own_log'.
     """
-    config = _normalize_output_configuration(output_config)
+    routes = _destinations(output_config)
+    pair = []
     for source in ('stdout', 'stderr'):
         logger = logging.getLogger(f'{process_name}-{source}')
-        wanted = config['both'] | config[source]
-        if 'screen' in wanted:
-            screen = launch_config.get_screen_handler()
-            if screen not in logger.handlers:
-                screen.setFormatterFor(logger, logging.Formatter('{msg}', style='{'))
-                logger.addHandler(screen)
-        if 'log' in wanted:
-            main_log = launch_config.get_log_file_handler()
-            if main_log not in logger.handlers:
-                main_log.setFormatterFor(logger, logging.Formatter('{created:.7f} {msg}', style='{'))
-                logger.addHandler(main_log)
-        if 'own_log' in config[source]:
-            own = launch_config.get_log_file_handler(f'{process_name}-{source}.log')
-            own.setFormatter(logging.Formatter(fmt=None))
-            if own not in logger.handlers:
-                logger.addHandler(own)
-        if 'own_log' in config['both']:
-            combined = launch_config.get_log_file_handler(f'{process_name}.log')
-            combined.setFormatter(logging.Formatter('{msg}', style='{'))
-            if combined not in logger.handlers:
-                logger.addHandler(combined)
-    return logging.getLogger(f'{process_name}-stdout'), logging.getLogger(f'{process_name}-stderr')
+        _wire(logger, process_name, source, routes)
+        pair.append(logger)
+    return pair[0], pair[1]
 
 
 class LaunchLogger(logging.getLoggerClass()):  # type: ignore[misc]
-    """The logger class while launch is loaded: does not propagate, and is remembered for `reset()`."""
+    """The logger class while launch is loaded: no propagation, and remembered for `reset()`."""
 
     all_loggers: ClassVar[list[logging.Logger]] = []
 
@@ -305,10 +297,10 @@ class LaunchLogger(logging.getLoggerClass()):  # type: ignore[misc]
 
 
 def reset() -> None:
-    """Undo every launch logging setup: levels and handlers of launch's loggers, and `launch_config`."""
+    """Undo launch's logging setup: the levels and handlers of its loggers, and `launch_config`."""
     for logger in LaunchLogger.all_loggers:
+        logger.handlers.clear()
         logger.setLevel(logging.NOTSET)
-        del logger.handlers[:]
     launch_config.reset()
     logging.setLoggerClass(LaunchLogger)
 

@@ -1,7 +1,8 @@
-"""`normalize_to_list_of_entities`: flatten entities and iterables of entities into one list."""
+"""`normalize_to_list_of_entities`: entities and groups of entities as one flat list."""
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Iterable
 
 from ..launch_description_entity import LaunchDescriptionEntity
@@ -9,11 +10,6 @@ from ..some_entities_type import SomeEntitiesType
 
 
 def normalize_to_list_of_entities(entities: Iterable[SomeEntitiesType]) -> list[LaunchDescriptionEntity]:
-    """One flat list from items that are entities or iterables of entities (one level deep)."""
-    flat: list[LaunchDescriptionEntity] = []
-    for item in entities:
-        if isinstance(item, LaunchDescriptionEntity):
-            flat.append(item)
-        else:
-            flat.extend(item)
-    return flat
+    """Each item an entity, or an iterable of entities unpacked in its place (one level only)."""
+    return list(itertools.chain.from_iterable(
+        (item,) if isinstance(item, LaunchDescriptionEntity) else item for item in entities))

@@ -32,45 +32,30 @@ __all__ = [
     'perform_typed_substitution',
 ]
 
-# The typing objects below are ros2/launch's public aliases (`List[int]` etc. as data types).
+# ros2/launch's public aliases, built from the four scalar types. `Union[tuple]` is `Union[a, b, …]`; the
+# typing objects compare equal to those written out, which is what users' annotations and checks see.
 ScalarTypesTuple = (int, float, bool, str)
-ListTypesTuple = (List[int], List[float], List[bool], List[str])
+ListTypesTuple = tuple(List[scalar] for scalar in ScalarTypesTuple)
 AllowedTypesTuple = ScalarTypesTuple + ListTypesTuple
 
-ScalarTypesType = Type[Union[int, float, bool, str]]
-ListTypesType = Type[Union[List[int], List[float], List[bool], List[str]]]
-AllowedTypesType = Union[ScalarTypesType, ListTypesType]
-
-ScalarValueType = Union[int, float, bool, str]
-ListValueType = Union[List[int], List[float], List[bool], List[str]]
-SequenceValueType = Union[Sequence[int], Sequence[float], Sequence[bool], Sequence[str]]
+ScalarValueType = Union[ScalarTypesTuple]
+ListValueType = Union[ListTypesTuple]
+SequenceValueType = Union[tuple(Sequence[scalar] for scalar in ScalarTypesTuple)]
 AllowedValueType = Union[ScalarValueType, SequenceValueType]
 
+ScalarTypesType = Type[ScalarValueType]
+ListTypesType = Type[ListValueType]
+AllowedTypesType = Union[ScalarTypesType, ListTypesType]
+
+# before substitution (Some…), after normalization (Normalized…), and as read from markup (StrSome…)
 SomeScalarType = Union[SomeSubstitutionsType, ScalarValueType]
-SomeSequenceType = Union[
-    Sequence[Union[int, SomeSubstitutionsType]],
-    Sequence[Union[float, SomeSubstitutionsType]],
-    Sequence[Union[bool, SomeSubstitutionsType]],
-    Sequence[Union[str, SomeSubstitutionsType]],
-]
+SomeSequenceType = Union[tuple(Sequence[Union[scalar, SomeSubstitutionsType]] for scalar in ScalarTypesTuple)]
 SomeValueType = Union[SomeScalarType, SomeSequenceType]
-
 NormalizedScalarType = Union[List[Substitution], ScalarValueType]
-NormalizedSequenceType = Union[
-    List[Union[int, List[Substitution]]],
-    List[Union[float, List[Substitution]]],
-    List[Union[bool, List[Substitution]]],
-    List[Union[str, List[Substitution]]],
-]
+NormalizedSequenceType = Union[tuple(List[Union[scalar, List[Substitution]]] for scalar in ScalarTypesTuple)]
 NormalizedValueType = Union[NormalizedScalarType, NormalizedSequenceType]
-
 StrSomeScalarType = SomeScalarType
-StrSomeSequenceType = Union[
-    Sequence[Union[int, str]],
-    Sequence[Union[float, str]],
-    Sequence[Union[bool, str]],
-    Sequence[str],
-]
+StrSomeSequenceType = Union[tuple(Sequence[Union[scalar, str]] for scalar in ScalarTypesTuple)]
 StrSomeValueType = Union[StrSomeScalarType, StrSomeSequenceType]
 
 
@@ -255,16 +240,15 @@ def normalize_typed_substitution(value: SomeValueType, data_type: AllowedTypesTy
     write `['a', [TextSubstitution(text='b')]]` for two items). TypeError when the value cannot become a
     `data_type`, ValueError when `data_type` is not allowed.
     """
-    if isinstance(value, ScalarTypesTuple):
-        if not is_instance_of(value, data_type):
-            raise TypeError(f"value='{value}' is not an instance of {data_type}")
-        return value
     if is_substitution(value):
         return normalize_to_list_of_substitutions(value)
+    if isinstance(value, ScalarTypesTuple):
+        if is_instance_of(value, data_type):
+            return value
+        raise TypeError(f"value='{value}' is not an instance of {data_type}")
     if not isinstance(value, collections.abc.Iterable):
         raise TypeError(
-            'value should be either a scalar, a substitutions,'
-            ' or a mixed list of scalars and substitutions. '
+            'value should be either a scalar, a substitutions, or a mixed list of scalars and substitutions. '
             f'Got `value={value}` of type `{type(value)}`. ')
     items = list(value)
     kinds = {_item_kind(item, value) for item in items}
