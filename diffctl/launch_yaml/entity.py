@@ -24,27 +24,27 @@ class Entity(BaseEntity):
     """One entity of a YAML launch file."""
 
     def __init__(self, element: Any, type_name: str | None = None, *, parent: Entity | None = None) -> None:
-        self._body = element  # a mapping, or a list of children
-        self._tag = type_name
-        self._above = parent
-        self._read: set[str] = set()  # the keys get_attr (or children) read
-        self._listed = False  # whether children were asked for
+        self.__type_name = type_name
+        self.__element = element
+        self.__parent = parent
+        self.__read_keys: set = set()
+        self.__children_called = False
 
     @property
     def type_name(self) -> str | None:
-        return self._tag
+        return self.__type_name
 
     @property
     def parent(self) -> Entity | None:
-        return self._above
+        return self.__parent
 
     @property
     def location(self) -> str | None:
         """'file:line' of the entity, when it was read from a file."""
-        line = getattr(self._body, 'line', None)
-        if line is None and self._above is not None:
-            return self._above.location
-        return None if line is None else f'{self._body.source}:{line}'
+        line = getattr(self.__element, 'line', None)
+        if line is None and self.__parent is not None:
+            return self.__parent.location
+        return None if line is None else f'{self.__element.source}:{line}'
 
     def __where(self) -> str:
         location = self.location
@@ -52,16 +52,16 @@ class Entity(BaseEntity):
 
     @property
     def children(self) -> list[Entity]:
-        self._listed = True
-        element = self._body
+        self.__children_called = True
+        element = self.__element
         if not isinstance(element, (dict, list)):
             raise TypeError(f'{self.__where()}Expected a dict or list, got {type(element)}:\n---\n{element}\n---')
         if isinstance(element, dict):
             if 'children' not in element:
                 raise ValueError(
-                    f'{self.__where()}Expected entity `{self._tag}` to have children entities.'
+                    f'{self.__where()}Expected entity `{self.__type_name}` to have children entities.'
                     'That can be a list of subentities or a dictionary with a `children` list element')
-            self._read.add('children')
+            self.__read_keys.add('children')
             children = element['children']
         else:
             children = element
@@ -75,15 +75,15 @@ class Entity(BaseEntity):
         return entities
 
     def assert_entity_completely_parsed(self) -> None:
-        element = self._body
+        element = self.__element
         if isinstance(element, list):
-            if not self._listed:
+            if not self.__children_called:
                 raise ValueError(
-                    f'{self.__where()}Unexpected nested entity(ies) found in `{self._tag}`: {element}')
+                    f'{self.__where()}Unexpected nested entity(ies) found in `{self.__type_name}`: {element}')
             return
-        unread = set(element.keys()) - self._read
+        unread = set(element.keys()) - self.__read_keys
         if unread:
-            raise ValueError(f'{self.__where()}Unexpected key(s) found in `{self._tag}`: {unread}')
+            raise ValueError(f'{self.__where()}Unexpected key(s) found in `{self.__type_name}`: {unread}')
 
     def get_attr(
         self,
@@ -97,13 +97,13 @@ class Entity(BaseEntity):
 
         See `launch.frontend.Entity.get_attr`; YAML values are not coerced.
         """
-        if name not in self._body:
+        if name not in self.__element:
             if optional:
                 return None
             raise AttributeError(
                 f"{self.__where()}Can not find attribute '{name}' in Entity '{self.type_name}'")
-        self._read.add(name)
-        data = self._body[name]
+        self.__read_keys.add(name)
+        data = self.__element[name]
         if check_is_list_entity(data_type):
             if isinstance(data, list) and data and isinstance(data[0], dict):
                 return [Entity(child, name, parent=self) for child in data]
