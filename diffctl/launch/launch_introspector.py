@@ -1,4 +1,4 @@
-"""`LaunchIntrospector`: a launch description as an indented tree of text, without running anything."""
+"""`LaunchIntrospector`: a launch description as a tree of text, without running any of it."""
 
 from __future__ import annotations
 
@@ -17,56 +17,45 @@ if TYPE_CHECKING:
 
 
 def indent(lines: list[str], indention: str = '    ') -> list[str]:
-    """Each line with `indention` in front."""
-    return [f'{indention}{line}' for line in lines]
+    """The lines, each with `indention` in front."""
+    return [indention + line for line in lines]
 
 
 def tree_like_indent(lines: list[str]) -> list[str]:
-    """Turn four-space indentation into tree branches ('├── ', '└── ', '│')."""
-    result: list[str] = []
-    previous_depth = None
-    for line in lines:
-        if not line.startswith('    '):
-            continue
-        depth = len(line) - len(line.lstrip())
-        if previous_depth is not None and '└' in result[-1] and previous_depth <= depth:
-            result[-1] = result[-1].replace('└', '├', 1)
-        previous_depth = depth
-        drawn = '│' + line[1:]
-        result.append(drawn[:depth - 4] + '└── ' + drawn[depth:])
-    if result and result[-1].startswith('│'):
-        result[-1] = ' ' + result[-1][1:]
-    return result
-
-
-def format_entities(entities: Iterable[LaunchDescriptionEntity]) -> list[str]:
-    """Lines describing each entity (actions in detail, anything else by its text)."""
-    lines: list[str] = []
-    for entity in entities:
-        if is_a(entity, Action):
-            lines.extend(format_action(entity))
-        else:
-            lines.append(f"Unknown entity('{entity}')")
-    return lines
+    """Lines indented by fours drawn as a tree: '├── ' where a line of the same depth or deeper follows,
+    '└── ' elsewhere; lines not indented are left out."""
+    kept = [(len(line) - len(line.lstrip()), line) for line in lines if line.startswith('    ')]
+    drawn = []
+    for index, (depth, line) in enumerate(kept):
+        later = kept[index + 1][0] if index + 1 < len(kept) else -1
+        lead = '│' + line[1:depth - 4] if depth > 4 else ''
+        drawn.append(lead + ('├── ' if later >= depth else '└── ') + line[depth:])
+    if drawn and drawn[-1].startswith('│'):
+        drawn[-1] = ' ' + drawn[-1][1:]  # nothing below the last line to connect to
+    return drawn
 
 
 def format_substitutions(substitutions: SomeSubstitutionsType) -> str:
-    """The substitutions' descriptions joined by ' + '."""
-    return ' + '.join(sub.describe() for sub in normalize_to_list_of_substitutions(substitutions))
+    """The substitutions' descriptions, joined by ' + '."""
+    return ' + '.join(piece.describe() for piece in normalize_to_list_of_substitutions(substitutions))
 
 
-def format_event_handler(event_handler: BaseEventHandler) -> list[str]:
-    """The handler's description, with the entities it would yield indented under it."""
-    if not hasattr(event_handler, 'describe'):
-        return [f"EventHandler('{hex(id(event_handler))}')"]
-    text, entities = event_handler.describe()
-    if isinstance(entities, LaunchDescriptionEntity):
-        entities = [entities]
-    return [text, *indent(format_entities(entities))]
+def _process_line(process) -> str:
+    def quoted(value):
+        return value if value is None else f"'{format_substitutions(value)}'"
+
+    def mapping(pairs):
+        if pairs is None:
+            return None
+        return '{' + ', '.join(f'{format_substitutions(k)}: {format_substitutions(v)}' for k, v in pairs) + '}'
+
+    words = ', '.join(format_substitutions(word) for word in process.cmd)
+    where, environment = quoted(process.cwd), mapping(process.env)
+    return f'ExecuteProcess(cmd=[{words}], cwd={where}, env={environment}, shell={process.shell})'
 
 
 def format_action(action: Action) -> list[str]:
-    """Lines describing an action; log, emit, process and handler registrations in detail."""
+    """The lines describing an action: logs, events, processes and handler registrations in detail."""
     from .actions.emit_event import EmitEvent
     from .actions.execute_process import ExecuteProcess
     from .actions.log_info import LogInfo
@@ -77,23 +66,36 @@ def format_action(action: Action) -> list[str]:
     if is_a(action, EmitEvent):
         return [f"EmitEvent(event='{action.event.name}')"]
     if is_a(action, ExecuteProcess):
-        cwd = action.cwd if action.cwd is None else f"'{format_substitutions(action.cwd)}'"
-        env = action.env if action.env is None else '{' + ', '.join(
-            f'{format_substitutions(k)}: {format_substitutions(v)}' for k, v in action.env) + '}'
-        return ['ExecuteProcess(cmd=[{}], cwd={}, env={}, shell={})'.format(
-            ', '.join(format_substitutions(x) for x in action.cmd), cwd, env, action.shell)]
+        return [_process_line(action)]
     if is_a(action, RegisterEventHandler):
-        return [
-            f"RegisterEventHandler('{action.event_handler}'):",
-            *indent(format_event_handler(action.event_handler)),
-        ]
+        handler = action.event_handler
+        return [f"RegisterEventHandler('{handler}'):", *indent(format_event_handler(handler))]
     return [f"Action('{action}')"]
 
 
+def format_entities(entities: Iterable[LaunchDescriptionEntity]) -> list[str]:
+    """The lines describing each entity: actions in detail, anything else by its text."""
+    lines: list[str] = []
+    for entity in entities:
+        lines += format_action(entity) if is_a(entity, Action) else [f"Unknown entity('{entity}')"]
+    return lines
+
+
+def format_event_handler(event_handler: BaseEventHandler) -> list[str]:
+    """A handler's description, with the entities it would give indented below it."""
+    describe = getattr(event_handler, 'describe', None)
+    if describe is None:
+        return [f"EventHandler('{hex(id(event_handler))}')"]
+    text, given = describe()
+    if isinstance(given, LaunchDescriptionEntity):
+        given = [given]
+    return [text, *indent(format_entities(given))]
+
+
 class LaunchIntrospector:
-    """Describes launch descriptions as text."""
+    """Describes launch descriptions in text (what `ros2 launch --print` prints)."""
 
     def format_launch_description(self, launch_description: LaunchDescription) -> str:
-        """The description's text: its repr, then its entities as a tree."""
-        lines = tree_like_indent(indent(format_entities(launch_description.entities)))
-        return f'{launch_description}\n' + '\n'.join(lines)
+        """The description's repr, then its entities as a tree."""
+        tree = tree_like_indent(indent(format_entities(launch_description.entities)))
+        return '\n'.join([str(launch_description), *tree])

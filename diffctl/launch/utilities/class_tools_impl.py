@@ -19,6 +19,4 @@ def is_a(obj, entity_type) -> bool:
 
 def is_a_subclass(obj, entity_type) -> bool:
     """True when `obj` is an instance of `entity_type` or is itself a subclass of it."""
-    if is_a(obj, entity_type):
-        return True
-    return inspect.isclass(obj) and issubclass(obj, entity_type)
+    return is_a(obj, entity_type) or (inspect.isclass(obj) and issubclass(obj, entity_type))
