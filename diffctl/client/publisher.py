@@ -32,7 +32,7 @@ class Publisher(NodeEntity):
         if self._destroyed:
             raise InvalidHandle("cannot use Destroyable because destruction was requested")
         if not self._context._ok:
-            raise _context_invalid()
+            raise context_invalid("Failed to publish")
         if type(msg) is self.msg_type or isinstance(msg, self.msg_type):
             data = serialize(msg)
         elif isinstance(msg, (bytes, bytearray)):
@@ -43,10 +43,12 @@ class Publisher(NodeEntity):
             self._publish_raw(data)
         except Exception as e:  # zenoh.ZError: the session closed under a callback still running at exit
             if "closed" in str(e):
-                raise _context_invalid() from None
+                raise context_invalid("Failed to publish") from None
             raise
 
     def get_subscription_count(self) -> int:
+        if not self._context._ok:
+            raise context_invalid("failed to get subscription count")
         return self._bus.subscription_count
 
     @property
@@ -64,11 +66,15 @@ class Publisher(NodeEntity):
             self._bus.close()
 
     def assert_liveliness(self) -> None:
-        pass  # rmw_zenoh's liveliness is the token, asserted for as long as the publisher exists
+        if not self._context._ok:
+            raise context_invalid("Failed to assert liveliness on the Publisher")
 
     def wait_for_all_acked(self, timeout: Duration = Duration(seconds=-1)) -> bool:
+        if not self._context._ok:
+            raise context_invalid("Failed to wait for all acknowledgements")
         return True  # Zenoh's reliable channel has handed every sample over once put returns
 
 
-def _context_invalid() -> RCLError:
-    return RCLError("Failed to publish: publisher's context is invalid, at /project/src/rcl/publisher.c:423")
+def context_invalid(what: str) -> RCLError:
+    """rcl's refusal of a publisher whose context was shut down."""
+    return RCLError(f"{what}: publisher's context is invalid, at /project/src/rcl/publisher.c:423")

@@ -17,6 +17,9 @@ from diffctl.client.qos import HistoryPolicy
 from diffctl.client.timer import await_or_execute
 from diffctl.errors import MessageError
 
+_BAD_CALLBACK = ("Subscription.__init__(): callback should be either be callable with one argument(to get only the "
+                 "message) or two (to get message and message info)")
+
 
 class Subscription(NodeEntity):
     class CallbackType(enum.Enum):
@@ -63,12 +66,26 @@ class Subscription(NodeEntity):
 
     @callback.setter
     def callback(self, value: Callable[..., Any]) -> None:
-        self._callback = value
+        # One argument that binds: the message only; else two: the message and its info; else refused as rclpy
+        # refuses it. (A callable without a signature is taken as rclpy took such callbacks before it checked.)
         try:
-            inspect.signature(value).bind(object())
-            self._callback_type = Subscription.CallbackType.MessageOnly
-        except (TypeError, ValueError):
-            self._callback_type = Subscription.CallbackType.WithMessageInfo
+            signature = inspect.signature(value)
+        except ValueError:
+            signature = None
+        except TypeError:  # not callable at all
+            raise RuntimeError(_BAD_CALLBACK) from None
+        kind = Subscription.CallbackType.WithMessageInfo
+        if signature is not None:
+            try:
+                signature.bind(object())
+                kind = Subscription.CallbackType.MessageOnly
+            except TypeError:
+                try:
+                    signature.bind(object(), object())
+                except TypeError:
+                    raise RuntimeError(_BAD_CALLBACK) from None
+        self._callback = value
+        self._callback_type = kind
 
     def _ready(self) -> bool:
         return bool(self._queue)
