@@ -91,7 +91,7 @@ def publish_for(pub, node, duration_s: float, x: float, *, stamp_offset_s: float
 
 @pytest.mark.slow
 def test_mock_control_drives_brakes_and_rejects_bad_commands(router, procs, tmp_path, output_dir, monkeypatch) -> None:
-    from diffctl.bus import Node
+    from tests.probe import Probe
 
     monkeypatch.setenv("ROS_HOME", str(tmp_path))
     log_path = output_dir / "manager.log"
@@ -104,7 +104,7 @@ def test_mock_control_drives_brakes_and_rejects_bad_commands(router, procs, tmp_
     startup_s = time.monotonic() - t0
     assert "Configured and activated joint_state_broadcaster" in out
 
-    node = Node("test_teleop")
+    node = Probe("test_teleop")
     rec = Recorder()
     node.create_subscription(f"{CTRL}/odom", "nav_msgs/msg/Odometry", rec.on_odom)
     node.create_subscription("/joint_states", "sensor_msgs/msg/JointState", rec.on_joints)
@@ -164,7 +164,7 @@ def test_mock_control_drives_brakes_and_rejects_bad_commands(router, procs, tmp_
 @pytest.mark.slow
 def test_launch_mock_control_activates_both_controllers_and_drives(router, procs, tmp_path, monkeypatch) -> None:
     """The same graph through the launch engine: `diffctl launch mock_control`, then Ctrl-C reaps everything."""
-    from diffctl.bus import Node
+    from tests.probe import Probe
 
     monkeypatch.setenv("ROS_HOME", str(tmp_path))
     log_path = tmp_path / "launch.log"
@@ -174,7 +174,7 @@ def test_launch_mock_control_activates_both_controllers_and_drives(router, procs
         assert launch.poll() is None, log_path.read_text()
         assert time.monotonic() < deadline, log_path.read_text()
         time.sleep(0.1)
-    node = Node("test_launch_teleop")
+    node = Probe("test_launch_teleop")
     rec = Recorder()
     node.create_subscription(f"{CTRL}/odom", "nav_msgs/msg/Odometry", rec.on_odom)
     node.create_subscription("/joint_states", "sensor_msgs/msg/JointState", rec.on_joints)

@@ -5,6 +5,7 @@ with the advertised schema alone, and a client-advertised cmd_vel published on t
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import json
 import os
 import struct
@@ -16,10 +17,11 @@ from typing import Any
 import websockets
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
-from diffctl.bus import Node
+from diffctl.client.parameter import Parameter
 from diffctl.interfaces import types
 from tests.bag.test_files import one_error_line, run, write_bag
 from tests.conftest import free_port, wait_port
+from tests.probe import Probe, spinning
 
 PROTOCOL = "foxglove.sdk.v1"
 
@@ -40,7 +42,7 @@ def decode_with_schema(name: str, schema: str, payload: bytes) -> Any:
 
 
 def test_live_topics_subscribe_decode_and_client_publish(router: str, procs: Any) -> None:
-    node = Node("fg_test")
+    node = Probe("fg_test")
     pub = node.create_publisher("/odom", "nav_msgs/msg/Odometry")
     cmds: list[Any] = []
     node.create_subscription("/cmd_vel", "geometry_msgs/msg/Twist", cmds.append)
@@ -149,7 +151,7 @@ def test_an_unknown_capability_is_refused_with_the_valid_ones() -> None:
 
 
 def test_sim_time_is_the_servers_time(router: str, procs: Any) -> None:
-    node = Node("fg_clock")
+    node = Probe("fg_clock")
     clock = node.create_publisher("/clock", "rosgraph_msgs/msg/Clock")
     port = free_port()
     bridge = procs.diffctl("foxglove-bridge", "--ros-args", "-p", f"port:={port}", "-p", "use_sim_time:=true")
@@ -204,7 +206,8 @@ def _cdr_of(schema_name: str, schema: str, values: dict[str, Any]) -> tuple[Any,
 
 
 def test_services_parameters_and_assets_as_foxglove_bridge_serves_them(router: str, procs: Any, tmp_path: Path) -> None:
-    node = Node("fg_params")
+    held = contextlib.ExitStack()
+    node = held.enter_context(spinning("fg_params"))
     node.declare_parameter("gain", 0.5)
     node.declare_parameter("mode", "slow")
     calls: list[bool] = []
@@ -213,7 +216,7 @@ def test_services_parameters_and_assets_as_foxglove_bridge_serves_them(router: s
         calls.append(bool(req.data))
         return types.response("std_srvs/srv/SetBool", {"success": True, "message": f"was asked {req.data}"})
 
-    node.create_service("/fg_params/enable", "std_srvs/srv/SetBool", set_bool)
+    node.bus_node.create_service("/fg_params/enable", "std_srvs/srv/SetBool", set_bool)
     ws_root = _asset_workspace(tmp_path)
     port = free_port()
     bridge = procs.diffctl("foxglove-bridge", "--port", str(port),
@@ -261,8 +264,9 @@ def test_services_parameters_and_assets_as_foxglove_bridge_serves_them(router: s
             await ws.send(json.dumps({"op": "subscribeParameterUpdates", "parameterNames": ["/fg_params.gain"]}))
             out["set"] = await params({"op": "setParameters", "id": "s1", "parameters": [
                 {"name": "/fg_params.gain", "value": 2, "type": "float64"}]})
-            out["node_after_set"] = node.get_parameter("gain")
-            node.set_parameters({"gain": 3.25})  # a change made on the ROS side reaches the watching client
+            out["node_after_set"] = node.get_parameter("gain").value
+            # a change made on the ROS side reaches the watching client
+            node.set_parameters([Parameter("gain", value=3.25)])
             update = await _read_until(ws, lambda m: isinstance(m, str) and '"parameterValues"' in m
                                        and "3.25" in m)
             out["update"] = json.loads(update)
@@ -313,4 +317,4 @@ def test_services_parameters_and_assets_as_foxglove_bridge_serves_them(router: s
     assert out["unknown"][0] == 1 and b"no_such_package" in out["unknown"][1]
     assert out["not_listed"][0] == 1 and b"not allowed" in out["not_listed"][1]
     procs.stop(bridge)
-    node.close()
+    held.close()

@@ -35,10 +35,10 @@ def test_topic_echo_learns_a_type_it_does_not_know(router: str, procs) -> None:
     publisher = textwrap.dedent(f"""
         import time
         from diffctl.bag.msgdefs import register_schema
-        from diffctl.bus import Node
+        from tests.probe import Probe
         from diffctl.interfaces import types
         register_schema({MIXED!r}, "ros2msg", {MIXED_MSG!r}, "test")
-        node = Node("mixed_talker")
+        node = Probe("mixed_talker")
         pub = node.create_publisher("/mixed", {MIXED!r})
         print("ready", flush=True)
         while True:

@@ -155,14 +155,14 @@ def generate_launch_description():
     ])
     robot_description = {"robot_description": ParameterValue(robot_description_content, value_type=str)}
     controllers = PathJoinSubstitution([FindPackageShare("demo_bringup"), "config", "demo_controllers.yaml"])
-    control_node = Node(package="controller_manager", executable="ros2_control_node", name="my_ctrl_mgr",
+    control_node = Probe(package="controller_manager", executable="ros2_control_node", name="my_ctrl_mgr",
                         parameters=[controllers], remappings=[("~/robot_description", "/robot_description")],
                         output="both")
-    rsp = Node(package="robot_state_publisher", executable="robot_state_publisher", output="both",
+    rsp = Probe(package="robot_state_publisher", executable="robot_state_publisher", output="both",
                parameters=[robot_description])
-    jsb_spawner = Node(package="controller_manager", executable="spawner",
+    jsb_spawner = Probe(package="controller_manager", executable="spawner",
                        arguments=["joint_broad", "-c", "my_ctrl_mgr", "--param-file", controllers])
-    drive_spawner = Node(package="controller_manager", executable="spawner",
+    drive_spawner = Probe(package="controller_manager", executable="spawner",
                          arguments=["diff_cont", "-c", "my_ctrl_mgr", "--param-file", controllers,
                                     "--controller-ros-args", "-r ~/cmd_vel:=/cmd_vel"],
                          condition=IfCondition(LaunchConfiguration("start_drive")))
@@ -204,11 +204,11 @@ def make_workspace(root: Path) -> Path:
 def test_a_bringup_with_xacro_across_packages_drives_on_mock_hardware(
     launch_file: str, router, launch_run, tmp_path
 ) -> None:
-    from diffctl.bus import Node
+    from tests.probe import Probe
 
     ws = make_workspace(tmp_path)
     run = launch_run("demo_bringup", launch_file, "use_mock_hardware:=true", cwd=ws)
-    node = Node("xml_bringup_test")
+    node = Probe("xml_bringup_test")
     try:
         odom_x: list[float] = []
         node.create_subscription(

@@ -8,7 +8,6 @@ import time
 
 import pytest
 
-from diffctl.bus import Node
 from diffctl.client.context import Context
 from diffctl.client.node import Node as ClientNode
 from diffctl.teleop.joy import run_joy
@@ -16,6 +15,7 @@ from diffctl.teleop.joy_config import JoyParams
 from diffctl.teleop.joy_mapping import AxisRange
 from diffctl.teleop.linux_input import AXES, BUTTONS, EV_ABS, EV_KEY, EV_SYN, SYN_REPORT
 from diffctl.teleop.twist_command import TwistCommand
+from tests.probe import Probe
 
 STICK = AxisRange(-32768, 32767)
 
@@ -42,7 +42,7 @@ class ScriptedPad:
 
 def test_enable_turbo_autorepeat_and_single_zero(router: str) -> None:
     topic = "/diffbot_base_controller/cmd_vel"
-    probe = Node("joy_probe")
+    probe = Probe("joy_probe")
     got: list[tuple[float, float, float, str]] = []
     probe.create_subscription(
         topic,

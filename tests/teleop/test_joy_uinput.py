@@ -16,8 +16,8 @@ from pathlib import Path
 
 import pytest
 
-from diffctl.bus import Node
 from diffctl.teleop.linux_input import AXES, BUTTONS, EV_ABS, EV_KEY, EV_SYN, SYN_REPORT
+from tests.probe import Probe
 
 UINPUT = Path("/dev/uinput")
 
@@ -97,7 +97,7 @@ def emit(fd: int, *events: tuple[int, int, int]) -> None:
 def test_virtual_pad_drives_over_the_bus(router: str, procs, virtual_pad: tuple[int, str]) -> None:
     fd, path = virtual_pad
     topic = "/diffbot_base_controller/cmd_vel"
-    node = Node("uinput_probe")
+    node = Probe("uinput_probe")
     got: list[tuple[float, float]] = []
     node.create_subscription(
         topic, "geometry_msgs/msg/TwistStamped", lambda m: got.append((m.twist.linear.x, m.twist.angular.z))

@@ -12,7 +12,7 @@ from collections.abc import Callable
 
 import pytest
 
-from diffctl.bus import Node
+from tests.probe import Probe
 
 
 class Pty:
@@ -63,7 +63,7 @@ def wait_for(pred: Callable[[], bool], pty: Pty, timeout_s: float = 10.0) -> boo
 def test_keys_drive_and_exit_sends_zero(
     router: str, procs, args: list[str], topic: str, typename: str, quit_with: str
 ) -> None:
-    node = Node("keyboard_probe")
+    node = Probe("keyboard_probe")
     got: list[object] = []
     node.create_subscription(topic, typename, got.append)
     pty = Pty()

@@ -9,10 +9,10 @@ from pathlib import Path
 import pytest
 
 from diffctl import ros_args
-from diffctl.bus import Node
 from diffctl.launch import commandline, loader, resolver
 from diffctl.launch.plan import StartProcess, walk
 from diffctl.teleop.cli import JOY_NODE, joy_settings
+from tests.probe import Probe
 
 LAUNCH = Path(__file__).resolve().parents[2] / "launch" / "teleop.yaml"
 TUTORIAL = {"joy_config": "xbox", "publish_stamped_twist": "true", "joy_vel": "/diffbot_base_controller/cmd_vel"}
@@ -45,7 +45,7 @@ def test_launch_line_reaches_teleop_joy(
         0.3,
         0,
     )
-    node = Node(ra.node_name, remaps=ra.remaps)
+    node = Probe(ra.node_name, remaps=ra.remaps)
     try:
         assert node.fqn == "/teleop_twist_joy_node"
         assert node.resolve(settings.topic) == topic
