@@ -267,22 +267,6 @@ def test_domain_id_separates_graphs(router: str, procs, monkeypatch: pytest.Monk
     assert "/elsewhere" not in Probe("domain0").graph.topics()
 
 
-def test_clock_follows_clock_topic_with_use_sim_time(router: str) -> None:
-    sim = Probe("fake_sim")
-    clock_pub = sim.create_publisher("/clock", "rosgraph_msgs/msg/Clock")
-    n = Probe("timed", use_sim_time=True)
-    assert n.now_ns() == 0
-    time.sleep(0.2)
-    clock_pub.publish({"clock": {"sec": 12, "nanosec": 500}})
-    assert wait_for(lambda: n.now_ns() == 12_000_000_500)
-    ticks: list[int] = []
-    n.create_timer(0.1, lambda: ticks.append(n.now_ns()))
-    for i in range(1, 6):
-        clock_pub.publish({"clock": {"sec": 12, "nanosec": 500 + i * 50_000_000}})
-        time.sleep(0.02)
-    assert wait_for(lambda: len(ticks) >= 2), "a 0.1 s sim-time timer fires twice over 0.25 s of sim time"
-
-
 def test_ignore_local_drops_this_process_publications(router: str, procs) -> None:
     n = Probe("bridge_like")
     heard_all: list = []
