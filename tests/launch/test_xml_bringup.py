@@ -155,14 +155,14 @@ def generate_launch_description():
     ])
     robot_description = {"robot_description": ParameterValue(robot_description_content, value_type=str)}
     controllers = PathJoinSubstitution([FindPackageShare("demo_bringup"), "config", "demo_controllers.yaml"])
-    control_node = Probe(package="controller_manager", executable="ros2_control_node", name="my_ctrl_mgr",
+    control_node = Node(package="controller_manager", executable="ros2_control_node", name="my_ctrl_mgr",
                         parameters=[controllers], remappings=[("~/robot_description", "/robot_description")],
                         output="both")
-    rsp = Probe(package="robot_state_publisher", executable="robot_state_publisher", output="both",
+    rsp = Node(package="robot_state_publisher", executable="robot_state_publisher", output="both",
                parameters=[robot_description])
-    jsb_spawner = Probe(package="controller_manager", executable="spawner",
+    jsb_spawner = Node(package="controller_manager", executable="spawner",
                        arguments=["joint_broad", "-c", "my_ctrl_mgr", "--param-file", controllers])
-    drive_spawner = Probe(package="controller_manager", executable="spawner",
+    drive_spawner = Node(package="controller_manager", executable="spawner",
                          arguments=["diff_cont", "-c", "my_ctrl_mgr", "--param-file", controllers,
                                     "--controller-ros-args", "-r ~/cmd_vel:=/cmd_vel"],
                          condition=IfCondition(LaunchConfiguration("start_drive")))

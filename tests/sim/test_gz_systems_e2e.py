@@ -121,7 +121,7 @@ def test_odometry_publisher_and_battery_reach_ros_through_the_bridge(router: str
 
 @pytest.mark.slow
 def test_image_bridge_from_a_launch_node_brings_the_simulated_camera_to_ros(router: str, procs, tmp_path: Path) -> None:
-    # Probe(package='ros_gz_image', executable='image_bridge', arguments=['/camera']) runs this command.
+    # Node(package='ros_gz_image', executable='image_bridge', arguments=['/camera']) runs this command.
     from diffctl.workspace.package_index import executable_argv
 
     argv = executable_argv("ros_gz_image", "image_bridge")
