@@ -58,6 +58,12 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "twist_stamper's twist_stamper and twist_unstamper (Twist <-> TwistStamped).",
     ),
     "joy-teleop": ("diffctl.joy_teleop.cli:joy_teleop", "joy_teleop: Joy messages to configured topics and calls."),
+    "joy": ("diffctl.joy.cli:joy", "joy's joy_node: a joystick on sensor_msgs/Joy."),
+    "teleop-twist-joy": (
+        "diffctl.teleop_twist_joy.cli:teleop_twist_joy",
+        "teleop_twist_joy's teleop_node: Joy to Twist/TwistStamped on cmd_vel.",
+    ),
+    "joy-linux": ("diffctl.joy_linux.cli:joy_linux", "joy_linux's joy_linux_node: /dev/input/jsX on sensor_msgs/Joy."),
     "ros2-controllers-test-nodes": (
         "diffctl.ros2_controllers_test_nodes.cli:ros2_controllers_test_nodes",
         "ros2_controllers_test_nodes' goal publishers (forward position, joint trajectory).",
