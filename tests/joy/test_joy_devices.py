@@ -124,14 +124,15 @@ def test_joy_linux_node_publishes_diagnoses_and_rumbles(router: str, procs, tmp_
         # takes no effect upload, so the id stays -1
         record = struct.Struct("=qqHHi")
         rumble = bytearray()
-        assert wait_for(lambda: len(rumble) >= 3 * record.size, every=lambda: rumble.extend(_drain(ff_fd)))
+        assert wait_for(lambda: len(rumble) >= 3 * record.size, timeout_s=30,
+                        every=lambda: rumble.extend(_drain(ff_fd)))
         writes = [record.unpack_from(rumble, i)[2:] for i in range(0, len(rumble) - record.size + 1, record.size)]
         assert writes[0] == (0x15, 0x60, 0xFFFF)
         assert set(writes[1:]) == {(0x15, 0xFFFF, 3)}
 
+        closed = len(statuses("Joystick not open."))
         os.close(fd)  # the writer goes: the device is lost, and opened again
         fd = None
-        closed = len(statuses("Joystick not open."))
         assert wait_for(lambda: len(statuses("Joystick not open.")) > closed, timeout_s=30)  # noticed, reported
         fd = fifo.open_writer(js, lambda: node.poll() is None)
         fifo.write(fd, *fifo.initial_state(1, []))
