@@ -232,6 +232,7 @@ def run_joy_teleop(joy_params: dict[str, Any], teleop_params: dict[str, Any], to
     from diffctl.joy import node as joy_node
     from diffctl.teleop_twist_joy.node import attach
 
+    component.init()  # an executor belongs to an initialised context
     executor = SingleThreadedExecutor()
 
     def make() -> Any:
