@@ -59,6 +59,11 @@ COMMANDS: dict[str, tuple[str, str]] = {
     ),
     "joy-teleop": ("diffctl.joy_teleop.cli:joy_teleop", "joy_teleop: Joy messages to configured topics and calls."),
     "joy": ("diffctl.joy.cli:joy", "joy's joy_node: a joystick on sensor_msgs/Joy."),
+    "teleop-twist-keyboard": (
+        "diffctl.teleop.cli:teleop_twist_keyboard",
+        "teleop_twist_keyboard: keys to Twist/TwistStamped on cmd_vel.",
+    ),
+    "key-teleop": ("diffctl.key_teleop.cli:key_teleop", "key_teleop: arrow keys in a terminal to key_vel."),
     "teleop-twist-joy": (
         "diffctl.teleop_twist_joy.cli:teleop_twist_joy",
         "teleop_twist_joy's teleop_node: Joy to Twist/TwistStamped on cmd_vel.",

@@ -139,6 +139,51 @@ def keyboard(
         started.stop()
 
 
+@click.command("teleop-twist-keyboard", context_settings={"ignore_unknown_options": True})
+def teleop_twist_keyboard() -> None:
+    """teleop_twist_keyboard's executable as Jazzy has it: Twist (or TwistStamped) on `cmd_vel` on every key.
+
+    Its parameters, read-only: stamped (false), frame_id ('', only with stamped), speed (0.5), turn (1.0).
+    `diffctl teleop keyboard` is the same keys with our controller's topic and TwistStamped as defaults.
+
+    \b
+    Example:
+      diffctl run teleop_twist_keyboard teleop_twist_keyboard --ros-args -r cmd_vel:=my_cmd_vel
+    """
+    import math
+
+    from diffctl.client import component
+    from diffctl.client.node import Node
+    from diffctl.interfaces import get_interface
+    from diffctl.teleop.keyboard import run_keyboard
+    from diffctl.teleop.keyboard_bindings import KeyboardParams, KeyboardTeleop
+    from diffctl.teleop.twist_command import TwistCommand
+
+    if not sys.stdin.isatty():
+        raise ConfigError("teleop_twist_keyboard reads keys from a terminal, and stdin is not one",
+                          hint="run it in a terminal; in a launch file give its Node a terminal (prefix='xterm -e')")
+
+    def make() -> Any:
+        node = Node(KEYBOARD_NODE)
+        descriptor = get_interface("rcl_interfaces/msg/ParameterDescriptor")
+        for name, default in (("stamped", False), ("frame_id", ""), ("speed", 0.5), ("turn", 1.0)):
+            node.declare_parameter(name, default, descriptor(read_only=True))
+        if node.get_parameter("frame_id").value and not node.get_parameter("stamped").value:
+            raise ConfigError("'frame_id' can only be set when 'stamped' is True", field="frame_id")
+        return node
+
+    started = component.start(make)
+    try:
+        value = started.node.get_parameter
+        keys = KeyboardTeleop(KeyboardParams(float(value("speed").value), float(value("turn").value),
+                                             math.inf, math.inf))
+        command = TwistCommand(started.node, "cmd_vel", stamped=bool(value("stamped").value),
+                               frame_id=str(value("frame_id").value))
+        run_keyboard(keys, command, repeat_rate_hz=0.0, fd_in=sys.stdin.fileno(), out=sys.stdout)
+    finally:
+        started.stop()
+
+
 JOY_CONFIGS = ("ps3", "xbox", "atk3", "xd3", "ps3-holonomic")
 
 

@@ -28,7 +28,7 @@ COMPONENTS: dict[tuple[str, str], tuple[str, ...]] = {
     ("ros_gz_image", "image_bridge"): ("image-bridge",),
     ("rviz2", "rviz2"): ("viz",),
     ("teleop_twist_joy", "teleop_node"): ("teleop-twist-joy",),
-    ("teleop_twist_keyboard", "teleop_twist_keyboard"): ("teleop", "keyboard"),
+    ("teleop_twist_keyboard", "teleop_twist_keyboard"): ("teleop-twist-keyboard",),
     ("foxglove_bridge", "foxglove_bridge"): ("foxglove-bridge",),
     ("tf2_ros", "static_transform_publisher"): ("tf2", "static_transform_publisher"),
     ("tf2_ros", "tf2_echo"): ("tf2", "tf2_echo"),
@@ -41,6 +41,7 @@ COMPONENTS: dict[tuple[str, str], tuple[str, ...]] = {
     ("twist_mux", "twist_mux"): ("twist-mux",),
     ("joy_teleop", "joy_teleop"): ("joy-teleop",),
     ("joy", "joy_node"): ("joy", "joy_node"),
+    ("key_teleop", "key_teleop"): ("key-teleop",),
     ("joy_linux", "joy_linux_node"): ("joy-linux", "joy_linux_node"),
     **{("ros2_controllers_test_nodes", exe): ("ros2-controllers-test-nodes", exe)
        for exe in ("publisher_forward_position_controller", "publisher_joint_trajectory_controller")},
