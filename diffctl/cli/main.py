@@ -63,6 +63,10 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "diffctl.teleop.cli:teleop_twist_keyboard",
         "teleop_twist_keyboard: keys to Twist/TwistStamped on cmd_vel.",
     ),
+    "laser-filters": (
+        "diffctl.laser_filters.cli:laser_filters",
+        "laser_filters' scan_to_scan_filter_chain: LaserScan filter chains.",
+    ),
     "key-teleop": ("diffctl.key_teleop.cli:key_teleop", "key_teleop: arrow keys in a terminal to key_vel."),
     "teleop-twist-joy": (
         "diffctl.teleop_twist_joy.cli:teleop_twist_joy",
