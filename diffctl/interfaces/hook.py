@@ -118,7 +118,12 @@ class InterfaceFinder:
             return None
         from diffctl.interfaces import finder
 
-        return finder.find_spec(fullname)
+        try:
+            return finder.find_spec(fullname)
+        except ImportError as e:
+            # A malformed .msg or a missing package is one located message (file:line: what is wrong): the
+            # traceback through the registry and the parser would only bury it, so it starts here.
+            raise e.with_traceback(None) from None
 
     def invalidate_caches(self) -> None:
         _workspace_dirs.clear()
