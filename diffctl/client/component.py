@@ -61,6 +61,11 @@ def run(make: Callable[[], Any], *, executor: Any = None) -> int:
             spin_once(executor, node)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
+    except exceptions.RCLError:
+        # A SIGINT/SIGTERM that came while the node or its executor was being made shut the client down under
+        # them (rclpy refuses them then): the node was asked to end, and ends.
+        if runtime.ok():
+            raise
     finally:
         if node is not None:
             node.destroy_node()

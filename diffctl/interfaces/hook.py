@@ -21,7 +21,7 @@ import sys
 # diffctl's own interface packages (the bus's typestore and the shipped Jazzy texts; a test keeps this in
 # step with the registry): checked without importing the registry.
 KNOWN = frozenset({
-    "action_msgs", "actionlib_msgs", "actuator_msgs", "builtin_interfaces", "control_msgs",
+    "ackermann_msgs", "action_msgs", "actionlib_msgs", "actuator_msgs", "builtin_interfaces", "control_msgs",
     "controller_manager_msgs", "diagnostic_msgs", "example_interfaces", "geographic_msgs", "geometry_msgs",
     "gps_msgs", "lifecycle_msgs", "nav_msgs", "rcl_interfaces", "rmw_dds_common", "robot_localization",
     "ros_gz_interfaces", "rosbag2_interfaces", "rosgraph_msgs", "sensor_msgs", "service_msgs", "shape_msgs",

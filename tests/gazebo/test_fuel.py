@@ -241,6 +241,7 @@ def test_download_failure_names_the_server_answer(cache: Path, tmp_path: Path, m
 def test_an_error_in_a_linked_world_names_the_users_own_file(cache: Path, tmp_path: Path, monkeypatch) -> None:
     # a workspace package's share tree (diffctl's cache) links each installed file to its source
     monkeypatch.setenv("DIFFCTL_FUEL_OFFLINE", "1")
+    monkeypatch.setenv("DIFFCTL_FUEL_SKIP_MISSING", "0")
     source = write_world(tmp_path, f"{FUEL}/Ground Plane", f"{FUEL}/Sun", f"<include><uri>{FUEL}/Nope</uri></include>")
     link = tmp_path / "share" / "worlds" / "world.sdf"
     link.parent.mkdir(parents=True)
