@@ -63,6 +63,10 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "diffctl.teleop.cli:teleop_twist_keyboard",
         "teleop_twist_keyboard: keys to Twist/TwistStamped on cmd_vel.",
     ),
+    "interactive-marker-twist-server": (
+        "diffctl.interactive_marker_twist_server.cli:interactive_marker_twist_server",
+        "interactive_marker_twist_server's marker_server: an RViz marker dragged into Twist.",
+    ),
     "laser-filters": (
         "diffctl.laser_filters.cli:laser_filters",
         "laser_filters' scan_to_scan_filter_chain: LaserScan filter chains.",

@@ -42,6 +42,7 @@ COMPONENTS: dict[tuple[str, str], tuple[str, ...]] = {
     ("joy_teleop", "joy_teleop"): ("joy-teleop",),
     ("joy", "joy_node"): ("joy", "joy_node"),
     ("key_teleop", "key_teleop"): ("key-teleop",),
+    ("interactive_marker_twist_server", "marker_server"): ("interactive-marker-twist-server",),
     ("laser_filters", "scan_to_scan_filter_chain"): ("laser-filters", "scan_to_scan_filter_chain"),
     ("joy_linux", "joy_linux_node"): ("joy-linux", "joy_linux_node"),
     **{("ros2_controllers_test_nodes", exe): ("ros2-controllers-test-nodes", exe)
