@@ -11,6 +11,8 @@ from collections.abc import Callable
 from typing import Any
 
 from diffctl.client import waiting
+from diffctl.client.endpoint_statuses import EndpointStatuses
+from diffctl.client.event_handler import dds_events
 from diffctl.client.interfaces import deserialize
 from diffctl.client.node_entity import NodeEntity
 from diffctl.client.qos import HistoryPolicy
@@ -47,17 +49,24 @@ class Subscription(NodeEntity):
         self._destroyed = False
         self._event_callbacks = event_callbacks
         self.event_handlers: list[Any] = []
+        self._on_arrival: Callable[[bytes, int], None] | None = None
+        lifespan_ns = qos_profile.lifespan.nanoseconds
+        self._lifespan_ns = lifespan_ns if 0 < lifespan_ns < 2**63 - 1 and dds_events() else None
 
     def _attach(self, bus_sub: Any) -> None:
         self._bus = bus_sub
         self._bus_topic = bus_sub.topic
+        self.qos_statuses = EndpointStatuses(self.qos_profile)
         self.event_handlers = self._event_callbacks.create_event_handlers(self.callback_group, self, self.topic)
+        self._on_arrival = self.qos_statuses.arrival_hook()
 
     def _on_sample(self, data: bytes, info: Any) -> None:
         # Zenoh's thread: queue and wake; deserialization happens when an executor takes it.
         with self._lock:
             self._rx_seq += 1
             self._queue.append((data, info, self._rx_seq))
+        if self._on_arrival is not None:
+            self._on_arrival(info.publisher_gid, info.sequence_number)
         waiting.notify()
 
     @property
@@ -92,9 +101,13 @@ class Subscription(NodeEntity):
 
     def _take(self) -> Callable[[], Any] | None:
         with self._lock:
-            if not self._queue:
-                return None
-            data, info, rx = self._queue.popleft()
+            while True:
+                if not self._queue:
+                    return None
+                data, info, rx = self._queue.popleft()
+                # lifespan: a sample older than this subscription's lifespan is gone from its queue, as DDS's
+                if self._lifespan_ns is None or time.time_ns() - info.source_timestamp_ns <= self._lifespan_ns:
+                    break
         try:
             msg = data if self.raw else deserialize(data, self.msg_type)
         except MessageError as e:  # a malformed sample is the sender's fault: dropped, the node goes on
@@ -128,6 +141,6 @@ class Subscription(NodeEntity):
         if not self._destroyed:
             self._destroyed = True
             for h in self.event_handlers:
-                h._watch.close()
+                h.destroy()
             if self._bus is not None:
                 self._node._bus.destroy_subscription(self._bus)
