@@ -86,7 +86,11 @@ def parse_gz_args(tokens: list[str]) -> GzArgs:
     `=value` and unambiguous prefixes, and the world is the last word that is no option's value."""
     words: list[str] = []
     for t in tokens:
-        words.extend(shlex.split(t))
+        try:
+            words.extend(shlex.split(t))
+        except ValueError as e:  # a quote left open: the shell that splits a gz_args string refuses it too
+            raise ConfigError(f"sim run: cannot split the arguments {t!r}: {str(e).lower()}",
+                              hint="close the quote, or quote the whole world path") from None
     out = GzArgs()
     positional: list[str] = []
     i = 0
