@@ -191,11 +191,22 @@ def test_joint_trajectory_controller_follows_a_goal_on_the_simulated_rrbot(route
         hosted.run_until(result.done, "the goal's result")
         outcome = result.result()
         assert (outcome.result.error_code, outcome.result.error_string) == (0, "Goal successfully reached!")
-        # The last feedback is the cycle that decided success: the trajectory's 3 s, then inside the goal
-        # tolerance within goal_time (the result itself reaches the client at the 20 Hz monitor rate, wall time,
-        # while the simulation runs unthrottled).
-        stamp = feedback[-1].feedback.header.stamp
-        assert 3.0 <= stamp.sec + stamp.nanosec * 1e-9 - t0 < 4.0
+        # Success is decided in the control loop: the trajectory's 3 s, then inside the goal tolerance within
+        # goal_time. The controller then holds the last waypoint as a new one-point trajectory, so its published
+        # reference time restarts: that cycle's stamp is the decision's (the result itself reaches the client at
+        # the 20 Hz monitor rate, wall time, while the simulation runs unthrottled).
+        def seconds(t: Any) -> float:
+            return t.sec + t.nanosec * 1e-9
+
+        def decided_at() -> float | None:
+            following = [m for m in list(states) if seconds(m.header.stamp) > t0 + 1.0]  # the goal's trajectory on
+            for before, after in itertools.pairwise(following):
+                if seconds(after.reference.time_from_start) < seconds(before.reference.time_from_start) - 1.0:
+                    return seconds(after.header.stamp)
+            return None
+
+        hosted.run_until(lambda: decided_at() is not None, "the switch to holding the goal")
+        assert 3.0 <= decided_at() - t0 < 4.0
         final = hosted.joint_positions(["joint1", "joint2"])
         assert final == pytest.approx([0.6, -0.4], abs=0.02)
         assert feedback and list(feedback[-1].feedback.joint_names) == ["joint1", "joint2"]
