@@ -169,7 +169,11 @@ class JointTrajectoryController(ControllerInterface):
                 self._logger.warn(f"unknown parameter '{name}.{key}' is ignored")
         declare_all(node, decls, name)
         node.add_on_set_parameters_callback(self._on_set_parameters)
-        self._wraps, self._velocity_limits = joints_of_description(self.get_robot_description(), list(joints))
+        try:
+            self._wraps, self._velocity_limits = joints_of_description(self.get_robot_description(), list(joints))
+        except Exception as e:  # diffctl's parser may refuse what urdf::Model reads: go on without its facts
+            self._logger.warn(f"the robot description could not be read ({e}): no joint is treated as continuous")
+            self._wraps, self._velocity_limits = [False] * len(joints), [0.0] * len(joints)
         if self.get_update_rate() == 0:
             raise RuntimeFailure("Controller's update rate is set to 0. This should not happen!")
         self._period_ns = int(1e9 / self.get_update_rate())
