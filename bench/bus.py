@@ -29,8 +29,8 @@ SAMPLES = 5000
 TYPE = "geometry_msgs/msg/TwistStamped"
 
 PONG = textwrap.dedent(f"""
-    from diffctl.bus import Node
-    n = Node("bench_pong")
+    from bench.probe import Probe
+    n = Probe("bench_pong")
     pub = n.create_publisher("/bench/pong", "{TYPE}")
     n.create_subscription("/bench/ping", "{TYPE}", pub.publish_raw, raw=True)
     print("ready", flush=True)
@@ -39,9 +39,9 @@ PONG = textwrap.dedent(f"""
 
 FLOOD = textwrap.dedent(f"""
     import sys, time
-    from diffctl.bus import Node
+    from bench.probe import Probe
     from diffctl.interfaces import types
-    n = Node("bench_flood")
+    n = Probe("bench_flood")
     pub = n.create_publisher("/bench/flood", "{TYPE}")
     raw = types.serialize(types.new("{TYPE}", {{"twist": {{"linear": {{"x": 0.5}}}}}}), "{TYPE}")
     while pub.subscription_count == 0:
@@ -64,7 +64,7 @@ def percentile(values: list[float], q: float) -> float:
 
 
 def run() -> dict:
-    from diffctl.bus import Node
+    from bench.probe import Probe
     from diffctl.bus.session import close_session
     from diffctl.interfaces import types
 
@@ -79,7 +79,7 @@ def run() -> dict:
                                 start_new_session=True)
         procs.append(pong)
         assert pong.stdout.readline().strip() == "ready"
-        node = Node("bench_ping")
+        node = Probe("bench_ping")
         got = threading.Event()
         expect = [b""]
         node.create_subscription("/bench/pong", TYPE, lambda d: got.set() if bytes(d) == expect[0] else None,

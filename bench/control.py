@@ -6,7 +6,9 @@ odometry and TF over a real router — while a teleop process sends TwistStamped
 10 s: period jitter |Δt(wake) − 10 ms| p50/p99, and the cost of one read → update → write cycle.
 
 Metrics (budget, as bench/budget.py): `control_jitter_p99_ms` (≤ 1.0), `control_update_us` (≤ 100, issue 13:
-the mean cost of one cycle, from the wake-up to the end of write; p50 and p99 are reported beside it). The
+the mean cost of one cycle, from the wake-up to the end of write; p50 and p99 are reported beside it).
+`control_update_us_<controller>` (no budget): the update cost of each of the other ros2_controllers diffctl provides,
+measured alone (bench/control_controllers.py). The
 control thread asks for SCHED_FIFO as ros2_control_node does; without the permission it runs at normal priority
 and the jitter shows what the machine's scheduler gives.
 """
@@ -96,7 +98,10 @@ def run(duration_s: float = 10.0, rate_hz: int = 100) -> dict:
             os.environ.pop("DIFFCTL_ROUTER", None)
         else:
             os.environ["DIFFCTL_ROUTER"] = old_router
+    from bench import control_controllers
+
     return {
+        **control_controllers.run(),  # control_update_us_<controller>: the other ros2_controllers' update cost
         "control_jitter_p50_ms": round(s["jitter_p50_us"] / 1000, 4),
         "control_jitter_p99_ms": round(s["jitter_p99_us"] / 1000, 4),
         "control_jitter_max_ms": round(s["jitter_max_us"] / 1000, 3),

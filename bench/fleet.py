@@ -59,7 +59,8 @@ def _all_active(node, count: int, clients: dict) -> bool:
 
 def measure(count: int) -> tuple[float, float, int]:
     """(median RTF at rtf:=0, PSS of the whole launch in MB, process count) with `count` cars."""
-    from diffctl.bus import Node, gz
+    from bench.probe import Probe
+    from diffctl.bus import gz
     from diffctl.bus.session import close_session
 
     os.environ["DIFFCTL_ROUTER"] = f"tcp/127.0.0.1:{free_port()}"
@@ -73,7 +74,7 @@ def measure(count: int) -> tuple[float, float, int]:
             deadline = time.monotonic() + READY_TIMEOUT_S
             while node is None:
                 try:
-                    node = Node("bench_fleet")
+                    node = Probe("bench_fleet")
                 except Exception:
                     if time.monotonic() > deadline or proc.poll() is not None:
                         raise RuntimeError(f"fleet of {count}: the launch never brought up its router"

@@ -137,7 +137,8 @@ def _memory(procs: dict[int, psutil.Process]) -> dict[int, tuple[float, float]]:
 
 
 def soak(minutes: float, warmup_minutes: float, sample_s: float, viz: bool) -> dict[str, Any]:
-    from diffctl.bus import Node, gz
+    from bench.probe import Probe as BusProbe
+    from diffctl.bus import gz
     from diffctl.bus.session import close_session
     from diffctl.interfaces import types
 
@@ -158,7 +159,7 @@ def soak(minutes: float, warmup_minutes: float, sample_s: float, viz: bool) -> d
         deadline = time.monotonic() + 120
         while node is None:
             try:
-                node = Node("soak")
+                node = BusProbe("soak")
             except Exception:
                 if time.monotonic() > deadline or proc.poll() is not None:
                     raise RuntimeError(f"the launch never came up; see {log_path}") from None

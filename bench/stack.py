@@ -147,7 +147,8 @@ def _cmd_vel_latencies(
 
 
 def run(*, startup_only: bool = False) -> dict:
-    from diffctl.bus import Node, gz
+    from bench.probe import Probe
+    from diffctl.bus import gz
     from diffctl.bus.session import close_session
     from diffctl.interfaces import types
 
@@ -166,7 +167,7 @@ def run(*, startup_only: bool = False) -> dict:
             node = None
             while node is None:
                 try:
-                    node = Node("bench_stack")
+                    node = Probe("bench_stack")
                 except Exception:
                     time.sleep(0.01)
             odom = threading.Event()

@@ -73,7 +73,7 @@ def _fork_server_start(launcher: int) -> float | None:
 
 def run(*, show_all: bool = False, timeout_s: float = 30.0) -> dict[str, float]:
     """One launch; {step: seconds from exec}. Ends the launch with Ctrl-C once every step is seen."""
-    from diffctl.bus import Node
+    from bench.probe import Probe
     from diffctl.bus.session import close_session
 
     os.environ["DIFFCTL_ROUTER"] = f"tcp/127.0.0.1:{free_port()}"
@@ -93,7 +93,7 @@ def run(*, show_all: bool = False, timeout_s: float = 30.0) -> dict[str, float]:
             node = None
             while node is None and proc.poll() is None:
                 try:
-                    node = Node("startup_timeline")
+                    node = Probe("startup_timeline")
                 except Exception:
                     time.sleep(0.02)
             if node is None:

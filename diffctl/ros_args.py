@@ -215,6 +215,13 @@ def _rcl_loader(base: Any) -> Any:
         def construct_undefined_plain(self, node: Any) -> Any:
             return rcl_scalar(node.value) if node.value != "" else None
 
+        def construct_mapping(self, node: Any, deep: bool = False) -> Any:
+            # A key is a name to rcl, never a value: `y:` under `linear_scale:` is "y", not true.
+            for key, _ in node.value:
+                if key.tag == "tag:diffctl,rcl-scalar":
+                    key.tag = "tag:yaml.org,2002:str"
+            return super().construct_mapping(node, deep)
+
     RclLoader.yaml_implicit_resolvers = {}  # every plain scalar resolves to the one tag below
     RclLoader.add_implicit_resolver("tag:diffctl,rcl-scalar", re.compile(r"(?s).*"), None)
     RclLoader.add_constructor("tag:diffctl,rcl-scalar", RclLoader.construct_undefined_plain)

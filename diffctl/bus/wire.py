@@ -30,6 +30,7 @@ KIND_CLIENT = "SC"
 RELIABLE, BEST_EFFORT = 1, 2
 VOLATILE, TRANSIENT_LOCAL = 2, 1
 KEEP_LAST, KEEP_ALL = 1, 2
+AUTOMATIC, MANUAL_BY_TOPIC = 1, 3
 
 
 def strip(name: str) -> str:
@@ -89,6 +90,8 @@ class QoS:
     depth: int = 10
     deadline_ns: int | None = None
     lifespan_ns: int | None = None
+    manual_liveliness: bool = False  # MANUAL_BY_TOPIC (else AUTOMATIC)
+    liveliness_lease_ns: int | None = None
 
     def __post_init__(self) -> None:
         if self.depth < 0:
@@ -102,7 +105,9 @@ class QoS:
         # rmw_zenoh first adapts the profile: depth 0 (system default) becomes its default 42.
         depth = self.depth or 42
         d = "" if depth == 42 else str(depth)
-        return f"{rel}:{dur}:{hist},{d}:{_duration(self.deadline_ns)}:{_duration(self.lifespan_ns)}:,,"
+        liv = str(MANUAL_BY_TOPIC) if self.manual_liveliness else ""
+        return (f"{rel}:{dur}:{hist},{d}:{_duration(self.deadline_ns)}:{_duration(self.lifespan_ns)}:"
+                f"{liv},{_duration(self.liveliness_lease_ns)}")
 
     @classmethod
     def parse(cls, text: str) -> QoS | None:
@@ -112,10 +117,12 @@ class QoS:
             return None
         try:
             hist, _, depth = parts[2].partition(",")
+            liveliness, _, lease = parts[5].partition(",")
             return cls(
                 reliable=parts[0] in ("", str(RELIABLE)), transient_local=parts[1] == str(TRANSIENT_LOCAL),
                 keep_all=hist == str(KEEP_ALL), depth=int(depth) if depth else 42,
                 deadline_ns=_parse_duration(parts[3]), lifespan_ns=_parse_duration(parts[4]),
+                manual_liveliness=liveliness == str(MANUAL_BY_TOPIC), liveliness_lease_ns=_parse_duration(lease),
             )
         except ValueError:
             return None

@@ -58,6 +58,25 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "twist_stamper's twist_stamper and twist_unstamper (Twist <-> TwistStamped).",
     ),
     "joy-teleop": ("diffctl.joy_teleop.cli:joy_teleop", "joy_teleop: Joy messages to configured topics and calls."),
+    "joy": ("diffctl.joy.cli:joy", "joy's joy_node: a joystick on sensor_msgs/Joy."),
+    "teleop-twist-keyboard": (
+        "diffctl.teleop.cli:teleop_twist_keyboard",
+        "teleop_twist_keyboard: keys to Twist/TwistStamped on cmd_vel.",
+    ),
+    "interactive-marker-twist-server": (
+        "diffctl.interactive_marker_twist_server.cli:interactive_marker_twist_server",
+        "interactive_marker_twist_server's marker_server: an RViz marker dragged into Twist.",
+    ),
+    "laser-filters": (
+        "diffctl.laser_filters.cli:laser_filters",
+        "laser_filters' scan_to_scan_filter_chain: LaserScan filter chains.",
+    ),
+    "key-teleop": ("diffctl.key_teleop.cli:key_teleop", "key_teleop: arrow keys in a terminal to key_vel."),
+    "teleop-twist-joy": (
+        "diffctl.teleop_twist_joy.cli:teleop_twist_joy",
+        "teleop_twist_joy's teleop_node: Joy to Twist/TwistStamped on cmd_vel.",
+    ),
+    "joy-linux": ("diffctl.joy_linux.cli:joy_linux", "joy_linux's joy_linux_node: /dev/input/jsX on sensor_msgs/Joy."),
     "ros2-controllers-test-nodes": (
         "diffctl.ros2_controllers_test_nodes.cli:ros2_controllers_test_nodes",
         "ros2_controllers_test_nodes' goal publishers (forward position, joint trajectory).",

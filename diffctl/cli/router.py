@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import signal
-import threading
 
 import click
 
@@ -36,6 +35,7 @@ def router(listen: tuple[str, ...], config_file: str | None) -> None:
     from diffctl.bus.session import endpoint_answers, router_endpoint
     from diffctl.console import info
     from diffctl.errors import ConfigError
+    from diffctl.signals import stop_on_signals
 
     eps = list(listen)
     if not config_file:
@@ -44,8 +44,6 @@ def router(listen: tuple[str, ...], config_file: str | None) -> None:
                 raise ConfigError(f"something already listens on {ep}", hint="a router is running there already?")
     handle = start_router(eps or None, config_file)
     info(f"router {handle.zid} listening on {config_file or ', '.join(handle.endpoints)}")
-    stop = threading.Event()
-    for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
-        signal.signal(sig, lambda *_: stop.set())
+    stop = stop_on_signals(signal.SIGHUP)
     stop.wait()
     handle.close()

@@ -9,7 +9,7 @@ from collections.abc import Callable
 from typing import Any
 
 from diffctl.client import waiting
-from diffctl.client.exceptions import InvalidHandle
+from diffctl.client.exceptions import InvalidHandle, RCLError
 from diffctl.client.interfaces import deserialize, serialize
 from diffctl.client.node_entity import NodeEntity
 from diffctl.client.service_introspection import REQUEST_SENT, RESPONSE_RECEIVED, ServiceEvents
@@ -103,6 +103,9 @@ class Client(NodeEntity):
         return _execute
 
     def service_is_ready(self) -> bool:
+        if not self.context._ok:
+            raise RCLError("failed to check service availability: rcl node's context is invalid, "
+                           "at /project/src/rcl/node.c:404")
         return self._bus.service_is_ready()
 
     def wait_for_service(self, timeout_sec: float | None = None) -> bool:

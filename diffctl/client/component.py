@@ -26,6 +26,19 @@ BAD_PARAMETER = (exceptions.InvalidParameterTypeException, exceptions.InvalidPar
                  exceptions.ParameterUninitializedException)
 
 
+def spin_once(executor: Any, node: Any) -> None:
+    """One turn of the executor. A callback that raises (a message that decodes but makes no sense to it) is
+    reported and the node goes on: bad input never ends one of diffctl's nodes (a user's rclpy node still
+    ends, as rclpy's does)."""
+    try:
+        executor.spin_once()
+    except (ExternalShutdownException, KeyboardInterrupt):
+        raise
+    except Exception as e:
+        node.bus_node.throttled(f"callback{type(e).__name__}", f"a callback raised {type(e).__name__}: {e}",
+                                level="ERROR")
+
+
 def init() -> None:
     """The client, initialised once with this process's `--ros-args` (a no-op when already initialised)."""
     if not runtime.ok():
@@ -45,9 +58,14 @@ def run(make: Callable[[], Any], *, executor: Any = None) -> int:
         executor = executor or SingleThreadedExecutor()
         executor.add_node(node)
         while runtime.ok():
-            executor.spin_once()
+            spin_once(executor, node)
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
+    except exceptions.RCLError:
+        # A SIGINT/SIGTERM that came while the node or its executor was being made shut the client down under
+        # them (rclpy refuses them then): the node was asked to end, and ends.
+        if runtime.ok():
+            raise
     finally:
         if node is not None:
             node.destroy_node()
@@ -73,9 +91,10 @@ class Started:
         self._thread.start()
 
     def _spin(self) -> None:
+        node = self.node
         try:
             while runtime.ok():
-                self._executor.spin_once()
+                spin_once(self._executor, node)
         except ExternalShutdownException:
             pass
 

@@ -21,6 +21,7 @@ from typing import Any
 from diffctl.bus.session import before_close
 from diffctl.client import waiting
 from diffctl.client.context import Context, get_default_context
+from diffctl.client.exceptions import RCLError
 from diffctl.client.task import Future, Task
 
 
@@ -112,6 +113,13 @@ class Executor:
 
     def __init__(self, *, context: Context | None = None) -> None:
         self._context = get_default_context() if context is None else context
+        # rclpy's executor makes a guard condition in its context at once: before init there is no context
+        # handle to enter, after shutdown rcl refuses it
+        if not self._context._init_called:
+            raise TypeError("'NoneType' object does not support the context manager protocol")
+        if not self._context._ok:
+            raise RCLError("failed to create guard_condition: the given context is not valid, either rcl_init() was "
+                           "not called or rcl_shutdown() was called., at /project/src/rcl/guard_condition.c:67")
         self._nodes: set[Any] = set()
         self._nodes_lock = threading.RLock()
         self._tasks: list[tuple[Task, Any, Any]] = []

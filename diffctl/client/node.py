@@ -26,10 +26,15 @@ from diffctl.client.context import Context, get_default_context
 from diffctl.client.event_handler import PublisherEventCallbacks, SubscriptionEventCallbacks
 from diffctl.client.exceptions import NodeNameNonExistentError, NotInitializedException, RCLError
 from diffctl.client.guard_condition import GuardCondition
-from diffctl.client.interfaces import check_message_type, cls, serialize, type_name
+from diffctl.client.interfaces import cls, serialize, type_name
 from diffctl.client.names import (
     expand_topic_name,
+    namespace_problem,
+    node_name_problem,
     normalize_namespace,
+    resolve_name,
+    rmw_result_code,
+    validate_full_topic_name,
     validate_namespace,
     validate_node_name,
     validate_topic_name,
@@ -45,6 +50,7 @@ from diffctl.client.service import Service
 from diffctl.client.subscription import Subscription
 from diffctl.client.timer import Rate, Timer
 from diffctl.client.topic_endpoint_info import TopicEndpointInfo, TopicEndpointTypeEnum  # noqa: F401 (rclpy.node has it)
+from diffctl.client.type_support import check_is_valid_msg_type, check_is_valid_srv_type
 from diffctl.errors import NoRouterError
 
 CLOCK_TOPIC = "/clock"
@@ -57,6 +63,9 @@ _ALL_OVERRIDES = QoSOverridingOptions([_qos.QoSPolicyKind.DEPTH, _qos.QoSPolicyK
 
 
 _CLOCK_STAMP = struct.Struct("<iI")
+# rcl's words for a timer or guard condition made in a context that was shut down
+_CONTEXT_GONE = ("the given context is not valid, either rcl_init() was not called or rcl_shutdown() was called., "
+                 "at /project/src/rcl/guard_condition.c:67")
 
 
 class TimeSource:
@@ -176,6 +185,11 @@ class Node:
         self._destroyed = False
         if not self._context.ok():
             raise NotInitializedException("cannot create node")
+        if node_name is None:  # pybind11 hands None to rcl as a null pointer
+            raise RCLError("error creating node: name argument is null, at /project/src/rcl/node.c:129")
+        if not isinstance(node_name, str) or not isinstance(namespace, (str, type(None))):
+            raise TypeError("__init__(): incompatible constructor arguments: the node name and namespace must be str, "
+                            f"not {type(node_name).__name__} and {type(namespace).__name__}")
         validate_node_name(node_name)
         namespace = normalize_namespace(namespace)
         validate_namespace(namespace)
@@ -426,17 +440,31 @@ class Node:
 
     # ------------------------------------------------------------------ names
     def _validate_topic_or_service_name(self, name: str, *, is_service: bool = False) -> None:
+        validate_node_name(self.get_name())
+        validate_namespace(self.get_namespace())
         validate_topic_name(name, is_service=is_service)
+        validate_full_topic_name(expand_topic_name(name, self.get_name(), self.get_namespace()),
+                                 is_service=is_service)
 
     def resolve_topic_name(self, topic: str, *, only_expand: bool = False) -> str:
-        validate_topic_name(topic)
-        full = expand_topic_name(topic, self.get_name(), self.get_namespace())
-        return full if only_expand else self._remaps.get(full, full)
+        return resolve_name(topic, self.get_name(), self.get_namespace(), self._remaps, only_expand=only_expand)
 
     def resolve_service_name(self, service: str, *, only_expand: bool = False) -> str:
-        validate_topic_name(service, is_service=True)
-        full = expand_topic_name(service, self.get_name(), self.get_namespace())
-        return full if only_expand else self._remaps.get(full, full)
+        return resolve_name(service, self.get_name(), self.get_namespace(), self._remaps, only_expand=only_expand)
+
+    def _resolve_for_entity(self, name: str, *, is_service: bool) -> str:
+        """The name an endpoint gets; a bad one raises rclpy's Invalid{Topic,Service}NameException naming the
+        user's name and the offending character, as rclpy's create_* do after rcl refused it."""
+        try:
+            return resolve_name(name, self.get_name(), self.get_namespace(), self._remaps)
+        except RCLError:
+            self._validate_topic_or_service_name(name, is_service=is_service)
+            raise  # a remap rule made it invalid: rcl's own words
+
+    def _check_context(self, what: str) -> None:
+        """rcl refuses to make or query anything through a node whose context was shut down."""
+        if not self._context._ok:
+            raise RCLError(f"{what}: rcl node's context is invalid, at /project/src/rcl/node.c:404")
 
     # ------------------------------------------------------------------ entities
     def add_waitable(self, waitable: Any) -> None:
@@ -453,10 +481,12 @@ class Node:
                          qos_overriding_options: Any = None, publisher_class: type = Publisher) -> Publisher:
         qos_profile = _qos.as_profile(qos_profile)
         callback_group = callback_group or self.default_callback_group
-        full = self.resolve_topic_name(topic)
+        full = self._resolve_for_entity(topic, is_service=False)
         if qos_overriding_options is not None:
             declare_qos_parameters("publisher", self, full, qos_profile, qos_overriding_options, rclcpp=self._rclcpp)
-        typename = check_message_type(msg_type)
+        check_is_valid_msg_type(msg_type)
+        typename = type_name(msg_type)
+        self._check_context("Failed to create publisher")
         bus_pub = self._bus.create_publisher(full, typename, qos=_qos.to_wire(qos_profile))
         bus_pub.client_node = self
         pub = publisher_class(bus_pub, msg_type, topic, qos_profile,
@@ -473,11 +503,13 @@ class Node:
                             qos_overriding_options: Any = None, raw: bool = False) -> Subscription:
         qos_profile = _qos.as_profile(qos_profile)
         callback_group = callback_group or self.default_callback_group
-        full = self.resolve_topic_name(topic)
+        full = self._resolve_for_entity(topic, is_service=False)
         if qos_overriding_options is not None:
             declare_qos_parameters("subscription", self, full, qos_profile, qos_overriding_options,
                                    rclcpp=self._rclcpp)
-        typename = check_message_type(msg_type)
+        check_is_valid_msg_type(msg_type)
+        typename = type_name(msg_type)
+        self._check_context("Failed to create subscription")
         sub = Subscription(self, msg_type, topic, callback, callback_group, qos_profile, raw,
                            event_callbacks=event_callbacks or SubscriptionEventCallbacks())
         bus_sub = self._bus.create_subscription(full, typename, sub._on_sample, raw=True, with_info=True,
@@ -494,9 +526,12 @@ class Node:
                       callback_group: CallbackGroup | None = None) -> Client:
         qos_profile = _qos.qos_profile_services_default if qos_profile is None else qos_profile
         callback_group = callback_group or self.default_callback_group
-        full = self.resolve_service_name(srv_name)
+        check_is_valid_srv_type(srv_type)
+        srv_type_name = type_name(srv_type)
+        self._check_context("failed to create client")
+        full = self._resolve_for_entity(srv_name, is_service=True)
         client = Client(self, srv_type, srv_name, qos_profile, callback_group)
-        client._bus = self._bus.create_client(full, type_name(srv_type), qos=_qos.to_wire(qos_profile))
+        client._bus = self._bus.create_client(full, srv_type_name, qos=_qos.to_wire(qos_profile))
         callback_group.add_entity(client)
         self._clients.append(client)
         self._wake_executor()
@@ -506,9 +541,12 @@ class Node:
                        qos_profile: Any = None, callback_group: CallbackGroup | None = None) -> Service:
         qos_profile = _qos.qos_profile_services_default if qos_profile is None else qos_profile
         callback_group = callback_group or self.default_callback_group
-        full = self.resolve_service_name(srv_name)
+        check_is_valid_srv_type(srv_type)
+        srv_type_name = type_name(srv_type)
+        self._check_context("failed to create service")
+        full = self._resolve_for_entity(srv_name, is_service=True)
         service = Service(self, srv_type, srv_name, callback, callback_group, qos_profile)
-        service._bus = self._bus.create_service(full, type_name(srv_type), service._on_query,
+        service._bus = self._bus.create_service(full, srv_type_name, service._on_query,
                                                 qos=_qos.to_wire(qos_profile), raw=True)
         callback_group.add_entity(service)
         self._services.append(service)
@@ -519,6 +557,8 @@ class Node:
                      callback_group: CallbackGroup | None = None, clock: Clock | None = None,
                      autostart: bool = True) -> Timer:
         period_ns = int(float(timer_period_sec) * 1_000_000_000)
+        if not self._context._ok:
+            raise RCLError(f"failed to create timer: {_CONTEXT_GONE}")
         if period_ns < 0:
             raise RCLError("failed to create timer: timer period must be non-negative, at /project/src/rcl/timer.c:157")
         callback_group = callback_group or self.default_callback_group
@@ -532,6 +572,8 @@ class Node:
 
     def create_guard_condition(self, callback: Callable[[], Any],
                                callback_group: CallbackGroup | None = None) -> GuardCondition:
+        if not self._context._ok:
+            raise RCLError(f"failed to create guard_condition: {_CONTEXT_GONE}")
         callback_group = callback_group or self.default_callback_group
         guard = GuardCondition(callback, callback_group, context=self.context)
         guard._node = self
@@ -555,11 +597,15 @@ class Node:
         return True
 
     def destroy_publisher(self, publisher: Publisher) -> bool:
+        if publisher not in self._publishers:
+            return False
         for h in publisher.event_handlers:
             self.remove_waitable(h)
         return self._destroy_entity(publisher, self._publishers)
 
     def destroy_subscription(self, subscription: Subscription) -> bool:
+        if subscription not in self._subscriptions:
+            return False
         for h in subscription.event_handlers:
             self.remove_waitable(h)
         return self._destroy_entity(subscription, self._subscriptions)
@@ -618,7 +664,13 @@ class Node:
         return [(k, sorted(v)) for k, v in sorted(out.items())]
 
     def _check_node_exists(self, node_name: str, node_namespace: str, what: str) -> None:
-        ns = normalize_namespace(node_namespace)
+        self._check_context(f"failed to get {what} names and types")
+        ns = node_namespace or "/"
+        # rcl checks the namespace, then the name, before asking the graph
+        for problem, line in ((namespace_problem(ns), 57), (node_name_problem(node_name), 69)):
+            if problem is not None:
+                raise RCLError(f"failed to get {what} names and types: {problem[0]}, "
+                               f"result: {rmw_result_code(problem[0])}, at /project/src/rcl/graph.c:{line}")
         if (node_name, ns) not in self.get_node_names_and_namespaces():
             raise NodeNameNonExistentError(f"cannot get {what} names and types for nonexistent node: error not set")
 
@@ -643,12 +695,15 @@ class Node:
         return self._by_node(node_name, node_namespace, (wire.KIND_CLIENT,))
 
     def get_topic_names_and_types(self, no_demangle: bool = False) -> list[tuple[str, list[str]]]:
+        self._check_context("failed to get topic names and types")
         return list(self._graph.topics().items())
 
     def get_service_names_and_types(self) -> list[tuple[str, list[str]]]:
+        self._check_context("failed to get service names and types")
         return list(self._graph.services().items())
 
     def get_node_names_and_namespaces(self) -> list[tuple[str, str]]:
+        self._check_context("Failed to get node names")
         seen: list[tuple[str, str]] = []
         for e in self._graph.entities(wire.KIND_NODE):
             item = (e.node, normalize_namespace(e.namespace))
@@ -665,21 +720,35 @@ class Node:
     def get_fully_qualified_node_names(self) -> list[str]:
         return [f"{ns.rstrip('/')}/{n}" for n, ns in self.get_node_names_and_namespaces()]
 
+    def _graph_name(self, name: str, what: str, *, is_service: bool = False) -> str:
+        """A name a graph query asks about: expanded (not remapped) and checked as rclpy's queries do."""
+        full = self._expand(name)
+        validate_full_topic_name(full, is_service=is_service)
+        self._check_context(what)
+        return full
+
     def count_publishers(self, topic_name: str) -> int:
-        return len(self._graph.publishers(self._expand(topic_name)))
+        return len(self._graph.publishers(self._graph_name(topic_name, "Error in rcl_count_publishers")))
 
     def count_subscribers(self, topic_name: str) -> int:
-        return len(self._graph.subscribers(self._expand(topic_name)))
+        return len(self._graph.subscribers(self._graph_name(topic_name, "Error in rcl_count_subscribers")))
 
     def count_clients(self, service_name: str) -> int:
-        name = self._expand(service_name)
+        name = self._graph_name(service_name, "Error in rcl_count_clients", is_service=True)
         return sum(1 for e in self._graph.entities(wire.KIND_CLIENT) if e.topic == name)
 
     def count_services(self, service_name: str) -> int:
-        return len(self._graph.servers(self._expand(service_name)))
+        return len(self._graph.servers(self._graph_name(service_name, "Error in rcl_count_services",
+                                                        is_service=True)))
 
     def _info_by_topic(self, topic_name: str, no_mangle: bool, kind: str) -> list[TopicEndpointInfo]:
-        name = topic_name if no_mangle else self.resolve_topic_name(topic_name)
+        what = "publishers" if kind == wire.KIND_PUB else "subscriptions"
+        if no_mangle:
+            name = topic_name
+            self._check_context(f"Failed to get information by topic for {what}")
+        else:
+            name = self._graph_name(topic_name, f"Failed to get information by topic for {what}")
+            name = self._remaps.get(name, name)
         ents = self._graph.publishers(name) if kind == wire.KIND_PUB else self._graph.subscribers(name)
         return [TopicEndpointInfo.from_entity(e) for e in ents]
 

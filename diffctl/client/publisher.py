@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from diffctl.client.duration import Duration
+from diffctl.client.endpoint_statuses import EndpointStatuses
 from diffctl.client.exceptions import InvalidHandle, RCLError
 from diffctl.client.interfaces import serialize
 from diffctl.client.node_entity import NodeEntity
@@ -26,13 +27,15 @@ class Publisher(NodeEntity):
         self._publish_raw = bus_pub.publish_raw
         self._context = self._node.context
         self._destroyed = False
+        self.qos_statuses = EndpointStatuses(qos_profile)
         self.event_handlers = event_callbacks.create_event_handlers(callback_group, self, topic)
+        self._on_write = self.qos_statuses.write_hook(self)
 
     def publish(self, msg: Any) -> None:
         if self._destroyed:
             raise InvalidHandle("cannot use Destroyable because destruction was requested")
         if not self._context._ok:
-            raise _context_invalid()
+            raise context_invalid("Failed to publish")
         if type(msg) is self.msg_type or isinstance(msg, self.msg_type):
             data = serialize(msg)
         elif isinstance(msg, (bytes, bytearray)):
@@ -41,12 +44,16 @@ class Publisher(NodeEntity):
             raise TypeError(f"Expected {self.msg_type}, got {type(msg)}")
         try:
             self._publish_raw(data)
+            if self._on_write is not None:
+                self._on_write()
         except Exception as e:  # zenoh.ZError: the session closed under a callback still running at exit
             if "closed" in str(e):
-                raise _context_invalid() from None
+                raise context_invalid("Failed to publish") from None
             raise
 
     def get_subscription_count(self) -> int:
+        if not self._context._ok:
+            raise context_invalid("failed to get subscription count")
         return self._bus.subscription_count
 
     @property
@@ -60,15 +67,21 @@ class Publisher(NodeEntity):
         if not self._destroyed:
             self._destroyed = True
             for h in self.event_handlers:
-                h._watch.close()
+                h.destroy()
+            self.qos_statuses.close()
             self._bus.close()
 
     def assert_liveliness(self) -> None:
-        pass  # rmw_zenoh's liveliness is the token, asserted for as long as the publisher exists
+        if not self._context._ok:
+            raise context_invalid("Failed to assert liveliness on the Publisher")
+        self.qos_statuses.assert_liveliness(self)
 
     def wait_for_all_acked(self, timeout: Duration = Duration(seconds=-1)) -> bool:
+        if not self._context._ok:
+            raise context_invalid("Failed to wait for all acknowledgements")
         return True  # Zenoh's reliable channel has handed every sample over once put returns
 
 
-def _context_invalid() -> RCLError:
-    return RCLError("Failed to publish: publisher's context is invalid, at /project/src/rcl/publisher.c:423")
+def context_invalid(what: str) -> RCLError:
+    """rcl's refusal of a publisher whose context was shut down."""
+    return RCLError(f"{what}: publisher's context is invalid, at /project/src/rcl/publisher.c:423")

@@ -346,6 +346,8 @@ def to_wire(profile: QoSProfile) -> wire.QoS:
         keep_all=profile.history == HistoryPolicy.KEEP_ALL,
         depth=profile.depth if profile.history != HistoryPolicy.SYSTEM_DEFAULT else 0,
         deadline_ns=_ns(profile.deadline), lifespan_ns=_ns(profile.lifespan),
+        manual_liveliness=profile.liveliness == LivelinessPolicy.MANUAL_BY_TOPIC,
+        liveliness_lease_ns=_ns(profile.liveliness_lease_duration),
     )
 
 
@@ -357,5 +359,6 @@ def from_wire(q: wire.QoS | None) -> QoSProfile:
         reliability=ReliabilityPolicy.RELIABLE if q.reliable else ReliabilityPolicy.BEST_EFFORT,
         durability=DurabilityPolicy.TRANSIENT_LOCAL if q.transient_local else DurabilityPolicy.VOLATILE,
         deadline=Duration(nanoseconds=q.deadline_ns or 0), lifespan=Duration(nanoseconds=q.lifespan_ns or 0),
-        liveliness=LivelinessPolicy.AUTOMATIC,
+        liveliness=LivelinessPolicy.MANUAL_BY_TOPIC if q.manual_liveliness else LivelinessPolicy.AUTOMATIC,
+        liveliness_lease_duration=Duration(nanoseconds=q.liveliness_lease_ns or 0),
     )

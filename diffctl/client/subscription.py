@@ -11,11 +11,16 @@ from collections.abc import Callable
 from typing import Any
 
 from diffctl.client import waiting
+from diffctl.client.endpoint_statuses import EndpointStatuses
+from diffctl.client.event_handler import dds_events
 from diffctl.client.interfaces import deserialize
 from diffctl.client.node_entity import NodeEntity
 from diffctl.client.qos import HistoryPolicy
 from diffctl.client.timer import await_or_execute
 from diffctl.errors import MessageError
+
+_BAD_CALLBACK = ("Subscription.__init__(): callback should be either be callable with one argument(to get only the "
+                 "message) or two (to get message and message info)")
 
 
 class Subscription(NodeEntity):
@@ -44,17 +49,24 @@ class Subscription(NodeEntity):
         self._destroyed = False
         self._event_callbacks = event_callbacks
         self.event_handlers: list[Any] = []
+        self._on_arrival: Callable[[bytes, int], None] | None = None
+        lifespan_ns = qos_profile.lifespan.nanoseconds
+        self._lifespan_ns = lifespan_ns if 0 < lifespan_ns < 2**63 - 1 and dds_events() else None
 
     def _attach(self, bus_sub: Any) -> None:
         self._bus = bus_sub
         self._bus_topic = bus_sub.topic
+        self.qos_statuses = EndpointStatuses(self.qos_profile)
         self.event_handlers = self._event_callbacks.create_event_handlers(self.callback_group, self, self.topic)
+        self._on_arrival = self.qos_statuses.arrival_hook()
 
     def _on_sample(self, data: bytes, info: Any) -> None:
         # Zenoh's thread: queue and wake; deserialization happens when an executor takes it.
         with self._lock:
             self._rx_seq += 1
             self._queue.append((data, info, self._rx_seq))
+        if self._on_arrival is not None:
+            self._on_arrival(info.publisher_gid, info.sequence_number)
         waiting.notify()
 
     @property
@@ -63,21 +75,39 @@ class Subscription(NodeEntity):
 
     @callback.setter
     def callback(self, value: Callable[..., Any]) -> None:
-        self._callback = value
+        # One argument that binds: the message only; else two: the message and its info; else refused as rclpy
+        # refuses it. (A callable without a signature is taken as rclpy took such callbacks before it checked.)
         try:
-            inspect.signature(value).bind(object())
-            self._callback_type = Subscription.CallbackType.MessageOnly
-        except (TypeError, ValueError):
-            self._callback_type = Subscription.CallbackType.WithMessageInfo
+            signature = inspect.signature(value)
+        except ValueError:
+            signature = None
+        except TypeError:  # not callable at all
+            raise RuntimeError(_BAD_CALLBACK) from None
+        kind = Subscription.CallbackType.WithMessageInfo
+        if signature is not None:
+            try:
+                signature.bind(object())
+                kind = Subscription.CallbackType.MessageOnly
+            except TypeError:
+                try:
+                    signature.bind(object(), object())
+                except TypeError:
+                    raise RuntimeError(_BAD_CALLBACK) from None
+        self._callback = value
+        self._callback_type = kind
 
     def _ready(self) -> bool:
         return bool(self._queue)
 
     def _take(self) -> Callable[[], Any] | None:
         with self._lock:
-            if not self._queue:
-                return None
-            data, info, rx = self._queue.popleft()
+            while True:
+                if not self._queue:
+                    return None
+                data, info, rx = self._queue.popleft()
+                # lifespan: a sample older than this subscription's lifespan is gone from its queue, as DDS's
+                if self._lifespan_ns is None or time.time_ns() - info.source_timestamp_ns <= self._lifespan_ns:
+                    break
         try:
             msg = data if self.raw else deserialize(data, self.msg_type)
         except MessageError as e:  # a malformed sample is the sender's fault: dropped, the node goes on
@@ -111,6 +141,6 @@ class Subscription(NodeEntity):
         if not self._destroyed:
             self._destroyed = True
             for h in self.event_handlers:
-                h._watch.close()
+                h.destroy()
             if self._bus is not None:
                 self._node._bus.destroy_subscription(self._bus)

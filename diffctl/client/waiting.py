@@ -8,6 +8,15 @@ generation counter makes "did anything change since I looked" race-free.
 from __future__ import annotations
 
 import threading
+import time
+
+# Python runs signal handlers on the main thread only, between bytecodes, and the kernel hands a SIGINT/SIGTERM
+# sent to the process to any thread not blocking it — one of Zenoh's or ours as well. The main thread blocked
+# in a lock is not woken then, so a node could sleep through its SIGTERM (rclpy's C handler wakes its wait set
+# from whatever thread it runs on). The main thread therefore waits in slices: a signal it missed is acted on
+# within one.
+MAIN_THREAD_SLICE_S = 0.2
+_MAIN = threading.main_thread()
 
 
 class WorkSignal:
@@ -31,8 +40,18 @@ class WorkSignal:
                 return True
             if timeout_s is not None and timeout_s <= 0:
                 return False
-            self._cond.wait(timeout_s)
-            return self._generation != generation
+            if threading.current_thread() is not _MAIN or (timeout_s is not None and timeout_s <= MAIN_THREAD_SLICE_S):
+                self._cond.wait(timeout_s)
+                return self._generation != generation
+            deadline = None if timeout_s is None else time.monotonic() + timeout_s
+            while self._generation == generation:
+                left = MAIN_THREAD_SLICE_S
+                if deadline is not None:
+                    left = min(left, deadline - time.monotonic())
+                if left <= 0:
+                    return False
+                self._cond.wait(left)  # returning to Python here runs any signal handler that is due
+            return True
 
 
 SIGNAL = WorkSignal()

@@ -59,20 +59,36 @@ class ManagerTime:
     /clock (a zero-stamped command means that time, and a respawning bridge stops nothing)."""
 
     def __init__(self) -> None:
-        self._clocks: dict[int, Any] = {}
+        # Replaced whole on every change (the sim thread reads it while a service thread loads or unloads).
+        self._clocks: tuple[tuple[int, Any], ...] = ()
 
     def follow(self, node: Any) -> None:
         # rclpy's TimeSource.detach_node on the node's own time source: its clock stops following /clock.
         node._time_source.detach_node()
-        self._clocks[id(node)] = node.get_clock()
+        self._clocks = (*self._clocks, (id(node), node.get_clock()))
 
     def forget(self, node: Any) -> None:
-        self._clocks.pop(id(node), None)
+        self._clocks = tuple(c for c in self._clocks if c[0] != id(node))
 
     def set_ns(self, time_ns: int) -> None:
         from diffctl.client.clock_type import ClockType
         from diffctl.client.ros_time import Time
 
         t = Time(nanoseconds=time_ns, clock_type=ClockType.ROS_TIME)
-        for clock in self._clocks.values():
+        for _, clock in self._clocks:
             clock.set_ros_time_override(t)
+
+
+def spin_resiliently(executor: Any, running: Any, log: Any) -> None:
+    """Spin `executor` while `running()`: a callback that raises (a controller's, or one fed a well-formed but
+    absurd request) is reported and the others go on being served, instead of the exception ending the spin
+    and, with it, every node's callbacks."""
+    from diffctl.client.executors import ExternalShutdownException, ShutdownException
+
+    while running():
+        try:
+            executor.spin_once(timeout_sec=0.1)
+        except (ExternalShutdownException, ShutdownException):
+            return
+        except Exception as e:
+            log.error(f"a callback raised {type(e).__name__}: {e}", throttle_duration_sec=5.0)

@@ -19,7 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from diffctl import ros_args
-from diffctl.control.controller_node import make_controller_node
+from diffctl.control.controller_node import make_controller_node, spin_resiliently
 from diffctl.control.manager import ControllerManager
 from diffctl.control.manager_node import make_manager_node, manager_flat_params
 from diffctl.control.params import manager_params
@@ -191,13 +191,8 @@ class ControlNode:
         self._got_description.set()
 
     def _spin(self) -> None:
-        from diffctl.client.executors import ExternalShutdownException
-
         try:
-            while not self.stop.is_set() and self.context.ok():
-                self.executor.spin_once(timeout_sec=0.1)
-        except ExternalShutdownException:
-            pass
+            spin_resiliently(self.executor, lambda: not self.stop.is_set() and self.context.ok(), self.log)
         finally:
             self.stop.set()
 

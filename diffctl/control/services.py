@@ -230,11 +230,15 @@ class ManagerServices:
         if self.cm.controllers and not req.force_kill:
             self.log.error("can not reload controller libraries while controllers are loaded (use force_kill)")
             return {"ok": False}
-        for name in list(self.cm.controllers):
-            mc = self.cm.controllers[name]
-            if mc.state is State.ACTIVE:
-                self.cm.switch_controller([], [name], 2)
-            self.cm.unload_controller(name)
+        try:
+            for name in list(self.cm.controllers):
+                mc = self.cm.controllers.get(name)
+                if mc is not None and mc.state is State.ACTIVE:
+                    self.cm.switch_controller([], [name], 2)
+                self.cm.unload_controller(name)
+        except DiffctlError as e:  # another call changed the controllers meanwhile
+            self.log.error(f"reload_controller_libraries: {e}")
+            return {"ok": False}
         plugin_registry.rescan()
         return {"ok": True}
 

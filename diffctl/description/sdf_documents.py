@@ -107,13 +107,13 @@ class Include:
         return self.model_el.tag == "light"
 
 
-_skipped: set[str] = set()  # Fuel models left out with $DIFFCTL_FUEL_SKIP_MISSING, reported once per process
+_skipped: set[str] = set()  # Fuel models a world loaded without, each reported once per process
 
 
 def _include_target(doc: Doc, uri: str, uri_el: Element) -> Path | None:
     """The file an include's URI names; None for a Fuel model the user chose to load the world without."""
     if is_remote(uri):
-        from diffctl.fuel.resolve import FuelModelUnavailable, resolve_fuel, skip_missing
+        from diffctl.fuel.resolve import SKIP_MISSING_ENV, FuelModelUnavailable, resolve_fuel, skip_missing
 
         try:
             target = resolve_fuel(uri)
@@ -124,7 +124,8 @@ def _include_target(doc: Doc, uri: str, uri_el: Element) -> Path | None:
                     from diffctl.console import warn
                     from diffctl.source_paths import user_source
 
-                    warn(f"{user_source(doc.source)}:{uri_el.sourceline}: left out: {e.message}")
+                    warn(f"{user_source(doc.source)}:{uri_el.sourceline}: {e.message}; the world loads without it "
+                         f"({e.hint}; {SKIP_MISSING_ENV}=0 makes this an error)")
                 return None
             fail(doc, uri_el, e.message, hint=e.hint)
         except DescriptionError as e:

@@ -3,8 +3,6 @@ executable='foxglove_bridge')` starts, taking `port` and `address` from `--ros-a
 
 from __future__ import annotations
 
-import signal
-import threading
 from pathlib import Path
 
 import click
@@ -38,9 +36,9 @@ def foxglove_bridge(port: int | None, address: str | None, bag_path: Path | None
     ra = ros_args.current("foxglove_bridge")
     port = fg.check_port(port if port is not None else ra.params.get("port", 8765))
     address = fg.check_loopback(address or str(ra.params.get("address", "127.0.0.1")))
-    stop = threading.Event()
-    for sig in (signal.SIGINT, signal.SIGTERM):
-        signal.signal(sig, lambda *_: stop.set())
+    from diffctl.signals import stop_on_signals
+
+    stop = stop_on_signals()
     context = foxglove.Context()
     if bag_path is not None:
         from diffctl.bag.reader import Bag

@@ -2,7 +2,8 @@
 
 A model that cannot be had raises FuelModelUnavailable: one message naming the model, the cache folder
 searched, why the download failed and the command that fetches it. `$DIFFCTL_FUEL_OFFLINE=1` skips downloads;
-`$DIFFCTL_FUEL_SKIP_MISSING=1` lets a world load without the models it cannot have (the loader checks it).
+A world loads without the models it cannot have, each reported once (as Gazebo does, ARCHITECTURE.md "Gazebo
+resources"); `$DIFFCTL_FUEL_SKIP_MISSING=0` makes such a model an error instead (the loader checks it).
 """
 
 from __future__ import annotations
@@ -32,7 +33,8 @@ def _flag(name: str) -> bool:
 
 
 def skip_missing() -> bool:
-    return _flag(SKIP_MISSING_ENV)
+    """Whether a world loads without a Fuel model it cannot have (the default) or refuses to load (`=0`)."""
+    return os.environ.get(SKIP_MISSING_ENV, "").strip().lower() not in ("0", "false", "no", "off")
 
 
 def fetch_command(ref: FuelRef) -> str:
@@ -65,8 +67,7 @@ def model_folder(ref: FuelRef) -> Path:
         f"Fuel {what} {ref.original or ref.model_url!r}{version} is not available: not in Gazebo's Fuel cache "
         f"(searched {model_root(ref)}/<version>/, cache {cache_root()} from $GZ_FUEL_CACHE_PATH or ~/.gz/fuel) "
         f"and {reason}",
-        hint=f"fetch it with `{fetch_command(ref)}`"
-        + (f", or set {SKIP_MISSING_ENV}=1 to load the world without it" if ref.kind == "models" else ""),
+        hint=f"fetch it with `{fetch_command(ref)}`",
     )
 
 

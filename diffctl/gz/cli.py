@@ -13,7 +13,7 @@ import json
 import os
 import sys
 import time
-from typing import Any
+from typing import Any, NoReturn
 
 from diffctl.errors import ConfigError, DiffctlError, RuntimeFailure
 
@@ -116,18 +116,20 @@ def _gui_client() -> int:
         signal.pause()
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse, its refusal one error line (argparse itself prints its usage and exits)."""
+
+    def error(self, message: str) -> NoReturn:
+        usage = " ".join(self.format_usage().split())
+        raise ConfigError(f"{self.prog}: {message}", hint=usage)
+
+
 def _parser(prog: str) -> argparse.ArgumentParser:
-    return argparse.ArgumentParser(prog=prog, add_help=True, allow_abbrev=False)
+    return _Parser(prog=prog, add_help=True, allow_abbrev=False)
 
 
 def _parse(parser: argparse.ArgumentParser, rest: list[str]) -> argparse.Namespace:
-    try:
-        return parser.parse_args(rest)
-    except SystemExit as e:
-        if e.code == 0:
-            raise
-        usage = parser.format_usage().strip()
-        raise ConfigError(f"{parser.prog}: invalid arguments {' '.join(rest)!r}", hint=usage) from None
+    return parser.parse_args(rest)
 
 
 def _session() -> Any:

@@ -122,6 +122,7 @@ class _Decoder(_Emitter):
         self.known = 8  # the position is known to be ≡ 4 (mod known) — i.e. aligned to `known` in the payload
         self.run_fmt = ""
         self.run_vars: list[str] = []
+        self.run_bools: list[str] = []  # the run's bool fields, read as bytes: Fast-CDR takes only 0 and 1
         self.run_size = 0
         self.run_base = 8
 
@@ -135,10 +136,14 @@ class _Decoder(_Emitter):
             s = self.struct(self.run_fmt)
             self.lines.append(f"{', '.join(self.run_vars)}{',' if len(self.run_vars) == 1 else ''} = "
                               f"{s}.unpack_from(buf, pos)")
+            for b in self.run_bools:
+                self.lines += [f"if {b} > 1:",
+                               f"    raise ValueError(f'invalid bool byte {{{b}}} near offset {{pos - 4}}')",
+                               f"{b} = {b} == 1"]
             self.lines.append(f"pos += {self.run_size}")
             low = self.run_size & -self.run_size
             self.known = min(self.run_base, low) if self.run_size else self.run_base
-        self.run_fmt, self.run_vars, self.run_size = "", [], 0
+        self.run_fmt, self.run_vars, self.run_bools, self.run_size = "", [], [], 0
 
     def primitive(self, base: str) -> str:
         size = _SIZE[base]
@@ -151,7 +156,11 @@ class _Decoder(_Emitter):
             self._align(size)
             self.run_base = self.known
         v = self.var()
-        self.run_fmt += "c" if base == "byte" and self.classes is not None else _CODE[base]
+        if base == "bool":
+            self.run_fmt += "B"
+            self.run_bools.append(v)
+        else:
+            self.run_fmt += "c" if base == "byte" and self.classes is not None else _CODE[base]
         self.run_vars.append(v)
         self.run_size += size
         return v
@@ -233,7 +242,9 @@ class _Decoder(_Emitter):
             self.flush()
             v = self.var("l")
             if sub[1][0] == "bool":
-                self.lines.append(f"{v} = list(map(bool, buf[pos:pos + {n}]))")
+                self.lines += [f"if {n} and max(buf[pos:pos + {n}]) > 1:",
+                               "    raise ValueError(f'invalid bool byte near offset {pos - 4}')",
+                               f"{v} = list(map(bool, buf[pos:pos + {n}]))"]
             else:
                 self.lines.append(f"{v} = [buf[i_:i_ + 1] for i_ in range(pos, pos + {n})]")
             self.lines.append(f"pos += {n}")

@@ -21,11 +21,12 @@ import sys
 # diffctl's own interface packages (the bus's typestore and the shipped Jazzy texts; a test keeps this in
 # step with the registry): checked without importing the registry.
 KNOWN = frozenset({
-    "action_msgs", "actionlib_msgs", "actuator_msgs", "builtin_interfaces", "composition_interfaces",
-    "control_msgs", "controller_manager_msgs", "diagnostic_msgs", "example_interfaces", "geographic_msgs",
-    "geometry_msgs", "gps_msgs", "lifecycle_msgs", "nav_msgs", "rcl_interfaces", "rmw_dds_common",
-    "robot_localization", "ros_gz_interfaces", "rosbag2_interfaces", "rosgraph_msgs", "sensor_msgs", "service_msgs",
-    "shape_msgs", "statistics_msgs", "std_msgs", "std_srvs", "stereo_msgs", "tf2_msgs", "topic_tools_interfaces",
+    "ackermann_msgs", "action_msgs", "actionlib_msgs", "actuator_msgs", "builtin_interfaces",
+    "composition_interfaces", "control_msgs", "controller_manager_msgs", "diagnostic_msgs", "example_interfaces",
+    "geographic_msgs", "geometry_msgs", "gps_msgs", "lifecycle_msgs", "nav_msgs", "rcl_interfaces",
+    "rmw_dds_common", "robot_localization", "ros_gz_interfaces", "rosbag2_interfaces", "rosgraph_msgs",
+    "sensor_msgs", "service_msgs", "shape_msgs", "statistics_msgs", "std_msgs", "std_srvs", "stereo_msgs",
+    "tf2_msgs", "topic_tools_interfaces",
     "trajectory_msgs", "type_description_interfaces", "unique_identifier_msgs", "vision_msgs", "visualization_msgs",
 })
 _SUFFIXES = ("_msgs", "_srvs", "_interfaces", "_actions", "_msg", "_srv", "_action")
@@ -118,7 +119,12 @@ class InterfaceFinder:
             return None
         from diffctl.interfaces import finder
 
-        return finder.find_spec(fullname)
+        try:
+            return finder.find_spec(fullname)
+        except ImportError as e:
+            # A malformed .msg or a missing package is one located message (file:line: what is wrong): the
+            # traceback through the registry and the parser would only bury it, so it starts here.
+            raise e.with_traceback(None) from None
 
     def invalidate_caches(self) -> None:
         _workspace_dirs.clear()

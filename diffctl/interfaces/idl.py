@@ -39,6 +39,7 @@ class TypeDef:
     constants: list[tuple[str, str, Any]] = field(default_factory=list)
     fields: list[tuple[str, tuple]] = field(default_factory=list)
     defaults: dict[str, Any] = field(default_factory=dict)
+    lines: dict[str, int] = field(default_factory=dict)  # field → its line in the source text (errors)
 
     def rosbags(self) -> tuple[list, list]:
         return (self.constants, self.fields)
@@ -210,6 +211,7 @@ def parse_message(text: str, typename: str, source: str | None = None, first_lin
             raise InterfaceError(f"duplicate field {name!r}", **where)
         names.add(name)
         td.fields.append((name, desc))
+        td.lines[name] = where["line"]
         if default.strip():
             td.defaults[name] = parse_default(desc, default, where)
     if not td.fields:

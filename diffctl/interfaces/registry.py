@@ -108,7 +108,14 @@ def package(name: str) -> InterfacePackage | None:
             found = diffctl_packages().get(name)
         _packages[name] = found
         if found is not None:
-            _load(found)
+            try:
+                _load(found)
+            except BaseException:
+                # Refused whole: a second import of it raises again instead of finding it half loaded.
+                del _packages[name]
+                for full in [t for t in _types if t.startswith(name + "/")]:
+                    del _types[full]
+                raise
         return found
 
 
@@ -158,7 +165,55 @@ def _load(p: InterfacePackage) -> None:
                 f"{td.name}: field {fname!r} has type {ref}, which package {ref_pkg} does not define"
                 f"{suggest(ref, others) if others else ''}", source=str(where) if where else p.where)
     for td in loaded:
+        cycle = _cycle_from(td.name, defs)
+        if cycle:
+            raise InterfaceError(
+                f"{td.name} contains itself: {' → '.join(cycle)} (a ROS 2 interface cannot be recursive: "
+                "rosidl's build fails on it; refer to the others by index or id instead)",
+                **_field_place(p, td, cycle[0].rsplit(".", 1)[1]))
+    for td in loaded:
         defs[td.name] = (td.constants, td.fields)
+
+
+def _file_of(p: InterfacePackage, typename: str) -> Path | None:
+    """The file defining `typename` (a service's and an action's parts are in the interface's file)."""
+    found = p.files.get(typename)
+    if found is None and "/" in typename and typename.split("/")[1] in ("srv", "action"):
+        found = p.files.get(typename.rsplit("_", 1)[0])
+    return found
+
+
+def _field_place(p: InterfacePackage, td: TypeDef, fname: str) -> dict:
+    where = _file_of(p, td.name)
+    return {"source": str(where) if where else p.where, "line": td.lines.get(fname), "field": fname}
+
+
+def _cycle_from(start: str, defs: dict) -> list[str]:
+    """`Type.field` steps from `start` back to itself through message fields (arrays and sequences
+    included), or [] when the type does not contain itself."""
+
+    def fields_of(name: str) -> list:
+        td = _types.get(name)
+        if td is not None:
+            return td.fields
+        return defs[name][1] if name in defs else []
+
+    trail: list[str] = []
+    visited: set[str] = set()
+
+    def walk(name: str) -> bool:
+        for fname, ref in referenced_types(TypeDef(name, fields=fields_of(name))):
+            trail.append(f"{name}.{fname}")
+            if ref == start:
+                return True
+            if ref not in visited:
+                visited.add(ref)
+                if walk(ref):
+                    return True
+            trail.pop()
+        return False
+
+    return [*trail, start] if walk(start) else []
 
 
 def referenced_types(td: TypeDef) -> list[tuple[str, str]]:

@@ -86,7 +86,11 @@ def parse_gz_args(tokens: list[str]) -> GzArgs:
     `=value` and unambiguous prefixes, and the world is the last word that is no option's value."""
     words: list[str] = []
     for t in tokens:
-        words.extend(shlex.split(t))
+        try:
+            words.extend(shlex.split(t))
+        except ValueError as e:  # a quote left open: the shell that splits a gz_args string refuses it too
+            raise ConfigError(f"sim run: cannot split the arguments {t!r}: {str(e).lower()}",
+                              hint="close the quote, or quote the whole world path") from None
     out = GzArgs()
     positional: list[str] = []
     i = 0
@@ -291,12 +295,15 @@ def run(args: tuple[str, ...], gui: bool, rtf: float | None) -> None:
 
 def serve(world_path: Path, g: GzArgs, *, gui: bool, log: Any) -> None:
     """Load the world (errors exit 2 before anything starts), open the bus, run until SIGINT/SIGTERM."""
-    from diffctl.bus import open_session
     from diffctl.description.sdf_loader import load_world
+
+    # The world first: what it says about itself (a model left out, an error) comes before anything PyBullet
+    # prints when it is imported.
+    world = load_world(world_path)
+    from diffctl.bus import open_session
     from diffctl.sim.runner import Simulation
     from diffctl.sim.services import WorldServices
 
-    world = load_world(world_path)
     session = open_session()
     seed = g.seed if g.seed is not None else int(os.environ.get("DIFFCTL_SIM_SEED", "0") or 0)
     sim_ = Simulation(world, gui=gui, rtf=g.rtf, paused=not g.run, seed=seed, log=log, session=session)

@@ -1,1 +1,1 @@
-"""Teleoperation: teleop_twist_keyboard and joy + teleop_twist_joy counterparts publishing velocity commands."""
+"""Teleoperation: teleop_twist_keyboard, and `diffctl teleop joy` (joy_node + teleop_node in one process)."""

@@ -1,22 +1,20 @@
-"""`diffctl teleop keyboard|joy`: teleop_twist_keyboard and joy + teleop_twist_joy in one process each.
+"""`diffctl teleop keyboard|joy`: teleop_twist_keyboard, and joy + teleop_twist_joy in one process.
 
-Both default to our stack's controller (`/diffbot_base_controller/cmd_vel`, TwistStamped). Started from a
-launch file as the ROS nodes (with `--ros-args`), they keep the ROS defaults: a `cmd_vel` remap picks the
-topic, `publish_stamped_twist` / `stamped` pick the type.
+Both default to our stack's controller (`/diffbot_base_controller/cmd_vel`, TwistStamped). The keyboard one is
+teleop_twist_keyboard's executable too (with `--ros-args` it keeps the ROS defaults: a `cmd_vel` remap picks the
+topic, `stamped` the type); a launch file's joy, joy_linux and teleop_twist_joy nodes are their own packages.
 """
 
 from __future__ import annotations
 
 import sys
-import threading
-from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import click
 
 from diffctl import ros_args
 from diffctl.errors import ConfigError, ParameterError
-from diffctl.teleop.joy_config import JoyParams
 
 DEFAULT_TOPIC = "/diffbot_base_controller/cmd_vel"
 KEYBOARD_NODE = "teleop_twist_keyboard"
@@ -54,39 +52,6 @@ def _start_node(name: str, declared: dict[str, Any]) -> Any:
         return node
 
     return component.start(make)
-
-
-@dataclass(frozen=True)
-class JoySettings:
-    params: JoyParams
-    preset: str | None
-    topic: str
-    device: str | None
-    device_id: int
-
-
-def joy_settings(
-    ra: ros_args.RosArgs, joy_config: str | None, topic: str | None, stamped: bool | None, deadzone: float | None
-) -> JoySettings:
-    """Everything `teleop joy` needs, from (lowest first) preset, config_filepath, --ros-args, CLI options."""
-    params: dict[str, Any] = {}
-    config_file = ra.params.get("config_filepath")
-    if config_file:
-        params.update(ros_args.load_params_file(str(config_file), ra.node_name or JOY_NODE))
-    params.update(ra.params)
-    preset = joy_config or params.get("joy_config") or (None if config_file else "ps3")
-    # Our stack's controller takes TwistStamped; a launch file passes teleop_twist_joy's own default (false).
-    params["publish_stamped_twist"] = _flag(params, "publish_stamped_twist", stamped, True)
-    if deadzone is not None:
-        params["deadzone"] = deadzone
-    jp = JoyParams.from_params(params, preset)
-    device_id = params.get("device_id", 0)
-    if isinstance(device_id, bool) or not str(device_id).strip().isdigit():
-        raise ParameterError(f"{device_id!r} invalid; valid: an integer >= 0", field="device_id")
-    device = params.get("dev") or params.get("device_name") or None
-    return JoySettings(
-        jp, preset, choose_topic(topic, ra.remaps), str(device) if device else None, int(str(device_id).strip())
-    )
 
 
 @click.group("teleop", context_settings={"help_option_names": ["-h", "--help"]})
@@ -174,83 +139,155 @@ def keyboard(
         started.stop()
 
 
-@teleop.command("joy")
-@click.option(
-    "--device",
-    "-d",
-    default=None,
-    help="/dev/input/eventN, or part of the device's name. Default: game pad number device_id (0).",
-)
-@click.option(
-    "--joy-config",
-    type=click.Choice(["xbox", "ps3", "atk3"]),
-    default=None,
-    help="Button/axis preset, as teleop_twist_joy's joy_config (default ps3).",
-)
-@click.option("--topic", default=None, help=f"Topic to publish on. Default: {DEFAULT_TOPIC}.")
-@click.option(
-    "--stamped/--unstamped",
-    default=None,
-    help="TwistStamped (default) or Twist; the parameter is publish_stamped_twist.",
-)
-@click.option("--deadzone", type=float, default=None, help="Stick deadzone, 0..0.99 (default 0.3).")
-@click.option("--list", "list_only", is_flag=True, help="List input devices and exit.")
-def joy(
-    device: str | None,
-    joy_config: str | None,
-    topic: str | None,
-    stamped: bool | None,
-    deadzone: float | None,
-    list_only: bool,
-) -> None:
-    """Drive with a game pad read from Linux evdev, as joy + teleop_twist_joy.
+@click.command("teleop-twist-keyboard", context_settings={"ignore_unknown_options": True})
+def teleop_twist_keyboard() -> None:
+    """teleop_twist_keyboard's executable as Jazzy has it: Twist (or TwistStamped) on `cmd_vel` on every key.
 
-    Hold the enable button (xbox LB, ps3 L2, atk3 trigger) and move the left stick; the turbo button
-    (RB, L1, thumb) drives with the turbo scales. Releasing sends one zero command. Every
-    teleop_twist_joy parameter is accepted with --ros-args -p NAME:=VALUE (axis_linear.x, scale_linear.x,
-    scale_linear_turbo.x, axis_angular.yaw, scale_angular.yaw, enable_button, enable_turbo_button,
-    require_enable_button, inverted_reverse, publish_stamped_twist, frame) plus joy's deadzone and
-    autorepeat_rate; buttons and axes by name (LB, LEFTY) or SDL index.
+    Its parameters, read-only: stamped (false), frame_id ('', only with stamped), speed (0.5), turn (1.0).
+    `diffctl teleop keyboard` is the same keys with our controller's topic and TwistStamped as defaults.
+
+    \b
+    Example:
+      diffctl run teleop_twist_keyboard teleop_twist_keyboard --ros-args -r cmd_vel:=my_cmd_vel
+    """
+    import math
+
+    from diffctl.client import component
+    from diffctl.client.node import Node
+    from diffctl.interfaces import get_interface
+    from diffctl.teleop.keyboard import run_keyboard
+    from diffctl.teleop.keyboard_bindings import KeyboardParams, KeyboardTeleop
+    from diffctl.teleop.twist_command import TwistCommand
+
+    if not sys.stdin.isatty():
+        raise ConfigError("teleop_twist_keyboard reads keys from a terminal, and stdin is not one",
+                          hint="run it in a terminal; in a launch file give its Node a terminal (prefix='xterm -e')")
+
+    def make() -> Any:
+        node = Node(KEYBOARD_NODE)
+        descriptor = get_interface("rcl_interfaces/msg/ParameterDescriptor")
+        for name, default in (("stamped", False), ("frame_id", ""), ("speed", 0.5), ("turn", 1.0)):
+            node.declare_parameter(name, default, descriptor(read_only=True))
+        if node.get_parameter("frame_id").value and not node.get_parameter("stamped").value:
+            raise ConfigError("'frame_id' can only be set when 'stamped' is True", field="frame_id")
+        return node
+
+    started = component.start(make)
+    try:
+        value = started.node.get_parameter
+        keys = KeyboardTeleop(KeyboardParams(float(value("speed").value), float(value("turn").value),
+                                             math.inf, math.inf))
+        command = TwistCommand(started.node, "cmd_vel", stamped=bool(value("stamped").value),
+                               frame_id=str(value("frame_id").value))
+        run_keyboard(keys, command, repeat_rate_hz=0.0, fd_in=sys.stdin.fileno(), out=sys.stdout)
+    finally:
+        started.stop()
+
+
+JOY_CONFIGS = ("ps3", "xbox", "atk3", "xd3", "ps3-holonomic")
+
+
+def joy_config_file(name: str) -> Path:
+    from diffctl.workspace.package_index import share_dir
+
+    return share_dir("teleop_twist_joy") / "config" / f"{name}.config.yaml"
+
+
+def list_joysticks() -> list[tuple[int, str, str, str]]:
+    """(device_id, path, name, axes/buttons) of each joystick joy_node would number."""
+    from diffctl.joy.linux_joystick import Joystick
+    from diffctl.joy.node import candidates
+
+    rows = []
+    for number, path in enumerate(candidates()):
+        try:
+            device = Joystick(path)
+        except OSError as e:
+            rows.append((number, path, f"({e.strerror})", ""))
+            continue
+        ident = device.identity
+        device.close()
+        counts = f"{ident.axes} axes, {ident.buttons} buttons" if ident.axes is not None else ""
+        rows.append((number, path, ident.name or "Unknown", counts))
+    return rows
+
+
+@teleop.command("joy")
+@click.option("--device", "-d", default=None,
+              help="A joystick device (/dev/input/jsN, or any file of js_event records) or a joystick's name. "
+              "Default: joystick number device_id (0).")
+@click.option("--joy-config", type=click.Choice(JOY_CONFIGS), default="ps3", show_default=True,
+              help="teleop_twist_joy's preset (config/<name>.config.yaml).")
+@click.option("--topic", default=None, help=f"Topic to publish on. Default: {DEFAULT_TOPIC}.")
+@click.option("--stamped/--unstamped", default=True,
+              help="TwistStamped (default; what diff_drive_controller takes) or Twist: publish_stamped_twist.")
+@click.option("--deadzone", type=float, default=0.3, show_default=True, help="joy_node's deadzone, 0..1.")
+@click.option("--list", "list_only", is_flag=True, help="List the joysticks, numbered as device_id, and exit.")
+def joy(device: str | None, joy_config: str, topic: str | None, stamped: bool, deadzone: float,
+        list_only: bool) -> None:
+    """Drive with a joystick: joy's joy_node and teleop_twist_joy's teleop_node in one process.
+
+    The nodes are upstream's (their parameters, `joy` between them); this command gives them what
+    teleop-launch.py gives them, with our controller's topic and TwistStamped as defaults. Hold the preset's
+    enable button and move the stick (xbox: button 2 and the left stick). --ros-args -p NAME:=VALUE reaches
+    both nodes (scale_linear.x, enable_button, device_id, autorepeat_rate, …).
 
     \b
     Example:
       diffctl teleop joy --joy-config xbox
-      diffctl teleop joy --device /dev/input/event5 --ros-args -p scale_linear.x:=0.3
+      diffctl teleop joy --device /dev/input/js1 --ros-args -p scale_linear.x:=0.3
       diffctl teleop joy --list
     """
-    from diffctl.teleop import evdev_reader
+    import os
+
+    from diffctl.joy import node as joy_node
 
     if list_only:
-        from diffctl.console import console, info
+        from diffctl.console import info, table
 
-        devices = evdev_reader.list_devices()
-        if devices:
-            console.print(evdev_reader.devices_table(devices))
+        rows = list_joysticks()
+        if rows:
+            from diffctl.console import console
+
+            console.print(table("joysticks", ["device_id", "device", "name", ""], rows))
         else:
-            info(evdev_reader.present(devices))
+            info("no joysticks: /dev/input/js* has none (the joydev module makes them), SDL_JOYSTICK_DEVICE is unset")
         return
-    settings = joy_settings(ros_args.current(JOY_NODE), joy_config, topic, stamped, deadzone)
-    jp, preset = settings.params, settings.preset
-    path = evdev_reader.find_device(device or settings.device, settings.device_id)
-    source = evdev_reader.InputDevice(path)
+    if not 0.0 <= deadzone <= 1.0:
+        raise ParameterError(f"{deadzone!r} invalid; valid: 0 to 1", field="deadzone")
+    joy_params: dict[str, Any] = {"deadzone": deadzone, "autorepeat_rate": 20.0}
+    if device and "/" in device:
+        # As SDL does with SDL_JOYSTICK_DEVICE: the listed devices are numbered first.
+        listed = os.environ.get(joy_node.DEVICE_LIST_ENV)
+        os.environ[joy_node.DEVICE_LIST_ENV] = device + (f":{listed}" if listed else "")
+        joy_params["device_id"] = 0
+    elif device:
+        joy_params["device_name"] = device
+    global_params = ros_args.current(JOY_NODE).params
+    teleop_params = {**ros_args.load_params_file(joy_config_file(joy_config), JOY_NODE), **global_params,
+                     "publish_stamped_twist": stamped}
+    run_joy_teleop({**joy_params, **global_params}, teleop_params, topic or DEFAULT_TOPIC)
 
-    from diffctl.teleop.joy import run_joy
-    from diffctl.teleop.shutdown import stop_on_signals
-    from diffctl.teleop.twist_command import TwistCommand
 
-    try:
-        started = _start_node(JOY_NODE, {"publish_stamped_twist": jp.publish_stamped_twist, "frame": jp.frame})
-        try:
-            command = TwistCommand(started.node, settings.topic, stamped=jp.publish_stamped_twist, frame_id=jp.frame)
-            log = started.node.get_logger()
-            log.info(
-                f"reading {path} '{source.info.name}' (joy_config {preset or 'from file'}), "
-                f"publishing {command.typename} on {command.topic}"
-            )
-            stop = threading.Event()
-            stop_on_signals(stop)
-            run_joy(source, jp, command, stop, log)
-        finally:
-            started.stop()
-    finally:
-        source.close()
+def run_joy_teleop(joy_params: dict[str, Any], teleop_params: dict[str, Any], topic: str) -> int:
+    from diffctl.client import component
+    from diffctl.client.executors import SingleThreadedExecutor
+    from diffctl.client.node import Node
+    from diffctl.client.parameter import Parameter
+    from diffctl.joy import node as joy_node
+    from diffctl.teleop_twist_joy.node import attach
+
+    component.init()  # an executor belongs to an initialised context
+    executor = SingleThreadedExecutor()
+
+    def make() -> Any:
+        joy = Node(joy_node.NODE_NAME, client_library="rclcpp",
+                   parameter_overrides=[Parameter(k, value=v) for k, v in joy_params.items()])
+        joy_node.JoyReader(joy, *joy_node.declare(joy))
+        executor.add_node(joy)
+        teleop = Node(JOY_NODE, client_library="rclcpp", cli_args=["--ros-args", "-r", f"cmd_vel:={topic}"],
+                      parameter_overrides=[Parameter(k, value=v) for k, v in teleop_params.items()])
+        attach(teleop)
+        return teleop
+
+    return component.run(make, executor=executor)

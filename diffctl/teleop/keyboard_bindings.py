@@ -118,7 +118,9 @@ class KeyboardParams:
             ("speed_limit", self.speed_limit_m_s),
             ("turn_limit", self.turn_limit_rad_s),
         ):
-            if not isinstance(value, (int, float)) or isinstance(value, bool) or not math.isfinite(value) or value < 0:
+            limit = name.endswith("_limit")  # a limit may be infinite: none
+            if not isinstance(value, (int, float)) or isinstance(value, bool) or math.isnan(value) or value < 0 \
+                    or (not limit and math.isinf(value)):
                 raise ParameterError(f"{value!r} invalid; valid: a finite number >= 0", field=name)
         if self.speed_m_s > self.speed_limit_m_s:
             raise ParameterError(f"{self.speed_m_s} exceeds speed_limit {self.speed_limit_m_s}", field="speed")

@@ -63,6 +63,8 @@ class HookEnv:
 
     env: MutableMapping[str, str]
     files: dict[str, str] = field(default_factory=dict)  # hook files that exist only in memory: path → text
+    # The user's file each in-memory hook was configured from (`hooks/x.dsv.in`), line for line: errors name it.
+    origins: dict[str, str] = field(default_factory=dict)
     changed: list[str] = field(default_factory=list)  # variables touched, in order
 
     def exists(self, path: str) -> bool:
@@ -72,6 +74,10 @@ class HookEnv:
         if path in self.files:
             return self.files[path]
         return Path(path).read_text(encoding="utf-8", errors="replace")
+
+    def origin(self, path: str) -> str:
+        """The file to name in an error about hook `path`: the user's source of a configured hook."""
+        return self.origins.get(path, path)
 
     def _note(self, name: str) -> None:
         if name not in self.changed:
@@ -100,7 +106,8 @@ def process_dsv(state: HookEnv, path: str, prefix: str) -> None:
         kind, sep, rest = raw.partition(";")
         if not sep:
             raise HookError(
-                "the line has no ';' after its type", source=path, line=number, hint="e.g. " + PREPEND + ";VAR;path"
+                "the line has no ';' after its type", source=state.origin(path), line=number,
+                hint="e.g. " + PREPEND + ";VAR;path",
             )
         if kind == SOURCE:
             base, ext = os.path.splitext(rest)
@@ -123,7 +130,8 @@ def _line(state: HookEnv, kind: str, rest: str, prefix: str, path: str, number: 
     if kind in (SET, SET_IF_UNSET):
         name, sep, value = rest.partition(";")
         if not sep:
-            raise HookError("the line has no ';' between the variable and its value", source=path, line=number)
+            raise HookError("the line has no ';' between the variable and its value", source=state.origin(path),
+                            line=number)
         prefixed = os.path.join(prefix, value) if value else prefix
         state.set(name, prefixed if os.path.exists(prefixed) else value, only_if_unset=kind == SET_IF_UNSET)
     elif kind in (PREPEND, PREPEND_IF_EXISTS, APPEND):
@@ -136,7 +144,7 @@ def _line(state: HookEnv, kind: str, rest: str, prefix: str, path: str, number: 
     else:
         raise HookError(
             f"unknown environment hook type {kind!r}{suggest(kind, DSV_TYPES)}",
-            source=path,
+            source=state.origin(path),
             line=number,
             hint="valid: " + ", ".join(DSV_TYPES),
         )
@@ -163,10 +171,20 @@ def source_shell(state: HookEnv, path: str, prefix: str) -> None:
                 check=False,
             )
         except (OSError, subprocess.TimeoutExpired) as e:
-            raise HookError(f"sourcing the hook failed: {e}", source=path) from None
+            raise HookError(f"sourcing the hook failed: {e}", source=state.origin(path)) from None
+    # bash names the file it sourced: the user's, not the configured copy made for it here
+    from diffctl.source_paths import user_source
+
+    said = out.stderr.decode(errors="replace").replace(script, user_source(state.origin(path))).strip().splitlines()
     if out.returncode != 0:
-        why = out.stderr.decode(errors="replace").strip().splitlines()[-1:] or [f"exit code {out.returncode}"]
-        raise HookError(f"sourcing the hook failed: {why[0]}", source=path)
+        raise HookError(f"sourcing the hook failed: {(said or [f'exit code {out.returncode}'])[-1]}",
+                        source=state.origin(path))
+    if said:
+        # A hook that fails part way is not fatal when a shell sources it: what it printed is shown, as there.
+        from diffctl.console import warn
+
+        for line in said:
+            warn(line)
     after = dict(item.split("=", 1) for item in out.stdout.decode(errors="replace").split("\0") if "=" in item)
     for name in ("AMENT_CURRENT_PREFIX", "COLCON_CURRENT_PREFIX", "_", "SHLVL", "PWD", "OLDPWD"):
         after.pop(name, None)
@@ -231,12 +249,13 @@ def configure(text: str, variables: dict[str, str]) -> str:
     return _AT_VAR.sub(lambda m: variables.get(m.group(1), ""), text)
 
 
-def cmake_hooks(package_dir: Path, package: str, prefix: Path) -> dict[str, str]:
-    """The configured `ament_environment_hooks()` files of a CMake package: installed name → text."""
+def cmake_hooks(package_dir: Path, package: str, prefix: Path) -> dict[str, tuple[str, Path]]:
+    """The configured `ament_environment_hooks()` files of a CMake package: installed name → (text, the
+    file it was configured from)."""
     from diffctl.workspace.cmake_script import PREFIX_SENTINEL, Call, Script
 
     lists = package_dir / "CMakeLists.txt"
-    hooks: dict[str, str] = {}
+    hooks: dict[str, tuple[str, Path]] = {}
     if not lists.is_file():
         return hooks
     script: Script
@@ -260,7 +279,7 @@ def cmake_hooks(package_dir: Path, package: str, prefix: Path) -> dict[str, str]
             name = source.name
             if name.endswith(".in"):
                 name, text = name[:-3], configure(text, variables)
-            hooks[name] = text
+            hooks[name] = (text, source)
 
     script = Script(package_dir, on_call)
     script.run_file(lists)
@@ -311,7 +330,7 @@ def colcon_pkg_hooks(package_dir: Path) -> list[str]:
 
 
 def apply_package_hooks(
-    state: HookEnv, package: str, prefix: Path, hooks: dict[str, str], extra: Iterable[str] = ()
+    state: HookEnv, package: str, prefix: Path, hooks: dict[str, tuple[str, Path]], extra: Iterable[str] = ()
 ) -> None:
     """Apply one package's hooks as its package.dsv would: its ament environment hooks (`source` per hook,
     sorted by name, through local_setup.dsv), then `extra` hooks (colcon.pkg's, relative to the prefix)."""
@@ -319,7 +338,8 @@ def apply_package_hooks(
     lines = []
     for name in sorted(hooks):
         path = str(env_dir / name)
-        state.files[path] = hooks[name]
+        state.files[path], source = hooks[name]
+        state.origins[path] = str(source)
         lines.append(f"{SOURCE};share/{package}/environment/{name}")
     # colcon makes an absolute hook path relative to the prefix; a relative one stays as written
     lines += [f"{SOURCE};{os.path.relpath(h, prefix) if os.path.isabs(h) else h}" for h in extra]

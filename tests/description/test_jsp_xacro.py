@@ -11,8 +11,8 @@ from typing import Any
 import xacro
 from lxml import etree
 
-from diffctl.bus import Node
 from tests.conftest import Procs
+from tests.probe import Probe
 from tests.waiting import wait_for
 
 GRIPPER_XACRO = """<?xml version="1.0"?>
@@ -47,7 +47,7 @@ def test_a_xacro_file_is_expanded(router: str, procs: Procs, tmp_path: Path) -> 
     assert len(expected) == 3  # the macro really ran
 
     jsp = procs.diffctl("joint-state-publisher", str(path), "--ros-args", "-p", "rate:=50")
-    node = Node("jsp_xacro_probe")
+    node = Probe("jsp_xacro_probe")
     try:
         got: list[Any] = []
         lock = threading.Lock()

@@ -15,8 +15,9 @@ from typing import Any
 
 import psutil
 
-from diffctl.bus import Node, gz
+from diffctl.bus import gz
 from diffctl.interfaces import types
+from tests.probe import Probe
 
 
 def yaw_of(q: Any) -> float:
@@ -101,7 +102,7 @@ class Stack:
              "--log-dir", str(log_dir), "--no-color"],
             stdout=self._out, stderr=subprocess.STDOUT, start_new_session=True, cwd=cwd,
         )
-        self.node: Node | None = None
+        self.node: Probe | None = None
         self.watch = Watch()
         self.clock_ns = 0
         self._cmd: dict | None = None
@@ -110,11 +111,11 @@ class Stack:
         self._seen: dict[int, psutil.Process] = {}
 
     # ------------------------------------------------------------------ bus side
-    def connect(self, timeout_s: float = 60.0) -> Node:
+    def connect(self, timeout_s: float = 60.0) -> Probe:
         deadline = time.monotonic() + timeout_s
         while True:
             try:
-                self.node = Node("e2e_test")
+                self.node = Probe("e2e_test")
                 break
             except Exception:
                 if time.monotonic() > deadline or self.proc.poll() is not None:

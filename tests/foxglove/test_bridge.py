@@ -5,8 +5,10 @@ with the advertised schema alone, and a client-advertised cmd_vel published on t
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import json
 import os
+import select
 import struct
 import threading
 import time
@@ -16,10 +18,11 @@ from typing import Any
 import websockets
 from rosbags.typesys import Stores, get_types_from_msg, get_typestore
 
-from diffctl.bus import Node
+from diffctl.client.parameter import Parameter
 from diffctl.interfaces import types
 from tests.bag.test_files import one_error_line, run, write_bag
 from tests.conftest import free_port, wait_port
+from tests.probe import Probe, spinning
 
 PROTOCOL = "foxglove.sdk.v1"
 
@@ -32,6 +35,37 @@ async def _read_until(ws: Any, pred, timeout_s: float = 30.0) -> Any:
             return m
 
 
+def serving(bridge: Any, port: int, within_s: float = 60.0) -> None:
+    """Wait for the bridge's "Foxglove server on ws://…" line: its port opens early in its start, and a
+    handshake sent before every part is up could wait past the client's open timeout on a loaded machine."""
+    wait_port(port, within_s)
+    deadline = time.monotonic() + within_s
+    seen = []
+    while time.monotonic() < deadline:
+        ready, _, _ = select.select([bridge.stdout], [], [], max(0.0, deadline - time.monotonic()))
+        line = bridge.stdout.readline() if ready else ""
+        if not line and (not ready or bridge.poll() is not None):
+            break
+        seen.append(line)
+        if "Foxglove server on ws://" in line:
+            return
+    raise AssertionError(f"the bridge did not say it serves within {within_s} s: {''.join(seen)!r}")
+
+
+def connect(port: int, **kw: Any) -> Any:
+    # a failure bound, not a guess of how long a handshake takes
+    return websockets.connect(f"ws://127.0.0.1:{port}", subprotocols=[PROTOCOL], open_timeout=60, **kw)
+
+
+async def until(condition: Any, act: Any, within_s: float = 60.0, every_s: float = 0.05) -> None:
+    """Do `act()` every `every_s` until `condition()` holds (a failure after `within_s`)."""
+    deadline = time.monotonic() + within_s
+    while not condition():
+        assert time.monotonic() < deadline, "condition not met within the bound"
+        await act()
+        await asyncio.sleep(every_s)
+
+
 def decode_with_schema(name: str, schema: str, payload: bytes) -> Any:
     """Decode CDR with only what the server advertised (a fresh rosbags store, not diffctl's types)."""
     ts = get_typestore(Stores.EMPTY)
@@ -40,7 +74,7 @@ def decode_with_schema(name: str, schema: str, payload: bytes) -> Any:
 
 
 def test_live_topics_subscribe_decode_and_client_publish(router: str, procs: Any) -> None:
-    node = Node("fg_test")
+    node = Probe("fg_test")
     pub = node.create_publisher("/odom", "nav_msgs/msg/Odometry")
     cmds: list[Any] = []
     node.create_subscription("/cmd_vel", "geometry_msgs/msg/Twist", cmds.append)
@@ -56,10 +90,10 @@ def test_live_topics_subscribe_decode_and_client_publish(router: str, procs: Any
     threading.Thread(target=publish, daemon=True).start()
     port = free_port()
     bridge = procs.diffctl("foxglove-bridge", "--port", str(port))
-    wait_port(port, 60)
+    serving(bridge, port)
 
     async def client() -> tuple[dict, Any]:
-        async with websockets.connect(f"ws://127.0.0.1:{port}", subprotocols=[PROTOCOL]) as ws:
+        async with connect(port) as ws:
             info = json.loads(await _read_until(ws, lambda m: isinstance(m, str) and '"serverInfo"' in m))
             assert "clientPublish" in info["capabilities"] and "cdr" in info["supportedEncodings"]
             channels: dict[str, dict] = {}
@@ -83,19 +117,12 @@ def test_live_topics_subscribe_decode_and_client_publish(router: str, procs: Any
             cdr = types.serialize(types.new("geometry_msgs/msg/Twist", {"linear": {"x": 0.4},
                                                                        "angular": {"z": -0.2}}),
                                   "geometry_msgs/msg/Twist")
-            for _ in range(100):
-                await ws.send(struct.pack("<BI", 1, 3) + cdr)
-                await asyncio.sleep(0.05)
-                if cmds:
-                    break
+            await until(lambda: cmds, lambda: ws.send(struct.pack("<BI", 1, 3) + cdr))
             # The app may publish JSON too (its teleop panel on a server without ros2msg definitions).
             await ws.send(json.dumps({"op": "advertise", "channels": [
                 {"id": 4, "topic": "/cmd_vel", "encoding": "json", "schemaName": "geometry_msgs/msg/Twist"}]}))
-            for _ in range(100):
-                await ws.send(struct.pack("<BI", 1, 4) + json.dumps({"linear": {"x": 0.7}}).encode())
-                await asyncio.sleep(0.05)
-                if any(c.linear.x == 0.7 for c in cmds):
-                    break
+            await until(lambda: any(c.linear.x == 0.7 for c in cmds),
+                        lambda: ws.send(struct.pack("<BI", 1, 4) + json.dumps({"linear": {"x": 0.7}}).encode()))
             return ch, msg
 
     ch, msg = asyncio.run(client())
@@ -113,10 +140,10 @@ def test_bag_playback_server(procs: Any, tmp_path: Path) -> None:
     write_bag(bag, n=10)
     port = free_port()
     server = procs.diffctl("foxglove-bridge", "--port", str(port), "--bag", str(bag))
-    wait_port(port, 60)
+    serving(server, port)
 
     async def client() -> tuple[dict, list[Any]]:
-        async with websockets.connect(f"ws://127.0.0.1:{port}", subprotocols=[PROTOCOL]) as ws:
+        async with connect(port) as ws:
             info = json.loads(await _read_until(ws, lambda m: isinstance(m, str) and '"serverInfo"' in m))
             adv = json.loads(await _read_until(ws, lambda m: isinstance(m, str) and '"advertise"' in m))
             ch = adv["channels"][0]
@@ -149,16 +176,18 @@ def test_an_unknown_capability_is_refused_with_the_valid_ones() -> None:
 
 
 def test_sim_time_is_the_servers_time(router: str, procs: Any) -> None:
-    node = Node("fg_clock")
+    node = Probe("fg_clock")
     clock = node.create_publisher("/clock", "rosgraph_msgs/msg/Clock")
     port = free_port()
     bridge = procs.diffctl("foxglove-bridge", "--ros-args", "-p", f"port:={port}", "-p", "use_sim_time:=true")
-    wait_port(port, 60)
+    serving(bridge, port)
 
     async def client() -> tuple[dict, int]:
-        async with websockets.connect(f"ws://127.0.0.1:{port}", subprotocols=[PROTOCOL]) as ws:
+        async with connect(port) as ws:
             info = json.loads(await _read_until(ws, lambda m: isinstance(m, str) and '"serverInfo"' in m))
-            for _ in range(200):
+            # /clock is published until the first Time message (the bridge's subscription may match late)
+            deadline = time.monotonic() + 60
+            while time.monotonic() < deadline:
                 clock.publish({"clock": {"sec": 42, "nanosec": 5}})
                 try:
                     m = await asyncio.wait_for(ws.recv(), 0.1)
@@ -166,7 +195,7 @@ def test_sim_time_is_the_servers_time(router: str, procs: Any) -> None:
                     continue
                 if isinstance(m, bytes) and m[0] == 2:
                     return info, struct.unpack_from("<Q", m, 1)[0]
-            raise AssertionError("no Time message")
+            raise AssertionError("no Time message within 60 s")
 
     info, t = asyncio.run(client())
     assert "time" in info["capabilities"] and t == 42 * 10**9 + 5
@@ -204,7 +233,8 @@ def _cdr_of(schema_name: str, schema: str, values: dict[str, Any]) -> tuple[Any,
 
 
 def test_services_parameters_and_assets_as_foxglove_bridge_serves_them(router: str, procs: Any, tmp_path: Path) -> None:
-    node = Node("fg_params")
+    held = contextlib.ExitStack()
+    node = held.enter_context(spinning("fg_params"))
     node.declare_parameter("gain", 0.5)
     node.declare_parameter("mode", "slow")
     calls: list[bool] = []
@@ -213,16 +243,16 @@ def test_services_parameters_and_assets_as_foxglove_bridge_serves_them(router: s
         calls.append(bool(req.data))
         return types.response("std_srvs/srv/SetBool", {"success": True, "message": f"was asked {req.data}"})
 
-    node.create_service("/fg_params/enable", "std_srvs/srv/SetBool", set_bool)
+    node.bus_node.create_service("/fg_params/enable", "std_srvs/srv/SetBool", set_bool)
     ws_root = _asset_workspace(tmp_path)
     port = free_port()
     bridge = procs.diffctl("foxglove-bridge", "--port", str(port),
                            env={**os.environ, "DIFFCTL_WORKSPACE": str(ws_root)})
-    wait_port(port, 60)
+    serving(bridge, port)
 
     async def client() -> dict[str, Any]:
         out: dict[str, Any] = {}
-        async with websockets.connect(f"ws://127.0.0.1:{port}", subprotocols=[PROTOCOL], max_size=None) as ws:
+        async with connect(port, max_size=None) as ws:
             info = json.loads(await _read_until(ws, lambda m: isinstance(m, str) and '"serverInfo"' in m))
             out["capabilities"] = info["capabilities"]
             services: dict[str, dict] = {}
@@ -261,8 +291,9 @@ def test_services_parameters_and_assets_as_foxglove_bridge_serves_them(router: s
             await ws.send(json.dumps({"op": "subscribeParameterUpdates", "parameterNames": ["/fg_params.gain"]}))
             out["set"] = await params({"op": "setParameters", "id": "s1", "parameters": [
                 {"name": "/fg_params.gain", "value": 2, "type": "float64"}]})
-            out["node_after_set"] = node.get_parameter("gain")
-            node.set_parameters({"gain": 3.25})  # a change made on the ROS side reaches the watching client
+            out["node_after_set"] = node.get_parameter("gain").value
+            # a change made on the ROS side reaches the watching client
+            node.set_parameters([Parameter("gain", value=3.25)])
             update = await _read_until(ws, lambda m: isinstance(m, str) and '"parameterValues"' in m
                                        and "3.25" in m)
             out["update"] = json.loads(update)
@@ -313,4 +344,4 @@ def test_services_parameters_and_assets_as_foxglove_bridge_serves_them(router: s
     assert out["unknown"][0] == 1 and b"no_such_package" in out["unknown"][1]
     assert out["not_listed"][0] == 1 and b"not allowed" in out["not_listed"][1]
     procs.stop(bridge)
-    node.close()
+    held.close()

@@ -8,8 +8,8 @@ import time
 
 import pytest
 
-from diffctl.bus import Node
 from diffctl.workspace.gui_tools import argv_for
+from tests.probe import Probe
 from tests.viz.conftest import fake_robot, start_viz  # noqa: F401 (fixtures)
 from tests.viz.recorder import Recorder
 from tests.viz.test_viz_browser import browser, open_page  # noqa: F401 (fixture)
@@ -20,7 +20,7 @@ pytestmark = [pytest.mark.browser, pytest.mark.slow]
 def test_joint_sliders_publish_what_joint_state_publisher_gui_would(fake_robot, start_viz, browser) -> None:  # noqa: F811
     assert "source_list:=[/joint_sliders]" in argv_for("joint_state_publisher_gui", "joint_state_publisher_gui")[-1]
     viz = start_viz()
-    node = Node("sliders_browser_test")
+    node = Probe("sliders_browser_test")
     sliders = Recorder(node, "/joint_sliders", "sensor_msgs/msg/JointState")
     page = open_page(browser, viz.url, [])
     errors: list[str] = []

@@ -34,7 +34,7 @@ def wait_for(pred, timeout_s: float = 20.0) -> bool:
 
 def test_param_on_manager_controller_and_robot_state_publisher(router, procs, tmp_path: Path, output_dir,
                                                                monkeypatch) -> None:
-    from diffctl.bus import Node
+    from tests.probe import Probe
 
     monkeypatch.setenv("ROS_HOME", str(tmp_path))
     start_manager(procs, output_dir / "manager.log")
@@ -46,7 +46,7 @@ def test_param_on_manager_controller_and_robot_state_publisher(router, procs, tm
     procs.diffctl("robot-state-publisher", "--ros-args", "--params-file", str(rsp_params),
                   stdout=(output_dir / "rsp.log").open("w"), stderr=subprocess.STDOUT)
 
-    node = Node("param_test")
+    node = Probe("param_test")
     logs: list = []
     node.create_subscription("/rosout", "rcl_interfaces/msg/Log", logs.append, latched=True, depth=1000)
     rec = Recorder()

@@ -35,11 +35,13 @@ def test_topic_echo_learns_a_type_it_does_not_know(router: str, procs) -> None:
     publisher = textwrap.dedent(f"""
         import time
         from diffctl.bag.msgdefs import register_schema
-        from diffctl.bus import Node
+        from diffctl.client import component
+        from diffctl.client.node import Node
         from diffctl.interfaces import types
         register_schema({MIXED!r}, "ros2msg", {MIXED_MSG!r}, "test")
-        node = Node("mixed_talker")
-        pub = node.create_publisher("/mixed", {MIXED!r})
+        # a full node: its ~/get_type_description is where the echo learns the type
+        node = component.start(lambda: Node("mixed_talker")).node
+        pub = node.bus_node.create_publisher("/mixed", {MIXED!r})
         print("ready", flush=True)
         while True:
             pub.publish(types.new({MIXED!r}, {{"label": "hello", "small": [1, 2], "fixed": [0.5, 1.5, 2.5],

@@ -168,3 +168,111 @@ def test_a_misspelt_type_of_another_package_is_located(tmp_path: Path) -> None:
                          "which package geometry_msgs does not define (did you mean "
                          "'geometry_msgs/msg/PoseStamped' or 'geometry_msgs/msg/PointStamped' or "
                          "'geometry_msgs/msg/Pose'?)"), last
+
+
+BAD_TYPE_WORKSPACE = {
+    "src/robot_msgs/package.xml": "<package><name>robot_msgs</name></package>",
+    "src/robot_msgs/CMakeLists.txt": 'project(robot_msgs)\nrosidl_generate_interfaces(${PROJECT_NAME} "msg/Cmd.msg")\n',
+    "src/robot_msgs/msg/Cmd.msg": "# a command\nfloat64 speed\nflot64 turn\n",
+    "src/driver/package.xml": "<package format=\"3\"><name>driver</name><export><build_type>ament_python"
+                              "</build_type></export></package>",
+    "src/driver/setup.py": "from setuptools import setup\nsetup(name='driver', packages=['driver'], entry_points="
+                           "{'console_scripts': ['drive = driver.drive:main']})\n",
+    "src/driver/driver/__init__.py": "",
+    "src/driver/driver/drive.py": "from robot_msgs.msg import Cmd\n\n\ndef main():\n    print(Cmd())\n",
+    "my_node.py": "import rclpy\nfrom robot_msgs.msg import Cmd\nprint(Cmd())\n",
+}
+
+
+def _write(root: Path, files: dict[str, str]) -> None:
+    for rel, text in files.items():
+        (root / rel).parent.mkdir(parents=True, exist_ok=True)
+        (root / rel).write_text(text)
+
+
+def test_a_bad_msg_is_one_line_and_exit_2_under_diffctl_run_and_python(tmp_path: Path) -> None:
+    """The error of a malformed workspace .msg (a bad type here; a bad default takes the same path) is the
+    user's file:line and what would be valid. `diffctl run`: that one line, exit 2, as `interface show` says it.
+    `python my_node.py`: Python's own report of an uncaught ImportError (diffctl leaves a user's interpreter
+    alone), but trimmed to the user's import and the finder, its text the one located line."""
+    ws = tmp_path / "ws"
+    _write(ws, BAD_TYPE_WORKSPACE)
+    cmd = ws / "src/robot_msgs/msg/Cmd.msg"
+    line = f"{cmd}:3: invalid type 'flot64': a primitive (bool, byte, char, int8"
+    env = ours_env({"XDG_CACHE_HOME": str(tmp_path / "cache")})
+    env.pop("PYTHONPATH", None)
+
+    def diffctl(*args: str) -> subprocess.CompletedProcess:
+        return subprocess.run([sys.executable, "-m", "diffctl", *args], env=env, cwd=ws, capture_output=True,
+                              text=True, timeout=60)
+
+    for r in (diffctl("interface", "show", "robot_msgs/msg/Cmd"), diffctl("run", "driver", "drive")):
+        assert r.returncode == 2, r.stderr
+        assert r.stderr.startswith(f"error: {line}") and r.stderr.count("\n") == 1, r.stderr
+        assert r.stdout == ""
+
+    p = subprocess.run([sys.executable, "my_node.py"], env=env, cwd=ws, capture_output=True, text=True, timeout=60)
+    assert p.returncode == 1
+    lines = p.stderr.strip().splitlines()
+    assert lines[-1].startswith(f"diffctl.interfaces.idl.InterfaceError: {line}"), p.stderr
+    assert len(lines) == 6 and lines[1:3] == [f'  File "{ws / "my_node.py"}", line 2, in <module>',
+                                              "    from robot_msgs.msg import Cmd"], p.stderr
+    cmd.write_text("float64 speed\nuint8 turn 300\n")  # a bad default
+    r = diffctl("run", "driver", "drive")
+    assert (r.returncode, r.stderr) == (2, f"error: {cmd}:2: turn: uint8 value 300 out of range [0, 255]\n")
+
+
+def _recursive_workspace(ws: Path, files: dict[str, str]) -> None:
+    listed = []
+    for name, text in files.items():
+        kind = name.rsplit(".", 1)[1]
+        listed.append(f'"{kind}/{name}"')
+        _write(ws / "src/p_msgs" / kind, {name: text})
+    _write(ws / "src/p_msgs", {
+        "package.xml": "<package><name>p_msgs</name></package>",
+        "CMakeLists.txt": f"project(p_msgs)\nrosidl_generate_interfaces(p_msgs {' '.join(listed)})\n",
+    })
+
+
+@pytest.mark.parametrize("files, error", [
+    ({"Tree.msg": "string name\nTree[] children\n"},
+     "Tree.msg:2: children: p_msgs/msg/Tree contains itself: p_msgs/msg/Tree.children → p_msgs/msg/Tree"),
+    ({"A.msg": "int32 n\nB b\n", "B.msg": "p_msgs/C[<=2] c\n", "C.msg": "A[1] a\n"},
+     "A.msg:2: b: p_msgs/msg/A contains itself: p_msgs/msg/A.b → p_msgs/msg/B.c → p_msgs/msg/C.a → p_msgs/msg/A"),
+    ({"Plan.srv": "Step first\n---\nbool ok\n", "Step.msg": "int8 n\nStep next\n"},
+     "Step.msg:2: next: p_msgs/msg/Step contains itself: p_msgs/msg/Step.next → p_msgs/msg/Step"),
+])
+def test_a_recursive_interface_is_refused_where_it_is_defined(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                                              files: dict[str, str], error: str) -> None:
+    """rosidl cannot build a type that contains itself (directly, through others, in arrays; its type-hash
+    generator fails on it): refused when its package is read, naming the cycle and the line — again on a
+    second import, never half loaded."""
+    from diffctl.interfaces import hook, registry, workspace
+    from diffctl.interfaces.idl import InterfaceError
+
+    ws = tmp_path / "ws"
+    _recursive_workspace(ws, files)
+    monkeypatch.setenv("DIFFCTL_WORKSPACE", str(ws))
+    for forget in (registry.reset, workspace.reset, hook._workspace_dirs.clear):
+        forget()
+    try:
+        for _ in range(2):
+            with pytest.raises(InterfaceError) as e:
+                registry.package("p_msgs")
+            assert error in str(e.value) and "cannot be recursive" in str(e.value), str(e.value)
+    finally:
+        for forget in (registry.reset, workspace.reset, hook._workspace_dirs.clear):
+            forget()
+
+
+def test_a_recursive_interface_is_one_line_in_interface_show_and_an_import(tmp_path: Path) -> None:
+    """Before: accepted by `interface show`, then a RecursionError of 2,995 lines at first use."""
+    ws = tmp_path / "ws"
+    _recursive_workspace(ws, {"Tree.msg": "string name\nTree[] children\n"})
+    error = "Tree.msg:2: children: p_msgs/msg/Tree contains itself: p_msgs/msg/Tree.children → p_msgs/msg/Tree"
+    env = ours_env({"DIFFCTL_WORKSPACE": str(ws), "XDG_CACHE_HOME": str(tmp_path / "cache")})
+    shown = subprocess.run([sys.executable, "-m", "diffctl", "interface", "show", "p_msgs/msg/Tree"],
+                           env=env, capture_output=True, text=True, timeout=60)
+    assert shown.returncode == 2 and shown.stderr.count("\n") == 1 and error in shown.stderr, shown.stderr
+    p = python("from p_msgs.msg import Tree\nprint(Tree())", env)
+    assert error in p.stderr.strip().splitlines()[-1] and "RecursionError" not in p.stderr, p.stderr

@@ -142,9 +142,10 @@ def test_shipped_interfaces_hash_as_rosidl(tmp_path: Path) -> None:
 
 
 def test_user_package_on_the_bus(workspace: Path, router: str) -> None:
-    from diffctl.bus import Node, wire
+    from diffctl.bus import wire
     from diffctl.interfaces import deserialize, get_interface, registry, serialize, type_hash, type_name, types
     from diffctl.interfaces import workspace as ws_index
+    from tests.probe import Probe
 
     registry.reset()
     ws_index.reset()
@@ -152,7 +153,7 @@ def test_user_package_on_the_bus(workspace: Path, router: str) -> None:
     obstacle = get_interface("robot_interfaces/msg/Obstacle")
     point = get_interface("geometry_msgs/msg/Point")
     msg = array_cls(obstacles=[obstacle(kind=1, position=point(x=2.0))], ids=[7], flags=[True, False])
-    a, b = Node("talker"), Node("listener")
+    a, b = Probe("talker"), Probe("listener")
     try:
         raw: list[bytes] = []
         decoded: list = []

@@ -8,8 +8,8 @@ from typing import Any
 
 import pytest
 
-from diffctl.bus import Node
 from tests.joint_state_publisher.test_joints import ARM
+from tests.probe import Probe
 from tests.waiting import wait_for
 
 
@@ -17,7 +17,7 @@ def test_publishes_the_description_joints_and_merges_sources(router: str, procs)
     jsp = procs.diffctl(
         "joint-state-publisher", "--ros-args", "-p", "rate:=50", "-p", "source_list:=[/arm_feedback]"
     )
-    node = Node("jsp_probe")
+    node = Probe("jsp_probe")
     try:
         got: list[Any] = []
         lock = threading.Lock()

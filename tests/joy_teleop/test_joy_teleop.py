@@ -11,7 +11,7 @@ from typing import Any
 
 import pytest
 
-from diffctl.bus import Node
+from tests.probe import Probe
 from tests.waiting import wait_for
 
 pytestmark = pytest.mark.slow
@@ -43,7 +43,7 @@ def test_axis_mappings_stream_and_fixed_messages_debounce(router: str, procs, tm
     (tmp_path / "joy_teleop.yaml").write_text(CONFIG)
     teleop = procs.diffctl("run", "joy_teleop", "joy_teleop", "--ros-args", "--params-file",
                            str(tmp_path / "joy_teleop.yaml"))
-    node = Node("joy_probe")
+    node = Probe("joy_probe")
     got: dict[str, list[Any]] = {"twist": [], "string": []}
     lock = threading.Lock()
 

@@ -26,10 +26,10 @@ CASES = json.loads((DATA / "cases.json").read_text())["cases"]
 
 
 def _resolve_chatter(ra: ros_args.RosArgs, namespace: str) -> str:
-    from diffctl.bus.node import Node
+    from tests.probe import Probe
 
     # Node's own expansion and remapping, without a session: the unbound method on a bare instance.
-    n = Node.__new__(Node)
+    n = Probe.__new__(Probe)
     n.name, n.namespace = "x", namespace
     n._remaps = {}
     for k, v in ra.remaps.items():

@@ -32,11 +32,11 @@ def finish(p: subprocess.Popen, timeout_s: float = 180.0) -> tuple[int, str]:
 
 @pytest.mark.slow
 def test_spawner_flags_on_a_named_manager(router, procs, tmp_path, monkeypatch) -> None:
-    from diffctl.bus import Node
     from diffctl.client import runtime
     from diffctl.client.node import Node as ClientNode
     from diffctl.client.signals import SignalHandlerOptions
     from diffctl.control.cm_client import ManagerClient
+    from tests.probe import Probe
 
     monkeypatch.setenv("ROS_HOME", str(tmp_path))
     manager_params = tmp_path / "manager.yaml"
@@ -55,7 +55,7 @@ def test_spawner_flags_on_a_named_manager(router, procs, tmp_path, monkeypatch) 
         stdout=log.open("w"),
         stderr=subprocess.STDOUT,
     )
-    node = Node("test_spawner_flags")
+    node = Probe("test_spawner_flags")
     node.create_publisher("/robot_description", "std_msgs/msg/String", latched=True).publish({"data": SDF.read_text()})
     runtime.init(args=["test_spawner_flags"], signal_handler_options=SignalHandlerOptions.NO)
     try:

@@ -204,11 +204,11 @@ def make_workspace(root: Path) -> Path:
 def test_a_bringup_with_xacro_across_packages_drives_on_mock_hardware(
     launch_file: str, router, launch_run, tmp_path
 ) -> None:
-    from diffctl.bus import Node
+    from tests.probe import Probe
 
     ws = make_workspace(tmp_path)
     run = launch_run("demo_bringup", launch_file, "use_mock_hardware:=true", cwd=ws)
-    node = Node("xml_bringup_test")
+    node = Probe("xml_bringup_test")
     try:
         odom_x: list[float] = []
         node.create_subscription(

@@ -14,8 +14,8 @@ import sys
 import time
 from typing import Any
 
-from diffctl.bus import Node
 from diffctl.interfaces import types
+from tests.probe import Probe
 
 CMD = "/diffbot_base_controller/cmd_vel"
 ODOM = "/diffbot_base_controller/odom"
@@ -23,7 +23,7 @@ TWIST_STAMPED = "geometry_msgs/msg/TwistStamped"
 
 
 def teleop(vx: float, wz: float) -> None:
-    node = Node("fault_teleop")
+    node = Probe("fault_teleop")
     pub = node.create_publisher(CMD, TWIST_STAMPED)
     cmd = types.new(TWIST_STAMPED, {"twist": {"linear": {"x": vx}, "angular": {"z": wz}}})
 
@@ -36,7 +36,7 @@ def teleop(vx: float, wz: float) -> None:
 
 
 def flood(rate_hz: float, vx: float) -> None:
-    node = Node("fault_flood")
+    node = Probe("fault_flood")
     pub = node.create_publisher(CMD, TWIST_STAMPED)
     cmd = types.new(TWIST_STAMPED, {"twist": {"linear": {"x": vx}}})
     period = 1.0 / rate_hz
@@ -55,7 +55,7 @@ def flood(rate_hz: float, vx: float) -> None:
 
 
 def slow(delay_s: float) -> None:
-    node = Node("fault_slow_subscriber")
+    node = Probe("fault_slow_subscriber")
 
     def stall(_m: Any) -> None:
         time.sleep(delay_s)

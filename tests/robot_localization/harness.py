@@ -8,7 +8,8 @@ import threading
 import time
 from typing import Any
 
-from diffctl.bus import Node, types
+from diffctl.interfaces import types
+from tests.probe import Probe
 
 SEC = 1_000_000_000
 
@@ -40,7 +41,7 @@ class Driver:
     """Sim time starts at 100 s; `step` advances it, stamps messages with it and keeps the nodes in step."""
 
     def __init__(self, name: str = "rl_test_driver", start_ns: int = 100 * SEC) -> None:
-        self.node = Node(name)
+        self.node = Probe(name)
         self.now_ns = start_ns  # the stamp of the next message
         self.clock_ns = start_ns  # what /clock last said: never behind now_ns, never backwards
         self.clock = self.node.create_publisher("/clock", "rosgraph_msgs/msg/Clock")

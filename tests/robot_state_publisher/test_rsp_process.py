@@ -11,9 +11,9 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from diffctl.bus import Node
 from diffctl.description.pose import Pose
 from diffctl.interfaces import types
+from tests.probe import Probe
 from tests.waiting import wait_for
 
 REPO = Path(__file__).resolve().parents[2]
@@ -42,7 +42,7 @@ def test_description_static_and_moving_tf(router: str, procs, tmp_path: Path) ->
         )
     )
     rsp = procs.diffctl("robot-state-publisher", "--ros-args", "--params-file", str(params))
-    node = Node("rsp_probe")
+    node = Probe("rsp_probe")
     assert wait_for(lambda: any(e.node == "robot_state_publisher" for e in node.graph.publishers("/tf_static"))), (
         procs.stop(rsp),
         rsp.stdout.read(),

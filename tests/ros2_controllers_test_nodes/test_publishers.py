@@ -11,7 +11,7 @@ from typing import Any
 
 import pytest
 
-from diffctl.bus import Node
+from tests.probe import Probe
 from tests.waiting import wait_for
 
 pytestmark = pytest.mark.slow
@@ -53,7 +53,7 @@ GOALS = [[0.785, 0.785], [0.0, 0.0], [-0.785, -0.785], [0.0, 0.0]]
 def test_goals_cycle_on_the_controllers_topics(router: str, procs, tmp_path: Path) -> None:
     (tmp_path / "forward.yaml").write_text(FORWARD)
     (tmp_path / "trajectory.yaml").write_text(TRAJECTORY)
-    node = Node("goal_probe")
+    node = Probe("goal_probe")
     got: dict[str, list[Any]] = {"forward": [], "trajectory": []}
     lock = threading.Lock()
 

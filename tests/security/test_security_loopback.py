@@ -16,8 +16,8 @@ import psutil
 import pytest
 from websockets.sync.client import connect
 
-from diffctl.bus import Node
 from tests.conftest import Procs, free_port
+from tests.probe import Probe
 from tests.security.conftest import Running
 from tests.security.launch_tree import LOOPBACK, labels, listening_sockets, tree
 from tests.security.netns import HostPair
@@ -38,7 +38,7 @@ SCOUTING_GROUP_HEX = "E00000E0"  # 224.0.0.224, Zenoh's multicast scouting group
 
 
 class Recorder:
-    def __init__(self, node: Node, topic: str, type_name: str) -> None:
+    def __init__(self, node: Probe, topic: str, type_name: str) -> None:
         self.msgs: list[Any] = []
         self._lock = threading.Lock()
         node.create_subscription(topic, type_name, self._on)
@@ -116,7 +116,7 @@ def test_sim_control_listens_on_loopback_only_and_viz_needs_the_token(
         assert by_port.get(router_port, "").startswith("diffctl launch"), f"no embedded router in {sockets}"
         assert by_port.get(int(viz_port), "").startswith("diffctl viz"), f"no visualizer in {sockets}"
 
-        node = Node("security_probe")
+        node = Probe("security_probe")
         cmds = Recorder(node, CMD_VEL, "geometry_msgs/msg/TwistStamped")
         probes = Recorder(node, PROBE_TOPIC, "geometry_msgs/msg/Twist")
         ws_url = f"ws://127.0.0.1:{viz_port}/ws"

@@ -10,11 +10,12 @@ import threading
 
 import pytest
 
-from diffctl.bus import Node, open_session
+from diffctl.bus import open_session
 from diffctl.description.sdf_loader import load_model, load_world
 from diffctl.sim.runner import Simulation
 from diffctl.sim.sensors import CameraSensor
 from tests.conftest import Procs
+from tests.probe import Probe
 from tests.sim.sim_helpers import CAR, EMPTY_WORLD, REPO
 from tests.waiting import wait_for
 
@@ -26,7 +27,7 @@ def test_camera_info_flows_without_rendering_and_frames_follow_image_subscribers
     sim = Simulation(world, rtf=0.0, paused=False, session=session)
     stop = threading.Event()
     thread = threading.Thread(target=sim.run, args=(stop,), daemon=True)
-    user = Node("viewer")
+    user = Probe("viewer")
     try:
         sim.spawn(load_model(CAR, name="robot"))
         thread.start()

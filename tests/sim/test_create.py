@@ -107,10 +107,10 @@ def test_a_missing_file_exits_2_before_waiting_for_a_simulator(tmp_path: Path) -
 
 @pytest.mark.slow
 def test_create_spawns_from_a_namespaced_topic_renames_and_places(router: str, procs: Any, tmp_path: Path) -> None:
-    from diffctl.bus import Node
+    from tests.probe import Probe
 
     sim, session = start_sim(procs, "-v", "3")  # paused: poses stay where they were put
-    node = Node("description_source", namespace="/r1")
+    node = Probe("description_source", namespace="/r1")
     try:
         pub = node.create_publisher("robot_description", "std_msgs/msg/String", latched=True)
         pub.publish({"data": CAR.read_text()})

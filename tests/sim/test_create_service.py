@@ -19,12 +19,13 @@ CONTROLLERS = REPO / "config" / "diff_drive_controller.yaml"
 def test_create_builds_the_manager_off_the_sim_thread_and_a_refused_create_closes_it(
     router: str, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    from diffctl.bus import Node, open_session
+    from diffctl.bus import open_session
     from diffctl.sim import services as services_mod
     from diffctl.sim.plugins.gz_ros2_control import PreparedManager
     from diffctl.sim.runner import Simulation
     from diffctl.sim.services import WorldServices
     from diffctl.sim.world_client import call, wait_for_world
+    from tests.probe import Probe
 
     built: list[tuple[PreparedManager, threading.Thread]] = []
     parsed_on: list[threading.Thread] = []
@@ -46,7 +47,7 @@ def test_create_builds_the_manager_off_the_sim_thread_and_a_refused_create_close
     stop = threading.Event()
     loop = threading.Thread(target=sim.run, args=(stop,), name="sim-loop")
     loop.start()
-    client = Node("create_test_client")
+    client = Probe("create_test_client")
     try:
         text = CAR_CONTROL.read_text().replace("PARAMETERS_CONFIG_FILE_PLACEHOLDER", str(CONTROLLERS))
         deadline = time.monotonic() + 20.0

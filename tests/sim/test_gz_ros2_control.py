@@ -176,12 +176,13 @@ def run_until(sim: Any, pred: Any, timeout_s: float = 20.0, what: str = "conditi
 def test_the_simulation_hosts_a_manager_that_drives_the_car(router: str) -> None:
     import threading
 
-    from diffctl.bus import Node, open_session
+    from diffctl.bus import open_session
     from diffctl.sim.runner import Simulation
+    from tests.probe import Probe
 
     session = open_session()
     sim = Simulation(load_world(EMPTY_WORLD), rtf=0, paused=True, session=session)
-    client = Node("test_client")
+    client = Probe("test_client")
     try:
         text = control_text()
         sim.spawn(parse_model(text, source="robot_description", name="robot"), text)

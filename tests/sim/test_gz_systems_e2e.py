@@ -12,8 +12,9 @@ from pathlib import Path
 import pytest
 from sim_helpers import CAR, EMPTY_WORLD
 
-from diffctl.bus import Node, gz
+from diffctl.bus import gz
 from diffctl.interfaces import types
+from tests.probe import Probe
 
 ODOM = """<plugin filename="libignition-gazebo-odometry-publisher-system.so"
     name="ignition::gazebo::systems::OdometryPublisher">
@@ -68,7 +69,7 @@ def test_odometry_publisher_and_battery_reach_ros_through_the_bridge(router: str
         "/model/robot/pose@tf2_msgs/msg/TFMessage[gz.msgs.Pose_V",
         "/mag@sensor_msgs/msg/MagneticField[gz.msgs.Magnetometer",
     )
-    node = Node("systems_probe")
+    node = Probe("systems_probe")
     odom, odom_cov, battery, tf, mag = [], [], [], [], []
     try:
         node.create_subscription("/model/robot/odometry", "nav_msgs/msg/Odometry", odom.append)
@@ -128,7 +129,7 @@ def test_image_bridge_from_a_launch_node_brings_the_simulated_camera_to_ros(rout
     world = systems_world(tmp_path)
     sim = procs.diffctl("sim", "run", "-r", "--rtf", "2", str(world), cwd=tmp_path)
     bridge = procs.start([*argv, "/camera"])
-    node = Node("image_probe")
+    node = Probe("image_probe")
     images = []
     try:
         node.create_subscription("/camera", "sensor_msgs/msg/Image", images.append)
@@ -155,7 +156,7 @@ def test_a_triggered_camera_sends_one_frame_per_trigger_and_none_without(router:
     world.write_text(text[: i + len("<camera>")] + "<triggered>true</triggered>" + text[i + len("<camera>") :])
     sim = procs.diffctl("sim", "run", "-r", "--rtf", "2", str(world), cwd=tmp_path)
     bridge = procs.diffctl("image-bridge", "/camera")
-    node = Node("trigger_probe")
+    node = Probe("trigger_probe")
     images, clock = [], []
     try:
         node.create_subscription("/camera", "sensor_msgs/msg/Image", images.append)

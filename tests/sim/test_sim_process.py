@@ -70,14 +70,14 @@ def test_bad_input_exits_2_with_one_line(tmp_path: Path) -> None:
 
 @pytest.mark.slow
 def test_spawn_entity_and_world_control(router: str, procs: Any, tmp_path: Path) -> None:
-    from diffctl.bus import Node
+    from tests.probe import Probe
 
     sim, session = start_sim(procs, "-v", "3")  # paused
     r = run_cli("spawn", "entity", "--file", str(CAR), "--name", "robot", "--x", "1", "--Y", "1.5707963")
     assert r.returncode == 0, r.stderr
     assert "spawned 'robot'" in r.stdout
     # The ROS form, from a latched /robot_description, and a name already taken: exit 1, the sim runs on.
-    node = Node("description_source")
+    node = Probe("description_source")
     pub = node.create_publisher("/robot_description", "std_msgs/msg/String", latched=True)
     pub.publish({"data": CAR.read_text()})
     r = run_cli("spawn", "entity", "-topic", "/robot_description", "-name", "robot", "--timeout", "10")
@@ -163,7 +163,7 @@ def _controlled_run(procs: Any, session: Any, tmp_path: Path, batches: list[int]
     """A fresh sim, paused at sim time 0, with the ros2_control car: its in-simulator manager answers at once;
     the spawner's switch waits for the manager's first cycle, which one step runs; then a command is given and
     the world stepped in `batches`. The car's pose after them."""
-    from diffctl.bus import Node
+    from tests.probe import Probe
 
     desc = tmp_path / "car.sdf"
     desc.write_text(CAR_CONTROL.read_text().replace("PARAMETERS_CONFIG_FILE_PLACEHOLDER", str(CONTROLLERS)))
@@ -171,7 +171,7 @@ def _controlled_run(procs: Any, session: Any, tmp_path: Path, batches: list[int]
     sim, _ = start_sim(procs, "--rtf", "0", "--ros-args", "--log-level", "controller_manager:=debug", "--")  # paused
     lines: list[str] = []
     threading.Thread(target=lambda: lines.extend(iter(sim.stdout.readline, "")), daemon=True).start()
-    node = Node("driver")
+    node = Probe("driver")
     try:
         assert run_cli("spawn", "entity", "--file", str(desc), "--name", "robot").returncode == 0
         # The manager answers while the world is paused: a spawner only waits for its services.

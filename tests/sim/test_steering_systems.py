@@ -171,8 +171,8 @@ def test_mecanum_and_joint_systems_over_their_gz_topics_through_the_bridge(route
 
     from test_joint_systems import arm, plugin
 
-    from diffctl.bus import Node
     from diffctl.interfaces import types
+    from tests.probe import Probe
 
     jpc = "<joint_name>j1</joint_name><topic>j1_cmd</topic>"
     arm_model = arm(
@@ -190,7 +190,7 @@ def test_mecanum_and_joint_systems_over_their_gz_topics_through_the_bridge(route
         "/j1_cmd@std_msgs/msg/Float64]gz.msgs.Double",
         "/world/test/model/arm/joint_state@sensor_msgs/msg/JointState[gz.msgs.Model",
     )
-    node = Node("systems_probe")
+    node = Probe("systems_probe")
     odom, joints = [], []
     try:
         node.create_subscription("/model/omni/odometry", "nav_msgs/msg/Odometry", odom.append)

@@ -12,7 +12,7 @@ from collections.abc import Callable
 
 import pytest
 
-from diffctl.bus import Node
+from tests.probe import Probe
 
 
 class Pty:
@@ -63,7 +63,7 @@ def wait_for(pred: Callable[[], bool], pty: Pty, timeout_s: float = 10.0) -> boo
 def test_keys_drive_and_exit_sends_zero(
     router: str, procs, args: list[str], topic: str, typename: str, quit_with: str
 ) -> None:
-    node = Node("keyboard_probe")
+    node = Probe("keyboard_probe")
     got: list[object] = []
     node.create_subscription(topic, typename, got.append)
     pty = Pty()
@@ -117,3 +117,42 @@ def test_not_a_terminal_is_a_clear_error() -> None:
         timeout=30,
     )
     assert r.returncode == 2 and "stdin is not one" in " ".join(r.stderr.split())
+
+
+def test_ros_executable_keeps_upstream_defaults(router: str, procs) -> None:
+    """teleop_twist_keyboard as Jazzy's (2.4.1): Twist on cmd_vel, speed/turn parameters, all read-only."""
+    from tests.probe import parameters
+
+    node = Probe("keyboard_probe")
+    got: list[object] = []
+    node.create_subscription("/cmd_vel", "geometry_msgs/msg/Twist", got.append)
+    pty = Pty()
+    try:
+        proc = procs.start([sys.executable, "-m", "diffctl", "run", "teleop_twist_keyboard", "teleop_twist_keyboard",
+                            "--ros-args", "-p", "speed:=0.3"], stdin=pty.slave, stdout=pty.slave, stderr=pty.slave)
+        assert wait_for(lambda: any(e.node == "teleop_twist_keyboard" for e in node.graph.publishers("/cmd_vel")),
+                        pty, timeout_s=60), pty.text
+        described = parameters(node, "/teleop_twist_keyboard")
+        assert {n: bool(d.read_only) for n, d in described.items() if n in ("stamped", "frame_id", "speed", "turn")} \
+            == {"stamped": True, "frame_id": True, "speed": True, "turn": True}
+        pty.type("u")
+        assert wait_for(lambda: len(got) >= 1, pty), pty.text
+        assert (got[0].linear.x, got[0].angular.z) == (0.3, 1.0)
+        time.sleep(0.3)
+        assert len(got) == 1  # on key presses only: no repeating
+        pty.type("\x03")
+        assert proc.wait(10) == 0
+        assert wait_for(lambda: len(got) >= 2, pty)
+        assert (got[-1].linear.x, got[-1].angular.z) == (0.0, 0.0)
+    finally:
+        node.close()
+        pty.close()
+    pty = Pty()
+    try:  # as upstream raises: a frame without stamped messages is refused
+        proc = procs.start([sys.executable, "-m", "diffctl", "run", "teleop_twist_keyboard", "teleop_twist_keyboard",
+                            "--ros-args", "-p", "frame_id:=base_link"], stdin=pty.slave, stdout=pty.slave,
+                           stderr=pty.slave)
+        assert proc.wait(60) == 2
+        assert wait_for(lambda: "'frame_id' can only be set when 'stamped' is True" in pty.text, pty), pty.text
+    finally:
+        pty.close()

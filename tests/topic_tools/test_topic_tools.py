@@ -10,7 +10,7 @@ from typing import Any
 
 import pytest
 
-from diffctl.bus import Node
+from tests import probe as bus_probe
 from tests.waiting import wait_for
 
 STRING = "std_msgs/msg/String"
@@ -19,7 +19,7 @@ STRING = "std_msgs/msg/String"
 class Probe:
     """A publisher on one topic and a raw subscriber on another, counting what comes through."""
 
-    def __init__(self, node: Node, out_topic: str, out_type: str = STRING) -> None:
+    def __init__(self, node: Any, out_topic: str, out_type: str = STRING) -> None:
         self.node = node
         self.got: list[Any] = []
         self.raw: list[bytes] = []
@@ -40,7 +40,7 @@ class Probe:
             return [m.data for m in self.got]
 
 
-def _publisher(node: Node, topic: str, typename: str = STRING) -> Any:
+def _publisher(node: Any, topic: str, typename: str = STRING) -> Any:
     pub = node.create_publisher(topic, typename)
     assert wait_for(lambda: pub.subscription_count > 0, timeout_s=30), f"the tool never subscribed to {topic}"
     return pub
@@ -50,7 +50,7 @@ def test_relay_passes_any_type_byte_for_byte_and_lazy_waits_for_a_subscriber(rou
     relay = procs.diffctl("run", "topic_tools", "relay", "/scan", "/scan_copy")
     lazy = procs.diffctl("run", "topic_tools", "relay", "/scan", "/scan_lazy", "--ros-args", "-p", "lazy:=true",
                          "-r", "__node:=lazy_relay")
-    node = Node("relay_probe")
+    node = bus_probe.probe("relay_probe")
     try:
         scan_type = "sensor_msgs/msg/LaserScan"
         sent: list[bytes] = []
@@ -83,7 +83,7 @@ def test_throttle_by_messages_and_by_bytes(router: str, procs) -> None:
                             "-p", "use_wall_clock:=true", "-r", "__node:=throttle_msgs")
     by_bytes = procs.diffctl("run", "topic_tools", "throttle", "bytes", "/in_b", "24", "1.0", "/out_b",
                              "--ros-args", "-p", "use_wall_clock:=true", "-r", "__node:=throttle_bytes")
-    node = Node("throttle_probe")
+    node = bus_probe.probe("throttle_probe")
     try:
         for suffix, burst, passing in (("m", ["not dropped", "dropped", "dropped", "dropped"], 1),
                                        ("b", ["not dropped", "not dropped", "dropped", "dropped", "dropped"], 2)):
@@ -106,7 +106,7 @@ def test_throttle_by_messages_and_by_bytes(router: str, procs) -> None:
 def test_drop_x_of_every_y(router: str, procs, x: int, y: int) -> None:
     # test_drop.cpp's two cases: the first X of every Y are dropped
     drop = procs.diffctl("run", "topic_tools", "drop", "/in_d", str(x), str(y))
-    node = Node("drop_probe")
+    node = bus_probe.probe("drop_probe")
     try:
         probe = Probe(node, "/in_d_drop")
         pub = _publisher(node, "/in_d")
@@ -128,7 +128,7 @@ def test_drop_x_of_every_y(router: str, procs, x: int, y: int) -> None:
 
 def test_mux_switches_inputs_through_its_services(router: str, procs) -> None:
     mux = procs.diffctl("run", "topic_tools", "mux", "/sel", "/a", "/b")
-    node = Node("mux_probe")
+    node = bus_probe.probe("mux_probe")
     try:
         probe = Probe(node, "/sel")
         a, b = node.create_publisher("/a", STRING), node.create_publisher("/b", STRING)
@@ -177,7 +177,7 @@ def test_mux_switches_inputs_through_its_services(router: str, procs) -> None:
 
 
 def test_relay_field_as_its_readme_shows(router: str, procs) -> None:
-    node = Node("relay_field_probe")
+    node = bus_probe.probe("relay_field_probe")
     try:
         chatter = node.create_publisher("/chatter", STRING)
         relay = procs.diffctl("run", "topic_tools", "relay_field", "/chatter", "/header", "std_msgs/Header",

@@ -11,7 +11,7 @@ from typing import Any
 
 import yaml
 
-from diffctl.bus import Node
+from tests.probe import Probe
 from tests.waiting import wait_for
 
 TWIST = "geometry_msgs/msg/Twist"
@@ -25,7 +25,7 @@ UPSTREAM_CONFIG = {  # twist_mux's test/system_config.yaml
 
 
 class Out:
-    def __init__(self, node: Node, topic: str, typename: str) -> None:
+    def __init__(self, node: Probe, topic: str, typename: str) -> None:
         self.got: list[tuple[float, Any]] = []
         self.lock = threading.Lock()
         node.create_subscription(topic, typename, self._keep)
@@ -51,7 +51,7 @@ def test_priorities_timeouts_and_locks(router: str, procs, tmp_path: Path) -> No
     params = tmp_path / "twist_mux.yaml"
     params.write_text(yaml.safe_dump({"twist_mux": {"ros__parameters": UPSTREAM_CONFIG}}))
     mux = procs.diffctl("run", "twist_mux", "twist_mux", "--ros-args", "--params-file", str(params))
-    node = Node("twist_mux_probe")
+    node = Probe("twist_mux_probe")
     try:
         out = Out(node, "/cmd_vel_out", TWIST)
         vel1, vel3 = node.create_publisher("/vel_1", TWIST), node.create_publisher("/vel_3", TWIST)
@@ -118,7 +118,7 @@ def test_stamped_mux_and_the_stampers(router: str, procs, tmp_path: Path) -> Non
                             "-r", "cmd_vel_in:=/raw", "-r", "cmd_vel_out:=/nav_vel")
     unstamper = procs.diffctl("run", "twist_stamper", "twist_unstamper", "--ros-args",
                               "-r", "cmd_vel_in:=/stamped_in", "-r", "cmd_vel_out:=/plain")
-    node = Node("stamper_probe")
+    node = Probe("stamper_probe")
     try:
         stamped = Out(node, "/stamped_in", "geometry_msgs/msg/TwistStamped")
         plain = Out(node, "/plain", TWIST)

@@ -13,7 +13,7 @@ from typing import Any
 import pytest
 import xacro
 
-from diffctl.bus import Node
+from tests.probe import Probe
 from tests.waiting import wait_for
 
 pytestmark = pytest.mark.slow
@@ -64,7 +64,7 @@ def test_display_launch_shows_a_workspace_xacro_and_its_sliders_move_the_joints(
 
     launch = procs.diffctl("launch", "urdf_launch", "display.launch.py", "urdf_package:=pan_tilt_description",
                            "urdf_package_path:=urdf/pan_tilt.urdf.xacro", cwd=ws)
-    node = Node("urdf_launch_probe")
+    node = Probe("urdf_launch_probe")
     try:
         got: dict[str, list[Any]] = {"desc": [], "joints": []}
         lock = threading.Lock()

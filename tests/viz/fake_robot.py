@@ -16,9 +16,9 @@ from pathlib import Path
 
 import numpy as np
 
-from diffctl.bus import Node
 from diffctl.description import sdf_loader
 from diffctl.interfaces import types
+from tests.probe import Probe
 
 REPO = Path(__file__).resolve().parents[2]
 ROOM_HALF_M = 3.0
@@ -50,7 +50,7 @@ def main() -> None:
     sdf_path = Path(sys.argv[1]) if len(sys.argv) > 1 else REPO / "description" / "my_diff_car_control.sdf"
     text = sdf_path.read_text()
     model = sdf_loader.parse_model(text, check_files=False)
-    node = Node("fake_robot")
+    node = Probe("fake_robot")
     state = {"x": 0.0, "y": 0.0, "yaw": 0.0, "v": 0.0, "w": 0.0, "cmd_t": 0.0, "wheel": 0.0}
     lock = threading.Lock()
 

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 import threading
 
-from diffctl.bus import Node
+from tests.probe import Probe
 
 
 class Recorder:
-    def __init__(self, node: Node, topic: str, type_name: str) -> None:
+    def __init__(self, node: Probe, topic: str, type_name: str) -> None:
         self.msgs: list = []
         self._lock = threading.Lock()
         node.create_subscription(topic, type_name, self._on)

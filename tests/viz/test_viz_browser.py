@@ -10,7 +10,7 @@ from pathlib import Path
 
 import pytest
 
-from diffctl.bus import Node
+from tests.probe import Probe
 from tests.viz.recorder import Recorder
 
 REPO = Path(__file__).resolve().parents[2]
@@ -61,7 +61,7 @@ def open_page(ctx, url: str, requests: list[str]):
 
 def test_page_offline_draws_robot_and_arrow_up_drives_it(fake_robot, start_viz, browser) -> None:
     viz = start_viz("-d", str(REPO / "config" / "diffbot.rviz"))  # as the tutorial's launch file passes it
-    node = Node("viz_browser_test")
+    node = Probe("viz_browser_test")
     cmds = Recorder(node, CMD_TOPIC, "geometry_msgs/msg/TwistStamped")
     odom = Recorder(node, "/diffbot_base_controller/odom", "nav_msgs/msg/Odometry")
     requests: list[str] = []
@@ -161,7 +161,7 @@ def test_page_offline_draws_robot_and_arrow_up_drives_it(fake_robot, start_viz, 
 
 
 def test_wrong_token_is_refused_with_a_visible_message(viz, browser) -> None:
-    node = Node("viz_browser_test")
+    node = Probe("viz_browser_test")
     cmds = Recorder(node, CMD_TOPIC, "geometry_msgs/msg/TwistStamped")
     page = open_page(browser, f"{viz.base}/?token=not-the-token", [])
     assert page.evaluate("diffviz.authorized") is False
@@ -203,7 +203,7 @@ def test_wrong_token_is_refused_with_a_visible_message(viz, browser) -> None:
 def test_full_sim_control_stack_driven_from_the_page(launch_sim_control, browser) -> None:
     """`diffctl launch sim_control` as the tutorial runs it: the page it starts drives the simulated car."""
     viz = launch_sim_control()
-    node = Node("viz_browser_test")
+    node = Probe("viz_browser_test")
     odom = Recorder(node, "/diffbot_base_controller/odom", "nav_msgs/msg/Odometry")
     page = open_page(browser, viz.url, [])
     # The empty world gives the lidar nothing to hit: the scan arrives, with no points to draw.

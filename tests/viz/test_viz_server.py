@@ -16,7 +16,7 @@ import pytest
 import websockets
 from websockets.exceptions import InvalidStatus
 
-from diffctl.bus import Node
+from tests.probe import Probe
 from tests.viz.recorder import Recorder
 
 REPO = Path(__file__).resolve().parents[2]
@@ -61,7 +61,7 @@ def test_streams_follow_the_robot_and_teleop_drives_it(fake_robot, viz) -> None:
     assert http_get(viz.host_port, "/secret")[0] == 404
     assert http_get(viz.host_port, "/", {"Host": "evil.example:80"})[0] == 403  # DNS rebinding
 
-    node = Node("viz_test_listener")
+    node = Probe("viz_test_listener")
     cmds = Recorder(node, CMD_TOPIC, "geometry_msgs/msg/TwistStamped")
 
     async def session() -> None:
@@ -119,7 +119,7 @@ def test_streams_are_taken_only_while_a_page_is_open(viz) -> None:
     """As foxglove_bridge subscribes for its clients: without a page the visualizer decodes no /tf, odometry,
     scans, joint states or /clock (the latched /tf_static and description stay); the first page takes them,
     the last one to close drops them."""
-    node = Node("viz_graph_probe")
+    node = Probe("viz_graph_probe")
     live = {"/tf", "/joint_states", "/clock", "/diffbot_base_controller/odom", "/scan"}
 
     def viz_subscribed() -> set[str]:
@@ -151,7 +151,7 @@ def test_streams_are_taken_only_while_a_page_is_open(viz) -> None:
 
 
 def test_wrong_token_foreign_origin_and_publisher_panel(viz) -> None:
-    node = Node("viz_test_listener")
+    node = Probe("viz_test_listener")
     cmds = Recorder(node, CMD_TOPIC, "geometry_msgs/msg/TwistStamped")
     twists = Recorder(node, "/viz_test/cmd", "geometry_msgs/msg/Twist")
     stamped = Recorder(node, "/viz_test/stamped", "geometry_msgs/msg/TwistStamped")

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import os
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -102,6 +103,40 @@ def test_unknown_hook_type_is_one_located_error(tmp_path: Path) -> None:
         process_dsv(HookEnv({}), str(hook), str(tmp_path))
     assert e.value.line == 2 and "prepend-unique" in str(e.value) and "prepend-non-duplicate" in str(e.value)
 
+
+def test_a_configured_hooks_error_names_the_users_dsv_in_and_line(tmp_path: Path) -> None:
+    """`ament_environment_hooks(hooks/x.dsv.in)` is configured in memory for the package's prefix in diffctl's
+    cache: an error in it names the user's `hooks/x.dsv.in` and its line (before: the cached copy's path),
+    and a shell hook's complaint names the user's `.sh.in` too (a shell sourcing it goes on, so does diffctl)."""
+    from diffctl.workspace import use_in_children
+
+    ws = tmp_path / "ws"
+    pkg = ws / "src" / "my_robot_gazebo"
+    write_tree(pkg, {
+        "package.xml": package_xml("my_robot_gazebo"),
+        "CMakeLists.txt": "project(my_robot_gazebo)\ninstall(DIRECTORY worlds DESTINATION share/${PROJECT_NAME})\n"
+        'ament_environment_hooks("${CMAKE_CURRENT_SOURCE_DIR}/hooks/${PROJECT_NAME}.dsv.in" hooks/paths.sh.in)\n',
+        "hooks/my_robot_gazebo.dsv.in": "# worlds\n"
+        "prepend-non-duplicate;GZ_SIM_RESOURCE_PATH;share/@PROJECT_NAME@/worlds\n"
+        "prepend-non-duplcate;GZ_SIM_RESOURCE_PATH;share\n",
+        "hooks/paths.sh.in": "export ROBOT_HOOK=1\nif [ then\n",
+        "worlds/w.sdf": "<sdf/>",
+    })
+    env = {"PATH": os.environ["PATH"], "XDG_CACHE_HOME": str(tmp_path / "cache")}
+    with pytest.raises(ConfigError) as e:
+        use_in_children(ws, env)
+    assert str(e.value).startswith(
+        f"{pkg / 'hooks/my_robot_gazebo.dsv.in'}:3: unknown environment hook type 'prepend-non-duplcate' "
+        "(did you mean 'prepend-non-duplicate'"), str(e.value)
+
+    (pkg / "hooks/my_robot_gazebo.dsv.in").write_text("prepend-non-duplicate;GZ_SIM_RESOURCE_PATH;share\n")
+    shown = subprocess.run(
+        [sys.executable, "-c", "import os\nfrom pathlib import Path\nfrom diffctl.workspace import use_in_children\n"
+         f"env = dict(os.environ)\nuse_in_children(Path({str(ws)!r}), env)\nprint(env['ROBOT_HOOK'])"],
+        env={**os.environ, "XDG_CACHE_HOME": str(tmp_path / "cache")}, capture_output=True, text=True, timeout=60)
+    assert shown.stdout == "1\n", shown.stderr
+    assert shown.stderr.startswith(f"warning: {pkg / 'hooks/paths.sh.in'}: line "), shown.stderr
+    assert "diffctl-hook" not in shown.stderr and "/cache/" not in shown.stderr
 
 def test_order_is_topological_then_alphabetical() -> None:
     assert order_packages({"c": set(), "b": {"a"}, "a": {"c"}, "d": set()}) == ["c", "a", "b", "d"]

@@ -13,7 +13,7 @@ from typing import Any
 
 import pytest
 
-from diffctl.bus import Node
+from tests.probe import Probe
 from tests.waiting import wait_for
 from tests.workspace.conftest import package_xml
 
@@ -57,7 +57,7 @@ def test_a_sourced_ros_program_joins_the_graph_over_rmw_zenoh(router: str, procs
     monkeypatch.setenv("AMENT_PREFIX_PATH", str(prefix))
     monkeypatch.delenv("RMW_IMPLEMENTATION", raising=False)
     launch = procs.diffctl("launch", str(tmp_path / "nav.launch.py"))
-    node = Node("sourced_probe")
+    node = Probe("sourced_probe")
     try:
         got: list[Any] = []
         lock = threading.Lock()

@@ -198,3 +198,48 @@ def test_a_sigint_to_diffctl_run_alone_reaches_the_node(ws: Path) -> None:
         if p.poll() is None:
             os.killpg(p.pid, signal.SIGKILL)
             p.wait()
+
+
+DEAF = """import signal
+import time
+
+
+def main():
+    for sig in (signal.SIGINT, signal.SIGTERM):
+        signal.signal(sig, lambda *_: print('ignored', signal.Signals(_[0]).name, flush=True))
+    print('deaf', flush=True)
+    while True:
+        time.sleep(0.05)
+"""
+
+
+@pytest.mark.slow
+def test_a_node_deaf_to_ctrl_c_is_stopped_as_launch_stops_it(ws: Path) -> None:
+    """ros2 run waits forever on a node that ignores SIGINT; diffctl run escalates as diffctl launch (and ros2
+    launch) does: SIGTERM 5 s after the Ctrl-C, SIGKILL 5 s after that, each step said."""
+    import signal
+    import time
+
+    write_tree(ws / "src/my_pkg", {"my_pkg/deaf.py": DEAF})
+    setup = ws / "src/my_pkg/setup.py"
+    setup.write_text(setup.read_text().replace("'crash = ", "'deaf = my_pkg.deaf:main', 'crash = "))
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    p = subprocess.Popen([sys.executable, "-m", "diffctl", "run", "my_pkg", "deaf"], cwd=ws, env=env,
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, start_new_session=True)
+    try:
+        assert p.stdout.readline() == "deaf\n"
+        started = time.monotonic()
+        os.killpg(p.pid, signal.SIGINT)  # a terminal's Ctrl-C: to the whole foreground group
+        os.killpg(p.pid, signal.SIGINT)  # and a second one, which changes nothing
+        out, err = p.communicate(timeout=60)
+        took = time.monotonic() - started
+        assert p.returncode == 128 + signal.SIGKILL, err
+        assert err.splitlines() == ["[ros2run]: still running 5 s after SIGINT: sending SIGTERM",
+                                    "[ros2run]: still running 5 s after SIGTERM: sending SIGKILL",
+                                    "[ros2run]: Killed"], err
+        assert out.count("ignored SIGINT") >= 1 and out.count("ignored SIGTERM") == 1, out
+        assert 10.0 <= took < 30, took
+    finally:
+        if p.poll() is None:
+            os.killpg(p.pid, signal.SIGKILL)
+            p.wait()

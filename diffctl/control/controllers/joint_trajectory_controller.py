@@ -34,6 +34,7 @@ from typing import Any
 from diffctl.client.action.server import ActionServer, CancelResponse, GoalResponse
 from diffctl.client.interfaces import cls
 from diffctl.client.qos import qos_profile_system_default
+from diffctl.control.cdr_template import CdrTemplate
 from diffctl.control.controller_interface import (
     CallbackReturn,
     ControllerInterface,
@@ -168,7 +169,11 @@ class JointTrajectoryController(ControllerInterface):
                 self._logger.warn(f"unknown parameter '{name}.{key}' is ignored")
         declare_all(node, decls, name)
         node.add_on_set_parameters_callback(self._on_set_parameters)
-        self._wraps, self._velocity_limits = joints_of_description(self.get_robot_description(), list(joints))
+        try:
+            self._wraps, self._velocity_limits = joints_of_description(self.get_robot_description(), list(joints))
+        except Exception as e:  # diffctl's parser may refuse what urdf::Model reads: go on without its facts
+            self._logger.warn(f"the robot description could not be read ({e}): no joint is treated as continuous")
+            self._wraps, self._velocity_limits = [False] * len(joints), [0.0] * len(joints)
         if self.get_update_rate() == 0:
             raise RuntimeFailure("Controller's update rate is set to 0. This should not happen!")
         self._period_ns = int(1e9 / self.get_update_rate())
@@ -336,22 +341,32 @@ class JointTrajectoryController(ControllerInterface):
                                           p.stopped_velocity_tolerance, p.goal_time_s)
 
     def _build_state_message(self) -> None:
+        """The controller_state message's fixed layout (names, which arrays are sized) as a CDR template whose
+        leaves are the numbers a cycle changes, in the message's byte order."""
         n = self._dof
         msg = cls(STATE)()
         msg.joint_names = list(self._p().joints)
-        for part, sizes in (("reference", ("positions", "velocities", "accelerations")),
-                            ("feedback", ("positions",)), ("error", ("positions",))):
-            for field in sizes:
-                setattr(getattr(msg, part), field, [0.0] * n)
-        for part in ("feedback", "error"):
-            if self._has_state["velocity"]:
-                getattr(msg, part).velocities = [0.0] * n
-            if self._has_state["acceleration"]:
-                getattr(msg, part).accelerations = [0.0] * n
-        for kind, field in zip(_KINDS, ("positions", "velocities", "accelerations", "effort"), strict=True):
-            if self._has_cmd[kind]:
-                setattr(msg.output, field, [0.0] * n)
-        self._state_msg = msg
+        leaves: list[tuple[str, str]] = [("header.stamp.sec", "i"), ("header.stamp.nanosec", "I")]
+        sized = {
+            "reference": ("positions", "velocities", "accelerations"),
+            "feedback": ("positions", *(("velocities",) if self._has_state["velocity"] else ()),
+                         *(("accelerations",) if self._has_state["acceleration"] else ())),
+            "output": tuple(f for k, f in zip(_KINDS, ("positions", "velocities", "accelerations", "effort"),
+                                              strict=True) if self._has_cmd[k]),
+        }
+        sized["error"] = sized["feedback"]
+        for part in ("reference", "feedback", "error", "output"):
+            point = getattr(msg, part)
+            for field in ("positions", "velocities", "accelerations", "effort"):
+                if field in sized[part]:
+                    setattr(point, field, [0.0] * n)
+                    leaves += [(f"{part}.{field}[{i}]", "d") for i in range(n)]
+            if part in ("reference", "feedback"):
+                leaves += [(f"{part}.time_from_start.sec", "i"), (f"{part}.time_from_start.nanosec", "I")]
+        leaves.append(("speed_scaling_factor", "d"))
+        self._state_layout = sized
+        self._state_cdr = CdrTemplate(msg, STATE, leaves)
+        self._output_values: list[float] = [0.0] * (n * len(sized["output"]))
 
     def on_activate(self, previous_state: Any) -> Any:
         if self._new_params is not None:
@@ -912,34 +927,26 @@ class JointTrajectoryController(ControllerInterface):
         pub = self._state_pub
         if pub is None:
             return
-        msg = self._state_msg
-        _fill_stamp(msg.header.stamp, time_ns)
+        layout = self._state_layout
         desired, current, error = self._state_desired, self._state_current, self._state_error
-        _set_duration(msg.reference.time_from_start, desired.time_from_start_ns)
-        msg.reference.positions = desired.positions
-        msg.reference.velocities = desired.velocities
-        msg.reference.accelerations = desired.accelerations
-        _set_duration(msg.feedback.time_from_start, current.time_from_start_ns)
-        msg.feedback.positions = current.positions
-        msg.error.positions = error.positions
-        if self._has_state["velocity"]:
-            msg.feedback.velocities = current.velocities
-            msg.error.velocities = error.velocities
-        if self._has_state["acceleration"]:
-            msg.feedback.accelerations = current.accelerations
-            msg.error.accelerations = error.accelerations
+        values: list[Any] = list(divmod(time_ns, _NS))
+        for field in layout["reference"]:
+            values += getattr(desired, field) or [0.0] * self._dof
+        values += divmod(desired.time_from_start_ns, _NS)
+        for field in layout["feedback"]:
+            values += getattr(current, field)
+        values += divmod(current.time_from_start_ns, _NS)
+        for field in layout["error"]:
+            values += getattr(error, field)
         if all(self._commands_finite(k) for k in _KINDS if self._has_cmd[k]):
-            out = msg.output
-            if self._has_cmd["position"]:
-                out.positions = self._from_commands("position")
-            if self._has_cmd["velocity"]:
-                out.velocities = self._from_commands("velocity")
-            if self._has_cmd["acceleration"]:
-                out.accelerations = self._from_commands("acceleration")
-            if self._has_cmd["effort"]:
-                out.effort = self._from_commands("effort")
-        msg.speed_scaling_factor = self._scaling_factor
-        pub.publish(msg)
+            output: list[float] = []
+            for kind in _KINDS:
+                if self._has_cmd[kind]:
+                    output += self._from_commands(kind)
+            self._output_values = output  # kept while some command is not a number, as upstream keeps it
+        values += self._output_values
+        values.append(self._scaling_factor)
+        pub.publish_values(self._state_cdr, values)
 
     # --- for tests and tools --------------------------------------------------------------------------------
     @property

@@ -36,6 +36,7 @@ from . import (  # noqa: F401
     task,
     utilities,
 )
+from .impl import implementation_singleton  # noqa: F401  (rclpy's __init__ loads its binding through it)
 
 
 def create_node(*args: Any, **kwargs: Any) -> Any:

@@ -1,6 +1,11 @@
 """rclpy.node (diffctl: diffctl.client.node)."""
 
+from typing import TypeVar
+
+from diffctl.client.duration import S_TO_NS  # noqa: F401
+from diffctl.client.exceptions import InvalidHandle  # noqa: F401
 from diffctl.client.node import *  # noqa: F403
+from diffctl.client.parameter import PARAMETER_SEPARATOR_STRING  # noqa: F401
 
 # rclpy's node module imports these, so after `from rclpy.node import Node` they are attributes of `rclpy`
 # (`rclpy.executors.…`, `rclpy.logging.…`) as programs expect; each is a thin name map over a module
@@ -38,3 +43,9 @@ from . import (  # noqa: F401
     waitable,
 )
 from .impl import logging_severity, rcutils_logger  # noqa: F401
+
+HIDDEN_NODE_PREFIX = "_"
+MsgType = TypeVar("MsgType")
+SrvType = TypeVar("SrvType")
+SrvTypeRequest = TypeVar("SrvTypeRequest")
+SrvTypeResponse = TypeVar("SrvTypeResponse")

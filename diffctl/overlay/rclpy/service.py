@@ -1,3 +1,10 @@
 """rclpy.service (diffctl: diffctl.client.service)."""
 
+from typing import TypeVar
+
 from diffctl.client.service import *  # noqa: F403
+from diffctl.client.service_introspection import ServiceIntrospectionState  # noqa: F401
+
+SrvType = TypeVar("SrvType")
+SrvTypeRequest = TypeVar("SrvTypeRequest")
+SrvTypeResponse = TypeVar("SrvTypeResponse")

@@ -4,3 +4,5 @@ from diffctl.client.type_description_service import (  # noqa: F401
     START_TYPE_DESCRIPTION_SERVICE_PARAM,
     TypeDescriptionService,
 )
+
+TOPIC_SEPARATOR_STRING = "/"

@@ -24,7 +24,7 @@ from typing import Any
 
 from lxml import etree
 
-from diffctl.control.controller_node import ManagerTime, make_controller_node
+from diffctl.control.controller_node import ManagerTime, make_controller_node, spin_resiliently
 from diffctl.control.hardware_interface import HardwareInfo
 from diffctl.control.manager import ControllerManager
 from diffctl.control.manager_node import make_manager_node, manager_flat_params
@@ -206,6 +206,7 @@ class _Hosted:
     executor: Any
     thread: threading.Thread
     owns_context: bool  # made ready here: shut down with the last manager
+    stop: threading.Event
     users: int = 0
 
 
@@ -225,23 +226,23 @@ def hosted_executor() -> tuple[Any, Any]:
 
             from diffctl import ros_args
             from diffctl.client.context import get_default_context
-            from diffctl.client.executors import ExternalShutdownException, MultiThreadedExecutor
+            from diffctl.client.executors import MultiThreadedExecutor
+            from diffctl.client.ros_logging import get_logger
 
             context = get_default_context()
             owns = not context.ok()
             if owns:
                 context.init([sys.argv[0], "--ros-args", *ros_args.current_argv()])
             executor = MultiThreadedExecutor(num_threads=2, context=context)
+            log = get_logger("gz_ros2_control")
+            stop = threading.Event()
 
             def spin() -> None:
-                try:
-                    executor.spin()
-                except ExternalShutdownException:
-                    pass
+                spin_resiliently(executor, lambda: context.ok() and not stop.is_set(), log)
 
             thread = threading.Thread(target=spin, name="gz_ros2_control_executor", daemon=True)
             thread.start()
-            _hosted = _Hosted(context, executor, thread, owns)
+            _hosted = _Hosted(context, executor, thread, owns, stop)
         _hosted.users += 1
         return _hosted.context, _hosted.executor
 
@@ -257,7 +258,9 @@ def release_hosted() -> None:
         if h.users > 0:
             return
         _hosted = None
+    h.stop.set()
     h.executor.shutdown(timeout_sec=1.0)
+    h.thread.join(1.0)
     if h.owns_context:
         from diffctl.client import runtime
         from diffctl.client.context import get_default_context

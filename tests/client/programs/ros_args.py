@@ -17,6 +17,8 @@ with open(params, "w") as f:
             "    tiny: 1e-9\n    hexa: 0x10\n    octal: 010\n    word: Yes\n    quoted: '1e-9'\n"
             "    big: 99999999999999999999\n    under: 1_000\n    covariance: [1e-9, 2E-3, .inf]\n"
             "    odom0_config:\n      - [true, false,\n         true]\n"
+            # keys are names, whatever words they are (interactive_marker_twist_server's linear_scale: {x, y})
+            "    linear_scale:\n      x: 1.0\n      y: 2.0\n      on: 3\n"
             "/robots/listener:\n  ros__parameters:\n    shared: 3\n")
 rclpy.init(args=[sys.argv[0], "--ros-args", "-r", "chatter:=talk", "-r", "listener:__ns:=/robots",
                  "--params-file", params, "-p", "shared:=2", "-p", "talker:label:=mine", "-p", "talker:exp:=1e-3",
@@ -34,7 +36,8 @@ def describe(node, *names):
 
 talker = Node("talker", automatically_declare_parameters_from_overrides=True)
 out.append(["talker", describe(talker, "shared", "rate", "nested.gain", "label", "tiny", "hexa", "octal", "word",
-                                 "quoted", "big", "under", "covariance", "odom0_config", "exp")])
+                                 "quoted", "big", "under", "covariance", "odom0_config", "exp",
+                                 "linear_scale.y", "linear_scale.on")])
 listener = Node("listener", automatically_declare_parameters_from_overrides=True)
 out.append(["listener", describe(listener, "shared", "rate", "label")])
 local = Node("local", cli_args=["--ros-args", "-r", "__node:=renamed", "-p", "shared:=9", "-r", "chatter:=mine"],

@@ -10,3 +10,4 @@ from diffctl.client.action.server import (  # noqa: F401
     default_goal_callback,
     default_handle_accepted_callback,
 )
+from diffctl.client.exceptions import RCLError  # noqa: F401

@@ -1,0 +1,1 @@
+"""interactive_marker_twist_server: marker_server, an RViz interactive marker dragged into Twist commands."""
