@@ -17,7 +17,13 @@ from diffctl.launch.actions import (
 )
 from diffctl.launch.conditions import IfCondition
 from diffctl.launch.event_handlers import OnExecutionComplete, OnShutdown
-from diffctl.launch.substitutions import EnvironmentVariable, LaunchConfiguration, SubstitutionFailure
+from diffctl.launch.substitutions import (
+    EnvironmentVariable,
+    LaunchConfiguration,
+    PathJoinSubstitution,
+    PathSubstitution,
+    SubstitutionFailure,
+)
 from diffctl.launch.utilities import normalize_to_list_of_substitutions, perform_substitutions
 
 
@@ -69,6 +75,20 @@ def test_perform_substitutions_in_a_bare_context(monkeypatch: pytest.MonkeyPatch
     assert perform_substitutions(context, subs) == '[hello you|env|3]'
     with pytest.raises(SubstitutionFailure, match="launch configuration 'missing' does not exist"):
         perform_substitutions(context, [LaunchConfiguration('missing')])
+
+
+def test_paths_joined_from_substitution_lists_and_with_slash() -> None:
+    # ros2_control_demos' jazzy launch files: PathSubstitution(FindPackageShare(p)) / 'urdf' / 'x.xacro';
+    # a component may itself be a list (ros2/launch#838's documented 'robot_description/urdf/my_model.xacro')
+    context = LaunchContext()
+    context.launch_configurations['model'] = 'my_model'
+    listed = PathJoinSubstitution(['robot_description', 'urdf', [LaunchConfiguration('model'), '.xacro']])
+    assert listed.perform(context) == 'robot_description/urdf/my_model.xacro'
+    slashed = PathSubstitution(Greeting()) / 'urdf' / [LaunchConfiguration('model'), '.xacro']
+    assert isinstance(slashed, PathJoinSubstitution)
+    context.launch_configurations['who'] = 'share'
+    assert slashed.perform(context) == 'hello share/urdf/my_model.xacro'
+    assert (PathSubstitution('/opt') / '/abs').perform(context) == '/abs'  # os.path.join's rule
 
 
 def test_handlers_timers_and_events_from_another_thread() -> None:

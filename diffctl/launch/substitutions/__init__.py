@@ -9,7 +9,7 @@ __getattr__, __dir__, __all__ = lazy_exports(__name__, globals(), {
     '.not_equals_substitution': ('NotEqualsSubstitution',),
     '.if_else_substitution': ('IfElseSubstitution',),
     '.text_substitution': ('TextSubstitution',),
-    '.path_join_substitution': ('PathJoinSubstitution',),
+    '.path_join_substitution': ('PathJoinSubstitution', 'PathSubstitution'),
     '.launch_configuration': ('LaunchConfiguration',),
     '.local_substitution': ('LocalSubstitution',),
     '.environment_variable': ('EnvironmentVariable',),

@@ -1,4 +1,4 @@
-"""`PathJoinSubstitution`: a path built from pieces, some of them substitutions."""
+"""`PathJoinSubstitution` and `PathSubstitution`: a path built from pieces, some of them substitutions."""
 
 from __future__ import annotations
 
@@ -7,25 +7,41 @@ from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
 from .._private.operands import joined
+from ..some_substitutions_type import SomeSubstitutionsType
 from ..substitution import Substitution
 from ..utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
+from ..utilities.perform_substitutions_impl import perform_substitutions
 
 if TYPE_CHECKING:
     from ..launch_context import LaunchContext
 
 
 class PathJoinSubstitution(Substitution):
-    """The performed pieces joined by `os.path.join` (an absolute piece restarts the path, as there)."""
+    """The performed components joined by `os.path.join` (an absolute one restarts the path, as there).
 
-    def __init__(self, substitutions: Iterable[str | Substitution]) -> None:
-        self._pieces = normalize_to_list_of_substitutions(substitutions)
+    A component is anything a substitution list may be made of (`[LaunchConfiguration('model'), '.xacro']`
+    is one component), and `/` appends one, as `pathlib.Path` does.
+    """
+
+    def __init__(self, substitutions: Iterable[SomeSubstitutionsType]) -> None:
+        self._components = [normalize_to_list_of_substitutions(part) for part in substitutions]
 
     @property
     def substitutions(self) -> Iterable[Substitution]:
-        return self._pieces
+        return [sub for part in self._components for sub in part]
+
+    def __truediv__(self, additional_path: SomeSubstitutionsType) -> PathJoinSubstitution:
+        return PathJoinSubstitution([self, additional_path])
 
     def describe(self) -> str:
-        return f"PathJoin('{joined(self._pieces)}')"
+        return f"PathJoin('{' + '.join(joined(part) for part in self._components)}')"
 
     def perform(self, context: LaunchContext) -> str:
-        return os.path.join(*[piece.perform(context) for piece in self._pieces])
+        return os.path.join(*[perform_substitutions(context, part) for part in self._components])
+
+
+class PathSubstitution(PathJoinSubstitution):
+    """One path to extend with `/`: `PathSubstitution(FindPackageShare('pkg')) / 'urdf' / 'robot.xacro'`."""
+
+    def __init__(self, path: SomeSubstitutionsType) -> None:
+        super().__init__([path])
