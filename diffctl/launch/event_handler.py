@@ -19,6 +19,11 @@ class BaseEventHandler:
     A `handle_once` handler unregisters itself when it handles its first event.
     """
 
+    # The event classes outside which the matcher never accepts anything (None: it may accept any event).
+    # launch's own handlers say it, so that a launch of many processes does not ask each process's handlers
+    # about every other kind of event; see `_takes_only`.
+    _event_kinds: tuple[type[Event], ...] | None = None
+
     def __init__(self, *, matcher: Callable[[Event], bool], handle_once: bool = False):
         self._accepts = matcher
         self._once = handle_once
@@ -54,6 +59,21 @@ class BaseEventHandler:
         """A line about the handler, and the entities it would give when they are known beforehand."""
         kind, takes, does = type(self).__name__, self.matcher_description, self.handler_description
         return f"{kind}(matcher='{takes}', handler='{does}', handle_once={self._once})", []
+
+
+def _takes_only(handler: BaseEventHandler, *kinds: type[Event]) -> BaseEventHandler:
+    """`handler`, known to accept only events of `kinds` (its matcher starts with that isinstance test)."""
+    handler._event_kinds = kinds
+    return handler
+
+
+def _may_take(handler: BaseEventHandler, kind: type[Event]) -> bool:
+    """Whether `handler` may accept an event of class `kind`; only a handler whose `matches` is the
+    matcher it was given (no subclass's own) is judged by its kinds."""
+    kinds = getattr(handler, '_event_kinds', None)
+    if kinds is None or type(handler).matches is not BaseEventHandler.matches:
+        return True
+    return issubclass(kind, kinds)
 
 
 class EventHandler(BaseEventHandler):

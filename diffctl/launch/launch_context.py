@@ -10,7 +10,7 @@ from typing import Any
 
 from . import logging as launch_logging
 from .event import Event
-from .event_handler import BaseEventHandler
+from .event_handler import BaseEventHandler, _may_take
 from .substitution import Substitution
 
 
@@ -79,6 +79,9 @@ class LaunchContext:
         # used by the LaunchService: the event queue, the handlers, and futures the launch waits for
         self._queue: asyncio.Queue = asyncio.Queue()
         self._handlers: collections.deque[BaseEventHandler] = collections.deque()
+        # per class of event seen, the handlers that may take it, in offering order; a list is replaced, never
+        # changed, so one handed out stays the snapshot it was
+        self._offered: dict[type, list[BaseEventHandler]] = {}
         self._awaited: list[asyncio.Future] = []
 
         self._globals: dict[str, Any] = {}
@@ -187,14 +190,30 @@ class LaunchContext:
             self._handlers.append(event_handler)
         else:
             self._handlers.appendleft(event_handler)
+        for kind, handlers in self._offered.items():
+            if _may_take(event_handler, kind):
+                self._offered[kind] = [*handlers, event_handler] if append else [event_handler, *handlers]
 
     def unregister_event_handler(self, event_handler: BaseEventHandler) -> None:
         """Remove a handler; ValueError when it is not registered."""
         self._handlers.remove(event_handler)
+        for kind, handlers in self._offered.items():
+            if event_handler in handlers:
+                kept = list(handlers)
+                kept.remove(event_handler)
+                self._offered[kind] = kept
+
+    def _handlers_for(self, event: Event) -> list[BaseEventHandler]:
+        """The registered handlers that may take `event`, in the order they are offered it (a snapshot)."""
+        kind = type(event)
+        handlers = self._offered.get(kind)
+        if handlers is None:
+            handlers = self._offered[kind] = [h for h in self._handlers if _may_take(h, kind)]
+        return handlers
 
     def would_handle_event(self, event: Event) -> bool:
         """Whether some registered handler takes `event`."""
-        return any(handler.matches(event) for handler in self._handlers)
+        return any(handler.matches(event) for handler in self._handlers_for(event))
 
     def _debug(self, message: str) -> None:
         if self._logger is None:

@@ -330,11 +330,14 @@ class LaunchService:
     async def _dispatch(self, event: Event) -> None:
         """Offer `event` to every handler registered now, newest first; visit what each gives."""
         context = self._context
-        self._log.debug(f"processing event: '{event}'")
-        for handler in list(context._handlers):
+        debug = self._log.isEnabledFor(logging.DEBUG)
+        if debug:
+            self._log.debug(f"processing event: '{event}'")
+        for handler in context._handlers_for(event):
             if not handler.matches(event):
                 continue
-            self._log.debug(f"processing event: '{event}' ✓ '{handler}'")
+            if debug:
+                self._log.debug(f"processing event: '{event}' ✓ '{handler}'")
             context._save('locals')
             try:
                 given = handler.handle(event, context)

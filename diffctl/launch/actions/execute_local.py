@@ -14,7 +14,7 @@ from .._private.process_output import HeldBack, LineLog
 from .._private.spawning import spawner_for
 from ..action import Action
 from ..conditions.evaluate_condition_expression_impl import evaluate_condition_expression
-from ..event_handler import EventHandler
+from ..event_handler import EventHandler, _takes_only
 from ..event_handlers.on_process_exit import OnProcessExit
 from ..event_handlers.on_process_io import OnProcessIO
 from ..event_handlers.on_process_start import OnProcessStart
@@ -194,15 +194,17 @@ class ExecuteLocal(Action):
 
     def _handlers(self) -> list:
         """The handlers the action needs while its process may run (registered in this order)."""
+        # a ShutdownProcess or SignalProcess is taken by the handler of the process it targets only: with every
+        # process's handler taking every such event, stopping N processes cost N² handler visits
         return [
-            EventHandler(
-                matcher=lambda event: is_a_subclass(event, ShutdownProcess),
+            _takes_only(EventHandler(
+                matcher=lambda event: is_a_subclass(event, ShutdownProcess) and event.process_matcher(self),
                 entities=OpaqueFunction(function=self._on_shutdown_process),
-            ),
-            EventHandler(
-                matcher=lambda event: is_a_subclass(event, SignalProcess),
+            ), ShutdownProcess),
+            _takes_only(EventHandler(
+                matcher=lambda event: is_a_subclass(event, SignalProcess) and event.process_matcher(self),
                 entities=OpaqueFunction(function=self._on_signal_process),
-            ),
+            ), SignalProcess),
             OnProcessIO(
                 target_action=self, on_stdin=self._on_stdin, on_stdout=self._on_stdout, on_stderr=self._on_stderr),
             OnShutdown(on_shutdown=self._on_launch_shutdown),
@@ -354,9 +356,7 @@ class ExecuteLocal(Action):
             f"seconds after receiving '{before}', escalating to '{after}'")
 
     def _on_shutdown_process(self, context: LaunchContext) -> list[Action] | None:
-        if context.locals.event.process_matcher(self):
-            return self._shutdown_process(context, send_sigint=True)
-        return None
+        return self._shutdown_process(context, send_sigint=True)
 
     def _on_launch_shutdown(self, event: Event, context: LaunchContext) -> list[Action] | None:
         # with a terminal, a shutdown due to SIGINT means the processes had their SIGINT already
@@ -364,8 +364,6 @@ class ExecuteLocal(Action):
 
     def _on_signal_process(self, context: LaunchContext) -> None:
         event = context.locals.event
-        if not event.process_matcher(self):
-            return
         if self._details is None:
             raise RuntimeError('Signal event received before execution.')
         child = self._run.child

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any
 from .. import logging as launch_logging
 from .._private.markup import typed_attribute
 from ..action import Action
-from ..event_handler import EventHandler
+from ..event_handler import BaseEventHandler, EventHandler, _takes_only
 from ..events.shutdown import Shutdown
 from ..events.timer_event import TimerEvent
 from ..frontend.expose import expose_action
@@ -33,11 +33,11 @@ if TYPE_CHECKING:
 _DISPATCHING: weakref.WeakSet = weakref.WeakSet()
 
 
-def _dispatcher() -> EventHandler:
-    return EventHandler(
+def _dispatcher() -> BaseEventHandler:
+    return _takes_only(EventHandler(
         matcher=lambda event: isinstance(event, TimerEvent),
         entities=OpaqueFunction(function=lambda context: context.locals.event.timer_action.handle(context)),
-    )
+    ), TimerEvent)
 
 
 @expose_action('timer')
@@ -137,10 +137,10 @@ class TimerAction(Action):
         self._locals_at_start = dict(context.get_locals_as_dict())
         loop.create_task(self._wait_to_fire_event(context))
         if type_utils.perform_typed_substitution(context, self._stop_on_shutdown, bool):
-            context.register_event_handler(EventHandler(
+            context.register_event_handler(_takes_only(EventHandler(
                 matcher=lambda event: isinstance(event, Shutdown),
                 entities=OpaqueFunction(function=lambda context: self.cancel()),
-            ))
+            ), Shutdown))
         return None
 
     def get_asyncio_future(self) -> asyncio.Future | None:

@@ -62,6 +62,7 @@ class OnActionEventBase(BaseEventHandler):
         super().__init__(
             matcher=lambda event: isinstance(event, target_event_cls) and chooses(event.action), **kwargs)
         self._kinds = (target_event_cls, target_action_cls, action_matcher is not None)
+        self._event_kinds = (target_event_cls,)
         self._reaction = on_event if callable(on_event) else None
         self._given = [] if callable(on_event) else _fixed_entities(on_event)
 

@@ -22,6 +22,7 @@ class OnIncludeLaunchDescription(EventHandler):
         super().__init__(
             matcher=lambda event: is_a_subclass(event, IncludeLaunchDescription),
             entities=OpaqueFunction(function=_carried), **kwargs)
+        self._event_kinds = (IncludeLaunchDescription,)
 
     @property
     def handler_description(self) -> str:

@@ -33,6 +33,7 @@ class OnShutdown(BaseEventHandler):
         **kwargs: Any,
     ) -> None:
         super().__init__(matcher=lambda event: is_a_subclass(event, Shutdown), **kwargs)
+        self._event_kinds = (Shutdown,)
         self._reaction = on_shutdown if callable(on_shutdown) else gen_handler(on_shutdown)
 
     def handle(self, event: Event, context: LaunchContext) -> SomeEntitiesType | None:
