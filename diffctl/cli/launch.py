@@ -60,7 +60,7 @@ def _split_targets(targets: tuple[str, ...]) -> tuple[list[str], dict[str, str]]
     "--output-default",
     type=click.Choice(["screen", "log"]),
     default="screen",
-    help="Where processes without `output` write: screen (diffctl) or log (ros2 launch: stdout to the log only).",
+    help="The output of processes that give none: screen (diffctl) or log (ros2 launch: stdout to launch.log only).",
 )
 @click.option(
     "--exit-code",
@@ -78,9 +78,10 @@ def _split_targets(targets: tuple[str, ...]) -> tuple[list[str], dict[str, str]]
 )
 @click.option(
     "--process-names",
-    type=click.Choice(["ros"]),
-    default="ros",
-    help="Process labels: ros2 launch's name-N, N from one counter (the only labels launch gives today).",
+    type=click.Choice(["diffctl", "ros"]),
+    default="diffctl",
+    help="Process labels: the name (a Node's: its node name), name-2 for a second one (diffctl); or ros2 "
+    "launch's name-N, N from one counter (ros).",
 )
 @click.option("--no-router", is_flag=True, help="Do not start the embedded Zenoh router.")
 @click.option(
@@ -361,7 +362,7 @@ def _run(
     policy: dict[str, str],
 ) -> int:
     from diffctl.cli.launch_outcome import LaunchOutcome
-    from diffctl.cli.launch_status import ProcessLogFiles, ProcessTable, StdoutOnScreen
+    from diffctl.cli.launch_status import ProcessLogFiles, ProcessTable
     from diffctl.launch import LaunchDescription, LaunchService
     from diffctl.launch.actions import IncludeLaunchDescription
     from diffctl.launch.launch_description_source import LaunchDescriptionSource
@@ -382,12 +383,13 @@ def _run(
             noninteractive=not sys.stdin.isatty(),
             debug=debug,
             spawner=spawner,
+            output_default=policy["output_default"],
+            process_label=_DiffctlLabels() if policy["process_names"] == "diffctl" else None,
+            shutdown_on_sigterm=True,
         )
         context = service.context
         outcome, processes, files = LaunchOutcome(), ProcessTable(), ProcessLogFiles(str(run_dir))
         observers: list[Any] = [outcome, processes, files]
-        if policy["output_default"] == "screen":
-            observers.append(StdoutOnScreen())
         for observer in observers:
             context.register_event_handler(observer, append=True)
         process_watch.install(context)
@@ -422,7 +424,7 @@ def _run(
 def _exit_code(code: int, outcome: Any, context: Any, mode: str, run_dir: Path, stopped_by: str | None) -> int:
     """ros: what the LaunchService returned. diffctl: 1 for a failed required process or readiness condition
     or (the launch having ended by itself) a failed process, 2 for an error in the launch (bad input); a
-    launch stopped by a signal (SIGTERM too, which cancels the run) that nothing else failed exits 0."""
+    launch stopped by a signal that nothing else failed exits 0."""
     from diffctl.launch import logging as launch_logging
     from diffctl.launch_extensions.readiness import FAILED_KEY
 
@@ -442,6 +444,27 @@ def _exit_code(code: int, outcome: Any, context: Any, mode: str, run_dir: Path, 
     return 2 if code != 0 else 0
 
 
+class _DiffctlLabels:
+    """`--process-names diffctl`: a process is labelled by its name (a Node given a node name: that name,
+    without its namespace), the second of a name `name-2`, the third `name-3`, …"""
+
+    def __init__(self) -> None:
+        self.taken: set[str] = set()
+
+    def __call__(self, action: Any, name: str) -> str:
+        from diffctl.launch_ros.actions import Node
+
+        if isinstance(action, Node):
+            node = action.node_name.rsplit("/", 1)[-1]
+            if node != Node.UNSPECIFIED_NODE_NAME:
+                name = node
+        label, n = name, 2
+        while label in self.taken:
+            label, n = f"{name}-{n}", n + 1
+        self.taken.add(label)
+        return label
+
+
 def _no_op(signum: int, frame: Any) -> None:
     """A Python-level handler: the signal then reaches the signal managers' wakeup fd, and kills nothing."""
 
@@ -450,7 +473,8 @@ class _LauncherSignals:
     """The launcher's own signals, heard on the launch's loop beside the LaunchService's (whose signal manager
     passes every signal on to this one, the outer): Enter and SIGUSR1 print the status table; SIGHUP shuts the
     launch down as Ctrl-C does; a second Ctrl-C SIGKILLs every process group at once (the LaunchService
-    ignores it); SIGTERM (which cancels the run) is remembered, for the exit code."""
+    ignores it); SIGTERM (which the LaunchService, told to, shuts down in order) is remembered, for the exit
+    code."""
 
     def __init__(self, service: Any, processes: Any, *, no_color: bool) -> None:
         from diffctl.launch.utilities.signal_management import AsyncSafeSignalManager

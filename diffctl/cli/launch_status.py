@@ -13,7 +13,7 @@ from typing import Any
 from diffctl.console import make_console, table
 from diffctl.launch.event_handler import BaseEventHandler
 from diffctl.launch.events import Shutdown
-from diffctl.launch.events.process import ProcessExited, ProcessIO, ProcessStarted, ProcessStdout
+from diffctl.launch.events.process import ProcessExited, ProcessIO, ProcessStarted
 
 
 @dataclass
@@ -139,59 +139,3 @@ class ProcessLogFiles(BaseEventHandler):
         for file in self.files.values():
             file.close()
         self.files.clear()
-
-
-class StdoutOnScreen(BaseEventHandler):
-    """`--output-default screen`: the standard output of a process whose `output` is `log` — ros2 launch's
-    default, which keeps stdout in launch.log only — is shown on the screen too, line by line, as `[name] line`
-    (what `output: screen` shows). Launch cannot tell a default `log` from one written in the file: both show."""
-
-    def __init__(self) -> None:
-        super().__init__(matcher=lambda e: isinstance(e, ProcessStdout))
-        self.shown: dict[int, bool] = {}
-        self.pending: dict[str, bytes] = {}
-        self.logger: Any = None
-
-    def handle(self, event: Any, context: Any) -> None:
-        super().handle(event, context)
-        action = event.action
-        show = self.shown.get(id(action))
-        if show is None:
-            show = self.shown[id(action)] = _logs_stdout_only(action, context)
-        if not show:
-            return None
-        name = event.process_name
-        text = self.pending.pop(name, b"") + (event.text if isinstance(event.text, bytes) else str(event.text).encode())
-        *lines, rest = text.split(b"\n")
-        if rest:
-            self.pending[name] = rest
-        for line in lines:
-            self._screen().info(f"[{name}] {line.decode('utf-8', 'replace')}")
-        return None
-
-    def _screen(self) -> Any:
-        if self.logger is None:
-            import logging
-
-            from diffctl.launch import logging as launch_logging
-
-            self.logger = logging.getLogger("diffctl.launch.stdout")
-            handler = launch_logging.launch_config.get_screen_handler()
-            handler.setFormatterFor(self.logger, logging.Formatter("{msg}", style="{"))
-            self.logger.addHandler(handler)
-            self.logger.propagate = False
-            self.logger.setLevel(logging.INFO)
-        return self.logger
-
-
-def _logs_stdout_only(action: Any, context: Any) -> bool:
-    """Whether the process's `output` is the text `log` (stdout to launch.log only)."""
-    output = getattr(action, "output", None)
-    if output is None or isinstance(output, dict):
-        return False
-    from diffctl.launch.utilities import perform_substitutions
-
-    try:
-        return perform_substitutions(context, output).strip() == "log"
-    except Exception:
-        return False

@@ -9,7 +9,7 @@ import logging
 import signal
 import threading
 import traceback
-from collections.abc import Coroutine, Iterable
+from collections.abc import Callable, Coroutine, Iterable
 from typing import TYPE_CHECKING, Any
 
 from . import logging as launch_logging
@@ -64,6 +64,13 @@ class LaunchService:
     `spawner` (diffctl's): what starts processes (see `diffctl.supervision`); by default a `PosixSpawner`,
     one process group per process. With a terminal, a SIGINT to launch is passed on to those groups as
     the terminal would have passed it to its foreground group; groups alive at the end are terminated.
+
+    diffctl's policies, for whoever runs a launch (ROS's behaviour when not given):
+    `output_default`: the `output` of processes that give none ('log' in ROS; 'screen' shows their stdout).
+    `process_label(action, name)`: a process's final name from its name (the `name` given, else the
+    executable's), instead of ROS's `name-N` with N from one counter.
+    `shutdown_on_sigterm`: SIGTERM shuts the launch down in order, as a first SIGINT does (the processes get
+    their SIGINT from launch, then the escalation), instead of canceling the run.
     """
 
     def __init__(
@@ -73,6 +80,9 @@ class LaunchService:
         noninteractive: bool = False,
         debug: bool = False,
         spawner: Any | None = None,
+        output_default: str | None = None,
+        process_label: Callable[[Any, str], str] | None = None,
+        shutdown_on_sigterm: bool = False,
     ) -> None:
         launch_logging.launch_config.level = logging.DEBUG if debug else logging.INFO
         self._debug = debug
@@ -83,6 +93,10 @@ class LaunchService:
 
             spawner = PosixSpawner(logger=launch_logging.get_logger('launch.supervision'))
         self._context._spawner = spawner
+        if output_default is not None:
+            self._context._output_default = output_default
+        self._context._process_label = process_label
+        self._sigterm_shuts_down = shutdown_on_sigterm
         self._context.register_event_handler(OnIncludeLaunchDescription())
         self._context.register_event_handler(OnShutdown(on_shutdown=self._on_shutdown_event))
         self._in_flight: list[asyncio.Future] = []  # futures of visited entities whose work goes on
@@ -239,11 +253,24 @@ class LaunchService:
             if task is not None:
                 loop.call_soon(task.cancel)
 
+        heard_sigterm = False
+
+        def on_sigterm(signum: int) -> None:
+            nonlocal heard_sigterm
+            if not self._sigterm_shuts_down:
+                on_termination(signum)
+            elif heard_sigterm:
+                self._log.warning('terminated (SIGTERM) again, ignoring...')
+            else:
+                heard_sigterm = True
+                self._log.warning('terminated (SIGTERM): shutting down')
+                self._shutdown(reason='SIGTERM', due_to_sigint=False, force_sync=True)
+
         handled = (signal.SIGINT, signal.SIGTERM, signal.SIGQUIT)
         with AsyncSafeSignalManager(loop) as manager:
             manager.handle(signal.SIGINT, on_sigint)
-            for signum in handled[1:]:
-                manager.handle(signum, on_termination)
+            manager.handle(signal.SIGTERM, on_sigterm)
+            manager.handle(signal.SIGQUIT, on_termination)
             with _python_handlers(handled):
                 yield
 

@@ -48,6 +48,14 @@ if TYPE_CHECKING:
 OnExit = Callable[[ProcessExited, 'LaunchContext'], 'SomeEntitiesType | None']
 
 
+class _Unsaid(str):
+    """The text of a default, told apart from the same text given."""
+
+
+# `output` when none is given: the LaunchService's `output_default` (ROS's 'log' unless it says otherwise)
+_OUTPUT_UNSAID = _Unsaid('log')
+
+
 def _shown(cmd: list[str]) -> str:
     """A command line for messages: its words, blank ones left out."""
     return ' '.join(word for word in cmd if word.strip())
@@ -77,7 +85,8 @@ class ExecuteLocal(Action):
     process group, as a terminal does to its own).
 
     - `output`: 'log', 'screen', 'both', 'own_log', 'full' or a dict (see
-      `launch.logging.get_output_loggers`), overridden by `OVERRIDE_LAUNCH_PROCESS_OUTPUT`; `output_format`
+      `launch.logging.get_output_loggers`), overridden by `OVERRIDE_LAUNCH_PROCESS_OUTPUT`; not given, the
+      LaunchService's `output_default` ('log', as in ROS, unless it was given another); `output_format`
       makes each line (`{line}`, `{this}` the action).
     - `emulate_tty`: a pseudo-terminal for the process (the `emulate_tty` launch configuration wins).
     - `cached_output`: keep all output for `get_stdout()` / `get_stderr()`.
@@ -95,7 +104,7 @@ class ExecuteLocal(Action):
         sigterm_timeout: SomeSubstitutionsType = LaunchConfiguration('sigterm_timeout', default=5),
         sigkill_timeout: SomeSubstitutionsType = LaunchConfiguration('sigkill_timeout', default=5),
         emulate_tty: bool = False,
-        output: SomeSubstitutionsType = 'log',
+        output: SomeSubstitutionsType = _OUTPUT_UNSAID,
         output_format: str = '[{this.process_description.final_name}] {line}',
         cached_output: bool = False,
         log_cmd: bool = False,
@@ -112,6 +121,7 @@ class ExecuteLocal(Action):
         self._term_after = normalize_to_list_of_substitutions(sigterm_timeout)
         self._kill_after = normalize_to_list_of_substitutions(sigkill_timeout)
         chosen = os.environ.get('OVERRIDE_LAUNCH_PROCESS_OUTPUT', output)
+        self._output_said = chosen is not _OUTPUT_UNSAID
         self._output = chosen if isinstance(chosen, dict) else normalize_to_list_of_substitutions(chosen)
         self._line_format = output_format
         self._log_cmd = log_cmd
@@ -227,6 +237,8 @@ class ExecuteLocal(Action):
         try:
             run = self._run = _Run(context.asyncio_loop, name)
             output = self._output if isinstance(self._output, dict) else perform_substitutions(context, self._output)
+            if not self._output_said:
+                output = getattr(context, '_output_default', output)
             run.out, run.err = launch_logging.get_output_loggers(name, output)
             context.asyncio_loop.create_task(self._live(context))
         except Exception:

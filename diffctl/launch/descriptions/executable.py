@@ -23,6 +23,12 @@ if TYPE_CHECKING:
 _numbers = itertools.count(1)
 
 
+def _final_name(context: LaunchContext, action: Action, base: str) -> str:
+    """`base-N` (N from `_numbers`), or what the LaunchService's `process_label` makes of `base`."""
+    label = getattr(context, '_process_label', None)
+    return f'{base}-{next(_numbers)}' if label is None else label(action, base)
+
+
 def _subs(value: Any) -> Any:
     return None if value is None else normalize_to_list_of_substitutions(value)
 
@@ -39,7 +45,7 @@ class Executable:
       does, for executables whose name matches the `launch-prefix-filter` regular expression (all, when
       it is unset).
     - `name` labels the process (the command's first word's base name by default); the final name adds a
-      `-N` that makes it unique.
+      `-N` that makes it unique (or is what the LaunchService's `process_label` makes of it).
     - `env` replaces the launch's environment, `additional_env` adds to it.
     """
 
@@ -107,7 +113,7 @@ class Executable:
         folder = self._fields['cwd']
         self._fields.update(
             final_cmd=command,
-            final_name=f'{base}-{next(_numbers)}',
+            final_name=_final_name(context, action, base),
             final_cwd=None if folder is None else perform_substitutions(context, folder),
             final_env=self._environment(context),
         )
