@@ -52,32 +52,32 @@ def test_the_start_up_chain_runs_in_order_and_the_launch_ends_by_itself(launch_r
 
 
 def test_ctrl_c_stops_every_group_escalating_for_a_stubborn_child(launch_run) -> None:
-    run = launch_run(str(DATA / "supervise.yaml"), PY, "--no-router", "--output-default", "log")
+    run = launch_run(str(DATA / "supervise.yaml"), PY, "--no-router")
     run.wait_for(r"all 4 processes started", timeout_s=60)
     for name, line in (("stubborn", "ignoring SIGINT and SIGTERM"), ("talker", "hello")):
         deadline = time.monotonic() + 30  # both print, into their own log files only
-        while not any(line in p.read_text() for p in run.log_dir.glob(f"{name}-*.log")):
+        log = run.log_dir / f"{name}.log"  # diffctl's labels: the name alone when it is the only one
+        while not (log.is_file() and line in log.read_text()):
             assert time.monotonic() < deadline, f"{name} never printed {line!r}"
             time.sleep(0.05)
     run.signal(signal.SIGUSR1)
     run.wait_for(r"process +┃ pid +┃ state +┃ restarts +┃ uptime +┃ exit code")
-    run.wait_for(r"│ talker-\d+ +│ \d+ +│ running +│ 0 +│ \d")
+    run.wait_for(r"│ talker +│ \d+ +│ running +│ 0 +│ \d")
     t0 = time.monotonic()
     run.signal(signal.SIGINT)
     assert run.wait(30) == 0, run.text()
     took = time.monotonic() - t0
     text = run.text()
     assert re.search(
-        r"process\[stubborn-\d+\] failed to terminate '0.3' seconds after receiving 'SIGINT', "
+        r"process\[stubborn\] failed to terminate '0.3' seconds after receiving 'SIGINT', "
         r"escalating to 'SIGTERM'",
         text,
     ), text
     assert re.search(r"escalating to 'SIGKILL'", text)
-    assert re.search(r"\[stubborn-\d+\]: process has died \[pid \d+, exit code -9", text)
+    assert re.search(r"\[stubborn\]: process has died \[pid \d+, exit code -9", text)
     assert took < 0.3 + 0.6 + 5, took  # generous: the machine is shared
-    talker = next(p for p in run.log_dir.glob("talker-*.log"))
-    assert talker.read_text() == "hello\n"  # every process has its own log file…
-    assert not re.search(r"\[talker-\d+\] hello", text)  # …and `output: log` keeps stdout off the screen
+    assert (run.log_dir / "talker.log").read_text() == "hello\n"  # every process has its own log file…
+    assert not re.search(r"\[talker\] hello", text)  # …and `output: log` keeps stdout off the screen
     assert "user interrupted with ctrl-c (SIGINT)" in (run.log_dir / "launch.log").read_text()
     assert f"logs: {run.log_dir}" in text
     assert_nothing_left(run)
@@ -85,7 +85,7 @@ def test_ctrl_c_stops_every_group_escalating_for_a_stubborn_child(launch_run) ->
 
 def test_sigkill_of_the_launcher_takes_every_descendant_with_it(launch_run) -> None:
     run = launch_run(str(DATA / "supervise.yaml"), PY, "--no-router")
-    run.wait_for(r"\[stubborn-\d+\] ignoring SIGINT and SIGTERM", timeout_s=60)
+    run.wait_for(r"\[stubborn\] ignoring SIGINT and SIGTERM", timeout_s=60)
     deadline = time.monotonic() + 10
     while not any(" ".join(p.cmdline()) == "sleep 61" for p in run.leftovers()):
         assert time.monotonic() < deadline, "the shell's grandchild never started"
@@ -101,10 +101,10 @@ def test_ctrl_c_during_start_up_leaves_nothing_behind(launch_run, tmp_path) -> N
     lines += ["- wait_for: {started: p39, children: [{executable: {name: gated, cmd: 'sleep 60'}}]}"]
     lines += ["- timer: {period: 1.5, children: [{executable: {name: late, cmd: 'sleep 60'}}]}"]
     run = launch_run(str(write(tmp_path, "\n".join(lines) + "\n")), "--no-router")
-    run.wait_for(r"\[p0-\d+\]: process started")
+    run.wait_for(r"\[p0\]: process started")
     run.signal(signal.SIGINT)
     assert run.wait(30) == 0, run.text()
-    assert not re.search(r"\[late-\d+\]: process started", run.text())
+    assert not re.search(r"\[late\]: process started", run.text())
     assert_nothing_left(run)
 
 
@@ -127,7 +127,7 @@ launch:
     assert run.wait(30) == 1, run.text()
     assert record.read_text().split() == ["flaky"] * 3
     assert time.monotonic() - t0 > 0.4  # two respawn delays
-    assert re.search(r"launch failed: failed: flaky-\d+ \(exit code 3\)", run.text()), run.text()
+    assert re.search(r"launch failed: failed: flaky \(exit code 3\)", run.text()), run.text()
 
 
 def test_a_required_process_that_dies_brings_everything_down(launch_run, tmp_path) -> None:
@@ -145,8 +145,8 @@ launch:
     run = launch_run(str(path), "--no-router")
     assert run.wait(30) == 1, run.text()
     text = run.text()
-    assert re.search(r"launch failed: required process 'sim-\d+' ended with exit code 4", text), text
-    assert re.search(r"\[worker-\d+\]: process has died \[pid \d+, exit code -2", text)
+    assert re.search(r"launch failed: required process 'sim' ended with exit code 4", text), text
+    assert re.search(r"\[worker\]: process has died \[pid \d+, exit code -2", text)
     assert_nothing_left(run)
 
 
@@ -288,8 +288,8 @@ def test_a_background_job_left_by_a_finished_shell_gets_sigterm_at_once(launch_r
     # the inevitable.
     path = write(tmp_path, "launch:\n- executable: {cmd: \"sh -c 'sleep 300 & sleep 1; exit 0'\", name: bg}\n")
     run = launch_run(str(path), "--no-router")
-    run.wait_for(r"\[bg-\d+\] exited but left processes in its group; sending them SIGTERM", timeout_s=30)
-    run.wait_for(r"\[bg-\d+\] the rest of its process group is gone", timeout_s=30)
+    run.wait_for(r"\[bg\] exited but left processes in its group; sending them SIGTERM", timeout_s=30)
+    run.wait_for(r"\[bg\] the rest of its process group is gone", timeout_s=30)
     assert run.wait(30) == 0, run.text()
     assert_nothing_left(run)
 
@@ -309,8 +309,8 @@ def test_children_and_command_substitutions_find_the_venvs_tools_and_jazzys_envi
     assert run.wait(30) == 0, run.text()
     text = run.text()
     assert f"command: {bindir}/xacro\n distro: " in text or f"command: {bindir}/xacro" in text
-    assert re.search(rf"\[child-\d+\] {re.escape(bindir)}/diffctl", text)
-    assert re.search(r"\[child-\d+\] +2 3", text), text  # ROS_DISTRO given (empty) stays; the rest as Jazzy
+    assert re.search(rf"\[child\] {re.escape(bindir)}/diffctl", text)
+    assert re.search(r"\[child\] +2 3", text), text  # ROS_DISTRO given (empty) stays; the rest as Jazzy
 
 
 def test_the_flags_that_restore_ros2_launchs_behaviour(launch_run, tmp_path) -> None:
@@ -318,16 +318,21 @@ def test_the_flags_that_restore_ros2_launchs_behaviour(launch_run, tmp_path) -> 
         tmp_path,
         "launch:\n"
         "- executable: {cmd: \"sh -c 'echo to-stdout; echo to-stderr >&2; sleep 60'\", name: talk}\n"
-        "- executable: {cmd: \"sh -c 'sleep 0.5; exit 3'\", name: fails}\n",
+        "- executable: {cmd: \"sh -c 'sleep 0.5; exit 3'\", name: fails}\n"
+        "- executable: {cmd: \"sh -c 'echo second; sleep 60'\", name: talk, output: log}\n",
     )
     ours = launch_run(str(path), "--no-router")
-    ros = launch_run(str(path), "--no-router", "--output-default", "log", "--exit-code", "ros")
-    for run in (ours, ros):
-        run.wait_for(r"\[fails-\d+\]: process has died", timeout_s=30)
-        run.wait_for(r"\[talk-\d+\] to-stderr")
+    ros = launch_run(
+        str(path), "--no-router", "--output-default", "log", "--exit-code", "ros", "--process-names", "ros"
+    )
+    for run, number in ((ours, ""), (ros, r"-\d+")):
+        run.wait_for(rf"\[fails{number}\]: process has died", timeout_s=30)
+        run.wait_for(rf"\[talk{number}\] to-stderr")
         run.signal(signal.SIGINT)
     assert ours.wait(30) == 0 and ros.wait(30) == 0  # a failure before Ctrl-C does not fail the launch
-    assert re.search(r"\[talk-\d+\] to-stdout", ours.text())
+    assert "[talk] to-stdout" in ours.text()
+    assert "[talk-2]: process started" in ours.text()  # diffctl's labels: a second of a name is name-2…
+    assert "[talk-2] second" not in ours.text()  # …and an `output: log` it was given keeps its stdout off the screen
     assert not re.search(r"\[talk-\d+\] to-stdout", ros.text())  # ros2 launch's: stdout to launch.log only
     assert "to-stdout" in (ros.log_dir / "launch.log").read_text()
 
@@ -358,9 +363,10 @@ launch:
 """,
     )
     run = launch_run(str(path))
-    run.wait_for(r"\[waiter-\d+\] topic is up", timeout_s=60)
+    run.wait_for(r"\[waiter\] topic is up", timeout_s=60)
     text = run.text()
-    assert re.search(r"\[talker-\d+\]: process started", text).start() < text.index("[waiter")  # type: ignore[union-attr]
+    assert re.search(r"\[talker\]: process started", text).start() < text.index("[waiter")  # type: ignore[union-attr]
     run.signal(signal.SIGTERM)  # a service manager's stop: every process ends, and that is no failure
     assert run.wait(30) == 0, run.text()
+    assert "sending signal 'SIGINT' to process[waiter]" in run.text()  # an orderly shutdown, as Ctrl-C
     assert_nothing_left(run)

@@ -106,6 +106,6 @@ def test_an_ament_python_install_package_helper_imports_in_launch_files_and_chil
     )
     assert done.returncode == 0, done.stdout + done.stderr
     assert "distro jazzy 2" in done.stdout
-    assert re.search(r"\[show-\d+\] +speed: '2.5'", done.stdout), done.stdout  # RewrittenYaml ran, rewrote
-    assert re.search(r"\[child-\d+\] jazzy 3", done.stdout)
-    assert re.search(r"\[child-\d+\] 42", done.stdout)  # the helper imports in children too
+    assert re.search(r"\[show\] +speed: '2.5'", done.stdout), done.stdout  # RewrittenYaml ran, rewrote
+    assert re.search(r"\[child\] jazzy 3", done.stdout)
+    assert re.search(r"\[child\] 42", done.stdout)  # the helper imports in children too
