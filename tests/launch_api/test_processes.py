@@ -104,12 +104,25 @@ def test_escalation_to_sigterm_and_sigkill_is_logged(capsys: pytest.CaptureFixtu
         assert step in out, out
 
 
+def test_output_default_and_process_label_are_options_of_the_launch_service(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    unsaid = ExecuteProcess(cmd=[sys.executable, '-c', 'print("hello")'], name='unsaid')
+    said = ExecuteProcess(cmd=[sys.executable, '-c', 'print("hello")'], name='said', output='log')
+    service = LaunchService(output_default='screen', process_label=lambda action, name: f'{name}.a')
+    service.include_launch_description(LaunchDescription([unsaid, said]))
+    assert service.run() == 0
+    out = capsys.readouterr().out
+    assert '[unsaid.a] hello' in out, out  # no output given: the service's default
+    assert '[said.a]: process started' in out and '[said.a] hello' not in out, out  # 'log' given stays 'log'
+
+
 LAUNCHER = textwrap.dedent('''
     import sys
     from diffctl.launch import LaunchDescription, LaunchService
     from diffctl.launch.actions import ExecuteProcess
     child = {child!r}
-    service = LaunchService()
+    service = LaunchService({options})
     service.include_launch_description(LaunchDescription(
         [ExecuteProcess(cmd=[sys.executable, '-c', child], output='screen', name='child')]))
     sys.exit(service.run())
@@ -126,10 +139,10 @@ POLITE = textwrap.dedent('''
 ''')
 
 
-def launcher(child: str, tmp_path: Path) -> tuple[subprocess.Popen, int]:
+def launcher(child: str, tmp_path: Path, options: str = '') -> tuple[subprocess.Popen, int]:
     """A script running a LaunchService with one child; returns it once the child is up, and the child's pid."""
     script = tmp_path / 'launcher.py'
-    script.write_text(LAUNCHER.format(child=child))
+    script.write_text(LAUNCHER.format(child=child, options=options))
     proc = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                             text=True, start_new_session=True, cwd=Path(__file__).resolve().parents[2])
     for line in proc.stdout:
@@ -138,14 +151,16 @@ def launcher(child: str, tmp_path: Path) -> tuple[subprocess.Popen, int]:
     raise AssertionError('the child never started')
 
 
-@pytest.mark.parametrize(('sig', 'code', 'expect'), [
+@pytest.mark.parametrize(('sig', 'options', 'code', 'expect'), [
     # Ctrl-C on a terminal: the SIGINT goes on to the child's own process group, which ends politely
-    (signal.SIGINT, 0, '[child-1] got SIGINT'),
+    (signal.SIGINT, '', 0, '[child-1] got SIGINT'),
     # SIGTERM cancels the run; the child, still alive, is ended at the end of the run
-    (signal.SIGTERM, 1, "still running as the launch ends: sending SIGTERM"),
+    (signal.SIGTERM, '', 1, "still running as the launch ends: sending SIGTERM"),
+    # diffctl's option: SIGTERM shuts down in order, launch itself sending the child its SIGINT
+    (signal.SIGTERM, 'shutdown_on_sigterm=True', 0, "[child-1] got SIGINT"),
 ])
-def test_signals_to_the_launcher(tmp_path: Path, sig: int, code: int, expect: str) -> None:
-    proc, child = launcher(POLITE, tmp_path)
+def test_signals_to_the_launcher(tmp_path: Path, sig: int, options: str, code: int, expect: str) -> None:
+    proc, child = launcher(POLITE, tmp_path, options)
     try:
         os.kill(proc.pid, sig)  # the launcher only, as `kill` would
         out, _ = proc.communicate(timeout=30)
