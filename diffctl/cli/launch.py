@@ -14,6 +14,7 @@ from __future__ import annotations
 import asyncio
 import gc
 import os
+import re
 import signal
 import sys
 import time
@@ -276,9 +277,16 @@ def _load(path: Path) -> Any:
         return get_launch_description_from_any_launch_file(str(path))
     except InvalidLaunchFileError as e:
         cause = e.__cause__ if e.__cause__ is not None else e
-        raise _located(cause, path) from None
+        raise _with_hint(_located(cause, path)) from None
     except Exception as e:
-        raise _located(e, path) from None
+        raise _with_hint(_located(e, path)) from None
+
+
+def _with_hint(e: DiffctlError) -> DiffctlError:
+    """diffctl's launch files once gated an action with a `wait_for` list inside it: show the tag it is now."""
+    if e.hint is None and re.search(r"Unexpected \w+\(s\) found in .*'wait_(for|timeout)'", str(e)):
+        e.hint = "wait_for is a tag wrapping what it gates: `- wait_for: {exited: NAME, children: [ACTIONS]}`"
+    return e
 
 
 def _located(e: BaseException, path: Path) -> DiffctlError:

@@ -155,6 +155,13 @@ launch:
     [
         ("bad.yaml", "launch:\n- executable: {cmd: 'sleep 60', name: ok}\n- nod: {pkg: a, exec: b}\n", 3, "nod"),
         ("bad.launch.xml", '<launch>\n  <log mesage="x"/>\n</launch>\n', 2, "'message'"),
+        (  # diffctl's older readiness form, inside the gated action: the tag it is now is shown
+            "old.yaml",
+            "launch:\n- executable: {cmd: 'sleep 60', name: a}\n- executable:\n    cmd: 'sleep 60'\n"
+            "    wait_for: [{started: a}]\n",
+            4,
+            "`- wait_for: {exited: NAME, children: [ACTIONS]}`",
+        ),
         (
             "bad.launch.py",
             "from launch import LaunchDescription\n\ndef generate_launch_description():\n"
