@@ -2,9 +2,9 @@
 key other than `children`.
 
 `Entity.get_attr` returns scalars, uniform lists and lists of attribute entities; diffctl's tags also take
-`replace: {PLACEHOLDER: value}` and `do: [{node: …}, …]` (both in the tutorial's launch files). launch_yaml's
-Entity keeps the YAML value it wraps as upstream's class stores it; these helpers read it there, after
-`get_attr` has marked the key as read (so `assert_entity_completely_parsed` accepts it).
+`replace: {PLACEHOLDER: value}` and `do: [{node: …}, …]` (both in the tutorial's launch files). diffctl's
+launch_yaml Entity gives the YAML values it wraps (`yaml_value`, `get_yaml_attr`); ROS's has no such accessor,
+so these tags need diffctl's launch_yaml (the one `diffctl launch` always loads).
 """
 
 from __future__ import annotations
@@ -16,11 +16,9 @@ from diffctl.errors import LaunchError
 
 def _element(entity: Any) -> Any:
     """The YAML value a launch_yaml Entity wraps."""
-    for cls in type(entity).__mro__:
-        value = getattr(entity, f"_{cls.__name__}__element", None)
-        if value is not None:
-            return value
-    raise LaunchError(f"cannot read the value of `{entity.type_name}`: not a YAML entity")
+    if not hasattr(entity, "yaml_value"):
+        raise LaunchError(f"cannot read the value of `{entity.type_name}`: not an entity of diffctl's launch_yaml")
+    return entity.yaml_value
 
 
 def is_yaml(entity: Any) -> bool:
@@ -30,10 +28,8 @@ def is_yaml(entity: Any) -> bool:
 
 def mapping(entity: Any, name: str) -> dict[str, Any] | None:
     """A mapping-valued attribute of a YAML entity (`replace: {A: b}`), None when absent."""
-    try:
-        value = entity.get_attr(name, data_type=None, optional=True)
-    except TypeError:
-        value = _element(entity).get(name)  # get_attr marked the key as read before refusing the type
+    _element(entity)  # a YAML entity of diffctl's
+    value = entity.get_yaml_attr(name, optional=True)
     if value is None:
         return None
     if not isinstance(value, dict):

@@ -1,7 +1,9 @@
 """`Entity` of the YAML frontend: a mapping (attributes and `children`) or a list of children.
 
-YAML values keep the types YAML gave them: `get_attr` checks them against `data_type` (no coercion).
-Mappings read from a file know their line, and errors about them name it.
+YAML values keep the types YAML gave them: `get_attr` checks them against `data_type`. Where launch_yaml
+refuses a YAML scalar of another type, diffctl takes it as ROS's frontends take the same attribute in XML:
+a scalar where text is expected is the text it was written as (`respawn: true` is 'true'), an integer where
+a float is expected that float. Mappings read from a file know their line, and errors about them name it.
 """
 
 from __future__ import annotations
@@ -10,14 +12,44 @@ from typing import Any
 
 from diffctl.launch.frontend.entity import Entity as BaseEntity
 from diffctl.launch.frontend.type_utils import check_is_list_entity
-from diffctl.launch.utilities.type_utils import AllowedTypesType, AllowedValueType, is_instance_of
+from diffctl.launch.utilities.type_utils import AllowedTypesType, AllowedValueType, extract_type, is_instance_of
 
 
 class LocatedDict(dict):
-    """A YAML mapping that remembers where it was read (`source`, `line`)."""
+    """A YAML mapping that remembers where it was read (`source`, `line`) and the text of its scalar values
+    as written (`texts`, by key)."""
 
     source: str | None = None
     line: int | None = None
+    texts: dict[str, str] = {}  # noqa: RUF012 (replaced per instance by the loader; read only)
+
+
+_SCALARS = (bool, int, float, type(None))
+
+
+def _as_text(value: Any, written: str | None) -> str:
+    """A YAML scalar as text: as it was written when known, else as YAML writes it."""
+    if written is not None:
+        return written
+    if isinstance(value, bool):
+        return 'true' if value else 'false'
+    return '' if value is None else str(value)
+
+
+def _lenient(value: Any, data_type: Any, written: str | None) -> Any:
+    """`value` as ROS's XML frontend would have read the same attribute for `data_type`; the value itself
+    when no such reading exists (the caller then refuses it)."""
+    try:
+        scalar, is_list = extract_type(data_type)
+    except ValueError:
+        return value
+    if not is_list and scalar is str and isinstance(value, _SCALARS):
+        return _as_text(value, written)
+    if not is_list and scalar is float and isinstance(value, int) and not isinstance(value, bool):
+        return float(value)
+    if is_list and scalar is str and isinstance(value, list) and all(isinstance(v, (*_SCALARS, str)) for v in value):
+        return [v if isinstance(v, str) else _as_text(v, None) for v in value]
+    return value
 
 
 class Entity(BaseEntity):
@@ -45,6 +77,21 @@ class Entity(BaseEntity):
         if line is None and self.__parent is not None:
             return self.__parent.location
         return None if line is None else f'{self.__element.source}:{line}'
+
+    @property
+    def yaml_value(self) -> Any:
+        """diffctl's: the YAML value the entity wraps (a mapping, a list of children, a scalar), as read."""
+        return self.__element
+
+    def get_yaml_attr(self, name: str, *, optional: bool = False) -> Any:
+        """diffctl's: the YAML value of key `name` as read, whatever its type (a mapping too: `get_attr` returns
+        only what ROS's frontends share, scalars and lists), marked as read. None when absent and `optional`."""
+        if name not in self.__element:
+            if optional:
+                return None
+            raise AttributeError(f"{self.__where()}Can not find attribute '{name}' in Entity '{self.type_name}'")
+        self.__read_keys.add(name)
+        return self.__element[name]
 
     def __where(self) -> str:
         location = self.location
@@ -110,6 +157,8 @@ class Entity(BaseEntity):
             raise TypeError(
                 f"{self.__where()}Attribute '{name}' of Entity '{self.type_name}' "
                 'expected to be a list of dictionaries.')
+        if not is_instance_of(data, data_type, can_be_str=can_be_str):
+            data = _lenient(data, data_type, getattr(self.__element, 'texts', {}).get(name))
         if not is_instance_of(data, data_type, can_be_str=can_be_str):
             raise TypeError(
                 f"{self.__where()}Attribute '{name}' of Entity '{self.type_name}' expected to be of type "

@@ -26,6 +26,12 @@ def _mapping(loader: _LocatingLoader, node: yaml.MappingNode) -> LocatedDict:
     mapping.line = node.start_mark.line + 1
     yield mapping
     mapping.update(loader.construct_mapping(node, deep=True))
+    # the text each scalar value was written as: where text is expected, `respawn: true` is read as 'true'
+    mapping.texts = {
+        key.value: value.value
+        for key, value in node.value
+        if isinstance(key, yaml.ScalarNode) and isinstance(value, yaml.ScalarNode)
+    }
 
 
 _LocatingLoader.add_constructor('tag:yaml.org,2002:map', _mapping)

@@ -116,3 +116,25 @@ def test_unknown_tag_and_substitution_name_their_place(extension) -> None:
     with pytest.raises(RuntimeError, match='Unknown substitution: lower') as raised:
         parser.parse_description(root)
     assert raised.value.launch_location == '<string>:2'
+
+
+def test_yaml_scalars_where_text_is_expected_are_read_as_written(capsys: pytest.CaptureFixture[str]) -> None:
+    # launch_yaml refuses all three (`expected to be of type '<class 'str'>', got '<class 'bool'>'`, …); the same
+    # attributes in XML are text, and so are they here
+    stream = io.StringIO(textwrap.dedent('''
+        launch:
+        - executable:
+            cmd: sh -c 'echo "$DIFFCTL_T"'
+            name: t
+            output: screen
+            respawn: false
+            respawn_delay: 1
+            sigterm_timeout: 3
+            env: [{name: DIFFCTL_T, value: 1e3}]
+    '''))
+    stream.name = 'scalars.launch.yaml'
+    root, parser = Parser.load(stream)
+    service = LaunchService()
+    service.include_launch_description(parser.parse_description(root))
+    assert service.run() == 0
+    assert '] 1e3\n' in capsys.readouterr().out  # as written, not YAML's 1000.0
