@@ -111,24 +111,6 @@ def _description_in(value: Any, eprefix: str) -> Any:
     return first
 
 
-def _import_launch() -> None:
-    """Every module of launch, now: its packages import their modules on first use, and a test session that
-    runs pytest sessions of its own in-process (pytester) drops the modules those imported when each ends, while
-    the packages keep the classes they handed out; imported here first, the classes stay the same ones."""
-    import importlib
-    import pkgutil
-
-    import diffctl.launch
-
-    for module in pkgutil.walk_packages(diffctl.launch.__path__, "diffctl.launch."):
-        importlib.import_module(module.name)
-
-
-def pytest_collection_finish(session: Any) -> None:
-    if any(item.get_closest_marker("launch") is not None for item in session.items):
-        _import_launch()
-
-
 def is_launch_test(item: Any) -> bool:
     return item.get_closest_marker("launch") is not None
 

@@ -2,6 +2,10 @@
 
 A package says which submodule holds each of its names; `from launch.actions import ExecuteProcess`
 then imports only the modules that name needs, while `dir()` and `__all__` list every public name.
+
+A name is looked up in its module each time, never kept in the package: whoever drops modules from
+sys.modules (pytester between in-process sessions) gets the classes of the modules imported again, not
+those of the dropped ones alongside them.
 """
 
 from __future__ import annotations
@@ -26,19 +30,17 @@ def lazy_exports(
     def load(attr: str) -> object:
         home = where.get(attr)
         if home is None:
-            # a submodule not re-exported by name, e.g. `launch.actions.timer_action`
+            # a submodule not re-exported by name, e.g. `launch.actions.timer_action` (importing it binds it
+            # in the package, as any import does)
             try:
-                value = importlib.import_module(f'{package}.{attr}')
+                return importlib.import_module(f'{package}.{attr}')
             except ModuleNotFoundError as missing:
                 if missing.name != f'{package}.{attr}':
                     raise
                 raise AttributeError(f'module {package!r} has no attribute {attr!r}') from None
-        elif home.endswith('/'):
-            value = importlib.import_module(f'.{attr}', package)
-        else:
-            value = getattr(importlib.import_module(home, package), attr)
-        namespace[attr] = value
-        return value
+        if home.endswith('/'):
+            return importlib.import_module(f'.{attr}', package)
+        return getattr(importlib.import_module(home, package), attr)
 
     def listing() -> list[str]:
         return sorted(set(namespace) | set(where))
