@@ -33,7 +33,7 @@ SETTLED_S = 0.3
 class ProcessTable(BaseEventHandler):
     """One row per process of the launch, kept from its start and exit events; says once how long the
     start-up took (`all N processes started in T ms`, from the launch's start to the last start before a
-    quiet `SETTLED_S`)."""
+    quiet `SETTLED_S`, or before the launch ended by itself)."""
 
     def __init__(self) -> None:
         super().__init__(matcher=lambda e: isinstance(e, (ProcessStarted, ProcessExited, Shutdown)))
@@ -46,6 +46,9 @@ class ProcessTable(BaseEventHandler):
     def handle(self, event: Any, context: Any) -> None:
         super().handle(event, context)
         if isinstance(event, Shutdown):
+            if event.reason == 'idle' and self.last_start_at is not None:
+                # every process ended before a quiet SETTLED_S: the start-up ended with the last start
+                self._maybe_settled(self.last_start_at)
             self.shutting_down = True
             return None
         row = self.rows.setdefault(event.process_name, Row(event.process_name))
