@@ -392,7 +392,7 @@ def _run(
             debug=debug,
             spawner=spawner,
             output_default=policy["output_default"],
-            process_label=_DiffctlLabels() if policy["process_names"] == "diffctl" else None,
+            process_label=DiffctlLabels() if policy["process_names"] == "diffctl" else None,
             shutdown_on_sigterm=True,
         )
         context = service.context
@@ -452,7 +452,7 @@ def _exit_code(code: int, outcome: Any, context: Any, mode: str, run_dir: Path, 
     return 2 if code != 0 else 0
 
 
-class _DiffctlLabels:
+class DiffctlLabels:
     """`--process-names diffctl`: a process is labelled by its name (a Node given a node name: that name,
     without its namespace), the second of a name `name-2`, the third `name-3`, …"""
 

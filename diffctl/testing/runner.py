@@ -50,11 +50,17 @@ class FileResult:
 
 
 def _logs(proc_output: Any, log_dir: Path) -> dict[str, str]:
-    """Each process's output (`<label>.log`), and the log files the launch wrote (launch.log, own_log files)."""
+    """Each process's output, in a file named as `diffctl launch` names its logs (`gz_sim.log`: the run's
+    processes keep launch_testing's `name-N`), and the log files the launch wrote (launch.log, own_log files)."""
+    from diffctl.cli.launch import DiffctlLabels
+
+    label = DiffctlLabels()
     logs: dict[str, str] = {}
-    for name in proc_output.process_names():
+    for action in proc_output.processes():
+        name = action.process_details["name"]
         with contextlib.suppress(KeyError):
-            logs[f"{name}.log"] = "".join(e.text.decode(errors="replace") for e in proc_output[name])
+            text = "".join(e.text.decode(errors="replace") for e in proc_output[name])
+            logs[f"{label(action, re.sub(r'-[0-9]+$', '', name))}.log"] = text
     for path in sorted(log_dir.glob("*.log")):
         logs.setdefault(path.name, path.read_text(errors="replace"))
     return logs

@@ -10,7 +10,8 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-ROS_FLAGS = ("--no-router", "--output-default", "log", "--exit-code", "ros", "--signal", "process")
+ROS_FLAGS = ("--no-router", "--output-default", "log", "--exit-code", "ros", "--signal", "process",
+             "--process-names", "ros")
 SHOWARGS = """#!/bin/sh
 echo "argv: $*"
 while [ $# -gt 0 ]; do
@@ -59,7 +60,7 @@ def test_nodes_labels_ros_args_parameters_and_the_final_process_name(launch_run,
     exe.chmod(0o755)
     launch = tmp_path / "nodes.launch.py"
     launch.write_text(NODES)
-    run = launch_run(*ROS_FLAGS, "--process-names", "ros", str(launch))
+    run = launch_run(*ROS_FLAGS, str(launch))
     assert run.wait(30) == 0, run.text()
     screen = _screen(run.text())
     # Node labels are the executable's name (not the node's), `-N` from one counter; Parameter objects are
@@ -109,7 +110,7 @@ def generate_launch_description():
 def test_launch_prefix_get_logger_and_the_deprecation_warning(launch_run, tmp_path: Path) -> None:
     launch = tmp_path / "misc.launch.py"
     launch.write_text(MISC)
-    run = launch_run(*ROS_FLAGS, "--process-names", "ros", str(launch))
+    run = launch_run(*ROS_FLAGS, str(launch))
     assert run.wait(30) == 0, run.text()
     lines = [line for line in run.text().splitlines() if not line.startswith("[INFO] [launch]")]
     # launch's UserWarning, then its loggers' screen format; `launch-prefix` (filtered by
