@@ -14,7 +14,7 @@ from typing import Any
 
 from lxml import etree
 
-from diffctl.errors import LaunchError, suggest
+from diffctl.errors import LaunchError, suggest, xml_error
 from diffctl.launch import registry
 from diffctl.launch.actions import Action, LaunchDescription
 from diffctl.launch.parameters import TYPES, Coercion, ParameterValue, coerce
@@ -235,8 +235,7 @@ def load(path: str | Path) -> LaunchDescription:
     try:
         tree = etree.parse(str(path), parser)
     except etree.XMLSyntaxError as e:
-        message = (e.msg or str(e)).split(", line ")[0]
-        raise LaunchError(f"malformed XML: {message}", source=source, line=e.lineno or None) from None
+        raise xml_error(e, source, kind=LaunchError) from None
     except OSError as e:
         raise LaunchError(f"cannot read launch file: {e}", source=source) from None
     root = tree.getroot()
