@@ -32,9 +32,9 @@ PROGRAM = textwrap.dedent("""
     from geometry_msgs.msg import Twist
 
     mode = sys.argv[1]
+    t0 = time.perf_counter()
     rclpy.init()
     if mode == "start":
-        t0 = time.perf_counter()
         node = Node("bench_start")
         pub = node.create_publisher(Twist, "/bench/start", 10)
         pub.publish(Twist())

@@ -39,8 +39,35 @@ def make_console(file: IO[str] | None = None, *, no_color: bool = False, width: 
     )
 
 
-console = make_console(sys.stdout)
-err_console = make_console(sys.stderr)
+class _CurrentStream:
+    """sys.stdout or sys.stderr as it is when written to, not as it was at import: a module that redirects the
+    stream later (contextlib.redirect_stderr, pytest's capsys, a daemon reopening its log) gets diffctl's messages."""
+
+    def __init__(self, name: str) -> None:
+        self._name = name
+
+    def _stream(self) -> IO[str]:
+        return getattr(sys, self._name) or getattr(sys, f"__{self._name}__")
+
+    def write(self, text: str) -> int:
+        return self._stream().write(text)
+
+    def flush(self) -> None:
+        self._stream().flush()
+
+    def isatty(self) -> bool:
+        return self._stream().isatty()
+
+    def fileno(self) -> int:
+        return self._stream().fileno()
+
+    @property
+    def encoding(self) -> str:
+        return getattr(self._stream(), "encoding", None) or "utf-8"
+
+
+console = make_console(_CurrentStream("stdout"))  # type: ignore[arg-type]
+err_console = make_console(_CurrentStream("stderr"))  # type: ignore[arg-type]
 
 
 def table(title: str | None, columns: Sequence[str], rows: Iterable[Sequence[Any]], **kw: Any) -> Table:

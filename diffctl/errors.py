@@ -7,6 +7,7 @@ spawner that could not activate its controller). `where` names the file, line an
 from __future__ import annotations
 
 import difflib
+import re
 from collections.abc import Iterable
 
 
@@ -27,6 +28,20 @@ def yaml_error(e: Exception, source: str, what: str = "malformed YAML") -> Confi
         line=mark.line + 1 if mark else None,
         column=mark.column + 1 if mark else None,
     )
+
+
+_LXML_PLACE = re.compile(r"\s*, line \d+, column \d+\s*$")
+
+
+def xml_error(e: Exception, source: str, what: str = "malformed XML", kind: type[ConfigError] | None = None
+              ) -> ConfigError:
+    """An lxml XMLSyntaxError as one located error: libxml2's text ends some messages with a newline before lxml
+    appends ", line N, column M", so the place moves into the location and the text is its first line."""
+    position = getattr(e, "position", None) or (getattr(e, "lineno", None), None)
+    text = _LXML_PLACE.sub("", getattr(e, "msg", None) or str(e))
+    text = " ".join(text.split()) or "unreadable XML"
+    return (kind or DescriptionError)(f"{what}: {text}", source=source, line=position[0] or None,
+                                      column=position[1] or None)
 
 
 class DiffctlError(Exception):

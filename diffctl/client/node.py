@@ -553,6 +553,20 @@ class Node:
         self._wake_executor()
         return service
 
+    def _create_builtin_service(self, srv_type_name: str, srv_name: str, callback: Callable[[Any, Any], Any], *,
+                                qos_profile: Any) -> Service:
+        """A service every node has (parameters, type description): made by type name, its generated classes
+        only on its first request, so a node's start does not generate seven service types nobody may call."""
+        full = self._resolve_for_entity(srv_name, is_service=True)
+        group = self.default_callback_group
+        service = Service(self, srv_type_name, srv_name, callback, group, qos_profile)
+        service._bus = self._bus.create_service(full, srv_type_name, service._on_query,
+                                                qos=_qos.to_wire(qos_profile), raw=True)
+        group.add_entity(service)
+        self._services.append(service)
+        self._wake_executor()
+        return service
+
     def create_timer(self, timer_period_sec: float, callback: Callable[[], Any] | None,
                      callback_group: CallbackGroup | None = None, clock: Clock | None = None,
                      autostart: bool = True) -> Timer:

@@ -31,7 +31,7 @@ class ParameterService:
             ("set_parameters", "SetParameters", self._set),
             ("set_parameters_atomically", "SetParametersAtomically", self._set_atomically),
         ):
-            node.create_service(cls(RCL + srv), f"{name}/{short}", callback, qos_profile=qos_profile_parameters)
+            node._create_builtin_service(RCL + srv, f"{name}/{short}", callback, qos_profile=qos_profile_parameters)
 
     def _node(self) -> Any:
         node = self._node_weak_ref()

@@ -9,7 +9,7 @@ from typing import Any
 
 from diffctl.bus import wire
 from diffctl.client import waiting
-from diffctl.client.interfaces import deserialize, serialize
+from diffctl.client.interfaces import cls, deserialize, serialize
 from diffctl.client.node_entity import NodeEntity
 from diffctl.client.service_introspection import REQUEST_RECEIVED, RESPONSE_SENT, ServiceEvents
 from diffctl.client.timer import await_or_execute
@@ -20,7 +20,7 @@ class Service(NodeEntity):
     def __init__(self, node: Any, srv_type: Any, srv_name: str, callback: Callable[[Any, Any], Any],
                  callback_group: Any, qos_profile: Any) -> None:
         self._node = node
-        self.srv_type = srv_type
+        self._srv_type = srv_type  # or, for a node's built-in services, its name until a request needs it
         self.srv_name = srv_name
         self.callback = callback
         self.callback_group = callback_group
@@ -31,6 +31,13 @@ class Service(NodeEntity):
         self._bus: Any = None
         self._destroyed = False
         self._events = ServiceEvents(node, srv_type)
+
+    @property
+    def srv_type(self) -> Any:
+        t = self._srv_type
+        if isinstance(t, str):
+            t = self._srv_type = cls(t)
+        return t
 
     def configure_introspection(self, clock: Any, service_event_qos_profile: Any,
                                 introspection_state: Any) -> None:

@@ -24,10 +24,18 @@ class ServiceEvents:
 
     def __init__(self, node: Any, srv_type: Any) -> None:
         self._node = node
-        self._srv_type = srv_type
+        self._type = srv_type  # the class, or its name until it is needed
         self._state = ServiceIntrospectionState.OFF
         self._clock: Any = None
         self._pub: Any = None
+
+    @property
+    def _srv_type(self) -> Any:
+        if isinstance(self._type, str):
+            from diffctl.client.interfaces import cls
+
+            self._type = cls(self._type)
+        return self._type
 
     def configure(self, service_name: str, clock: Any, qos: Any, state: ServiceIntrospectionState) -> None:
         state = ServiceIntrospectionState(state)

@@ -26,8 +26,8 @@ class TypeDescriptionService:
             description=_RCLCPP_TEXT if getattr(node, "_rclcpp", False) else _RCLPY_TEXT, read_only=True)
         self.enabled = bool(node.declare_parameter(START_TYPE_DESCRIPTION_SERVICE_PARAM, True, descriptor).value)
         if self.enabled:
-            self._type_description_srv = node.create_service(
-                cls(SERVICE_TYPE), self.service_name, self._answer, qos_profile=qos_profile_services_default)
+            self._type_description_srv = node._create_builtin_service(
+                SERVICE_TYPE, self.service_name, self._answer, qos_profile=qos_profile_services_default)
 
     def _answer(self, request: Any, response: Any) -> Any:
         used = {types.type_hash(t): t for t in self._node.bus_node.used_types}

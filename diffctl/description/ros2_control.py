@@ -12,7 +12,7 @@ from pathlib import Path
 from lxml import etree
 
 from diffctl.description.model import Model, Ros2Control, Ros2ControlInterface, Ros2ControlJoint
-from diffctl.errors import DescriptionError
+from diffctl.errors import DescriptionError, xml_error
 
 HARDWARE_TYPES = ("system", "actuator", "sensor")
 # hardware_interface::HandleDataType (ros2_control 4.46): a handle of any other type fails to construct
@@ -95,7 +95,7 @@ def parse_ros2_control(block: etree._Element | str, source: str = "<string>") ->
         try:
             block = etree.fromstring(block.encode())
         except etree.XMLSyntaxError as e:
-            raise DescriptionError(f"malformed XML: {e.msg}", source=source, line=e.lineno) from None
+            raise xml_error(e, source) from None
     if block.tag != "ros2_control":
         _fail(block, source, f"expected a <ros2_control> element, got <{block.tag}>")
     name = (block.get("name") or "").strip()
@@ -139,7 +139,7 @@ def _root(description: str, source: str) -> etree._Element:
     try:
         return etree.fromstring(description.encode())
     except etree.XMLSyntaxError as e:
-        raise DescriptionError(f"malformed XML: {e.msg}", source=source, line=e.lineno) from None
+        raise xml_error(e, source) from None
 
 
 def ros2_control_blocks(description: str, source: str = "robot_description") -> list[Ros2Control]:

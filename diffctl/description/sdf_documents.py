@@ -24,7 +24,7 @@ from diffctl.description.sdf_values import (
     pose_child,
     required_attr,
 )
-from diffctl.errors import DescriptionError
+from diffctl.errors import DescriptionError, xml_error
 
 SUPPORTED_VERSIONS = ((1, 4), (1, 11))
 
@@ -37,7 +37,7 @@ def doc_from_bytes(
     try:
         root = parse_lenient(data)
     except etree.XMLSyntaxError as e:
-        raise DescriptionError(f"malformed XML: {e.msg}", source=source, line=e.lineno) from None
+        raise xml_error(e, source) from None
     placeholder = Doc(source, base_dir, (1, 11), search_path, check_files)
     if root.tag != "sdf":
         hint = "this looks like URDF; diffctl reads SDF (gz sdf -p converts)" if root.tag == "robot" else None

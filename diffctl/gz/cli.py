@@ -121,7 +121,9 @@ class _Parser(argparse.ArgumentParser):
 
     def error(self, message: str) -> NoReturn:
         usage = " ".join(self.format_usage().split())
-        raise ConfigError(f"{self.prog}: {message}", hint=usage)
+        # argparse quotes no argument it names: one that holds a newline or another control character is escaped
+        shown = "".join(c if c.isprintable() else repr(c)[1:-1] for c in message)
+        raise ConfigError(f"{self.prog}: {shown}", hint=usage)
 
 
 def _parser(prog: str) -> argparse.ArgumentParser:

@@ -14,7 +14,7 @@ from dataclasses import dataclass, field
 
 from lxml import etree
 
-from diffctl.errors import DescriptionError
+from diffctl.errors import DescriptionError, xml_error
 from diffctl.joint_state_publisher.params import Dependent, JspParams
 
 URDF_SKIPPED = ("fixed", "floating", "planar")
@@ -144,7 +144,7 @@ def parse_joints(description: str, params: JspParams, source: str = "robot_descr
             description.encode(), etree.XMLParser(remove_comments=True, resolve_entities=False, no_network=True)
         )
     except etree.XMLSyntaxError as e:
-        raise DescriptionError(f"malformed XML: {e.msg}", source=source, line=e.position[0]) from None
+        raise xml_error(e, source) from None
     tag = etree.QName(root).localname
     if tag == "sdf":
         joints = _sdf(root, params, source)

@@ -35,6 +35,7 @@ SOURCE = "source"
 DSV_TYPES = (PREPEND, PREPEND_IF_EXISTS, APPEND, SET, SET_IF_UNSET, SOURCE)
 SHELL_EXTENSIONS = ("sh", "bash")  # what `. install/setup.bash` sources: local_setup runs `… sh bash`
 _AT_VAR = re.compile(r"@([A-Za-z_][A-Za-z0-9_]*)@")
+_VAR_NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 
 # Shell functions ament's and colcon's shell hooks call (their prefix scripts define them before sourcing).
 _SHELL_PRELUDE = r"""
@@ -126,16 +127,28 @@ def process_dsv(state: HookEnv, path: str, prefix: str) -> None:
             source_shell(state, full + ".sh", prefix)
 
 
+def _check(state: HookEnv, name: str, values: list[str], path: str, number: int) -> None:
+    # colcon's shell scripts eval the name, and no environment holds a NUL: say so here, not as a ValueError later
+    if not _VAR_NAME.fullmatch(name):
+        raise HookError(f"{name!r} is not an environment variable name", source=state.origin(path), line=number,
+                        hint="letters, digits and '_', not starting with a digit")
+    if any("\0" in value for value in values):
+        raise HookError(f"the value for {name} holds a NUL character, which no environment can carry",
+                        source=state.origin(path), line=number)
+
+
 def _line(state: HookEnv, kind: str, rest: str, prefix: str, path: str, number: int) -> None:
     if kind in (SET, SET_IF_UNSET):
         name, sep, value = rest.partition(";")
         if not sep:
             raise HookError("the line has no ';' between the variable and its value", source=state.origin(path),
                             line=number)
+        _check(state, name, [value], path, number)
         prefixed = os.path.join(prefix, value) if value else prefix
         state.set(name, prefixed if os.path.exists(prefixed) else value, only_if_unset=kind == SET_IF_UNSET)
     elif kind in (PREPEND, PREPEND_IF_EXISTS, APPEND):
         name, *values = rest.split(";")
+        _check(state, name, values, path, number)
         for value in values:
             full = prefix if not value else value if os.path.isabs(value) else os.path.join(prefix, value)
             if kind == PREPEND_IF_EXISTS and not os.path.exists(full):

@@ -12,7 +12,7 @@ from pathlib import Path
 
 from lxml import etree
 
-from diffctl.errors import ConfigError
+from diffctl.errors import ConfigError, xml_error
 
 # ament_index_python's rule for a valid resource name.
 NAME_RE = re.compile(r"^[a-zA-Z0-9][a-zA-Z0-9_-]+$")
@@ -61,8 +61,7 @@ def _parse_manifest(path: Path) -> PackageManifest:
     try:
         root = etree.parse(str(path), etree.XMLParser(resolve_entities=False, no_network=True)).getroot()
     except etree.XMLSyntaxError as e:
-        line = e.position[0] if e.position else None
-        raise ConfigError(f"malformed package.xml: {e.msg}", source=str(path), line=line) from None
+        raise xml_error(e, str(path), "malformed package.xml", ConfigError) from None
     except OSError as e:
         raise ConfigError(f"cannot read package.xml: {e}", source=str(path)) from None
     if root.tag != "package":

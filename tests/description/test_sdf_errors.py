@@ -28,6 +28,8 @@ def model(body: str, version: str = "1.8", static: bool = False) -> str:
 
 CASES = [
     ("malformed_xml", '<sdf version="1.8"><model name="m">\n<link name="a">\n</model></sdf>', 3, ["malformed XML"]),
+    # libxml2 ends this message with a newline before lxml's ", line N, column M": still one line, the place first
+    ("xml_illegal_char", model("<link name='a'>\x00</link>"), 2, ["robot.sdf:2:16: malformed XML: Invalid character"]),
     ("empty_pose", model("<link name='a'><pose/></link>", static=True), 2, ["empty <pose/>", "x y z roll pitch yaw"]),
     ("short_pose", model("<link name='a'><pose>1 2 3</pose></link>", static=True), 2, ["<pose>", "'1 2 3'"]),
     ("nan_pose", model("<link name='a'><pose>1 2 nan 0 0 0</pose></link>", static=True), 2, ["finite"]),
@@ -165,6 +167,7 @@ def test_bad_sdf_is_one_clear_error(text: str, line: int, needles: list[str]) ->
     message = str(err)
     assert err.exit_code == 2
     assert message.startswith(f"robot.sdf:{line}"), message
+    assert "\n" not in message, message
     for needle in needles:
         assert needle in message, message
 

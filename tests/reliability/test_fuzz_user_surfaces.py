@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import Any
 
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 from diffctl.errors import DiffctlError
@@ -179,6 +179,7 @@ GZ_WORDS = ["sim", "topic", "service", "model", "fuel", "download", "-r", "-s", 
 
 @FUZZ
 @given(args=st.lists(st.sampled_from(GZ_WORDS) | st.text(max_size=8), max_size=7))
+@example(args=["topic", "\n"])  # found by this fuzz: argparse named the argument as it was, a newline
 def test_gz_arguments_parse_or_say_why(args: list[str], monkeypatch: pytest.MonkeyPatch, capsys) -> None:
     from diffctl.errors import NoRouterError
     from diffctl.gz import cli

@@ -102,6 +102,14 @@ def test_unknown_hook_type_is_one_located_error(tmp_path: Path) -> None:
     with pytest.raises(ConfigError) as e:
         process_dsv(HookEnv({}), str(hook), str(tmp_path))
     assert e.value.line == 2 and "prepend-unique" in str(e.value) and "prepend-non-duplicate" in str(e.value)
+    # what no environment can hold (the Fuel and hook fuzz found a NUL) is a located error, not a ValueError
+    for line, said in (("set;GZ SIM;x", "'GZ SIM' is not an environment variable name"),
+                       ("prepend-non-duplicate;\0A;share", "is not an environment variable name"),
+                       ("append-non-duplicate;A;share/\0x", "holds a NUL character")):
+        hook.write_text(f"set;OK;1\n{line}\n")
+        with pytest.raises(ConfigError, match=said) as e:
+            process_dsv(HookEnv({}), str(hook), str(tmp_path))
+        assert e.value.line == 2
 
 
 def test_a_configured_hooks_error_names_the_users_dsv_in_and_line(tmp_path: Path) -> None:

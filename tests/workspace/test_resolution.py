@@ -248,7 +248,7 @@ def test_duplicate_and_broken_manifests_are_reported(ws: Path, monkeypatch: pyte
     with pytest.raises(ConfigError, match="package 'diff_sim' is defined twice"):
         share_dir("diff_sim")
     assert find_package("robot_description").origin == "workspace"
-    with pytest.raises(PackageNotFoundError, match=r"unreadable: .*broken/package.xml:2: malformed package.xml"):
+    with pytest.raises(PackageNotFoundError, match=r"unreadable: .*broken/package.xml:2:\d+: malformed package.xml"):
         share_dir("brokn")
 
 

@@ -15,7 +15,7 @@ from typing import NoReturn
 from lxml import etree
 
 from diffctl.description.pose import Pose, Vec3
-from diffctl.errors import DescriptionError, suggest
+from diffctl.errors import DescriptionError, suggest, xml_error
 
 Element = etree._Element
 
@@ -323,7 +323,7 @@ def parse_root(text: str, source: str) -> Element:
     try:
         return etree.fromstring(text.encode(), parser=etree.XMLParser(remove_comments=True, resolve_entities=False))
     except etree.XMLSyntaxError as e:
-        raise DescriptionError(f"malformed XML: {e.msg}", source=source, line=e.lineno) from None
+        raise xml_error(e, source) from None
 
 
 def parse_urdf(text_or_root: str | Element, source: str = "<string>") -> UrdfRobot:
