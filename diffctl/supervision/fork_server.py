@@ -4,10 +4,13 @@ Every diffctl component is `python -m diffctl …`, and most of its start-up is 
 (numpy, pybullet, zenoh, rosbags, lxml, diffctl's own). The zygote (zygote.py) imports them once, before any
 Zenoh session or thread exists, and forks each component from that state. The zygote runs in the
 environment the launcher gives a process that sets nothing of its own, and only commands that exec would
-start identically are forked: `<this python> -m diffctl …`, not interactive, with exactly that environment
-(so a forked component's interpreter settings, PYTHON*, LD_*, and its /proc/PID/environ are what exec
-would have given it). Everything else, and every request the zygote cannot answer, is exec'd as before.
-DIFFCTL_FORK_SERVER=0 turns the server off.
+start identically are forked: `<this python> -m diffctl …`, not interactive, with that environment (so a
+forked component's interpreter settings, PYTHON*, LD_*, and its /proc/PID/environ are what exec would have
+given it), give or take Gazebo's search paths (CALL_TIME_PREFIXES): launch files set those for the processes
+after them (ros_gz_sim's gz_sim.launch.py appends GZ_SIM_RESOURCE_PATH) and diffctl reads them only when it
+needs them, so the component gets them in its os.environ (/proc/PID/environ shows the zygote's). Everything
+else, and every request the zygote cannot answer, is exec'd as before. DIFFCTL_FORK_SERVER=0 turns the
+server off.
 """
 
 from __future__ import annotations
@@ -26,6 +29,9 @@ from diffctl.supervision.zygote import MAX_MESSAGE, PR_SET_PDEATHSIG, TITLE_ROOM
 
 ENABLE_ENV = "DIFFCTL_FORK_SERVER"
 REPLY_TIMEOUT_S = 60.0  # the first request waits for the zygote's imports, on a loaded machine too
+# Environment variables diffctl reads only when it needs them (never at import or in a warm-up), so a process
+# forked from a zygote that lacks them behaves as one exec'd with them: Gazebo's resource and plugin paths.
+CALL_TIME_PREFIXES = ("GZ_", "IGN_", "GAZEBO_", "SDF_PATH")
 
 
 def enabled(env: Mapping[str, str]) -> bool:
@@ -39,6 +45,15 @@ def is_component(argv: Sequence[str]) -> bool:
         and os.path.abspath(argv[0]) == os.path.abspath(sys.executable)
         and list(argv[1:3]) == ["-m", "diffctl"]
     )
+
+
+def same_start(env: Mapping[str, str], zygote_env: Mapping[str, str]) -> bool:
+    """Whether a process exec'd in `env` starts as one forked from a zygote started in `zygote_env` and given
+    `env` after the fork: they differ at most in variables read only at call time."""
+    if env == zygote_env:
+        return True
+    keys = set(env) | set(zygote_env)
+    return all(env.get(k) == zygote_env.get(k) or k.startswith(CALL_TIME_PREFIXES) for k in keys)
 
 
 def dies_with_launcher() -> Callable[[], None] | None:
@@ -98,7 +113,9 @@ class ForkServer:
         return self.process.pid if self.process is not None else None
 
     def accepts(self, argv: list[str], env: Mapping[str, str], interactive: bool) -> bool:
-        return self._sock is not None and not interactive and is_component(argv) and dict(env) == self._env
+        if self._sock is None or interactive or not is_component(argv):
+            return False
+        return same_start(env, self._env)
 
     def spawn(
         self, argv: list[str], env: Mapping[str, str], cwd: str | None, stdout_w: int, stderr_w: int

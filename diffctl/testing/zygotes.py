@@ -22,12 +22,9 @@ import sys
 import traceback
 from collections.abc import Mapping
 
-from diffctl.supervision.fork_server import ForkServer, is_component
+from diffctl.supervision.fork_server import ForkServer
 from diffctl.supervision.zygote import PR_SET_PDEATHSIG, Preload
 
-# Environment variables diffctl reads only when it needs them (never at import or in a warm-up), so a process
-# forked from a zygote that lacks them behaves as one exec'd with them: Gazebo's resource and plugin paths.
-CALL_TIME_PREFIXES = ("GZ_", "IGN_", "GAZEBO_", "SDF_PATH")
 TEST_MODULES = (
     "pytest",
     "diffctl.testing.launch_test",
@@ -101,15 +98,6 @@ class InheritedForkServer(ForkServer):
     def for_env(self, env: Mapping[str, str]) -> InheritedForkServer:
         self._env = dict(env)
         return self
-
-    def accepts(self, argv: list[str], env: Mapping[str, str], interactive: bool) -> bool:
-        """As ForkServer's, but for Gazebo's search paths, which launch files set for the processes after them
-        (ros_gz_sim's gz_sim.launch.py: GZ_SIM_RESOURCE_PATH) and which nothing reads before it needs them:
-        the component gets them in its os.environ (not in /proc/PID/environ, which shows the zygote's)."""
-        if self._sock is None or interactive or not is_component(argv):
-            return False
-        keys = set(env) | set(self._env)
-        return all(env.get(k) == self._env.get(k) or k.startswith(CALL_TIME_PREFIXES) for k in keys)
 
 
 def _serve_and_become(sock: socket.socket, parent: int, start_cwd: str) -> int:

@@ -126,6 +126,22 @@ def test_a_crashing_component_leaves_the_server_serving_and_a_different_environm
         assert launcher.exit_code(child) in (0, 130)
 
 
+def test_gazebo_search_paths_of_its_own_still_fork_a_component_which_reads_them(launcher, tmp_path) -> None:
+    # gz_sim.launch.py appends GZ_SIM_RESOURCE_PATH for the processes after it; read only when needed, it must
+    # not make the rest of the launch exec'd. The world is found there (and is malformed: exit 2, named).
+    (tmp_path / "only_here.sdf").write_text("<sdf version='1.9'><world")
+    cmd = [sys.executable, "-m", "diffctl", "sim", "run", "-s", "only_here"]
+    env = {**launcher.env, "GZ_SIM_RESOURCE_PATH": str(tmp_path)}
+    server = launcher.spawner.fork_server
+    assert server.accepts(cmd, env, False)
+    assert not server.accepts(cmd, {**env, "PYTHONPATH": str(tmp_path)}, False)
+    sink = Sink()
+    child = launcher.run(launcher.spawner.spawn(SpawnRequest(cmd=cmd, env=env), sink))
+    assert launcher.exit_code(child) == 2
+    err = sink.err.decode()
+    assert str(tmp_path / "only_here.sdf") in err and "not found" not in err, err
+
+
 def test_the_supervision_modules_the_fork_server_loads_import_no_launch() -> None:
     # The zygote and the launcher's side of it are loaded before the launch core (their imports overlap it).
     code = (
