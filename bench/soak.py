@@ -294,7 +294,7 @@ def soak(minutes: float, warmup_minutes: float, sample_s: float, viz: bool) -> d
             os.killpg(proc.pid, signal.SIGKILL)
             proc.wait()
     log = log_path.read_text()
-    lost += [ln for ln in log.splitlines() if re.search(r"was killed|died with|respawning", ln)]
+    lost += [ln for ln in log.splitlines() if re.search(r"process has died", ln)]
     return _figures(
         minutes,
         wall_s,

@@ -18,7 +18,7 @@ CMD = "/diffbot_base_controller/cmd_vel"
 ODOM = "/diffbot_base_controller/odom"
 TWIST_STAMPED = "geometry_msgs/msg/TwistStamped"
 CONTROLLERS = ("diffbot_base_controller", "joint_state_broadcaster")
-STARTED = re.compile(r"\[([\w.-]+)\] started \(pid (\d+)\)")
+STARTED = re.compile(r"\[([\w.-]+)\]: process started with pid \[(\d+)\]")
 
 
 def launch_log(stack: Stack) -> str:

@@ -104,7 +104,7 @@ def test_relays_respawn_mid_drive_and_a_dead_teleop_brakes_the_car(stack_env: st
             os.kill(old, signal.SIGKILL)
             wait_until(lambda n=name, o=old: pids(stack)[n] != o, 20, f"{name} respawned", stack)
             log = launch_log(stack)
-            assert f"[{name}] was killed by SIGKILL" in log and f"[{name}] respawning in 1 s (restart 1)" in log
+            assert f"[{name}]: process has died [pid {old}, exit code -9," in log  # then respawned: a new pid
             wait_until(lambda c=check, b=before: c(b), 30, f"{name} working again after its respawn", stack)
             assert not alive(old)
             # The car drove on the whole time: the controller and the sim never depended on the relay.
