@@ -69,5 +69,6 @@ class LaunchOutcome(BaseEventHandler):
             return ["failed: " + ", ".join(f"{n} ({describe_exit(c)})" for n, c in self.failed.items())]
         if self.last_exit is not None and self.last_exit[1] != 0 and self.last_exit[0] in self.failed:
             name, code = self.last_exit
-            return [f"required process {name!r} ended with {describe_exit(code)}"]
+            how = f"was {describe_exit(code)}" if code < 0 else f"ended with {describe_exit(code)}"
+            return [f"required process {name!r} {how}"]
         return []

@@ -55,9 +55,9 @@ def assert_shut_down_cleanly(stack: Stack, name: str, timeout_s: float = 15.0) -
         raise AssertionError(f"the launch did not shut down after {name} was killed:\n{stack.output()}") from None
     log = launch_log(stack)
     assert code == 1, log[-3000:]
-    assert f"[{name}] was killed by SIGKILL" in log, log[-3000:]
-    assert f"shutting down: required process '{name}' was killed by SIGKILL" in log, log[-3000:]
-    assert "all processes stopped" in log or "launch failed" in log
+    assert re.search(rf"\[{name}\]: process has died \[pid \d+, exit code -9,", log), log[-3000:]
+    assert f"process[{name}] was required: shutting down launched system" in log, log[-3000:]
+    assert f"launch failed: required process '{name}' was killed by SIGKILL" in log, log[-3000:]
     wait_until(lambda: not stack.survivors(), 2.0, f"every process gone after {name} died: {stack.survivors()}")
     return log
 
