@@ -116,7 +116,10 @@ class MessageInfo:
 class Subscription:
     def __init__(self, node: Node, topic: str, typename: str, callback: Callable[..., None], *,
                  latched: bool = False, depth: int | None = None, raw: bool = False, ignore_local: bool = False,
-                 with_info: bool = False, reliable: bool = True, qos: wire.QoS | None = None) -> None:
+                 with_info: bool = False, reliable: bool = True, qos: wire.QoS | None = None,
+                 samples: bool = False) -> None:
+        """`samples`: the callback gets each zenoh.Sample untouched (payload, attachment and all), for a caller
+        that queues them on Zenoh's thread and reads them later on its own (the client library)."""
         self.node = node
         self.topic = node.resolve(topic)
         self.type = types.check_defined(typename) if raw else types.check(typename)
@@ -130,14 +133,15 @@ class Subscription:
         self._decode = None if raw else types.decoder(self.type)
         key = wire.topic_key(node.domain, self.topic, self.type)
         token = node.context.entity_token(node, wire.KIND_SUB, self.topic, self.type, self.qos.token())
+        handler = callback if samples else self._on_sample
         if self.qos.transient_local:
             self._sub = ext.declare_advanced_subscriber(
-                node.session, key, self._on_sample,
+                node.session, key, handler,
                 history=ext.HistoryConfig(detect_late_publishers=True, max_samples=history_depth(self.qos)),
                 subscriber_detection=True,
             )
         else:
-            self._sub = node.session.declare_subscriber(key, self._on_sample)
+            self._sub = node.session.declare_subscriber(key, handler)
         self._token = node.session.liveliness().declare_token(token)
         node.context.add_local(self.topic, self.type, wire.KIND_SUB, node)
 

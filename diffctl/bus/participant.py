@@ -158,10 +158,12 @@ class Participant:
     def create_subscription(self, topic: str, typename: str, callback: Callable[..., None], *,
                             latched: bool = False, depth: int | None = None, raw: bool = False,
                             ignore_local: bool = False, with_info: bool = False, reliable: bool = True,
-                            qos: wire.QoS | None = None) -> Subscription:
-        """`callback(msg)` (or `callback(bytes)` when raw) runs on a Zenoh thread: keep it short."""
+                            qos: wire.QoS | None = None, samples: bool = False) -> Subscription:
+        """`callback(msg)` (or `callback(bytes)` when raw, `callback(zenoh.Sample)` with `samples`) runs on a Zenoh
+        thread: keep it short."""
         return self._keep(Subscription(self, topic, typename, callback, latched=latched, depth=depth, raw=raw,
-                                       ignore_local=ignore_local, with_info=with_info, reliable=reliable, qos=qos))
+                                       ignore_local=ignore_local, with_info=with_info, reliable=reliable, qos=qos,
+                                       samples=samples))
 
     def create_service(self, name: str, srv_type: str, handler: Callable[[Any], Any], *,
                        qos: wire.QoS | None = None, raw: bool = False) -> Service:

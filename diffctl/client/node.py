@@ -512,7 +512,7 @@ class Node:
         self._check_context("Failed to create subscription")
         sub = Subscription(self, msg_type, topic, callback, callback_group, qos_profile, raw,
                            event_callbacks=event_callbacks or SubscriptionEventCallbacks())
-        bus_sub = self._bus.create_subscription(full, typename, sub._on_sample, raw=True, with_info=True,
+        bus_sub = self._bus.create_subscription(full, typename, sub._on_sample, raw=True, samples=True,
                                                 qos=_qos.to_wire(qos_profile))
         sub._attach(bus_sub)
         callback_group.add_entity(sub)
