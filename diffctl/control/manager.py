@@ -452,13 +452,33 @@ class ControllerManager:
             with self._lock:
                 rate = self.params.update_rate
                 rm = self.rm
-                failed = rm.read(time_ns, period_s, rate)
-                if failed:
-                    self._hardware_failed(failed)
+                single = rm.single
+                if single is None:
+                    failed = rm.read(time_ns, period_s, rate)
+                    if failed:
+                        self._hardware_failed(failed)
+                    self._update(time_ns, period_s, rate)
+                    failed = rm.write(time_ns, period_s, rate)
+                    if failed:
+                        self._hardware_failed(failed)
+                    return
+                # One component at the manager's rate (the usual robot): its read and write called here, each
+                # call a frame fewer on every cycle; a failure is counted and worded by the resource manager.
+                h, read, write = single
+                try:
+                    ret = read(time_ns, period_s)
+                except Exception as e:
+                    ret = e
+                if ret is not _OK:
+                    self._hardware_failed(rm.failure(h, False, ret))
                 self._update(time_ns, period_s, rate)
-                failed = rm.write(time_ns, period_s, rate)
-                if failed:
-                    self._hardware_failed(failed)
+                if write is not None and rm.single is single:
+                    try:
+                        ret = write(time_ns, period_s)
+                    except Exception as e:
+                        ret = e
+                    if ret is not _OK:
+                        self._hardware_failed(rm.failure(h, True, ret))
         finally:
             release_publishing(held)
 
