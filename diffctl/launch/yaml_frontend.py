@@ -186,11 +186,12 @@ class Entity:
         raise self.error(f"`{key}` is {value!r}, not a boolean", key=key, hint="valid: true, false")
 
     def value(self, key: str) -> Any:
-        """A parameter value: YAML-typed, with `$(...)` in strings parsed into substitutions."""
+        """A parameter value: YAML-typed; a string is a substitution, typed by YAML rules once substituted, as
+        launch_yaml hands it to launch_ros (`value: "true"` is the boolean true, `value: "5"` the integer 5)."""
 
         def convert(v: Any) -> Any:
             if isinstance(v, str):
-                return self.parse(v, key) if "$(" in v else v
+                return self.parse(v, key)
             if isinstance(v, list):
                 return [convert(x) for x in v]
             if isinstance(v, Mapping):
