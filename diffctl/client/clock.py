@@ -218,5 +218,7 @@ class ROSClock(Clock):
             active = self._ros_time_active
             self._cond.notify_all()
         if active:
+            # Executors are woken by what the new time makes ready (a timer's jump callback, once it is due),
+            # not by every update: with /clock at 1 kHz, or a simulator setting the time of its hosted
+            # controllers' clocks every cycle, they would wake for nothing each time.
             self._post_jump(handles, ClockChange.ROS_TIME_NO_CHANGE, delta)
-            waiting.notify()

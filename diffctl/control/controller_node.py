@@ -71,12 +71,10 @@ class ManagerTime:
         self._clocks = tuple(c for c in self._clocks if c[0] != id(node))
 
     def set_ns(self, time_ns: int) -> None:
-        from diffctl.client.clock_type import ClockType
-        from diffctl.client.ros_time import Time
-
-        t = Time(nanoseconds=time_ns, clock_type=ClockType.ROS_TIME)
+        # set_ros_time_override's work without a Time to build and check: this runs on every cycle of the
+        # simulator's manager, for its node and each controller's (as the nodes' own time sources set it).
         for _, clock in self._clocks:
-            clock.set_ros_time_override(t)
+            clock._set_override_ns(time_ns)
 
 
 def spin_resiliently(executor: Any, running: Any, log: Any) -> None:
