@@ -37,6 +37,7 @@ from diffctl.sim.plugins.mecanum_drive import MecanumDrive, MecanumDriveParams
 from diffctl.sim.plugins.odometry_publisher import OdometryPublisher
 from diffctl.sim.plugins.pose_publisher import PosePublisher
 from diffctl.sim.plugins.system_names import system_kind
+from diffctl.sim.plugins.track_belts import TrackBelts
 from diffctl.sim.plugins.track_controller import TrackController
 from diffctl.sim.plugins.tracked_vehicle import TrackedVehicle
 from diffctl.sim.plugins.velocity_control import VelocityControl
@@ -265,6 +266,8 @@ class Simulation:
             if system_name(p.filename, p.name) == "track-controller"
         ]
         rt.plugins.extend(tracks)
+        if tracks:
+            rt.plugins.append(TrackBelts(self.ctx, rt.entity, tracks))
         for plugin in model.plugins:
             kind = system_name(plugin.filename, plugin.name)
             if kind == "tracked-vehicle":
