@@ -37,19 +37,19 @@ async def _read_until(ws: Any, pred, timeout_s: float = 30.0) -> Any:
 
 def serving(bridge: Any, port: int, within_s: float = 60.0) -> None:
     """Wait for the bridge's "Foxglove server on ws://…" line: its port opens early in its start, and a
-    handshake sent before every part is up could wait past the client's open timeout on a loaded machine."""
+    handshake sent before every part is up could wait past the client's open timeout on a loaded machine.
+    (Read from the descriptor itself: a buffered readline may hold that line while select sees nothing.)"""
     wait_port(port, within_s)
     deadline = time.monotonic() + within_s
-    seen = []
-    while time.monotonic() < deadline:
-        ready, _, _ = select.select([bridge.stdout], [], [], max(0.0, deadline - time.monotonic()))
-        line = bridge.stdout.readline() if ready else ""
-        if not line and (not ready or bridge.poll() is not None):
-            break
-        seen.append(line)
-        if "Foxglove server on ws://" in line:
-            return
-    raise AssertionError(f"the bridge did not say it serves within {within_s} s: {''.join(seen)!r}")
+    fd = bridge.stdout.fileno()
+    seen = b""
+    while b"Foxglove server on ws://" not in seen:
+        left = deadline - time.monotonic()
+        ready, _, _ = select.select([fd], [], [], max(0.0, left))
+        chunk = os.read(fd, 65536) if ready else b""
+        if not chunk:
+            raise AssertionError(f"the bridge did not say it serves within {within_s} s: {seen.decode()!r}")
+        seen += chunk
 
 
 def connect(port: int, **kw: Any) -> Any:
