@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import select
 import time
+import weakref
 from collections.abc import Callable
 from typing import IO
 
@@ -21,7 +22,9 @@ def wait_for(pred: Callable[[], bool], timeout_s: float = 10.0, every: Callable[
     return pred()
 
 
-_unread: dict[int, bytes] = {}  # what was read past the last line returned, per pipe
+# What was read past the last line returned, per stream object (not per descriptor: a closed pipe's number is
+# soon another child's, and its leftovers must not become that child's first lines).
+_unread: weakref.WeakKeyDictionary[IO[str], bytes] = weakref.WeakKeyDictionary()
 
 
 def lines_until(stream: IO[str], pred: Callable[[str], bool], timeout_s: float) -> tuple[list[str], bool]:
@@ -29,7 +32,7 @@ def lines_until(stream: IO[str], pred: Callable[[str], bool], timeout_s: float) 
     the end (False). Read from the pipe's descriptor: a buffered `readline()` after `select` can keep a second
     line in its buffer where select no longer sees it, and the wait then outlasts any bound."""
     fd = stream.fileno()
-    buf = _unread.pop(fd, b"")
+    buf = _unread.pop(stream, b"")
     lines: list[str] = []
     deadline = time.monotonic() + timeout_s
     while True:
@@ -38,7 +41,7 @@ def lines_until(stream: IO[str], pred: Callable[[str], bool], timeout_s: float) 
             line = raw.decode("utf-8", "replace") + "\n"
             lines.append(line)
             if pred(line):
-                _unread[fd] = buf
+                _unread[stream] = buf
                 return lines, True
         left = deadline - time.monotonic()
         ready, _, _ = select.select([fd], [], [], max(0.0, left)) if left > 0 else ([], [], [])
