@@ -81,7 +81,7 @@ def test_a_patch_shares_its_load_evenly_between_its_points() -> None:
     patch = ContactPatch(points_m=((-0.4, 0.2, 0.0), (0.4, 0.2, 0.0), (0.4, 0.3, 0.0)), normal=UP, load_n=90.0)
     assert patch.length_m == pytest.approx(0.8)
     asks = patch_asks(patch, frame, 0.5, None)
-    assert asks == [(0.5, 30.0, 1.0)] * 3
+    assert asks.tolist() == [[0.5, 30.0, 1.0]] * 3
     # turning in place about the frame's origin: each point asks speed / its distance, clockwise here (the
     # track's forward is the frame's x, world +y, on the world's -x side of the centre)
     turning = patch_asks(patch, frame, 0.5, (1.0, 0.0, 0.5))

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import dataclasses
 
+import numpy as np
 import pybullet as pb
 
 from diffctl.description.pose import quat_rotate
@@ -124,11 +125,11 @@ class TrackBelts(SystemPlugin):
         lengths = [max(p.length_m, MIN_PATCH_M) for _, p in patches]
         total = sum(lengths)
         load_n = state.load_n if state.load_n > 0.0 else 1.0
-        asks: list[tuple[float, float, float]] = []
-        for (track, patch), length in zip(patches, lengths, strict=True):
-            patch = dataclasses.replace(patch, load_n=load_n * length / total)
-            asks.extend(patch_asks(patch, frame, track.speed, center))
-        rate = settled_rate(asks) or 0.0
+        asks = [
+            patch_asks(dataclasses.replace(patch, load_n=load_n * length / total), frame, track.speed, center)
+            for (track, patch), length in zip(patches, lengths, strict=True)
+        ]
+        rate = settled_rate(np.concatenate(asks)) or 0.0
         local = None if center is None else _local(frame, center)[:2]
         return belt_joint_speeds(rate, local)  # type: ignore[arg-type]
 

@@ -48,10 +48,6 @@ def _cross(a: Vec3, b: Vec3) -> Vec3:
     return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
 
 
-def _dot(a: Vec3, b: Vec3) -> float:
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-
-
 def track_forward(track_y: Vec3, normal: Vec3) -> Vec3:
     """The way a contact's surface pushes the body for a positive track speed: across the track's y axis and the
     contact normal (pointing into the track), as gz derives the belt direction; forwards under the track,
@@ -59,29 +55,33 @@ def track_forward(track_y: Vec3, normal: Vec3) -> Vec3:
     return _cross(track_y, normal)
 
 
+def _asks(
+    points: np.ndarray, normal: Vec3, track_y: Vec3, speed_m_s: float, center: Vec3 | None
+) -> tuple[np.ndarray, np.ndarray]:
+    """(asked rates, levers) of the contacts at `points` (n x 3, in the world) that ask something."""
+    if center is None:
+        return np.full(len(points), float(speed_m_s)), np.ones(len(points))
+    n = np.asarray(normal, dtype=float)
+    r = points - np.asarray(center, dtype=float)
+    r -= np.outer(r @ n, n)  # into the contact's plane
+    levers = np.linalg.norm(r, axis=1)
+    # which way the track's forward push runs along the circle's tangent (n x r, turning positively about the
+    # normal): forward · (n x r) = r · (forward x n)
+    side = r @ np.array(_cross(track_forward(track_y, normal), normal))
+    keep = (levers >= MIN_LEVER_M) & (side != 0.0)
+    # the body turning at rate w about the centre moves a contact at w·lever along the tangent
+    return np.sign(side[keep]) * speed_m_s / levers[keep], levers[keep]
+
+
 def asked_rate(
     point: Vec3, normal: Vec3, track_y: Vec3, speed_m_s: float, center: Vec3 | None
 ) -> tuple[float, float] | None:
     """(what the contact asks, its lever) for one contact of a track running at `speed_m_s`: with a centre of
     rotation the turn rate (rad/s, about `normal`) and the distance to the centre in the contact's plane; without
-    one the speed along the track's forward direction and a lever of 1. None when it asks nothing."""
-    forward = track_forward(track_y, normal)
-    if center is None:
-        return speed_m_s, 1.0
-    r = (point[0] - center[0], point[1] - center[1], point[2] - center[2])
-    along = _dot(r, normal)
-    r = (r[0] - along * normal[0], r[1] - along * normal[1], r[2] - along * normal[2])
-    lever = math.sqrt(_dot(r, r))
-    if lever < MIN_LEVER_M:
-        return None
-    # the circle's tangent at the contact, turning positively about the normal
-    tangent = _cross(normal, r)
-    side = _dot(forward, tangent)
-    if side == 0.0:
-        return None
-    # the body turning at rate w about the centre moves here at w·lever along the tangent; the track wants
-    # speed along its forward direction, which the tangent follows or opposes
-    return math.copysign(1.0, side) * speed_m_s / lever, lever
+    one the speed along the track's forward direction and a lever of 1. None when it asks nothing (on the centre,
+    or where the track pushes straight towards or away from it)."""
+    rates, levers = _asks(np.array([point], dtype=float), normal, track_y, speed_m_s, center)
+    return (float(rates[0]), float(levers[0])) if len(rates) else None
 
 
 @dataclass(frozen=True)
@@ -106,52 +106,44 @@ def patch_asks(
     frame: tuple[Vec3, Vec3, Vec3, Vec3],
     speed_m_s: float,
     center: Vec3 | None,
-) -> list[tuple[float, float, float]]:
-    """(asked rate, load, lever) for each of the patch's points (`asked_rate`), the load shared evenly between
-    them; `frame` is the track plane's origin and its x, y, z axes in the world."""
-    origin, x_axis, y_axis, z_axis = frame
+) -> np.ndarray:
+    """Rows (asked rate, load, lever) for the patch's points (`asked_rate`), the load shared evenly between them;
+    `frame` is the track plane's origin and its x, y, z axes in the world."""
+    origin, *axes = (np.asarray(v, dtype=float) for v in frame)
+    points = origin + np.asarray(patch.points_m, dtype=float).reshape(-1, 3) @ np.array(axes)
+    rates, levers = _asks(points, patch.normal, frame[2], speed_m_s, center)
     share = patch.load_n / max(1, len(patch.points_m))
-    asks = []
-    for a, b, c in patch.points_m:
-        point = tuple(origin[k] + a * x_axis[k] + b * y_axis[k] + c * z_axis[k] for k in range(3))
-        ask = asked_rate(point, patch.normal, y_axis, speed_m_s, center)  # type: ignore[arg-type]
-        if ask is not None:
-            asks.append((ask[0], share, ask[1]))
-    return asks
+    return np.column_stack((rates, np.full(len(rates), share), levers))
 
 
-def settled_rate(asks: Iterable[tuple[float, float, float]], slip_m_s: float = SLIP_SPEED_M_S) -> float | None:
+def settled_rate(
+    asks: np.ndarray | Iterable[tuple[float, float, float]], slip_m_s: float = SLIP_SPEED_M_S
+) -> float | None:
     """The rate at which the asks' friction moments about the centre balance: each (rate, load, lever) pulls with
     load · lever · s, s the slip lever · (its rate − the rate) over `slip_m_s`, clipped to ±1. None for no asks;
     with no load at all, the middle of the asked rates."""
-    items = np.array(list(asks), dtype=float).reshape(-1, 3)
+    items = np.asarray(asks if isinstance(asks, np.ndarray) else list(asks), dtype=float).reshape(-1, 3)
     if not len(items):
         return None
     rates, loads, levers = items.T
-    lo, hi = float(rates.min()), float(rates.max())
     if loads.sum() <= 0.0:
-        return (lo + hi) / 2.0
-    moment, gain = loads * levers, levers / slip_m_s
+        return (float(rates.min()) + float(rates.max())) / 2.0
+    moment, reach = loads * levers, slip_m_s / levers
+    # the pull falls as the rate rises, linearly between the rates where some contact starts or stops slipping
+    # fully: evaluated there, it is zero where two neighbours' pulls change sign, or over a span (opposite
+    # pulls both saturated), any rate in which balances: the middle of it
+    knots = np.sort(np.concatenate((rates - reach, rates + reach)))
+    pulls = (moment * np.clip((rates - knots[:, None]) / reach, -1.0, 1.0)).sum(axis=1)
 
-    def pull(rate: float) -> float:
-        return float(np.dot(moment, np.clip(gain * (rates - rate), -1.0, 1.0)))
+    def crossing(k: int) -> float:  # the zero of the segment knots[k - 1], knots[k]
+        p0, p1 = pulls[k - 1], pulls[k]
+        return float(knots[k - 1] + (knots[k] - knots[k - 1]) * p0 / (p0 - p1)) if p0 != p1 else float(knots[k])
 
-    # the pull falls as the rate rises, from ≥ 0 at the lowest ask to ≤ 0 at the highest; where opposite pulls
-    # both saturate it is zero over a span, any rate in which balances: its middle
-    def edge(pulling_up: bool) -> float:
-        a, b = lo, hi
-        for _ in range(48):
-            if b - a <= 1e-9 * max(1.0, abs(b)):
-                break
-            mid = (a + b) / 2.0
-            p = pull(mid)
-            if p > 0.0 or (pulling_up and p == 0.0):
-                a = mid
-            else:
-                b = mid
-        return (a + b) / 2.0
-
-    return (edge(False) + edge(True)) / 2.0
+    # (the lowest knot pulls up, the highest down: both indices exist; a pull within rounding of 0 is 0)
+    rounding = 1e-9 * float(moment.sum())
+    last_up = int(np.argmax(pulls <= rounding))  # the first knot no longer pulling up
+    first_down = int(np.argmax(pulls < -rounding))  # the first knot pulling down
+    return (crossing(last_up) + crossing(first_down)) / 2.0
 
 
 def belt_joint_speeds(rate: float, center_xy: tuple[float, float] | None) -> tuple[float, float, float]:
