@@ -21,7 +21,7 @@ from typing import Any
 
 from diffctl.bus import gz
 from diffctl.description.model import Plugin
-from diffctl.sim.entity import Entity
+from diffctl.sim.entity import DEFAULT_MAX_SPEED, Entity
 from diffctl.sim.plugins.base import PluginContext, SystemPlugin, float_param, rate_period_ns
 from diffctl.sim.plugins.diff_drive_math import limit_speed
 from diffctl.sim.plugins.system_support import speed_limits, valid_topic
@@ -84,6 +84,8 @@ class TrackController(SystemPlugin):
         age = self.max_command_age_ns
         if age is not None and self.ctx.stepper.sim_time_ns - self._command_ns > age:
             target = 0.0
+        # (without a <max_velocity> still capped, as joint commands are: absurd speeds never reach the physics)
+        target = max(-DEFAULT_MAX_SPEED, min(DEFAULT_MAX_SPEED, target))
         self.speed = limit_speed(target, self._last[0], self._last[1], self._dt_s, self.limits)
         self._last = [self.speed, self._last[0]]
         self.position_m += self.speed * self._dt_s
