@@ -56,7 +56,7 @@ class Publisher:
             # Not express, as rmw_zenoh declares its publishers: an idle link still sends each sample at once,
             # but under load samples share a batch (one write, one read) instead of one syscall each.
             self._pub = node.session.declare_publisher(key, express=False)
-        self._token = node.session.liveliness().declare_token(token)
+        self._token = node.context.declare_token(token)
         self._seq = itertools.count(1)
         # Hot path: bound once, not looked up per message.
         self._encode: Callable[[Any], bytes] | None = None  # compiled on the first message object published
@@ -142,7 +142,7 @@ class Subscription:
             )
         else:
             self._sub = node.session.declare_subscriber(key, handler)
-        self._token = node.session.liveliness().declare_token(token)
+        self._token = node.context.declare_token(token)
         node.context.add_local(self.topic, self.type, wire.KIND_SUB, node)
 
     def _on_sample(self, sample: zenoh.Sample) -> None:
@@ -208,7 +208,7 @@ class Service:
         self._q = node.session.declare_queryable(
             key, zenoh.handlers.Callback(self._on_query, indirect=False), complete=True
         )
-        self._token = node.session.liveliness().declare_token(token)
+        self._token = node.context.declare_token(token)
 
     def _on_query(self, query: zenoh.Query) -> None:
         if self.raw:
@@ -270,7 +270,7 @@ class Client:
         self._key = wire.service_key(node.domain, self.name, self.type)
         token = node.context.entity_token(node, wire.KIND_CLIENT, self.name, self.type, self.qos.token())
         self._gid = wire.gid_of(token)
-        self._token = node.session.liveliness().declare_token(token)
+        self._token = node.context.declare_token(token)
         self._seq = itertools.count(1)
         self._lock = threading.Lock()
 
