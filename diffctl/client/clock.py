@@ -209,6 +209,11 @@ class ROSClock(Clock):
             raise TypeError(f"Time must be specified as rclpy.time.Time. Received type: {type(time)}")
         self._set_override_ns(time.nanoseconds)
 
+    def set_ros_time_override_ns(self, ns: int) -> None:
+        """set_ros_time_override from an int of nanoseconds, without a Time to build and check (diffctl's
+        addition, for a host setting its nodes' clocks every cycle)."""
+        self._set_override_ns(ns)
+
     def _set_override_ns(self, ns: int) -> None:
         delta = ns - self._override_ns
         handles = self._jump_handles_for(ClockChange.ROS_TIME_NO_CHANGE, delta) if self._ros_time_active else []

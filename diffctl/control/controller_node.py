@@ -64,7 +64,7 @@ class ManagerTime:
 
     def follow(self, node: Any) -> None:
         # rclpy's TimeSource.detach_node on the node's own time source: its clock stops following /clock.
-        node._time_source.detach_node()
+        node.get_node_time_source_interface().detach_node()
         self._clocks = (*self._clocks, (id(node), node.get_clock()))
 
     def forget(self, node: Any) -> None:
@@ -74,7 +74,7 @@ class ManagerTime:
         # set_ros_time_override's work without a Time to build and check: this runs on every cycle of the
         # simulator's manager, for its node and each controller's (as the nodes' own time sources set it).
         for _, clock in self._clocks:
-            clock._set_override_ns(time_ns)
+            clock.set_ros_time_override_ns(time_ns)
 
 
 def spin_resiliently(executor: Any, running: Any, log: Any) -> None:
