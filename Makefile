@@ -58,8 +58,9 @@ test: $(STAMP) bytecode system-deps jazzy-oracle
 test-fast: $(STAMP) bytecode
 	$(BIN)/python -m pytest -p no:cacheprovider -m "not slow and not browser"
 
+# `make bench REFERENCE=1` also writes bench/results/reference-<date>-<commit>.json (the file the README cites).
 bench: $(STAMP) bytecode jazzy-oracle
-	$(BIN)/python -m bench
+	$(BIN)/python -m bench $(if $(REFERENCE),--reference)
 
 lint: $(STAMP)
 	$(BIN)/ruff check diffctl tests bench

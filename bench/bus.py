@@ -1,6 +1,7 @@
 """Bus benchmark: TwistStamped round trip between two processes through the router, and decoded throughput.
 
-Metrics (budget): `bus_rtt_p50_us` (≤ 150), `bus_rtt_p99_us` (≤ 300), `bus_throughput_msgs_s` (≥ 100,000,
+Metrics (budget in bench/budget.py): `bus_rtt_p50_us`, `bus_rtt_p99_us` (as ratios to bare zenoh-python's,
+`bus_rtt_p50_vs_zenoh` and `bus_rtt_p99_vs_zenoh`), `bus_throughput_msgs_s` (≥ 100,000,
 one-way, every message deserialized by the receiver, over the window from the sender's start to the last
 message received: `bus_throughput_window_s`, `bus_flood_drain_s` of it after the sender stopped). Each ping
 carries its own stamp and only its own echo ends it; one with no echo within 1 s is counted
@@ -23,8 +24,6 @@ import time
 from bench.drain import drained
 from bench.ports import free_port, wait_port
 
-BUDGET = {"bus_rtt_p50_us": ("<=", 150.0), "bus_rtt_p99_us": ("<=", 300.0),
-          "bus_throughput_msgs_s": (">=", 100_000.0)}
 SAMPLES = 5000
 TYPE = "geometry_msgs/msg/TwistStamped"
 

@@ -5,8 +5,9 @@ joint_state_broadcaster active — so every tick publishes /joint_states, /dynam
 odometry and TF over a real router — while a teleop process sends TwistStamped at 20 Hz. Measured over
 10 s: period jitter |Δt(wake) − 10 ms| p50/p99, and the cost of one read → update → write cycle.
 
-Metrics (budget, as bench/budget.py): `control_jitter_p99_ms` (≤ 1.0), `control_update_us` (≤ 100, issue 13:
-the mean cost of one cycle, from the wake-up to the end of write; p50 and p99 are reported beside it).
+Metrics (budget in bench/budget.py): `control_jitter_p99_ms`, `control_update_us` (the mean cost of one cycle, from
+the wake-up to the end of write, wall; p50 and p99 are reported beside it, and `control_update_cpu_us`, the same
+cycles' thread CPU time: on a shared machine the difference is time the loop waited, not work).
 `control_update_us_<controller>` (no budget): the update cost of each of the other ros2_controllers diffctl provides,
 measured alone (bench/control_controllers.py). The
 control thread asks for SCHED_FIFO as ros2_control_node does; without the permission it runs at normal priority
@@ -27,7 +28,6 @@ from bench.ports import free_port, wait_port
 REPO = Path(__file__).resolve().parent.parent
 SDF = REPO / "description" / "my_diff_car_control.sdf"
 CONFIG = REPO / "config" / "diff_drive_controller.yaml"
-BUDGET = {"control_jitter_p99_ms": ("<=", 1.0), "control_update_us": ("<=", 100.0)}
 
 
 def run(duration_s: float = 10.0, rate_hz: int = 100) -> dict:
@@ -106,6 +106,7 @@ def run(duration_s: float = 10.0, rate_hz: int = 100) -> dict:
         "control_jitter_p99_ms": round(s["jitter_p99_us"] / 1000, 4),
         "control_jitter_max_ms": round(s["jitter_max_us"] / 1000, 3),
         "control_update_us": round(s["update_mean_us"], 1),
+        "control_update_cpu_us": round(s["update_cpu_mean_us"], 1),
         "control_update_p50_us": round(s["update_p50_us"], 1),
         "control_update_p99_us": round(s["update_p99_us"], 1),
         "control_overruns": s["overruns"],

@@ -7,7 +7,7 @@ active, and its own robot_state_publisher; one bridge and one visualizer serve t
 every controller is active: the world runs at real time while the cars are spawned, so a world stepping flat
 out does not starve the starting processes of CPU) and `fleet_rss_mb_<N>` (PSS of the launcher and all its
 descendants: shared pages counted once). Derived: `fleet_rtf_ratio_10` (ten cars' RTF over one car's; target
-≥ 0.2) and `fleet_rss_mb_per_car` (memory per added car from 1 to 10; target ≤ 40 MB).
+≥ 0.2) and `fleet_rss_mb_per_car` (memory per added car from 1 to 10; target ≤ 30 MB).
 Run: `python -m bench fleet`.
 """
 
@@ -146,7 +146,7 @@ def run() -> dict:
     if not out:
         raise RuntimeError("no fleet size came up: " + "; ".join(failures))
     console.print(table(
-        "fleet: cost growth (rtf:=0, lidar + IMU per car; targets: 10 cars ≥ 0.2× one car's RTF, ≤ 40 MB per car)",
+        "fleet: cost growth (rtf:=0, lidar + IMU per car; targets: 10 cars ≥ 0.2× one car's RTF, ≤ 30 MB per car)",
         ["cars", "processes", "RTF", "× one car", "memory MB (PSS)", "MB per added car"], rows))
     return out
 

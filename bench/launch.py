@@ -22,7 +22,6 @@ from pathlib import Path
 import psutil
 
 COUNT = 50
-BUDGET = {"launch_50_all_started_s": 0.5, "launch_50_all_reaped_s": 0.5, "launcher_rss_mb": 80.0}
 
 
 def _wait_for(path: Path, pattern: str, proc: subprocess.Popen, timeout_s: float) -> re.Match[str]:
@@ -99,11 +98,13 @@ def run() -> dict:
 
 
 def main() -> None:
+    from bench.budget import BUDGET, verdict
+
     metrics = run()
     for key, value in metrics.items():
-        budget = BUDGET.get(key)
-        verdict = "" if budget is None else ("  ok" if value <= budget else f"  OVER budget {budget}")
-        print(f"{key:32s} {value:>8}{verdict}")
+        row = BUDGET.get(key)
+        said = "" if row is None else f"  {verdict(value, row[0], row[1])} ({row[0]} {row[1]:g})"
+        print(f"{key:32s} {value:>8}{said}")
     results = Path(__file__).parent / "results"
     results.mkdir(exist_ok=True)
     (results / "launch.json").write_text(json.dumps(metrics, indent=2) + "\n")

@@ -5,12 +5,12 @@ offering the recorded QoS (latched when every recorded offer was transient local
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
 from diffctl.bag.msgdefs import register_schema
 from diffctl.bag.reader import Bag, Channel
-from diffctl.console import warn
 from diffctl.errors import ConfigError
 from diffctl.interfaces import types
 
@@ -34,8 +34,10 @@ class PlayedTopic:
     depth: int
 
 
-def plan_topics(bag: Bag, wanted: tuple[str, ...], remaps: dict[str, str], drop: set[str]) -> list[PlayedTopic]:
-    """The topics to play, with every type made known; raises before anything starts."""
+def plan_topics(bag: Bag, wanted: tuple[str, ...], remaps: dict[str, str], drop: set[str],
+                warn: Callable[[str], None] = print) -> list[PlayedTopic]:
+    """The topics to play, with every type made known; raises before anything starts. `warn` takes what is
+    worth saying but plays anyway (the player's node logs it once it exists)."""
     channels = bag.channels()
     if wanted:
         unknown = [t for t in wanted if ("/" + t.lstrip("/")) not in channels]

@@ -79,25 +79,29 @@ def record(topic_args: tuple[str, ...], all_: bool, all_topics: bool, topics_opt
     if out.exists():
         raise ConfigError(f"output folder {out} already exists", hint="choose another -o or remove it")
     stop = stop_on_signals()
-    node = _start_node("rosbag2_recorder")
+    # rosbag2_py's recorder node: no /parameter_events publisher (rosbag2 turns it off), rclcpp's parameters.
+    node = _start_node("rosbag2_recorder", start_parameter_event_publisher=False)
+    log = node.node.get_logger()
     writer = BagWriter(out, options)
     # Recording is a hot path: raw subscriptions on the node's wire presence, beside the client Node.
-    recorder = Recorder(node.node.bus_node, writer, selection, say=lambda s: info(s))
+    recorder = Recorder(node.node.bus_node, writer, selection, log)
+    log.info("Listening for topics...")
     recorder.start()
-    info(f"Recording to {out} … (Ctrl-C stops and closes the bag)")
+    log.info(f"Recording to {out}... (Ctrl-C stops and closes the bag)")
     started = time.monotonic()
     stop.wait()
     meta = recorder.stop()
+    log.info("Recording stopped")
+    log.info(f"Wrote {meta.message_count} messages on {len(meta.topics)} topics in "
+             f"{time.monotonic() - started:.1f} s to {out}")
     node.stop()
-    console.print(f"Recording stopped: {meta.message_count} messages on {len(meta.topics)} topics in "
-                  f"{time.monotonic() - started:.1f} s, written to {out}", markup=False)
 
 
-def _start_node(name: str) -> Any:
+def _start_node(name: str, **options: Any) -> Any:
     from diffctl.client import component
     from diffctl.client.node import Node
 
-    return component.start(lambda: Node(name, client_library="rclcpp"))
+    return component.start(lambda: Node(name, client_library="rclcpp", **options))
 
 
 @bag.command("info")
@@ -156,11 +160,15 @@ def play(bag_path: Path, rate: float, loop: bool, clock_hz: float, start_offset:
     remaps = parse_remaps(remap)
     b = Bag(bag_path)
     try:
-        played = plan_topics(b, topics, remaps, {"/clock"} if clock_hz else set())
+        notes: list[str] = []
+        played = plan_topics(b, topics, remaps, {"/clock"} if clock_hz else set(), warn=notes.append)
         if not played:
             raise ConfigError(f"{bag_path}: nothing to play", hint="the bag has no messages on the chosen topics")
         stop = stop_on_signals()
         started = _start_node("rosbag2_player")
+        log = started.node.get_logger()
+        for note in notes:
+            log.warning(note)
         node = started.node.bus_node  # the recorded bytes go out as they are, on raw publishers
         pubs = make_publishers(node, played)
         clock_pub = node.create_publisher("/clock", "rosgraph_msgs/msg/Clock") if clock_hz else None
@@ -174,23 +182,26 @@ def play(bag_path: Path, rate: float, loop: bool, clock_hz: float, start_offset:
         player = Player(lambda from_ns: b.messages(wanted, from_ns), b.metadata.starting_time_ns, options,
                         lambda m: pubs[m.topic](m.data), publish_clock if clock_pub else None)
 
-        def on_key(key: str) -> None:
+        def on_key(key: str) -> None:  # rosbag2's player's words for each key
             if key == "space":
-                info("Paused" if player.toggle_pause() else "Resumed")
+                log.info("Pausing play." if player.toggle_pause() else "Resuming play.")
             elif key == "right" and not player.step():
-                info("→ publishes the next message only while paused (SPACE pauses)")
+                log.warning("Called play next, but not in paused state.")
             elif key in ("up", "down"):
-                info(f"Rate {player.change_rate(RATE_STEP if key == 'up' else -RATE_STEP):.1f}")
+                log.info(f"Set rate to {player.change_rate(RATE_STEP if key == 'up' else -RATE_STEP):g}")
 
         threading.Thread(target=lambda: (stop.wait(), player.stop()), daemon=True).start()
         time.sleep(0.3)  # let subscribers' routes to the new publishers settle before the first message
         with TerminalKeys(on_key) as keys:
             if keys.active:
-                info("SPACE pause/resume, → next message (paused), ↑/↓ rate ±0.1")
+                log.info("Adding keyboard callbacks.")
+                for key, what in (("SPACE", "Pause/Resume"), ("CURSOR_RIGHT", "Play Next Message"),
+                                  ("CURSOR_UP", "Increase Rate 10%"), ("CURSOR_DOWN", "Decrease Rate 10%")):
+                    log.info(f"Press {key} for {what}")
             n = player.run()
         time.sleep(0.2)  # the last samples leave before the session closes
+        log.info(f"Played {n} messages")
         started.stop()
-        info(f"played {n} messages")
     finally:
         b.close()
 

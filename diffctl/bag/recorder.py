@@ -12,7 +12,6 @@ import queue
 import re
 import threading
 import time
-from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -108,12 +107,12 @@ class _Sample:
 
 
 class Recorder:
-    def __init__(self, node: Any, writer: BagWriter, selection: Selection,
-                 say: Callable[[str], None] = print) -> None:
+    def __init__(self, node: Any, writer: BagWriter, selection: Selection, log: Any) -> None:
+        """`node`: the recorder node's wire presence (raw subscriptions); `log`: its logger."""
         self.node = node
         self.writer = writer
         self.selection = selection
-        self.say = say
+        self.log = log
         # Topics and samples go through one queue, so the writer thread alone touches the writer and a
         # topic is always registered before its first sample.
         self._queue: queue.Queue[_NewTopic | _Sample | None] = queue.Queue()
@@ -162,7 +161,7 @@ class Recorder:
 
     def _skip(self, topic: str, why: str) -> None:
         self._skipped.add(topic)
-        self.say(f"not recording {topic}: {why}")
+        self.log.warning(f"not recording {topic}: {why}")
 
     def _subscribe(self, topic: str, typename: str, pubs: list[Any]) -> None:
         offered = [qos_from_token(e.qos) for e in pubs]
@@ -176,7 +175,7 @@ class Recorder:
         self.node.create_subscription(topic, typename, on_sample, raw=True, with_info=True, latched=latched,
                                       depth=max(q.depth for q in offered))
         self._subscribed.add(topic)
-        self.say(f"Subscribed to topic '{topic}'")
+        self.log.info(f"Subscribed to topic '{topic}'")
 
     # ------------------------------------------------------------------ writing
     def _write_loop(self) -> None:

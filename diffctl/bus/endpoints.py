@@ -56,7 +56,7 @@ class Publisher:
             # Not express, as rmw_zenoh declares its publishers: an idle link still sends each sample at once,
             # but under load samples share a batch (one write, one read) instead of one syscall each.
             self._pub = node.session.declare_publisher(key, express=False)
-        self._token = node.session.liveliness().declare_token(token)
+        self._token = node.context.declare_token(token)
         self._seq = itertools.count(1)
         # Hot path: bound once, not looked up per message.
         self._encode: Callable[[Any], bytes] | None = None  # compiled on the first message object published
@@ -116,7 +116,10 @@ class MessageInfo:
 class Subscription:
     def __init__(self, node: Node, topic: str, typename: str, callback: Callable[..., None], *,
                  latched: bool = False, depth: int | None = None, raw: bool = False, ignore_local: bool = False,
-                 with_info: bool = False, reliable: bool = True, qos: wire.QoS | None = None) -> None:
+                 with_info: bool = False, reliable: bool = True, qos: wire.QoS | None = None,
+                 samples: bool = False) -> None:
+        """`samples`: the callback gets each zenoh.Sample untouched (payload, attachment and all), for a caller
+        that queues them on Zenoh's thread and reads them later on its own (the client library)."""
         self.node = node
         self.topic = node.resolve(topic)
         self.type = types.check_defined(typename) if raw else types.check(typename)
@@ -130,15 +133,16 @@ class Subscription:
         self._decode = None if raw else types.decoder(self.type)
         key = wire.topic_key(node.domain, self.topic, self.type)
         token = node.context.entity_token(node, wire.KIND_SUB, self.topic, self.type, self.qos.token())
+        handler = callback if samples else self._on_sample
         if self.qos.transient_local:
             self._sub = ext.declare_advanced_subscriber(
-                node.session, key, self._on_sample,
+                node.session, key, handler,
                 history=ext.HistoryConfig(detect_late_publishers=True, max_samples=history_depth(self.qos)),
                 subscriber_detection=True,
             )
         else:
-            self._sub = node.session.declare_subscriber(key, self._on_sample)
-        self._token = node.session.liveliness().declare_token(token)
+            self._sub = node.session.declare_subscriber(key, handler)
+        self._token = node.context.declare_token(token)
         node.context.add_local(self.topic, self.type, wire.KIND_SUB, node)
 
     def _on_sample(self, sample: zenoh.Sample) -> None:
@@ -204,7 +208,7 @@ class Service:
         self._q = node.session.declare_queryable(
             key, zenoh.handlers.Callback(self._on_query, indirect=False), complete=True
         )
-        self._token = node.session.liveliness().declare_token(token)
+        self._token = node.context.declare_token(token)
 
     def _on_query(self, query: zenoh.Query) -> None:
         if self.raw:
@@ -266,7 +270,7 @@ class Client:
         self._key = wire.service_key(node.domain, self.name, self.type)
         token = node.context.entity_token(node, wire.KIND_CLIENT, self.name, self.type, self.qos.token())
         self._gid = wire.gid_of(token)
-        self._token = node.session.liveliness().declare_token(token)
+        self._token = node.context.declare_token(token)
         self._seq = itertools.count(1)
         self._lock = threading.Lock()
 

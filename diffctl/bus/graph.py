@@ -1,7 +1,9 @@
 """The ROS graph as rmw_zenoh shares it: liveliness tokens of nodes, publishers, subscribers, services.
 
 One `Graph` per process keeps a live cache (a liveliness subscriber with history), so it also forgets
-whatever dies: a crashed process's tokens vanish when its session drops.
+whatever dies: a crashed process's tokens vanish when its session drops. The session's own tokens are not
+waited for: their owner tells the graph as it declares and undeclares them (`own`), so a node counts the
+endpoints it just made at once, as a DDS participant's graph does.
 """
 
 from __future__ import annotations
@@ -21,11 +23,19 @@ Listener = Callable[[str, wire.Entity], None]  # (event "put"|"delete", entity)
 
 
 class Graph:
-    def __init__(self, session: zenoh.Session, domain: int | None = None) -> None:
+    def __init__(self, session: zenoh.Session, domain: int | None = None, own: tuple[str, ...] | None = None
+                 ) -> None:
+        """`own`: the session's live tokens, when their owner reports its own (`own()`) from now on; a graph
+        made without it learns the session's tokens from the router like any other."""
         self._session = session
+        self._zid = str(session.zid()) if own is not None else None
         self._domain = domain_id() if domain is None else domain
         self._lock = threading.Lock()
         self._entities: dict[str, wire.Entity] = {}
+        for key in own or ():
+            ent = wire.parse_token(key)
+            if ent is not None:
+                self._entities[key] = ent
         self._listeners: list[Listener] = []
         self._ready = threading.Event()
         self._last_event = time.monotonic()
@@ -42,8 +52,8 @@ class Graph:
         self._last_event = time.monotonic()
         key = str(sample.key_expr)
         ent = wire.parse_token(key)
-        if ent is None:
-            return
+        if ent is None or ent.zid == self._zid:
+            return  # this session's own tokens came through `own` already (a late echo must not revive one)
         if sample.kind == zenoh.SampleKind.DELETE:
             with self._lock:
                 self._entities.pop(key, None)
@@ -61,6 +71,24 @@ class Graph:
             except Exception:
                 pass
 
+    def own(self, key: str, alive: bool) -> None:
+        """A token of this session declared (`alive`) or undeclared just now."""
+        ent = wire.parse_token(key)
+        if ent is None:
+            return
+        with self._lock:
+            if alive:
+                self._entities[key] = ent
+            elif self._entities.pop(key, None) is None:
+                return
+            listeners = list(self._listeners)
+        self._bump()
+        for cb in listeners:
+            try:
+                cb("put" if alive else "delete", ent)
+            except Exception:
+                pass
+
     def refresh(self, timeout_s: float = 1.0) -> None:
         """Query current tokens (the router answers for everyone) and merge them into the cache.
 
@@ -73,7 +101,7 @@ class Graph:
                 return
             key = str(r.ok.key_expr)
             ent = wire.parse_token(key)
-            if ent is not None:
+            if ent is not None and ent.zid != self._zid:
                 with self._lock:
                     self._entities.setdefault(key, ent)
 

@@ -44,6 +44,25 @@ class _Context:
         self._locals: dict[tuple[str, str, str], Participant] = {}  # (topic, type, kind) → a node owning it
         self._warned: set[tuple[str, str, str]] = set()
         self.local_gids: set[bytes] = set()
+        self._own_tokens: dict[str, None] = {}  # this session's live graph tokens, known before any echo
+
+    def declare_token(self, key: str) -> OwnToken:
+        """A graph token of this session, in this process's graph at once (rclpy counts its own endpoints
+        as soon as they are made; the router's echo comes later)."""
+        token = self.session.liveliness().declare_token(key)
+        with self._graph_lock:
+            self._own_tokens[key] = None
+            graph = self._graph
+        if graph is not None:
+            graph.own(key, True)
+        return OwnToken(self, key, token)
+
+    def forget_token(self, key: str) -> None:
+        with self._graph_lock:
+            self._own_tokens.pop(key, None)
+            graph = self._graph
+        if graph is not None:
+            graph.own(key, False)
 
     def next_id(self) -> int:
         return next(self._ids)
@@ -56,7 +75,7 @@ class _Context:
     def graph(self) -> Graph:
         with self._graph_lock:
             if self._graph is None:
-                self._graph = Graph(self.session, self.domain)
+                self._graph = Graph(self.session, self.domain, own=tuple(self._own_tokens))
                 self._graph.add_listener(self._check_mismatch)
             return self._graph
 
@@ -90,6 +109,22 @@ class _Context:
         self._executor.submit(fn, *args)
 
 
+class OwnToken:
+    """A declared graph token; `undeclare()` takes it out of the graph first, then off the wire."""
+
+    def __init__(self, context: _Context, key: str, token: Any) -> None:
+        self._context = context
+        self.key = key
+        self._token: Any = token
+
+    def undeclare(self) -> None:
+        token, self._token = self._token, None
+        if token is None:
+            return
+        self._context.forget_token(self.key)
+        token.undeclare()
+
+
 def _context(session: zenoh.Session) -> _Context:
     with _contexts_lock:
         ctx = _contexts.get(id(session))
@@ -112,7 +147,7 @@ class Participant:
         self.used_types: dict[str, None] = {}  # every type an endpoint of this node uses (type descriptions)
         self._closables: list[Any] = []
         self._last_warned: dict[str, tuple[float, int]] = {}
-        self._token = self.session.liveliness().declare_token(
+        self._token = self.context.declare_token(
             wire.node_token(self.domain, self.context.zid, self.node_id, self.namespace, self.name))
 
     @property
@@ -158,10 +193,12 @@ class Participant:
     def create_subscription(self, topic: str, typename: str, callback: Callable[..., None], *,
                             latched: bool = False, depth: int | None = None, raw: bool = False,
                             ignore_local: bool = False, with_info: bool = False, reliable: bool = True,
-                            qos: wire.QoS | None = None) -> Subscription:
-        """`callback(msg)` (or `callback(bytes)` when raw) runs on a Zenoh thread: keep it short."""
+                            qos: wire.QoS | None = None, samples: bool = False) -> Subscription:
+        """`callback(msg)` (or `callback(bytes)` when raw, `callback(zenoh.Sample)` with `samples`) runs on a Zenoh
+        thread: keep it short."""
         return self._keep(Subscription(self, topic, typename, callback, latched=latched, depth=depth, raw=raw,
-                                       ignore_local=ignore_local, with_info=with_info, reliable=reliable, qos=qos))
+                                       ignore_local=ignore_local, with_info=with_info, reliable=reliable, qos=qos,
+                                       samples=samples))
 
     def create_service(self, name: str, srv_type: str, handler: Callable[[Any], Any], *,
                        qos: wire.QoS | None = None, raw: bool = False) -> Service:

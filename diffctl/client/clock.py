@@ -101,6 +101,7 @@ class Clock:
         self._jump_handles: list[JumpHandle] = []
         self._ros_time_active = False
         self._override_ns = 0
+        self._sleepers = 0  # threads in sleep_until, waiting on _cond
         return self
 
     @property
@@ -174,10 +175,14 @@ class Clock:
                 now = self.now_ns()
                 if now >= until.nanoseconds:
                     return True
-                if self._ros_time_active:
-                    self._cond.wait(0.1)
-                else:
-                    self._cond.wait(min((until.nanoseconds - now) / 1e9, 0.1))
+                self._sleepers += 1
+                try:
+                    if self._ros_time_active:
+                        self._cond.wait(0.1)
+                    else:
+                        self._cond.wait(min((until.nanoseconds - now) / 1e9, 0.1))
+                finally:
+                    self._sleepers -= 1
         return False
 
     def sleep_for(self, rel_time: Duration, context: Any = None) -> bool:
@@ -209,7 +214,20 @@ class ROSClock(Clock):
             raise TypeError(f"Time must be specified as rclpy.time.Time. Received type: {type(time)}")
         self._set_override_ns(time.nanoseconds)
 
+    def set_ros_time_override_ns(self, ns: int) -> None:
+        """set_ros_time_override from an int of nanoseconds, without a Time to build and check (diffctl's
+        addition, for a host setting its nodes' clocks every cycle)."""
+        self._set_override_ns(ns)
+
     def _set_override_ns(self, ns: int) -> None:
+        if not self._jump_handles:
+            # Nobody to tell of the jump (the usual clock; a simulator sets its hosted controllers' clocks every
+            # cycle): the store, and a wake-up only when a sleep_until waits on this clock.
+            with self._lock:
+                self._override_ns = ns
+                if self._sleepers:
+                    self._cond.notify_all()
+            return
         delta = ns - self._override_ns
         handles = self._jump_handles_for(ClockChange.ROS_TIME_NO_CHANGE, delta) if self._ros_time_active else []
         self._pre_jump(handles)
@@ -218,5 +236,7 @@ class ROSClock(Clock):
             active = self._ros_time_active
             self._cond.notify_all()
         if active:
+            # Executors are woken by what the new time makes ready (a timer's jump callback, once it is due),
+            # not by every update: with /clock at 1 kHz, or a simulator setting the time of its hosted
+            # controllers' clocks every cycle, they would wake for nothing each time.
             self._post_jump(handles, ClockChange.ROS_TIME_NO_CHANGE, delta)
-            waiting.notify()

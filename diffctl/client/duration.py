@@ -8,6 +8,7 @@ from diffctl.client.interfaces import cls
 
 S_TO_NS = 1_000_000_000
 RMW_DURATION_INFINITE = 2**63 - 1
+_new = object.__new__
 
 
 class Duration:
@@ -16,6 +17,16 @@ class Duration:
         if total >= 2**63 or total < -(2**63):
             raise OverflowError("Total nanoseconds value is too large to store in C duration.")
         self._nanoseconds = total
+
+    @classmethod
+    def from_nanoseconds(cls_, nanoseconds: int) -> Duration:
+        """rclcpp's `Duration::from_nanoseconds`: a Duration from an int, without the constructor's seconds
+        arithmetic (diffctl's addition, for loops that make one per cycle); the range is still checked."""
+        if not -(2**63) <= nanoseconds < 2**63:
+            raise OverflowError("Total nanoseconds value is too large to store in C duration.")
+        d = _new(cls_)
+        d._nanoseconds = nanoseconds
+        return d
 
     @property
     def nanoseconds(self) -> int:

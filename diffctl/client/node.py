@@ -166,10 +166,13 @@ class Node:
                  start_parameter_services: bool = True, parameter_overrides: list[Parameter] | None = None,
                  allow_undeclared_parameters: bool = False,
                  automatically_declare_parameters_from_overrides: bool = False,
-                 enable_logger_service: bool = False, client_library: str = "rclpy") -> None:
+                 enable_logger_service: bool = False, client_library: str = "rclpy",
+                 start_parameter_event_publisher: bool = True) -> None:
         """`client_library="rclcpp"` (diffctl's own addition) makes the node declare what an rclcpp node
         declares — the read-only QoS overrides of /parameter_events (and of /clock with use_sim_time), rclcpp's
-        descriptions — so a diffctl component ROS writes in C++ lists the parameters the real one lists."""
+        descriptions — so a diffctl component ROS writes in C++ lists the parameters the real one lists.
+        `start_parameter_event_publisher=False` (rclcpp's NodeOptions, as rosbag2's recorder sets it): no
+        /parameter_events publisher, so neither its events nor, for rclcpp, its QoS override parameters."""
         self._rclcpp = client_library == "rclcpp"
         self._context = get_default_context() if context is None else context
         self._publishers: list[Publisher] = []
@@ -223,9 +226,11 @@ class Node:
                 continue  # a rule for a name this node cannot have
         self._params = NodeParameters(overrides=overrides, allow_undeclared=allow_undeclared_parameters,
                                       rclcpp=self._rclcpp)
-        self._parameter_events = self._bus.create_publisher("/parameter_events", "rcl_interfaces/msg/ParameterEvent",
-                                                            qos=PARAMETER_EVENTS_QOS)
-        self._params.on_event = self._publish_parameter_event
+        self._parameter_events = None
+        if start_parameter_event_publisher:
+            self._parameter_events = self._bus.create_publisher(
+                "/parameter_events", "rcl_interfaces/msg/ParameterEvent", qos=PARAMETER_EVENTS_QOS)
+            self._params.on_event = self._publish_parameter_event
         self._rosout = Rosout(self._bus, self._logger_name) if enable_rosout and ros_logging.rosout_enabled else None
         if automatically_declare_parameters_from_overrides:
             desc = cls("rcl_interfaces/msg/ParameterDescriptor")
@@ -240,7 +245,7 @@ class Node:
         from diffctl.client.type_description_service import TypeDescriptionService
 
         self._type_description_service = TypeDescriptionService(self)
-        if self._rclcpp:
+        if self._rclcpp and self._parameter_events is not None:
             declare_qos_parameters("publisher", self, "/parameter_events",
                                    _qos.QoSProfile(depth=1000), _ALL_OVERRIDES, rclcpp=True)
         if enable_logger_service:
@@ -252,7 +257,7 @@ class Node:
     def _publish_parameter_event(self, new: list[Parameter], changed: list[Parameter],
                                  deleted: list[Parameter]) -> None:
         pub = self._parameter_events
-        if closing() or pub.closed:
+        if pub is None or closing() or pub.closed:
             return  # the process is ending: nobody will see the event, and a warning would only alarm
         clock = getattr(self, "_clock", None)
         event = cls("rcl_interfaces/msg/ParameterEvent")(
@@ -356,6 +361,19 @@ class Node:
 
     def get_logger(self) -> RcutilsLogger:
         return self._logger
+
+    # ------------------------------------------------------------------ rclcpp's accessors (diffctl's additions)
+    def get_parameter_overrides(self) -> dict[str, Parameter]:
+        """rclcpp's `get_node_parameters_interface()->get_parameter_overrides()`: the values this node was
+        started with (the parameter files' and -p rules' matching it, then `parameter_overrides=`), by name,
+        declared or not."""
+        return dict(self._parameter_overrides)
+
+    def get_node_time_source_interface(self) -> TimeSource:
+        """rclcpp's accessor of the node's time source, an rclpy TimeSource: `detach_node()` leaves /clock and
+        use_sim_time to whoever then drives the node's clock (`set_ros_time_override`), as a simulator hosting
+        the node does."""
+        return self._time_source
 
     # ------------------------------------------------------------------ parameters
     def declare_parameter(self, name: str, value: Any = None, descriptor: Any = None,
@@ -512,7 +530,7 @@ class Node:
         self._check_context("Failed to create subscription")
         sub = Subscription(self, msg_type, topic, callback, callback_group, qos_profile, raw,
                            event_callbacks=event_callbacks or SubscriptionEventCallbacks())
-        bus_sub = self._bus.create_subscription(full, typename, sub._on_sample, raw=True, with_info=True,
+        bus_sub = self._bus.create_subscription(full, typename, sub._on_sample, raw=True, samples=True,
                                                 qos=_qos.to_wire(qos_profile))
         sub._attach(bus_sub)
         callback_group.add_entity(sub)

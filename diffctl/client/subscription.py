@@ -5,11 +5,12 @@ from __future__ import annotations
 import collections
 import enum
 import inspect
-import threading
+import itertools
 import time
 from collections.abc import Callable
 from typing import Any
 
+from diffctl.bus import wire
 from diffctl.client import waiting
 from diffctl.client.endpoint_statuses import EndpointStatuses
 from diffctl.client.event_handler import dds_events
@@ -18,6 +19,15 @@ from diffctl.client.node_entity import NodeEntity
 from diffctl.client.qos import HistoryPolicy
 from diffctl.client.timer import await_or_execute
 from diffctl.errors import MessageError
+
+
+def _attachment(sample: Any) -> tuple[int, int, bytes]:
+    """(publication sequence number, source timestamp, publisher GID) from rmw_zenoh's attachment."""
+    try:
+        return wire.unpack_attachment(sample.attachment.to_bytes())
+    except (MessageError, AttributeError):
+        return 0, 0, b""
+
 
 _BAD_CALLBACK = ("Subscription.__init__(): callback should be either be callable with one argument(to get only the "
                  "message) or two (to get message and message info)")
@@ -40,10 +50,9 @@ class Subscription(NodeEntity):
         self.callback = callback
         keep_all = qos_profile.history == HistoryPolicy.KEEP_ALL
         depth = qos_profile.depth if qos_profile.depth > 0 else 42
-        self._queue: collections.deque[tuple[bytes, Any, int]] = collections.deque(
-            maxlen=None if keep_all else depth)
-        self._rx_seq = 0
-        self._lock = threading.Lock()
+        # (zenoh.Sample, reception number): a bounded deque drops the oldest as KEEP_LAST does
+        self._queue: collections.deque[tuple[Any, int]] = collections.deque(maxlen=None if keep_all else depth)
+        self._rx_seq = itertools.count(1)
         self._bus: Any = None
         self._bus_topic = ""
         self._destroyed = False
@@ -60,14 +69,22 @@ class Subscription(NodeEntity):
         self.event_handlers = self._event_callbacks.create_event_handlers(self.callback_group, self, self.topic)
         self._on_arrival = self.qos_statuses.arrival_hook()
 
-    def _on_sample(self, data: bytes, info: Any) -> None:
-        # Zenoh's thread: queue and wake; deserialization happens when an executor takes it.
-        with self._lock:
-            self._rx_seq += 1
-            self._queue.append((data, info, self._rx_seq))
+    def _on_sample(self, sample: Any) -> None:
+        # Zenoh's thread, once per sample whether or not it is ever taken: the sample is queued as it came,
+        # read when an executor takes it. An executor looks at every queue before it sleeps, so only the sample
+        # that makes a queue non-empty has to wake one. The length is read after the append: read before, an
+        # executor could empty the queue in between and sleep past this sample.
+        if sample.attachment is None:  # rmw_zenoh drops these on arrival too; diffctl says so
+            self._node._bus.throttled(f"noatt{self._bus_topic}",
+                                      f"dropped a sample on {self._bus_topic} without rmw_zenoh attachment")
+            return
+        queue = self._queue
+        queue.append((sample, next(self._rx_seq)))
         if self._on_arrival is not None:
-            self._on_arrival(info.publisher_gid, info.sequence_number)
-        waiting.notify()
+            seq, _, gid = _attachment(sample)
+            self._on_arrival(gid, seq)
+        if len(queue) == 1:
+            waiting.notify()
 
     @property
     def callback(self) -> Callable[..., Any]:
@@ -100,14 +117,16 @@ class Subscription(NodeEntity):
         return bool(self._queue)
 
     def _take(self) -> Callable[[], Any] | None:
-        with self._lock:
-            while True:
-                if not self._queue:
-                    return None
-                data, info, rx = self._queue.popleft()
-                # lifespan: a sample older than this subscription's lifespan is gone from its queue, as DDS's
-                if self._lifespan_ns is None or time.time_ns() - info.source_timestamp_ns <= self._lifespan_ns:
-                    break
+        while True:
+            try:
+                sample, rx = self._queue.popleft()
+            except IndexError:
+                return None
+            seq, stamp_ns, _ = _attachment(sample)
+            # lifespan: a sample older than this subscription's lifespan is gone from its queue, as DDS's
+            if self._lifespan_ns is None or time.time_ns() - stamp_ns <= self._lifespan_ns:
+                break
+        data = sample.payload.to_bytes()
         try:
             msg = data if self.raw else deserialize(data, self.msg_type)
         except MessageError as e:  # a malformed sample is the sender's fault: dropped, the node goes on
@@ -118,8 +137,8 @@ class Subscription(NodeEntity):
             args: tuple[Any, ...] = (msg,)
         else:
             args = (msg, {
-                "source_timestamp": info.source_timestamp_ns, "received_timestamp": time.time_ns(),
-                "publication_sequence_number": info.sequence_number, "reception_sequence_number": rx,
+                "source_timestamp": stamp_ns, "received_timestamp": time.time_ns(),
+                "publication_sequence_number": seq, "reception_sequence_number": rx,
             })
 
         async def _execute() -> None:

@@ -64,19 +64,17 @@ class ManagerTime:
 
     def follow(self, node: Any) -> None:
         # rclpy's TimeSource.detach_node on the node's own time source: its clock stops following /clock.
-        node._time_source.detach_node()
+        node.get_node_time_source_interface().detach_node()
         self._clocks = (*self._clocks, (id(node), node.get_clock()))
 
     def forget(self, node: Any) -> None:
         self._clocks = tuple(c for c in self._clocks if c[0] != id(node))
 
     def set_ns(self, time_ns: int) -> None:
-        from diffctl.client.clock_type import ClockType
-        from diffctl.client.ros_time import Time
-
-        t = Time(nanoseconds=time_ns, clock_type=ClockType.ROS_TIME)
+        # set_ros_time_override's work without a Time to build and check: this runs on every cycle of the
+        # simulator's manager, for its node and each controller's (as the nodes' own time sources set it).
         for _, clock in self._clocks:
-            clock.set_ros_time_override(t)
+            clock.set_ros_time_override_ns(time_ns)
 
 
 def spin_resiliently(executor: Any, running: Any, log: Any) -> None:

@@ -18,6 +18,8 @@ from typing import Protocol
 
 import numpy as np
 
+thread_time_ns = time.thread_time_ns
+
 # Coarse sleep until this close to the deadline, then yield-spin: time.sleep alone wakes up to ~100 µs late.
 _SPIN_NS = 300_000
 
@@ -58,11 +60,13 @@ def sleep_until_ns(deadline_ns: int, stop: threading.Event | None = None) -> Non
 
 @dataclass
 class LoopStats:
-    """Wake-up times and per-cycle cost (ns), kept for the last `capacity` cycles, and the overrun count."""
+    """Wake-up times and per-cycle cost (ns; wall, and the loop thread's CPU time), kept for the last `capacity`
+    cycles, and the overrun count."""
 
     capacity: int = 4096
     wakes_ns: list[int] = field(default_factory=list)
     costs_ns: list[int] = field(default_factory=list)
+    cpu_ns: list[int] = field(default_factory=list)
     overruns: int = 0
     cycles: int = 0
 
@@ -72,16 +76,20 @@ class LoopStats:
             self.capacity = capacity
         self.wakes_ns.clear()
         self.costs_ns.clear()
+        self.cpu_ns.clear()
         self.overruns = 0
         self.cycles = 0
 
-    def record(self, wake_ns: int, cost_ns: int) -> None:
+    def record(self, wake_ns: int, cost_ns: int, cpu_ns: int = 0) -> None:
         self.cycles += 1
         if len(self.wakes_ns) >= self.capacity:
-            del self.wakes_ns[: self.capacity // 2]
-            del self.costs_ns[: self.capacity // 2]
+            half = self.capacity // 2
+            del self.wakes_ns[:half]
+            del self.costs_ns[:half]
+            del self.cpu_ns[:half]
         self.wakes_ns.append(wake_ns)
         self.costs_ns.append(cost_ns)
+        self.cpu_ns.append(cpu_ns)
 
     def summary(self, period_s: float) -> dict[str, float]:
         if len(self.wakes_ns) < 2:
@@ -98,6 +106,7 @@ class LoopStats:
             "update_p50_us": float(np.percentile(costs_us, 50)),
             "update_p99_us": float(np.percentile(costs_us, 99)),
             "update_mean_us": float(costs_us.mean()),
+            "update_cpu_mean_us": float(np.mean(self.cpu_ns)) / 1e3,
         }
 
 
@@ -184,9 +193,10 @@ def run(
         if tick is None:
             continue
         wake = time.monotonic_ns()
+        cpu = thread_time_ns()
         t_ns, period_s = tick
         if on_time is not None:
             on_time(t_ns)
         cycle(t_ns, period_s)
         ticker.cycle_done()
-        stats.record(wake, time.monotonic_ns() - wake)
+        stats.record(wake, time.monotonic_ns() - wake, thread_time_ns() - cpu)

@@ -119,7 +119,10 @@ def release(t: PublishingThread | None) -> None:
         return
     t._holder = None
     if t._queue:
-        t._wake()
+        try:
+            t._signal.release()  # _wake(), without its frame: this runs on every control cycle
+        except RuntimeError:  # already signalled, not yet taken
+            pass
 
 
 _thread: PublishingThread | None = None

@@ -58,6 +58,7 @@ class ResourceManager:
         self._active: tuple[HardwareHandle, ...] = ()
         self._readable: tuple[HardwareHandle, ...] = ()
         self._slow_active = self._slow_readable = False
+        self.single: tuple[HardwareHandle, Callable, Callable | None] | None = None
 
     # --- loading ---------------------------------------------------------------------------------------
     def load(
@@ -148,6 +149,13 @@ class ResourceManager:
         # A component with its own (slower) rw_rate needs _rw's bookkeeping; the others are called directly.
         self._slow_active = any(h.rw_rate for h in self._active)
         self._slow_readable = any(h.rw_rate for h in self._readable)
+        # The usual robot, one component active at the manager's rate: the cycle calls its read and write itself
+        # (None for write when the component's write is marked `writes_nothing`).
+        self.single: tuple[HardwareHandle, Callable, Callable | None] | None = None
+        if len(self._readable) == 1 and self._active == self._readable and not self._slow_active:
+            h = self._active[0]
+            c = h.component
+            self.single = (h, c.read, None if getattr(c.write, "writes_nothing", False) else c.write)
 
     # --- availability and claims -------------------------------------------------------------------------
     def state_available(self, name: str) -> bool:
@@ -311,13 +319,10 @@ class ResourceManager:
         # One component at the manager's rate (the usual robot): no per-component bookkeeping.
         h = self._readable[0]
         try:
-            if h.component.read(time_ns, period_s) is ReturnType.OK:
-                return None
-            reason = "returned ERROR"
+            ret = h.component.read(time_ns, period_s)
         except Exception as e:
-            reason = f"raised {hook_message(e)}"
-        h.read_errors += 1
-        return [(h.name, f"read {reason}")]
+            ret = e
+        return None if ret is ReturnType.OK else self.failure(h, False, ret)
 
     def write(self, time_ns: int, period_s: float, cm_rate: int = 0) -> list[tuple[str, str]] | None:
         """Failed components as (name, reason), or None when none failed."""
@@ -325,13 +330,20 @@ class ResourceManager:
             return self._rw(self._active, True, time_ns, period_s, cm_rate) or None
         h = self._active[0]
         try:
-            if h.component.write(time_ns, period_s) is ReturnType.OK:
-                return None
-            reason = "returned ERROR"
+            ret = h.component.write(time_ns, period_s)
         except Exception as e:
-            reason = f"raised {hook_message(e)}"
-        h.write_errors += 1
-        return [(h.name, f"write {reason}")]
+            ret = e
+        return None if ret is ReturnType.OK else self.failure(h, True, ret)
+
+    def failure(self, h: HardwareHandle, write: bool, ret: object) -> list[tuple[str, str]]:
+        """A component's read or write that returned `ret` (not OK, or the exception it raised), counted and
+        worded as read()/write() report it."""
+        reason = f"raised {hook_message(ret)}" if isinstance(ret, Exception) else "returned ERROR"
+        if write:
+            h.write_errors += 1
+        else:
+            h.read_errors += 1
+        return [(h.name, f"{'write' if write else 'read'} {reason}")]
 
     def fail_component(self, name: str) -> None:
         """After a read/write error: the component goes to unconfigured and its interfaces become unavailable."""

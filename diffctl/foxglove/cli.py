@@ -32,15 +32,16 @@ def foxglove_bridge(port: int | None, address: str | None, bag_path: Path | None
 
     from diffctl import ros_args
     from diffctl.foxglove import server as fg
-
-    ra = ros_args.current("foxglove_bridge")
-    port = fg.check_port(port if port is not None else ra.params.get("port", 8765))
-    address = fg.check_loopback(address or str(ra.params.get("address", "127.0.0.1")))
     from diffctl.signals import stop_on_signals
 
+    port_option, address_option = port, address
     stop = stop_on_signals()
     context = foxglove.Context()
     if bag_path is not None:
+        # A bag served on its own: no node, no bus; the --ros-args parameters still give port and address.
+        ra = ros_args.current("foxglove_bridge")
+        port = fg.check_port(port if port is not None else ra.params.get("port", 8765))
+        address = fg.check_loopback(address or str(ra.params.get("address", "127.0.0.1")))
         from diffctl.bag.reader import Bag
         from diffctl.bag.timing import check_rate
         from diffctl.foxglove.playback import BagPlayback
@@ -58,31 +59,51 @@ def foxglove_bridge(port: int | None, address: str | None, bag_path: Path | None
         return
     from diffctl.client import component
     from diffctl.client.node import Node
-    from diffctl.foxglove.assets import DEFAULT_ALLOWLIST, AssetResolver
+    from diffctl.client.parameter import Parameter
+    from diffctl.foxglove.assets import AssetResolver
     from diffctl.foxglove.graph import GraphBridge
     from diffctl.foxglove.live import LiveBridge
     from diffctl.foxglove.parameters import ParameterBridge
     from diffctl.foxglove.services import ServiceBridge
+    from diffctl.foxglove.settings import DECLARATIONS, declare, settings_from
     from diffctl.interfaces import types
 
-    caps = fg.check_capabilities(list(ra.params.get("capabilities", fg.CAPABILITIES)))
-    assets = AssetResolver(list(ra.params.get("asset_uri_allowlist", DEFAULT_ALLOWLIST))) if "assets" in caps else None
-    started = component.start(lambda: Node("foxglove_bridge", client_library="rclcpp"))
+    # The options given on the command line stand for the node's parameters of the same names. What the node
+    # will be given is checked first: bad input stops the bridge before it joins the graph.
+    options = {name: v for name, v in (("port", port_option), ("address", address_option)) if v is not None}
+    settings_from({k: v for k, v in ros_args.current("foxglove_bridge").params.items() if k in DECLARATIONS}
+                  | options)
+    given = [Parameter(name, value=v) for name, v in options.items()]
+    started = component.start(lambda: Node("foxglove_bridge", client_library="rclcpp", parameter_overrides=given))
     node = started.node
+    log = node.get_logger()
+    try:
+        settings = declare(node)
+    except BaseException:
+        started.stop()
+        raise
+    caps = settings.capabilities
     wire = node.bus_node  # what the app sees and sends passes on raw endpoints: a measured hot path
-    sim_time = bool(node.get_parameter("use_sim_time").value)
-    live = LiveBridge(wire, context, say=info)
-    services = ServiceBridge(wire, say=info) if "services" in caps else None
-    params = ParameterBridge(node, say=info) if caps & {"parameters", "parametersSubscribe"} else None
+    live = LiveBridge(wire, context, log, settings)
+    services = ServiceBridge(wire, log, settings) if "services" in caps else None
+    params = ParameterBridge(node, log, settings) if caps & {"parameters", "parametersSubscribe"} else None
     graph = GraphBridge(wire, live.wake) if "connectionGraph" in caps else None
-    server = fg.start(address, port, live=live, context=context, sim_time=sim_time, services=services,
-                      params=params, assets=assets, client_publish="clientPublish" in caps, graph=graph)
-    if sim_time:
+    assets = AssetResolver(settings.asset_uri_allowlist) if "assets" in caps else None
+    try:
+        server = fg.start(settings.address, settings.port, live=live, context=context, sim_time=settings.use_sim_time,
+                          services=services, params=params, assets=assets, client_publish="clientPublish" in caps,
+                          graph=graph, tls=(settings.tls_cert, settings.tls_key) if settings.tls_cert else None)
+    except BaseException:
+        started.stop()
+        raise
+    if settings.use_sim_time:
         wire.create_subscription("/clock", "rosgraph_msgs/msg/Clock",
                                  lambda m: server.broadcast_time(types.time_ns(m.clock)))
     live.start()
-    info(f"Foxglove server on ws://{address}:{server.port} (connect from the Foxglove app)")
+    scheme = "wss" if settings.tls_cert else "ws"
+    log.info(f"Foxglove server on {scheme}://{settings.address}:{server.port} (connect from the Foxglove app)")
     stop.wait()
+    log.info("Shutting down foxglove_bridge")
     live.close()
     server.stop()
     for part in (services, params):

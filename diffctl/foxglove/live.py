@@ -14,13 +14,17 @@ import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import foxglove
 
 from diffctl.bag.msgdefs import ros2msg
 from diffctl.errors import DiffctlError
+from diffctl.foxglove.services import is_hidden
 from diffctl.interfaces import types
+
+if TYPE_CHECKING:
+    from diffctl.foxglove.settings import BridgeSettings
 
 
 @dataclass
@@ -33,10 +37,12 @@ class _Topic:
 
 
 class LiveBridge:
-    def __init__(self, node: Any, context: foxglove.Context, say: Callable[[str], None] = print) -> None:
+    def __init__(self, node: Any, context: foxglove.Context, log: Any, settings: BridgeSettings) -> None:
+        """`node`: the bridge node's wire presence; `log`: its logger; `settings`: its parameters' values."""
         self.node = node
         self.context = context
-        self.say = say
+        self.log = log
+        self.settings = settings
         self._topics: dict[str, _Topic] = {}
         self._by_channel: dict[int, str] = {}
         self._client_pubs: dict[tuple[int, int], tuple[Any, str, str]] = {}  # → (publisher, type, encoding)
@@ -70,7 +76,11 @@ class LiveBridge:
         g = self.node.graph
         own = self.node.fqn
         offered: dict[str, tuple[str, bool]] = {}
+        wanted = self.settings.topics
+        hidden_too = self.settings.include_hidden
         for topic in g.topics():
+            if not wanted(topic) or (not hidden_too and is_hidden(topic)):
+                continue
             pubs = [e for e in g.publishers(topic) if e.node_fqn != own]
             kinds = {e.type for e in pubs}
             if len(kinds) == 1 and types.exists(next(iter(kinds))):
@@ -112,9 +122,18 @@ class LiveBridge:
             t.watchers += 1
             if t.sub is None:
                 ch = t.channel
+                offers = [e.qos_profile for e in self.node.graph.publishers(topic) if e.type == t.type]
+                depth, cut = self.settings.qos_depth([q.depth if q is not None else 0 for q in offers])
+                if cut:
+                    self.log.warning(f"Limiting history depth for topic '{topic}' to {depth}. You may want to "
+                                     "increase the max_qos_depth parameter value.")
+                reliable = not self.settings.best_effort_topics(topic) and bool(offers) and all(
+                    q is not None and q.reliable for q in offers)
                 t.sub = self.node.create_subscription(
                     topic, t.type, lambda data, ch=ch: ch.log(data, log_time=time.time_ns()), raw=True,
-                    latched=t.latched)
+                    latched=t.latched, depth=depth, reliable=reliable)
+                self.log.info(f'Subscribing to topic "{topic}" ({t.type}) on channel {channel_id} with reliablity '
+                              f'"{"reliable" if reliable else "best_effort"}"')
 
     def on_unsubscribe(self, channel_id: int) -> None:
         with self._lock:
@@ -131,12 +150,14 @@ class LiveBridge:
     def on_client_advertise(self, client_id: int, channel: Any) -> None:
         encoding = channel.encoding
         try:
+            if not self.settings.client_topics(channel.topic):
+                raise DiffctlError(f"topic {channel.topic!r} is not in client_topic_whitelist")
             if encoding not in ("cdr", "json"):
                 raise DiffctlError(f"encoding {encoding!r} is not published", hint="use cdr or json")
             typename = types.check(channel.schema_name or "")
             pub = self.node.create_publisher(channel.topic, typename)
         except DiffctlError as e:
-            self.say(f"client {client_id} advertised {channel.topic}: {e}")
+            self.log.warning(f"client {client_id} advertised {channel.topic}: {e}")
             if self.server is not None:
                 self.server.publish_status(f"{channel.topic}: {e}", foxglove.websocket.StatusLevel.Error)
             return

@@ -11,14 +11,17 @@ parameters are updated from `/parameter_events` (its changed parameters), only w
 from __future__ import annotations
 
 import threading
-from collections.abc import Callable, Iterable
-from typing import Any
+from collections.abc import Iterable
+from typing import TYPE_CHECKING, Any
 
 import foxglove
 from foxglove import ParameterType
 
 from diffctl.client.interfaces import cls
 from diffctl.client.parameter import Parameter, from_python_value, parameter_value_to_python
+
+if TYPE_CHECKING:
+    from diffctl.foxglove.settings import BridgeSettings
 
 RCL = "rcl_interfaces/srv/"
 EVENTS = "/parameter_events"
@@ -59,10 +62,12 @@ def from_foxglove(p: foxglove.Parameter) -> Any:
 
 
 class ParameterBridge:
-    def __init__(self, node: Any, say: Callable[[str], None] = print) -> None:
+    def __init__(self, node: Any, log: Any, settings: BridgeSettings) -> None:
         """`node`: the bridge's client Node, spinning on another thread (its service calls block on it)."""
         self.node = node
-        self.say = say
+        self.log = log
+        self.settings = settings
+        self._unresponsive: set[str] = set()  # nodes left out of "every parameter" (ignore_unresponsive_…)
         self.server: Any = None
         self._clients: dict[tuple[str, str], Any] = {}
         self._watched: set[str] = set()
@@ -86,7 +91,7 @@ class ParameterBridge:
     def _parameter_nodes(self) -> list[str]:
         graph = self.node.bus_node.graph
         services = graph.services()
-        return [n for n in graph.nodes() if n != self.node.get_fully_qualified_name()
+        return [n for n in graph.nodes() if n != self.node.get_fully_qualified_name() and n not in self._unresponsive
                 and RCL + "ListParameters" in services.get(f"{n}/list_parameters", ())
                 and RCL + "GetParameters" in services.get(f"{n}/get_parameters", ())]
 
@@ -109,16 +114,21 @@ class ParameterBridge:
                                     self._call(node, "list_parameters", "ListParameters").result.names)
                 values = self._call(node, "get_parameters", "GetParameters", names=params).values
             except Exception as e:  # one node that does not answer must not hide the others
-                self.say(f"parameters of {node} could not be read: {e}")
+                self.log.error(f"Failed to retrieve parameters from node '{node}': {e}")
+                if self.settings.ignore_unresponsive_nodes:
+                    self._unresponsive.add(node)
+                    self.log.warning(f"Adding node {node} to the ignore list to prevent repeated timeouts or "
+                                     "failures in future parameter requests.")
                 continue
             # A node leaves out names it never declared (rclcpp answers them with no values at all).
             pairs = zip(params, values, strict=False)
             out += [to_foxglove(f"{node}.{p}", v) for p, v in pairs]
-        return out
+        return [p for p in out if self.settings.params(p.name)]
 
     def set(self, parameters: list[foxglove.Parameter]) -> list[foxglove.Parameter]:
         """Set each on its node; returns the values the nodes hold afterwards (a refused one keeps its value)."""
         by_node: dict[str, list[Any]] = {}
+        parameters = [p for p in parameters if self.settings.params(p.name)]
         for p in parameters:
             node, param = split_name(p.name)
             by_node.setdefault(node, []).append(from_python_value(param, from_foxglove(p)).to_parameter_msg())
@@ -134,14 +144,14 @@ class ParameterBridge:
         return self.get([p.name for p in parameters])
 
     def _status(self, text: str) -> None:
-        self.say(text)
+        self.log.warning(text)
         if self.server is not None:
             self.server.publish_status(text, foxglove.StatusLevel.Warning)
 
     # ------------------------------------------------------------------ subscribeParameterUpdates
     def subscribe(self, names: list[str]) -> None:
         with self._lock:
-            self._watched.update(names)
+            self._watched.update(n for n in names if self.settings.params(n))
             if self._events is None and self._watched:
                 self._events = self.node.create_subscription(cls("rcl_interfaces/msg/ParameterEvent"), EVENTS,
                                                              self._on_event, 1000)

@@ -113,10 +113,12 @@ class _Listener(ServerListener):
 def start(host: str, port: int, *, live: LiveBridge | None = None, playback: BagPlayback | None = None,
           context: foxglove.Context, sim_time: bool = False, services: ServiceBridge | None = None,
           params: ParameterBridge | None = None, assets: AssetResolver | None = None,
-          client_publish: bool = True, graph: GraphBridge | None = None) -> Any:
+          client_publish: bool = True, graph: GraphBridge | None = None,
+          tls: tuple[bytes, bytes] | None = None) -> Any:
     """The running server (`.port` is the bound port). `sim_time`: the server announces its own time (from
     /clock), as foxglove_bridge does under use_sim_time, so the app's timeline follows the simulation.
-    `services`, `params`, `assets`, `graph` (connectionGraph): those capabilities (live graph only)."""
+    `services`, `params`, `assets`, `graph` (connectionGraph): those capabilities (live graph only). `tls`: the
+    certificate and private key (PEM) to serve wss:// with."""
     listener = _Listener(live, playback, params, graph)
     kw: dict[str, Any] = {}
     if playback is not None:
@@ -130,6 +132,8 @@ def start(host: str, port: int, *, live: LiveBridge | None = None, playback: Bag
                 *([Capability.ConnectionGraph] if graph is not None else [])]
         if assets is not None:
             kw["asset_handler"] = assets.fetch  # the SDK then advertises the assets capability
+    if tls is not None:
+        kw["tls_cert"], kw["tls_key"] = tls
     try:
         server = foxglove.start_server(name="diffctl foxglove_bridge", host=check_loopback(host),
                                        port=check_port(port), capabilities=caps, server_listener=listener,

@@ -2,7 +2,8 @@
 and a client's call made on the bus, as foxglove_bridge does.
 
 A service is advertised with its type as the schema name and the `ros2msg` definitions of `<type>_Request`
-and `<type>_Response` (`cdr` encoding); hidden services (a name part starting with `_`) are left out. A
+and `<type>_Response` (`cdr` encoding); hidden services (a name part starting with `_`) are left out
+unless `include_hidden`, and only those `service_whitelist` matches are offered. A
 call's CDR goes to the ROS service untouched and the server's CDR comes back as the response; a service that
 is gone, a request in another encoding, or no answer within the timeout is a call failure naming why.
 """
@@ -11,13 +12,16 @@ from __future__ import annotations
 
 import threading
 from collections.abc import Callable
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import foxglove
 
 from diffctl.bag.msgdefs import ros2msg
 from diffctl.errors import DiffctlError
 from diffctl.interfaces import types
+
+if TYPE_CHECKING:
+    from diffctl.foxglove.settings import BridgeSettings
 
 CALL_TIMEOUT_S = 10.0
 
@@ -45,9 +49,10 @@ def service_schema(srv_type: str) -> foxglove.ServiceSchema:
 class ServiceBridge:
     """Keeps the server's advertised services equal to the graph's; calls them for clients."""
 
-    def __init__(self, node: Any, say: Callable[[str], None] = print) -> None:
+    def __init__(self, node: Any, log: Any, settings: BridgeSettings) -> None:
         self.node = node
-        self.say = say
+        self.log = log
+        self.settings = settings
         self.server: Any = None
         self._advertised: dict[str, str] = {}  # service name → type
         self._clients: dict[str, Any] = {}
@@ -56,8 +61,9 @@ class ServiceBridge:
     def sync(self) -> None:
         if self.server is None:
             return
+        wanted, hidden_too = self.settings.services, self.settings.include_hidden
         offered = {name: kinds[0] for name, kinds in self.node.graph.services().items()
-                   if kinds and not is_hidden(name)}
+                   if kinds and wanted(name) and (hidden_too or not is_hidden(name))}
         with self._lock:
             gone = [n for n, t in self._advertised.items() if offered.get(n) != t]
             for name in gone:

@@ -14,6 +14,7 @@ only the type's name.
 
 from __future__ import annotations
 
+import functools
 import re
 from dataclasses import dataclass
 from typing import Any
@@ -33,6 +34,7 @@ SPECIAL_ORDER = ["float", "double", "int8", "uint8", "int16", "uint16", "int32",
 _BUILTIN_NAMES = set(dir(__import__("builtins")))
 
 
+@functools.cache  # a few hundred names, asked for again by every generated module that refers to them
 def snake(name: str) -> str:
     """rosidl_pycommon.convert_camel_case_to_lower_case_underscore: TFMessage → tf_message."""
     value = re.sub(r"(.)([A-Z][a-z]+)", r"\1_\2", name)

@@ -16,7 +16,8 @@ parsed model with `createMultiBody`. Planning rules:
 - a cylinder turning about its own axis (a wheel) meets the world as a contact disc and a core (wheel_contact.py);
 - a wheel contact with a friction direction (`fdir1`) and next to no friction across it (mecanum and omni
   wheels: mu2 ~ 0) becomes a roller (mecanum_rollers.py);
-- a track link's (TrackController's) collisions ride on a belt link sliding along it (plugins/track_controller.py);
+- the collisions of a model's track links (TrackController's) that are fixed to each other ride on one belt link
+  on joints along the tracks' x and y and about their z (plugins/track_belts.py);
 - a shape with no volume (a size or radius <= 0, which SDF and URDF parsers accept) is left out, with a note;
 - PyBullet takes at most 16 shapes per link (`MAX_COMPOUND_SHAPES`: createCollisionShapeArray and
   createVisualShapeArray silently keep the first 16, and a mesh past them crashes the process), and at most 127
@@ -48,11 +49,12 @@ from diffctl.description.model import (
     Surface,
     Visual,
 )
-from diffctl.description.pose import Pose, Vec3
+from diffctl.description.pose import Pose, Quat, Vec3, quat_rotate
 from diffctl.errors import DescriptionError
 from diffctl.sim.inertia import MassProperties, combine, from_inertial, principal
 from diffctl.sim.mecanum_rollers import ROLLER_MASS_SHARE, is_roller_surface, roller_frame
 from diffctl.sim.plugins.system_names import system_kind
+from diffctl.sim.plugins.track_math import track_orientation
 from diffctl.sim.wheel_contact import rolls_about_own_axis, wheel_parts
 
 DEFAULT_RGBA = (0.7, 0.7, 0.7, 1.0)
@@ -69,8 +71,11 @@ class ShapeSpec:
 
 # The mass share each extra-surface PyBullet link takes from the link it was split from.
 SURFACE_SPLIT_MASS_SHARE = 0.1
-# The mass share a track's belt link takes from the PyBullet link its track belongs to.
+# The mass share a track's belt links take from the PyBullet link its track belongs to, and the part of it each
+# of the two links carrying the belt (along x, then y) has.
 BELT_MASS_SHARE = 0.05
+BELT_CARRIAGE_SHARE = 0.1
+_AXES: tuple[Vec3, Vec3, Vec3] = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
 # PyBullet's fixed capacities (SharedMemoryPublic.h): shapes in one compound, links besides a body's base.
 MAX_COMPOUND_SHAPES = 16
 MAX_LINKS = 127
@@ -94,7 +99,8 @@ class LinkPlan:
     part_of: tuple[str, ...] = ()  # for a surface split: the SDF links whose collisions it carries
     # A roller (mecanum_rollers.py): (PyBullet index of the wheel it turns with, its speed ÷ the wheel's)
     gear: tuple[int, float] | None = None
-    belt: str | None = None  # a track's belt (track_belts.py): the SDF link it moves along
+    # a belt (track_belts.py): the SDF track links whose collisions it carries, each with their centre in its frame
+    belt: tuple[tuple[str, Vec3], ...] = ()
 
 
 @dataclass(frozen=True)
@@ -176,11 +182,13 @@ class _Planner:
         self.roots = [link.name for link in model.links if link.name not in child_of]
         self.notes: list[str] = []
         # links whose contact is a moving belt (TrackController's <link>, track_belts.py)
+        # (each with gz's <track_orientation>: the track runs along the x axis of the link's frame turned by it)
         self.tracks = {
-            (p.get("link") or "").strip()
+            link: track_orientation(p, model.source)
             for p in model.plugins
             if system_kind(p.filename, p.name) == "track-controller"
-        } & set(self.by_name)
+            and (link := (p.get("link") or "").strip()) in self.by_name
+        }
 
     def plan(self) -> ModelPlan:
         if self.m.static:
@@ -210,12 +218,14 @@ class _Planner:
                     hint="merge links with fixed joints, give links fewer collisions and visuals (16 fit in one "
                     "link), or make the model <static>",
                 )
+            links, renumbered = _pybullet_order(links)
             bodies.append(BodyPlan(links))
             for pb_index, g in enumerate(groups, start=-1):
+                index = renumbered[pb_index]
                 for name in g["members"]:
-                    refs[name] = LinkRef(body_no, pb_index, g["frame"].inverse().compose(self.by_name[name].pose_world))
+                    refs[name] = LinkRef(body_no, index, g["frame"].inverse().compose(self.by_name[name].pose_world))
                 if g["joint"] is not None and g["joint"].type != "fixed":
-                    joints[g["joint"].name] = (body_no, pb_index)
+                    joints[g["joint"].name] = (body_no, index)
         return ModelPlan(tuple(bodies), refs, joints, tuple(self.notes))
 
     def _static(self) -> ModelPlan:
@@ -279,7 +289,9 @@ class _Planner:
                         self.notes.append(f"{kind} {c.name!r} of link {name!r} has no volume ({why}): left out")
                     elif isinstance(c, Collision) and name in self.tracks and not g["static"]:
                         g.setdefault("belts", {}).setdefault(name, []).append(_shape(c, in_frame))
-                        g.setdefault("track_axes", {})[name] = in_frame.rotate((1.0, 0.0, 0.0))
+                        g.setdefault("track_axes", {})[name] = tuple(
+                            in_frame.rotate(self.tracks[name].rotate(axis)) for axis in _AXES
+                        )
                     elif isinstance(c, Collision):
                         collisions.append(_shape(c, in_frame))
                         surfaces.append(c.surface)
@@ -356,6 +368,33 @@ def _wheel_contacts(collisions: list[ShapeSpec], axis: Vec3) -> list[ShapeSpec]:
     return out
 
 
+def _pybullet_order(links: tuple[LinkPlan, ...]) -> tuple[tuple[LinkPlan, ...], dict[int, int]]:
+    """The links in the order createMultiBody numbers them, whatever order they are given in: depth first, each
+    link's children (in the order given) right after it. The splits above append links to parents anywhere in
+    the tree, which PyBullet would renumber behind our back. Also each old PyBullet index's new one."""
+    children: dict[int, list[int]] = {}
+    for i, lp in enumerate(links[1:]):
+        children.setdefault(lp.parent, []).append(i)
+    order: list[int] = []
+    pending = list(reversed(children.get(-1, [])))
+    while pending:
+        i = pending.pop()
+        order.append(i)
+        pending.extend(reversed(children.get(i, [])))
+    new = {old: k for k, old in enumerate(order)} | {-1: -1}
+    if order == list(range(len(order))):
+        return links, new
+    moved = [
+        dataclasses.replace(
+            links[old + 1],
+            parent=new[links[old + 1].parent],
+            gear=None if links[old + 1].gear is None else (new[links[old + 1].gear[0]], links[old + 1].gear[1]),
+        )
+        for old in order
+    ]
+    return (links[0], *moved), new
+
+
 def _split_surfaces(links: tuple[LinkPlan, ...]) -> tuple[LinkPlan, ...]:
     """Each moving PyBullet link whose collisions have several surfaces keeps its first surface's shapes; the
     others move to new links fixed to it (appended), sharing its mass properties exactly."""
@@ -388,65 +427,116 @@ def _split_surfaces(links: tuple[LinkPlan, ...]) -> tuple[LinkPlan, ...]:
                 )
             )
         first_surface, first_shapes = parts[0]
-        out[i] = LinkPlan(
-            members=lp.members,
-            frame_world=lp.frame_world,
-            parent=lp.parent,
-            joint=lp.joint,
-            axis=lp.axis,
+        # (a belt keeps being one: its other surfaces ride on it)
+        out[i] = dataclasses.replace(
+            lp,
             mass_kg=lp.mass_kg * keep,
-            inertial_frame=lp.inertial_frame,
             inertia_diagonal=_scaled(lp.inertia_diagonal, keep),
             collisions=tuple(first_shapes),
-            visuals=lp.visuals,
             surface=first_surface,
         )
     return (*out, *extra)
 
 
 def _split_belts(links: tuple[LinkPlan, ...], groups: list[dict]) -> tuple[LinkPlan, ...]:
-    """A track link's collisions move to a belt link on a prismatic joint along the track (its link's x axis),
-    appended, fixed to the PyBullet link the track belongs to, with a share of its mass (track_belts.py)."""
+    """The collisions of tracks rigidly joined to each other (fixed joints, the same track plane) move to one belt
+    link that can slide along the tracks' x and y and turn about their z relative to the PyBullet link they are
+    fixed to (three joints in a chain: PyBullet has no planar joint), appended; each track's link gives the belt
+    a share of its mass (track_belts.py drives it). One belt for a vehicle's tracks keeps the degrees of freedom,
+    which the solver pays for on every contact, at three."""
     out = list(links)
-    extra: list[LinkPlan] = []
+    shared: dict[tuple, list[int]] = {}
     for i, g in enumerate(groups):  # (links may hold rollers past the groups)
-        lp, belts = links[i], g.get("belts", {})
-        if not belts or lp.mass_kg <= 0.0:
-            continue
-        share = min(BELT_MASS_SHARE, 0.5 / len(belts))
-        keep = 1.0 - share * len(belts)
-        out[i] = dataclasses.replace(lp, mass_kg=lp.mass_kg * keep, inertia_diagonal=_scaled(lp.inertia_diagonal, keep))
-        for name, shapes in belts.items():
-            axis = g["track_axes"][name]
-            surface = shapes[0].surface or lp.surface
-            belt_joint = Joint(
-                name=f"{name}::belt",
-                type="prismatic",
-                parent=name,
-                child=name,
-                pose_world=lp.frame_world,
+        if g.get("belts") and links[i].mass_kg > 0.0:
+            root = _rigid_root(groups, links, i)
+            frame = groups[root]["frame"].inverse().compose(groups[i]["frame"])
+            axes = next(iter(g["track_axes"].values()))
+            plane = tuple(round(v, 6) for a in axes[:2] for v in frame.rotate(a))
+            shared.setdefault((root, plane), []).append(i)
+    extra: list[LinkPlan] = []
+    for (root, _), members in shared.items():
+        root_frame: Pose = groups[root]["frame"]
+        shapes: list[ShapeSpec] = []
+        centres: list[tuple[str, Vec3]] = []
+        parts: list[MassProperties] = []
+        for i in members:
+            lp, belts = links[i], groups[i]["belts"]
+            in_root = root_frame.inverse().compose(groups[i]["frame"])
+            share = min(BELT_MASS_SHARE, 0.5 / len(belts))
+            keep = 1.0 - share * len(belts)
+            out[i] = dataclasses.replace(
+                lp, mass_kg=lp.mass_kg * keep, inertia_diagonal=_scaled(lp.inertia_diagonal, keep)
+            )
+            com = in_root.compose(lp.inertial_frame)
+            tensor = _tensor(com.quat, _scaled(lp.inertia_diagonal, share))
+            parts.extend(MassProperties(lp.mass_kg * share, com.xyz, tensor) for _ in belts)
+            for name, track_shapes in belts.items():
+                moved = [dataclasses.replace(c, pose=in_root.compose(c.pose)) for c in track_shapes]
+                shapes.extend(moved)
+                n = len(moved)
+                centres.append((name, tuple(sum(c.pose.xyz[k] for c in moved) / n for k in range(3))))  # type: ignore[misc]
+        axes = tuple(
+            root_frame.inverse().compose(groups[members[0]]["frame"]).rotate(a)
+            for a in next(iter(groups[members[0]]["track_axes"].values()))
+        )
+        mp = combine(parts)
+        inertial_frame, diag = principal(mp)
+        surface = shapes[0].surface or links[members[0]].surface
+        names = tuple(name for name, _ in centres)
+        parent = root - 1
+        chain = (("x", "prismatic", axes[0]), ("y", "prismatic", axes[1]), ("", "revolute", axes[2]))
+        for suffix, kind, axis in chain:
+            last = not suffix
+            joint = Joint(
+                name=f"{names[0]}::belt{'_' + suffix if suffix else ''}",
+                type=kind,
+                parent=names[0],
+                child=names[0],
+                pose_world=root_frame,
                 pose_child=Pose(),
-                axis_world=lp.frame_world.rotate(axis),
+                axis_world=root_frame.rotate(axis),
                 axis_child=axis,
             )
+            # the belt itself takes most of the mass: the two links of the chain only carry it
+            part = BELT_CARRIAGE_SHARE if not last else 1.0 - 2 * BELT_CARRIAGE_SHARE
             extra.append(
                 LinkPlan(
                     members=(),
-                    frame_world=lp.frame_world,
-                    parent=i - 1,
-                    joint=belt_joint,
+                    frame_world=root_frame,
+                    parent=parent,
+                    joint=joint,
                     axis=axis,
-                    mass_kg=lp.mass_kg * share,
-                    inertial_frame=lp.inertial_frame,
-                    inertia_diagonal=_scaled(lp.inertia_diagonal, share),
-                    collisions=tuple(shapes),
+                    mass_kg=mp.mass_kg * part,
+                    inertial_frame=inertial_frame,
+                    inertia_diagonal=_scaled(diag, part),
+                    collisions=tuple(shapes) if last else (),
                     visuals=(),
                     surface=surface,
-                    part_of=(name,),
-                    belt=name,
+                    part_of=names,
+                    belt=tuple(centres) if last else (),
                 )
             )
+            parent = len(out) + len(extra) - 2  # the PyBullet index of the link just appended
     return (*out, *extra)
+
+
+def _rigid_root(groups: list[dict], links: tuple[LinkPlan, ...], i: int) -> int:
+    """The group that group `i` is fixed to through fixed joints only, as far up as has mass."""
+    while True:
+        joint = groups[i]["joint"]
+        if joint is None or joint.type != "fixed":
+            return i
+        parent = groups[i]["parent"] + 1
+        if links[parent].mass_kg <= 0.0:
+            return i
+        i = parent
+
+
+def _tensor(q: Quat, diagonal: Vec3) -> tuple[Vec3, Vec3, Vec3]:
+    """The inertia tensor of principal moments `diagonal` along the axes of rotation `q`."""
+    cols = [quat_rotate(q, axis) for axis in ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))]
+    rows = [tuple(sum(cols[k][r] * diagonal[k] * cols[k][c] for k in range(3)) for c in range(3)) for r in range(3)]
+    return (rows[0], rows[1], rows[2])  # type: ignore[return-value]
 
 
 def _split_rollers(links: tuple[LinkPlan, ...]) -> tuple[LinkPlan, ...]:

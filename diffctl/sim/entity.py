@@ -14,7 +14,7 @@ import pybullet as pb
 from diffctl.description.model import Joint, Model
 from diffctl.description.pose import Pose, Vec3
 from diffctl.errors import DescriptionError, suggest
-from diffctl.sim.body_plan import ModelPlan
+from diffctl.sim.body_plan import BodyPlan, ModelPlan
 
 # A joint without an <effort> limit is driven as Gazebo's velocity command would (nearly ideally).
 DEFAULT_MAX_EFFORT = 1000.0
@@ -40,6 +40,34 @@ class JointHandle:
     max_velocity: float
 
 
+@dataclass(frozen=True)
+class Belt:
+    """The belt under a model's tracks (body_plan's _split_belts): the PyBullet link they are fixed to
+    (`carrier`), the belt's joints along the tracks' x and y and about their z (the axes in the carrier's frame,
+    through its origin), the PyBullet links holding the tracks' collisions, and each track's centre there."""
+
+    body: int
+    carrier: int
+    joints: tuple[int, int, int]
+    axes: tuple[Vec3, Vec3, Vec3]
+    links: frozenset[int]
+    centres: dict[str, Vec3]
+
+
+def _belt(body: int, plan: BodyPlan, index: int) -> Belt:
+    links = plan.links  # (PyBullet index i is links[i + 1])
+    turn = links[index + 1]
+    slide_y = turn.parent
+    slide_x = links[slide_y + 1].parent
+    carrier = links[slide_x + 1].parent
+    held = {index}
+    for i, lp in enumerate(links[1:]):  # the tracks' other surfaces and shapes, fixed to the belt
+        if lp.joint is None and lp.parent in held:
+            held.add(i)
+    axes = (links[slide_x + 1].axis, links[slide_y + 1].axis, turn.axis)
+    return Belt(body, carrier, (slide_x, slide_y, index), axes, frozenset(held), dict(turn.belt))
+
+
 class Entity:
     def __init__(self, client: int, model: Model, plan: ModelPlan, bodies: tuple[int, ...]) -> None:
         self.client = client
@@ -62,13 +90,13 @@ class Entity:
         self.motion_commands = 0
         # Efforts systems added for the next step, summed as gz-sim sums JointForceCmd (applied before the step).
         self.pending_efforts: dict[str, tuple[JointHandle, float]] = {}
-        # Tracks' belt links (TrackController): SDF track link → (PyBullet body, link index).
-        self.belts: dict[str, tuple[int, int]] = {
-            lp.belt: (bodies[b], index)
-            for b, bp in enumerate(plan.bodies)
-            for index, lp in enumerate(bp.links, start=-1)
-            if lp.belt is not None
-        }
+        # Tracks' belts (TrackController): SDF track link → the belt it rides on (shared by tracks fixed together).
+        self.belts: dict[str, Belt] = {}
+        for b, bp in enumerate(plan.bodies):
+            for index, lp in enumerate(bp.links, start=-1):
+                if lp.belt:
+                    belt = _belt(bodies[b], bp, index)
+                    self.belts.update((name, belt) for name in belt.centres)
         # Spawn state, for world reset: base link frames and (zero) joint positions.
         self._initial = [(b, plan.bodies[i].links[0]) for i, b in enumerate(bodies)]
 

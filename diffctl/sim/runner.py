@@ -12,6 +12,7 @@ import re
 import threading
 import time
 import zlib
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -37,6 +38,7 @@ from diffctl.sim.plugins.mecanum_drive import MecanumDrive, MecanumDriveParams
 from diffctl.sim.plugins.odometry_publisher import OdometryPublisher
 from diffctl.sim.plugins.pose_publisher import PosePublisher
 from diffctl.sim.plugins.system_names import system_kind
+from diffctl.sim.plugins.track_belts import TrackBelts
 from diffctl.sim.plugins.track_controller import TrackController
 from diffctl.sim.plugins.tracked_vehicle import TrackedVehicle
 from diffctl.sim.plugins.velocity_control import VelocityControl
@@ -147,6 +149,9 @@ class Simulation:
         self.transport = SimTransport(session, self.stepper.call_soon, self.log) if session is not None else None
         if self.transport is not None:
             self.stepper.batch_hooks.append((self.transport.outbox.hold, self.transport.outbox.release))
+        # The hosted controller managers' samples wait for the end of the batch as well: one wake of their
+        # publishing thread per batch, not one per manager (a fleet's managers all cycle on the same step).
+        self.stepper.batch_hooks.append(_publishing_held_per_batch())
         self.ctx = PluginContext(self.stepper, self.transport, self.log, world.name)
         self.seed = seed
         self.models: dict[str, ModelRuntime] = {}
@@ -265,6 +270,8 @@ class Simulation:
             if system_name(p.filename, p.name) == "track-controller"
         ]
         rt.plugins.extend(tracks)
+        if tracks:
+            rt.plugins.append(TrackBelts(self.ctx, rt.entity, tracks))
         for plugin in model.plugins:
             kind = system_name(plugin.filename, plugin.name)
             if kind == "tracked-vehicle":
@@ -483,3 +490,21 @@ class Simulation:
         if self.transport is not None:
             self.transport.close()
         self.physics.close()
+
+
+def _publishing_held_per_batch() -> tuple[Callable[[], None], Callable[[], None]]:
+    """(begin, end) of a batch of tasks: realtime_publisher's hold and release on the sim thread, so a manager's
+    own hold inside its cycle finds it held and leaves the wake-up to the batch's end."""
+    from diffctl.control import realtime_publisher
+
+    held: list[Any] = [None]
+
+    def begin() -> None:
+        held[0] = realtime_publisher.hold()
+
+    def end() -> None:
+        t, held[0] = held[0], None
+        realtime_publisher.release(t)
+
+    return begin, end
+

@@ -6,7 +6,9 @@ collide unless the body is built with URDF_USE_SELF_COLLISION, which then exclud
 pairs (measured: a grandparent still collides), so the joint rule comes for free; pairs where neither link
 self-collides are filtered out one by one. Separate trees of one model are separate PyBullet bodies, which
 PyBullet lets collide by default: their pairs follow the same rule. A PyBullet link that merges several SDF
-links (fixed joints) self-collides when any of them does.
+links (fixed joints) self-collides when any of them does. A link split off another (a surface, a track's belt,
+a mecanum roller: body_plan.py) is not its PyBullet link's child, or not its only one: PyBullet's rule misses
+the pairs that carry one SDF link, or two joined ones, which are filtered out as well.
 """
 
 from __future__ import annotations
@@ -22,15 +24,22 @@ from diffctl.sim.body_plan import ModelPlan
 PbLink = tuple[int, int]
 
 
-def _colliding_links(model: Model, plan: ModelPlan) -> dict[PbLink, bool]:
-    """Every PyBullet link of the model that has collision shapes, and whether it self-collides."""
+def _colliding_links(model: Model, plan: ModelPlan) -> dict[PbLink, tuple[bool, frozenset[str]]]:
+    """Every PyBullet link of the model that has collision shapes: whether it self-collides, and the SDF links
+    it carries."""
     wants = {link.name: model.self_collide or link.self_collide for link in model.links}
-    out: dict[PbLink, bool] = {}
+    out: dict[PbLink, tuple[bool, frozenset[str]]] = {}
     for body_no, body in enumerate(plan.bodies):
         for index, lp in enumerate(body.links, start=-1):
             if lp.collisions:
-                out[(body_no, index)] = any(wants[name] for name in lp.members or lp.part_of)
+                names = frozenset(lp.members or lp.part_of)
+                out[(body_no, index)] = (any(wants[name] for name in names), names)
     return out
+
+
+def _kept_apart(a: frozenset[str], b: frozenset[str], joined: set[frozenset[str]]) -> bool:
+    """Whether SDF keeps links carrying these SDF links apart: one link, or two a joint connects."""
+    return bool(a & b) or any(frozenset((x, y)) in joined for x in a for y in b)
 
 
 def body_flags(model: Model, plan: ModelPlan) -> list[int]:
@@ -40,7 +49,7 @@ def body_flags(model: Model, plan: ModelPlan) -> list[int]:
     links = _colliding_links(model, plan)
     flags = []
     for body_no in range(len(plan.bodies)):
-        mine = [wants for (b, _), wants in links.items() if b == body_no]
+        mine = [wants for (b, _), (wants, _) in links.items() if b == body_no]
         flags.append(pb.URDF_USE_SELF_COLLISION if len(mine) > 1 and any(mine) else 0)
     return flags
 
@@ -51,9 +60,10 @@ def filtered_pairs(model: Model, plan: ModelPlan) -> list[tuple[PbLink, PbLink]]
         return []
     flags = body_flags(model, plan)
     links = _colliding_links(model, plan)
+    joined = {frozenset((j.parent, j.child)) for j in model.joints}
     pairs = []
-    for (a, wants_a), (b, wants_b) in itertools.combinations(links.items(), 2):
-        if wants_a or wants_b:
+    for (a, (wants_a, names_a)), (b, (wants_b, names_b)) in itertools.combinations(links.items(), 2):
+        if (wants_a or wants_b) and not _kept_apart(names_a, names_b, joined):
             continue
         same_body = a[0] == b[0]
         if same_body and not flags[a[0]]:

@@ -46,7 +46,10 @@ class Outbox:
         self._lock = threading.Lock()
         self._bytes = 0
         self.dropped = 0
-        self._wake = threading.Event()
+        # A binary semaphore, released = "samples may be waiting": a C-level release per wake-up, where an Event's
+        # set runs a Condition's Python code (the sim thread pays it at the end of every batch of tasks).
+        self._signal = threading.Lock()
+        self._signal.acquire()
         # Held from taking a sample to its put's return, by whichever thread puts: samples leave in order.
         self._put_lock = threading.Lock()
         self._stopping = False
@@ -67,7 +70,7 @@ class Outbox:
             first = len(items) == 1
         if first and not self._holding:
             # Only the first of a batch wakes the thread: it drains whatever arrives meanwhile.
-            self._wake.set()
+            self._wake()
 
     def hold(self) -> None:
         """Queue without waking the thread until `release` (the sim thread around one step's tasks): each wake
@@ -79,7 +82,13 @@ class Outbox:
         if len(self._items) > self.INLINE_BACKLOG:
             self.drain()
         elif self._items:
-            self._wake.set()
+            self._wake()
+
+    def _wake(self) -> None:
+        try:
+            self._signal.release()
+        except RuntimeError:  # signalled already, not yet taken
+            pass
 
     def drain(self) -> None:
         """Put everything waiting, on the calling thread."""
@@ -118,8 +127,7 @@ class Outbox:
 
     def _run(self) -> None:
         while True:
-            self._wake.wait()
-            self._wake.clear()
+            self._signal.acquire()
             while self._put_next():
                 pass
             if self._stopping:
@@ -128,7 +136,7 @@ class Outbox:
     def close(self) -> None:
         """Deliver what is queued, then stop."""
         self._stopping = True
-        self._wake.set()
+        self._wake()
         self._thread.join(2.0)
 
 

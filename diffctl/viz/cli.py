@@ -53,8 +53,6 @@ def viz(
       diffctl viz -d config/diffbot.rviz
       diffctl viz --port 0 --ros-args -p use_sim_time:=true
     """
-    from diffctl.console import info, warn
-
     # Everything the user gave is checked before anything starts: a bad file or value exits 2 here.
     config = load_rviz(display_config) if display_config else default_config()
     ra = ros_args.current(DEFAULT_NODE_NAME)
@@ -67,15 +65,17 @@ def viz(
         max_linear_mps=max_linear,
         max_angular_radps=max_angular,
     )
+    # Said by the node's logger once it exists, so --log-level governs them as every line of a ROS node.
+    warnings: list[str] = []
     if config.ignored:
-        warn(f"{config.source}: display classes not shown: {', '.join(config.ignored)}")
+        warnings.append(f"{config.source}: display classes not shown: {', '.join(config.ignored)}")
     if settings.host not in ("127.0.0.1", "localhost", "::1"):
-        warn(f"serving on {settings.host}: the page is reachable from other machines (read-only without the token)")
-    info(f"visualizer fixed frame {settings.fixed_frame or config.fixed_frame}")
-    asyncio.run(_serve(config, settings, ra))
+        warnings.append(f"serving on {settings.host}: the page is reachable from other machines "
+                        "(read-only without the token)")
+    asyncio.run(_serve(config, settings, ra, warnings))
 
 
-async def _serve(config, settings: VizSettings, ra: ros_args.RosArgs) -> None:
+async def _serve(config, settings: VizSettings, ra: ros_args.RosArgs, warnings: list[str]) -> None:
     from diffctl.client import component
     from diffctl.client.node import Node
     from diffctl.client.parameter import Parameter
@@ -88,6 +88,10 @@ async def _serve(config, settings: VizSettings, ra: ros_args.RosArgs) -> None:
         DEFAULT_NODE_NAME, client_library="rclcpp",
         parameter_overrides=[Parameter("use_sim_time", value=settings.use_sim_time)]))
     node = started.node
+    log = node.get_logger()
+    for text in warnings:
+        log.warning(text)
+    log.info(f"visualizer fixed frame {settings.fixed_frame or config.fixed_frame}")
     feed = None
     try:
         scene = Scene(config, settings)

@@ -35,6 +35,7 @@ RENAMED = {
     "ros_ign_image": "ros_gz_image",
     "ros_ign": "ros_gz",
     "ign_ros2_control": "gz_ros2_control",
+    "rviz": "rviz2",  # ROS 1's: Jazzy has no ros-jazzy-rviz to install
 }
 
 

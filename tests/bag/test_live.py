@@ -81,7 +81,7 @@ def test_record_late_and_latched_topics_then_ctrl_c(router: str, procs: Any, tmp
     time.sleep(1.0)
     assert procs.stop(rec, signal.SIGINT, 30) == 0
     out = rec.stdout.read()
-    assert "Recording stopped:" in out
+    assert "[rosbag2_recorder]: Recording stopped" in out
     info = run("bag", "info", str(bag))
     assert info.returncode == 0, info.stderr
     counts = topic_counts(info.stdout)
@@ -199,7 +199,7 @@ def test_keyboard_pause_step_resume_in_a_terminal(router: str, procs: Any, tmp_p
         os.write(master, b" ")  # SPACE resumes
         assert wait_for(lambda: len(got) == 25, 20)
         assert player.wait(30) == 0
-        assert "Resumed" in player.stdout.read()
+        assert "[rosbag2_player]: Resuming play." in player.stdout.read()
     finally:
         os.close(master)
         os.close(slave)

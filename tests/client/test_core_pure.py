@@ -92,6 +92,19 @@ def test_time_and_duration() -> None:
     assert (t + Duration(seconds=1)).nanoseconds == 2_500_000_000
     assert (Time(seconds=3) - t) == Duration(seconds=1.5)
     assert isinstance(Clock(clock_type=ClockType.ROS_TIME), ROSClock)
+    # the fast paths (diffctl's, rclcpp's Duration::from_nanoseconds) make what the constructors make
+    for ns in (0, 1, 1_500_000_000, 2**63 - 1):
+        fast = Time.from_nanoseconds(ns, ClockType.ROS_TIME)
+        assert (repr(fast), type(fast)) == (repr(Time(nanoseconds=ns, clock_type=ClockType.ROS_TIME)), Time)
+        assert fast == Time(nanoseconds=ns, clock_type=ClockType.ROS_TIME)
+        assert Duration.from_nanoseconds(-ns) == Duration(nanoseconds=-ns)
+    assert Time.from_nanoseconds(3).clock_type == ClockType.SYSTEM_TIME
+    with pytest.raises(ValueError, match="must not be negative"):
+        Time.from_nanoseconds(-1)
+    with pytest.raises(OverflowError):
+        Time.from_nanoseconds(2**63)
+    with pytest.raises(OverflowError):
+        Duration.from_nanoseconds(-(2**63) - 1)
     c = ROSClock()
     c._set_ros_time_is_active(True)
     c.set_ros_time_override(Time(seconds=5, clock_type=ClockType.ROS_TIME))

@@ -65,6 +65,10 @@ def test_node_api_details_agree(router: str) -> None:
     assert_same(*run_both("node_api.py", router))
 
 
+def test_own_endpoints_are_counted_at_once(router: str) -> None:
+    assert_same(*run_both("own_endpoints.py", router))
+
+
 def test_name_validation_agrees(router: str) -> None:
     assert_same(*run_both("names_graph.py", router))
 

@@ -17,6 +17,7 @@ import pytest
 
 from tests.conftest import Procs
 from tests.e2e.conftest import stack_env  # noqa: F401 (the fixture of a launch on its own router port)
+from tests.waiting import lines_until
 
 EXAMPLES = Path(__file__).resolve().parent / "examples" / "py_examples"
 SEC = 1_000_000_000
@@ -50,24 +51,13 @@ def run(ws: Path, *args: str, timeout_s: float = 60) -> subprocess.CompletedProc
                           text=True, timeout=timeout_s)
 
 
-def wait_for_line(p: subprocess.Popen, text: str, timeout_s: float = 30) -> list[str]:
+def wait_for_line(p: subprocess.Popen, text: str, timeout_s: float = 60) -> list[str]:
     """Lines of `p` up to the first containing `text` (the process keeps running)."""
-    import selectors
-
-    lines: list[str] = []
-    sel = selectors.DefaultSelector()
-    sel.register(p.stdout, selectors.EVENT_READ)
-    deadline = time.monotonic() + timeout_s
-    while time.monotonic() < deadline:
-        if not sel.select(timeout=0.2):
-            continue
-        line = p.stdout.readline()
-        if not line:
-            break
-        lines.append(line.rstrip("\n"))
-        if text in line:
-            return lines
-    raise AssertionError(f"{text!r} never came:\n" + "\n".join(lines))
+    lines, found = lines_until(p.stdout, lambda line: text in line, timeout_s)
+    lines = [line.rstrip("\n") for line in lines]
+    if not found:
+        raise AssertionError(f"{text!r} never came:\n" + "\n".join(lines))
+    return lines
 
 
 @pytest.mark.usefixtures("router")

@@ -4,15 +4,14 @@ from __future__ import annotations
 
 import os
 import re
-import selectors
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import yaml
 
 from tests.conftest import Procs
+from tests.waiting import lines_until
 
 HERE = Path(__file__).resolve().parent
 LOG = r"\[INFO\] \[\d+\.\d+\] \[{node}\]: "
@@ -27,19 +26,9 @@ def _ros2(*args: str, env: dict[str, str] | None = None, timeout: float = 60) ->
 
 def _read_until(p: subprocess.Popen, pattern: str, timeout_s: float = 30) -> str:
     """Lines of `p` up to the first matching `pattern`; fails with what was seen after `timeout_s`."""
-    seen: list[str] = []
-    deadline = time.monotonic() + timeout_s
-    with selectors.DefaultSelector() as sel:
-        sel.register(p.stdout, selectors.EVENT_READ)
-        while time.monotonic() < deadline:
-            if not sel.select(timeout=max(0.0, deadline - time.monotonic())):
-                break
-            line = p.stdout.readline()
-            if not line:
-                break
-            seen.append(line)
-            if re.search(pattern, line):
-                return "".join(seen)
+    seen, found = lines_until(p.stdout, lambda line: re.search(pattern, line) is not None, timeout_s)
+    if found:
+        return "".join(seen)
     raise AssertionError(f"{pattern!r} not in output:\n" + "".join(seen))
 
 
@@ -59,8 +48,8 @@ def test_cpp_talker_to_py_listener_and_cpp_service_pair(router: str, procs: Proc
     client = procs.diffctl("run", "demo_nodes_cpp", "add_two_ints_client")
     out = _read_until(client, LOG.format(node="add_two_ints_client") + r"Result of add_two_ints: 5")
     assert client.wait(30) == 0, out
-    _read_until(server, LOG.format(node="add_two_ints_server") + r"Incoming request")
-    assert "a: 2 b: 3" in server.stdout.readline()
+    request = _read_until(server, LOG.format(node="add_two_ints_server") + r"Incoming request")
+    assert _read_until(server, r".").endswith("a: 2 b: 3\n"), request  # the line after it
     assert server.wait(30) == 0  # one_shot: the server stops after its first request, as upstream's
 
 

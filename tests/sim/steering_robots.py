@@ -1,6 +1,7 @@
 """SDF robots for Gazebo's steering systems, written the way community robots write them: a car-like robot for
-AckermannSteering (steering knuckles on revolute joints carrying the front wheels) and a mecanum robot for
-MecanumDrive (wheels whose contact has a friction direction `fdir1` with `mu2` 0, as gz-sim's example has)."""
+AckermannSteering (steering knuckles on revolute joints carrying the front wheels), a mecanum robot for
+MecanumDrive (wheels whose contact has a friction direction `fdir1` with `mu2` 0, as gz-sim's example has) and
+a tank for TrackedVehicle (track links fixed to the body, a TrackController each)."""
 
 from __future__ import annotations
 
@@ -94,40 +95,52 @@ def mecanum_robot(name: str = "omni", plugin_extra: str = "") -> str:
     return f"<model name='{name}'>{''.join(links)}{''.join(joints)}{plugin}</model>"
 
 
-TRACKS_SEPARATION_M = 0.5
-TRACK_HEIGHT_M = 0.1
+TRACKS_SEPARATION_M = 0.45
+TRACK_HEIGHT_M = 0.12
+TRACK_LENGTH_M = 0.8  # from end cap to end cap, along the ground
+# gz-sim's default, which suits these tracks (the parameter a user tunes to the vehicle)
+STEERING_EFFICIENCY = 0.5
 
 
-def tracked_robot(name: str = "tank") -> str:
-    """A body with two tracks on fixed joints, each a box with round ends, driven by TrackController systems under
-    a TrackedVehicle (as gz-sim's examples/worlds/tracked_vehicle_simple.sdf arranges them)."""
+def tracked_robot(
+    name: str = "tank",
+    *,
+    track_length_m: float = TRACK_LENGTH_M,
+    efficiency: float = STEERING_EFFICIENCY,
+    vehicle_extra: str = "",
+) -> str:
+    """A body on two tracks fixed to it, each a belt box between two round end caps, with a TrackController each
+    (limited to 1 m/s) and a TrackedVehicle over both, laid out as gz-sim's tracked examples lay theirs out."""
     r = TRACK_HEIGHT_M / 2
+    half = track_length_m / 2
     links = [
-        f"<link name='body'><pose>0 0 {r + 0.05} 0 0 0</pose>{_inertial(8.0, 0.2)}"
-        "<collision name='c'><geometry><box><size>0.5 0.35 0.08</size></box></geometry></collision>"
-        "<visual name='v'><geometry><box><size>0.5 0.35 0.08</size></box></geometry></visual></link>"
+        f"<link name='chassis'><pose>0 0 {TRACK_HEIGHT_M + 0.04} 0 0 0</pose>{_inertial(12.0, 0.4)}"
+        "<collision name='hull'><geometry><box><size>0.9 0.3 0.1</size></box></geometry></collision>"
+        "<visual name='hull'><geometry><box><size>0.9 0.3 0.1</size></box></geometry></visual></link>"
     ]
-    joints, tracks = [], []
+    joints, plugins = [], []
     for side, y in (("left", TRACKS_SEPARATION_M / 2), ("right", -TRACKS_SEPARATION_M / 2)):
-        shapes = (
-            f"<collision name='belt'><geometry><box><size>0.5 0.1 {TRACK_HEIGHT_M}</size></box></geometry></collision>"
-            + "".join(
-                f"<collision name='end{i}'><pose>{x} 0 0 1.5707963 0 0</pose><geometry><cylinder><radius>{r}</radius>"
-                "<length>0.1</length></cylinder></geometry></collision>"
-                for i, x in enumerate((-0.25, 0.25))
-            )
+        caps = "".join(
+            f"<collision name='cap{i}'><pose>{x} 0 0 1.5707963 0 0</pose><geometry><cylinder><radius>{r}</radius>"
+            "<length>0.1</length></cylinder></geometry></collision>"
+            for i, x in enumerate((-half, half))
         )
-        links.append(f"<link name='{side}_track'><pose>0 {y} {r} 0 0 0</pose>{_inertial(1.0, 0.02)}{shapes}</link>")
+        links.append(
+            f"<link name='{side}_track'><pose>0 {y} {r} 0 0 0</pose>{_inertial(2.0, 0.05)}"
+            f"<collision name='run'><geometry><box><size>{track_length_m} 0.1 {TRACK_HEIGHT_M}</size></box>"
+            f"</geometry></collision>{caps}</link>"
+        )
         joints.append(
-            f"<joint name='{side}_track_j' type='fixed'><parent>body</parent><child>{side}_track</child></joint>"
+            f"<joint name='{side}_mount' type='fixed'><parent>chassis</parent><child>{side}_track</child></joint>"
         )
-        tracks.append(
-            f'<plugin filename="gz-sim-track-controller-system" name="gz::sim::systems::TrackController">'
+        plugins.append(
+            '<plugin filename="gz-sim-track-controller-system" name="gz::sim::systems::TrackController">'
             f"<link>{side}_track</link><min_velocity>-1.0</min_velocity><max_velocity>1.0</max_velocity></plugin>"
         )
-    vehicle = f"""<plugin filename="gz-sim-tracked-vehicle-system" name="gz::sim::systems::TrackedVehicle">
-      <left_track><link>left_track</link></left_track><right_track><link>right_track</link></right_track>
-      <tracks_separation>{TRACKS_SEPARATION_M}</tracks_separation><track_height>{TRACK_HEIGHT_M}</track_height>
-      <steering_efficiency>0.5</steering_efficiency>
-    </plugin>"""
-    return f"<model name='{name}'>{''.join(links)}{''.join(joints)}{''.join(tracks)}{vehicle}</model>"
+    plugins.append(
+        '<plugin filename="gz-sim-tracked-vehicle-system" name="gz::sim::systems::TrackedVehicle">'
+        "<left_track><link>left_track</link></left_track><right_track><link>right_track</link></right_track>"
+        f"<tracks_separation>{TRACKS_SEPARATION_M}</tracks_separation><track_height>{TRACK_HEIGHT_M}</track_height>"
+        f"<steering_efficiency>{efficiency}</steering_efficiency>{vehicle_extra}</plugin>"
+    )
+    return f"<model name='{name}'>{''.join(links)}{''.join(joints)}{''.join(plugins)}</model>"

@@ -267,3 +267,36 @@ def test_a_wheel_cylinder_meets_the_world_as_a_contact_disc_and_a_core_and_other
     </model></sdf>""")
     flap = {m: lp for lp in plan_model(model).bodies[0].links for m in lp.members}["b"]
     assert [s.geometry for s in flap.collisions] == [Cylinder(0.05, 0.1)]
+
+
+def test_links_split_off_mid_tree_keep_the_numbers_pybullet_gives_them() -> None:
+    """createMultiBody numbers links depth first, whatever order they come in: a surface split off the first of
+    two arms (appended to the plan) is numbered before the second arm, and the plan says so."""
+    surface = "<surface><friction><ode><mu>{}</mu></ode></friction></surface>"
+    shapes = "".join(
+        f"<collision name='c{k}'><pose>0 {0.1 * k} 0 0 0 0</pose><geometry><box><size>0.1 0.1 0.1</size></box>"
+        f"</geometry>{surface.format(mu)}</collision>"
+        for k, mu in enumerate((1.0, 0.2))
+    )
+    inertial = "<inertial><mass>1</mass><inertia><ixx>0.01</ixx><iyy>0.01</iyy><izz>0.01</izz></inertia></inertial>"
+    arms = "".join(
+        f"<link name='arm{i}'><pose>{i} 0 1 0 0 0</pose>{inertial}{shapes if i == 1 else ''}</link>"
+        f"<joint name='j{i}' type='revolute'><parent>base</parent><child>arm{i}</child><axis><xyz>0 0 1</xyz></axis>"
+        "</joint>"
+        for i in (1, 2)
+    )
+    model = f"<model name='m'><pose>0 0 0 0 0 0</pose><link name='base'>{inertial}</link>{arms}</model>"
+    world = sdf_world(model)
+    (body,) = plan_model(world.model("m")).bodies
+    assert [lp.members or lp.part_of for lp in body.links] == [("base",), ("arm1",), ("arm1",), ("arm2",)]
+    pw, ents = build(world)
+    try:
+        entity = ents["m"]
+        cid, b = pw.client, entity.bodies[0]
+        for index, lp in enumerate(body.links[1:]):
+            assert pb.getLinkState(b, index, physicsClientId=cid)[4] == pytest.approx(lp.frame_world.xyz)
+            assert pb.getJointInfo(b, index, physicsClientId=cid)[16] == lp.parent
+        assert entity.link_pose("arm2").xyz == pytest.approx((2.0, 0.0, 1.0))
+        assert pb.getDynamicsInfo(b, 1, physicsClientId=cid)[1] == pytest.approx(0.2)  # the split, after arm1
+    finally:
+        pw.close()

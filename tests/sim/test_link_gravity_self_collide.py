@@ -90,3 +90,29 @@ def test_separate_trees_of_one_model_follow_the_same_rule(self_collide: bool) ->
         assert top_z == pytest.approx(0.3 if self_collide else 0.1, abs=0.01)
     finally:
         pw.close()
+
+
+def test_never_across_a_joint_even_where_a_link_is_split_in_pybullet() -> None:
+    """A link whose collisions have two surfaces is two PyBullet links; the second is no parent of the links
+    joined to the SDF link, and still must not collide with them."""
+    floating = "<gravity>false</gravity>"  # (a base pinned to the world is static: one surface, no split)
+    base = box_link("base", 1.0, 5.0, floating, size="0.05 0.05 0.05").replace(
+        "</link>",
+        '<collision name="ledge"><pose>0.3 0 0 0 0 0</pose><geometry><box><size>0.05 0.3 0.3</size></box>'
+        "</geometry><surface><friction><ode><mu>0.2</mu></ode></friction></surface></collision></link>",
+    )
+    rig = f"""<model name="rig"><self_collide>true</self_collide>{base}
+      {box_link("slider", 1.0, 1.0, floating, x=-0.5)}<joint name="slide" type="prismatic"><parent>base</parent>
+      <child>slider</child><axis><xyz>1 0 0</xyz><limit><lower>-2</lower><upper>2</upper></limit></axis></joint>
+    </model>"""
+    pw, ents = build(sdf_world(rig))
+    try:
+        entity = ents["rig"]
+        assert len(entity.plan.bodies[0].links) == 3  # base, slider, the ledge's surface
+        slide = entity.joint("slide")
+        for _ in range(1500):
+            entity.set_joint_velocity(slide, 1.0)
+            pw.step()
+        assert entity.joint_states([slide])[0][0] > 1.0  # through the ledge
+    finally:
+        pw.close()

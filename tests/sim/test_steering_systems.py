@@ -16,6 +16,7 @@ import pytest
 from sim_helpers import ground, sdf_world, sdf_world_text
 from steering_robots import (
     KINGPIN_M,
+    STEERING_EFFICIENCY,
     STEERING_LIMIT_RAD,
     TRACK_M,
     TRACKS_SEPARATION_M,
@@ -222,11 +223,11 @@ def test_mecanum_and_joint_systems_over_their_gz_topics_through_the_bridge(route
             procs.stop(p)
 
 
-def test_tracked_vehicle_drives_its_tracks_as_belts() -> None:
-    """TrackedVehicle splits a twist into track speeds v ∓ ω·separation/(2·efficiency); each TrackController moves
-    its track's contacts as a belt, so the vehicle runs at the track speed; it turns by skidding (gz-sim's steering
-    of the contacts about a center of rotation is not simulated) and reports gz-sim's odometry from the commanded
-    track speeds."""
+def test_tracked_vehicle_drives_straight_and_turns_about_its_commanded_centre() -> None:
+    """TrackedVehicle splits a twist into track speeds v ∓ ω·separation/(2·efficiency) and a centre of rotation at
+    v/ω on the body's y axis; the tracks' contacts, steered about it as gz-sim's TrackController steers them, turn
+    the vehicle about that centre (the radius commanded) at the rate their frictions settle on: the command's, to
+    within what gz-sim's own test allows, for a vehicle whose steering efficiency suits its tracks."""
     sim = Simulation(sdf_world(ground() + tracked_robot("tank")), rtf=0.0)
     try:
         rt = sim.models["tank"]
@@ -237,19 +238,81 @@ def test_tracked_vehicle_drives_its_tracks_as_belts() -> None:
         advance(sim, 300)
         for v in (0.4, -0.3):
             vehicle.command(v, 0.0)
-            advance(sim, 800)
-            forward, sideways, rate, _ = body_motion(sim, "tank", 1500)
+            advance(sim, 500)
+            forward, sideways, rate, _ = body_motion(sim, "tank", 1000)
             assert (forward, sideways, rate) == pytest.approx((v, 0.0, 0.0), abs=0.005)
             assert vehicle.odom.linear_m_s == pytest.approx(v, abs=1e-6)
-        vehicle.command(0.2, 0.5)
-        advance(sim, 800)
-        turn = 0.5 * TRACKS_SEPARATION_M / (2 * 0.5)  # steering_efficiency 0.5
-        assert (left.speed, right.speed) == pytest.approx((0.2 - turn, 0.2 + turn))
-        _, _, rate, _ = body_motion(sim, "tank", 1500)
-        assert rate > 0.01  # turning left, by skidding: far slower than gz-sim's contacts steered about a center
-        assert vehicle.odom.angular_rad_s == pytest.approx(2 * turn / TRACKS_SEPARATION_M, abs=1e-6)
+        for v, w in ((0.0, 0.5), (0.5, 0.2), (0.3, -0.3), (-0.3, 0.4)):
+            vehicle.command(v, w)
+            advance(sim, 500)
+            turn = w * TRACKS_SEPARATION_M / (2 * STEERING_EFFICIENCY)
+            assert (left.speed, right.speed) == pytest.approx((v - turn, v + turn))
+            forward, sideways, rate, _ = body_motion(sim, "tank", 1000)
+            assert rate == pytest.approx(w, rel=0.15), (v, w)
+            assert forward == pytest.approx(rate * v / w, abs=0.01) and abs(sideways) < 0.01, (v, w)
+            # gz-sim's odometry: the commanded track speeds as a differential drive's
+            assert vehicle.odom.angular_rad_s == pytest.approx(2 * turn / TRACKS_SEPARATION_M, abs=1e-6)
         vehicle.command(5.0, 0.0)  # past the tracks' own max_velocity (1 m/s)
         advance(sim, 100)
         assert (left.speed, right.speed) == (1.0, 1.0)
     finally:
         sim.close()
+
+
+@pytest.mark.slow
+def test_tracked_vehicle_on_its_gz_topics(router: str) -> None:
+    """A twist on TrackedVehicle's <topic> drives the tracks; its odometry (the commanded track speeds as a
+    differential drive's, gz-sim's) and each TrackController's (the track's speed) come back on their default
+    topics; a steering efficiency on /model/<m>/steering_efficiency changes how far apart the tracks run."""
+    from diffctl.bus import gz, open_session
+    from tests.waiting import wait_for
+
+    session = open_session()
+    extra = "<topic>/tank/drive</topic><child_frame_id>tank/chassis</child_frame_id>"
+    sim = Simulation(
+        sdf_world(ground() + tracked_robot("tank", vehicle_extra=extra)), rtf=0.0, paused=False, session=session
+    )
+    stop = threading.Event()
+    thread = threading.Thread(target=sim.run, args=(stop,), daemon=True)
+    got: dict[str, list[dict]] = {"/model/tank/odometry": [], "/model/tank/link/right_track/odometry": []}
+    subs = [
+        session.declare_subscriber(gz.key(topic), lambda s, out=out: out.append(gz.decode(s.payload.to_bytes())[1]))
+        for topic, out in got.items()
+    ]
+    drive = session.declare_publisher(gz.key("/tank/drive"))
+    efficiency = session.declare_publisher(gz.key("/model/tank/steering_efficiency"))
+    try:
+        thread.start()
+        v, w = 0.4, 0.3
+        twist = gz.encode("gz.msgs.Twist", {"linear": {"x": v}, "angular": {"z": w}})
+        vehicle, track = got.values()
+
+        def speeds(eff: float) -> bool:
+            if not (vehicle and track):
+                return False
+            o, t = vehicle[-1]["twist"], track[-1]["twist"]
+            return (
+                abs(o["linear"]["x"] - v) < 1e-6
+                and abs(o["angular"]["z"] - w / eff) < 1e-6
+                and abs(t["linear"]["x"] - (v + w * TRACKS_SEPARATION_M / (2 * eff))) < 1e-6
+            )
+
+        assert wait_for(lambda: speeds(STEERING_EFFICIENCY), 30, lambda: drive.put(twist)), (vehicle[-1:], track[-1:])
+        header = vehicle[-1]["header"]
+        assert (gz.header_value(header, "frame_id"), gz.header_value(header, "child_frame_id")) == (
+            "tank/odom",
+            "tank/chassis",
+        )
+        assert track[-1]["pose"]["position"]["x"] > 0.0  # the right track's travel
+        assert wait_for(
+            lambda: speeds(1.0), 30, lambda: efficiency.put(gz.encode("gz.msgs.Double", {"data": 1.0}))
+        ), (vehicle[-1:], track[-1:])
+    finally:
+        for s in subs:
+            s.undeclare()
+        drive.undeclare()
+        efficiency.undeclare()
+        stop.set()
+        thread.join(10)
+        sim.close()
+        session.close()

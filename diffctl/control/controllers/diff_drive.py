@@ -386,13 +386,15 @@ class DiffDriveController(ChainableControllerInterface):
         w = self._limiter_angular.limit(ref_angular, last, second, period_s)
         self._previous_angular = (w, last)
 
-        if not self._update_odometry(v, w, time_ns, period_s):
+        p = self.params
+        if p.open_loop and not self._odom_needs_init:  # _update_odometry's usual case, without its frame
+            self.odometry.update_open_loop(v, w, time_ns / _NS)
+        elif not self._update_odometry(v, w, time_ns, period_s):
             return ReturnType.ERROR
         self._publish(time_ns, v, w)
 
         geometry = self._geometry
-        if geometry[0] is not self.params:  # the (frozen) parameters were replaced: derive the wheels again
-            p = self.params
+        if geometry[0] is not p:  # the (frozen) parameters were replaced: derive the wheels again
             geometry = (p, p.effective_wheel_separation_m, p.left_wheel_radius_m, p.right_wheel_radius_m)
             self._geometry = geometry
         left, right = wheel_velocities_radps(v, w, geometry[1], geometry[2], geometry[3])

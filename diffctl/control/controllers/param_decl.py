@@ -256,7 +256,7 @@ def unknown_key_warnings(
 def overrides(node: Any) -> dict[str, Any]:
     """The values a node was started with (its parameter files and -p rules, for its name), by parameter name
     (rclcpp's NodeParametersInterface::get_parameter_overrides)."""
-    return {name: p.value for name, p in getattr(node, "_parameter_overrides", {}).items()}
+    return {name: p.value for name, p in node.get_parameter_overrides().items()}
 
 
 def declare_all(node: Any, decls: Mapping[str, ParamDecl], controller: str) -> dict[str, Any]:

@@ -187,8 +187,21 @@ class GenericSystem(HardwareComponent):
                     self.log.error(f"{self.name}: command {c.name} is {v}")
                 return ReturnType.ERROR
         dt = period_s
+        if plan.by_velocity and dt > 0.0:
+            # Velocity-commanded joints (a wheel), the mock's dynamics written for that mode alone: position
+            # advances by the previous velocity, the command becomes the velocity, the change the acceleration
+            # (when the joint has that state).
+            position_offset = plan.position_offset
+            for command, pos_s, vel_s, acc_s in plan.by_velocity:
+                cmd = command.value
+                vel = vel_s.value
+                pos_s.value += vel * dt + position_offset
+                if cmd == cmd:
+                    if acc_s is not None:
+                        acc_s.value = (cmd - vel) / dt
+                    vel_s.value = cmd
         if plan.integrate and dt > 0.0:
-            # One step of the mock's dynamics (backward integration: position advances by the previous velocity).
+            # The position- and acceleration-commanded joints (backward integration as above).
             position_offset = plan.position_offset
             for mode, command, pos_s, vel_s, acc_s in plan.integrate:
                 cmd = command.value
@@ -200,11 +213,6 @@ class GenericSystem(HardwareComponent):
                     vel += acc * dt
                     if cmd == cmd:
                         acc = cmd
-                elif mode == "velocity":
-                    pos += vel * dt + position_offset
-                    if cmd == cmd:
-                        acc = (cmd - vel) / dt
-                        vel = cmd
                 elif cmd == cmd:  # position
                     new_pos = cmd + position_offset
                     new_vel = (new_pos - pos) / dt
@@ -228,6 +236,10 @@ class GenericSystem(HardwareComponent):
 
     def write(self, time_ns: int, period_s: float) -> ReturnType:
         return ReturnType.OK
+
+    # Nothing to write: the manager's cycle skips the call (a subclass that writes overrides the function, and
+    # its function carries no such mark).
+    write.writes_nothing = True  # type: ignore[attr-defined]
 
 
 class _Missing:
@@ -257,12 +269,18 @@ class _Plan:
         # The position offset goes to the custom interface when one is named, else to the position state.
         self.position_offset = 0.0 if hw.custom_offset_interface else hw.offset
         self.integrate: list[tuple[str, CommandInterface, Any, Any, Any]] = []
+        # (command, position, velocity, acceleration or None): the velocity-commanded joints, apart
+        self.by_velocity: list[tuple[CommandInterface, Any, Any, Any]] = []
         if calc:
             for joint, mode in hw._mode.items():
                 if mode is None:
                     continue
                 pos_s, vel_s, acc_s = (states.get(f"{joint}/{k}") or _MISSING for k in _MODES)
-                self.integrate.append((mode, commands[f"{joint}/{mode}"], pos_s, vel_s, acc_s))
+                if mode == "velocity":
+                    self.by_velocity.append((commands[f"{joint}/{mode}"], pos_s, vel_s,
+                                             None if acc_s is _MISSING else acc_s))
+                else:
+                    self.integrate.append((mode, commands[f"{joint}/{mode}"], pos_s, vel_s, acc_s))
         # (command, state, offset added or None): a joint's mode interfaces (with calculate_dynamics) are the
         # integrator's, a position command without it sets the position state plus the offset.
         self.mirror: list[tuple[CommandInterface, StateInterface, float | None]] = []

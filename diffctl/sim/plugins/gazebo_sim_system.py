@@ -185,6 +185,11 @@ class GazeboSimSystem(HardwareComponent):
         self.step()
         return ReturnType.OK
 
+    @property
+    def steps(self) -> bool:
+        """Whether `step` has work on every physics step (a joint commanded in position or effort)."""
+        return bool(self._per_step_joints)
+
     def step(self) -> None:
         """Per physics step: the position P law and efforts need the current state or a fresh torque."""
         if not self._per_step_joints:

@@ -289,6 +289,7 @@ class GzRos2Control(SystemPlugin):
         self.services: ManagerServices | None = None
         self._task = None
         self._last_ns: int | None = None
+        self._hooked = False  # _each_step in the stepper's step hooks: only while a system steps (see _cycle)
         self.stop = threading.Event()
         if prepared is None or prepared.plugin is not plugin:
             if prepared is not None:
@@ -309,7 +310,6 @@ class GzRos2Control(SystemPlugin):
         except Exception:
             self.close()
             raise
-        ctx.stepper.step_hooks.append(self._each_step)
         ctx.log.info(
             f"controller manager {self.node.get_fully_qualified_name()} for model {entity.name!r}: "
             f"{self.cm.update_rate} Hz of sim time, "
@@ -352,6 +352,16 @@ class GzRos2Control(SystemPlugin):
             self.ctx.log.throttled(
                 f"cm:{self.entity.name}", f"controller manager of {self.entity.name!r}: {type(e).__name__}: {e}"
             )
+        # A velocity-commanded robot (a wheel) has nothing to do between cycles: the per-step hook is in the
+        # stepper's list only while a position or effort command needs the physics' every step.
+        stepping = any(hw.steps for hw in self.systems)
+        if stepping != self._hooked:
+            hooks = self.ctx.stepper.step_hooks
+            if stepping:
+                hooks.append(self._each_step)
+            elif self._each_step in hooks:
+                hooks.remove(self._each_step)
+            self._hooked = stepping
 
     def _each_step(self) -> None:
         for hw in self.systems:

@@ -1,17 +1,17 @@
 """Gazebo's TrackController system (`gz-sim-track-controller-system`): a track link whose contacts move.
 
-gz-sim drives a track by giving each contact of the track link's collisions a surface velocity (gz-physics'
-conveyor-belt contacts), which PyBullet lacks. Here the track link's collisions ride on a belt link on a
-prismatic joint along the track's x axis (sim/body_plan.py): every step the belt is put back where it belongs
-and set sliding at the track speed, so what touches the ground moves backwards under the track as a belt does,
-and the motor holding that speed pushes the vehicle. The belt runs straight along the track; gz-sim's
-center-of-rotation steering of the contacts' friction directions is not simulated (a tracked vehicle turns by
-skidding, as real ones do).
+gz-sim drives a track by giving each contact of the track link's collisions a friction direction and a surface
+velocity (gz-physics' contact surface motion), which PyBullet lacks; here the track's collisions ride on a belt
+that the model's TrackBelts moves each step as those contacts would move the vehicle (track_belts.py,
+track_math.py). This system keeps what gz-sim's keeps: the track's speed (limited), its centre of rotation, its
+travelled distance.
 
 SDF parameters as gz-sim 8 reads them: `link`, `velocity_topic` (/model/<m>/link/<link>/track_cmd_vel,
-gz.msgs.Double), `center_of_rotation_topic` (…/track_cmd_center_of_rotation, gz.msgs.Vector3d, accepted),
-`odometry_topic` (…/odometry: the belt's travelled distance and speed), `odometry_publish_frequency` (50 Hz),
-`max_command_age` (s; an older command stops the track), `[min|max]_[velocity|acceleration|jerk]`.
+gz.msgs.Double), `center_of_rotation_topic` (…/track_cmd_center_of_rotation, gz.msgs.Vector3d: a point in the
+world; not finite = none, the track pushes along itself), `track_orientation` (roll pitch yaw of the track's
+frame in the link's; read when the model is built), `odometry_topic` (…/odometry: the track's travelled distance
+and speed), `odometry_publish_frequency` (50 Hz), `max_command_age` (s; an older command stops the track),
+`[min|max]_[velocity|acceleration|jerk]`.
 """
 
 from __future__ import annotations
@@ -19,17 +19,13 @@ from __future__ import annotations
 import math
 from typing import Any
 
-import pybullet as pb
-
 from diffctl.bus import gz
 from diffctl.description.model import Plugin
-from diffctl.sim.entity import Entity
+from diffctl.sim.entity import DEFAULT_MAX_SPEED, Entity
 from diffctl.sim.plugins.base import PluginContext, SystemPlugin, float_param, rate_period_ns
 from diffctl.sim.plugins.diff_drive_math import limit_speed
 from diffctl.sim.plugins.system_support import speed_limits, valid_topic
-
-# The belt's motor: strong enough that only the ground's friction limits what the track transmits.
-BELT_MAX_FORCE_N = 1e5
+from diffctl.sim.plugins.track_math import Vec3
 
 
 class TrackController(SystemPlugin):
@@ -47,6 +43,7 @@ class TrackController(SystemPlugin):
         self.limits = speed_limits(plugin, source)
         self.velocity = 0.0  # as commanded
         self.speed = 0.0  # as limited, this step
+        self.center: Vec3 | None = None  # the centre of rotation, in the world
         self.position_m = 0.0
         self._last = [0.0, 0.0]
         self._command_ns = 0
@@ -60,7 +57,7 @@ class TrackController(SystemPlugin):
         t = ctx.transport
         if t is not None:
             self._subs.append(t.subscribe(self.velocity_topic, "gz.msgs.Double", self.on_velocity))
-            self._subs.append(t.subscribe(self.cor_topic, "gz.msgs.Vector3d", lambda _fields: None))
+            self._subs.append(t.subscribe(self.cor_topic, "gz.msgs.Vector3d", self.on_center))
             self._odom = t.publisher(self.odometry_topic, "gz.msgs.Odometry")
         ctx.stepper.step_hooks.append(self._step)
         period = rate_period_ns(hz, ctx.stepper.step_ns)
@@ -69,26 +66,29 @@ class TrackController(SystemPlugin):
     def on_velocity(self, fields: dict[str, Any]) -> None:
         self.command(float(fields.get("data", 0.0) or 0.0))
 
+    def on_center(self, fields: dict[str, Any]) -> None:
+        self.set_center(tuple(float(fields.get(k, 0.0) or 0.0) for k in "xyz"))  # type: ignore[arg-type]
+
     def command(self, velocity_m_s: float) -> None:
         if math.isfinite(velocity_m_s):
             self.velocity = velocity_m_s
             self._command_ns = self.ctx.stepper.sim_time_ns
+
+    def set_center(self, point: Vec3 | None) -> None:
+        """A new centre of rotation; one not finite (TrackedVehicle's for straight driving) is none."""
+        self.center = point if point is not None and all(math.isfinite(v) for v in point) else None
+        self._command_ns = self.ctx.stepper.sim_time_ns
 
     def _step(self) -> None:
         target = self.velocity
         age = self.max_command_age_ns
         if age is not None and self.ctx.stepper.sim_time_ns - self._command_ns > age:
             target = 0.0
+        # (without a <max_velocity> still capped, as joint commands are: absurd speeds never reach the physics)
+        target = max(-DEFAULT_MAX_SPEED, min(DEFAULT_MAX_SPEED, target))
         self.speed = limit_speed(target, self._last[0], self._last[1], self._dt_s, self.limits)
         self._last = [self.speed, self._last[0]]
         self.position_m += self.speed * self._dt_s
-        body, index = self.belt  # type: ignore[misc]  # (the hook is added only with a belt)
-        cid = self.entity.client
-        # back under the track, sliding backwards at the track speed: its contacts move as a belt's do
-        pb.resetJointState(body, index, 0.0, -self.speed, physicsClientId=cid)
-        pb.setJointMotorControl2(
-            body, index, pb.VELOCITY_CONTROL, targetVelocity=-self.speed, force=BELT_MAX_FORCE_N, physicsClientId=cid
-        )
 
     def _publish(self, sim_time_ns: int) -> None:
         if self._odom is not None and self._odom.matched:
@@ -102,6 +102,7 @@ class TrackController(SystemPlugin):
 
     def reset(self) -> None:
         self.velocity = self.speed = self.position_m = 0.0
+        self.center = None
         self._last = [0.0, 0.0]
 
     def close(self) -> None:

@@ -27,6 +27,7 @@ from diffctl.sim.sensors.common import frame_id
 
 # Noise is drawn from a pre-computed table (a fresh normal() per 230k pixels costs more than the render).
 NOISE_TABLE_SIZE = 1 << 20
+_DRAW_LATER = object()  # a noise table not drawn yet
 # Shaded colours of flat planes, by (rgba, normal, light): the same for every camera of the process.
 _PLANE_RGB: dict[tuple, np.ndarray] = {}
 
@@ -64,13 +65,22 @@ class Camera:
         # PyBullet wants the position the light comes from; SDF gives the direction the light travels.
         self._light = [-light_direction[0] * 10, -light_direction[1] * 10, -light_direction[2] * 10]
         self.rng = rng
-        self._noise: np.ndarray | None = None
-        self._depth_noise: np.ndarray | None = None
+        # The noise tables are drawn at the first frame (a million normals: ~15 ms of the robot's spawn, for a
+        # camera nobody may watch); nothing draws from this sensor's generator before, so the frames are the same.
+        self._noise: np.ndarray | object | None = None
+        self._depth_noise: np.ndarray | object | None = None
         n = spec.noise
         if n.active and sensor.type == "camera":
-            self._noise = np.round(rng.normal(n.mean * 255.0, n.stddev * 255.0, NOISE_TABLE_SIZE)).astype(np.int16)
+            self._noise = _DRAW_LATER
         elif n.active:
-            self._depth_noise = rng.normal(n.mean, n.stddev, NOISE_TABLE_SIZE)
+            self._depth_noise = _DRAW_LATER
+
+    def _draw_noise_tables(self) -> None:
+        n = self.spec.noise
+        if self._noise is _DRAW_LATER:
+            self._noise = np.round(self.rng.normal(n.mean * 255.0, n.stddev * 255.0, NOISE_TABLE_SIZE)).astype(np.int16)
+        if self._depth_noise is _DRAW_LATER:
+            self._depth_noise = self.rng.normal(n.mean, n.stddev, NOISE_TABLE_SIZE)
 
     def _tiny(self, eye: Vec3, fwd: Vec3, up: Vec3) -> tuple[Any, Any]:
         view = pb.computeViewMatrix(eye, (eye[0] + fwd[0], eye[1] + fwd[1], eye[2] + fwd[2]), up)
@@ -131,6 +141,8 @@ class Camera:
 
     def render_frame(self, *, depth: bool) -> Frame:
         """One render of the current scene; with `depth`, also each pixel's distance along the view axis."""
+        if self._noise is _DRAW_LATER or self._depth_noise is _DRAW_LATER:
+            self._draw_noise_tables()
         pose = self.pose()
         rgba, buffer = self._tiny(pose.xyz, pose.rotate((1.0, 0.0, 0.0)), pose.rotate((0.0, 0.0, 1.0)))
         self.frames += 1

@@ -1,5 +1,6 @@
-# Parameter events (ParameterEventHandler, as the "monitoring parameter changes" tutorial uses it) and the
-# logger-level services of a node created with enable_logger_service=True.
+# Parameter events (ParameterEventHandler, as the "monitoring parameter changes" tutorial uses it), how
+# many events a declare_parameters and an atomic set make, and the logger-level services of a node created
+# with enable_logger_service=True.
 import json
 import time
 
@@ -46,6 +47,13 @@ spin_until(lambda: len(seen) >= 5)
 spin_until(lambda: False, 0.3)
 out.append(["parameter callbacks", seen])
 out.append(["events of watched", [e for e in events if e[0] == "/ns/watched"]])
+# declare_parameters: one event per parameter (rclpy sets them one by one); an atomic set: one event for all
+events.clear()
+watched.declare_parameters("", [("a", 1), ("b", "x"), ("c", [1.0])])
+watched.set_parameters_atomically([Parameter("a", value=2), Parameter("b", value="y")])
+spin_until(lambda: len([e for e in events if e[0] == "/ns/watched"]) >= 4)
+spin_until(lambda: False, 0.3)
+out.append(["events of declare_parameters and an atomic set", [e for e in events if e[0] == "/ns/watched"]])
 try:
     handler.remove_parameter_callback(h1)
 except RuntimeError as e:

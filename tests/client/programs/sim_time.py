@@ -53,6 +53,23 @@ while time.monotonic() < end and len(late_fired) < 4:
 out.append(["switched at run time", [len(late_fired) >= 4, late_fired[0] >= 1000,
                                      all(b - a == 5 for a, b in itertools.pairwise(late_fired))]])
 late.destroy_node()
+# A node detached from its time source (a simulator hosting it sets its time): /clock moves it no more, the
+# override does. diffctl reaches the time source through rclcpp's accessor; rclpy has only the attribute.
+hosted = Node("hosted_demo", parameter_overrides=[Parameter("use_sim_time", value=True)])
+ex.add_node(hosted)
+end = time.monotonic() + 3.0
+while time.monotonic() < end and hosted.get_clock().now().nanoseconds == 0:
+    ex.spin_once(timeout_sec=0.05)
+source_of_time = getattr(hosted, "get_node_time_source_interface", lambda: hosted._time_source)()
+source_of_time.detach_node()
+hosted.get_clock().set_ros_time_override(Time(seconds=7, clock_type=ClockType.ROS_TIME))
+before = sim_seconds[0]
+end = time.monotonic() + 3.0
+while time.monotonic() < end and sim_seconds[0] < before + 0.5:
+    ex.spin_once(timeout_sec=0.05)
+out.append(["detached", [hosted.get_clock().now().nanoseconds, hosted.get_clock().ros_time_is_active,
+                         sim_seconds[0] >= before + 0.5]])
+hosted.destroy_node()
 sim.set_parameters([Parameter("use_sim_time", value=False)])
 wall = sim.get_clock().now().nanoseconds
 out.append(["back to wall time", [abs(wall - time.time_ns()) < 10**9, sim.get_clock().ros_time_is_active]])
