@@ -89,10 +89,17 @@ class NodeParameters:
         self.on_event: Callable[[list[Parameter], list[Parameter], list[Parameter]], None] | None = None
 
     def _notify(self, new: list[Parameter], changed: list[Parameter], deleted: list[Parameter]) -> None:
-        # /parameter_events leave on one worker thread of the process, in order: the set (and a node's start,
-        # which declares two parameters) does not wait for the event's first serialization.
+        # /parameter_events leave on one worker thread of the process, in order, and before the declare or set
+        # returns, as rcl publishes them: an event left behind reached a subscription made after it (a watcher
+        # created after the node heard its start's use_sim_time declaration on a loaded machine; rclpy's never
+        # does). The wait is bounded: a publisher stuck for 5 s does not hold the set, its event leaves later.
         if self.on_event is not None and (new or changed or deleted):
-            _events().submit(self.on_event, new, changed, deleted)
+            sent = _events().submit(self.on_event, new, changed, deleted)
+            if not threading.current_thread().name.startswith("parameter_events"):
+                try:
+                    sent.result(timeout=5.0)
+                except Exception:  # the publisher reports its own failures (throttled, in _publish_parameter_event)
+                    pass
 
     def flush(self) -> None:
         """Wait until every parameter event queued so far has left (before the node's publisher closes)."""

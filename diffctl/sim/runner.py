@@ -8,13 +8,14 @@ encoded for a topic nobody subscribes to, and cameras render only while someone 
 
 from __future__ import annotations
 
+import importlib
 import re
 import threading
 import time
 import zlib
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pybullet as pb
@@ -24,41 +25,18 @@ from diffctl.description.model import Model, World
 from diffctl.errors import DescriptionError, RuntimeFailure
 from diffctl.sim.entity import Entity
 from diffctl.sim.log import Logger
-from diffctl.sim.plugins.ackermann_steering import AckermannSteering, AckermannSteeringParams
-from diffctl.sim.plugins.apply_joint_force import ApplyJointForce
 from diffctl.sim.plugins.base import PluginContext, SystemPlugin, bool_param, rate_period_ns
-from diffctl.sim.plugins.diff_drive import DiffDrive, DiffDriveParams
 from diffctl.sim.plugins.gz_ros2_control import GzRos2Control, PreparedManager
-from diffctl.sim.plugins.joint_controller import JointController
-from diffctl.sim.plugins.joint_position_controller import JointPositionController
-from diffctl.sim.plugins.joint_state_publisher import JointStatePublisher
-from diffctl.sim.plugins.joint_trajectory_controller import JointTrajectoryController
-from diffctl.sim.plugins.linear_battery import LinearBatteryPlugin
-from diffctl.sim.plugins.mecanum_drive import MecanumDrive, MecanumDriveParams
-from diffctl.sim.plugins.odometry_publisher import OdometryPublisher
-from diffctl.sim.plugins.pose_publisher import PosePublisher
 from diffctl.sim.plugins.system_names import system_kind
-from diffctl.sim.plugins.track_belts import TrackBelts
-from diffctl.sim.plugins.track_controller import TrackController
-from diffctl.sim.plugins.tracked_vehicle import TrackedVehicle
-from diffctl.sim.plugins.velocity_control import VelocityControl
-from diffctl.sim.sensors import (
-    AirPressure,
-    Camera,
-    CameraSensor,
-    CameraTask,
-    Imu,
-    Lidar,
-    Magnetometer,
-    NavSat,
-    RenderRate,
-    origin_problem,
-)
+from diffctl.sim.sensors import Camera, CameraSensor, CameraTask, Imu, Lidar, RenderRate
 from diffctl.sim.sensors import topics as sensor_topics
-from diffctl.sim.sensors.magnetometer import EarthFieldParams
 from diffctl.sim.stepper import Stepper, Task
 from diffctl.sim.transport import GzPublisher, SimTransport
 from diffctl.sim.world import PhysicsWorld
+
+if TYPE_CHECKING:
+    from diffctl.sim.sensors import AirPressure, Magnetometer, NavSat
+    from diffctl.sim.sensors.magnetometer import EarthFieldParams
 
 CLOCK_PERIOD_NS = 10_000_000
 # /clock ticks every 10 ms of sim time, but faster than real time no more often than every 4 ms of wall time
@@ -85,12 +63,12 @@ NATIVE_SYSTEMS = {
 }
 CONTROL_SYSTEMS = ("gz_ros2_control", "ign_ros2_control")
 # Systems built from the plugin element alone.
-JOINT_SYSTEMS: dict[str, Any] = {
-    "joint-position-controller": JointPositionController,
-    "joint-controller": JointController,
-    "velocity-control": VelocityControl,
-    "joint-trajectory-controller": JointTrajectoryController,
-    "apply-joint-force": ApplyJointForce,
+JOINT_SYSTEMS: dict[str, tuple[str, str]] = {
+    "joint-position-controller": ("joint_position_controller", "JointPositionController"),
+    "joint-controller": ("joint_controller", "JointController"),
+    "velocity-control": ("velocity_control", "VelocityControl"),
+    "joint-trajectory-controller": ("joint_trajectory_controller", "JointTrajectoryController"),
+    "apply-joint-force": ("apply_joint_force", "ApplyJointForce"),
 }
 MODEL_SYSTEMS = {
     "diff-drive",
@@ -109,6 +87,12 @@ MODEL_SYSTEMS = {
     "pose-publisher",
     *CONTROL_SYSTEMS,
 }
+
+
+def _plugin(module: str, name: str) -> Any:
+    """A system plugin's class, imported when a model first uses it: a world uses one or two of the fifteen, and
+    importing them all was ~35 ms of every simulator's start (and of the fork server's)."""
+    return getattr(importlib.import_module(f"diffctl.sim.plugins.{module}"), name)
 
 
 def system_name(filename: str, name: str = "") -> str:
@@ -208,6 +192,8 @@ class Simulation:
 
     def _earth_field(self) -> EarthFieldParams | None:
         """The Earth's field for magnetometers when the world is placed on it (gz-sim's Magnetometer system)."""
+        from diffctl.sim.sensors.magnetometer import EarthFieldParams
+
         origin = self.world_model.spherical_coordinates
         if origin is None:
             return None
@@ -265,40 +251,43 @@ class Simulation:
         model = rt.entity.model
         # A TrackedVehicle commands the tracks of its model: those are made first, whatever the plugin order.
         tracks = [
-            TrackController(self.ctx, rt.entity, p)
+            _plugin("track_controller", "TrackController")(self.ctx, rt.entity, p)
             for p in model.plugins
             if system_name(p.filename, p.name) == "track-controller"
         ]
         rt.plugins.extend(tracks)
         if tracks:
-            rt.plugins.append(TrackBelts(self.ctx, rt.entity, tracks))
+            rt.plugins.append(_plugin("track_belts", "TrackBelts")(self.ctx, rt.entity, tracks))
         for plugin in model.plugins:
             kind = system_name(plugin.filename, plugin.name)
             if kind == "tracked-vehicle":
-                rt.plugins.append(TrackedVehicle(self.ctx, rt.entity, plugin, tracks))
+                rt.plugins.append(_plugin("tracked_vehicle", "TrackedVehicle")(self.ctx, rt.entity, plugin, tracks))
             elif kind == "diff-drive":
                 canonical = model.canonical_link or model.root_link()
-                params = DiffDriveParams.from_plugin(plugin, model.name, canonical, model.source)
-                rt.plugins.append(DiffDrive(self.ctx, rt.entity, params))
+                params = _plugin("diff_drive", "DiffDriveParams").from_plugin(
+                    plugin, model.name, canonical, model.source)
+                rt.plugins.append(_plugin("diff_drive", "DiffDrive")(self.ctx, rt.entity, params))
             elif kind == "mecanum-drive":
                 canonical = model.canonical_link or model.root_link()
-                mecanum = MecanumDriveParams.from_plugin(plugin, model.name, canonical, model.source)
-                rt.plugins.append(MecanumDrive(self.ctx, rt.entity, mecanum))
+                mecanum = _plugin("mecanum_drive", "MecanumDriveParams").from_plugin(
+                    plugin, model.name, canonical, model.source)
+                rt.plugins.append(_plugin("mecanum_drive", "MecanumDrive")(self.ctx, rt.entity, mecanum))
             elif kind == "ackermann-steering":
                 canonical = model.canonical_link or model.root_link()
-                ackermann = AckermannSteeringParams.from_plugin(plugin, model.name, canonical, model.source)
-                rt.plugins.append(AckermannSteering(self.ctx, rt.entity, ackermann))
+                ackermann = _plugin("ackermann_steering", "AckermannSteeringParams").from_plugin(
+                    plugin, model.name, canonical, model.source)
+                rt.plugins.append(_plugin("ackermann_steering", "AckermannSteering")(self.ctx, rt.entity, ackermann))
             elif kind in JOINT_SYSTEMS:
-                rt.plugins.append(JOINT_SYSTEMS[kind](self.ctx, rt.entity, plugin))
+                rt.plugins.append(_plugin(*JOINT_SYSTEMS[kind])(self.ctx, rt.entity, plugin))
             elif kind == "joint-state-publisher":
-                rt.plugins.append(JointStatePublisher(self.ctx, rt.entity, plugin))
+                rt.plugins.append(_plugin("joint_state_publisher", "JointStatePublisher")(self.ctx, rt.entity, plugin))
             elif kind == "pose-publisher":
-                rt.plugins.append(PosePublisher(self.ctx, rt.entity, plugin))
+                rt.plugins.append(_plugin("pose_publisher", "PosePublisher")(self.ctx, rt.entity, plugin))
             elif kind == "linearbatteryplugin":
-                rt.plugins.append(LinearBatteryPlugin(self.ctx, rt.entity, plugin))
+                rt.plugins.append(_plugin("linear_battery", "LinearBatteryPlugin")(self.ctx, rt.entity, plugin))
             elif kind == "odometry-publisher":
                 rng = self.sensor_rng(model.name, f"odometry_publisher:{plugin.name}")
-                rt.plugins.append(OdometryPublisher(self.ctx, rt.entity, plugin, rng))
+                rt.plugins.append(_plugin("odometry_publisher", "OdometryPublisher")(self.ctx, rt.entity, plugin, rng))
             elif kind in CONTROL_SYSTEMS:
                 if rt.control is not None:
                     raise DescriptionError(
@@ -320,10 +309,16 @@ class Simulation:
             if s.type == "lidar":
                 sensor = Lidar(entity, s, rng, self.laser_retro)
             elif s.type == "air_pressure":
+                from diffctl.sim.sensors.air_pressure import AirPressure
+
                 sensor = AirPressure(entity, s, rng)
             elif s.type == "magnetometer":
+                from diffctl.sim.sensors.magnetometer import Magnetometer
+
                 sensor = Magnetometer(entity, s, self.physics.physics.magnetic_field_t, rng, self._earth_field())
             elif s.type == "navsat":
+                from diffctl.sim.sensors.navsat import NavSat, origin_problem
+
                 origin = self.world_model.spherical_coordinates
                 problem = origin_problem(origin)
                 if problem is not None or origin is None:

@@ -7,15 +7,30 @@ names, bytes fields as raw `bytes`); topics (topics.py) and scheduling (camera_t
 separate from the sampling. All randomness comes from each sensor's own seeded numpy Generator.
 """
 
-from diffctl.sim.sensors.air_pressure import AirPressure
+import importlib
+from typing import TYPE_CHECKING, Any
+
 from diffctl.sim.sensors.camera import Camera, Frame
 from diffctl.sim.sensors.camera_sensor import CameraSensor
 from diffctl.sim.sensors.camera_task import CameraTask
 from diffctl.sim.sensors.imu import Imu, ImuNoise, point_velocity, specific_force
 from diffctl.sim.sensors.lidar import MAX_RAYS, Lidar, lidar_directions, ranges_from_hits
-from diffctl.sim.sensors.magnetometer import Magnetometer
-from diffctl.sim.sensors.navsat import NavSat, origin_problem
 from diffctl.sim.sensors.rate import RenderRate
+
+if TYPE_CHECKING:
+    from diffctl.sim.sensors.air_pressure import AirPressure
+    from diffctl.sim.sensors.magnetometer import Magnetometer
+    from diffctl.sim.sensors.navsat import NavSat, origin_problem
+
+# The sensors few robots carry are imported when first asked for (every simulator's start paid for them).
+_LATER = {"AirPressure": "air_pressure", "Magnetometer": "magnetometer", "NavSat": "navsat",
+          "origin_problem": "navsat"}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _LATER:
+        return getattr(importlib.import_module(f"{__name__}.{_LATER[name]}"), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 __all__ = [
     "MAX_RAYS",
