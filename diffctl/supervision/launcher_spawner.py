@@ -75,6 +75,7 @@ class LauncherSpawner(PosixSpawner):
         self._direct: set[int] = set()
         self._sigchld_loop: asyncio.AbstractEventLoop | None = None
         self._previous_sigchld: Any = None
+        self._orphans_looked_for = True  # no look at the orphans is pending
         self._fork_lock: asyncio.Lock | None = None
         self._lingering: dict[int, str] = {}  # pgid → name: groups whose leader exited, sent SIGTERM
         if self._prctl is not None:
@@ -195,12 +196,20 @@ class LauncherSpawner(PosixSpawner):
             return
 
         def on_sigchld(signum: int, frame: Any) -> None:
-            with contextlib.suppress(RuntimeError):  # the loop is closed: the end of the launch reaps them
-                loop.call_soon_threadsafe(self.reap_orphans)
+            # one look per turn of the loop, however many children ended (50 stopping at once: 50 walks of
+            # /proc otherwise, each reading every thread's children list)
+            if self._orphans_looked_for:
+                self._orphans_looked_for = False
+                with contextlib.suppress(RuntimeError):  # the loop is closed: the end of the launch reaps them
+                    loop.call_soon_threadsafe(self._reap_orphans_once)
 
         with contextlib.suppress(ValueError):  # not the main thread: orphans are reaped at the end
             self._previous_sigchld = signal.signal(signal.SIGCHLD, on_sigchld)
             self._sigchld_loop = loop
+
+    def _reap_orphans_once(self) -> None:
+        self._orphans_looked_for = True  # a SIGCHLD from now on asks for another look
+        self.reap_orphans()
 
     def reap_orphans(self) -> None:
         keep = {c.pid for c in self._children if c.returncode is None}
@@ -298,7 +307,7 @@ class LauncherSpawner(PosixSpawner):
                 signal.signal(signal.SIGCHLD, self._previous_sigchld or signal.SIG_DFL)
         self._sigchld_loop = None
         if self.fork_server is not None:
-            self.fork_server.close()
+            self.fork_server.close(kill=True)  # every child is reaped by now: its imports need not finish
             self.fork_server = None
         if self._guard is not None:
             self._tell_guard("exit")
