@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import struct
 import sys
+import threading
 import time
 from collections.abc import Callable, Iterator
 from typing import Any
@@ -77,6 +78,11 @@ class TimeSource:
         self._active = False
         self._sub: Any = None
         self._last_ns = 0
+        # Held while a /clock sample is applied and while the subscription is let go: a sample Zenoh was still
+        # delivering must not move the clocks after use_sim_time went false or the node was detached (a hosting
+        # simulator's override was overwritten by a /clock tick in flight).
+        self._following = threading.RLock()
+        self._follows = False
         if not node.has_parameter(USE_SIM_TIME_NAME):
             node.declare_parameter(USE_SIM_TIME_NAME, False)
         p = node.get_parameter(USE_SIM_TIME_NAME)
@@ -102,11 +108,11 @@ class TimeSource:
             if self._node._rclcpp:
                 declare_qos_parameters("subscription", self._node, CLOCK_TOPIC, _qos.QoSProfile(
                     depth=1, reliability=_qos.ReliabilityPolicy.BEST_EFFORT), _ALL_OVERRIDES, rclcpp=True)
+            self._follows = True
             self._sub = bus.create_subscription("/clock", "rosgraph_msgs/msg/Clock", self._on_clock, raw=True,
                                                 qos=wire.QoS(reliable=False, depth=1))
         elif not enabled and self._sub is not None:
-            bus.destroy(self._sub)
-            self._sub = None
+            self._stop_following(bus)
 
     def _on_clock(self, data: bytes) -> None:
         # builtin_interfaces/Time right after the little-endian CDR header: sec (int32), nanosec (uint32)
@@ -114,10 +120,20 @@ class TimeSource:
         if valid:
             sec, nanosec = _CLOCK_STAMP.unpack_from(data, 4)
             valid = sec >= 0 and nanosec < 1_000_000_000
-        if not valid:  # a time no clock can hold: dropped, the node's clock keeps its time
-            self._node._bus.throttled("clock", f"dropped a malformed sample on {CLOCK_TOPIC}")
-            return
-        self.set_time_ns(sec * 1_000_000_000 + nanosec)
+        with self._following:
+            if not self._follows:
+                return
+            if not valid:  # a time no clock can hold: dropped, the node's clock keeps its time
+                if self._node is not None:
+                    self._node._bus.throttled("clock", f"dropped a malformed sample on {CLOCK_TOPIC}")
+                return
+            self.set_time_ns(sec * 1_000_000_000 + nanosec)
+
+    def _stop_following(self, bus: Any) -> None:
+        with self._following:
+            self._follows = False
+        bus.destroy(self._sub)
+        self._sub = None
 
     def set_time_ns(self, ns: int) -> None:
         """The ROS time of this node's clocks while use_sim_time holds (from /clock, or from a simulator
@@ -133,8 +149,7 @@ class TimeSource:
         if node is None:
             return
         if self._sub is not None:
-            node._bus.destroy(self._sub)
-            self._sub = None
+            self._stop_following(node._bus)
         node.remove_on_set_parameters_callback(self._on_parameters)
 
     def attach_clock(self, clock: ROSClock) -> None:
