@@ -306,18 +306,21 @@ class LauncherSpawner(PosixSpawner):
             with contextlib.suppress(ValueError, TypeError):
                 signal.signal(signal.SIGCHLD, self._previous_sigchld or signal.SIG_DFL)
         self._sigchld_loop = None
+        guard = self._guard
+        if guard is not None:  # told first: it ends while the fork server is being ended
+            self._tell_guard("exit")
+            with contextlib.suppress(OSError):
+                assert guard.stdin is not None
+                guard.stdin.close()
         if self.fork_server is not None:
             self.fork_server.close(kill=True)  # every child is reaped by now: its imports need not finish
             self.fork_server = None
-        if self._guard is not None:
-            self._tell_guard("exit")
-            try:
-                assert self._guard.stdin is not None
-                self._guard.stdin.close()
-                self._guard.wait(timeout=2.0)
-            except (OSError, subprocess.TimeoutExpired):
-                self._guard.kill()
+        if guard is not None:
             self._guard = None
+            try:
+                guard.wait(timeout=2.0)
+            except subprocess.TimeoutExpired:
+                guard.kill()
 
 
 def _killpg(pgid: int, sig: int) -> None:
