@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 
 from diffctl.description.robot_files import load_description, parse_description
+from diffctl.description.urdf.parse import parse_urdf
 from diffctl.errors import DescriptionError
 
 MASS = '<inertial><mass value="1"/><inertia ixx="1" ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial>'
@@ -101,12 +102,10 @@ CASES = [
         ["'ixy'"],
     ),
     (
-        "unknown_material",
-        shape("visual", '<sphere radius="1"/>', '\n<material name="bleu"/>').replace(
-            "</robot>", '<material name="blue"><color rgba="0 0 1 1"/></material></robot>'
-        ),
-        4,
-        ["'bleu' is not defined", "'blue'"],
+        "material_not_unique",
+        robot(f'<material name="m"><color rgba="1 0 0 1"/></material>\n<material name="m"/>\n{LINKS}'),
+        3,
+        ["material 'm' is not unique"],
     ),
     (
         "bad_gazebo_number",
@@ -171,6 +170,30 @@ def test_values_urdfdom_accepts_load_for_robot_state_publisher() -> None:
     m = parse_description(text, source="robot.urdf", simulation=False)
     assert [link.name for link in m.links] == ["a", "b"]
     assert m.joints[0].name == "j"
+
+
+def test_materials_urdfdom_only_warns_about(monkeypatch: pytest.MonkeyPatch) -> None:
+    """urdfdom logs an undefined material and a colourless top-level one and keeps the robot; a named inline
+    material serves the visuals after it."""
+    errors = _capture_errors(monkeypatch)
+
+    def visual(material: str, rgba: str = "") -> str:
+        color = f'<color rgba="{rgba}"/>' if rgba else ""
+        sphere = '<geometry><sphere radius="1"/></geometry>'
+        return f'<visual>{sphere}<material name="{material}">{color}</material></visual>'
+
+    text = robot(
+        '<material name="plain"/>\n'
+        f'<link name="a">{MASS}{visual("red", "1 0 0 1")}</link>\n'
+        f'<link name="b">{MASS}{visual("red")}\n{visual("redd")}{visual("plain")}</link>\n' + joint("fixed")
+    )
+    m = parse_urdf(text, source="robot.urdf")
+    assert [v.rgba for v in m.links["b"].visuals] == [(1.0, 0.0, 0.0, 1.0), None, None]
+    err = _take(errors)
+    assert "robot.urdf:2: Material [plain] color has no rgba" in err
+    assert "robot.urdf:5: link 'b' material 'redd' undefined" in err
+    assert "red" in err.split("redd")[1].splitlines()[0]  # the close match
+    assert len(err.strip().splitlines()) == 2
 
 
 def test_missing_mesh_names_the_uri_and_where_it_looked(

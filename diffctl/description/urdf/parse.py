@@ -208,10 +208,30 @@ class _Reader:
         texture = (texture_el.get("filename") or "").strip() if texture_el is not None else ""
         name = (el.get("name") or "").strip()
         if rgba is None and not texture and name:
-            if name not in named:
-                self.fail(el, f"material {name!r} is not defined{suggest(name, named)}", hint="define it under <robot>")
-            return named[name]
+            if name in named:
+                return named[name]
+            # urdfdom logs this and keeps the visual, uncoloured (model.cpp's assignMaterial result is unused)
+            link = el.getparent().getparent() if el.getparent() is not None else None
+            link_name = link.get("name") if link is not None else None
+            _warn_once(
+                f"{self.source}:{el.sourceline}: link {link_name!r} material {name!r} undefined"
+                f"{suggest(name, named)}; its visual keeps the default colour"
+            )
+            return None, ""
+        if name and name not in named:
+            named[name] = (rgba, texture)  # a named inline material serves later visuals, as urdfdom's model map does
         return rgba, texture
+
+
+_warned: set[str] = set()
+
+
+def _warn_once(message: str) -> None:
+    if message not in _warned:
+        _warned.add(message)
+        from diffctl.console import warn
+
+        warn(message)
 
 
 def _inertial(r: _Reader, link: Element) -> UrdfInertial | None:
@@ -335,7 +355,15 @@ def parse_urdf(text_or_root: str | Element, source: str = "<string>") -> UrdfRob
     robot_name = r.name(root)
     named: dict[str, tuple[RGBA | None, str]] = {}
     for m in root.findall("material"):
-        named[r.name(m)] = r.material(m, {})
+        name = r.name(m)
+        if name in named:
+            r.fail(m, f"material {name!r} is not unique", hint="give each top-level <material> its own name")
+        if m.find("color") is None and m.find("texture") is None:
+            # urdfdom logs an error for it and keeps the material, without a colour
+            _warn_once(f"{source}:{m.sourceline}: Material [{name}] color has no rgba")
+            named[name] = (None, "")
+            continue
+        named[name] = r.material(m, {})
     links: dict[str, UrdfLink] = {}
     for el in root.findall("link"):
         link = _link(r, el, named)
