@@ -9,13 +9,6 @@ import click
 _PASS_THROUGH = {"ignore_unknown_options": True, "allow_interspersed_args": False}
 
 
-def _argv(name: str) -> list[str]:
-    from diffctl import ros_args
-
-    ros = ros_args.current_argv()
-    return [name, "--ros-args", *ros] if ros else [name]
-
-
 @click.group("robot-localization")
 def robot_localization() -> None:
     """robot_localization's nodes: EKF and UKF state estimation, GPS (navsat) transform.
@@ -32,7 +25,7 @@ def ekf_node() -> None:
     """Extended Kalman filter: fuses odomN/poseN/twistN/imuN into odometry/filtered and TF."""
     from diffctl.robot_localization.filter_node import run
 
-    raise SystemExit(run("ekf", _argv("ekf_node")))
+    raise SystemExit(run("ekf"))
 
 
 @robot_localization.command("ukf_node", context_settings=_PASS_THROUGH)
@@ -40,7 +33,7 @@ def ukf_node() -> None:
     """Unscented Kalman filter (alpha, kappa, beta): the same parameters, topics and services as ekf_node."""
     from diffctl.robot_localization.filter_node import run
 
-    raise SystemExit(run("ukf", _argv("ukf_node")))
+    raise SystemExit(run("ukf"))
 
 
 @robot_localization.command("navsat_transform_node", context_settings=_PASS_THROUGH)
@@ -48,4 +41,4 @@ def navsat_transform_node() -> None:
     """GPS fixes (gps/fix) into the robot's world frame (odometry/gps), and back (gps/filtered)."""
     from diffctl.robot_localization.navsat_node import run
 
-    raise SystemExit(run(_argv("navsat_transform_node")))
+    raise SystemExit(run())

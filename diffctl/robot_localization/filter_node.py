@@ -484,15 +484,12 @@ def _pose_yaml(m: Any) -> str:
             f"      z: {p.z}\n    orientation:\n      x: {q.x}\n      y: {q.y}\n      z: {q.z}\n      w: {q.w}\n")
 
 
-def run(kind: str, argv: list[str]) -> int:
-    """Start ekf_node ("ekf") or ukf_node ("ukf") with these ROS arguments; spin until shut down."""
-    from diffctl.client import runtime
-    from diffctl.client.executors import ExternalShutdownException
+def run(kind: str) -> int:
+    """Start ekf_node ("ekf") or ukf_node ("ukf") with this process's ROS arguments; spin until shut down."""
+    from diffctl.client import component
     from diffctl.client.node import Node
 
-    runtime.init(args=argv)
-    node = None
-    try:
+    def make() -> Node:
         node = Node(f"{kind}_filter_node")
         if kind == "ukf":
             from diffctl.robot_localization.ukf import Ukf
@@ -506,11 +503,6 @@ def run(kind: str, argv: list[str]) -> int:
 
             filt = Ekf()
         StateEstimation(node, params_mod.declare(node), filt)
-        runtime.spin(node)
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    finally:
-        if node is not None:
-            node.destroy_node()
-        runtime.try_shutdown()
-    return 0
+        return node
+
+    return component.run(make)

@@ -187,21 +187,14 @@ class NavSatTransformNode:
         return response
 
 
-def run(argv: list[str]) -> int:
-    from diffctl.client import runtime
-    from diffctl.client.executors import ExternalShutdownException
+def run() -> int:
+    """Start navsat_transform_node with this process's ROS arguments; spin until shut down."""
+    from diffctl.client import component
     from diffctl.client.node import Node
 
-    runtime.init(args=argv)
-    node = None
-    try:
+    def make() -> Node:
         node = Node("navsat_transform_node")
         NavSatTransformNode(node)
-        runtime.spin(node)
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    finally:
-        if node is not None:
-            node.destroy_node()
-        runtime.try_shutdown()
-    return 0
+        return node
+
+    return component.run(make)

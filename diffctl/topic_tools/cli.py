@@ -23,26 +23,16 @@ def _number(text: str, cast: Callable[[str], Any], what: str) -> Any:
 
 
 def _spin(name: str, build: Callable[[Any], Any], overrides: dict[str, Any]) -> int:
-    from diffctl import ros_args
-    from diffctl.client import runtime
-    from diffctl.client.executors import ExternalShutdownException
+    from diffctl.client import component
     from diffctl.client.node import Node
     from diffctl.client.parameter import Parameter
 
-    ros = ros_args.current_argv()
-    runtime.init(args=[name, "--ros-args", *ros] if ros else [name])
-    node = None
-    try:
+    def make() -> Node:
         node = Node(name, parameter_overrides=[Parameter(k, value=v) for k, v in overrides.items()])
         build(node)
-        runtime.spin(node)
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    finally:
-        if node is not None:
-            node.destroy_node()
-        runtime.try_shutdown()
-    return 0
+        return node
+
+    return component.run(make)
 
 
 @click.group("topic-tools")

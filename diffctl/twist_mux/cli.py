@@ -13,8 +13,6 @@ def twist_mux() -> None:
     Example:
       diffctl twist-mux --ros-args --params-file twist_mux_topics.yaml -r cmd_vel_out:=/cmd_vel
     """
-    from diffctl import ros_args
     from diffctl.twist_mux.node import run
 
-    ros = ros_args.current_argv()
-    raise SystemExit(run(["twist_mux", "--ros-args", *ros] if ros else ["twist_mux"]))
+    raise SystemExit(run())

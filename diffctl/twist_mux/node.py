@@ -93,22 +93,15 @@ class TwistMux:
         self.diag_pub.publish(array)
 
 
-def run(argv: list[str]) -> int:
-    from diffctl.client import runtime
-    from diffctl.client.executors import ExternalShutdownException
+def run() -> int:
+    """Start twist_mux with this process's ROS arguments; spin until shut down."""
+    from diffctl.client import component
     from diffctl.client.node import Node
 
-    runtime.init(args=argv)
-    node = None
-    try:
+    def make() -> Node:
         node = Node("twist_mux", allow_undeclared_parameters=True,
                     automatically_declare_parameters_from_overrides=True)
         TwistMux(node)
-        runtime.spin(node)
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    finally:
-        if node is not None:
-            node.destroy_node()
-        runtime.try_shutdown()
-    return 0
+        return node
+
+    return component.run(make)
