@@ -1,12 +1,14 @@
 """ekf_node on the simulated tutorial car: `Node(package='robot_localization', executable='ekf_node')` in a
 launch file beside the simulator, fusing the diff drive controller's odometry and the IMU's yaw rate while
-the car drives an arc. The filtered pose is checked against the simulator's ground truth and against the
-unicycle model of the commanded arc."""
+the car drives an arc. The filtered pose is checked against the simulator's ground truth, at the filter's own
+stamps (it trails a free-running simulator by as much as the machine's load starves it)."""
 
 from __future__ import annotations
 
+import bisect
 import math
 import threading
+import time
 from pathlib import Path
 from typing import Any
 
@@ -20,6 +22,16 @@ LAUNCH = Path(__file__).parent / "data" / "ekf_car.launch.py"
 CMD = "/diffbot_base_controller/cmd_vel"
 V, W = 0.4, 0.4  # m/s, rad/s: an arc of 1 m radius
 SEC = 1_000_000_000
+
+
+def truth_at(truth: list[Sample], t_ns: int) -> tuple[float, float, float]:
+    """The ground truth (x, y, yaw) at sim time t_ns, linear between the samples around it."""
+    i = bisect.bisect_left([s.t_ns for s in truth], t_ns)
+    assert 0 < i < len(truth), f"no ground truth around {t_ns / 1e9} s"
+    a, b = truth[i - 1], truth[i]
+    u = (t_ns - a.t_ns) / (b.t_ns - a.t_ns) if b.t_ns > a.t_ns else 0.0
+    x, y = (a.value[j] + u * (b.value[j] - a.value[j]) for j in (0, 1))
+    return x, y, a.value[2] + u * math.remainder(b.value[2] - a.value[2], math.tau)
 
 
 @pytest.fixture
@@ -58,40 +70,54 @@ def test_ekf_tracks_the_car_along_an_arc(stack_env: str, tmp_path: Path) -> None
         end_ns = stack.clock_ns
         stack.command(CMD, "geometry_msgs/msg/TwistStamped", None)
         stack.wait_truth(end_ns)
-        with lock:
-            fused = [s for s in filtered if start_ns - SEC <= s.t_ns <= end_ns]
-        assert len(fused) > 100, f"only {len(fused)} filtered poses in 10 s of sim time"
+        # The filter trails the simulator by as much as this machine starves it: wait for its output to reach the
+        # end of the drive (its stamps are those of the measurements it fused).
+        deadline = time.monotonic() + 60
+        while True:
+            with lock:
+                fused = [s for s in filtered if s.t_ns >= start_ns - SEC]
+            if fused and fused[-1].t_ns >= end_ns:
+                break
+            assert time.monotonic() < deadline, f"filtered output stuck at {fused[-1].t_ns / 1e9 if fused else None}"
+            time.sleep(0.01)
+        # (How many cycles a starved filter publishes, and how far apart, depends on the load: not counted.)
+        with w.lock:
+            truth = sorted(w.truth, key=lambda s: s.t_ns)
 
-        def nearest(series: list[Sample], t_ns: int) -> Sample:
-            return min(series, key=lambda s: abs(s.t_ns - t_ns))
+        def first_from(t_ns: int) -> Sample:
+            return next(s for s in fused if s.t_ns >= t_ns)
 
         # The filter and the simulator start from the same pose (the spawn point, yaw 0): compare the motion
-        # since the first filtered pose, at every second of the drive.
+        # since the first filtered pose, at the filter's first output from every second of the drive on, against
+        # the ground truth interpolated at that output's stamp.
         f0 = fused[0]
-        g0 = w.at(w.truth, f0.t_ns)
+        g0 = truth_at(truth, f0.t_ns)
         worst_pos = worst_yaw = 0.0
         for k in range(1, 10):
-            t = start_ns + k * SEC
-            f, g = nearest(fused, t), w.at(w.truth, t)
-            assert abs(f.t_ns - g.t_ns) < SEC // 10
+            f = first_from(start_ns + k * SEC)
+            g = truth_at(truth, f.t_ns)
             dx, dy = f.value[0] - f0.value[0], f.value[1] - f0.value[1]
-            gx, gy = g.value[0] - g0.value[0], g.value[1] - g0.value[1]
+            gx, gy = g[0] - g0[0], g[1] - g0[1]
             worst_pos = max(worst_pos, math.hypot(dx - gx, dy - gy))
-            worst_yaw = max(worst_yaw, abs(math.remainder((f.value[2] - f0.value[2]) - (g.value[2] - g0.value[2]),
-                                                          math.tau)))
+            worst_yaw = max(worst_yaw, abs(math.remainder((f.value[2] - f0.value[2]) - (g[2] - g0[2]), math.tau)))
         assert worst_pos < 0.05, f"filtered position up to {worst_pos:.3f} m from the ground truth"
         assert worst_yaw < 0.03, f"filtered yaw up to {worst_yaw:.4f} rad from the ground truth"
 
-        # Steady on the arc (past the 1 m/s², 1 rad/s² ramps): over 4 s the unicycle model turns W·4 rad and
-        # moves along a chord of 2·(V/W)·sin(W·2); the filter must agree within 3 %.
-        a, b = nearest(fused, start_ns + 3 * SEC), nearest(fused, start_ns + 7 * SEC)
+        # Steady on the arc (past the 1 m/s², 1 rad/s² ramps): over 4 s the filter turns and moves along a chord
+        # as the ground truth does, within 3 %. (The unicycle model of the command is printed beside them: the
+        # test paces its commands by odometry, so a starved test process may let the controller's cmd_vel_timeout
+        # stop the car for a moment — the truth, not the command, is what the filter must follow.)
+        a, b = first_from(start_ns + 3 * SEC), first_from(start_ns + 7 * SEC)
+        ga, gb = truth_at(truth, a.t_ns), truth_at(truth, b.t_ns)
         span = (b.t_ns - a.t_ns) / SEC
         turned = math.remainder(b.value[2] - a.value[2], math.tau)
         chord = math.hypot(b.value[0] - a.value[0], b.value[1] - a.value[1])
-        assert turned == pytest.approx(W * span, rel=0.03), (turned, W * span)
-        assert chord == pytest.approx(2 * (V / W) * math.sin(W * span / 2), rel=0.03), chord
+        true_turn = math.remainder(gb[2] - ga[2], math.tau)
+        true_chord = math.hypot(gb[0] - ga[0], gb[1] - ga[1])
+        assert turned == pytest.approx(true_turn, rel=0.03), (turned, true_turn)
+        assert chord == pytest.approx(true_chord, rel=0.03), (chord, true_chord)
         print(f"EKF vs ground truth: position {worst_pos * 1000:.1f} mm, yaw {worst_yaw * 1000:.2f} mrad; "
-              f"arc: turned {turned:.4f} rad (model {W * span:.4f}), chord {chord:.4f} m "
-              f"(model {2 * (V / W) * math.sin(W * span / 2):.4f})")
+              f"arc: turned {turned:.4f} rad (truth {true_turn:.4f}, model {W * span:.4f}), chord {chord:.4f} m "
+              f"(truth {true_chord:.4f}, model {2 * (V / W) * math.sin(W * span / 2):.4f})")
     finally:
         stack.kill()
