@@ -149,7 +149,8 @@ def test_gps_keeps_the_map_estimate_on_the_truth(router: str, procs, tmp_path: P
         # The map frame is anchored on one (noisy) fix, as upstream anchors it: within 3 sigma of the truth, far
         # inside the dead reckoning's drift.
         assert global_err < 3 * GPS_SIGMA * math.sqrt(2), \
-            f"map estimate {global_err:.3f} m off the truth at the end: {g.pose.pose.position} vs {(x, y)}; {errors}"
+            f"map estimate {global_err:.3f} m off the truth at the end: {g.pose.pose.position} vs {(x, y)}; " \
+            f"{errors}; samples seen: {d.count}"
         assert worst_global < 0.5, f"map estimate up to {worst_global:.3f} m off the truth: {errors}"
         assert abs(math.remainder(yaw_of(g.pose.pose.orientation) - yaw, math.tau)) < 0.02
         # gps/filtered: the map estimate back on the globe, at the truth's latitude and longitude
