@@ -60,6 +60,7 @@ NATIVE_SYSTEMS = {
     "air-pressure",
     "navsat",
     "contact",
+    "magnetometer",  # its Earth field options are read by _earth_field
 }
 CONTROL_SYSTEMS = ("gz_ros2_control", "ign_ros2_control")
 # Systems built from the plugin element alone.

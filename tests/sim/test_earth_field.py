@@ -181,7 +181,9 @@ WORLD_ON_EARTH = """<spherical_coordinates><surface_model>EARTH_WGS84</surface_m
 @pytest.mark.parametrize(
     "options", ["", "<use_units_gauss>false</use_units_gauss><use_earth_frame_ned>false</use_earth_frame_ned>"]
 )
-def test_a_magnetometer_in_a_world_on_the_earth_reads_the_earths_field(options: str) -> None:
+def test_a_magnetometer_in_a_world_on_the_earth_reads_the_earths_field(
+    options: str, capfd: pytest.CaptureFixture[str]
+) -> None:
     from diffctl.sim.runner import Simulation
     from diffctl.sim.sensors import Magnetometer
     from diffctl.sim.sensors.navsat import world_to_geodetic
@@ -190,6 +192,7 @@ def test_a_magnetometer_in_a_world_on_the_earth_reads_the_earths_field(options: 
     world = sdf_world(plugin + WORLD_ON_EARTH + MAG_RIG.format(yaw=0.0).replace("1e-8", "0"))
     sim = Simulation(world, rtf=0.0)
     try:
+        assert "not simulated" not in capfd.readouterr().err  # the world's Magnetometer system is not ignored
         mag = next(s for s in sim.models["rig"].sensors if isinstance(s, Magnetometer))
         f = mag.sample(1_000_000)["field_tesla"]
     finally:
