@@ -186,9 +186,14 @@ def render_png(snap: Snapshot, path: Path, size_px: int = 800) -> None:
 
 
 class BagRecorder:
-    """`diffctl bag record -a` of the run, beside the launch (not one of its processes), on the test's bus."""
+    """`diffctl bag record -a` of the run, beside the launch (not one of its processes), on the test's bus.
 
-    def __init__(self, folder: Path) -> None:
+    The launch starts only once the recorder says it records: under load its start (an interpreter, the
+    client) can outlast a short test, and the bag then held none of the run."""
+
+    READY = "Recording to "
+
+    def __init__(self, folder: Path, ready_timeout_s: float = 60.0) -> None:
         self.folder = folder
         self.proc = subprocess.Popen(
             [sys.executable, "-m", "diffctl", "bag", "record", "-a", "--exclude-regex", "^/camera/",
@@ -196,17 +201,33 @@ class BagRecorder:
             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, stdin=subprocess.DEVNULL,
             start_new_session=True, env=dict(os.environ),
         )
+        self._err: list[str] = []
+        self._ready = threading.Event()
+        self._reader = threading.Thread(target=self._read, name="bag-record-stderr", daemon=True)
+        self._reader.start()
+        # a bound for a recorder that never says so (it failed: its errors are kept for the artifacts)
+        self._ready.wait(ready_timeout_s)
+
+    def _read(self) -> None:
+        assert self.proc.stderr is not None
+        for raw in self.proc.stderr:
+            line = raw.decode(errors="replace")
+            self._err.append(line)
+            if self.READY in line:
+                self._ready.set()
+        self._ready.set()  # ended: nothing to wait for
 
     def stop(self) -> str:
         with contextlib.suppress(ProcessLookupError):
             os.killpg(self.proc.pid, signal.SIGINT)
         try:
-            _, err = self.proc.communicate(timeout=10)
+            self.proc.wait(timeout=10)
         except subprocess.TimeoutExpired:
             with contextlib.suppress(ProcessLookupError):
                 os.killpg(self.proc.pid, signal.SIGKILL)
-            _, err = self.proc.communicate()
-        return (err or b"").decode(errors="replace")
+            self.proc.wait()
+        self._reader.join(timeout=10)
+        return "".join(self._err)
 
 
 class Artifacts:
