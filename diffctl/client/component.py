@@ -11,6 +11,7 @@ parameter and the value, exit code 2, the node gone before it published.
 from __future__ import annotations
 
 import os
+import signal
 import sys
 import threading
 import time
@@ -67,9 +68,11 @@ def run(make: Callable[[], Any], *, executor: Any = None) -> int:
         if runtime.ok():
             raise
     finally:
+        _deaf_to_interrupts()
         if node is not None:
             node.destroy_node()
         runtime.try_shutdown()
+        _deaf_to_interrupts()  # shutdown gave SIGINT back to Python's handler
         from diffctl.bus.session import close_session
 
         # Zenoh's callback threads are not daemons: close the session before the interpreter joins them.
@@ -78,6 +81,15 @@ def run(make: Callable[[], Any], *, executor: Any = None) -> int:
         print(f"error: lost the Zenoh router at {_router()}; shut down", file=sys.stderr)
         return 1
     return 0
+
+
+def _deaf_to_interrupts() -> None:
+    """From here the node is ending: a further SIGINT (`diffctl run` and launch pass one on when the first
+    seemed unheard; a second Ctrl-C) would raise KeyboardInterrupt in the middle of the teardown and end the
+    process by the signal (exit 130) instead of cleanly. SIGTERM and SIGKILL, the escalation's next steps, still
+    end a teardown that hangs."""
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 class Started:

@@ -144,3 +144,36 @@ def test_the_router_ends_on_a_sigterm_one_of_its_zenoh_threads_took(procs: Procs
     wait_port(port)
     _tgkill(router.pid, _zenoh_thread(router.pid), signal.SIGTERM)
     assert router.wait(STOP_BOUND_S) == 0
+
+
+TEARDOWN_INTERRUPTED = """
+import os, signal, sys, time
+import diffctl.bus.session as session
+from diffctl.client import component
+from diffctl.client.node import Node
+
+close = session.close_session
+
+def close_after_a_second_sigint():
+    os.kill(os.getpid(), signal.SIGINT)  # diffctl run's or launch's resend, or a second Ctrl-C, mid-teardown
+    time.sleep(0.2)
+    close()
+
+session.close_session = close_after_a_second_sigint
+
+def make():
+    node = Node("interrupted_teardown")
+    node.create_timer(0.05, lambda: os.kill(os.getpid(), signal.SIGINT))  # the first: the node is asked to end
+    return node
+
+sys.exit(component.run(make))
+"""
+
+
+def test_a_second_sigint_during_a_nodes_teardown_does_not_end_it_by_the_signal(router: str) -> None:
+    """A diffctl node already ending hears no further SIGINT: under load `diffctl run` passed one on 1 s after
+    the first (meant for a SIGINT the child never got), it landed after the client had given SIGINT back to
+    Python, and the node died of it (exit 130, '[ros2run]: Interrupt') instead of ending cleanly."""
+    r = subprocess.run([sys.executable, "-c", TEARDOWN_INTERRUPTED], capture_output=True, text=True,
+                       timeout=60, start_new_session=True)
+    assert (r.returncode, "Traceback" in r.stderr) == (0, False), r.stderr
