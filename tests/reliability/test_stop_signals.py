@@ -39,11 +39,16 @@ def _threads(pid: int) -> dict[int, str]:
 
 
 def _zenoh_thread(pid: int) -> int:
-    """A thread of Zenoh's runtime in `pid` (never the main thread)."""
-    names = _threads(pid)
-    zenoh = [t for t, n in names.items() if t != pid and n.split("-")[0] in ("rx", "tx", "net", "acc", "app")]
-    assert zenoh, names
-    return zenoh[0]
+    """A thread of Zenoh's runtime in `pid` (never the main thread). Its threads are named once they run, which
+    under load can be after the port already listens: wait for one."""
+    deadline = time.monotonic() + STOP_BOUND_S
+    while True:
+        names = _threads(pid)
+        zenoh = [t for t, n in names.items() if t != pid and n.split("-")[0] in ("rx", "tx", "net", "acc", "app")]
+        if zenoh or time.monotonic() > deadline:
+            assert zenoh, names
+            return zenoh[0]
+        time.sleep(0.02)
 
 
 def _waits(pid: int) -> dict[str, str]:
