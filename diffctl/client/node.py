@@ -83,6 +83,7 @@ class TimeSource:
         # simulator's override was overwritten by a /clock tick in flight).
         self._following = threading.RLock()
         self._follows = False
+        self._held_ns: int | None = None
         if not node.has_parameter(USE_SIM_TIME_NAME):
             node.declare_parameter(USE_SIM_TIME_NAME, False)
         p = node.get_parameter(USE_SIM_TIME_NAME)
@@ -127,7 +128,20 @@ class TimeSource:
                 if self._node is not None:
                     self._node._bus.throttled("clock", f"dropped a malformed sample on {CLOCK_TOPIC}")
                 return
+            node = self._node
+            if node is not None and not node._rclcpp and node.executor is None:
+                # rclpy takes /clock in an executor: until the node is in one its time stays put (0 at start;
+                # a node reading now() in its constructor gets 0, as with rclpy). rclcpp's own thread takes it.
+                self._held_ns = sec * 1_000_000_000 + nanosec
+                return
             self.set_time_ns(sec * 1_000_000_000 + nanosec)
+
+    def release_held(self) -> None:
+        """The node joined an executor: the latest /clock sample it was holding applies now."""
+        with self._following:
+            held, self._held_ns = self._held_ns, None
+            if held is not None and self._follows:
+                self.set_time_ns(held)
 
     def _stop_following(self, bus: Any) -> None:
         with self._following:
@@ -335,6 +349,7 @@ class Node:
             # Executor.add_node sets this property while it adds the node (then add_node answers False).
             new_executor.add_node(self)
             self._executor_ref = weakref.ref(new_executor)
+            self._time_source.release_held()
 
     def _wake_executor(self) -> None:
         waiting.notify()

@@ -70,6 +70,20 @@ while time.monotonic() < end and sim_seconds[0] < before + 0.5:
 out.append(["detached", [hosted.get_clock().now().nanoseconds, hosted.get_clock().ros_time_is_active,
                          sim_seconds[0] >= before + 0.5]])
 hosted.destroy_node()
+# rclpy takes /clock in its executor: a node in none yet reads 0 however long /clock has flowed (a node that
+# keeps now() from its constructor starts from 0), and follows once spun.
+idle = Node("idle_sim_demo", parameter_overrides=[Parameter("use_sim_time", value=True)])
+before = sim_seconds[0]
+end = time.monotonic() + 3.0
+while time.monotonic() < end and sim_seconds[0] < before + 0.5:
+    ex.spin_once(timeout_sec=0.05)
+out.append(["not in an executor", [idle.get_clock().now().nanoseconds, sim_seconds[0] >= before + 0.5]])
+ex.add_node(idle)
+end = time.monotonic() + 3.0
+while time.monotonic() < end and idle.get_clock().now().nanoseconds == 0:
+    ex.spin_once(timeout_sec=0.05)
+out.append(["spun", [idle.get_clock().now().nanoseconds >= 100 * 10**9]])
+idle.destroy_node()
 sim.set_parameters([Parameter("use_sim_time", value=False)])
 wall = sim.get_clock().now().nanoseconds
 out.append(["back to wall time", [abs(wall - time.time_ns()) < 10**9, sim.get_clock().ros_time_is_active]])
