@@ -42,8 +42,9 @@ def router(listen: tuple[str, ...], config_file: str | None) -> None:
         for ep in eps or [router_endpoint()]:
             if ep.startswith("tcp/") and endpoint_answers(ep):
                 raise ConfigError(f"something already listens on {ep}", hint="a router is running there already?")
+    # before the port opens: a client may signal the router as soon as it answers
+    stop = stop_on_signals(signal.SIGHUP)
     handle = start_router(eps or None, config_file)
     info(f"router {handle.zid} listening on {config_file or ', '.join(handle.endpoints)}")
-    stop = stop_on_signals(signal.SIGHUP)
     stop.wait()
     handle.close()
