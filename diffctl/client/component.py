@@ -126,8 +126,15 @@ def start(make: Callable[[], Any]) -> Started:
     init()
     try:
         node = make()
-    except BAD_PARAMETER as e:
-        raise ConfigError(str(e)) from None
+    except BaseException as e:
+        # nothing spins yet: end the client and its session (Zenoh's threads would keep the process alive)
+        runtime.try_shutdown()
+        from diffctl.bus.session import close_session
+
+        close_session()
+        if isinstance(e, BAD_PARAMETER):
+            raise ConfigError(str(e)) from None
+        raise
     return Started(node)
 
 

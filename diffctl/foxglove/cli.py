@@ -65,7 +65,7 @@ def foxglove_bridge(port: int | None, address: str | None, bag_path: Path | None
     from diffctl.foxglove.live import LiveBridge
     from diffctl.foxglove.parameters import ParameterBridge
     from diffctl.foxglove.services import ServiceBridge
-    from diffctl.foxglove.settings import DECLARATIONS, declare, settings_from
+    from diffctl.foxglove.settings import DECLARATIONS, BridgeSettings, declare, settings_from
     from diffctl.interfaces import types
 
     # The options given on the command line stand for the node's parameters of the same names. What the node
@@ -74,14 +74,18 @@ def foxglove_bridge(port: int | None, address: str | None, bag_path: Path | None
     settings_from({k: v for k, v in ros_args.current("foxglove_bridge").params.items() if k in DECLARATIONS}
                   | options)
     given = [Parameter(name, value=v) for name, v in options.items()]
-    started = component.start(lambda: Node("foxglove_bridge", client_library="rclcpp", parameter_overrides=given))
+    declared: list[BridgeSettings] = []
+
+    def make() -> Node:
+        # declared before the node spins: a `param list` answered in between would list half of them
+        made = Node("foxglove_bridge", client_library="rclcpp", parameter_overrides=given)
+        declared.append(declare(made))
+        return made
+
+    started = component.start(make)
     node = started.node
     log = node.get_logger()
-    try:
-        settings = declare(node)
-    except BaseException:
-        started.stop()
-        raise
+    settings = declared[0]
     caps = settings.capabilities
     wire = node.bus_node  # what the app sees and sends passes on raw endpoints: a measured hot path
     live = LiveBridge(wire, context, log, settings)
