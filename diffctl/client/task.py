@@ -22,6 +22,20 @@ def _no_executor() -> None:
     return None
 
 
+class _Unfetched:
+    """The exception a future holds until somebody fetches it."""
+
+    __slots__ = ("exception",)
+
+    def __init__(self, exception: BaseException) -> None:
+        self.exception: BaseException | None = exception
+
+
+def _report_unfetched(box: _Unfetched) -> None:
+    if box.exception is not None:
+        print("The following exception was never retrieved: " + str(box.exception), file=sys.stderr)
+
+
 class FutureState(enum.Enum):
     PENDING = "PENDING"
     CANCELLED = "CANCELLED"
@@ -33,15 +47,11 @@ class Future:
         self._state = FutureState.PENDING
         self._result: Any = None
         self._exception: BaseException | None = None
-        self._exception_fetched = False
+        self._unfetched: _Unfetched | None = None
         self._callbacks: list[Callable[[Future], None]] = []
         self._lock = threading.Lock()
         self._executor: Callable[[], Any] = _no_executor
         self._set_executor(executor)
-
-    def __del__(self) -> None:
-        if self._exception is not None and not self._exception_fetched:
-            print("The following exception was never retrieved: " + str(self._exception), file=sys.stderr)
 
     def __await__(self) -> Generator[None, None, Any]:
         while self._state is FutureState.PENDING:
@@ -71,7 +81,8 @@ class Future:
         return self._result
 
     def exception(self) -> BaseException | None:
-        self._exception_fetched = True
+        if self._unfetched is not None:
+            self._unfetched.exception = None
         return self._exception
 
     def set_result(self, result: Any) -> None:
@@ -83,7 +94,10 @@ class Future:
     def set_exception(self, exception: BaseException) -> None:
         with self._lock:
             self._exception = exception
-            self._exception_fetched = False
+            self._unfetched = _Unfetched(exception)
+            # A finalizer only for a future that holds an exception, not a __del__ on every future: each callback
+            # is a Task, and a SIGINT handled inside a __del__ loses its KeyboardInterrupt ("Exception ignored").
+            weakref.finalize(self, _report_unfetched, self._unfetched).atexit = False
             self._state = FutureState.FINISHED
         self._schedule_or_invoke_done_callbacks()
 
