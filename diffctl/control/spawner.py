@@ -159,7 +159,11 @@ def spawn(
         stop.set()
         raise KeyboardInterrupt
 
+    # SIGINT too (the real spawner handles its signals itself, rclpy.init with SignalHandlerOptions.NO): should
+    # its KeyboardInterrupt be lost (raised inside a finalizer, where Python only prints it), the event still
+    # ends the wait for --unload-on-kill.
     signal.signal(signal.SIGTERM, on_signal)
+    signal.signal(signal.SIGINT, on_signal)
     try:
         with spawner_lock(log, scope=bus_scope()):
             cm.wait("list_controllers", manager_timeout_s, log.info, log.warn)
