@@ -13,6 +13,7 @@ first /diffbot_base_controller/odom seen by this process. The fork server's star
 from __future__ import annotations
 
 import os
+import queue
 import re
 import signal
 import subprocess
@@ -27,23 +28,23 @@ from bench.ports import free_port
 # (label, pattern on a launch output line); the first line matching a label marks it.
 STEPS: tuple[tuple[str, str], ...] = (
     ("launcher: first line", r"All log files can be found"),
-    ("robot_state_publisher started", r"\[launch\]: \[robot_state_publisher\] started"),
-    ("gz_sim started", r"\[launch\]: \[gz_sim\] started"),
-    ("create started", r"\[launch\]: \[create\] started"),
-    ("spawner diffbot started", r"\[launch\]: \[spawner_diffbot_base_controller\] started"),
-    ("parameter_bridge started", r"\[launch\]: \[parameter_bridge\] started"),
-    ("spawner diffbot: first line", r"^\[spawner_diffbot_base_controller\]"),
-    ("gz_sim: hardware active", r"\[gz_sim\].*hardware .* is active"),
-    ("create: spawned", r"\[create\].*spawned"),
-    ("spawner diffbot: Loaded", r"\[spawner_diffbot_base_controller\].*Loaded"),
-    ("spawner diffbot: Configured", r"\[spawner_diffbot_base_controller\].*: Configured diffbot"),
-    ("gz_sim: diffbot active", r"\[gz_sim\].*activated diffbot_base_controller"),
-    ("spawner diffbot finished", r"\[launch\]: \[spawner_diffbot_base_controller\] finished"),
-    ("spawner jsb started", r"\[launch\]: \[spawner_joint_state_broadcaster\] started"),
-    ("spawner jsb: first line", r"^\[spawner_joint_state_broadcaster\]"),
-    ("spawner jsb: Loaded", r"\[spawner_joint_state_broadcaster\].*Loaded"),
-    ("gz_sim: jsb active", r"\[gz_sim\].*activated joint_state_broadcaster"),
-    ("spawner jsb finished", r"\[launch\]: \[spawner_joint_state_broadcaster\] finished"),
+    ("robot_state_publisher started", r"\[robot_state_publisher\]: process started"),
+    ("gz_sim started", r"\[gz_sim\]: process started"),
+    ("create started", r"\[create\]: process started"),
+    ("spawner diffbot started", r"\[spawner_diffbot_base_controller\]: process started"),
+    ("parameter_bridge started", r"\[parameter_bridge\]: process started"),
+    ("spawner diffbot: first line", r"^\[spawner_diffbot_base_controller\] "),
+    ("gz_sim: hardware active", r"^\[gz_sim\] .*hardware .* is active"),
+    ("create: spawned", r"^\[create\] .*spawned"),
+    ("spawner diffbot: Loaded", r"^\[spawner_diffbot_base_controller\] .*Loaded"),
+    ("spawner diffbot: Configured", r"^\[spawner_diffbot_base_controller\] .*: Configured diffbot"),
+    ("gz_sim: diffbot active", r"^\[gz_sim\] .*activated diffbot_base_controller"),
+    ("spawner diffbot finished", r"\[spawner_diffbot_base_controller\]: process has finished"),
+    ("spawner jsb started", r"\[spawner_joint_state_broadcaster\]: process started"),
+    ("spawner jsb: first line", r"^\[spawner_joint_state_broadcaster\] "),
+    ("spawner jsb: Loaded", r"^\[spawner_joint_state_broadcaster\] .*Loaded"),
+    ("gz_sim: jsb active", r"^\[gz_sim\] .*activated joint_state_broadcaster"),
+    ("spawner jsb finished", r"\[spawner_joint_state_broadcaster\]: process has finished"),
 )
 DONE = "spawner jsb finished"
 
@@ -115,7 +116,17 @@ def run(*, show_all: bool = False, timeout_s: float = 30.0) -> dict[str, float]:
             assert proc.stdout is not None
             deadline = time.monotonic() + timeout_s
             zygote_seen = False
-            for line in proc.stdout:
+            # Read on a thread of its own: a step that never comes must end the run at the deadline, not block it.
+            arrived: queue.Queue[str | None] = queue.Queue()
+            threading.Thread(target=lambda: ([arrived.put(ln) for ln in proc.stdout], arrived.put(None)),
+                             daemon=True).start()
+            while DONE not in marks:
+                try:
+                    line = arrived.get(timeout=max(0.0, deadline - time.monotonic()))
+                except queue.Empty:
+                    break
+                if line is None:
+                    break
                 t = time.clock_gettime(time.CLOCK_MONOTONIC) - t0
                 lines.append((t, line.rstrip()))
                 if not zygote_seen:
@@ -126,8 +137,6 @@ def run(*, show_all: bool = False, timeout_s: float = 30.0) -> dict[str, float]:
                 for label, pattern in patterns:
                     if label not in marks and pattern.search(line):
                         marks[label] = t
-                if DONE in marks or time.monotonic() > deadline:
-                    break
             odom.wait(max(0.0, deadline - time.monotonic()))
             if odom_at:
                 marks["first odometry (this process)"] = odom_at[0]
