@@ -12,16 +12,24 @@ from __future__ import annotations
 import os
 from collections.abc import MutableMapping
 from pathlib import Path
+from typing import Any
 
 from diffctl.workspace.builtin import DEMO_DESCRIPTION_PACKAGE, DEMO_PACKAGE, project_root
 from diffctl.workspace.discovery import WORKSPACE_ENV, find_workspace
-from diffctl.workspace.resolve import (
-    Package,
-    PackageNotFoundError,
-    find_package,
-    list_packages,
-    workspace_python_path,
-)
+
+# The package index (resolve: package.xml, CMake install rules, lxml) is imported on first use: `diffctl launch`
+# sets its children's environment with find_workspace and use_in_children before it starts the fork server,
+# and every import in between delays the first component.
+_RESOLVED = ("Package", "PackageNotFoundError", "find_package", "list_packages", "workspace_python_path")
+
+
+def __getattr__(name: str) -> Any:
+    if name in _RESOLVED:
+        from diffctl.workspace import resolve
+
+        return getattr(resolve, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 __all__ = [
     "DEMO_DESCRIPTION_PACKAGE",
@@ -50,12 +58,16 @@ ROS_ENVIRONMENT = {"ROS_DISTRO": "jazzy", "ROS_VERSION": "2", "ROS_PYTHON_VERSIO
 def share_dir(package: str) -> Path:
     """The share directory of `package` (ament_index's get_package_share_directory); raises
     PackageNotFoundError (exit 2) naming the places searched and close matches."""
+    from diffctl.workspace.resolve import find_package
+
     return find_package(package).share
 
 
 def package_prefix(package: str) -> Path:
     """The install prefix of `package` (ament_index's get_package_prefix): `<prefix>/share/<package>`
     is its share directory. diffctl's own packages are plain folders: their prefix is the folder itself."""
+    from diffctl.workspace.resolve import find_package
+
     found = find_package(package)
     return found.prefix if found.prefix is not None else found.share
 
@@ -78,6 +90,7 @@ def use_in_children(workspace: Path | None, env: MutableMapping[str, str] = os.e
     if workspace is not None:
         env[WORKSPACE_ENV] = str(workspace)
         from diffctl.workspace.env_hooks import apply_workspace_hooks
+        from diffctl.workspace.resolve import workspace_python_path
 
         apply_workspace_hooks(env, workspace)
         python = [str(p) for p in workspace_python_path(workspace)]

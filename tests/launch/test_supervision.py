@@ -143,17 +143,21 @@ def test_gazebo_search_paths_of_its_own_still_fork_a_component_which_reads_them(
 
 
 def test_the_supervision_modules_the_fork_server_loads_import_no_launch() -> None:
-    # The zygote and the launcher's side of it are loaded before the launch core (their imports overlap it).
+    # The zygote and the launcher's side of it are loaded before the launch core (their imports overlap it);
+    # the zygote alone loads no asyncio (every component would inherit it, and none uses it).
     code = (
-        "import sys, diffctl.supervision.zygote, diffctl.supervision.fork_server, diffctl.supervision.guard\n"
+        "import sys, diffctl.supervision.zygote\n"
+        "print('asyncio' in sys.modules)\n"
+        "import diffctl.supervision.fork_server, diffctl.supervision.guard\n"
         "print(sorted(m for m in sys.modules if m.startswith(('diffctl.launch', 'diffctl.supervision'))))"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
-    assert eval(out) == [
+    asyncio_loaded, modules = out.splitlines()
+    assert asyncio_loaded == "False"
+    assert eval(modules) == [
         "diffctl.supervision",
         "diffctl.supervision.fork_server",
         "diffctl.supervision.guard",
-        "diffctl.supervision.spawner",
         "diffctl.supervision.zygote",
     ]
 
