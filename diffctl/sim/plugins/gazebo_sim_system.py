@@ -7,13 +7,15 @@ mode per joint (gz_ros2_control's `perform_command_mode_switch` bits):
   velocity → the joint's velocity target; position → a velocity P law v = -Kp (q - q_cmd) update_rate,
   recomputed every physics step; effort → a torque, reapplied every step; no active mode and
   `hold_joints` → velocity 0, otherwise the joint is free.
-Commands are clamped to the interface's min/max; NaN means "no command" and infinities never reach the physics.
+A command passes through as it is: the interface's min/max are joint limits for the controller manager's
+`enforce_command_limits` (false in Jazzy), never a clamp here, as gz_system.cpp clamps nothing; the joint's own
+SDF/URDF velocity and effort limits still bound what the physics gets. NaN means "no command"; infinities never
+reach the physics.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Any
 
 from diffctl.control.controller_interface import ReturnType
@@ -26,15 +28,6 @@ PLUGIN_ALIASES = (PLUGIN_NAME, "ign_ros2_control/IgnitionSystem")
 _MODES = ("velocity", "position", "effort")
 
 
-@dataclass(frozen=True)
-class JointCommandLimits:
-    lower: float
-    upper: float
-
-    def clamp(self, value: float) -> float:
-        return min(max(value, self.lower), self.upper)
-
-
 class GazeboSimSystem(HardwareComponent):
     """Bound to a simulated entity with `bind` before the resource manager initialises it."""
 
@@ -45,7 +38,6 @@ class GazeboSimSystem(HardwareComponent):
         self.position_gain = 0.1
         self.handles: dict[str, JointHandle] = {}
         self.mode: dict[str, str | None] = {}
-        self.limits: dict[str, JointCommandLimits] = {}
         self._per_step_joints: list[str] = []
 
     def bind(self, entity: Entity, *, hold_joints: bool, position_proportional_gain: float) -> GazeboSimSystem:
@@ -77,10 +69,6 @@ class GazeboSimSystem(HardwareComponent):
                 )
             self.handles[joint.name] = entity.joint(joint.name)
             self.mode[joint.name] = None
-            for mode in _MODES:
-                self.limits[f"{joint.name}/{mode}"] = JointCommandLimits(-math.inf, math.inf)
-            for c in joint.command_interfaces:
-                self.limits[f"{joint.name}/{c.name}"] = JointCommandLimits(c.min, c.max)
         self.reset_initial_states()
 
     def reset_initial_states(self) -> None:
@@ -214,7 +202,7 @@ class GazeboSimSystem(HardwareComponent):
         cmd = self.commands.get(f"{joint}/{mode}")
         if cmd is None or not math.isfinite(cmd.value):
             return None  # NaN: no command (held); inf never reaches the physics
-        return self.limits[f"{joint}/{mode}"].clamp(cmd.value)
+        return cmd.value
 
     def _apply_idle(self) -> None:
         if self.entity is None:

@@ -14,7 +14,7 @@ from diffctl.sim.sensors.camera import Camera, Frame
 from diffctl.sim.sensors.camera_sensor import CameraSensor
 from diffctl.sim.sensors.camera_task import CameraTask
 from diffctl.sim.sensors.imu import Imu, ImuNoise, point_velocity, specific_force
-from diffctl.sim.sensors.lidar import MAX_RAYS, Lidar, lidar_directions, ranges_from_hits
+from diffctl.sim.sensors.lidar import RAYS_PER_BATCH, Lidar, lidar_directions, ranges_from_hits
 from diffctl.sim.sensors.rate import RenderRate
 
 if TYPE_CHECKING:
@@ -33,7 +33,7 @@ def __getattr__(name: str) -> Any:
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 __all__ = [
-    "MAX_RAYS",
+    "RAYS_PER_BATCH",
     "AirPressure",
     "Camera",
     "CameraSensor",

@@ -1,4 +1,4 @@
-"""gpu_lidar / lidar / ray sensors on the CPU: one PyBullet `rayTestBatch` per scan, gz.msgs.LaserScan out.
+"""gpu_lidar / lidar / ray sensors on the CPU: PyBullet `rayTestBatch` per scan, gz.msgs.LaserScan out.
 
 Noise follows SDF/Gazebo: Gaussian with `mean` and `stddev` from the sensor's own seeded numpy Generator.
 Intensities are the `<laser_retro>` of the visuals a ray hits, as gz-rendering reports them; PyBullet tells only
@@ -14,7 +14,6 @@ import pybullet as pb
 
 from diffctl.bus import gz
 from diffctl.description.model import Sensor
-from diffctl.errors import DescriptionError
 from diffctl.sim.entity import Entity
 from diffctl.sim.sensors.common import frame_id, pose_msg, rotation
 from diffctl.sim.sensors.topics import POINTS, SCAN
@@ -30,8 +29,9 @@ _LIDAR_DTYPE = np.dtype(
         "itemsize": LIDAR_POINT_STEP,
     }
 )
-# PyBullet caps one rayTestBatch at this many rays (SharedMemoryPublic.h).
-MAX_RAYS = 16384
+# Rays per rayTestBatch: PyBullet refuses more than 16,384 (SharedMemoryPublic.h) and answers a batch of exactly
+# 16,384 with one result short; a denser scan is cast in batches of this many.
+RAYS_PER_BATCH = 16383
 
 
 def lidar_directions(
@@ -103,12 +103,6 @@ class Lidar:
         self.intensities = np.zeros(0, dtype=np.float64)  # of the latest scan, one per range
         self.frame_id = frame_id(entity.name, sensor)
         self.count = spec.horizontal_samples * spec.vertical_samples
-        if self.count > MAX_RAYS:
-            raise DescriptionError(
-                f"lidar {sensor.name!r} casts {self.count} rays per scan; PyBullet allows at most {MAX_RAYS}",
-                field=f"sensor {sensor.name}",
-                hint="lower <horizontal><samples> or <vertical><samples>",
-            )
         self.body, self.link, offset = entity.link_frame(sensor.link)
         # rayTestBatch takes rays relative to a link in that link's centre-of-mass frame.
         inertial = entity.inertial_frame(self.body, self.link)
@@ -134,13 +128,11 @@ class Lidar:
 
     def scan(self) -> np.ndarray:
         """Ranges in metres (with noise when the SDF asks for it), +inf where nothing is within range."""
-        res = pb.rayTestBatch(
-            self._from,
-            self._to,
-            parentObjectUniqueId=self.body,
-            parentLinkIndex=self.link,
-            physicsClientId=self.entity.client,
-        )
+        if self.count <= RAYS_PER_BATCH:
+            res = self._cast(0, self.count)
+        else:
+            n = RAYS_PER_BATCH
+            res = [r for start in range(0, self.count, n) for r in self._cast(start, start + n)]
         # One pass over the result tuples: a miss has fraction 1 and object -1; mark it with fraction 2.
         frac = np.fromiter((r[2] if r[0] >= 0 else 2.0 for r in res), dtype=np.float64, count=self.count)
         retro = self._retro()
@@ -157,6 +149,15 @@ class Lidar:
             ranges = ranges + self.rng.normal(n.mean, n.stddev, self.count) if n.stddev > 0 else ranges + n.mean
             ranges = np.clip(ranges, self.spec.range_min_m, None)
         return ranges
+
+    def _cast(self, start: int, end: int) -> tuple:
+        return pb.rayTestBatch(
+            self._from[start:end],
+            self._to[start:end],
+            parentObjectUniqueId=self.body,
+            parentLinkIndex=self.link,
+            physicsClientId=self.entity.client,
+        )
 
     def sample(self, sim_time_ns: int) -> dict:
         return self.scan_msg(sim_time_ns, self.scan())
