@@ -22,7 +22,7 @@ SHARED = ("errors", "console", "ros_args", "source_paths", "signals", "descripti
           "__init__", "module_alias")
 LAUNCH_CORE = ("launch", "launch_xml", "launch_yaml", "supervision", "launch_extensions", "launch_testing",
                "launch_pytest")
-LAUNCH_ROS = ("launch_ros", "launch_testing_ros")
+LAUNCH_ROS = ("launch_ros", "launch_testing_ros", "nav2_common")
 LAUNCH_CORE_MAY_USE = (*LAUNCH_CORE, "errors", "console")
 LAUNCH_ROS_MAY_USE = (*LAUNCH_CORE_MAY_USE, *LAUNCH_ROS, "client", "workspace", "interfaces")
 

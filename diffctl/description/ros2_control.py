@@ -110,14 +110,19 @@ def parse_ros2_control(block: etree._Element | str, source: str = "<string>") ->
             "valid: " + ", ".join(HARDWARE_TYPES),
         )
     hardware = block.find("hardware")
-    plugin = (hardware.findtext("plugin") or "").strip() if hardware is not None else ""
-    if not plugin:
-        _fail(
-            hardware if hardware is not None else block,
-            source,
-            f"<ros2_control name={name!r}> needs <hardware><plugin>…</plugin></hardware>",
-            "e.g. gz_ros2_control/GazeboSimSystem or mock_components/GenericSystem",
-        )
+    # ros2_control's component parser: a block without <hardware> parses (its plugin name empty, which only
+    # loading it refuses: gz_ros2_control skips it, robot_state_publisher never looks); <hardware> without a
+    # <plugin> does not
+    plugin = ""
+    if hardware is not None:
+        plugin = (hardware.findtext("plugin") or "").strip()
+        if hardware.find("plugin") is None:
+            _fail(
+                hardware,
+                source,
+                f"Missing <plugin> tag of <hardware> element for '{name}' in your URDF.",
+                "e.g. <plugin>gz_ros2_control/GazeboSimSystem</plugin> or mock_components/GenericSystem",
+            )
     joints = tuple(_component(j, source, True) for j in block.findall("joint"))
     seen: set[str] = set()
     for j in joints:

@@ -200,7 +200,7 @@ def test_ros2_control_block_alone_with_parameters_and_errors() -> None:
     assert (flag.data_type, flag.initial_value) == ("bool", 1.0)
     bad = [
         ('<ros2_control name="r" type="robot"><hardware><plugin>x</plugin></hardware></ros2_control>', "type 'robot'"),
-        ('<ros2_control name="r" type="system"><hardware/></ros2_control>', "<hardware><plugin>"),
+        ('<ros2_control name="r" type="system"><hardware/></ros2_control>', "Missing <plugin> tag of <hardware>"),
         (
             '<ros2_control name="r" type="system"><hardware><plugin>x</plugin></hardware>\n<joint name="a">'
             '<state_interface name="position"><param name="initial_value">zero</param></state_interface></joint>'
@@ -214,6 +214,10 @@ def test_ros2_control_block_alone_with_parameters_and_errors() -> None:
             "data_type 'float64'",
         ),
     ]
+    # no <hardware> at all parses, as ros2_control's parser takes it (a xacro leaving a block empty in simulation);
+    # only loading hardware of that empty plugin name fails
+    empty = parse_ros2_control('<ros2_control name="imu" type="sensor">\n</ros2_control>')
+    assert (empty.name, empty.hardware_plugin, empty.joints, empty.sensors) == ("imu", "", (), ())
     for text, needle in bad:
         with pytest.raises(DescriptionError) as info:
             parse_ros2_control(text, source="block.xml")

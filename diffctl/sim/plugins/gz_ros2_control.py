@@ -112,8 +112,9 @@ def wants_controller_manager(model: Model) -> list[Plugin]:
 
 def warn_skipped(ctx: PluginContext, model_name: str, blocks: list[Any]) -> None:
     for b in blocks:
+        asks = f"asks for {b.hardware_plugin}" if b.hardware_plugin else "names no <hardware> plugin"
         ctx.log.warn(
-            f"model {model_name!r}: <ros2_control name={b.name!r}> asks for {b.hardware_plugin}; inside the "
+            f"model {model_name!r}: <ros2_control name={b.name!r}> {asks}; inside the "
             f"simulator only {PLUGIN_ALIASES[0]} exists (as with gz_ros2_control): block skipped"
         )
 
