@@ -2,8 +2,8 @@
 cli → components → client → bus → interfaces, and launch imports none of them.
 
 The launch family: the core (launch, its frontends, supervision, diffctl's launch-file extensions, launch_testing,
-launch_pytest) imports only itself and errors/console; the ROS part (launch_ros, launch_testing_ros) may also use
-the client (rclpy's API, as upstream's import rclpy) and the package index. No component or layer of the chain
+launch_pytest) imports only itself and errors/console; the ROS part (launch_ros, launch_testing_ros, nav2_common) may
+also use the client (rclpy's API, as upstream's import rclpy) and the package index. No component or layer of the chain
 imports any of them: only the command line does.
 
 Every import statement of every module counts, those inside functions too (imported late is still imported).
