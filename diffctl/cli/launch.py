@@ -24,6 +24,7 @@ from typing import Any
 import click
 
 from diffctl.errors import DiffctlError, LaunchError, suggest
+from diffctl.source_paths import user_source
 
 
 def _split_targets(targets: tuple[str, ...]) -> tuple[list[str], dict[str, str]]:
@@ -299,7 +300,12 @@ def _located(e: BaseException, path: Path) -> DiffctlError:
             else:
                 e.source, e.line = str(path), _line_in(e, path)
         return e
-    return LaunchError(_one_line(e, path))
+    error = LaunchError(_one_line(e, path))
+    if isinstance(e, ModuleNotFoundError) and e.name:
+        from diffctl.workspace.ros_programs import missing_module_hint
+
+        error.hint = missing_module_hint(e.name)
+    return error
 
 
 def _line_in(e: BaseException, path: Path) -> int | None:
@@ -319,7 +325,8 @@ def _one_line(e: BaseException, path: Path) -> str:
     if str(path) in text:
         return text
     line = _line_in(e, path)
-    where = f"{path}:{line}" if line is not None else str(path)
+    shown = user_source(str(path))  # the file under src/, not its link in diffctl's workspace cache
+    where = f"{shown}:{line}" if line is not None else shown
     return f"{where}: {type(e).__name__}: {text}" if not isinstance(e, DiffctlError) else f"{where}: {text}"
 
 

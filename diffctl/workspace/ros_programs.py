@@ -43,20 +43,34 @@ def apt_name(package: str) -> str:
     return "ros-jazzy-" + package.replace("_", "-")
 
 
+def _install_what(package: str) -> str:
+    if package.startswith(("nav2_", "opennav_")):
+        return LEFT_TO_ROS["nav2_bringup"]
+    if package.startswith("moveit"):
+        return LEFT_TO_ROS["moveit_ros_move_group"]
+    return LEFT_TO_ROS.get(package, apt_name(package))
+
+
 def how_to_get(package: str) -> str:
     """One sentence: how a user gets `package` that diffctl does not provide."""
     if package in RENAMED:
         return f"{package} is the old name of {RENAMED[package]}, which diffctl provides: use that name"
-    if package.startswith(("nav2_", "opennav_")):
-        what = LEFT_TO_ROS["nav2_bringup"]
-    elif package.startswith("moveit"):
-        what = LEFT_TO_ROS["moveit_ros_move_group"]
-    else:
-        what = LEFT_TO_ROS.get(package, apt_name(package))
+    what = _install_what(package)
     return (
         f"diffctl does not provide it: install {what} and `source /opt/ros/jazzy/setup.bash` (diffctl then starts "
         f"the real one, joined to its graph over rmw_zenoh: install {apt_name(RMW_ZENOH)} too), or put its "
         "sources in your workspace's src/"
+    )
+
+
+def missing_module_hint(module: str) -> str:
+    """What to do about a Python module a launch file imports that neither diffctl, its venv nor the workspace
+    has: a ROS 2 package's comes with its install or its sources, anything else from pip."""
+    top = module.split(".")[0]
+    return (
+        f"diffctl does not provide the Python package {top!r}: if it is a ROS 2 package, install "
+        f"{_install_what(top)} and `source /opt/ros/jazzy/setup.bash`, or put its sources in your workspace's "
+        f"src/; if it comes from PyPI, pip install it into diffctl's Python environment"
     )
 
 

@@ -169,6 +169,13 @@ launch:
             4,
             "undefined_name",
         ),
+        (  # a Python package neither diffctl nor the workspace has: what to install (README, "does not provide")
+            "imports.launch.py",
+            "import os\n\nfrom nav2_not_provided.launch import Helper\n",
+            3,
+            "No module named 'nav2_not_provided' (diffctl does not provide the Python package 'nav2_not_provided': "
+            "if it is a ROS 2 package, install Nav2 (ros-jazzy-navigation2",
+        ),
     ],
 )
 def test_a_bad_launch_file_is_one_line_naming_file_and_line_exit_2_nothing_started(
