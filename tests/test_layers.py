@@ -2,9 +2,9 @@
 cli → components → client → bus → interfaces, and launch imports none of them.
 
 The launch family: the core (launch, its frontends, supervision, diffctl's launch-file extensions, launch_testing,
-launch_pytest) imports only itself and errors/console; the ROS part (launch_ros, launch_testing_ros, nav2_common) may
-also use the client (rclpy's API, as upstream's import rclpy) and the package index. No component or layer of the chain
-imports any of them: only the command line does.
+launch_pytest) imports only itself and errors/console; the ROS part (launch_ros, launch_testing_ros, nav2_common,
+controller_manager's launch_utils) may also use the client (rclpy's API, as upstream's import rclpy) and the package
+index. No component or layer of the chain imports any of them: only the command line does.
 
 Every import statement of every module counts, those inside functions too (imported late is still imported).
 The packages outside the chain (errors, console, ros_args, description, workspace, …) are shared by all."""
@@ -22,7 +22,7 @@ SHARED = ("errors", "console", "ros_args", "source_paths", "signals", "descripti
           "__init__", "module_alias")
 LAUNCH_CORE = ("launch", "launch_xml", "launch_yaml", "supervision", "launch_extensions", "launch_testing",
                "launch_pytest")
-LAUNCH_ROS = ("launch_ros", "launch_testing_ros", "nav2_common")
+LAUNCH_ROS = ("launch_ros", "launch_testing_ros", "nav2_common", "controller_manager")
 LAUNCH_CORE_MAY_USE = (*LAUNCH_CORE, "errors", "console")
 LAUNCH_ROS_MAY_USE = (*LAUNCH_CORE_MAY_USE, *LAUNCH_ROS, "client", "workspace", "interfaces")
 
