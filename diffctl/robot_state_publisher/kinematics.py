@@ -10,7 +10,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 
 from diffctl.description.model import Model
-from diffctl.description.pose import Pose, Vec3, quat_from_axis_angle
+from diffctl.description.pose import Pose, Vec3, quat_from_axis_angle, quat_rotate
 
 ROTATING = ("revolute", "continuous")
 
@@ -34,10 +34,12 @@ class Segment:
     def transform(self, position: float = 0.0) -> Pose:
         """Child pose in the parent frame with the joint at `position` (rad or m)."""
         if self.type in ROTATING:
+            # A turn r about the axis through the pivot p is the rigid motion (p − r·p, r): one composition with
+            # the origin per message (robot_state_publisher does this for every joint_states sample).
+            spin = quat_from_axis_angle(self.axis_child, position)
             px, py, pz = self.pivot_xyz
-            spin = Pose((0.0, 0.0, 0.0), quat_from_axis_angle(self.axis_child, position))
-            # Rotate about the axis through the pivot: move the pivot to the origin, turn, move back.
-            return self.origin * Pose((px, py, pz)) * spin * Pose((-px, -py, -pz))
+            rx, ry, rz = quat_rotate(spin, self.pivot_xyz)
+            return self.origin.compose(Pose((px - rx, py - ry, pz - rz), spin))
         if self.type == "prismatic":
             ax, ay, az = self.axis_child
             return self.origin * Pose((ax * position, ay * position, az * position))

@@ -65,15 +65,18 @@ class TfPublisher:
         if len(names) != len(positions):
             self._warn_once("sizes", f"joint_states with {len(names)} names but {len(positions)} positions: ignored")
             return []
-        stamp_ns = int(msg.header.stamp.sec) * 1_000_000_000 + int(msg.header.stamp.nanosec) or now_ns
-        known = [(n, float(q)) for n, q in zip(names, positions, strict=True) if n in self.moving]
+        stamp = msg.header.stamp
+        stamp_ns = int(stamp.sec) * 1_000_000_000 + int(stamp.nanosec) or now_ns
+        moving = self.moving
+        known = [(n, float(q)) for n, q in zip(names, positions, strict=True) if n in moving]
         if not known:
             return []
         if not ignore_timestamp and interval_ns:
-            last = min(self._last_ns.get(n, -(2**62)) for n, _ in known)
-            if stamp_ns < max(self._last_ns.get(n, -(2**62)) for n, _ in known):
+            never = -(2**62)
+            seen = [self._last_ns.get(n, never) for n, _ in known]
+            if stamp_ns < max(seen):
                 self._last_ns.clear()  # time went backwards (a sim reset): start afresh, as rclcpp's RSP does
-            elif stamp_ns < last + interval_ns:
+            elif stamp_ns < min(seen) + interval_ns:
                 return []
         out = []
         for name, q in known:
@@ -87,16 +90,19 @@ class TfPublisher:
 
 
 def transform_msg(parent: str, child: str, pose: Pose, stamp_ns: int) -> Any:
-    stamped, header, time_, transform, vector3, quaternion = map(cls, (
-        "geometry_msgs/msg/TransformStamped", "std_msgs/msg/Header", "builtin_interfaces/msg/Time",
-        "geometry_msgs/msg/Transform", "geometry_msgs/msg/Vector3", "geometry_msgs/msg/Quaternion"))
+    # Filled in place: keyword arguments would build every nested default first and then replace it (twice the
+    # messages per transform, on every joint_states sample).
+    msg = cls("geometry_msgs/msg/TransformStamped")()
+    header = msg.header
+    header.stamp.sec, header.stamp.nanosec = divmod(stamp_ns, 1_000_000_000)
+    header.frame_id = parent
+    msg.child_frame_id = child
+    t, r = msg.transform.translation, msg.transform.rotation
     x, y, z = pose.xyz
     qx, qy, qz, qw = pose.quat
-    return stamped(
-        header=header(stamp=time_(sec=stamp_ns // 1_000_000_000, nanosec=stamp_ns % 1_000_000_000), frame_id=parent),
-        child_frame_id=child,
-        transform=transform(translation=vector3(x=float(x), y=float(y), z=float(z)),
-                            rotation=quaternion(x=float(qx), y=float(qy), z=float(qz), w=float(qw))))
+    t.x, t.y, t.z = float(x), float(y), float(z)
+    r.x, r.y, r.z, r.w = float(qx), float(qy), float(qz), float(qw)
+    return msg
 
 
 def description_text(description_file: Path | None, override: Any) -> tuple[str, Path | None]:
@@ -151,10 +157,16 @@ def make_node(description: str, model: Model, base_dir: Path | None, overrides: 
         if state.tree.unsupported():
             log.warning(f"joints without a single position are not published: {', '.join(state.tree.unsupported())}")
 
-    def on_joint_states(msg: Any) -> None:
+    # publish_frequency and ignore_timestamp as of the last set, read once per change rather than per sample
+    limits = {"interval_ns": 0, "ignore_timestamp": False}
+
+    def read_limits() -> None:
         hz = node.get_parameter("publish_frequency").value
-        transforms = state.moved(msg, now_ns(), int(1e9 / hz) if hz > 0 else 0,
-                                 node.get_parameter("ignore_timestamp").value)
+        limits["interval_ns"] = int(1e9 / hz) if hz > 0 else 0
+        limits["ignore_timestamp"] = node.get_parameter("ignore_timestamp").value
+
+    def on_joint_states(msg: Any) -> None:
+        transforms = state.moved(msg, now_ns(), limits["interval_ns"], limits["ignore_timestamp"])
         if transforms:
             pub_tf.publish(tf_message(transforms=transforms))
 
@@ -178,11 +190,13 @@ def make_node(description: str, model: Model, base_dir: Path | None, overrides: 
         for p in params:
             if p.name == "robot_description":
                 setup(p.value, parsed.pop(p.value))
+        read_limits()
 
     sensor_data = QoSProfile(depth=5, reliability=ReliabilityPolicy.BEST_EFFORT)  # rclcpp::SensorDataQoS
     node.create_subscription(joint_state, "joint_states", on_joint_states, sensor_data,
                              qos_overriding_options=QoSOverridingOptions.with_default_policies())
     setup(description, model)
+    read_limits()
     node.add_on_set_parameters_callback(check)
     node.add_post_set_parameters_callback(changed)
     return node
