@@ -14,19 +14,24 @@ from __future__ import annotations
 from typing import Any
 
 from diffctl.client.interfaces import cls
-from diffctl.client.qos import qos_profile_system_default
-from diffctl.control.cdr_template import CdrTemplate
 from diffctl.control.controller_interface import (
     CallbackReturn,
     ChainableControllerInterface,
-    InterfaceConfiguration,
     ReturnType,
     StateInterface,
 )
-from diffctl.control.controllers.owned_endpoints import OwnedEndpoints
-from diffctl.control.controllers.param_decl import Check, ParamDecl, declare_all, overrides, read_declared, table
-from diffctl.control.controllers.semantic_components import WRENCH_FIELDS, bind, wrench_interfaces
-from diffctl.control.realtime_publisher import RealtimePublisher
+from diffctl.control.controllers.param_decl import (
+    Check,
+    ParamDecl,
+    changed_values,
+    current_values,
+    declare_all,
+    overrides,
+    read_declared,
+    table,
+)
+from diffctl.control.controllers.semantic_components import WRENCH_FIELDS, wrench_interfaces
+from diffctl.control.controllers.sensor_broadcasting import SensorBroadcasting
 
 WRENCH = "geometry_msgs/msg/WrenchStamped"
 _AXES = [("force", a) for a in "xyz"] + [("torque", a) for a in "xyz"]
@@ -58,12 +63,9 @@ DECLS = table([
 ])  # fmt: skip
 
 
-class ForceTorqueSensorBroadcaster(ChainableControllerInterface):
+class ForceTorqueSensorBroadcaster(SensorBroadcasting, ChainableControllerInterface):
     def __init__(self) -> None:
         super().__init__()
-        self._endpoints = OwnedEndpoints()
-        self._pub: Any = None
-        self._handles: list[Any] = []
         self._correction: tuple[tuple[float, float], ...] = ((0.0, 1.0),) * 6
 
     def on_init(self) -> None:
@@ -78,29 +80,20 @@ class ForceTorqueSensorBroadcaster(ChainableControllerInterface):
     def _on_set(self, parameters: list[Any]) -> Any:
         from diffctl.control.controllers.param_decl import set_result
 
-        node = self.get_node()
-        current = {n: node.get_parameter(n).value for n in DECLS}
-        current.update({p.name: p.value for p in parameters if p.name in DECLS})
         try:
-            values = read_declared(DECLS, current, self.get_name())
+            values = read_declared(DECLS, changed_values(self.get_node(), DECLS, parameters), self.get_name())
         except Exception as e:  # ParameterError: refused with its reason
             return set_result(str(e))
         self._correction = _correction(values)  # taken by the next update, as the parameter listener's is_old
         return set_result(None)
 
-    def _names(self) -> list[str]:
+    def sensor_interfaces(self) -> list[str]:
         v = self.values
         return wrench_interfaces(v["sensor_name"], [v[f"interface_names.{g}.{a}"] for g, a in _AXES])
 
-    def command_interface_configuration(self) -> InterfaceConfiguration:
-        return InterfaceConfiguration.none()
-
-    def state_interface_configuration(self) -> InterfaceConfiguration:
-        return InterfaceConfiguration.individual([n for n in self._names() if n])
-
     def on_configure(self, previous_state: Any) -> CallbackReturn:
         node = self.get_node()
-        self.values = v = read_declared(DECLS, {n: node.get_parameter(n).value for n in DECLS}, self.get_name())
+        self.values = v = read_declared(DECLS, current_values(node, DECLS), self.get_name())
         named_axes = any(v[f"interface_names.{g}.{a}"] for g, a in _AXES)
         if not v["sensor_name"] and not named_axes:
             node.get_logger().error("'sensor_name' or at least one 'interface_names.[force|torque].[x|y|z]' parameter "
@@ -111,53 +104,33 @@ class ForceTorqueSensorBroadcaster(ChainableControllerInterface):
                                     "not be specified together.")
             return CallbackReturn.ERROR
         self._correction = _correction(v)
-        self._endpoints.close_all()
         msg = cls(WRENCH)()
         msg.header.frame_id = v["frame_id"]
-        leaves = [("header.stamp.sec", "i"), ("header.stamp.nanosec", "I"),
-                  *[(f"wrench.{f}", "d") for f in WRENCH_FIELDS]]
-        self._template = CdrTemplate(msg, WRENCH, leaves)
-        for topic in ("~/wrench", "~/wrench_filtered"):
-            pub = self._endpoints.keep(RealtimePublisher(node.create_publisher(cls(WRENCH), topic,
-                                                                               qos_profile_system_default)))
-            if topic == "~/wrench":
-                self._pub = pub
+        leaves = [(f"wrench.{f}", "d") for f in WRENCH_FIELDS]
+        self.open_publishers(msg, WRENCH, ["~/wrench", "~/wrench_filtered"], leaves)
         node.get_logger().info("configure successful")
         return CallbackReturn.SUCCESS
 
     def on_export_state_interfaces(self) -> list[StateInterface]:
         v = self.values
         out = []
-        for k, name in enumerate(self._names()):
+        for k, name in enumerate(self.sensor_interfaces()):
             if not name:
                 continue
             if v["sensor_name"]:
                 out.append(StateInterface(f"{self.get_name()}/{v['sensor_name']}/{WRENCH_FIELDS[k]}", 0.0))
             else:
                 out.append(StateInterface(f"{self.get_name()}/{name}", 0.0))
-        self._exported_axes = [k for k, name in enumerate(self._names()) if name]
+        self._exported_axes = [k for k, name in enumerate(self.sensor_interfaces()) if name]
         return out
-
-    def on_activate(self, previous_state: Any) -> None:
-        self._handles = bind(self._names(), self.state_interfaces)
-
-    def on_deactivate(self, previous_state: Any) -> None:
-        self._handles = []
-
-    def on_cleanup(self, previous_state: Any) -> None:
-        self._endpoints.close_all()
-        self._pub = None
-
-    on_shutdown = on_cleanup
 
     def update_reference_from_subscribers(self, time: Any, period: Any) -> ReturnType:
         return ReturnType.OK
 
     def update_and_write_commands(self, time: Any, period: Any) -> ReturnType:
-        wrench = [((h.value if h is not None else 0.0) + offset) * gain
-                  for h, (offset, gain) in zip(self._handles, self._correction, strict=True)]
-        sec, nanosec = divmod(time.nanoseconds, 1_000_000_000)
-        self._pub.publish_values(self._template, (sec, nanosec, *wrench))
+        wrench = [(value + offset) * gain
+                  for value, (offset, gain) in zip(self.sensor_values(), self._correction, strict=True)]
+        self.publish_stamped(time, wrench)
         for handle, k in zip(self.exported_state_interfaces, self._exported_axes, strict=True):
             handle.value = wrench[k]
         return ReturnType.OK

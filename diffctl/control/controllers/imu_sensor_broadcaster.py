@@ -10,14 +10,11 @@ from __future__ import annotations
 from typing import Any
 
 from diffctl.client.interfaces import cls
-from diffctl.client.qos import qos_profile_system_default
-from diffctl.control.cdr_template import CdrTemplate
-from diffctl.control.controller_interface import ControllerInterface, InterfaceConfiguration, ReturnType
-from diffctl.control.controllers.owned_endpoints import OwnedEndpoints
-from diffctl.control.controllers.param_decl import Check, ParamDecl, declare_all, read_declared, table
+from diffctl.control.controller_interface import ControllerInterface, ReturnType
+from diffctl.control.controllers.param_decl import Check, ParamDecl, current_values, declare_all, read_declared, table
 from diffctl.control.controllers.param_rules import RuleCheck
-from diffctl.control.controllers.semantic_components import IMU_FIELDS, bind, imu_interfaces
-from diffctl.control.realtime_publisher import RealtimePublisher
+from diffctl.control.controllers.semantic_components import IMU_FIELDS, imu_interfaces
+from diffctl.control.controllers.sensor_broadcasting import SensorBroadcasting
 
 IMU = "sensor_msgs/msg/Imu"
 _NINE = (RuleCheck("fixed_size", (9,)),)
@@ -36,59 +33,27 @@ DECLS = table([
               "Static linear acceleration covariance. Row major about x, y, z axes", checks=_NINE),
 ])  # fmt: skip
 
-_LEAVES = [("header.stamp.sec", "i"), ("header.stamp.nanosec", "I"),
-           *[(f, "d") for f in IMU_FIELDS if f.startswith("orientation")],
+_LEAVES = [*[(f, "d") for f in IMU_FIELDS if f.startswith("orientation")],
            *[(f, "d") for f in IMU_FIELDS if f.startswith("angular")],
            *[(f, "d") for f in IMU_FIELDS if f.startswith("linear")]]
 
 
-class IMUSensorBroadcaster(ControllerInterface):
-    def __init__(self) -> None:
-        super().__init__()
-        self._endpoints = OwnedEndpoints()
-        self._pub: Any = None
-        self._template: CdrTemplate | None = None
-        self._handles: list[Any] = []
-
+class IMUSensorBroadcaster(SensorBroadcasting, ControllerInterface):
     def on_init(self) -> None:
         self.values = declare_all(self.get_node(), DECLS, self.get_name())
 
-    def _params(self) -> dict[str, Any]:
-        node = self.get_node()
-        return read_declared(DECLS, {n: node.get_parameter(n).value for n in DECLS}, self.get_name())
-
-    def command_interface_configuration(self) -> InterfaceConfiguration:
-        return InterfaceConfiguration.none()
-
-    def state_interface_configuration(self) -> InterfaceConfiguration:
-        return InterfaceConfiguration.individual(imu_interfaces(self.values["sensor_name"]))
+    def sensor_interfaces(self) -> list[str]:
+        return imu_interfaces(self.values["sensor_name"])
 
     def on_configure(self, previous_state: Any) -> None:
-        self.values = v = self._params()
-        self._endpoints.close_all()
+        self.values = v = read_declared(DECLS, current_values(self.get_node(), DECLS), self.get_name())
         msg = cls(IMU)()
         msg.header.frame_id = v["frame_id"]
         msg.orientation_covariance = list(v["static_covariance_orientation"])
         msg.angular_velocity_covariance = list(v["static_covariance_angular_velocity"])
         msg.linear_acceleration_covariance = list(v["static_covariance_linear_acceleration"])
-        self._msg = msg
-        pub = self.get_node().create_publisher(cls(IMU), "~/imu", qos_profile_system_default)
-        self._pub = self._endpoints.keep(RealtimePublisher(pub))
-        self._template = CdrTemplate(msg, IMU, _LEAVES)
-
-    def on_activate(self, previous_state: Any) -> None:
-        self._handles = bind(imu_interfaces(self.values["sensor_name"]), self.state_interfaces)
-
-    def on_deactivate(self, previous_state: Any) -> None:
-        self._handles = []
-
-    def on_cleanup(self, previous_state: Any) -> None:
-        self._endpoints.close_all()
-        self._pub = None
-
-    on_shutdown = on_cleanup
+        self.open_publishers(msg, IMU, ["~/imu"], _LEAVES)
 
     def update(self, time: Any, period: Any) -> ReturnType:
-        sec, nanosec = divmod(time.nanoseconds, 1_000_000_000)
-        self._pub.publish_values(self._template, (sec, nanosec, *[h.value for h in self._handles]))
+        self.publish_stamped(time, self.sensor_values())
         return ReturnType.OK

@@ -9,18 +9,10 @@ from __future__ import annotations
 from typing import Any
 
 from diffctl.client.interfaces import cls
-from diffctl.client.qos import qos_profile_system_default
-from diffctl.control.cdr_template import CdrTemplate
-from diffctl.control.controller_interface import (
-    CallbackReturn,
-    ControllerInterface,
-    InterfaceConfiguration,
-    ReturnType,
-)
-from diffctl.control.controllers.owned_endpoints import OwnedEndpoints
-from diffctl.control.controllers.param_decl import ParamDecl, declare_all, read_declared, table
-from diffctl.control.controllers.semantic_components import bind, range_interfaces
-from diffctl.control.realtime_publisher import RealtimePublisher
+from diffctl.control.controller_interface import CallbackReturn, ControllerInterface, ReturnType
+from diffctl.control.controllers.param_decl import ParamDecl, current_values, declare_all, read_declared, table
+from diffctl.control.controllers.semantic_components import range_interfaces
+from diffctl.control.controllers.sensor_broadcasting import SensorBroadcasting
 
 RANGE = "sensor_msgs/msg/Range"
 
@@ -36,32 +28,22 @@ DECLS = table([
 ])  # fmt: skip
 
 
-class RangeSensorBroadcaster(ControllerInterface):
-    def __init__(self) -> None:
-        super().__init__()
-        self._endpoints = OwnedEndpoints()
-        self._pub: Any = None
-        self._handles: list[Any] = []
-
+class RangeSensorBroadcaster(SensorBroadcasting, ControllerInterface):
     def on_init(self) -> None:
         self.values = declare_all(self.get_node(), DECLS, self.get_name())
 
-    def command_interface_configuration(self) -> InterfaceConfiguration:
-        return InterfaceConfiguration.none()
-
-    def state_interface_configuration(self) -> InterfaceConfiguration:
-        return InterfaceConfiguration.individual(range_interfaces(self.values["sensor_name"]))
+    def sensor_interfaces(self) -> list[str]:
+        return range_interfaces(self.values["sensor_name"])
 
     def on_configure(self, previous_state: Any) -> CallbackReturn:
         node = self.get_node()
-        self.values = v = read_declared(DECLS, {n: node.get_parameter(n).value for n in DECLS}, self.get_name())
+        self.values = v = read_declared(DECLS, current_values(node, DECLS), self.get_name())
         if not v["sensor_name"]:
             node.get_logger().error("'sensor_name' parameter has to be specified.")
             return CallbackReturn.ERROR
         if not v["frame_id"]:
             node.get_logger().error("'frame_id' parameter has to be provided.")
             return CallbackReturn.ERROR
-        self._endpoints.close_all()
         msg = cls(RANGE)()
         msg.header.frame_id = v["frame_id"]
         msg.radiation_type = v["radiation_type"] & 0xFF  # uint8, as the reference's cast
@@ -69,25 +51,9 @@ class RangeSensorBroadcaster(ControllerInterface):
         msg.min_range = v["min_range"]
         msg.max_range = v["max_range"]
         msg.variance = v["variance"]
-        self._template = CdrTemplate(msg, RANGE, [("header.stamp.sec", "i"), ("header.stamp.nanosec", "I"),
-                                                  ("range", "f")])
-        self._pub = self._endpoints.keep(RealtimePublisher(node.create_publisher(cls(RANGE), "~/range",
-                                                                                 qos_profile_system_default)))
+        self.open_publishers(msg, RANGE, ["~/range"], [("range", "f")])
         return CallbackReturn.SUCCESS
 
-    def on_activate(self, previous_state: Any) -> None:
-        self._handles = bind(range_interfaces(self.values["sensor_name"]), self.state_interfaces)
-
-    def on_deactivate(self, previous_state: Any) -> None:
-        self._handles = []
-
-    def on_cleanup(self, previous_state: Any) -> None:
-        self._endpoints.close_all()
-        self._pub = None
-
-    on_shutdown = on_cleanup
-
     def update(self, time: Any, period: Any) -> ReturnType:
-        sec, nanosec = divmod(time.nanoseconds, 1_000_000_000)
-        self._pub.publish_values(self._template, (sec, nanosec, self._handles[0].value))
+        self.publish_stamped(time, self.sensor_values())
         return ReturnType.OK
