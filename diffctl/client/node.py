@@ -70,7 +70,13 @@ _CONTEXT_GONE = ("the given context is not valid, either rcl_init() was not call
 
 
 class TimeSource:
-    """use_sim_time: the node's ROS clocks follow /clock (best effort, depth 1) while it is true."""
+    """use_sim_time: the node's ROS clocks follow /clock (best effort, depth 1) while it is true.
+
+    An rclpy node takes /clock as rclpy does, through a subscription of its own that its executor serves: its
+    time moves only while an executor runs its callbacks, never during one of them in a single-threaded
+    executor, and stays 0 until the node is in one. An rclcpp-flavoured node follows at once on Zenoh's thread,
+    as rclcpp's clock thread does.
+    """
 
     def __init__(self, node: Node) -> None:
         self._node: Node | None = node
@@ -78,12 +84,11 @@ class TimeSource:
         self._active = False
         self._sub: Any = None
         self._last_ns = 0
-        # Held while a /clock sample is applied and while the subscription is let go: a sample Zenoh was still
-        # delivering must not move the clocks after use_sim_time went false or the node was detached (a hosting
-        # simulator's override was overwritten by a /clock tick in flight).
+        # Held while a /clock sample is applied and while the subscription is let go: a sample being applied on
+        # another thread must not move the clocks after use_sim_time went false or the node was detached (a
+        # hosting simulator's override was overwritten by a /clock tick in flight).
         self._following = threading.RLock()
         self._follows = False
-        self._held_ns: int | None = None
         if not node.has_parameter(USE_SIM_TIME_NAME):
             node.declare_parameter(USE_SIM_TIME_NAME, False)
         p = node.get_parameter(USE_SIM_TIME_NAME)
@@ -102,18 +107,21 @@ class TimeSource:
         self._active = enabled
         for c in self._clocks:
             c._set_ros_time_is_active(enabled)
-        if self._node is None:  # detached: whoever detached it sets the time (set_ros_time_override)
+        node = self._node
+        if node is None:  # detached: whoever detached it sets the time (set_ros_time_override)
             return
-        bus = self._node._bus
         if enabled and self._sub is None:
-            if self._node._rclcpp:
-                declare_qos_parameters("subscription", self._node, CLOCK_TOPIC, _qos.QoSProfile(
-                    depth=1, reliability=_qos.ReliabilityPolicy.BEST_EFFORT), _ALL_OVERRIDES, rclcpp=True)
+            qos = _qos.QoSProfile(depth=1, reliability=_qos.ReliabilityPolicy.BEST_EFFORT)
             self._follows = True
-            self._sub = bus.create_subscription("/clock", "rosgraph_msgs/msg/Clock", self._on_clock, raw=True,
-                                                qos=wire.QoS(reliable=False, depth=1))
+            if node._rclcpp:
+                declare_qos_parameters("subscription", node, CLOCK_TOPIC, qos, _ALL_OVERRIDES, rclcpp=True)
+                self._sub = node._bus.create_subscription(CLOCK_TOPIC, "rosgraph_msgs/msg/Clock", self._on_clock,
+                                                          raw=True, qos=wire.QoS(reliable=False, depth=1))
+            else:
+                self._sub = node.create_subscription(cls("rosgraph_msgs/msg/Clock"), CLOCK_TOPIC, self._on_clock,
+                                                     qos, raw=True)
         elif not enabled and self._sub is not None:
-            self._stop_following(bus)
+            self._stop_following(node)
 
     def _on_clock(self, data: bytes) -> None:
         # builtin_interfaces/Time right after the little-endian CDR header: sec (int32), nanosec (uint32)
@@ -128,26 +136,16 @@ class TimeSource:
                 if self._node is not None:
                     self._node._bus.throttled("clock", f"dropped a malformed sample on {CLOCK_TOPIC}")
                 return
-            node = self._node
-            if node is not None and not node._rclcpp and node.executor is None:
-                # rclpy takes /clock in an executor: until the node is in one its time stays put (0 at start;
-                # a node reading now() in its constructor gets 0, as with rclpy). rclcpp's own thread takes it.
-                self._held_ns = sec * 1_000_000_000 + nanosec
-                return
             self.set_time_ns(sec * 1_000_000_000 + nanosec)
 
-    def release_held(self) -> None:
-        """The node joined an executor: the latest /clock sample it was holding applies now."""
-        with self._following:
-            held, self._held_ns = self._held_ns, None
-            if held is not None and self._follows:
-                self.set_time_ns(held)
-
-    def _stop_following(self, bus: Any) -> None:
+    def _stop_following(self, node: Node) -> None:
         with self._following:
             self._follows = False
-        bus.destroy(self._sub)
-        self._sub = None
+        sub, self._sub = self._sub, None
+        if node._rclcpp:
+            node._bus.destroy(sub)
+        else:
+            node.destroy_subscription(sub)
 
     def set_time_ns(self, ns: int) -> None:
         """The ROS time of this node's clocks while use_sim_time holds (from /clock, or from a simulator
@@ -163,7 +161,7 @@ class TimeSource:
         if node is None:
             return
         if self._sub is not None:
-            self._stop_following(node._bus)
+            self._stop_following(node)
         node.remove_on_set_parameters_callback(self._on_parameters)
 
     def attach_clock(self, clock: ROSClock) -> None:
@@ -349,7 +347,6 @@ class Node:
             # Executor.add_node sets this property while it adds the node (then add_node answers False).
             new_executor.add_node(self)
             self._executor_ref = weakref.ref(new_executor)
-            self._time_source.release_held()
 
     def _wake_executor(self) -> None:
         waiting.notify()
