@@ -19,14 +19,16 @@ from typing import Any
 
 from diffctl.description.model import Plugin
 from diffctl.sim.entity import Entity
+from diffctl.sim.plugins.attachments import Attachments
 from diffctl.sim.plugins.base import PluginContext, SystemPlugin, bool_param, float_param, rate_period_ns
 from diffctl.sim.plugins.diff_drive_math import Limits, limit_speed
 from diffctl.sim.plugins.steering_math import AckermannOdometry, ackermann_command, ackermann_steer_only
 from diffctl.sim.plugins.system_support import (
+    OdometryOutput,
     find_joints,
     finite_or_none,
     int_param,
-    odometry_messages,
+    planar_twist,
     speed_limits,
     valid_topic,
 )
@@ -114,30 +116,28 @@ class AckermannSteering(SystemPlugin):
         self._last = [(0.0, 0.0), (0.0, 0.0)]
         self._dt_s = ctx.stepper.step_ns * 1e-9
         self._wheels: tuple[float, float] | None = None  # the wheel speeds last sent
-        self._sub = self._odom_pub = self._tf_pub = None
-        t = ctx.transport
-        if t is not None:
-            if not params.steering_only:
-                self._sub = t.subscribe(params.topic, "gz.msgs.Twist", self.on_twist)
-                self._odom_pub = t.publisher(params.odom_topic, "gz.msgs.Odometry")
-                self._tf_pub = t.publisher(params.tf_topic, "gz.msgs.Pose_V")
-            elif params.use_actuator_msg:
-                self._sub = t.subscribe(params.topic, "gz.msgs.Actuators", self.on_actuators)
-            else:
-                self._sub = t.subscribe(params.topic, "gz.msgs.Double", self.on_angle)
-        self._task = None
+        self.attached = Attachments(ctx)
+        self.output: OdometryOutput | None = None
+        if not params.steering_only:
+            self.attached.subscribe(params.topic, "gz.msgs.Twist", self.on_twist)
+            self.output = OdometryOutput(self.attached, params.odom_topic, params.tf_topic, params.frame_id,
+                                         params.child_frame_id)
+        elif params.use_actuator_msg:
+            self.attached.subscribe(params.topic, "gz.msgs.Actuators", self.on_actuators)
+        else:
+            self.attached.subscribe(params.topic, "gz.msgs.Double", self.on_angle)
         if self.active:
-            ctx.stepper.step_hooks.append(self._step)
+            self.attached.each_step(self._step)
             if not params.steering_only:
                 hz = params.odom_publish_frequency_hz
                 period = rate_period_ns(hz, ctx.stepper.step_ns) if hz > 0 else ctx.stepper.step_ns
-                self._task = ctx.stepper.add_task(f"ackermann:{entity.name}", period, self._odometry)
+                self.attached.every(f"ackermann:{entity.name}", period, self._odometry)
 
     # --- commands ------------------------------------------------------------------------------------
 
     def on_twist(self, fields: dict[str, Any]) -> None:
-        lin, ang = fields.get("linear") or {}, fields.get("angular") or {}
-        self.command(float(lin.get("x", 0.0) or 0.0), float(ang.get("z", 0.0) or 0.0))
+        linear, _, angular = planar_twist(fields)
+        self.command(linear, angular)
 
     def on_angle(self, fields: dict[str, Any]) -> None:
         self.command(float(fields.get("data", 0.0) or 0.0), 0.0)
@@ -192,20 +192,9 @@ class AckermannSteering(SystemPlugin):
     def _odometry(self, sim_time_ns: int) -> None:
         wheels = self.entity.joint_states([self.left[0], self.right[0], self.left_steer[0], self.right_steer[0]])
         self.odom.update(*(s[0] for s in wheels), sim_time_ns * 1e-9)
-        if not ((self._odom_pub and self._odom_pub.matched) or (self._tf_pub and self._tf_pub.matched)):
-            return
-        o = self.odom
-        odom, tf = odometry_messages(
-            sim_time_ns,
-            self.p.frame_id,
-            self.p.child_frame_id,
-            (o.x_m, o.y_m, o.heading_rad),
-            (o.linear_m_s, 0.0, o.angular_rad_s),
-        )
-        if self._odom_pub is not None:
-            self._odom_pub.publish(odom)
-        if self._tf_pub is not None:
-            self._tf_pub.publish(tf)
+        if self.output is not None:
+            o = self.odom
+            self.output.publish(sim_time_ns, (o.x_m, o.y_m, o.heading_rad), (o.linear_m_s, 0.0, o.angular_rad_s))
 
     def reset(self) -> None:
         self.odom.reset()
@@ -214,12 +203,4 @@ class AckermannSteering(SystemPlugin):
         self._wheels = None  # re-sent on the next step
 
     def close(self) -> None:
-        if self._step in self.ctx.stepper.step_hooks:
-            self.ctx.stepper.step_hooks.remove(self._step)
-        if self._task is not None:
-            self.ctx.stepper.remove_task(self._task)
-        t = self.ctx.transport
-        if t is not None:
-            for obj in (self._sub, self._odom_pub, self._tf_pub):
-                if obj is not None:
-                    t.release(obj)
+        self.attached.close()

@@ -17,85 +17,38 @@ from typing import Any
 from diffctl.description.model import Plugin
 from diffctl.sim.entity import Entity
 from diffctl.sim.plugins.base import PluginContext, SystemPlugin, bool_param, float_param
-from diffctl.sim.plugins.gz_pid import GzPid
-from diffctl.sim.plugins.system_support import find_joints, int_param, valid_topic
+from diffctl.sim.plugins.joint_command import CONTROLLER_PID, CommandedJoints, double_value, pid_from
+from diffctl.sim.plugins.system_support import int_param
 
-
-def command_topic(plugin: Plugin, model: str, default: str, use_actuator_msg: bool) -> str:
-    """gz-sim's precedence for a joint controller's command topic: topic, sub_topic, /actuators, default."""
-    if plugin.get("topic"):
-        return valid_topic(plugin.get("topic") or "")
-    if plugin.get("sub_topic"):
-        return valid_topic(f"/model/{model}/{plugin.get('sub_topic')}")
-    return "/actuators" if use_actuator_msg else valid_topic(default)
-
-
-PID_TAGS = ("p_gain", "i_gain", "d_gain", "i_max", "i_min", "cmd_max", "cmd_min", "cmd_offset")
-
-
-def pid_from(plugin: Plugin, source: str, defaults: dict[str, float], prefix: str = "") -> GzPid:
-    def num(tag: str) -> float:
-        value = float_param(plugin, prefix + tag, defaults[tag], source=source)
-        return defaults[tag] if value is None else value
-
-    return GzPid(*(num(tag) for tag in PID_TAGS))  # (GzPid's fields are in this order)
-
-
-POSITION_PID = {
-    "p_gain": 1.0,
-    "i_gain": 0.1,
-    "d_gain": 0.01,
-    "i_max": 1.0,
-    "i_min": -1.0,
-    "cmd_max": 1000.0,
-    "cmd_min": -1000.0,
-    "cmd_offset": 0.0,
-}
+POSITION_PID = {**CONTROLLER_PID, "i_gain": 0.1, "d_gain": 0.01}
 
 
 class JointPositionController(SystemPlugin):
     def __init__(self, ctx: PluginContext, entity: Entity, plugin: Plugin) -> None:
         self.ctx, self.entity = ctx, entity
         source = entity.model.source
-        names = [n for n in plugin.get_all("joint_name") if n.strip()]
-        self.joints = find_joints(ctx, entity, names, "JointPositionController")
+        self.commanded = CommandedJoints(ctx, entity, plugin, "JointPositionController")
+        self.joints = self.commanded.joints
         self.joint_index = int_param(plugin, "joint_index", 0, source=source)
         self.pid = pid_from(plugin, source, POSITION_PID)
         self.max_set = plugin.get("cmd_max") is not None
         self.velocity_mode = bool_param(plugin, "use_velocity_commands", False, source=source)
         self.initial = float_param(plugin, "initial_position", 0.0, source=source) or 0.0
         self.target = self.initial
-        self.use_actuator_msg = bool_param(plugin, "use_actuator_msg", False, source=source) and bool(
-            plugin.get("actuator_number")
-        )
-        self.actuator_number = int_param(plugin, "actuator_number", 0, source=source)
         self._dt_s = ctx.stepper.step_ns * 1e-9
-        self._sub = None
-        if not names:
-            ctx.log.warn(f"JointPositionController on model {entity.name!r}: failed to get any <joint_name>")
+        self.topic = self.commanded.listen(f"{self.joint_index}/cmd_pos", "position", self.command)
+        if self.topic is None:
             return
-        default = f"/model/{entity.name}/joint/{names[0]}/{self.joint_index}/cmd_pos"
-        self.topic = command_topic(plugin, entity.name, default, self.use_actuator_msg)
-        if ctx.transport is not None:
-            if self.use_actuator_msg:
-                self._sub = ctx.transport.subscribe(self.topic, "gz.msgs.Actuators", self.on_actuators)
-            else:
-                self._sub = ctx.transport.subscribe(self.topic, "gz.msgs.Double", self.on_double)
         if self.joint_index != 0:
             ctx.log.warn(
-                f"JointPositionController: <joint_index> {self.joint_index} but joint [{names[0]}] has only one "
-                "axis: this controller is ignored"
+                f"JointPositionController: <joint_index> {self.joint_index} but joint [{self.commanded.names[0]}] "
+                "has only one axis: this controller is ignored"
             )
         elif self.joints:
-            ctx.stepper.step_hooks.append(self._step)
+            self.commanded.attached.each_step(self._step)
 
     def on_double(self, fields: dict[str, Any]) -> None:
-        self.command(float(fields.get("data", 0.0) or 0.0))
-
-    def on_actuators(self, fields: dict[str, Any]) -> None:
-        position = list(fields.get("position") if fields.get("position") is not None else [])
-        if self.actuator_number < len(position):
-            self.command(float(position[self.actuator_number]))
+        self.command(double_value(fields))
 
     def command(self, position: float) -> None:
         self.target = position  # a non-finite target makes the PID output 0, as gz-math's does
@@ -120,7 +73,4 @@ class JointPositionController(SystemPlugin):
         self.target = self.initial
 
     def close(self) -> None:
-        if self._step in self.ctx.stepper.step_hooks:
-            self.ctx.stepper.step_hooks.remove(self._step)
-        if self._sub is not None and self.ctx.transport is not None:
-            self.ctx.transport.release(self._sub)
+        self.commanded.close()

@@ -25,7 +25,7 @@ from diffctl.errors import DescriptionError
 from diffctl.sim.entity import Entity, JointHandle
 from diffctl.sim.plugins.base import PluginContext, SystemPlugin
 from diffctl.sim.plugins.gz_pid import GzPid
-from diffctl.sim.plugins.joint_position_controller import PID_TAGS
+from diffctl.sim.plugins.joint_command import PID_TAGS
 from diffctl.sim.plugins.system_support import valid_topic
 
 PID_DEFAULTS = {

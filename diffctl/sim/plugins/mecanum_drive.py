@@ -17,13 +17,15 @@ from typing import Any
 
 from diffctl.description.model import Plugin
 from diffctl.sim.entity import Entity, JointHandle
+from diffctl.sim.plugins.attachments import Attachments
 from diffctl.sim.plugins.base import PluginContext, SystemPlugin, float_param, rate_period_ns
 from diffctl.sim.plugins.diff_drive_math import Limits, limit_speed
 from diffctl.sim.plugins.steering_math import MecanumOdometry, mecanum_wheel_speeds
 from diffctl.sim.plugins.system_support import (
+    OdometryOutput,
     find_joints,
     finite_or_none,
-    odometry_messages,
+    planar_twist,
     speed_limits,
     valid_topic,
 )
@@ -77,23 +79,19 @@ class MecanumDrive(SystemPlugin):
         self.target = (0.0, 0.0, 0.0)
         self._last = [(0.0, 0.0, 0.0), (0.0, 0.0, 0.0)]  # the last two limited commands, newest first
         self._dt_s = ctx.stepper.step_ns * 1e-9
-        self._odom_pub = self._tf_pub = self._sub = None
-        t = ctx.transport
-        if t is not None:
-            self._sub = t.subscribe(params.topic, "gz.msgs.Twist", self.on_twist)
-            self._odom_pub = t.publisher(params.odom_topic, "gz.msgs.Odometry")
-            self._tf_pub = t.publisher(params.tf_topic, "gz.msgs.Pose_V")
-        self._task = None
+        self.attached = Attachments(ctx)
+        self.attached.subscribe(params.topic, "gz.msgs.Twist", self.on_twist)
+        self.output = OdometryOutput(self.attached, params.odom_topic, params.tf_topic, params.frame_id,
+                                     params.child_frame_id)
         if self.active:
             self._apply((0.0, 0.0, 0.0))  # held until the first command, as gz-sim commands 0 every step
-            ctx.stepper.step_hooks.append(self._step)
+            self.attached.each_step(self._step)
             hz = params.odom_publish_frequency_hz
             period = rate_period_ns(hz, ctx.stepper.step_ns) if hz > 0 else ctx.stepper.step_ns
-            self._task = ctx.stepper.add_task(f"mecanum_drive:{entity.name}", period, self._odometry)
+            self.attached.every(f"mecanum_drive:{entity.name}", period, self._odometry)
 
     def on_twist(self, fields: dict[str, Any]) -> None:
-        lin, ang = fields.get("linear") or {}, fields.get("angular") or {}
-        self.command(float(lin.get("x", 0.0) or 0.0), float(lin.get("y", 0.0) or 0.0), float(ang.get("z", 0.0) or 0.0))
+        self.command(*planar_twist(fields))
 
     def command(self, linear_m_s: float, lateral_m_s: float, angular_rad_s: float) -> None:
         if not finite_or_none(linear_m_s, lateral_m_s, angular_rad_s):
@@ -127,20 +125,8 @@ class MecanumDrive(SystemPlugin):
             return
         states = self.entity.joint_states([w[0] for w in self.wheels])
         self.odom.update(*(s[0] for s in states), t)
-        if not ((self._odom_pub and self._odom_pub.matched) or (self._tf_pub and self._tf_pub.matched)):
-            return
         o = self.odom
-        odom, tf = odometry_messages(
-            sim_time_ns,
-            self.p.frame_id,
-            self.p.child_frame_id,
-            (o.x_m, o.y_m, o.heading_rad),
-            (o.linear_m_s, o.lateral_m_s, o.angular_rad_s),
-        )
-        if self._odom_pub is not None:
-            self._odom_pub.publish(odom)
-        if self._tf_pub is not None:
-            self._tf_pub.publish(tf)
+        self.output.publish(sim_time_ns, (o.x_m, o.y_m, o.heading_rad), (o.linear_m_s, o.lateral_m_s, o.angular_rad_s))
 
     def reset(self) -> None:
         self.odom.initialized = False
@@ -150,12 +136,4 @@ class MecanumDrive(SystemPlugin):
             self._apply((0.0, 0.0, 0.0))
 
     def close(self) -> None:
-        if self._step in self.ctx.stepper.step_hooks:
-            self.ctx.stepper.step_hooks.remove(self._step)
-        if self._task is not None:
-            self.ctx.stepper.remove_task(self._task)
-        t = self.ctx.transport
-        if t is not None:
-            for obj in (self._sub, self._odom_pub, self._tf_pub):
-                if obj is not None:
-                    t.release(obj)
+        self.attached.close()

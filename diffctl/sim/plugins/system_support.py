@@ -1,5 +1,6 @@
 """What Gazebo's model systems share: joints found by name (a missing one is warned about, as gz-sim does, and
-the system idles), gz topic names made valid, and the wheel-odometry messages drive systems publish."""
+the system idles), gz topic names made valid, a gz.msgs.Twist's planar components, and the wheel odometry drive
+systems publish (its messages, and the publishers that send them while anyone listens)."""
 
 from __future__ import annotations
 
@@ -11,6 +12,7 @@ from diffctl.bus import gz
 from diffctl.description.model import Plugin
 from diffctl.errors import DescriptionError
 from diffctl.sim.entity import Entity, JointHandle
+from diffctl.sim.plugins.attachments import Attachments
 from diffctl.sim.plugins.base import PluginContext, float_param
 from diffctl.sim.plugins.diff_drive_math import Limits
 
@@ -70,6 +72,12 @@ def finite_or_none(*values: float) -> bool:
     return all(math.isfinite(v) for v in values)
 
 
+def planar_twist(fields: dict[str, Any]) -> tuple[float, float, float]:
+    """(linear.x, linear.y, angular.z) of a gz.msgs.Twist's fields, an absent one 0."""
+    lin, ang = fields.get("linear") or {}, fields.get("angular") or {}
+    return float(lin.get("x", 0.0) or 0.0), float(lin.get("y", 0.0) or 0.0), float(ang.get("z", 0.0) or 0.0)
+
+
 def odometry_messages(
     sim_time_ns: int,
     frame_id: str,
@@ -93,3 +101,24 @@ def odometry_messages(
         "pose": [{"header": header, "position": position, "orientation": orientation}],
     }
     return odom, tf
+
+
+class OdometryOutput:
+    """A drive system's odometry (gz.msgs.Odometry) and tf (gz.msgs.Pose_V) publishers; a sample is only made
+    while one of them has a subscriber."""
+
+    def __init__(self, attached: Attachments, odom_topic: str, tf_topic: str, frame_id: str,
+                 child_frame_id: str | None) -> None:
+        self._odom = attached.publisher(odom_topic, "gz.msgs.Odometry")
+        self._tf = attached.publisher(tf_topic, "gz.msgs.Pose_V")
+        self.frame_id, self.child_frame_id = frame_id, child_frame_id
+
+    def publish(self, sim_time_ns: int, pose_xy_yaw: tuple[float, float, float],
+                twist: tuple[float, float, float]) -> None:
+        if not ((self._odom and self._odom.matched) or (self._tf and self._tf.matched)):
+            return
+        odom, tf = odometry_messages(sim_time_ns, self.frame_id, self.child_frame_id, pose_xy_yaw, twist)
+        if self._odom is not None:
+            self._odom.publish(odom)
+        if self._tf is not None:
+            self._tf.publish(tf)

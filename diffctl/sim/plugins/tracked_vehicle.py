@@ -23,9 +23,10 @@ from lxml import etree
 from diffctl.description.model import Plugin
 from diffctl.errors import DescriptionError
 from diffctl.sim.entity import Entity
+from diffctl.sim.plugins.attachments import Attachments
 from diffctl.sim.plugins.base import PluginContext, SystemPlugin, float_param, rate_period_ns
 from diffctl.sim.plugins.diff_drive_math import Limits, Odometry, limit_speed
-from diffctl.sim.plugins.system_support import odometry_messages, valid_topic
+from diffctl.sim.plugins.system_support import OdometryOutput, planar_twist, valid_topic
 from diffctl.sim.plugins.track_controller import TrackController
 
 # gz-sim 8 never reads <track_height>: its odometry runs on its default height (0.2 m), whose half turns track
@@ -81,38 +82,32 @@ class TrackedVehicle(SystemPlugin):
         self.center: tuple[float, float, float] | None = None
         self.odom = Odometry(self.separation_m, ODOMETRY_WHEEL_RADIUS_M)
         self._dt_s = ctx.stepper.step_ns * 1e-9
-        self._subs: list[Any] = []
+        self.attached = Attachments(ctx)
         self._pubs: dict[str, Any] = {}
         self._cor_pubs: dict[str, Any] = {}
-        self._odom_pub = self._tf_pub = None
-        self._task = None
+        self.output: OdometryOutput | None = None
         if not self.active:
             return
-        t = ctx.transport
-        if t is not None:
-            self._subs.append(
-                t.subscribe(
-                    valid_topic(plugin.get("topic") or f"/model/{name}/cmd_vel"), "gz.msgs.Twist", self.on_twist
-                )
-            )
-            se_topic = valid_topic(plugin.get("steering_efficiency_topic") or f"/model/{name}/steering_efficiency")
-            self._subs.append(t.subscribe(se_topic, "gz.msgs.Double", self.on_efficiency))
-            self._odom_pub = t.publisher(
-                valid_topic(plugin.get("odom_topic") or f"/model/{name}/odometry"), "gz.msgs.Odometry"
-            )
-            self._tf_pub = t.publisher(valid_topic(plugin.get("tf_topic") or f"/model/{name}/tf"), "gz.msgs.Pose_V")
+        a = self.attached
+        a.subscribe(valid_topic(plugin.get("topic") or f"/model/{name}/cmd_vel"), "gz.msgs.Twist", self.on_twist)
+        se_topic = valid_topic(plugin.get("steering_efficiency_topic") or f"/model/{name}/steering_efficiency")
+        a.subscribe(se_topic, "gz.msgs.Double", self.on_efficiency)
+        self.output = OdometryOutput(a, valid_topic(plugin.get("odom_topic") or f"/model/{name}/odometry"),
+                                     valid_topic(plugin.get("tf_topic") or f"/model/{name}/tf"), self.frame_id,
+                                     self.child_frame_id)
+        if ctx.transport is not None:
             for side in self.sides.values():
                 for link, topic, cor_topic in side:
                     if link not in self.tracks:
-                        self._pubs[link] = t.publisher(topic, "gz.msgs.Double")
-                        self._cor_pubs[link] = t.publisher(cor_topic, "gz.msgs.Vector3d")
-        ctx.stepper.step_hooks.append(self._step)
+                        self._pubs[link] = a.publisher(topic, "gz.msgs.Double")
+                        self._cor_pubs[link] = a.publisher(cor_topic, "gz.msgs.Vector3d")
+        a.each_step(self._step)
         hz = float_param(plugin, "odom_publish_frequency", 50.0, source=source) or 50.0
-        self._task = ctx.stepper.add_task(f"tracked:{name}", rate_period_ns(hz, ctx.stepper.step_ns), self._odometry)
+        a.every(f"tracked:{name}", rate_period_ns(hz, ctx.stepper.step_ns), self._odometry)
 
     def on_twist(self, fields: dict[str, Any]) -> None:
-        lin, ang = fields.get("linear") or {}, fields.get("angular") or {}
-        self.command(float(lin.get("x", 0.0) or 0.0), float(ang.get("z", 0.0) or 0.0))
+        linear, _, angular = planar_twist(fields)
+        self.command(linear, angular)
 
     def on_efficiency(self, fields: dict[str, Any]) -> None:
         value = float(fields.get("data", 0.0) or 0.0)
@@ -167,15 +162,9 @@ class TrackedVehicle(SystemPlugin):
         )
 
     def _odometry(self, sim_time_ns: int) -> None:
-        if not ((self._odom_pub and self._odom_pub.matched) or (self._tf_pub and self._tf_pub.matched)):
-            return
-        o = self.odom
-        pose, twist = (o.x_m, o.y_m, o.heading_rad), (o.linear_m_s, 0.0, o.angular_rad_s)
-        odom, tf = odometry_messages(sim_time_ns, self.frame_id, self.child_frame_id, pose, twist)
-        if self._odom_pub is not None:
-            self._odom_pub.publish(odom)
-        if self._tf_pub is not None:
-            self._tf_pub.publish(tf)
+        if self.output is not None:
+            o = self.odom
+            self.output.publish(sim_time_ns, (o.x_m, o.y_m, o.heading_rad), (o.linear_m_s, 0.0, o.angular_rad_s))
 
     def reset(self) -> None:
         self.odom.reset()
@@ -186,12 +175,4 @@ class TrackedVehicle(SystemPlugin):
         self._new = True
 
     def close(self) -> None:
-        if self._step in self.ctx.stepper.step_hooks:
-            self.ctx.stepper.step_hooks.remove(self._step)
-        if self._task is not None:
-            self.ctx.stepper.remove_task(self._task)
-        t = self.ctx.transport
-        if t is not None:
-            for obj in (*self._subs, *self._pubs.values(), self._odom_pub, self._tf_pub):
-                if obj is not None:
-                    t.release(obj)
+        self.attached.close()
