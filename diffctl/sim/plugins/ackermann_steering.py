@@ -24,6 +24,7 @@ from diffctl.sim.plugins.base import PluginContext, SystemPlugin, bool_param, fl
 from diffctl.sim.plugins.diff_drive_math import Limits, limit_speed
 from diffctl.sim.plugins.steering_math import AckermannOdometry, ackermann_command, ackermann_steer_only
 from diffctl.sim.plugins.system_support import (
+    OdometryNames,
     OdometryOutput,
     find_joints,
     finite_or_none,
@@ -51,10 +52,7 @@ class AckermannSteeringParams:
     steer_p_gain: float
     odom_publish_frequency_hz: float
     topic: str
-    odom_topic: str
-    tf_topic: str
-    frame_id: str
-    child_frame_id: str
+    odometry: OdometryNames
     limits: Limits
 
     @staticmethod
@@ -91,10 +89,7 @@ class AckermannSteeringParams:
             steer_p_gain=num("steer_p_gain", 1.0),
             odom_publish_frequency_hz=num("odom_publish_frequency", 50.0),
             topic=valid_topic(topic),
-            odom_topic=valid_topic(plugin.get("odom_topic") or f"{base}/odometry"),
-            tf_topic=valid_topic(plugin.get("tf_topic") or f"{base}/tf"),
-            frame_id=plugin.get("frame_id") or f"{model}/odom",
-            child_frame_id=plugin.get("child_frame_id") or f"{model}/{canonical_link}",
+            odometry=OdometryNames.from_plugin(plugin, model, canonical_link),
             limits=speed_limits(plugin, source),
         )
 
@@ -120,8 +115,7 @@ class AckermannSteering(SystemPlugin):
         self.output: OdometryOutput | None = None
         if not params.steering_only:
             self.attached.subscribe(params.topic, "gz.msgs.Twist", self.on_twist)
-            self.output = OdometryOutput(self.attached, params.odom_topic, params.tf_topic, params.frame_id,
-                                         params.child_frame_id)
+            self.output = OdometryOutput(self.attached, params.odometry)
         elif params.use_actuator_msg:
             self.attached.subscribe(params.topic, "gz.msgs.Actuators", self.on_actuators)
         else:

@@ -22,6 +22,7 @@ from diffctl.sim.plugins.base import PluginContext, SystemPlugin, float_param, r
 from diffctl.sim.plugins.diff_drive_math import Limits, limit_speed
 from diffctl.sim.plugins.steering_math import MecanumOdometry, mecanum_wheel_speeds
 from diffctl.sim.plugins.system_support import (
+    OdometryNames,
     OdometryOutput,
     find_joints,
     finite_or_none,
@@ -41,10 +42,7 @@ class MecanumDriveParams:
     wheel_radius_m: float
     odom_publish_frequency_hz: float
     topic: str
-    odom_topic: str
-    tf_topic: str
-    frame_id: str
-    child_frame_id: str
+    odometry: OdometryNames
     limits: Limits
 
     @staticmethod
@@ -52,18 +50,14 @@ class MecanumDriveParams:
         def num(tag: str, default: float | None) -> float | None:
             return float_param(plugin, tag, default, source=source)
 
-        base = f"/model/{model}"
         return MecanumDriveParams(
             joints=tuple(tuple(plugin.get_all(tag)) for tag in WHEELS),
             wheel_separation_m=num("wheel_separation", 1.0) or 1.0,
             wheelbase_m=num("wheelbase", 1.0) or 1.0,
             wheel_radius_m=num("wheel_radius", 0.2) or 0.2,
             odom_publish_frequency_hz=num("odom_publish_frequency", 50.0) or 0.0,
-            topic=valid_topic(plugin.get("topic") or f"{base}/cmd_vel"),
-            odom_topic=valid_topic(plugin.get("odom_topic") or f"{base}/odometry"),
-            tf_topic=plugin.get("tf_topic") or f"{base}/tf",
-            frame_id=plugin.get("frame_id") or f"{model}/odom",
-            child_frame_id=plugin.get("child_frame_id") or f"{model}/{canonical_link}",
+            topic=valid_topic(plugin.get("topic") or f"/model/{model}/cmd_vel"),
+            odometry=OdometryNames.from_plugin(plugin, model, canonical_link, tf_topic_as_given=True),
             limits=speed_limits(plugin, source),
         )
 
@@ -81,8 +75,7 @@ class MecanumDrive(SystemPlugin):
         self._dt_s = ctx.stepper.step_ns * 1e-9
         self.attached = Attachments(ctx)
         self.attached.subscribe(params.topic, "gz.msgs.Twist", self.on_twist)
-        self.output = OdometryOutput(self.attached, params.odom_topic, params.tf_topic, params.frame_id,
-                                     params.child_frame_id)
+        self.output = OdometryOutput(self.attached, params.odometry)
         if self.active:
             self._apply((0.0, 0.0, 0.0))  # held until the first command, as gz-sim commands 0 every step
             self.attached.each_step(self._step)

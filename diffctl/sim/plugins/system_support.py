@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import math
 import re
+from dataclasses import dataclass
 from typing import Any
 
 from diffctl.bus import gz
@@ -103,21 +104,45 @@ def odometry_messages(
     return odom, tf
 
 
+@dataclass(frozen=True)
+class OdometryNames:
+    """Where a drive system's odometry goes and in which frames."""
+
+    odom_topic: str
+    tf_topic: str
+    frame_id: str
+    child_frame_id: str | None
+
+    @staticmethod
+    def from_plugin(plugin: Plugin, model: str, canonical_link: str, *, tf_topic_as_given: bool = False
+                    ) -> OdometryNames:
+        """`odom_topic`, `tf_topic`, `frame_id`, `child_frame_id` with gz-sim's defaults under /model/<model>
+        (`tf_topic_as_given`: a system that does not make its tf topic valid, as MecanumDrive)."""
+        base = f"/model/{model}"
+        tf_topic = plugin.get("tf_topic") or f"{base}/tf"
+        return OdometryNames(
+            odom_topic=valid_topic(plugin.get("odom_topic") or f"{base}/odometry"),
+            tf_topic=tf_topic if tf_topic_as_given else valid_topic(tf_topic),
+            frame_id=plugin.get("frame_id") or f"{model}/odom",
+            child_frame_id=plugin.get("child_frame_id") or f"{model}/{canonical_link}",
+        )
+
+
 class OdometryOutput:
     """A drive system's odometry (gz.msgs.Odometry) and tf (gz.msgs.Pose_V) publishers; a sample is only made
     while one of them has a subscriber."""
 
-    def __init__(self, attached: Attachments, odom_topic: str, tf_topic: str, frame_id: str,
-                 child_frame_id: str | None) -> None:
-        self._odom = attached.publisher(odom_topic, "gz.msgs.Odometry")
-        self._tf = attached.publisher(tf_topic, "gz.msgs.Pose_V")
-        self.frame_id, self.child_frame_id = frame_id, child_frame_id
+    def __init__(self, attached: Attachments, names: OdometryNames) -> None:
+        self._odom = attached.publisher(names.odom_topic, "gz.msgs.Odometry")
+        self._tf = attached.publisher(names.tf_topic, "gz.msgs.Pose_V")
+        self.names = names
 
     def publish(self, sim_time_ns: int, pose_xy_yaw: tuple[float, float, float],
                 twist: tuple[float, float, float]) -> None:
         if not ((self._odom and self._odom.matched) or (self._tf and self._tf.matched)):
             return
-        odom, tf = odometry_messages(sim_time_ns, self.frame_id, self.child_frame_id, pose_xy_yaw, twist)
+        names = self.names
+        odom, tf = odometry_messages(sim_time_ns, names.frame_id, names.child_frame_id, pose_xy_yaw, twist)
         if self._odom is not None:
             self._odom.publish(odom)
         if self._tf is not None:

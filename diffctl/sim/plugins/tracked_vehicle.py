@@ -26,7 +26,7 @@ from diffctl.sim.entity import Entity
 from diffctl.sim.plugins.attachments import Attachments
 from diffctl.sim.plugins.base import PluginContext, SystemPlugin, float_param, rate_period_ns
 from diffctl.sim.plugins.diff_drive_math import Limits, Odometry, limit_speed
-from diffctl.sim.plugins.system_support import OdometryOutput, planar_twist, valid_topic
+from diffctl.sim.plugins.system_support import OdometryNames, OdometryOutput, planar_twist, valid_topic
 from diffctl.sim.plugins.track_controller import TrackController
 
 # gz-sim 8 never reads <track_height>: its odometry runs on its default height (0.2 m), whose half turns track
@@ -92,9 +92,10 @@ class TrackedVehicle(SystemPlugin):
         a.subscribe(valid_topic(plugin.get("topic") or f"/model/{name}/cmd_vel"), "gz.msgs.Twist", self.on_twist)
         se_topic = valid_topic(plugin.get("steering_efficiency_topic") or f"/model/{name}/steering_efficiency")
         a.subscribe(se_topic, "gz.msgs.Double", self.on_efficiency)
-        self.output = OdometryOutput(a, valid_topic(plugin.get("odom_topic") or f"/model/{name}/odometry"),
-                                     valid_topic(plugin.get("tf_topic") or f"/model/{name}/tf"), self.frame_id,
-                                     self.child_frame_id)
+        names = OdometryNames(valid_topic(plugin.get("odom_topic") or f"/model/{name}/odometry"),
+                              valid_topic(plugin.get("tf_topic") or f"/model/{name}/tf"), self.frame_id,
+                              self.child_frame_id)
+        self.output = OdometryOutput(a, names)
         if ctx.transport is not None:
             for side in self.sides.values():
                 for link, topic, cor_topic in side:
