@@ -335,24 +335,51 @@ def mecanum_sdf(params_file: Path) -> str:
             f"{''.join(links)}{''.join(joints)}{control}</model></sdf>")
 
 
+class Taken:
+    """How many messages a hosted controller's subscription on `topic` has taken (its callback wrapped): the
+    world is stepped on only once the controller has the command just sent, whatever the machine's load."""
+
+    def __init__(self, hosted: Hosted, topic: str) -> None:
+        node = hosted.cm.controllers[topic.split("/")[1]].instance.get_node()
+        sub = next(s for s in node.subscriptions if s.topic_name == topic)
+        self.count = 0
+        self._changed = threading.Condition()
+        inner = sub.callback
+
+        def counting(msg: Any) -> None:
+            inner(msg)
+            with self._changed:
+                self.count += 1
+                self._changed.notify_all()
+
+        sub.callback = counting
+
+    def wait_past(self, count: int, timeout_s: float = 30.0) -> None:
+        with self._changed:
+            assert self._changed.wait_for(lambda: self.count > count, timeout_s), "the controller took no command"
+
+
 def drive(hosted: Hosted, client: ClientNode, topic: str, twist: dict, seconds: float,
           samples: list[tuple[float, Any]] | None = None) -> None:
-    """Publish a TwistStamped (stamp 0: "now") every 50 ms of sim time for `seconds`, stepping the world; record
-    (sim time, true pose) every 50 ms."""
+    """Publish a TwistStamped (stamp 0: "now") every 50 ms of sim time for `seconds`, each taken by the controller
+    before the world steps on; record (sim time, true pose) every 50 ms."""
     from diffctl.client.interfaces import cls
 
-    pub = getattr(client, "_pubs", {}).get(topic)
-    if pub is None:
+    endpoints = client.__dict__.setdefault("_drive", {})
+    if topic not in endpoints:
         pub = client.node.create_publisher(cls("geometry_msgs/msg/TwistStamped"), topic, 10)
-        client._pubs = {**getattr(client, "_pubs", {}), topic: pub}
+        wait_until(lambda: pub.get_subscription_count() > 0, f"the controller's subscription to {topic}")
+        endpoints[topic] = (pub, Taken(hosted, topic))
+    pub, taken = endpoints[topic]
     msg = cls("geometry_msgs/msg/TwistStamped")()
     msg.twist.linear.x = twist.get("x", 0.0)
     msg.twist.linear.y = twist.get("y", 0.0)
     msg.twist.angular.z = twist.get("z", 0.0)
     end = hosted.sim_time_s + seconds
     while hosted.sim_time_s < end:
+        before = taken.count
         pub.publish(msg)
-        time.sleep(0.003)  # let the bus deliver before the next control cycles
+        taken.wait_past(before)
         hosted.step(50)
         if samples is not None:
             samples.append((hosted.sim_time_s, hosted.rt.entity.pose()))
@@ -385,6 +412,18 @@ def planar(pose: Any) -> tuple[float, float, float]:
 def odometry_of(msgs: list[Any]) -> tuple[float, float, float]:
     p = msgs[-1].pose.pose
     return p.position.x, p.position.y, 2 * math.atan2(p.orientation.z, p.orientation.w)
+
+
+def last_cycle_odometry(hosted: Hosted, msgs: list[Any]) -> tuple[float, float, float]:
+    """The odometry the controller published at the world's last control cycle (10 ms at 100 Hz), once it has
+    come: an earlier sample lags the true pose by as far as the robot went since."""
+    last_cycle_ns = hosted.sim.stepper.sim_time_ns - 10_000_000
+
+    def stamp_ns(m: Any) -> int:
+        return m.header.stamp.sec * 1_000_000_000 + m.header.stamp.nanosec
+
+    wait_until(lambda: msgs and stamp_ns(msgs[-1]) >= last_cycle_ns, "the last control cycle's odometry", 30.0)
+    return odometry_of(msgs)
 
 
 ACKERMANN_YAML = """controller_manager:
@@ -432,8 +471,7 @@ def test_ackermann_steering_controller_drives_the_commanded_arc(router: str, tmp
         assert abs(sideways) < 0.01
         # the controller's odometry (from the wheels and steering) follows the true pose of base_link
         x, y, yaw = planar(hosted.rt.entity.pose())
-        wait_until(lambda: odom and abs(odometry_of(odom)[0] - x) < 0.5, "odometry")
-        ox, oy, oyaw = odometry_of(odom)
+        ox, oy, oyaw = last_cycle_odometry(hosted, odom)
         travelled = v * (hosted.sim_time_s - 1.0)
         assert math.hypot(ox - x, oy - y) < 0.02 * travelled
         assert abs(math.remainder(oyaw - yaw, 2 * math.pi)) < 0.02
@@ -495,8 +533,7 @@ def test_tricycle_controller_drives_the_commanded_arc(router: str, tmp_path: Pat
         assert forward == pytest.approx(v, rel=0.01) and turn == pytest.approx(w, rel=0.02)
         assert abs(sideways) < 0.01
         x, y, yaw = planar(hosted.rt.entity.pose())
-        wait_until(lambda: odom and abs(odometry_of(odom)[0] - x) < 0.5, "odometry")
-        ox, oy, oyaw = odometry_of(odom)
+        ox, oy, oyaw = last_cycle_odometry(hosted, odom)
         assert math.hypot(ox - x, oy - y) < 0.02 * v * hosted.sim_time_s
         assert abs(math.remainder(oyaw - yaw, 2 * math.pi)) < 0.02
     finally:
@@ -551,8 +588,7 @@ def test_mecanum_drive_controller_drives_sideways(router: str, tmp_path: Path) -
             [hosted.rt.entity.joint(f"{w}_joint") for w in ("front_left", "front_right", "rear_right", "rear_left")])]
         assert speeds == pytest.approx([-vy / WHEEL_R, vy / WHEEL_R, -vy / WHEEL_R, vy / WHEEL_R], rel=0.02)
         x, y, yaw = planar(hosted.rt.entity.pose())
-        wait_until(lambda: odom and abs(odometry_of(odom)[1] - y) < 0.5, "odometry")
-        ox, oy, oyaw = odometry_of(odom)
+        ox, oy, oyaw = last_cycle_odometry(hosted, odom)
         assert math.hypot(ox - x, oy - y) < 0.03 * vy * hosted.sim_time_s
         assert abs(math.remainder(oyaw - yaw, 2 * math.pi)) < 0.02
     finally:
