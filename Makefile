@@ -52,11 +52,16 @@ jazzy-oracle: $(JAZZY)/.installed
 run: $(STAMP) bytecode
 	$(BIN)/diffctl launch sim_control
 
+# Both cores (pytest-xdist): most tests wait on child processes, sim time and the bus, so one worker leaves a
+# core idle. A test that cannot share the machine goes in an xdist_group (run one after another on one worker).
+PYTEST_WORKERS ?= 2
+PYTEST_PARALLEL := -n $(PYTEST_WORKERS) --dist loadgroup
+
 test: $(STAMP) bytecode system-deps jazzy-oracle
-	$(BIN)/python -m pytest -p no:cacheprovider --durations=25
+	$(BIN)/python -m pytest -p no:cacheprovider $(PYTEST_PARALLEL) --durations=25
 
 test-fast: $(STAMP) bytecode
-	$(BIN)/python -m pytest -p no:cacheprovider -m "not slow and not browser"
+	$(BIN)/python -m pytest -p no:cacheprovider $(PYTEST_PARALLEL) -m "not slow and not browser"
 
 # `make bench REFERENCE=1` also writes bench/results/reference-<date>-<commit>.json (the file the README cites).
 bench: $(STAMP) bytecode jazzy-oracle

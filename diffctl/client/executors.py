@@ -22,6 +22,7 @@ from diffctl.bus.session import before_close
 from diffctl.client import waiting
 from diffctl.client.context import Context, get_default_context
 from diffctl.client.exceptions import RCLError
+from diffctl.client.signals import shut_down_by_signal
 from diffctl.client.task import Future, Task
 
 
@@ -189,6 +190,8 @@ class Executor:
     def spin(self) -> None:
         while self._context.ok() and not self._is_shutdown:
             self.spin_once()
+        if shut_down_by_signal(self._context):
+            raise ExternalShutdownException()
 
     def spin_until_future_complete(self, future: Future, timeout_sec: float | None = None) -> None:
         future.add_done_callback(lambda _f: self.wake())

@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from diffctl.client.context import Context, get_default_context, track
-from diffctl.client.signals import SignalHandlerOptions, install_signal_handlers
+from diffctl.client.signals import SignalHandlerOptions, install_signal_handlers, shut_down_by_signal
 from diffctl.client.task import Future
 
 _global_executor: Any = None
@@ -116,6 +116,10 @@ def spin(node: Any, executor: Any = None) -> None:
         executor.add_node(node)
         while executor.context.ok():
             executor.spin_once()
+        if shut_down_by_signal(executor.context):
+            from diffctl.client.executors import ExternalShutdownException
+
+            raise ExternalShutdownException()
     finally:
         executor.remove_node(node)
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 import enum
 import signal
 import threading
+import weakref
 from typing import Any
 
 from diffctl.bus.session import before_close
@@ -41,9 +42,20 @@ def _join_shutdown_threads() -> None:
 before_close(_join_shutdown_threads, first=True)
 
 
+# The contexts a signal shut down: a spin loop that finds its context gone between two spin_once calls (rather
+# than inside one) still reports the external shutdown, so the outcome does not depend on the scheduler.
+_by_signal: weakref.WeakSet[Any] = weakref.WeakSet()
+
+
 def _shutdown_all() -> None:
     for ctx in _context.all_contexts():
+        if ctx.ok():
+            _by_signal.add(ctx)
         ctx.try_shutdown()
+
+
+def shut_down_by_signal(context: Any) -> bool:
+    return context in _by_signal
 
 
 def _handler(signum: int, frame: Any) -> None:

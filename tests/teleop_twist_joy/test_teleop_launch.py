@@ -56,8 +56,11 @@ def drive(procs, argv: list[str], js: Path, declared: bool = False) -> list[Any]
         fd = fifo.open_writer(js, lambda: proc.poll() is None)
         fifo.write(fd, *fifo.initial_state(11, [0] * 8))
         assert wait_for(lambda: bool(p.graph.publishers(TOPIC)), timeout_s=60)
-        # teleop_node answers joy_node's autorepeated messages with its one stop command once it listens
-        assert wait_for(lambda: bool(got), timeout_s=60), (procs.stop(proc), proc.stdout.read())
+        # Both ends of /joy up: the stick and button below reach teleop_node (joy_node autorepeats the state).
+        # Not its one stop command on the first /joy message: sent once, it may go before this probe is matched.
+        assert wait_for(lambda: any(e.node_fqn == "/teleop_twist_joy_node" for e in p.graph.subscribers("/joy"))
+                        and any(e.node_fqn == "/joy_node" for e in p.graph.publishers("/joy")), timeout_s=60), (
+            procs.stop(proc), proc.stdout.read())
         if declared:
             for node, table in (("/joy_node", JOY_NODE), ("/teleop_twist_joy_node", TELEOP_NODE)):
                 found = {name: d.type for name, d in parameters(p, node).items() if name in table}

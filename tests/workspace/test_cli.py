@@ -68,7 +68,8 @@ def ws(tmp_path: Path) -> Path:
 
 
 def test_pkg_list_and_prefix_show_what_was_found_and_from_where(ws: Path) -> None:
-    r = diffctl("pkg", "list", cwd=ws / "src" / "my_bot")
+    # Wide enough for any temporary folder's path (under pytest-xdist it has a popen-gwN level more).
+    r = diffctl("pkg", "list", cwd=ws / "src" / "my_bot", env={"COLUMNS": "400"})
     assert r.returncode == 0, r.stderr
     assert f"workspace: {ws}" in r.stdout
     rows = {line.split()[0]: line for line in r.stdout.splitlines() if line.strip() and line.split()[0].isidentifier()}
