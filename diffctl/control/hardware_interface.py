@@ -27,7 +27,8 @@ __all__ = [
 
 @dataclass(frozen=True)
 class InterfaceInfo:
-    """`<command_interface name="velocity">` / `<state_interface>` with optional min, max, initial_value."""
+    """`<command_interface name="velocity">` / `<state_interface>` with optional min, max, initial_value (a min or
+    max not given is -inf or inf)."""
 
     name: str
     min: float = -math.inf
@@ -35,6 +36,7 @@ class InterfaceInfo:
     initial_value: float | None = None
     data_type: str = "double"
     parameters: dict[str, str] = field(default_factory=dict)
+    enable_limits: bool = True  # false: its min/max are no joint limit (`<limits enable="false"/>`)
 
 
 @dataclass(frozen=True)
@@ -46,6 +48,7 @@ class ComponentInfo:
     command_interfaces: tuple[InterfaceInfo, ...] = ()
     state_interfaces: tuple[InterfaceInfo, ...] = ()
     parameters: dict[str, str] = field(default_factory=dict)
+    enable_limits: bool = True  # false: no limits are enforced on this joint
 
 
 @dataclass(frozen=True)

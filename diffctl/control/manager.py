@@ -31,6 +31,7 @@ from diffctl.control.controller_interface import (
 )
 from diffctl.control.controller_node import controller_node_arguments
 from diffctl.control.hardware_interface import HardwareComponent, HardwareInfo
+from diffctl.control.joint_limits.joint_limits_urdf import JointLimiterSpec, hardware_joint_limits
 from diffctl.control.lifecycle import ManagedController, State, TransitionError, hook_message
 from diffctl.control.params import ControllerSpec, ManagerParams, with_controller_param
 from diffctl.control.plugin_registry import controller_class
@@ -77,8 +78,9 @@ class ControllerManager:
         self._lock = threading.RLock()  # held by the real-time cycle and by structural changes
         self._admin = threading.RLock()  # serialises service calls
         self._active: tuple[ManagedController, ...] = ()
-        # The cycle's view of `_active`: (controller, its bound update, runs every cycle)
-        self._updates: tuple[tuple[ManagedController, Callable[[Any, Any], Any], bool], ...] = ()
+        # The cycle's view of `_active`: (controller, its bound update, runs every cycle, the claimed commands a
+        # joint limiter bounds or None)
+        self._updates: tuple[tuple[ManagedController, Callable[[Any, Any], Any], bool, Any], ...] = ()
         self._period = _duration(0)  # the last cycle's period, handed on while it does not change
         self._pending: _PendingSwitch | None = None
         self.cycle_count = 0
@@ -105,9 +107,12 @@ class ControllerManager:
         """Load every component (made by `factory` when given, else from the plugin registry), then bring it to
         its initial state (active unless the parameters say not)."""
         with self._admin, self._lock:
+            limiters = self._joint_limiters(infos)
             for info in infos:
                 component = factory(info) if factory is not None else None
                 self.rm.load(info, self.log, self.update_rate, self.cancel, component)
+            if limiters:
+                self.rm.import_joint_limiters(limiters, self.log)
             for info in infos:
                 if info.name in self.params.hardware_unconfigured:
                     continue
@@ -117,6 +122,21 @@ class ControllerManager:
                 except TransitionError as e:
                     raise ConfigError(str(e), source=info.source) from e
                 self.log.info(f"hardware '{info.name}' ({info.plugin_name}) is {target.value}")
+
+    def _joint_limiters(self, infos: Sequence[HardwareInfo]) -> list[JointLimiterSpec]:
+        """The joints' limiters when the parameters enforce command limits (a bad description raises before any
+        hardware is loaded), as controller_manager's init_resource_manager decides."""
+        if not self.params.enforce_command_limits:
+            self.log.info("Enforcing command limits is disabled. Command limits from URDF will be ignored.")
+            return []
+        self.log.info("Enforcing command limits is enabled...")
+        source = next((i.source for i in infos if i.source), None) or "robot_description"
+        specs, notes = hardware_joint_limits(infos, self.robot_description, source)
+        if not self.robot_description.strip():
+            self.log.info("no robot description: the joints' limits are their <ros2_control> interfaces' min/max")
+        for level, text in notes:
+            (self.log.warn if level == "warn" else self.log.info)(text)
+        return specs
 
     def set_hardware_component_state(self, name: str, target: State) -> State:
         with self._admin, self._lock:
@@ -430,7 +450,11 @@ class ControllerManager:
         order = chain_order(active, views, self.rm.reference_owner, state_owner=self.rm.exported_state_owner)
         self._active = tuple(self.controllers[n] for n in order)
         rate = self.params.update_rate
-        self._updates = tuple((mc, mc.instance.update, mc.update_rate >= rate) for mc in self._active)
+        limited = self.rm.limited_commands if self.rm.joint_limiters else None
+        self._updates = tuple(
+            (mc, mc.instance.update, mc.update_rate >= rate, (limited(mc.claimed) or None) if limited else None)
+            for mc in self._active
+        )
 
     # ---------------------------------------------------------------------------------------------- real time
     def read(self, time_ns: int, period_s: float) -> None:
@@ -517,7 +541,7 @@ class ControllerManager:
         period_ns = round(period_s * 1e9)
         cycle_period = self._period if self._period.nanoseconds == period_ns else _duration(period_ns)
         self._period = cycle_period
-        for mc, update, every_cycle in self._updates:
+        for mc, update, every_cycle, limited in self._updates:
             period = cycle_period
             if not every_cycle and mc.last_update_ns is not None:
                 # ros2_control: run on the cycle whose elapsed time is closest to the controller's period.
@@ -528,6 +552,11 @@ class ControllerManager:
                 period = _duration(time_ns - mc.last_update_ns)
             try:
                 ret = update(time, period)
+                if limited is not None:
+                    # ros2_control limits a command as the controller sets it, at the manager's period
+                    rm_limit, desired_s = self.rm.limit_command, 1.0 / rate
+                    for handle, entry, kind in limited:
+                        rm_limit(handle, entry, kind, desired_s)
             except Exception as e:
                 if not self.params.handle_exceptions:
                     raise
@@ -540,6 +569,11 @@ class ControllerManager:
                 failed = [*(failed or ()), (mc, reason)]
         if failed:
             self._controllers_failed(failed)
+        if self.rm.joint_limiters:
+            try:
+                self.rm.enforce_command_limits(period_s)
+            except Exception as e:  # a joint past its limits under a position command: its controller failed above
+                self.log.error(f"enforcing the command limits failed: {hook_message(e)}", throttle_duration_sec=1.0)
         if self._pending is not None:
             pending, self._pending = self._pending, None
             self._execute(pending)

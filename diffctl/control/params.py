@@ -55,6 +55,7 @@ class ManagerParams:
     update_rate: int = 100
     use_sim_time: bool = False
     handle_exceptions: bool = True
+    enforce_command_limits: bool = False  # joint limits from the robot description bound the commands
     manage_overruns: bool = True
     default_strictness: int = STRICTNESS["best_effort"]
     hardware_unconfigured: tuple[str, ...] = ()
@@ -112,6 +113,8 @@ def manager_params(
             kw["use_sim_time"] = _bool(value, key, source)
         elif key == "handle_exceptions":
             kw["handle_exceptions"] = _bool(value, key, source)
+        elif key == "enforce_command_limits":
+            kw["enforce_command_limits"] = _bool(value, key, source)
         elif key == "overruns.manage":
             kw["manage_overruns"] = _bool(value, key, source)
         elif key == "defaults.switch_controller.strictness":

@@ -10,15 +10,25 @@ Reference interfaces of chainable controllers (`<controller>/linear/velocity`) a
 owned by that controller instead of a component: imported when it is configured, available while it is
 active, claimed like any other by the controller chained in front of it, removed at cleanup. The state
 interfaces a chainable controller exports are state interfaces owned the same way (shared, never claimed).
+
+Joint limits (the manager's `enforce_command_limits`): `import_joint_limiters` gives joints a limiter
+(diffctl/control/joint_limits); `limit_command` bounds one command as its controller writes it, and
+`enforce_command_limits` bounds every joint's claimed commands at once before the hardware writes them, both
+from the joint's state interfaces and the limiter's previous command, which every command-mode switch forgets.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
+from typing import Any
 
 from diffctl.control.controller_interface import CommandInterface, ReturnType, StateInterface
 from diffctl.control.hardware_interface import HardwareComponent, HardwareInfo
+from diffctl.control.joint_limits.joint_limits import INTERFACE_KINDS, JointControlInterfacesData, limiter_data_string
+from diffctl.control.joint_limits.joint_limits_urdf import JointLimiterSpec
+from diffctl.control.joint_limits.joint_saturation_limiter import JointSaturationLimiter
+from diffctl.control.joint_limits.joint_soft_limiter import JointSoftLimiter
 from diffctl.control.lifecycle import State, TransitionError, hook_message
 from diffctl.control.plugin_registry import hardware_for
 from diffctl.errors import ConfigError, DiffctlError
@@ -44,6 +54,27 @@ class HardwareHandle:
         return self.info.plugin_name
 
 
+@dataclass(eq=False)
+class JointLimiterEntry:
+    """A joint's limiter and the interfaces it reads and bounds ("joint/position", …: those that exist)."""
+
+    hardware: str
+    joint: str
+    limiter: JointSaturationLimiter
+    states: tuple[tuple[str, StateInterface], ...] = ()
+    commands: tuple[tuple[str, CommandInterface], ...] = ()
+
+    def actual(self) -> JointControlInterfacesData:
+        data = JointControlInterfacesData(self.joint)
+        for kind, handle in self.states:
+            setattr(data, kind, handle.value)
+        return data
+
+
+# A controller's claimed command interface that a joint limiter bounds: (its handle, the limiter, the interface kind)
+LimitedCommand = tuple[CommandInterface, JointLimiterEntry, str]
+
+
 class ResourceManager:
     def __init__(self, log: Callable[[str], None] | None = None) -> None:
         self.components: dict[str, HardwareHandle] = {}
@@ -59,6 +90,11 @@ class ResourceManager:
         self._readable: tuple[HardwareHandle, ...] = ()
         self._slow_active = self._slow_readable = False
         self.single: tuple[HardwareHandle, Callable, Callable | None] | None = None
+        self.joint_limiters: dict[str, JointLimiterEntry] = {}  # by joint name
+        self._limits_log: Any = None
+        # each limited joint with its claimed commands; None: to be worked out again (claims changed)
+        self._limited_claims: tuple[tuple[JointLimiterEntry, tuple[tuple[str, CommandInterface], ...]], ...] | None
+        self._limited_claims = ()
 
     # --- loading ---------------------------------------------------------------------------------------
     def load(
@@ -100,6 +136,85 @@ class ResourceManager:
             self.owner[it.name] = info.name
         self.components[info.name] = h
         return h
+
+    # --- joint limits ------------------------------------------------------------------------------------------
+    def import_joint_limiters(self, specs: Iterable[JointLimiterSpec], log: Any) -> None:
+        """A limiter for each joint `specs` names (a soft limiter where it has soft limits), logging each as the
+        resource manager does; `log` also reports limited commands. Call it after loading the hardware."""
+        self._limits_log = log
+        for spec in specs:
+            where = f"for joint '{spec.joint}' in hardware '{spec.hardware}'"
+            if spec.soft_limits is not None:
+                log.info(f"Using SoftJointLimiter {where} : '{spec.soft_limits.to_string()}'")
+                log.info(f"Creating JointSoftLimiter {where}")
+                limiter: JointSaturationLimiter = JointSoftLimiter(spec.joint, spec.limits, spec.soft_limits)
+            else:
+                log.info(f"Using JointLimiter {where} : '{spec.limits.to_string()}'")
+                log.info(f"Creating JointSaturationLimiter {where}")
+                limiter = JointSaturationLimiter(spec.joint, spec.limits)
+            self.joint_limiters[spec.joint] = JointLimiterEntry(spec.hardware, spec.joint, limiter)
+        for entry in self.joint_limiters.values():
+            names = [(k, f"{entry.joint}/{k}") for k in INTERFACE_KINDS]
+            entry.states = tuple((k, self.state_interfaces[n]) for k, n in names if n in self.state_interfaces)
+            entry.commands = tuple(
+                (k, self.command_interfaces[n]) for k, n in names
+                if n in self.command_interfaces and self.command_interfaces[n].data_type == "double"
+            )
+        self._limited_claims = None
+
+    def limited_commands(self, names: Iterable[str]) -> tuple[LimitedCommand, ...]:
+        """Which of these command interfaces a joint limiter bounds."""
+        out = []
+        for n in names:
+            handle = self.command_interfaces.get(n)
+            entry = self.joint_limiters.get(handle.prefix_name) if handle is not None else None
+            if entry is not None and any(h is handle for _, h in entry.commands):
+                out.append((handle, entry, handle.interface_name))
+        return tuple(out)
+
+    def limit_command(self, handle: CommandInterface, entry: JointLimiterEntry, kind: str, period_s: float) -> None:
+        """Bound the command a controller wrote on `handle` (raises JointPositionOutOfBounds for a position
+        command on a joint measured past its limits: that controller's update fails)."""
+        actual = entry.actual()
+        desired = JointControlInterfacesData(entry.joint)
+        setattr(desired, kind, handle.value)
+        command = desired.copy()
+        if entry.limiter.enforce(actual, desired, period_s):
+            self._limits_log.error(
+                "Command of at least one joint is out of limits (throttled log). "
+                f"{limiter_data_string(entry.joint, actual, command, desired)} with desired period : {period_s:f} sec.",
+                throttle_duration_sec=1.0,
+            )
+        value = getattr(desired, kind)
+        if value is not None:
+            handle.value = value
+
+    def enforce_command_limits(self, period_s: float) -> bool:
+        """Bound each limited joint's claimed commands together; True when one was out of its limits."""
+        claims = self._limited_claims
+        if claims is None:
+            claims = self._limited_claims = tuple(
+                (e, tuple((k, h) for k, h in e.commands if h.name in self.claimed))
+                for e in self.joint_limiters.values()
+            )
+        enforced = False
+        for entry, commands in claims:
+            if not commands:
+                continue
+            desired = JointControlInterfacesData(entry.joint)
+            for kind, handle in commands:
+                setattr(desired, kind, handle.value)
+            if entry.limiter.enforce(entry.actual(), desired, period_s):
+                enforced = True
+                for kind, handle in commands:
+                    value = getattr(desired, kind)
+                    if value is not None:
+                        handle.value = value
+        return enforced
+
+    def reset_joint_limiters(self) -> None:
+        for entry in self.joint_limiters.values():
+            entry.limiter.reset_internals()
 
     # --- lifecycle --------------------------------------------------------------------------------------
     def set_state(self, name: str, target: State) -> State:
@@ -237,11 +352,13 @@ class ResourceManager:
                 )
         for n in names:
             self.claimed[n] = controller
+        self._limited_claims = None
         return [self.command_interfaces[n] for n in names]
 
     def release(self, names: Iterable[str]) -> None:
         for n in names:
             self.claimed.pop(n, None)
+        self._limited_claims = None
 
     def components_of(self, interface_names: Iterable[str]) -> set[str]:
         return {self.owner[n] for n in interface_names if n in self.owner}
@@ -280,6 +397,7 @@ class ResourceManager:
                 return f"hardware {comp!r} failed the command mode switch: {hook_message(e)}"
             if not ok:
                 return f"hardware {comp!r} failed the command mode switch"
+        self.reset_joint_limiters()  # the previous commands belong to the modes just left
         return None
 
     # --- real-time loop ----------------------------------------------------------------------------------

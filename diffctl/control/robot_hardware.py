@@ -27,6 +27,7 @@ def _iface(it: Ros2ControlInterface) -> InterfaceInfo:
         initial_value=it.initial_value,
         data_type=it.data_type,
         parameters=dict(it.params),
+        enable_limits=it.enable_limits,
     )
 
 
@@ -37,6 +38,7 @@ def _component(c: Ros2ControlJoint, kind: str) -> ComponentInfo:
         tuple(_iface(i) for i in c.command_interfaces),
         tuple(_iface(i) for i in c.state_interfaces),
         dict(c.params),
+        c.enable_limits,
     )
 
 

@@ -350,6 +350,7 @@ class Ros2ControlInterface:
     min: float | None = None
     max: float | None = None
     data_type: str = "double"  # the element's data_type attribute, as ros2_control's component parser reads it
+    enable_limits: bool = True  # <limits enable="false"/>: min/max are no joint limits for the resource manager
 
 
 @dataclass(frozen=True)
@@ -358,6 +359,7 @@ class Ros2ControlJoint:
     command_interfaces: tuple[Ros2ControlInterface, ...] = ()
     state_interfaces: tuple[Ros2ControlInterface, ...] = ()
     params: tuple[tuple[str, str], ...] = ()
+    enable_limits: bool = True  # <limits enable="false"/> directly in the <joint>: none of its limits apply
 
 
 @dataclass(frozen=True)

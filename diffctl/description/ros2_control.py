@@ -45,6 +45,21 @@ def _number(el: etree._Element, source: str, name: str, text: str) -> float:
     return value
 
 
+def _enable_limits(el: etree._Element, source: str) -> bool:
+    """A `<limits enable="true|false"/>` child (any letter case, as ros2_control's parse_bool); true without one."""
+    limits = el.find("limits")
+    if limits is None:
+        return True
+    text = limits.get("enable")
+    if text is None:
+        _fail(limits, source, "no attribute 'enable' in 'limits' tag", 'e.g. <limits enable="false"/>')
+    value = text.strip().lower()
+    if value not in ("true", "false"):
+        _fail(limits, source, f"Input string : {text.strip()!r} is not a valid boolean value. Expected 'true' or "
+              f"'false'.")
+    return value == "true"
+
+
 def _interface(el: etree._Element, source: str) -> Ros2ControlInterface:
     name = (el.get("name") or "").strip()
     if not name:
@@ -72,6 +87,7 @@ def _interface(el: etree._Element, source: str) -> Ros2ControlInterface:
         values["min"],
         values["max"],
         data_type,
+        _enable_limits(el, source),
     )
 
 
@@ -86,7 +102,7 @@ def _component(el: etree._Element, source: str, with_commands: bool) -> Ros2Cont
         for n in names:
             if names.count(n) > 1:
                 _fail(el, source, f"{el.tag} {name!r} declares {kind} interface {n!r} twice")
-    return Ros2ControlJoint(name, commands, states, _params(el, source))
+    return Ros2ControlJoint(name, commands, states, _params(el, source), _enable_limits(el, source))
 
 
 def parse_ros2_control(block: etree._Element | str, source: str = "<string>") -> Ros2Control:

@@ -123,6 +123,7 @@ def make_manager(
     *,
     update_rate: int = 100,
     hardware: list[HardwareInfo] | None = None,
+    robot_description: str = "",
     **flat: Any,
 ) -> tuple[ControllerManager, RecordingLog]:
     """A manager with mock hardware and fake controllers `{name: params}` registered as test_controllers/Fake."""
@@ -137,7 +138,7 @@ def make_manager(
         nodes[name] = make_node(name, ctrl_params.get(name, {}))
         return nodes[name]
 
-    cm = ControllerManager(manager_params(params), log=log, node_factory=factory)
+    cm = ControllerManager(manager_params(params), log=log, node_factory=factory, robot_description=robot_description)
     cm.load_hardware(hardware if hardware is not None else [wheel_info()])
     cm.nodes = nodes  # type: ignore[attr-defined]
     return cm, log

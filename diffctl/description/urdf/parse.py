@@ -74,6 +74,16 @@ class UrdfLimit:
 
 
 @dataclass(frozen=True)
+class UrdfSafety:
+    """`<safety_controller>`: the soft position range and the gains of the limiter that keeps to it."""
+
+    soft_lower_limit: float
+    soft_upper_limit: float
+    k_position: float
+    k_velocity: float
+
+
+@dataclass(frozen=True)
 class UrdfMimic:
     joint: str
     multiplier: float
@@ -93,6 +103,7 @@ class UrdfJoint:
     damping: float | None = None  # <dynamics damping friction>; None when no <dynamics>
     friction: float = 0.0
     mimic: UrdfMimic | None = None
+    safety: UrdfSafety | None = None
 
 
 @dataclass(frozen=True)
@@ -324,6 +335,17 @@ def _joint(r: _Reader, el: Element, links: dict[str, UrdfLink]) -> UrdfJoint:
         if not target:
             r.fail(mimic_el, "<mimic> needs a 'joint' attribute")
         mimic = UrdfMimic(target, r.number(mimic_el, "multiplier", 1.0), r.number(mimic_el, "offset", 0.0))
+    safety = None
+    safety_el = el.find("safety_controller")
+    if safety_el is not None:
+        if safety_el.get("k_velocity") is None:  # urdfdom refuses the joint without it; the rest default to 0
+            r.fail(safety_el, f"joint {name!r}: <safety_controller> needs a 'k_velocity' attribute")
+        safety = UrdfSafety(
+            r.number(safety_el, "soft_lower_limit", 0.0),
+            r.number(safety_el, "soft_upper_limit", 0.0),
+            r.number(safety_el, "k_position", 0.0),
+            r.number(safety_el, "k_velocity"),
+        )
     return UrdfJoint(
         name,
         kind,
@@ -336,6 +358,7 @@ def _joint(r: _Reader, el: Element, links: dict[str, UrdfLink]) -> UrdfJoint:
         damping,
         friction,
         mimic,
+        safety,
     )
 
 

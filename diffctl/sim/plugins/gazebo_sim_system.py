@@ -7,10 +7,10 @@ mode per joint (gz_ros2_control's `perform_command_mode_switch` bits):
   velocity → the joint's velocity target; position → a velocity P law v = -Kp (q - q_cmd) update_rate,
   recomputed every physics step; effort → a torque, reapplied every step; no active mode and
   `hold_joints` → velocity 0, otherwise the joint is free.
-A command passes through as it is: the interface's min/max are joint limits for the controller manager's
-`enforce_command_limits` (false in Jazzy), never a clamp here, as gz_system.cpp clamps nothing; the joint's own
-SDF/URDF velocity and effort limits still bound what the physics gets. NaN means "no command"; infinities never
-reach the physics.
+A command passes through as it is, as gz_system.cpp clamps nothing: joint limits (URDF `<limit>`, the interface's
+min/max) bound commands in the controller manager's resource manager when its `enforce_command_limits` is true
+(false in Jazzy; diffctl/control/joint_limits), never here; the joint's own SDF/URDF velocity and effort limits
+still bound what the physics gets. NaN means "no command"; infinities never reach the physics.
 """
 
 from __future__ import annotations
