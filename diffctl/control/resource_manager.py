@@ -19,6 +19,8 @@ from the joint's state interfaces and the limiter's previous command, which ever
 
 from __future__ import annotations
 
+import math
+import time
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from typing import Any
@@ -92,6 +94,7 @@ class ResourceManager:
         self.single: tuple[HardwareHandle, Callable, Callable | None] | None = None
         self.joint_limiters: dict[str, JointLimiterEntry] = {}  # by joint name
         self._limits_log: Any = None
+        self._limits_logged_s = -math.inf  # monotonic time of the last "out of limits" error
         # each limited joint with its claimed commands; None: to be worked out again (claims changed)
         self._limited_claims: tuple[tuple[JointLimiterEntry, tuple[tuple[str, CommandInterface], ...]], ...] | None
         self._limited_claims = ()
@@ -180,11 +183,14 @@ class ResourceManager:
         setattr(desired, kind, handle.value)
         command = desired.copy()
         if entry.limiter.enforce(actual, desired, period_s):
-            self._limits_log.error(
-                "Command of at least one joint is out of limits (throttled log). "
-                f"{limiter_data_string(entry.joint, actual, command, desired)} with desired period : {period_s:f} sec.",
-                throttle_duration_sec=1.0,
-            )
+            now = time.monotonic()
+            if now >= self._limits_logged_s + 1.0:  # throttled before the text is made: it costs more than the limit
+                self._limits_logged_s = now
+                self._limits_log.error(
+                    "Command of at least one joint is out of limits (throttled log). "
+                    f"{limiter_data_string(entry.joint, actual, command, desired)} with desired period : "
+                    f"{period_s:f} sec."
+                )
         value = getattr(desired, kind)
         if value is not None:
             handle.value = value

@@ -307,9 +307,10 @@ def tricycle_urdf(params_file: Path) -> str:
     return f'<robot name="tricycle_drive">{"".join(parts)}{control}</robot>'
 
 
-def mecanum_sdf(params_file: Path) -> str:
+def mecanum_sdf(params_file: Path, wheel_speed_bound: float | None = None) -> str:
     """Four mecanum wheels as Gazebo models them (a contact with friction direction fdir1 and mu2 0) around the
-    centre, base_link being the centre."""
+    centre, base_link being the centre; `wheel_speed_bound` gives the wheels' velocity command interfaces that
+    min/max (rad/s)."""
     hx, hy = WHEELBASE / 2, TRACK / 2
     links = ["<link name='base_link'><pose>0 0 0.25 0 0 0</pose><inertial><mass>10</mass><inertia><ixx>0.3</ixx>"
              "<iyy>0.3</iyy><izz>0.3</izz></inertia></inertial><collision name='c'><geometry><box><size>0.9 0.45 0.1"
@@ -325,8 +326,10 @@ def mecanum_sdf(params_file: Path) -> str:
             "</link>")
         joints.append(f"<joint name='{wheel}_joint' type='revolute'><parent>base_link</parent><child>{wheel}</child>"
                       "<axis><xyz expressed_in='__model__'>0 1 0</xyz></axis></joint>")
-    body = "".join(f'<joint name="{w}_joint"><command_interface name="velocity"/><state_interface name="velocity"/>'
-                   '<state_interface name="position"/></joint>'
+    bounds = "" if wheel_speed_bound is None else (
+        f'<param name="min">{-wheel_speed_bound}</param><param name="max">{wheel_speed_bound}</param>')
+    body = "".join(f'<joint name="{w}_joint"><command_interface name="velocity">{bounds}</command_interface>'
+                   '<state_interface name="velocity"/><state_interface name="position"/></joint>'
                    for w in ("front_left", "front_right", "rear_left", "rear_right"))
     control = (f'<ros2_control name="GazeboSystem" type="system"><hardware><plugin>gz_ros2_control/GazeboSimSystem'
                f'</plugin></hardware>{body}</ros2_control><plugin filename="gz_ros2_control-system" '
@@ -424,6 +427,37 @@ def last_cycle_odometry(hosted: Hosted, msgs: list[Any]) -> tuple[float, float, 
 
     wait_until(lambda: msgs and stamp_ns(msgs[-1]) >= last_cycle_ns, "the last control cycle's odometry", 30.0)
     return odometry_of(msgs)
+
+
+@pytest.mark.parametrize("enforce", [False, True])
+def test_mecanum_wheel_commands_past_the_interfaces_max_pass_unless_enforce_command_limits(
+        router: str, tmp_path: Path, enforce: bool) -> None:
+    """A held-out mecanum robot's wheel interfaces have min/max ±1 rad/s: in Jazzy (enforce_command_limits false,
+    gz_system.cpp clamping nothing) it drives at its command; with the flag on, the resource manager clamps each
+    wheel to 1 rad/s and it drives at a third of it."""
+    params = tmp_path / "mecanum.yaml"
+    flag = f"    enforce_command_limits: {str(enforce).lower()}\n"
+    params.write_text(MECANUM_YAML.replace("    update_rate: 100\n", "    update_rate: 100\n" + flag, 1))
+    bound = 1.0
+    hosted = Hosted(mecanum_sdf(params, wheel_speed_bound=bound))
+    client = None
+    try:
+        hosted.activate("mecanum_drive_controller")
+        client = ClientNode("mecanum_limits_driver")
+        hosted.step(100)
+        vy = 3 * bound * WHEEL_R  # wheels at 3 rad/s
+        drive(hosted, client, "/mecanum_drive_controller/reference", {"y": vy}, 1.0)
+        samples: list[tuple[float, Any]] = []
+        drive(hosted, client, "/mecanum_drive_controller/reference", {"y": vy}, 1.0, samples)
+        wheel = vy / WHEEL_R if not enforce else bound
+        speeds = [s[1] for s in hosted.rt.entity.joint_states(
+            [hosted.rt.entity.joint(f"{w}_joint") for w in ("front_left", "front_right", "rear_right", "rear_left")])]
+        assert speeds == pytest.approx([-wheel, wheel, -wheel, wheel], rel=0.02)
+        assert motion(samples)[1] == pytest.approx(wheel * WHEEL_R, rel=0.03)
+    finally:
+        if client is not None:
+            client.close()
+        hosted.close()
 
 
 ACKERMANN_YAML = """controller_manager:

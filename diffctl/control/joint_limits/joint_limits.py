@@ -19,7 +19,7 @@ def _num(value: float) -> str:
     return format(value, ".6g")
 
 
-@dataclass
+@dataclass(slots=True)
 class JointLimits:
     """A joint's hard limits: URDF `<limit lower upper velocity effort>` narrowed by its `<ros2_control>`
     interfaces' `min`/`max` (joint_limits_urdf.py), each group switched on by its `has_*` flag."""
@@ -82,7 +82,7 @@ class SoftJointLimits:
         )
 
 
-@dataclass
+@dataclass(slots=True)
 class JointControlInterfacesData:
     """One joint's values on its position/velocity/effort/acceleration/jerk interfaces; None where it has none
     (or, for commands, where no controller claims it)."""
