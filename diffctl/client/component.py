@@ -46,7 +46,10 @@ def init() -> None:
         runtime.init(args=["diffctl", "--ros-args", *ros_args.current_argv()])
 
 
-def run(make: Callable[[], Any], *, executor: Any = None) -> int:
+def run(make: Callable[[], Any], *, executor: Any = None,
+        on_stop: Callable[[BaseException], None] | None = None) -> int:
+    """`on_stop(e)`: told what ended the spin (KeyboardInterrupt or ExternalShutdownException), for a program
+    whose upstream says so (twist_stamper, relay_field print a line)."""
     init()
     lost = threading.Event()
     node = None
@@ -60,8 +63,10 @@ def run(make: Callable[[], Any], *, executor: Any = None) -> int:
         executor.add_node(node)
         while runtime.ok():
             spin_once(executor, node)
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
+    except (KeyboardInterrupt, ExternalShutdownException) as e:
+        _deaf_to_interrupts()
+        if on_stop is not None:
+            on_stop(e)
     except exceptions.RCLError:
         # A SIGINT/SIGTERM that came while the node or its executor was being made shut the client down under
         # them (rclpy refuses them then): the node was asked to end, and ends.

@@ -144,24 +144,14 @@ def demux(args: tuple[str, ...]) -> None:
 @click.argument("args", nargs=-1, type=click.UNPROCESSED)
 def relay_field(args: tuple[str, ...]) -> None:
     """relay_field <input> <output topic> <output type> <expression on m>."""
-    from diffctl import ros_args
-    from diffctl.client import runtime
-    from diffctl.client.executors import ExternalShutdownException
+    from diffctl.client import component
     from diffctl.client.node import Node
     from diffctl.topic_tools.relay_field import parser, start
 
     parsed = parser().parse_args(list(args))
-    ros = ros_args.current_argv()
-    runtime.init(args=["relay_field", "--ros-args", *ros] if ros else ["relay_field"])
-    node = None
-    try:
-        node = start(Node, parsed)
-        runtime.spin(node)
-    except KeyboardInterrupt:
-        print("relay_field stopped cleanly")
-    except ExternalShutdownException:
-        pass
-    finally:
-        if node is not None:
-            node.destroy_node()
-        runtime.try_shutdown()
+
+    def stopped(e: BaseException) -> None:
+        if isinstance(e, KeyboardInterrupt):
+            print("relay_field stopped cleanly")
+
+    raise SystemExit(component.run(lambda: start(Node, parsed), on_stop=stopped))

@@ -6,11 +6,9 @@ import click
 
 
 def _run(name: str) -> int:
-    from diffctl import ros_args
     from diffctl.twist_stamper.node import run
 
-    ros = ros_args.current_argv()
-    return run(name, [name, "--ros-args", *ros] if ros else [name])
+    return run(name)
 
 
 @click.group("twist-stamper")

@@ -30,24 +30,20 @@ def unstamper(node: Any) -> None:
     print("Started twist_unstamper!", flush=True)
 
 
-def run(name: str, argv: list[str]) -> int:
-    from diffctl.client import runtime
-    from diffctl.client.executors import ExternalShutdownException
+def run(name: str) -> int:
+    """Run twist_stamper or twist_unstamper with this process's ROS arguments until shut down, saying why as the
+    package's own main does."""
+    from diffctl.client import component
     from diffctl.client.node import Node
 
-    runtime.init(args=argv)
-    node = None
-    try:
+    def make() -> Node:
         node = Node(name)
         (stamper if name == "twist_stamper" else unstamper)(node)
-        runtime.spin(node)
-    except KeyboardInterrupt:
-        print("Received keyboard interrupt!")
-    except ExternalShutdownException:
-        print("Received external shutdown request!")
-    finally:
+        return node
+
+    def stopped(e: BaseException) -> None:
+        why = "keyboard interrupt" if isinstance(e, KeyboardInterrupt) else "external shutdown request"
+        print(f"Received {why}!")
         print("Exiting...", flush=True)
-        if node is not None:
-            node.destroy_node()
-        runtime.try_shutdown()
-    return 0
+
+    return component.run(make, on_stop=stopped)
