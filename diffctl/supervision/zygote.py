@@ -58,8 +58,10 @@ class Preload:
 
 
 # The later imports wait for this much quiet: a launch asks for its first components in a burst, a few ms
-# apart, and an import between two of them (30-45 ms each) delayed the next one's start.
-LATER_QUIET_S = 0.3
+# apart, then for those chained on an exit (sim_control's second spawner, when the first exits: 0.4-0.6 s
+# later under load), and a request that comes during an import waits for it: after 0.3 s of quiet, the
+# visualizer's imports held the second spawner 0.1-0.2 s (its controller active 0.18 s later, load 9).
+LATER_QUIET_S = 1.0
 
 
 @dataclass(frozen=True)
