@@ -126,12 +126,19 @@ def launch(
     # until then a status request kills nothing.
     signal.signal(signal.SIGUSR1, _no_op)
     positional, arguments = _split_targets(target)
-    workspace = _prepare_environment(workspace_dir)
-    describing = show_args or print_description
+    from diffctl.cli import launch_start
+
     # The fork server starts before the launcher imports the launch core: its imports run while the launcher's
-    # own do and the launch file is read (the first component waits for them).
-    run_dir = None if describing else (log_dir or _default_log_dir())
-    server = None if run_dir is None else _start_fork_server(run_dir)
+    # own do and the launch file is read (the first component waits for them). The entry point started it
+    # already, unless the command line was one it could not read alone.
+    early = None if show_args or print_description else launch_start.take_early(workspace_dir, log_dir)
+    if early is not None:
+        workspace, run_dir, server = early
+    else:
+        workspace = launch_start.prepare_environment(workspace_dir)
+        describing = show_args or print_description
+        run_dir = None if describing else (log_dir or launch_start.default_log_dir())
+        server = None if run_dir is None else launch_start.start_fork_server(run_dir)
     try:
         if run_dir is not None:
             _use_log_dir(run_dir, latest=log_dir is None)
@@ -183,22 +190,6 @@ def launch(
 # ---- before anything starts ------------------------------------------------------------------------------------
 
 
-def _prepare_environment(workspace_dir: Path | None) -> Path | None:
-    """What every child and the launch file itself see: the workspace's packages and hooks, Jazzy's ROS_*
-    variables, this interpreter's tools first on PATH (`$(command 'xacro …')` and children find the venv's
-    `xacro` and `diffctl` unactivated), and line-buffered Python output."""
-    from diffctl.workspace import find_workspace, use_in_children
-
-    workspace = find_workspace(explicit=workspace_dir)
-    use_in_children(workspace)
-    tools = str(Path(sys.executable).parent)
-    parts = [p for p in os.environ.get("PATH", "").split(os.pathsep) if p]
-    if tools not in parts:
-        os.environ["PATH"] = os.pathsep.join([tools, *parts])
-    os.environ["PYTHONUNBUFFERED"] = "1"  # children's output line by line, as the launch shows it
-    return workspace
-
-
 def _use_diffctls_launch() -> None:
     """Launch files loaded here import diffctl's launch, launch_xml, launch_yaml and launch_ros under ROS's
     names, also where a sourced ROS 2 comes first on PYTHONPATH: the launcher runs its own engine (the
@@ -219,16 +210,6 @@ def _import_workspace_python(workspace: Path | None) -> None:
     for folder in workspace_python_path(workspace):
         if str(folder) not in sys.path:
             sys.path.append(str(folder))
-
-
-def _default_log_dir() -> Path:
-    """ROS's layout: $ROS_LOG_DIR, else $ROS_HOME/log, else ~/.ros/log; one directory per run."""
-    import time
-
-    base = os.environ.get("ROS_LOG_DIR")
-    root = Path(base) if base else Path(os.environ.get("ROS_HOME") or Path.home() / ".ros") / "log"
-    stamp = time.strftime("%Y-%m-%d-%H-%M-%S") + f"-{int(time.time() * 1e6) % 1000000:06d}"
-    return root / f"{stamp}-{os.uname().nodename.split('.')[0]}-{os.getpid()}"
 
 
 def _use_log_dir(run_dir: Path, *, latest: bool) -> None:
@@ -252,19 +233,6 @@ def _use_log_dir(run_dir: Path, *, latest: bool) -> None:
             link.symlink_to(run_dir.name)
         except OSError:
             pass  # a shared log folder where another run holds the link: only the link is lost
-
-
-def _start_fork_server(run_dir: Path) -> Any:
-    """The fork server, started in the environment the launch's children will get (None when turned off)."""
-    from diffctl.supervision import fork_server
-
-    env = dict(os.environ, DIFFCTL_LOG_DIR=str(run_dir.resolve()))
-    os.environ["DIFFCTL_LOG_DIR"] = env["DIFFCTL_LOG_DIR"]  # `diffctl bag record` without -o writes beside the logs
-    if not fork_server.enabled(env):
-        return None
-    from diffctl.cli.fork_preload import SPEC
-
-    return fork_server.ForkServer(env, preexec=fork_server.dies_with_launcher(), preload=SPEC)
 
 
 def _load(path: Path) -> Any:
