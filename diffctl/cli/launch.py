@@ -19,12 +19,15 @@ import sys
 import time
 import traceback
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import click
 
 from diffctl.errors import DiffctlError, LaunchError, suggest
 from diffctl.source_paths import user_source
+
+if TYPE_CHECKING:
+    import asyncio
 
 
 def _split_targets(targets: tuple[str, ...]) -> tuple[list[str], dict[str, str]]:
@@ -125,6 +128,9 @@ def launch(
     # Status requests and hang-ups reach the launcher's signal manager once the launch runs (_LauncherSignals);
     # until then a status request kills nothing.
     signal.signal(signal.SIGUSR1, _no_op)
+    from diffctl.cli.deferred_ssl import defer_ssl
+
+    defer_ssl()  # before anything imports asyncio
     positional, arguments = _split_targets(target)
     from diffctl.cli import launch_start
 
@@ -301,11 +307,11 @@ def _one_line(e: BaseException, path: Path) -> str:
 def _check_arguments(description: Any, arguments: dict[str, str], path: Path) -> None:
     """What ros2 launch finds only once it has started things: a missing required argument, a value not among
     its choices. Also warns of an argument the file does not declare."""
-    from diffctl.console import warn
-
     declared = {a.name: a for a in description.get_launch_arguments()}
     for name in arguments:
         if name not in declared:
+            from diffctl.console import warn  # rich, only for the warning
+
             warn(f"argument {name!r} is not declared by {path.name}{suggest(name, list(declared))}")
     missing = [
         a.name
@@ -511,6 +517,8 @@ class _LauncherSignals:
             self._show()
 
     def _hangup(self, signum: int) -> None:
+        import asyncio
+
         self.stopped_by = self.stopped_by or "SIGHUP"
         pending = self.service.shutdown()
         if pending is not None:

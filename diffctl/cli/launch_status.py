@@ -10,7 +10,6 @@ import time
 from dataclasses import dataclass
 from typing import Any
 
-from diffctl.console import make_console, table
 from diffctl.launch.event_handler import BaseEventHandler
 from diffctl.launch.events import Shutdown
 from diffctl.launch.events.process import ProcessExited, ProcessIO, ProcessStarted
@@ -75,6 +74,9 @@ class ProcessTable(BaseEventHandler):
         launch_logging.get_logger("launch").info(f"all {running} processes started in {took_ms:.0f} ms")
 
     def renderable(self) -> Any:
+        # rich is imported once a table is asked for: a launch that shows none never loads it
+        from diffctl.console import table
+
         now = time.monotonic()
         return table(
             "processes",
@@ -103,6 +105,8 @@ def _uptime(seconds: float) -> str:
 
 def show(processes: ProcessTable, *, no_color: bool = False) -> None:
     """Print the table (on Enter or SIGUSR1); a closed screen (`| head`) stops nothing."""
+    from diffctl.console import make_console
+
     console = make_console(no_color=no_color, width=None if sys.stdout.isatty() else 200)
     try:
         console.print(processes.renderable())

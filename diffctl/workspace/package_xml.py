@@ -9,10 +9,12 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
-
-from lxml import etree
+from typing import TYPE_CHECKING
 
 from diffctl.errors import ConfigError, xml_error
+
+if TYPE_CHECKING:
+    from lxml import etree
 
 # ament_index_python's rule for a valid resource name.
 NAME_RE = re.compile(r"^[a-zA-Z0-9][a-zA-Z0-9_-]+$")
@@ -58,6 +60,8 @@ def read_manifest(path: Path) -> PackageManifest:
 
 
 def _parse_manifest(path: Path) -> PackageManifest:
+    from lxml import etree  # ~8 MB resident: only for a workspace that has packages to read
+
     try:
         root = etree.parse(str(path), etree.XMLParser(resolve_entities=False, no_network=True)).getroot()
     except etree.XMLSyntaxError as e:
