@@ -353,6 +353,7 @@ def _run(
     from diffctl.cli.launch_status import ProcessLogFiles, ProcessTable
     from diffctl.launch import LaunchDescription, LaunchService
     from diffctl.launch.actions import IncludeLaunchDescription
+    from diffctl.launch.event_handlers import OnShutdown
     from diffctl.launch.launch_description_source import LaunchDescriptionSource
     from diffctl.launch_extensions import process_watch, readiness
     from diffctl.supervision.launcher_spawner import LauncherSpawner
@@ -381,6 +382,7 @@ def _run(
         for observer in observers:
             context.register_event_handler(observer, append=True)
         process_watch.install(context)
+        context.register_event_handler(OnShutdown(on_shutdown=lambda event, context: spawner.launch_ending()))
         readiness.provide_probes(context, {"topic": probes.topic_has_publisher, "service": probes.service_available})
         service.include_launch_description(
             LaunchDescription(

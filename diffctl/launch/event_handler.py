@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Hashable
 from typing import TYPE_CHECKING
 
 from .event import Event
@@ -23,6 +23,8 @@ class BaseEventHandler:
     # launch's own handlers say it, so that a launch of many processes does not ask each process's handlers
     # about every other kind of event; see `_takes_only`.
     _event_kinds: tuple[type[Event], ...] | None = None
+    # Set when the matcher only ever accepts events about one action (see launch._private.handler_index).
+    _only_about: Hashable | None = None
 
     def __init__(self, *, matcher: Callable[[Event], bool], handle_once: bool = False):
         self._accepts = matcher

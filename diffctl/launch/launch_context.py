@@ -3,14 +3,14 @@
 from __future__ import annotations
 
 import asyncio
-import collections
 import os
 from collections.abc import Callable, Iterable, MutableMapping
 from typing import Any
 
 from . import logging as launch_logging
+from ._private.handler_index import HandlerIndex
 from .event import Event
-from .event_handler import BaseEventHandler, _may_take
+from .event_handler import BaseEventHandler
 from .substitution import Substitution
 
 
@@ -78,10 +78,7 @@ class LaunchContext:
 
         # used by the LaunchService: the event queue, the handlers, and futures the launch waits for
         self._queue: asyncio.Queue = asyncio.Queue()
-        self._handlers: collections.deque[BaseEventHandler] = collections.deque()
-        # per class of event seen, the handlers that may take it, in offering order; a list is replaced, never
-        # changed, so one handed out stays the snapshot it was
-        self._offered: dict[type, list[BaseEventHandler]] = {}
+        self._handlers = HandlerIndex()
         self._awaited: list[asyncio.Future] = []
 
         self._globals: dict[str, Any] = {}
@@ -186,30 +183,15 @@ class LaunchContext:
 
     def register_event_handler(self, event_handler: BaseEventHandler, append: bool = False) -> None:
         """Add a handler, asked before those registered earlier — or after them, with `append`."""
-        if append:
-            self._handlers.append(event_handler)
-        else:
-            self._handlers.appendleft(event_handler)
-        for kind, handlers in self._offered.items():
-            if _may_take(event_handler, kind):
-                self._offered[kind] = [*handlers, event_handler] if append else [event_handler, *handlers]
+        self._handlers.add(event_handler, append=append)
 
     def unregister_event_handler(self, event_handler: BaseEventHandler) -> None:
         """Remove a handler; ValueError when it is not registered."""
         self._handlers.remove(event_handler)
-        for kind, handlers in self._offered.items():
-            if event_handler in handlers:
-                kept = list(handlers)
-                kept.remove(event_handler)
-                self._offered[kind] = kept
 
     def _handlers_for(self, event: Event) -> list[BaseEventHandler]:
         """The registered handlers that may take `event`, in the order they are offered it (a snapshot)."""
-        kind = type(event)
-        handlers = self._offered.get(kind)
-        if handlers is None:
-            handlers = self._offered[kind] = [h for h in self._handlers if _may_take(h, kind)]
-        return handlers
+        return self._handlers.offered(event)
 
     def would_handle_event(self, event: Event) -> bool:
         """Whether some registered handler takes `event`."""

@@ -15,7 +15,6 @@ server off.
 
 from __future__ import annotations
 
-import contextlib
 import ctypes
 import json
 import os
@@ -25,6 +24,7 @@ import subprocess
 import sys
 from collections.abc import Callable, Mapping, Sequence
 
+from diffctl.supervision.spawner import wait_exited
 from diffctl.supervision.zygote import MAX_MESSAGE, PR_SET_PDEATHSIG, TITLE_ROOM, Preload
 
 ENABLE_ENV = "DIFFCTL_FORK_SERVER"
@@ -135,6 +135,13 @@ class ForkServer:
         pid = reply.get("pid")
         return pid if isinstance(pid, int) and pid > 0 else None
 
+    def kill(self) -> None:
+        """SIGKILL the zygote now without waiting for it (`close` reaps it): a launch that is ending forks nothing
+        more, and the zygote's exit then overlaps the stopping of the launch's processes. A request under way
+        gets no pid, and is exec'd."""
+        if self.process is not None:
+            self.process.kill()
+
     def close(self, *, kill: bool = False) -> None:
         """Closing our end ends the zygote once it has imported everything (its children are the launcher's,
         not its own); kill=True ends it now."""
@@ -144,10 +151,7 @@ class ForkServer:
         if self.process is not None:
             if kill:
                 self.process.kill()
-            try:
-                self.process.wait(timeout=2.0)
-            except subprocess.TimeoutExpired:
+            if not wait_exited(self.process, 2.0):
                 self.process.kill()
-                with contextlib.suppress(subprocess.TimeoutExpired):
-                    self.process.wait(timeout=2.0)
+                wait_exited(self.process, 2.0)
             self.process = None

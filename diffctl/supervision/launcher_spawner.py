@@ -30,11 +30,20 @@ from pathlib import Path
 from typing import Any
 
 from diffctl.supervision.fork_server import ForkServer
-from diffctl.supervision.spawner import OutputSink, PosixSpawner, SpawnRequest, _Child, _close, _group_alive
+from diffctl.supervision.spawner import (
+    OutputSink,
+    PosixSpawner,
+    SpawnRequest,
+    _Child,
+    _close,
+    _group_alive,
+    wait_exited,
+)
 
 PR_SET_PDEATHSIG = 1
 PR_SET_CHILD_SUBREAPER = 36
 LINGER_POLL_S = 0.05
+ORPHAN_LOOK_S = 0.05
 GUARD_FORGET_S = 1.0  # how long the guard may go on knowing a group that is gone
 
 
@@ -196,12 +205,13 @@ class LauncherSpawner(PosixSpawner):
             return
 
         def on_sigchld(signum: int, frame: Any) -> None:
-            # one look per turn of the loop, however many children ended (50 stopping at once: 50 walks of
-            # /proc otherwise, each reading every thread's children list)
+            # one look ORPHAN_LOOK_S after the first SIGCHLD, however many children ended meanwhile: 50 stopping
+            # at once made 40-odd looks otherwise, each reading every thread's children list (an orphan's zombie
+            # may wait that long; the end of the launch looks once more)
             if self._orphans_looked_for:
                 self._orphans_looked_for = False
                 with contextlib.suppress(RuntimeError):  # the loop is closed: the end of the launch reaps them
-                    loop.call_soon_threadsafe(self._reap_orphans_once)
+                    loop.call_soon_threadsafe(loop.call_later, ORPHAN_LOOK_S, self._reap_orphans_once)
 
         with contextlib.suppress(ValueError):  # not the main thread: orphans are reaped at the end
             self._previous_sigchld = signal.signal(signal.SIGCHLD, on_sigchld)
@@ -294,11 +304,11 @@ class LauncherSpawner(PosixSpawner):
             if not _group_alive(pgid):
                 self._forget(pgid)
 
-    def drop_fork_server(self) -> None:
-        """No component will be forked: stop the fork server now, its imports unfinished."""
+    def launch_ending(self) -> None:
+        """The launch shuts down, which starts nothing more: the fork server is killed now, so that its exit
+        overlaps the processes' (`close` reaps it)."""
         if self.fork_server is not None:
-            self.fork_server.close(kill=True)
-            self.fork_server = None
+            self.fork_server.kill()
 
     def close(self) -> None:
         """The launcher ends normally: end the fork server, release the guard without it killing anything."""
@@ -317,10 +327,9 @@ class LauncherSpawner(PosixSpawner):
             self.fork_server = None
         if guard is not None:
             self._guard = None
-            try:
-                guard.wait(timeout=2.0)
-            except subprocess.TimeoutExpired:
+            if not wait_exited(guard, 2.0):
                 guard.kill()
+                wait_exited(guard, 2.0)
 
 
 def _killpg(pgid: int, sig: int) -> None:

@@ -231,3 +231,41 @@ def test_launch_prefix_goes_where_the_filter_matches() -> None:
     assert python.process_details['name'].startswith('env-')  # named after the prefixed command's first word
     assert shell.process_details['cmd'][0] == 'sh' and shell.get_stdout().split() == []
     assert explicit.get_stdout().split() == ['2']  # a prefix given to the action ignores the filter
+
+
+def _matcher_calls_to_start_and_stop(count: int, monkeypatch: pytest.MonkeyPatch) -> int:
+    """How many times event handlers are asked about an event while `count` processes start, are stopped by
+    the launch's own SIGINTs (no terminal) and exit."""
+    from diffctl.launch.event_handler import BaseEventHandler
+    from diffctl.launch.event_handlers import OnProcessStart
+
+    asked = [0]
+    matches = BaseEventHandler.matches
+
+    def counted(self, event):
+        asked[0] += 1
+        return matches(self, event)
+
+    monkeypatch.setattr(BaseEventHandler, 'matches', counted)
+    processes = [ExecuteProcess(cmd=['sleep', '60'], name=f'p{i}', sigterm_timeout='60') for i in range(count)]
+    started = []
+
+    def on_start(event, context):
+        started.append(event.pid)
+        return EmitEvent(event=Shutdown(reason='all started')) if len(started) == count else None
+
+    service = LaunchService(noninteractive=True)
+    service.include_launch_description(
+        LaunchDescription([RegisterEventHandler(OnProcessStart(on_start=on_start)), *processes]))
+    assert service.run() == 0
+    assert all(ends(pid, 10) for pid in started)
+    monkeypatch.undo()
+    return asked[0]
+
+
+def test_starting_and_stopping_many_processes_asks_each_handler_about_its_own_process_only(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    # each process has handlers for its own start, output, exit and signals: were every process's handlers asked
+    # about every other process's events, 4x the processes would ask ~16x as often
+    few, many = (_matcher_calls_to_start_and_stop(n, monkeypatch) for n in (10, 40))
+    assert many < 6 * few, (few, many)

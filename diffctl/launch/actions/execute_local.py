@@ -10,6 +10,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from .. import logging as launch_logging
+from .._private.handler_index import addressed_to
 from .._private.process_output import HeldBack, LineLog
 from .._private.spawning import spawner_for
 from ..action import Action
@@ -204,17 +205,23 @@ class ExecuteLocal(Action):
 
     def _handlers(self) -> list:
         """The handlers the action needs while its process may run (registered in this order)."""
-        # a ShutdownProcess or SignalProcess is taken by the handler of the process it targets only: with every
-        # process's handler taking every such event, stopping N processes cost N² handler visits
+        # A ShutdownProcess or SignalProcess is taken by the handler of the process it targets only: with every
+        # process's handler asked about every such event, stopping N processes cost N² handler visits. Those
+        # handlers take no other events, and those for `matches_action(self)` concern this action alone.
+        to_me = addressed_to(self)
+        on_shutdown = _takes_only(EventHandler(
+            matcher=lambda event: is_a_subclass(event, ShutdownProcess) and event.process_matcher(self),
+            entities=OpaqueFunction(function=self._on_shutdown_process),
+        ), ShutdownProcess)
+        on_signal = _takes_only(EventHandler(
+            matcher=lambda event: is_a_subclass(event, SignalProcess) and event.process_matcher(self),
+            entities=OpaqueFunction(function=self._on_signal_process),
+        ), SignalProcess)
+        if to_me is not None:
+            on_shutdown._only_about = on_signal._only_about = to_me
         return [
-            _takes_only(EventHandler(
-                matcher=lambda event: is_a_subclass(event, ShutdownProcess) and event.process_matcher(self),
-                entities=OpaqueFunction(function=self._on_shutdown_process),
-            ), ShutdownProcess),
-            _takes_only(EventHandler(
-                matcher=lambda event: is_a_subclass(event, SignalProcess) and event.process_matcher(self),
-                entities=OpaqueFunction(function=self._on_signal_process),
-            ), SignalProcess),
+            on_shutdown,
+            on_signal,
             OnProcessIO(
                 target_action=self, on_stdin=self._on_stdin, on_stdout=self._on_stdout, on_stderr=self._on_stderr),
             OnShutdown(on_shutdown=self._on_launch_shutdown),

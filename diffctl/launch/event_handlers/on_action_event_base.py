@@ -5,8 +5,11 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable
 from typing import TYPE_CHECKING, Any
 
+from .._private.handler_index import about_action
 from ..event import Event
 from ..event_handler import BaseEventHandler
+from ..events.process.process_targeted_event import ProcessTargetedEvent
+from ..events.process.running_process_event import RunningProcessEvent
 from ..launch_description_entity import LaunchDescriptionEntity
 from ..some_entities_type import SomeEntitiesType
 
@@ -63,6 +66,11 @@ class OnActionEventBase(BaseEventHandler):
             matcher=lambda event: isinstance(event, target_event_cls) and chooses(event.action), **kwargs)
         self._kinds = (target_event_cls, target_action_cls, action_matcher is not None)
         self._event_kinds = (target_event_cls,)
+        if action_matcher is not None and not callable(action_matcher) \
+                and issubclass(target_event_cls, RunningProcessEvent) \
+                and not issubclass(target_event_cls, ProcessTargetedEvent):
+            # it takes the events of that one action only: a launch need not ask it about other processes'
+            self._only_about = about_action(action_matcher)
         self._reaction = on_event if callable(on_event) else None
         self._given = [] if callable(on_event) else _fixed_entities(on_event)
 

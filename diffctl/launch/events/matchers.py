@@ -15,4 +15,6 @@ def matches_action(target_action: Action) -> Callable[[Action], bool]:
     def is_target(action: Action) -> bool:
         return action == target_action
 
+    # read by the launch context: an event for one action is offered to that action's handlers only
+    is_target._target_action = target_action  # type: ignore[attr-defined]
     return is_target

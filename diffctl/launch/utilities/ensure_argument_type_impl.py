@@ -30,6 +30,14 @@ def ensure_argument_type(
 
     The message names `argument_name` and, when given, the `caller`.
     """
+    # the common case first, without building anything: a launch makes many actions, each checking several
+    if type(argument_name) is str and (caller is None or type(caller) is str):
+        if isinstance(types, type):
+            if isinstance(argument, types):
+                return
+        elif type(types) in (list, tuple) and all(isinstance(t, type) for t in types) \
+                and isinstance(argument, tuple(types)):
+            return
     if not isinstance(types, (type, collections.abc.Iterable)):
         raise _misuse('types', 'type, collections.abc.Iterable of type', types)
     if not isinstance(argument_name, str):
