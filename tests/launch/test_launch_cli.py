@@ -297,6 +297,62 @@ def test_print_describes_the_entities_and_runs_no_user_code(tmp_path) -> None:
     assert "ExecuteProcess(cmd=['sleep', '1']" in done.stdout and "WaitFor(exited sim)" in done.stdout
 
 
+TLS_LAUNCH = """
+import asyncio, sys
+from launch import LaunchDescription
+from launch.actions import ExecuteProcess, OpaqueCoroutine, OpaqueFunction, RegisterEventHandler
+from launch.event_handlers import OnProcessStart
+
+def loaded(context):
+    # what the launcher has imported once its processes run: none of these, for a launch of plain processes
+    heavy = ('_ssl', 'rich', 'lxml.etree')
+    print('loaded:', [name for name in heavy if name in sys.modules], flush=True)
+
+async def tls_round_trip(context, cert, key):
+    import ssl  # the launch file's own import: the whole module, and asyncio's TLS with it
+
+    server_side = ssl.create_default_context(ssl.Purpose.CLIENT_AUTH)
+    server_side.load_cert_chain(cert, key)
+
+    async def echo(reader, writer):
+        writer.write(await reader.readline())
+        await writer.drain()
+        writer.close()
+
+    server = await asyncio.start_server(echo, '127.0.0.1', 0, ssl=server_side)
+    port = server.sockets[0].getsockname()[1]
+    client_side = ssl.create_default_context(cafile=cert)
+    reader, writer = await asyncio.open_connection('127.0.0.1', port, ssl=client_side, server_hostname='localhost')
+    writer.write(b'over tls\\n')
+    print('echoed:', (await reader.readline()).decode().strip(), flush=True)
+    writer.close()
+    server.close()
+
+def generate_launch_description():
+    child = ExecuteProcess(cmd=['true'], name='child')
+    return LaunchDescription([child, RegisterEventHandler(OnProcessStart(target_action=child, on_start=[
+        OpaqueFunction(function=loaded),
+        OpaqueCoroutine(coroutine=tls_round_trip, args=[CERT, KEY])]))])
+"""
+
+
+def test_the_launcher_loads_tls_only_for_a_launch_file_that_uses_it(launch_run, tmp_path) -> None:
+    # asyncio imports ssl (OpenSSL: over a MB of the launcher's memory), the status table rich, a workspace's
+    # package.xml lxml: the launcher defers all three to their first use, which a launch file may make itself
+    cert, key = tmp_path / "cert.pem", tmp_path / "key.pem"
+    subprocess.run(
+        ["openssl", "req", "-x509", "-newkey", "ec", "-pkeyopt", "ec_paramgen_curve:prime256v1", "-nodes",
+         "-keyout", str(key), "-out", str(cert), "-days", "1", "-subj", "/CN=localhost"],
+        check=True, capture_output=True, timeout=60,
+    )
+    text = TLS_LAUNCH.replace("CERT, KEY", f"{str(cert)!r}, {str(key)!r}")
+    run = launch_run(str(write(tmp_path, text, "tls.launch.py")), "--no-router")
+    assert run.wait(60) == 0, run.text()
+    assert "loaded: []" in run.text()
+    assert "echoed: over tls" in run.text()
+    assert_nothing_left(run)
+
+
 def test_a_background_job_left_by_a_finished_shell_gets_sigterm_at_once(launch_run, tmp_path) -> None:
     # A non-interactive shell's background job ignores SIGINT; waiting out a timeout for it would only delay
     # the inevitable.
