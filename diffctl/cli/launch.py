@@ -519,8 +519,6 @@ class _LauncherSignals:
             self._show()
 
     def _hangup(self, signum: int) -> None:
-        import asyncio
-
         self.stopped_by = self.stopped_by or "SIGHUP"
         pending = self.service.shutdown()
         if pending is not None:

@@ -24,7 +24,7 @@ import subprocess
 import sys
 from collections.abc import Callable, Mapping, Sequence
 
-from diffctl.supervision.spawner import wait_exited
+from diffctl.supervision.exit_wait import wait_exited
 from diffctl.supervision.zygote import MAX_MESSAGE, PR_SET_PDEATHSIG, TITLE_ROOM, Preload
 
 ENABLE_ENV = "DIFFCTL_FORK_SERVER"

@@ -29,6 +29,7 @@ import time
 from pathlib import Path
 from typing import Any
 
+from diffctl.supervision.exit_wait import wait_exited
 from diffctl.supervision.fork_server import ForkServer
 from diffctl.supervision.spawner import (
     OutputSink,
@@ -37,7 +38,6 @@ from diffctl.supervision.spawner import (
     _Child,
     _close,
     _group_alive,
-    wait_exited,
 )
 
 PR_SET_PDEATHSIG = 1

@@ -156,6 +156,7 @@ def test_the_supervision_modules_the_fork_server_loads_import_no_launch() -> Non
     assert asyncio_loaded == "False"
     assert eval(modules) == [
         "diffctl.supervision",
+        "diffctl.supervision.exit_wait",
         "diffctl.supervision.fork_server",
         "diffctl.supervision.guard",
         "diffctl.supervision.zygote",
