@@ -5,6 +5,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
+from ._private.ros_names import default_text
+
 if TYPE_CHECKING:
     from .launch_context import LaunchContext
 
@@ -14,6 +16,9 @@ class Condition:
 
     `predicate(context)` answers it; a condition made without one always says no.
     """
+
+    def __repr__(self) -> str:
+        return default_text(self)  # under ROS's module names, as ros2 launch --print shows it
 
     def __init__(self, *, predicate: Callable[[LaunchContext], bool] | None = None) -> None:
         self._test = predicate

@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable, Hashable
 from typing import TYPE_CHECKING
 
+from ._private.ros_names import default_text
 from .event import Event
 from .some_entities_type import SomeEntitiesType
 
@@ -18,6 +19,9 @@ class BaseEventHandler:
     While they are visited, `context.locals.event` is the event (`LocalSubstitution('event.pid')`).
     A `handle_once` handler unregisters itself when it handles its first event.
     """
+
+    def __repr__(self) -> str:
+        return default_text(self)  # under ROS's module names, as ros2 launch --print shows it
 
     # The event classes outside which the matcher never accepts anything (None: it may accept any event).
     # launch's own handlers say it, so that a launch of many processes does not ask each process's handlers

@@ -5,6 +5,8 @@ from __future__ import annotations
 from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
+from ._private.ros_names import default_text
+
 if TYPE_CHECKING:
     import asyncio
 
@@ -18,6 +20,9 @@ class LaunchDescriptionEntity:
     `describe`, `describe_sub_entities`, `describe_conditional_sub_entities`. Launching calls
     `visit(context)`, then visits what it returned, and watches `get_asyncio_future()` for work in flight.
     """
+
+    def __repr__(self) -> str:
+        return default_text(self)  # under ROS's module names, as ros2 launch --print shows it
 
     def describe(self) -> str:
         """This entity in words; every kind of entity says it."""

@@ -6,6 +6,7 @@ import traceback
 from typing import TYPE_CHECKING
 
 from . import logging as launch_logging
+from ._private.ros_names import default_text
 from .utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
 from .utilities.perform_substitutions_impl import perform_substitutions
 
@@ -22,6 +23,9 @@ class LaunchDescriptionSource:
     point ROS 2's own sources use too. `location` may hold substitutions, performed when it is loaded;
     `method` says how the description is obtained ('interpreted python launch file', …).
     """
+
+    def __repr__(self) -> str:
+        return default_text(self)  # under ROS's module names, as ros2 launch --print shows it
 
     def __init__(
         self,

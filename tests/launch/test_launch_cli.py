@@ -295,6 +295,10 @@ def test_print_describes_the_entities_and_runs_no_user_code(tmp_path) -> None:
     assert done.returncode == 0, done.stderr
     assert not marker.exists()  # ros2 launch --print calls no OpaqueFunction; nor does diffctl
     assert "ExecuteProcess(cmd=['sleep', '1']" in done.stdout and "WaitFor(exited sim)" in done.stdout
+    # objects are shown as Python shows them, under the module names the user imported (ros2 launch --print's)
+    assert re.match(r"<launch\.launch_description\.LaunchDescription object at 0x[0-9a-f]+>\n", done.stdout)
+    assert re.search(r"Action\('<launch\.actions\.opaque_function\.OpaqueFunction object at 0x", done.stdout)
+    assert "diffctl.launch" not in done.stdout, done.stdout
 
 
 TLS_LAUNCH = """

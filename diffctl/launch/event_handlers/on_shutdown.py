@@ -17,7 +17,11 @@ if TYPE_CHECKING:
 
 def gen_handler(entities: SomeEntitiesType) -> Callable[[Shutdown, LaunchContext], SomeEntitiesType]:
     """A callable `(event, context)` giving `entities` whatever it is called with."""
-    return lambda event, context: entities
+
+    def handler(event: Shutdown, context: LaunchContext) -> SomeEntitiesType:  # named so in --print, as in ROS
+        return entities
+
+    return handler
 
 
 class OnShutdown(BaseEventHandler):
