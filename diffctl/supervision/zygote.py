@@ -32,6 +32,8 @@ import time
 TITLE_ROOM = 4096  # bytes of argv a component's command line may take in ps
 MAX_MESSAGE = 1 << 20
 PR_SET_PDEATHSIG = 1
+# what the launcher stops a component with (SIGKILL aside): blocked from the fork until `become` can take them
+STOP_SIGNALS = frozenset({signal.SIGINT, signal.SIGTERM})
 
 
 class Preload:
@@ -161,11 +163,18 @@ def _reply(sock: socket.socket, message: dict[str, object]) -> None:
 
 def _fork_twice(sock: socket.socket, request: Request, launcher_pid: int) -> Request | dict[str, object]:
     """Fork an intermediate that forks the component and exits at once: the component is re-parented to the
-    launcher before its pid is reported, so the launcher's waitpid() never races the re-parenting."""
+    launcher before its pid is reported, so the launcher's waitpid() never races the re-parenting.
+
+    The component reports its pid itself once it leads a session of its own, so that the launcher's first
+    signal to its group finds the group. It starts with the stop signals blocked (`become` unblocks them
+    once its handlers are in place): one sent meanwhile waits for it instead of meeting the zygote's
+    SIG_IGN (a Ctrl-C right at the start was lost, and the component ran on)."""
     r, w = os.pipe()
+    held = signal.pthread_sigmask(signal.SIG_BLOCK, STOP_SIGNALS)
     try:
         middle = os.fork()
     except OSError as e:
+        signal.pthread_sigmask(signal.SIG_SETMASK, held)
         os.close(r)
         os.close(w)
         return {"error": f"fork failed: {e.strerror}"}
@@ -176,12 +185,14 @@ def _fork_twice(sock: socket.socket, request: Request, launcher_pid: int) -> Req
         except OSError:
             os._exit(1)
         if pid == 0:
-            os.close(w)
-            sock.close()
-            _settle(launcher_pid)
+            try:
+                sock.close()
+                _settle(launcher_pid, w)
+            except BaseException:
+                os._exit(1)  # never back into the server's code
             return request
-        os.write(w, str(pid).encode())
         os._exit(0)
+    signal.pthread_sigmask(signal.SIG_SETMASK, held)
     os.close(w)
     with os.fdopen(r, "rb") as pipe:
         text = pipe.read()
@@ -189,10 +200,12 @@ def _fork_twice(sock: socket.socket, request: Request, launcher_pid: int) -> Req
     return {"pid": int(text)} if text else {"error": "fork failed in the intermediate process"}
 
 
-def _settle(launcher_pid: int) -> None:
-    """In the component: its own session, then the launcher as parent before the death signal is armed
-    (a death signal armed earlier would fire when the intermediate exits)."""
+def _settle(launcher_pid: int, report_fd: int) -> None:
+    """In the component: its own session, its pid reported, then the launcher as parent before the death
+    signal is armed (a death signal armed earlier would fire when the intermediate exits)."""
     os.setsid()
+    os.write(report_fd, str(os.getpid()).encode())
+    os.close(report_fd)
     middle = os.getppid()
     deadline = time.monotonic() + 10.0
     while True:
@@ -219,6 +232,7 @@ def become(request: Request, start_cwd: str) -> None:
     for sig in (signal.SIGTERM, signal.SIGHUP, signal.SIGUSR1, signal.SIGCHLD):
         signal.signal(sig, signal.SIG_DFL)
     signal.signal(signal.SIGINT, signal.default_int_handler)
+    interrupted = signal.SIGINT in signal.sigpending()
     os.environ.clear()
     os.environ.update(request.env)
     if request.cwd:
@@ -231,7 +245,15 @@ def become(request: Request, start_cwd: str) -> None:
     retitle(request.argv)
     if "numpy.random" in sys.modules:
         sys.modules["numpy.random"].seed()  # numpy's global generator was seeded once, in the zygote
-    runpy.run_module("diffctl", run_name="__main__", alter_sys=True)
+    if interrupted:
+        sys.exit(130)  # a Ctrl-C came before diffctl's main could hear it: it ends as main does on one
+    try:
+        # a SIGTERM that came since the fork ends the process now, as it would have ended an exec'd one; a
+        # SIGINT raises KeyboardInterrupt, before diffctl's main or inside it
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, STOP_SIGNALS)
+        runpy.run_module("diffctl", run_name="__main__", alter_sys=True)
+    except KeyboardInterrupt:
+        sys.exit(130)
 
 
 def retitle(argv: list[str]) -> None:

@@ -108,6 +108,20 @@ def test_forked_components_are_separate_children_of_the_launcher_in_their_own_gr
     assert launcher.exit_code(children[1]) == -signal.SIGKILL
 
 
+def test_a_stop_signal_sent_as_soon_as_a_component_is_forked_is_never_lost(launcher) -> None:
+    # The zygote ignores SIGINT; a forked component takes its own handlers only once it runs. A Ctrl-C sent to
+    # its group right after the fork (the launcher's first chance) must still stop it, every time.
+    for attempt in range(20):
+        child = launcher.router(free_port())
+        assert child.popen is None, "exec'd, not forked from the zygote"
+        child.send_signal(signal.SIGINT)  # its group exists as soon as its pid is known
+        assert launcher.run(child.complete, timeout_s=60) in (0, 130), f"attempt {attempt}"
+    term = launcher.router(free_port())
+    assert term.popen is None
+    term.send_signal(signal.SIGTERM)
+    assert launcher.exit_code(term) in (0, -signal.SIGTERM)
+
+
 def test_a_crashing_component_leaves_the_server_serving_and_a_different_environment_is_execd(launcher) -> None:
     first = launcher.router(free_port())
     os.kill(first.pid, signal.SIGSEGV)
