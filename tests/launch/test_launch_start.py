@@ -56,7 +56,10 @@ def test_the_fork_server_is_execd_before_click_and_serves_the_launch(tmp_path) -
     )
     done = subprocess.run(
         [sys.executable, "-c", program, str(launch_file), str(tmp_path / "log")],
-        capture_output=True, text=True, timeout=120, env=dict(os.environ, PYTHON=sys.executable),
+        capture_output=True,
+        text=True,
+        timeout=120,
+        env=dict(os.environ, PYTHON=sys.executable),
     )
     out = done.stdout + done.stderr
     assert done.returncode == 0, out
