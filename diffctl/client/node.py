@@ -699,7 +699,6 @@ class Node:
             while table:
                 fn(table[0])
         self._destroyed = True
-        self._params.flush()
         if self._rosout is not None:
             self._rosout.close()
         self._bus.close()

@@ -12,7 +12,6 @@ import math
 import threading
 import warnings
 from collections.abc import Callable
-from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
 from diffctl.bus.session import before_close
@@ -41,28 +40,17 @@ def _result(successful: bool, reason: str = "") -> Any:
     return cls("rcl_interfaces/msg/SetParametersResult")(successful=successful, reason=reason)
 
 
-_events_pool: ThreadPoolExecutor | None = None
-_events_lock = threading.Lock()
+# /parameter_events leave in the order the changes were made in this process: one publication at a time.
+_events_lock = threading.RLock()
 
 
-def _events() -> ThreadPoolExecutor:
-    global _events_pool
-    with _events_lock:
-        if _events_pool is None:
-            _events_pool = ThreadPoolExecutor(max_workers=1, thread_name_prefix="parameter_events")
-        return _events_pool
+def _publishing_done() -> None:
+    """A publication under way ends before the session closes (none is attempted once it closes)."""
+    if _events_lock.acquire(timeout=2.0):
+        _events_lock.release()
 
 
-def _drain_events() -> None:
-    """The events queued so far leave before the session closes (none is published while it closes)."""
-    if _events_pool is not None:
-        try:
-            _events_pool.submit(lambda: None).result(timeout=2.0)
-        except Exception:
-            pass
-
-
-before_close(_drain_events, first=True)
+before_close(_publishing_done, first=True)
 
 
 def validate_parameter_name(name: str) -> bool:
@@ -89,22 +77,13 @@ class NodeParameters:
         self.on_event: Callable[[list[Parameter], list[Parameter], list[Parameter]], None] | None = None
 
     def _notify(self, new: list[Parameter], changed: list[Parameter], deleted: list[Parameter]) -> None:
-        # /parameter_events leave on one worker thread of the process, in order, and before the declare or set
-        # returns, as rcl publishes them: an event left behind reached a subscription made after it (a watcher
-        # created after the node heard its start's use_sim_time declaration on a loaded machine; rclpy's never
-        # does). The wait is bounded: a publisher stuck for 5 s does not hold the set, its event leaves later.
+        # /parameter_events leave before the declare or set that caused them returns, as rcl publishes them (a
+        # watcher made after a node never hears the node's start declarations, as with rclpy), published by the
+        # thread that made the change. A worker thread published them, the declare waiting for it: a hand-over
+        # per declaration, several ms each on a loaded machine, and a controller's load declares a dozen.
         if self.on_event is not None and (new or changed or deleted):
-            sent = _events().submit(self.on_event, new, changed, deleted)
-            if not threading.current_thread().name.startswith("parameter_events"):
-                try:
-                    sent.result(timeout=5.0)
-                except Exception:  # the publisher reports its own failures (throttled, in _publish_parameter_event)
-                    pass
-
-    def flush(self) -> None:
-        """Wait until every parameter event queued so far has left (before the node's publisher closes)."""
-        if _events_pool is not None and not threading.current_thread().name.startswith("parameter_events"):
-            _events_pool.submit(lambda: None).result(timeout=5.0)
+            with _events_lock:
+                self.on_event(new, changed, deleted)
 
     # ------------------------------------------------------------------ rclpy's API
     def declare_parameters(self, namespace: str, parameters: list[tuple], ignore_override: bool = False
