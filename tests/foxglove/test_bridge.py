@@ -151,8 +151,9 @@ def test_bag_playback_server(procs: Any, tmp_path: Path) -> None:
             info = json.loads(await _read_until(ws, lambda m: isinstance(m, str) and '"serverInfo"' in m))
             adv = json.loads(await _read_until(ws, lambda m: isinstance(m, str) and '"advertise"' in m))
             ch = adv["channels"][0]
+            # No wait between the two: the server handles a connection's messages in the order they came, so the
+            # subscription is in place before playback starts.
             await ws.send(json.dumps({"op": "subscribe", "subscriptions": [{"id": 1, "channelId": ch["id"]}]}))
-            await asyncio.sleep(0.3)
             # The SDK's binary PlaybackControlRequest: op 3, command (0 play), speed f32, had-seek flag and
             # seek time u64, request id (u32 length + text).
             rid = b"r1"
