@@ -7,11 +7,14 @@ release, with the RIHS01 hash of the type and of every type it references. They 
 
 from __future__ import annotations
 
+import contextlib
+import fcntl
 import json
 import os
 import subprocess
 import sys
 import zipfile
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -32,17 +35,27 @@ def cache_dir() -> Path:
     return base / "diffctl" / "jazzy-oracle"
 
 
+@contextlib.contextmanager
+def filling(d: Path) -> Iterator[None]:
+    """One process at a time fills the cache folder `d` (pytest-xdist's workers share it: a wheel pip is still
+    writing must not be read half done by the other)."""
+    d.mkdir(parents=True, exist_ok=True)
+    with open(d / ".lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        yield
+
+
 def fetch() -> list[Path]:
     """The Jazzy wheels, downloaded once (pip, no dependencies, nothing installed)."""
     d = cache_dir()
-    d.mkdir(parents=True, exist_ok=True)
-    missing = [f"{p}=={v}" for p, v in JAZZY_WHEELS.items() if not _find(d, p, v)]
-    if missing:
-        subprocess.run(
-            [sys.executable, "-m", "pip", "download", "--no-deps", "--only-binary=:all:", "-q", "-d", str(d),
-             *missing],
-            check=True, timeout=600,
-        )
+    with filling(d):
+        missing = [f"{p}=={v}" for p, v in JAZZY_WHEELS.items() if not _find(d, p, v)]
+        if missing:
+            subprocess.run(
+                [sys.executable, "-m", "pip", "download", "--no-deps", "--only-binary=:all:", "-q", "-d", str(d),
+                 *missing],
+                check=True, timeout=600,
+            )
     return [w for p, v in JAZZY_WHEELS.items() if (w := _find(d, p, v)) is not None]
 
 

@@ -30,10 +30,14 @@ EMPY = ("empy", "4.2.1")  # an sdist only: its single module em.py is taken from
 def _fetch() -> Path:
     """A directory whose subdirectories hold rosidl's modules, lark and em; built once."""
     d = jazzy_oracle.cache_dir().parent / "rosidl-oracle"
+    with jazzy_oracle.filling(d):
+        return _fill(d)
+
+
+def _fill(d: Path) -> Path:
     root = d / "site"
     if (root / "done").exists():
         return root
-    d.mkdir(parents=True, exist_ok=True)
     pip = [sys.executable, "-m", "pip", "download", "--no-deps", "-q", "-d", str(d)]
     subprocess.run([*pip, "--only-binary=:all:", *(f"{p}=={v}" for p, v in WHEELS.items())], check=True,
                    timeout=600)

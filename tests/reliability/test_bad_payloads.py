@@ -12,6 +12,7 @@ import math
 import os
 import re
 import signal
+import threading
 import time
 import urllib.request
 from collections import Counter
@@ -52,14 +53,14 @@ def _page_answers(port: int) -> bool:
         return False
 
 
-def payloads(typename: str | None) -> dict[str, bytes]:
+def payloads(typename: str | None, oversized: bytes = b"") -> dict[str, bytes]:
     rnd = os.urandom
     out = {
         "empty": b"",
         "random": rnd(37),
         "header+junk": CDR_HEADER + b"\xff" * 29,
         "huge length prefix": CDR_HEADER + b"\xff\xff\xff\x7f" * 8,
-        "oversized": CDR_HEADER + rnd(OVERSIZED),
+        "oversized": oversized or CDR_HEADER + rnd(OVERSIZED),
         "wrong type": types.serialize(types.new("sensor_msgs/msg/Imu", {}), "sensor_msgs/msg/Imu"),
     }
     if typename is not None:
@@ -67,6 +68,12 @@ def payloads(typename: str | None) -> dict[str, bytes]:
         out["truncated"] = valid[: max(4, len(valid) // 2)]
         out["cut header"] = valid[:3]
     return out
+
+
+def _read_all(page) -> None:
+    with contextlib.suppress(Exception):
+        for _ in page:
+            pass
 
 
 def test_garbage_on_every_subscribed_topic_is_dropped_and_every_node_keeps_working(
@@ -82,7 +89,10 @@ def test_garbage_on_every_subscribed_topic_is_dropped_and_every_node_keeps_worki
         assert node is not None
         # The visualizer takes the streams it draws while a page is open: open one for the whole test.
         wait_until(lambda: _page_answers(viz_port), 30, "the visualizer's page answers", stack)
-        cleanup.enter_context(ws_connect(f"ws://127.0.0.1:{viz_port}/ws", open_timeout=10, ping_interval=None))
+        page = cleanup.enter_context(ws_connect(f"ws://127.0.0.1:{viz_port}/ws", open_timeout=10, ping_interval=None))
+        # It reads what it is sent, as a browser's page does: a page that stops reading fills the socket, and then
+        # neither the visualizer's stop nor this end's close completes before its timeout.
+        threading.Thread(target=_read_all, args=(page,), daemon=True).start()
         # Every (topic, type) some process of the launch subscribes to, from the graph.
         wait_until(
             lambda: any(e.node == "rviz2" for e in node.graph.subscribers("/tf")),
@@ -107,10 +117,12 @@ def test_garbage_on_every_subscribed_topic_is_dropped_and_every_node_keeps_worki
         gid = os.urandom(16)
         sent = Counter()
         domain = domain_id()
+        oversized = CDR_HEADER + os.urandom(OVERSIZED)  # one buffer for every key: making it is not the test
+        garbage = {ty: payloads(ty, oversized) for ty in {ty for _, ty in targets} | {None}}
         for seq in range(REPEAT):
             for topic, typename in targets:
                 key = wire.topic_key(domain, topic, typename)
-                for kind, data in payloads(typename).items():
+                for kind, data in garbage[typename].items():
                     if kind == "oversized" and seq > 1:
                         continue  # two of 4 MB per topic are enough to show it
                     att = None if kind == "empty" and seq % 2 else wire.pack_attachment(seq, time.time_ns(), gid)
@@ -118,16 +130,19 @@ def test_garbage_on_every_subscribed_topic_is_dropped_and_every_node_keeps_worki
                     sent["topic"] += 1
             # Simulator side: the keys the bridge takes gz data from.
             for key in (gz.key("/clock"), gz.key("/lidar"), gz.key("/imu")):
-                for kind, data in payloads(None).items():
+                for kind, data in garbage[None].items():
                     if kind != "oversized" or seq < 2:
                         session.put(key, data)
                         sent["gz"] += 1
+        # Each service's requests go at once and their answers (or the timeout) are awaited together.
         for service, srv_type in services:
             key = wire.service_key(domain, service, srv_type)
-            for data in payloads(None).values():
-                for _ in session.get(
-                    key, payload=data, attachment=wire.pack_attachment(1, time.time_ns(), gid), timeout=2.0
-                ):
+            answers = [
+                session.get(key, payload=data, attachment=wire.pack_attachment(1, time.time_ns(), gid), timeout=2.0)
+                for data in garbage[None].values()
+            ]
+            for answer in answers:
+                for _ in answer:
                     pass
                 sent["service"] += 1
         assert sent["topic"] > 1000, sent
@@ -169,7 +184,7 @@ def test_garbage_on_every_subscribed_topic_is_dropped_and_every_node_keeps_worki
         # garbage comes once more on one topic after the period has passed: its warning counts the suppressed ones.
         (cmd_key,) = {wire.topic_key(domain, t, ty) for t, ty in targets if t == "/diffbot_base_controller/cmd_vel"}
         time.sleep(max(0.0, t_inject + 5.5 - time.monotonic()))
-        session.put(cmd_key, payloads(None)["random"], attachment=wire.pack_attachment(REPEAT, time.time_ns(), gid))
+        session.put(cmd_key, garbage[None]["random"], attachment=wire.pack_attachment(REPEAT, time.time_ns(), gid))
         wait_until(lambda: "more suppressed" in launch_log(stack), 10, "a warning counting those suppressed", stack)
 
         # Well-formed but absurd commands (NaN, ±inf, 1e308) never reach the physics: the controller's limits and
