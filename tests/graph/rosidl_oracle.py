@@ -10,6 +10,7 @@ wheels of jazzy_oracle, exactly as a colcon build finds them in the installed sh
 
 from __future__ import annotations
 
+import hashlib
 import json
 import subprocess
 import sys
@@ -27,14 +28,8 @@ WHEELS["lark-parser"] = "0.12.0"
 EMPY = ("empy", "4.2.1")  # an sdist only: its single module em.py is taken from it, nothing is built
 
 
-def _fetch() -> Path:
-    """A directory whose subdirectories hold rosidl's modules, lark and em; built once."""
-    d = jazzy_oracle.cache_dir().parent / "rosidl-oracle"
-    with jazzy_oracle.filling(d):
-        return _fill(d)
-
-
 def _fill(d: Path) -> Path:
+    """A directory whose subdirectories hold rosidl's modules, lark and em; built once (under `filling(d)`)."""
     root = d / "site"
     if (root / "done").exists():
         return root
@@ -85,14 +80,30 @@ def packages() -> list[str]:
 
 def upstream_hashes() -> dict[str, str]:
     """type name → RIHS01 hash, as rosidl computes it from every upstream text (the types and their parts:
-    a service's _Request, _Response and _Event)."""
-    site = _fetch()
+    a service's _Request, _Response and _Event). rosidl takes ~15 s for them: its answer is kept in the cache,
+    under the digest of everything it read (the texts, the script, rosidl's and the wheels' releases), so it is
+    asked again whenever any of that changes, and once per machine otherwise (not once per pytest-xdist worker)."""
+    d = jazzy_oracle.cache_dir().parent / "rosidl-oracle"
+    script = Path(__file__).with_name("rosidl_hash_script.py")
+    digest = hashlib.sha256(repr((WHEELS, EMPY, jazzy_oracle.JAZZY_WHEELS)).encode())
+    for f in [script, *sorted(UPSTREAM.glob("*/*/*"))]:
+        digest.update(str(f.relative_to(UPSTREAM.parent)).encode() + b"\0" + f.read_bytes())
+    answer = d / f"hashes-{digest.hexdigest()[:32]}.json"
+    with jazzy_oracle.filling(d):
+        if not answer.exists():
+            hashes = _ask_rosidl(_fill(d), script)
+            tmp = answer.with_suffix(".tmp")
+            tmp.write_text(json.dumps(hashes))
+            tmp.replace(answer)
+    return json.loads(answer.read_text())
+
+
+def _ask_rosidl(site: Path, script: Path) -> dict[str, str]:
     with tempfile.TemporaryDirectory() as tmp:
         work = Path(tmp)
         spec = {"packages": {p: str(UPSTREAM / p) for p in packages()}, "includes": _includes(work),
                 "out": str(work / "out")}
         (work / "spec.json").write_text(json.dumps(spec))
-        script = Path(__file__).with_name("rosidl_hash_script.py")
         # -S -E: only the standard library and the unpacked rosidl modules, nothing of the project's venv
         code = f"import sys; sys.path[:0] = [{str(site)!r}]; sys.argv = ['x', {str(work / 'spec.json')!r}]; " \
                f"exec(compile(open({str(script)!r}).read(), {str(script)!r}, 'exec'))"
