@@ -257,9 +257,22 @@ def _load(path: Path) -> Any:
 
 
 def _with_hint(e: DiffctlError) -> DiffctlError:
-    """diffctl's launch files once gated an action with a `wait_for` list inside it: show the tag it is now."""
-    if e.hint is None and re.search(r"Unexpected \w+\(s\) found in .*'wait_(for|timeout)'", str(e)):
+    """What would be valid: the tags or substitutions the frontends and extensions installed know, for one they
+    do not; the tag diffctl's older `wait_for` form (a list inside the gated action) is now."""
+    if e.hint is not None:
+        return e
+    text = str(e)
+    if re.search(r"Unexpected \w+\(s\) found in .*'wait_(for|timeout)'", text):
         e.hint = "wait_for is a tag wrapping what it gates: `- wait_for: {exited: NAME, children: [ACTIONS]}`"
+        return e
+    unknown = re.search(r"(Unrecognized entity of the type|Unknown substitution): (\S+)", text)
+    if unknown:
+        from diffctl.launch.frontend import expose
+
+        tag = unknown.group(1).startswith("Unrecognized")
+        known = sorted(expose.action_parse_methods if tag else expose.substitution_parse_methods)
+        close = suggest(unknown.group(2), known).strip(" ()")
+        e.hint = (f"{close} " if close else "") + ("tags" if tag else "substitutions") + " known: " + ", ".join(known)
     return e
 
 
@@ -298,9 +311,11 @@ def _one_line(e: BaseException, path: Path) -> str:
     text = " ".join(str(e).split()) or type(e).__name__
     if str(path) in text:
         return text
-    line = _line_in(e, path)
-    shown = user_source(str(path))  # the file under src/, not its link in diffctl's workspace cache
-    where = f"{shown}:{line}" if line is not None else shown
+    where = getattr(e, "launch_location", None)  # a markup file's failing tag, noted while parsing it
+    if not where:
+        line = _line_in(e, path)
+        shown = user_source(str(path))  # the file under src/, not its link in diffctl's workspace cache
+        where = f"{shown}:{line}" if line is not None else shown
     return f"{where}: {type(e).__name__}: {text}" if not isinstance(e, DiffctlError) else f"{where}: {text}"
 
 

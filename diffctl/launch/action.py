@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
+from ._private.locate import creation_site, user_location
 from .condition import Condition
 from .launch_description_entity import LaunchDescriptionEntity
 
@@ -15,8 +16,12 @@ if TYPE_CHECKING:
 
 
 def _name_the_source(action: Action, problem: Exception) -> None:
-    """Give an exception the markup location of the action it came from (`launch_location`), once."""
+    """Give an exception the location of the action it came from (`launch_location`), once: the markup's tag,
+    else (for an error raised in no code of the user's, a substitution of launch's failing, say) the line of
+    the Python launch file that made the action."""
     where = getattr(action, '_frontend_location', None)  # set by frontend.Parser.parse_action
+    if where is None and user_location(problem) is None:
+        where = getattr(action, '_made_at', None)
     if where is None or getattr(problem, 'launch_location', None) is not None:
         return
     try:
@@ -49,6 +54,7 @@ class Action(LaunchDescriptionEntity):
 
     def __init__(self, *, condition: Condition | None = None) -> None:
         self._guard = condition
+        self._made_at = creation_site(self)
 
     @property
     def condition(self) -> Condition | None:

@@ -169,6 +169,18 @@ launch:
             4,
             "undefined_name",
         ),
+        (  # a tag no frontend or extension knows: the known ones, the closest first
+            "tag.launch.xml",
+            '<launch>\n  <executable cmd="sleep 60" name="ok"/>\n  <nod pkg="a" exec="b"/>\n</launch>\n',
+            3,
+            "Unrecognized entity of the type: nod (did you mean 'node'? tags known: append_env, arg,",
+        ),
+        (  # a substitution no frontend or extension knows, in a tag that is fine
+            "sub.launch.yaml",
+            "launch:\n- executable: {cmd: 'sleep 60', name: ok}\n- log: {message: '$(nosuch x)'}\n",
+            3,
+            "Unknown substitution: nosuch (substitutions known: all, and, anon,",
+        ),
         (  # a Python package neither diffctl nor the workspace has: what to install (README, "does not provide")
             "imports.launch.py",
             "import os\n\nfrom nav2_not_provided.launch import Helper\n",
@@ -190,37 +202,82 @@ def test_a_bad_launch_file_is_one_line_naming_file_and_line_exit_2_nothing_start
     assert run.leftovers() == []
 
 
+# errors that come once the launch runs, each from a timer 0.5 s after a process started
+_EARLY = "ExecuteProcess(cmd=['sleep', '60'], name='early')"
+_BOOM = (
+    "from launch.action import Action\n"
+    "from launch.frontend import expose_action\n\n"
+    "@expose_action('boom')\n"
+    "class Boom(Action):\n"
+    "    @classmethod\n"
+    "    def parse(cls, entity, parser):\n"
+    "        return cls, super().parse(entity, parser)[1]\n\n"
+    "    def execute(self, context):\n"
+    "        raise RuntimeError('boom')\n\n"
+)
+
+
 @pytest.mark.parametrize(
-    ("body", "pattern"),
+    ("name", "text", "pattern"),
     [
         (  # a custom action that raises
+            "t.launch.py",
             "from launch import LaunchDescription\nfrom launch.action import Action\n\n"
             "class Boom(Action):\n    def execute(self, context):\n        raise RuntimeError('boom')\n\n"
-            "def generate_launch_description():\n",
-            r"t\.launch\.py:6.*boom",
+            "def generate_launch_description():\n"
+            "    from launch.actions import ExecuteProcess, TimerAction\n"
+            f"    return LaunchDescription([{_EARLY},\n"
+            "        TimerAction(period=0.5, actions=[Boom()])])\n",
+            r"t\.launch\.py:6: .*boom",
         ),
-        (  # a substitution that fails
-            "from launch import LaunchDescription\nfrom launch.actions import LogInfo\n"
-            "from launch.substitutions import EnvironmentVariable\n\n\n\n\n"
-            "def generate_launch_description():\n",
-            r"DIFFCTL_T_NEVER_SET",
+        (  # a substitution of launch's that fails: the line that made the action using it
+            "t.launch.py",
+            "from launch import LaunchDescription\nfrom launch.actions import ExecuteProcess, LogInfo, TimerAction\n"
+            "from launch.substitutions import EnvironmentVariable\n\n"
+            "def generate_launch_description():\n"
+            f"    return LaunchDescription([{_EARLY},\n"
+            "        TimerAction(period=0.5, actions=[LogInfo(msg=EnvironmentVariable('DIFFCTL_T_NEVER_SET'))])])\n",
+            r"t\.launch\.py:7: .*DIFFCTL_T_NEVER_SET",
+        ),
+        (
+            "t.launch.xml",
+            '<launch>\n  <executable cmd="sleep 60" name="early"/>\n  <timer period="0.5">\n'
+            '    <log message="$(env DIFFCTL_T_NEVER_SET)"/>\n  </timer>\n</launch>\n',
+            r"t\.launch\.xml:4: .*DIFFCTL_T_NEVER_SET",
+        ),
+        (
+            "t.launch.yaml",
+            "launch:\n- executable: {cmd: sleep 60, name: early}\n- timer:\n    period: 0.5\n    children:\n"
+            "    - log: {message: '$(env DIFFCTL_T_NEVER_SET)'}\n",
+            r"t\.launch\.yaml:6: .*DIFFCTL_T_NEVER_SET",
+        ),
+        (  # a custom action a launch file exposes, raising where an XML file it includes uses it
+            "t.launch.py",
+            "import os\nfrom launch import LaunchDescription\nfrom launch.actions import IncludeLaunchDescription\n"
+            "from launch.launch_description_sources import AnyLaunchDescriptionSource\n"
+            + _BOOM
+            + "def generate_launch_description():\n"
+            "    here = os.path.dirname(__file__)\n"
+            "    return LaunchDescription([\n"
+            "        IncludeLaunchDescription(AnyLaunchDescriptionSource(os.path.join(here, 'boom.launch.xml')))])\n",
+            r"boom\.launch\.xml:4: .*boom",
         ),
     ],
 )
 def test_an_error_while_the_launch_runs_stops_everything_and_exits_2(
-    launch_run, tmp_path, body: str, pattern: str
+    launch_run, tmp_path, name: str, text: str, pattern: str
 ) -> None:
-    failing = "Boom()" if "Boom" in body else "LogInfo(msg=EnvironmentVariable('DIFFCTL_T_NEVER_SET'))"
-    text = (
-        body
-        + "    from launch.actions import ExecuteProcess, TimerAction\n"
-        + "    return LaunchDescription([ExecuteProcess(cmd=['sleep', '60'], name='early'),\n"
-        + f"        TimerAction(period=0.5, actions=[{failing}])])\n"
+    write(
+        tmp_path,
+        '<launch>\n  <executable cmd="sleep 60" name="early"/>\n  <timer period="0.5">\n    <boom/>\n'
+        "  </timer>\n</launch>\n",
+        "boom.launch.xml",
     )
-    run = launch_run(str(write(tmp_path, text, "t.launch.py")), "--no-router")
+    run = launch_run(str(write(tmp_path, text, name)), "--no-router")
     assert run.wait(30) == 2, run.text()
     caught = [line for line in run.text().splitlines() if "Caught exception in launch" in line]
     assert len(caught) == 1 and re.search(pattern, caught[0]), run.text()
+    assert "process started" in run.text()  # it came while the launch ran, and stopped what had started
     assert_nothing_left(run)
 
 

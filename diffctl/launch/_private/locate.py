@@ -1,9 +1,11 @@
-"""Where in a user's file an exception was raised, for one-line error messages."""
+"""Where in a user's file an exception was raised, or an entity made, for one-line error messages."""
 
 from __future__ import annotations
 
 import os
+import sys
 import traceback
+from typing import Any
 
 _OURS = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # diffctl/
 _STDLIB = os.path.dirname(os.__file__)
@@ -26,3 +28,22 @@ def user_location(exc: BaseException) -> str | None:
     if found is None and exc.__cause__ is not None:
         return user_location(exc.__cause__)
     return found
+
+
+# the code between a launch file and the entities it makes: diffctl, the standard library, installed packages
+_NOT_USERS = (_OURS + os.sep, _STDLIB + os.sep, '<')
+_INSTALLED = (os.sep + 'site-packages' + os.sep, os.sep + 'dist-packages' + os.sep)
+
+
+def creation_site(made: Any) -> str | None:
+    """'file:line' of the code that is making `made` (called from its constructor): the innermost frame of the
+    user's own files, past `made`'s own constructors and installed helper packages; None when none is found
+    (an entity a frontend parsed: its markup location is kept instead)."""
+    frame = sys._getframe(1)
+    while frame is not None:
+        path = frame.f_code.co_filename
+        if not path.startswith(_NOT_USERS) and not any(part in path for part in _INSTALLED) \
+                and not (frame.f_code.co_name == '__init__' and frame.f_locals.get('self') is made):
+            return f'{path}:{frame.f_lineno}'
+        frame = frame.f_back
+    return None
