@@ -231,26 +231,28 @@ def spawn_entity(ctx: click.Context, remove_name: str | None, timeout: float, **
             click.echo(f"removed {remove_name!r} from world {target!r}")
             return
         sdf = description.wait(deadline) if description is not None else None
+        body: dict[str, Any] = {"allow_renaming": req.allow_renaming, "base_dir": os.getcwd()}
+        if req.name:
+            body["name"] = req.name
+        if req.pose is not None:
+            body["pose"] = req.pose
+        if model_file is not None:
+            body["sdf_filename"] = str(model_file)
+        elif req.source == "string":
+            body["sdf"] = req.value
+        else:
+            body["sdf"] = sdf
+        try:
+            reply = call(session, target, "create", body, deadline)
+        except RuntimeFailure as e:
+            # ros_gz_sim's create: "Entity creation failed." and exit 1; the simulator's reason names file and line
+            reason = e.message.removeprefix("create failed: ")
+            raise RuntimeFailure(f"Entity creation failed: {reason}", hint=e.hint) from None
     finally:
+        # The node that read the description ends after the call: its endpoints' undeclarations (20-30 ms
+        # under load) held the call back, and with it the robot's spawn.
         if description is not None:
             description.close()
-    body: dict[str, Any] = {"allow_renaming": req.allow_renaming, "base_dir": os.getcwd()}
-    if req.name:
-        body["name"] = req.name
-    if req.pose is not None:
-        body["pose"] = req.pose
-    if model_file is not None:
-        body["sdf_filename"] = str(model_file)
-    elif req.source == "string":
-        body["sdf"] = req.value
-    else:
-        body["sdf"] = sdf
-    try:
-        reply = call(session, target, "create", body, deadline)
-    except RuntimeFailure as e:
-        # ros_gz_sim's create: "Entity creation failed." and exit 1; the simulator's reason names file and line
-        reason = e.message.removeprefix("create failed: ")
-        raise RuntimeFailure(f"Entity creation failed: {reason}", hint=e.hint) from None
     click.echo(f"spawned {reply.get('name')!r} into world {target!r}")
 
 
