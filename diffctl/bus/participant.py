@@ -40,6 +40,7 @@ class _Context:
         self._ids = itertools.count(0)
         self._graph: Graph | None = None
         self._graph_lock = threading.Lock()
+        self._graph_built: threading.Event | None = None  # set once the graph is made, by whichever thread
         self._executor: ThreadPoolExecutor | None = None
         self._locals: dict[tuple[str, str, str], Participant] = {}  # (topic, type, kind) → a node owning it
         self._warned: set[tuple[str, str, str]] = set()
@@ -71,18 +72,76 @@ class _Context:
         return wire.entity_token(self.domain, self.zid, node.node_id, self.next_id(), kind, node.namespace,
                                  node.name, topic, typename, qos)
 
+    def start_graph(self) -> None:
+        """Make the graph on a thread of its own, unless it is made or being made: its liveliness subscriber and
+        the router's answer to its snapshot query (20-70 ms under load, mostly waiting) then overlap the rest of
+        a node's start instead of holding up its first endpoint."""
+        with self._graph_lock:
+            if self._graph is not None or (self._graph_built is not None and not self._graph_built.is_set()):
+                return
+            building = self._graph_built = threading.Event()
+        threading.Thread(target=self._start_making, args=(building,), name="graph", daemon=True).start()
+
     @property
     def graph(self) -> Graph:
-        with self._graph_lock:
-            if self._graph is None:
-                self._graph = Graph(self.session, self.domain, own=tuple(self._own_tokens))
-                self._graph.add_listener(self._check_mismatch)
-            return self._graph
+        while True:
+            with self._graph_lock:
+                if self._graph is not None:
+                    return self._graph
+                building = self._graph_built
+                if building is None or building.is_set():  # none under way, or one that failed: made here
+                    building = self._graph_built = threading.Event()
+                    mine = True
+                else:
+                    mine = False
+            if mine:
+                self._make_graph(building, quiet=False)
+            else:
+                building.wait()
+
+    def _start_making(self, building: threading.Event) -> None:
+        self._make_graph(building, quiet=True)
+
+    def _make_graph(self, building: threading.Event, *, quiet: bool) -> None:
+        """Made outside the lock (declaring a token takes it, and must not wait for the router); the tokens
+        this session declared or dropped meanwhile are then told to it, and the endpoints of this process
+        registered meanwhile are checked against what it found. On a thread of its own (`quiet`), a failure
+        (the session closing as the process ends) leaves the graph to be made by the first that needs it."""
+        try:
+            with self._graph_lock:
+                known = dict(self._own_tokens)
+            try:
+                graph = Graph(self.session, self.domain, own=tuple(known))
+            except Exception:
+                if quiet:
+                    return
+                raise
+            with self._graph_lock:
+                for key in self._own_tokens:
+                    if key not in known:
+                        graph.own(key, True)
+                for key in known:
+                    if key not in self._own_tokens:
+                        graph.own(key, False)
+                self._graph = graph
+                graph.add_listener(self._check_mismatch)
+                topics = {topic for topic, _, _ in self._locals}
+            for ent in graph.entities():
+                if ent.topic in topics:
+                    self._check_mismatch("put", ent)
+        finally:
+            building.set()
 
     def add_local(self, topic: str, typename: str, kind: str, node: Participant) -> None:
-        self._locals[(topic, typename, kind)] = node
-        # Watch the graph so a mismatch is reported, including against endpoints that were already there.
-        for ent in self.graph.entities():
+        # Watch the graph so a mismatch is reported, including against endpoints that were already there: once
+        # it is made, here; while it is being made, where it is made (the registration is seen there or here).
+        with self._graph_lock:
+            self._locals[(topic, typename, kind)] = node
+            graph = self._graph
+        if graph is None:
+            self.start_graph()
+            return
+        for ent in graph.entities():
             if ent.topic == topic:
                 self._check_mismatch("put", ent)
 
@@ -149,6 +208,7 @@ class Participant:
         self._last_warned: dict[str, tuple[float, int]] = {}
         self._token = self.context.declare_token(
             wire.node_token(self.domain, self.context.zid, self.node_id, self.namespace, self.name))
+        self.context.start_graph()
 
     @property
     def fqn(self) -> str:
