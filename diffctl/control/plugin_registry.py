@@ -36,14 +36,16 @@ def register_hardware(plugin_name: str, cls: type[HardwareComponent]) -> None:
 
 
 # The installed plugins by group, scanned once per process (pluginlib reads its manifests once too): a scan
-# reads every installed distribution's metadata, 7 ms on a controller's load. A name not found triggers a
-# rescan first, so a plugin installed while a manager runs is still found.
+# reads every installed distribution's metadata, 7 ms on a controller's load, so both groups are taken from
+# one. A name not found triggers a rescan first, so a plugin installed while a manager runs is still found.
 _scanned: dict[str, dict[str, str]] = {}
 
 
 def _entry_points(group: str, *, rescan: bool = False) -> dict[str, str]:
     if rescan or group not in _scanned:
-        _scanned[group] = {ep.name: ep.value for ep in entry_points(group=group)}
+        every = entry_points()
+        for name in (CONTROLLER_GROUP, HARDWARE_GROUP, group):
+            _scanned[name] = {ep.name: ep.value for ep in every.select(group=name)}
     return _scanned[group]
 
 
