@@ -15,8 +15,20 @@ from bench.ports import free_port, wait_port
 
 __all__ = ["OUTPUT", "REPO", "Procs", "free_port", "wait_port"]
 
+# pytest rewrites the asserts of every test module as it imports it: ~15 s of CPU for this suite, in each
+# pytest-xdist worker. Where PYTHONDONTWRITEBYTECODE is set it would redo that on every run; the rewritten
+# modules are kept in tests/**/__pycache__ (ignored by git) instead, as `make bytecode` keeps diffctl's own.
+# This process only: the programs the tests start keep the environment's setting.
+sys.dont_write_bytecode = False
+
 REPO = Path(__file__).resolve().parent.parent
 OUTPUT = REPO / "test-output"
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """The slow end-to-end tests first (in their files' order): under pytest-xdist the run then ends on short
+    tests, every worker busy to the end, not one finishing a 30 s test while the others wait."""
+    items.sort(key=lambda item: item.get_closest_marker("slow") is None)
 
 
 class Procs:
