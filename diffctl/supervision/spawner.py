@@ -268,9 +268,10 @@ class PosixSpawner:
                 child_ends += [out_w, err_w]
                 stdout, stderr = out_w, err_w
             stdin = {'pipe': subprocess.PIPE, 'inherit': None, 'devnull': subprocess.DEVNULL}[request.stdin]
+            exec_argv, preexec = self._how_to_exec(argv, request)
             popen = subprocess.Popen(
-                argv, stdin=stdin, stdout=stdout, stderr=stderr, cwd=request.cwd, env=request.env,
-                start_new_session=True, close_fds=True, preexec_fn=self.preexec_fn)
+                exec_argv, stdin=stdin, stdout=stdout, stderr=stderr, cwd=request.cwd, env=request.env,
+                start_new_session=True, close_fds=True, preexec_fn=preexec)
         except BaseException:
             for fd, _ in parent_ends:
                 _close(fd)
@@ -290,6 +291,10 @@ class PosixSpawner:
         self._children.append(child)
         self._watch_exit(child)
         return child
+
+    def _how_to_exec(self, argv: list[str], request: SpawnRequest) -> tuple[list[str], Callable[[], None] | None]:
+        """What is exec'd for `argv`, and the function run in the child before (a subclass may wrap `argv`)."""
+        return argv, self.preexec_fn
 
     def _watch_exit(self, child: _Child) -> None:
         try:

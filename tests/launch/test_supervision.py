@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import asyncio
 import os
+import select
 import signal
 import subprocess
 import sys
@@ -204,3 +205,36 @@ def test_the_launcher_forks_components_reaps_them_and_leaves_nothing(launch_run,
     while run.leftovers() and time.monotonic() < deadline:
         time.sleep(0.05)
     assert [p.cmdline() for p in run.leftovers()] == []  # the zygote too
+
+
+def test_execd_children_get_the_death_signal_and_none_outlives_a_launcher_already_gone(tmp_path) -> None:
+    # Exec'd children run through setpriv (the death signal armed before the command is exec'd, without
+    # subprocess's slow fork-and-preexec path) and a shell line that execs the command only while the launcher
+    # that spawned it is still its parent. The launcher here is a process of its own, killed once it spawned.
+    from diffctl.supervision.launcher_spawner import _death_signal_wrapper
+
+    assert _death_signal_wrapper(os.getpid()), "util-linux's setpriv with --pdeathsig is missing"
+    ran = tmp_path / "ran"
+    code = (
+        "import os, subprocess, sys\n"
+        "from diffctl.supervision.launcher_spawner import _death_signal_wrapper\n"
+        "mine = _death_signal_wrapper(os.getpid())\n"
+        "other = [*mine[:-1], '1']\n"  # as if the launcher had died before the signal was armed
+        f"print(subprocess.run([*other, 'touch', {str(ran)!r}]).returncode, flush=True)\n"
+        "child = subprocess.Popen([*mine, 'sleep', '60'], start_new_session=True)\n"
+        "print(child.pid, flush=True)\n"
+        "sys.stdin.read()\n"  # until the test kills it
+    )
+    launcher = subprocess.Popen([sys.executable, "-c", code], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    try:
+        assert launcher.stdout.readline().strip() == "1" and not ran.exists()
+        pid = int(launcher.stdout.readline())
+        fd = os.pidfd_open(pid)
+        try:
+            launcher.kill()
+            assert select.select([fd], [], [], 30)[0], "the child outlived its launcher"
+        finally:
+            os.close(fd)
+    finally:
+        launcher.kill()
+        launcher.wait()
