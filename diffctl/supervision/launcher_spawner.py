@@ -28,6 +28,7 @@ import signal
 import subprocess
 import sys
 import time
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -118,7 +119,8 @@ class LauncherSpawner(PosixSpawner):
             return argv, self.preexec_fn
         if not request.shell:
             _check_executable(argv[0], request)  # the errors exec gives, raised here as Popen raises them
-        return [*self._wrapper, *argv], None
+        env = request.env if request.env is not None else os.environ
+        return _while_launcher_lives(self._wrapper, self._launcher, argv, env), None
 
     async def spawn(self, request: SpawnRequest, sink: OutputSink) -> _Child:
         self._watch_orphans()
@@ -354,19 +356,28 @@ class LauncherSpawner(PosixSpawner):
 
 
 def _death_signal_wrapper(launcher: int) -> list[str]:
-    """`setpriv --pdeathsig KILL -- /bin/sh -c CHECK LAUNCHER` (argv follows), or [] when setpriv cannot."""
+    """`setpriv --pdeathsig KILL --`, or [] where setpriv, or its --pdeathsig, or /bin/sh is missing."""
     setpriv = shutil.which("setpriv")
-    if setpriv is None or not os.path.exists("/bin/sh"):
+    if setpriv is None or not os.access("/bin/sh", os.X_OK):
         return []
-    wrapper = [
-        setpriv, "--pdeathsig", "KILL", "--",
-        "/bin/sh", "-c", 'test "$PPID" = "$0" && exec "$@"', str(launcher),
-    ]
+    wrapper = [setpriv, "--pdeathsig", "KILL", "--"]
+    probe = [*wrapper, "/bin/sh", "-c", 'test "$PPID" = "$0"', str(launcher)]
     try:
-        works = subprocess.run([*wrapper, "true"], capture_output=True, timeout=10).returncode == 0
+        works = subprocess.run(probe, capture_output=True, timeout=10).returncode == 0
     except (OSError, subprocess.SubprocessError):
         works = False
     return wrapper if works else []
+
+
+def _while_launcher_lives(wrapper: list[str], launcher: int, argv: list[str], env: Mapping[str, str]) -> list[str]:
+    """`wrapper` running a shell line that execs `argv` only if `launcher` is still the parent. The shell would
+    export PWD, set to the working directory: the command gets it as `env` has it, or not at all."""
+    pwd = env.get("PWD")
+    if pwd is None:
+        line = ['test "$PPID" = "$0" && unset PWD && exec "$@"', str(launcher)]
+    else:
+        line = ['test "$PPID" = "$0" && PWD=$1 && shift && exec "$@"', str(launcher), pwd]
+    return [*wrapper, "/bin/sh", "-c", *line, *argv]
 
 
 def _check_executable(command: str, request: SpawnRequest) -> None:

@@ -217,17 +217,24 @@ def test_execd_children_get_the_death_signal_and_none_outlives_a_launcher_alread
     ran = tmp_path / "ran"
     code = (
         "import os, subprocess, sys\n"
-        "from diffctl.supervision.launcher_spawner import _death_signal_wrapper\n"
-        "mine = _death_signal_wrapper(os.getpid())\n"
-        "other = [*mine[:-1], '1']\n"  # as if the launcher had died before the signal was armed
-        f"print(subprocess.run([*other, 'touch', {str(ran)!r}]).returncode, flush=True)\n"
-        "child = subprocess.Popen([*mine, 'sleep', '60'], start_new_session=True)\n"
+        "from diffctl.supervision.launcher_spawner import _death_signal_wrapper, _while_launcher_lives\n"
+        "setpriv = _death_signal_wrapper(os.getpid())\n"
+        "def through(argv, env, launcher=os.getpid()):\n"
+        "    return _while_launcher_lives(setpriv, launcher, argv, env)\n"
+        # as if the launcher had died before the signal was armed: its pid is not the parent's
+        f"print(subprocess.run(through(['touch', {str(ran)!r}], os.environ, launcher=1)).returncode)\n"
+        # the command's environment is the one given, PWD included (stale, or absent)
+        "for env in ({'A': '1', 'PWD': '/stale'}, {'A': '1'}):\n"
+        "    shown = subprocess.run(through(['/usr/bin/env'], env), env=env, capture_output=True, text=True)\n"
+        "    print(sorted(shown.stdout.split()) == sorted(f'{k}={v}' for k, v in env.items()))\n"
+        "child = subprocess.Popen(through(['sleep', '60'], os.environ), start_new_session=True)\n"
         "print(child.pid, flush=True)\n"
         "sys.stdin.read()\n"  # until the test kills it
     )
     launcher = subprocess.Popen([sys.executable, "-c", code], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
     try:
-        assert launcher.stdout.readline().strip() == "1" and not ran.exists()
+        assert [launcher.stdout.readline().strip() for _ in range(3)] == ["1", "True", "True"]
+        assert not ran.exists()
         pid = int(launcher.stdout.readline())
         fd = os.pidfd_open(pid)
         try:
