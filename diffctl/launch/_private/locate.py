@@ -33,6 +33,9 @@ def user_location(exc: BaseException) -> str | None:
 # the code between a launch file and the entities it makes: diffctl, the standard library, installed packages
 _NOT_USERS = (_OURS + os.sep, _STDLIB + os.sep, '<')
 _INSTALLED = (os.sep + 'site-packages' + os.sep, os.sep + 'dist-packages' + os.sep)
+# a launch file is a few constructors away (Node, ExecuteProcess, ExecuteLocal, Action) or behind a helper's few;
+# an action launch makes itself while running, or a frontend while parsing, is found by none within this many
+_LOOKED_AT = 16
 
 
 def creation_site(made: Any) -> str | None:
@@ -40,7 +43,9 @@ def creation_site(made: Any) -> str | None:
     user's own files, past `made`'s own constructors and installed helper packages; None when none is found
     (an entity a frontend parsed: its markup location is kept instead)."""
     frame = sys._getframe(1)
-    while frame is not None:
+    for _ in range(_LOOKED_AT):
+        if frame is None:
+            break
         path = frame.f_code.co_filename
         if not path.startswith(_NOT_USERS) and not any(part in path for part in _INSTALLED) \
                 and not (frame.f_code.co_name == '__init__' and frame.f_locals.get('self') is made):

@@ -73,6 +73,7 @@ class _Run:
         self.err: logging.Logger | None = None
         self.child: Any | None = None
         self.timers: list[TimerAction] = []
+        self.escalation: list[asyncio.TimerHandle] = []
         self.respawns = 0
 
 
@@ -319,6 +320,8 @@ class ExecuteLocal(Action):
         run = self._run
         for timer in run.timers:
             timer.cancel()
+        for step in run.escalation:
+            step.cancel()
         if run.child is not None:
             run.child.close()
         run.done.set_result(None)
@@ -351,35 +354,41 @@ class ExecuteLocal(Action):
         return steps
 
     def _escalation(self, context: LaunchContext) -> list[TimerAction]:
-        """SIGTERM after `sigterm_timeout`, SIGKILL after both timeouts, each step logged."""
+        """SIGTERM after `sigterm_timeout`, SIGKILL after both timeouts, each step logged.
+
+        Timeouts that are numbers (what launch files give) are timers of the loop: stopping 50 processes made
+        100 TimerActions, each a task, and their actions otherwise. Others are TimerActions whose own
+        evaluation of the timeouts fails as upstream's does."""
         term_text = perform_substitutions(context, self._term_after)
         try:
-            # numbers now: a launch stopping 50 processes evaluated 50 Python expressions for their sum
             term_s = float(term_text)
-            steps = (
-                (term_s, term_text, 'SIGINT', signal.SIGTERM, 'SIGTERM'),
-                (term_s + float(perform_substitutions(context, self._kill_after)), None, 'SIGTERM', 'SIGKILL',
-                 'SIGKILL'),
-            )
-        except ValueError:  # not numbers: the timers' own evaluation says so, as upstream's does
+            kill_s = term_s + float(perform_substitutions(context, self._kill_after))
+        except ValueError:
             both = [PythonExpression(('float(', *self._term_after, ') + float(', *self._kill_after, ')'))]
-            steps = (
-                (self._term_after, None, 'SIGINT', signal.SIGTERM, 'SIGTERM'),
-                (both, None, 'SIGTERM', 'SIGKILL', 'SIGKILL'),
-            )
-        timers = []
-        for delay, shown, before, sent, sent_name in steps:
-            if shown is None:
-                shown = str(delay) if isinstance(delay, float) else delay
-            timers.append(TimerAction(
-                period=delay,
-                actions=[
-                    OpaqueFunction(function=self._complain, args=(shown, before, sent_name)),
-                    EmitEvent(event=SignalProcess(signal_number=sent, process_matcher=matches_action(self))),
-                ],
-                cancel_on_shutdown=False,
-            ))
-        return timers
+            return [
+                TimerAction(
+                    period=delay,
+                    actions=[
+                        OpaqueFunction(function=self._complain, args=(delay, before, sent_name)),
+                        EmitEvent(event=SignalProcess(signal_number=sent, process_matcher=matches_action(self))),
+                    ],
+                    cancel_on_shutdown=False,
+                )
+                for delay, before, sent, sent_name in (
+                    (self._term_after, 'SIGINT', signal.SIGTERM, 'SIGTERM'), (both, 'SIGTERM', 'SIGKILL', 'SIGKILL'))
+            ]
+        loop = context.asyncio_loop
+        self._run.escalation = [
+            loop.call_later(term_s, self._escalate, context, term_text, 'SIGINT', signal.SIGTERM, 'SIGTERM'),
+            loop.call_later(kill_s, self._escalate, context, str(kill_s), 'SIGTERM', 'SIGKILL', 'SIGKILL'),
+        ]
+        return []
+
+    def _escalate(self, context: LaunchContext, shown: str, before: str, sent: Any, sent_name: str) -> None:
+        self._run.log.error(
+            f"process[{self._details['name']}] failed to terminate '{shown}' "
+            f"seconds after receiving '{before}', escalating to '{sent_name}'")
+        context.emit_event_sync(SignalProcess(signal_number=sent, process_matcher=matches_action(self)))
 
     def _complain(self, context: LaunchContext, delay: str | list, before: str, after: str) -> None:
         shown = delay if isinstance(delay, str) else perform_substitutions(context, delay)
