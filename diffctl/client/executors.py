@@ -275,6 +275,10 @@ class Executor:
         yielded_work = False
         while not yielded_work and not self._is_shutdown and not condition():
             nodes_to_use = self.get_nodes() if nodes is None else nodes
+            # Read before anything is looked at: a task created or an entity made ready after this (another
+            # thread's create_task, a sample) has moved the generation past it, and the wait below returns at once.
+            # Read after the task list, a task created in between was in neither and the executor slept past it.
+            generation = signal.generation
 
             with self._tasks_lock:
                 tasks = list(self._tasks)
@@ -286,7 +290,6 @@ class Executor:
                 with self._tasks_lock:
                     self._tasks = [t for t in self._tasks if not t[0].done() and not t[0].cancelled()]
 
-            generation = signal.generation
             subs: list[Any] = []
             timers: list[Any] = []
             clients: list[Any] = []
