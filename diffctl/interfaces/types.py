@@ -60,11 +60,15 @@ def _ensure(typename: str):
         defs = typedefs.definitions()
         missing = [n for n in typedefs.closure(defs, [typename]) if n not in _registered]
         if missing:
+            # rosbags makes classes only for names a store has no definition of, and some of these the store
+            # describes already: they are made in a store of their own and moved in, so that a thread reading
+            # the store meanwhile (compiling another type's codec) never finds a name gone from it.
+            scratch = get_typestore(Stores.EMPTY)
+            scratch.register({n: defs[n] for n in missing})
             for n in missing:
-                if n in _described:  # rosbags generates classes only for names it has no definition of
-                    del ts.fielddefs[n]
-                    _described.discard(n)
-            ts.register({n: defs[n] for n in missing})
+                ts.types[n] = scratch.types[n]
+                ts.fielddefs[n] = scratch.fielddefs[n]
+                _described.discard(n)
             _registered.update(missing)
     return ts
 
