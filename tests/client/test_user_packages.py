@@ -47,8 +47,17 @@ def diffctl(procs: Procs, ws: Path, *args: str) -> subprocess.Popen:
 
 
 def run(ws: Path, *args: str, timeout_s: float = 60) -> subprocess.CompletedProcess[str]:
-    return subprocess.run([sys.executable, "-m", "diffctl", *args], cwd=ws, env=env(), capture_output=True,
-                          text=True, timeout=timeout_s)
+    """`diffctl ARGS` to its end. Past the failure bound its whole process group is killed (`diffctl run`'s
+    node too, which a plain timeout left running) and the failure shows what it printed."""
+    p = subprocess.Popen([sys.executable, "-m", "diffctl", *args], cwd=ws, env=env(), stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True, start_new_session=True)
+    try:
+        out, err = p.communicate(timeout=timeout_s)
+    except subprocess.TimeoutExpired:
+        os.killpg(p.pid, signal.SIGKILL)
+        out, err = p.communicate()
+        raise AssertionError(f"diffctl {' '.join(args)} did not end within {timeout_s} s:\n{out}{err}") from None
+    return subprocess.CompletedProcess(p.args, p.returncode, out, err)
 
 
 def wait_for_line(p: subprocess.Popen, text: str, timeout_s: float = 60) -> list[str]:
