@@ -8,6 +8,7 @@ import subprocess
 import sys
 from collections.abc import Iterator
 from pathlib import Path
+from typing import Any
 
 import pytest
 
@@ -71,7 +72,23 @@ class Procs:
                 pass
             for stream in (p.stdout, p.stderr):
                 if stream:
+                    _show_rest(p, stream)
                     stream.close()
+
+
+def _show_rest(p: subprocess.Popen, stream: Any) -> None:
+    """Print what a child wrote that its test did not read (pytest shows it beside a failure): without it a
+    failed wait says nothing of what the child was doing. Non-blocking: a grandchild in another session may
+    still hold the pipe open."""
+    try:
+        os.set_blocking(stream.fileno(), False)
+        rest = stream.read()
+    except (OSError, ValueError, TypeError):  # TypeError: nothing to read yet (TextIOWrapper meets None)
+        return
+    if rest:
+        text = rest if isinstance(rest, str) else rest.decode(errors="replace")
+        print(f"--- output of {' '.join(map(str, p.args))[:200]} (exit {p.returncode}) not read by the test:")
+        print(text[-8000:])
 
 
 @pytest.fixture
