@@ -13,6 +13,7 @@ import zenoh
 from zenoh import ext
 
 from diffctl.bus import wire
+from diffctl.bus.session import closing, join_after_close
 from diffctl.errors import BusError, MessageError, ServiceTimeout
 from diffctl.interfaces import types
 
@@ -337,11 +338,12 @@ class Client:
                     on_reply(None, err)
 
             def done() -> None:
-                if answered or self.closed:
+                if answered or self.closed or closing():
                     return
                 if time.monotonic() - first < 10.0 and self.service_is_ready():
                     t = threading.Timer(0.02, send)
                     t.daemon = True
+                    join_after_close(t)  # it sends on the session: not into the interpreter's finalization
                     t.start()
 
             try:

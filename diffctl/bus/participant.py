@@ -20,7 +20,7 @@ import zenoh
 from diffctl.bus import wire
 from diffctl.bus.endpoints import Client, Publisher, Service, Subscription
 from diffctl.bus.graph import Graph
-from diffctl.bus.session import domain_id, open_session
+from diffctl.bus.session import domain_id, join_after_close, open_session
 
 
 class Logger(Protocol):
@@ -80,7 +80,9 @@ class _Context:
             if self._graph is not None or (self._graph_built is not None and not self._graph_built.is_set()):
                 return
             building = self._graph_built = threading.Event()
-        threading.Thread(target=self._start_making, args=(building,), name="graph", daemon=True).start()
+        maker = threading.Thread(target=self._start_making, args=(building,), name="graph", daemon=True)
+        join_after_close(maker)  # a program may end while it is still inside a Zenoh call
+        maker.start()
 
     @property
     def graph(self) -> Graph:

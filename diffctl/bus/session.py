@@ -13,6 +13,8 @@ import json
 import os
 import socket
 import threading
+import time
+import weakref
 from collections.abc import Callable
 
 import zenoh
@@ -163,6 +165,8 @@ def open_session() -> zenoh.Session:
         if _session is None:
             _init_log()
             _closing = False
+            _older_than_session.clear()
+            _older_than_session.update(_zenoh_callback_threads())
             cfg = peer_config(router_endpoint())
             try:
                 _session = zenoh.open(cfg)
@@ -170,11 +174,31 @@ def open_session() -> zenoh.Session:
                 if "connect" in str(e).lower() or "timeout" in str(e).lower():
                     raise _no_router(connect_endpoints(cfg)) from None
                 raise ConfigError(f"cannot open a Zenoh session: {e}") from None
-            # Zenoh's callback threads are non-daemon Python threads: the session must close before the
-            # interpreter joins them at exit, which plain atexit handlers run too late for.
-            register = getattr(threading, "_register_atexit", atexit.register)
-            register(close_session)
+            # Closed (and its callback threads joined) before the interpreter finalizes: threading's exit hooks
+            # run before it waits for non-daemon threads; plain atexit handlers run after, too late for the
+            # executors' and Zenoh's daemon threads.
+            global _exit_hook
+            if not _exit_hook:
+                register = getattr(threading, "_register_atexit", atexit.register)
+                register(_close_at_exit)
+                _exit_hook = True
         return _session
+
+
+_exit_hook = False
+_exiting = False
+
+
+def _close_at_exit() -> None:
+    global _exiting
+    _exiting = True
+    close_session()
+
+
+def exiting() -> bool:
+    """Whether the session is closing because the interpreter is ending (the program returned or called
+    sys.exit, with or without rclpy.shutdown())."""
+    return _exiting
 
 
 def _no_router(endpoints: list[str]) -> NoRouterError:
@@ -204,6 +228,12 @@ def _answers_quietly(endpoint: str) -> bool:
 
 _before_close: list[Callable[[], None]] = []  # run in order
 _closing = False
+_join_after_close: weakref.WeakSet[threading.Thread] = weakref.WeakSet()
+_older_than_session: weakref.WeakSet[threading.Thread] = weakref.WeakSet()  # another session's, not waited for
+# zenoh-python runs each Python callback (subscriber, liveliness subscriber, reply handler, matching listener) on
+# a daemon thread of its own, which threading names after its target.
+ZENOH_CALLBACK_THREAD_SUFFIX = "(pyo3-closure)"
+AFTER_CLOSE_JOIN_S = 5.0
 
 
 def before_close(fn: Callable[[], None], *, first: bool = False) -> None:
@@ -214,6 +244,32 @@ def before_close(fn: Callable[[], None], *, first: bool = False) -> None:
     exception not rethrown")."""
     if fn not in _before_close:
         _before_close.insert(0, fn) if first else _before_close.append(fn)
+
+
+def join_after_close(thread: threading.Thread) -> None:
+    """`thread`, a daemon that may be inside a Zenoh call, has ended when close_session returns (the call fails
+    fast once the session is closed; the thread then needs the interpreter once more to end)."""
+    _join_after_close.add(thread)
+
+
+def _zenoh_callback_threads() -> list[threading.Thread]:
+    return [t for t in threading.enumerate() if t.name.endswith(ZENOH_CALLBACK_THREAD_SUFFIX)]
+
+
+def _threads_into_python() -> list[threading.Thread]:
+    me = threading.current_thread()
+    ours = [t for t in _zenoh_callback_threads() if t not in _older_than_session]
+    return [t for t in {*ours, *_join_after_close} if t is not me]
+
+
+def _join_threads_into_python(timeout_s: float) -> None:
+    """Closing the session ends Zenoh's callback threads, but they are daemons and nothing waits for them: one
+    still waking from its channel when the interpreter finalizes is ended by CPython with pthread_exit inside
+    zenoh-python's Rust frames, which aborts the process ("FATAL: exception not rethrown", exit -6)."""
+    deadline = time.monotonic() + timeout_s
+    for t in _threads_into_python():
+        if t.is_alive():  # started, not ended (one registered just before its start is not joinable yet)
+            t.join(max(0.0, deadline - time.monotonic()))
 
 
 def closing() -> bool:
@@ -240,6 +296,7 @@ def close_session() -> None:
             s.close()
         except Exception:
             pass
+        _join_threads_into_python(AFTER_CLOSE_JOIN_S)
 
 
 def endpoint_answers(endpoint: str, timeout_s: float = 0.3) -> bool:

@@ -9,6 +9,7 @@ itself is `waiting.SIGNAL`: Zenoh threads, timers' due times, guards, tasks and 
 
 from __future__ import annotations
 
+import itertools
 import os
 import threading
 import time
@@ -18,9 +19,9 @@ from collections.abc import Callable, Generator
 from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
-from diffctl.bus.session import before_close
+from diffctl.bus.session import before_close, exiting
 from diffctl.client import waiting
-from diffctl.client.context import Context, get_default_context
+from diffctl.client.context import Context, all_contexts, get_default_context
 from diffctl.client.exceptions import RCLError
 from diffctl.client.signals import shut_down_by_signal
 from diffctl.client.task import Future, Task
@@ -94,14 +95,78 @@ _live_executors: weakref.WeakSet[Executor] = weakref.WeakSet()
 EXIT_WAIT_S = 2.0  # how long the exit waits for callbacks in flight on executor threads
 
 
+class _Spinners:
+    """The threads inside an executor's spin_once, each with the number of its current entry: the exit waits
+    until each has left the call it was in, which a thread spinning again at once (rclpy.spin's loop) does
+    although it is hardly ever outside one."""
+
+    def __init__(self) -> None:
+        self._cond = threading.Condition()
+        self._entries = itertools.count(1)
+        self._inside: dict[int, tuple[int, int]] = {}  # thread ident → (entry number, depth)
+
+    def __enter__(self) -> None:
+        me = threading.get_ident()
+        with self._cond:
+            entry, depth = self._inside.get(me, (next(self._entries), 0))
+            self._inside[me] = (entry, depth + 1)
+
+    def __exit__(self, *exc: Any) -> None:
+        me = threading.get_ident()
+        with self._cond:
+            entry, depth = self._inside.pop(me)
+            if depth > 1:
+                self._inside[me] = (entry, depth - 1)
+            else:
+                self._cond.notify_all()
+
+    def wait_left(self, timeout_s: float) -> bool:
+        """Wait until every other thread inside a spin_once now has left it."""
+        me = threading.get_ident()
+        with self._cond:
+            now = {t: entry for t, (entry, _) in self._inside.items() if t != me}
+            return self._cond.wait_for(
+                lambda: all(self._inside.get(t, (0, 0))[0] != entry for t, entry in now.items()), timeout_s)
+
+
+_spinners = _Spinners()
+
+
+def _only_spins(thread: threading.Thread) -> bool:
+    """Whether `thread` was started to spin an executor (`Thread(target=executor.spin)`, `rclpy.spin`), so it
+    has nothing left to do once its spin returns. (threading keeps the target until the thread's run ends.)"""
+    target = getattr(thread, "_target", None)
+    if isinstance(getattr(target, "__self__", None), Executor):
+        return getattr(target, "__name__", "") in ("spin", "spin_until_future_complete")
+    from diffctl.client import runtime
+
+    return target in (runtime.spin, runtime.spin_until_future_complete)
+
+
 def _stop_executors() -> None:
     """At session close (exit at the latest): executors spinning in other threads stop, and the callbacks
     they are running finish, before the session goes (else they publish into a closed session, or are inside
-    a Zenoh call when the interpreter finalizes)."""
+    a Zenoh call when the interpreter finalizes).
+
+    At exit, also when the program never called rclpy.shutdown(): once every wait has ended quietly (a stopped
+    executor's), the contexts are shut down, which ends the spin loops (rclpy.spin's watches only its context;
+    shut down first, a SingleThreadedExecutor's wait would raise ExternalShutdownException into the program's
+    thread), and a thread that only spun (`Thread(target=executor.spin, daemon=True)`) is waited for to its end:
+    nothing waits for a daemon, and finalization cuts off whatever it is still doing."""
     for ex in list(_live_executors):
         # The base class's: a MultiThreadedExecutor's pool joins without a bound, and its threads are joined
         # at exit anyway (the caller's own callback is never waited for, see _WorkTracker).
         Executor.shutdown(ex, timeout_sec=EXIT_WAIT_S)
+    if not exiting():
+        return
+    deadline = time.monotonic() + EXIT_WAIT_S
+    _spinners.wait_left(EXIT_WAIT_S)
+    for ctx in all_contexts():
+        ctx.try_shutdown()
+    me = threading.current_thread()
+    for t in threading.enumerate():
+        if t is not me and t.daemon and _only_spins(t):
+            t.join(max(0.0, deadline - time.monotonic()))
 
 
 before_close(_stop_executors, first=True)
@@ -399,11 +464,13 @@ class SingleThreadedExecutor(Executor):
         handler.result()
 
     def spin_once(self, timeout_sec: float | None = None) -> None:
-        self._spin_once_impl(timeout_sec)
+        with _spinners:
+            self._spin_once_impl(timeout_sec)
 
     def spin_once_until_future_complete(self, future: Future, timeout_sec: Any = None) -> None:
         future.add_done_callback(lambda _f: self.wake())
-        self._spin_once_impl(timeout_sec, future.done)
+        with _spinners:
+            self._spin_once_impl(timeout_sec, future.done)
 
 
 class MultiThreadedExecutor(Executor):
@@ -439,11 +506,13 @@ class MultiThreadedExecutor(Executor):
                 future.result()
 
     def spin_once(self, timeout_sec: float | None = None) -> None:
-        self._spin_once_impl(timeout_sec)
+        with _spinners:
+            self._spin_once_impl(timeout_sec)
 
     def spin_once_until_future_complete(self, future: Future, timeout_sec: Any = None) -> None:
         future.add_done_callback(lambda _f: self.wake())
-        self._spin_once_impl(timeout_sec, future.done)
+        with _spinners:
+            self._spin_once_impl(timeout_sec, future.done)
 
     def shutdown(self, timeout_sec: float | None = None) -> bool:
         ok = super().shutdown(timeout_sec)

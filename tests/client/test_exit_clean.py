@@ -1,6 +1,6 @@
-"""Programs that end right after rclpy.shutdown() exit with their own code, silently, with no thread of
-diffctl's left running into interpreter finalization (one caught inside a Zenoh call there was cancelled and
-aborted the process: "FATAL: exception not rethrown", exit 134)."""
+"""Programs that end right after rclpy.shutdown(), or without it, exit with their own code, silently, with no
+thread of diffctl's or Zenoh's left running into interpreter finalization (one caught inside a Zenoh call there
+was cancelled and aborted the process: "FATAL: exception not rethrown", exit 134 or -6)."""
 
 from __future__ import annotations
 
@@ -52,6 +52,14 @@ VARIANTS = {
         threading.Thread(target=ex.spin, name="user-spin", daemon=True).start()
         time.sleep(0.3)
         rclpy.shutdown()
+    """,
+    # The program simply returns: the exit itself ends the contexts, the spinning thread (rclpy.spin watches only
+    # its context) and the Zenoh callback thread still busy with the node's own samples.
+    "never-shut-down": """
+        n.create_timer(0.002, lambda: (p.publish(String(data='a')), n.get_logger().info('tick')))
+        n.create_subscription(String, 'chatter', lambda m: None, 10)
+        threading.Thread(target=rclpy.spin, args=(n,), name="user-spin", daemon=True).start()
+        time.sleep(0.3)
     """,
     "keyboard-interrupt": """
         n.create_timer(0.002, lambda: (p.publish(String(data='a')), n.get_logger().info('tick')))
