@@ -30,6 +30,8 @@ def test_read_stdout(hello_world_proc, launch_context):
         return output == "this will never happen"
 
     assert not process_tools.wait_for_output_sync(launch_context, hello_world_proc, never, timeout=0.1)
+    # the launch shuts down after the yield, and SIGINTs an echo that has printed but not yet exited
+    assert process_tools.wait_for_exit_sync(launch_context, hello_world_proc, timeout=10)
     yield
     assert hello_world_proc.return_code == 0
 
