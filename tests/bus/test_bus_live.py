@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import select
 import subprocess
 import sys
 import textwrap
@@ -122,6 +123,20 @@ def test_graph_lists_what_exists_and_forgets_what_died(router: str, procs) -> No
     assert "/ghost_topic" not in g.topics()
 
 
+def read_until(proc: subprocess.Popen, text: str, seen: list[str], timeout_s: float = 30.0) -> str:
+    """What `proc` has printed once `text` is in it (stdout and stderr share the pipe, so a log line from
+    another thread may land inside a print: the whole is searched, not lines); `seen` keeps it all."""
+    deadline = time.monotonic() + timeout_s
+    fd = proc.stdout.fileno()
+    while text not in "".join(seen):
+        ready, _, _ = select.select([fd], [], [], max(0.0, deadline - time.monotonic()))
+        chunk = os.read(fd, 65536).decode(errors="replace") if ready else ""
+        if not chunk:
+            raise AssertionError(f"{text!r} not printed within {timeout_s} s: {''.join(seen)!r}")
+        seen.append(chunk)
+    return "".join(seen)
+
+
 def test_type_mismatch_is_reported_by_both_ends(router: str, procs) -> None:
     code = """
         from tests.probe import Probe
@@ -132,22 +147,21 @@ def test_type_mismatch_is_reported_by_both_ends(router: str, procs) -> None:
     """
     sub = python_child(procs, code.format(node="controller", create="create_subscription", type="TwistStamped",
                                           extra=", print"))
-    assert sub.stdout.readline().strip() == "ready"
+    out_sub: list[str] = []
+    read_until(sub, "ready", out_sub)
     pub = python_child(procs, code.format(node="teleop", create="create_publisher", type="Twist", extra=""))
-    early = [pub.stdout.readline() for _ in range(2)]
-    assert "ready\n" in early
+    out_pub: list[str] = []
+    read_until(pub, "ready", out_pub)
     g = Probe("observer").graph
     assert wait_for(lambda: len(g.topics().get("/cmd_vel", [])) == 2)
     info = subprocess.run([sys.executable, "-m", "diffctl", "topic", "info", "/cmd_vel"], capture_output=True,
                           text=True, timeout=20)
     assert info.returncode == 0
     assert "type mismatch on /cmd_vel" in info.stderr
-    time.sleep(0.5)
+    read_until(pub, "this node publishes geometry_msgs/msg/Twist but /controller subscribes to", out_pub)
+    read_until(sub, "this node subscribes to geometry_msgs/msg/TwistStamped but /teleop publishes", out_sub)
     procs.stop(pub)
     procs.stop(sub)
-    out_pub, out_sub = "".join(early) + pub.stdout.read(), sub.stdout.read()
-    assert "this node publishes geometry_msgs/msg/Twist but /controller subscribes to" in out_pub
-    assert "this node subscribes to geometry_msgs/msg/TwistStamped but /teleop publishes" in out_sub
 
 
 def test_topic_pub_to_topic_echo_across_processes(router: str, procs) -> None:
