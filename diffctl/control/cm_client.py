@@ -68,6 +68,20 @@ class ManagerClient:
         self._clients: dict[str, Any] = {}
         self._executor = SingleThreadedExecutor(context=node.context)
         self._executor.add_node(node)
+        self._in_call = False
+        self._interrupted = False
+        self._interrupt_pending = False
+
+    def interrupt(self) -> None:
+        """From a signal handler: raise KeyboardInterrupt where it is safe. A call in progress ends at the next
+        slice of its wait, never from inside the executor: an interrupt landing there could drop the reply being
+        handled, and the caller would wait out its timeout and retry (a spawner -u stopped right after its
+        switch hung 30 s). A second interrupt raises at once."""
+        if self._in_call and not self._interrupted:
+            self._interrupted = self._interrupt_pending = True
+            return
+        self._interrupted = True
+        raise KeyboardInterrupt
 
     def close(self) -> None:
         self._executor.shutdown(timeout_sec=1.0)
@@ -106,6 +120,9 @@ class ManagerClient:
 
     def call(self, service: str, request: Any = None, timeout_s: float | None = None) -> Any:
         """The response to `request` (the request message, or a dict of its fields)."""
+        if self._interrupt_pending:  # interrupted as the previous call's reply came: that call had its answer
+            self._interrupt_pending = False
+            raise KeyboardInterrupt
         cli = self.client(service)
         timeout = timeout_s or self.call_timeout_s
         msg = request
@@ -114,8 +131,12 @@ class ManagerClient:
             if request:
                 set_message_fields(msg, request)
         for k in range(1, self.attempts + 1):
-            future = cli.call_async(msg)
-            self._executor.spin_until_future_complete(future, timeout_sec=timeout)
+            self._in_call = True  # from the request on: a reply may come (and be handled) at once
+            try:
+                future = cli.call_async(msg)
+                self._wait_for(future, timeout)
+            finally:
+                self._in_call = False
             if future.done():
                 error = future.exception()
                 if error is not None:
@@ -130,6 +151,22 @@ class ManagerClient:
                 f"{timeout:g} s. (Attempt {k} of {self.attempts}.)"
             )
         raise RuntimeFailure(f"could not get a result from {self.manager}/{service} after {self.attempts} attempts")
+
+    def interrupt_handled(self) -> None:
+        """The interrupt was taken (the caller now unloads what it spawned): calls run to their end again."""
+        self._interrupt_pending = False
+
+    def _wait_for(self, future: Any, timeout_s: float) -> None:
+        """Spin until `future` is done or `timeout_s` passed, in slices, so that an interrupt comes between two."""
+        deadline = time.monotonic() + timeout_s
+        while not future.done():
+            left = deadline - time.monotonic()
+            if left <= 0:
+                return
+            self._executor.spin_until_future_complete(future, timeout_sec=min(0.1, left))
+            if self._interrupt_pending and not future.done():
+                self._interrupt_pending = False
+                raise KeyboardInterrupt
 
     # --- typed helpers -----------------------------------------------------------------------------------
     def list_controllers(self) -> list[Any]:

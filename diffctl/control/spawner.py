@@ -157,7 +157,7 @@ def spawn(
 
     def on_signal(*_: object) -> None:
         stop.set()
-        raise KeyboardInterrupt
+        cm.interrupt()  # KeyboardInterrupt now, or where a call in progress can take it
 
     # SIGINT too (the real spawner handles its signals itself, rclpy.init with SignalHandlerOptions.NO): should
     # its KeyboardInterrupt be lost (raised inside a finalizer, where Python only prints it), the event still
@@ -259,6 +259,7 @@ def _activate(cm: ManagerClient, log, names: list[str], timeout_s: float, asap: 
 
 
 def _unload(cm: ManagerClient, log, names: list[str], *, deactivate: bool, switch_timeout_s: float) -> None:
+    cm.interrupt_handled()
     failed = []
     if deactivate:
         ok, msg = cm.switch([], names, STRICT, True, switch_timeout_s)
