@@ -294,7 +294,15 @@ class Executor:
                 waiting.notify()
                 return
             with work_tracker:
-                call_coroutine = take(entity)
+                try:
+                    call_coroutine = take(entity)
+                except BaseException:
+                    # A KeyboardInterrupt (Ctrl-C) in a take, which is Python here (rclpy's is C): the entity and
+                    # its callback group must be served again, or every later reply or sample of it waits forever.
+                    entity._executor_event = False
+                    entity.callback_group.ending_execution(entity)
+                    waiting.notify()
+                    raise
                 entity._executor_event = False
                 if notify:
                     waiting.notify()
