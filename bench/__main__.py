@@ -50,6 +50,26 @@ def _load() -> list[float]:
     return [round(x, 2) for x in os.getloadavg()]
 
 
+def _cpu_s() -> tuple[float, float]:
+    """(CPU seconds the whole machine has spent busy since boot, CPU seconds of this run: this process and the
+    children it has reaped, theirs included). Their difference over a run is what other programs took: the
+    load average at the end counts the benchmarks' own processes, so it cannot tell a quiet machine."""
+    import resource
+
+    fields = Path("/proc/stat").read_text().split("\n", 1)[0].split()[1:]
+    ticks = [int(x) for x in fields]
+    busy = sum(ticks) - ticks[3] - (ticks[4] if len(ticks) > 4 else 0)  # all but idle and iowait
+    own = sum(resource.getrusage(who).ru_utime + resource.getrusage(who).ru_stime
+              for who in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))
+    return busy / os.sysconf("SC_CLK_TCK"), own
+
+
+def _other_cores(start: tuple[float, float], end: tuple[float, float], wall_s: float) -> float:
+    """Cores' worth of CPU that programs outside this run used on average between `start` and `end` (an upper
+    bound: a benchmark's process left unreaped counts as another program)."""
+    return round(max(0.0, (end[0] - start[0]) - (end[1] - start[1])) / max(wall_s, 1e-9), 2)
+
+
 def source() -> dict:
     """The commit measured, and whether the work tree differed from it (bench/results aside)."""
     def git(*args: str) -> str:
@@ -94,7 +114,8 @@ def main(argv: list[str]) -> int:
         print(f"bench: unknown benchmark or option {unknown[0]!r}\n{USAGE}", file=sys.stderr)
         return 2
     names = argv or MODULES
-    started = {"when": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()), "load_avg": _load()}
+    started = {"when": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()), "load_avg": _load(), "cpu": _cpu_s(),
+               "t": time.monotonic()}
     results: dict[str, object] = {}
     errors: dict[str, str] = {}
     for name in names:
@@ -114,7 +135,9 @@ def main(argv: list[str]) -> int:
     results.update(derived(results))
     RESULTS.mkdir(parents=True, exist_ok=True)
     doc = {"when": started["when"], "ended": time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
-           "load_avg_start": started["load_avg"], "load_avg_end": _load(), "machine": machine(),
+           "load_avg_start": started["load_avg"], "load_avg_end": _load(),
+           "other_programs_cores": _other_cores(started["cpu"], _cpu_s(), time.monotonic() - started["t"]),
+           "machine": machine(),
            "source": source(), "modules": names, "results": results, "errors": errors,
            "how": {k: v for k, v in HOW.items() if k in results}}
     if argv:
@@ -133,7 +156,9 @@ def main(argv: list[str]) -> int:
     for name, err in errors.items():
         console.print(f"bench/{name}: {err}", markup=False)
     console.print(f"machine: {doc['machine']}\nload average (1, 5, 15 min) at start {doc['load_avg_start']}, at end "
-                  f"{doc['load_avg_end']}\nsource: {doc['source']}\nwritten: {RESULTS / 'latest.json'}", markup=False)
+                  f"{doc['load_avg_end']} (the run's own processes included); other programs used "
+                  f"{doc['other_programs_cores']} cores on average\nsource: {doc['source']}\n"
+                  f"written: {RESULTS / 'latest.json'}", markup=False)
     if reference:
         path = write_reference(doc, console)
         console.print(f"reference: {path}", markup=False)
@@ -149,9 +174,12 @@ def write_reference(doc: dict, console: object) -> Path:
     if doc["source"]["dirty"]:
         caveats.append("the work tree had uncommitted changes")
     cores = doc["machine"]["cores"] or 1
-    if max(doc["load_avg_start"][0], doc["load_avg_end"][0]) > 0.5 * cores:
-        caveats.append(f"busy machine: 1-minute load {doc['load_avg_start'][0]} at start, {doc['load_avg_end'][0]} "
-                       f"at end, on {cores} cores")
+    other = doc.get("other_programs_cores")
+    # The load at the end counts the run's own last benchmark (eight smoke tests at once); what other programs
+    # took during the run says whether the machine was shared.
+    if doc["load_avg_start"][0] > 0.5 * cores or (other is not None and other > 0.25):
+        caveats.append(f"busy machine: 1-minute load {doc['load_avg_start'][0]} at start on {cores} cores, other "
+                       f"programs used {other} cores on average during the run")
     if doc["errors"]:
         caveats.append(f"benchmarks failed: {', '.join(doc['errors'])}")
     commit = (doc["source"]["commit"] or "nocommit")[:10]

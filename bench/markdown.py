@@ -32,9 +32,11 @@ def provenance(doc: dict) -> str:
     dirty = ", uncommitted changes" if src.get("dirty") else ""
     caveats = doc.get("caveats") or []
     said = ("; caveats: " + "; ".join(caveats)) if caveats else ""
+    other = doc.get("other_programs_cores")
+    other = "" if other is None else f", other programs {other} cores on average"
     return (f"{doc['when']}–{doc['ended']}, {m['cores']}-core {m['cpu']}, {m['memory_gb']} GiB, Python {m['python']}, "
             f"Linux {m['kernel']}; 1-minute load {doc['load_avg_start'][0]} at start, {doc['load_avg_end'][0]} at "
-            f"end; commit {str(src.get('commit'))[:10]}{dirty}{said}")
+            f"end (its own processes included){other}; commit {str(src.get('commit'))[:10]}{dirty}{said}")
 
 
 def render(doc: dict, name: str) -> str:

@@ -35,6 +35,7 @@ def test_reference_file_records_its_provenance_and_is_not_ignored(tmp_path: Path
     assert doc["how"]["control_update_us"] == HOW["control_update_us"]
     assert doc["machine"]["cores"] >= 1 and doc["machine"]["cpu"]
     assert len(doc["load_avg_start"]) == 3 and len(doc["load_avg_end"]) == 3
+    assert doc["other_programs_cores"] >= 0.0
     assert doc["when"].endswith("Z") and doc["ended"] >= doc["when"]
     assert any("partial run" in c for c in doc["caveats"])
     head = subprocess.run(["git", "-C", str(REPO), "rev-parse", "HEAD"], capture_output=True, text=True)
@@ -52,3 +53,12 @@ def test_reference_file_records_its_provenance_and_is_not_ignored(tmp_path: Path
 def test_bench_refuses_an_unknown_option(capsys) -> None:
     assert bench_main.main(["--refrence"]) == 2
     assert "--refrence" in capsys.readouterr().err
+
+
+def test_other_programs_are_the_machine_busy_time_less_the_runs_own() -> None:
+    # the machine busy 3 CPU-s, the run itself 1 CPU-s, over 2 s of wall time: others used 1 core
+    assert bench_main._other_cores((100.0, 10.0), (103.0, 11.0), 2.0) == 1.0
+    # the run's own processes reaped late may count more than the machine's tick-rounded busy time
+    assert bench_main._other_cores((100.0, 10.0), (100.5, 11.0), 2.0) == 0.0
+    busy, own = bench_main._cpu_s()
+    assert busy > 0 and own > 0
