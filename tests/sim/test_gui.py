@@ -35,11 +35,15 @@ def test_gui_window_shows_the_car(router: str, procs: Any, tmp_path: Path, outpu
         pytest.fail("Xvfb is missing: install Debian's xvfb (`make system-deps` or `apt-get install xvfb`)")
     fbdir = tmp_path / "fb"
     fbdir.mkdir()
+    # Its diagnostics to a file of their own: Xvfb that meets another starting at the same moment says
+    # "server already running" on stderr, tries the next display, and only its number belongs on stdout.
+    xvfb_log = tmp_path / "xvfb.log"
     server = procs.start(
-        [xvfb, "-displayfd", "1", "-screen", "0", "1024x768x24", "-fbdir", str(fbdir), "-nolisten", "tcp"]
+        [xvfb, "-displayfd", "1", "-screen", "0", "1024x768x24", "-fbdir", str(fbdir), "-nolisten", "tcp"],
+        stderr=xvfb_log.open("w"),
     )
     display = server.stdout.readline().strip()
-    assert display.isdigit(), f"Xvfb did not report its display: {display!r}"
+    assert display.isdigit(), f"Xvfb did not report its display: {display!r}; it said: {xvfb_log.read_text()!r}"
     import os
 
     env = {**os.environ, "DISPLAY": f":{display}"}
