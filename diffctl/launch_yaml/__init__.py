@@ -1,11 +1,13 @@
-"""diffctl's implementation of ros2/launch's `launch_yaml`: YAML launch files."""
+"""diffctl's implementation of ros2/launch's `launch_yaml`: YAML launch files.
 
-from . import launch_description_sources
-from .entity import Entity
-from .parser import Parser
+Its names are imported on first use (PEP 562): the launcher makes this package `launch_yaml` for every launch
+file, and only a YAML file needs its parser.
+"""
 
-__all__ = [
-    'Entity',
-    'Parser',
-    'launch_description_sources',
-]
+from diffctl.launch._private.lazy import lazy_exports
+
+__getattr__, __dir__, __all__ = lazy_exports(__name__, globals(), {
+    '.entity': ('Entity',),
+    '.parser': ('Parser',),
+    '.launch_description_sources': ('launch_description_sources/',),
+})
