@@ -51,9 +51,9 @@ def test_dataclass_methods_from_the_cache_are_those_dataclasses_compiles(tmp_pat
         return done.stdout
 
     plain = run("plain")
-    assert not list(tmp_path.rglob("dataclass-methods.marshal"))
+    assert not list(tmp_path.rglob("dataclass-methods-by-text.marshal"))
     first = run("cached")  # compiles, and keeps them
-    (cache,) = tmp_path.rglob("dataclass-methods.marshal")
+    (cache,) = tmp_path.rglob("dataclass-methods-by-text.marshal")
     written = cache.stat().st_mtime_ns
     second = run("cached")  # every one from the cache: nothing to write
     assert plain == first == second
