@@ -6,9 +6,10 @@ component is what an exec'd one would show) and ROOM, blank space in argv that a
 is written over (so ps, pgrep and psutil show `python -m diffctl sim run …`, not the zygote).
 It imports numpy, pybullet, zenoh, rosbags, lxml and diffctl's component modules while it is still the only
 thread of a process that has opened no Zenoh session, then serves requests: argv, environment and working
-directory, with the child's stdout and stderr pipe ends passed as file descriptors. For each it forks twice,
-so the component is re-parented to the launcher (a child subreaper) and the launcher waits for it, signals
-its group and reaps it exactly as a process it had started itself. The component then takes its own
+directory, with the child's stdout and stderr pipe ends passed as file descriptors. For each it makes a
+child of the launcher (clone's CLONE_PARENT, or forking twice so that the component is re-parented to the
+launcher, a child subreaper), and the launcher waits for it, signals its group and reaps it exactly as a
+process it had started itself. The component then takes its own
 session, arms PR_SET_PDEATHSIG once the launcher is its parent, puts its pipes on fds 1 and 2, closes every
 other descriptor, takes the requested environment and working directory, and runs `python -m diffctl`'s
 main as the interpreter would — uncaught exceptions, SystemExit, KeyboardInterrupt and atexit included.
@@ -252,8 +253,10 @@ def _reply(sock: socket.socket, message: dict[str, object]) -> None:
 
 
 def _fork_twice(sock: socket.socket, request: Request, launcher_pid: int) -> Request | dict[str, object]:
-    """Fork an intermediate that forks the component and exits at once: the component is re-parented to the
-    launcher before its pid is reported, so the launcher's waitpid() never races the re-parenting.
+    """Start the component as the launcher's child: made so directly where the kernel allows it (clone with
+    CLONE_PARENT, `_clone_for_launcher`), else through an intermediate that forks the component and exits at
+    once, re-parenting it to the launcher before its pid is reported, so the launcher's waitpid() never races
+    the re-parenting.
 
     The component reports its pid itself once it leads a session of its own, so that the launcher's first
     signal to its group finds the group. It starts with the stop signals blocked (`become` unblocks them
@@ -261,13 +264,20 @@ def _fork_twice(sock: socket.socket, request: Request, launcher_pid: int) -> Req
     SIG_IGN (a Ctrl-C right at the start was lost, and the component ran on)."""
     r, w = os.pipe()
     held = signal.pthread_sigmask(signal.SIG_BLOCK, STOP_SIGNALS)
+    middle = None
     try:
-        middle = os.fork()
+        component = _clone_for_launcher() if os.getppid() == launcher_pid else None
+        if component is None:
+            middle = os.fork()
     except OSError as e:
         signal.pthread_sigmask(signal.SIG_SETMASK, held)
         os.close(r)
         os.close(w)
         return {"error": f"fork failed: {e.strerror}"}
+    if component == 0:
+        os.close(r)
+        _start_component(sock, launcher_pid, w)
+        return request
     if middle == 0:
         os.close(r)
         try:
@@ -275,19 +285,89 @@ def _fork_twice(sock: socket.socket, request: Request, launcher_pid: int) -> Req
         except OSError:
             os._exit(1)
         if pid == 0:
-            try:
-                sock.close()
-                _settle(launcher_pid, w)
-            except BaseException:
-                os._exit(1)  # never back into the server's code
+            _start_component(sock, launcher_pid, w)
             return request
         os._exit(0)
     signal.pthread_sigmask(signal.SIG_SETMASK, held)
     os.close(w)
     with os.fdopen(r, "rb") as pipe:
         text = pipe.read()
-    os.waitpid(middle, 0)
+    if middle is not None:
+        os.waitpid(middle, 0)
     return {"pid": int(text)} if text else {"error": "fork failed in the intermediate process"}
+
+
+def _start_component(sock: socket.socket, launcher_pid: int, report_fd: int) -> None:
+    try:
+        sock.close()
+        _settle(launcher_pid, report_fd)
+    except BaseException:
+        os._exit(1)  # never back into the server's code
+
+
+# clone(2) as glibc's fork() makes it on x86_64 Linux (the kernel writes the child's thread id into the calling
+# thread's glibc descriptor, and clears it at exit), plus CLONE_PARENT: the child is the launcher's, not the
+# server's, so no intermediate has to fork it again and exit (a second fork of a 110 MB process, its exit and
+# its reaping: 10-40 ms a component under load, five of them in a row before the second spawner).
+SYS_CLONE_X86_64 = 56
+SYS_GETTID_X86_64 = 186
+CLONE_FLAGS = 0x00008000 | 0x01000000 | 0x00200000  # CLONE_PARENT | CLONE_CHILD_SETTID | CLONE_CHILD_CLEARTID
+# where glibc keeps a thread's id in its descriptor (struct pthread's `tid`, x86_64, glibc 2.17-2.40); it is
+# checked against gettid() before use, and the server forks twice when it does not hold
+GLIBC_TID_OFFSET = 720
+_clone_call: tuple[ctypes.PyDLL, int] | bool | None = False  # False: not looked at yet
+
+
+def _clone_for_launcher() -> int | None:
+    """As os.fork() (0 in the child, its pid in the server), the child being the launcher's; None where that
+    is not possible here (then nothing was started)."""
+    global _clone_call
+    if _clone_call is False:
+        _clone_call = _clone_support()
+    if _clone_call is None or not _single_threaded():
+        return None  # with other threads, glibc's fork() takes its locks around the fork: left to it
+    libc, tid_address = _clone_call
+    api = ctypes.pythonapi  # the interpreter's own steps around fork(): locks, threads, at-fork hooks
+    api.PyOS_BeforeFork()
+    pid = libc.syscall(ctypes.c_long(SYS_CLONE_X86_64), ctypes.c_ulong(CLONE_FLAGS | signal.SIGCHLD),
+                       ctypes.c_void_p(0), ctypes.c_void_p(0), ctypes.c_void_p(tid_address), ctypes.c_ulong(0))
+    if pid == 0:
+        api.PyOS_AfterFork_Child()
+        return 0
+    errno = ctypes.get_errno()
+    api.PyOS_AfterFork_Parent()
+    if pid < 0:
+        if errno in (1, 22):  # EPERM, EINVAL: the kernel or a sandbox refuses CLONE_PARENT here
+            _clone_call = None
+            return None
+        raise OSError(errno, os.strerror(errno))
+    return pid
+
+
+def _single_threaded() -> bool:
+    try:
+        return len(os.listdir("/proc/self/task")) == 1
+    except OSError:
+        return False
+
+
+def _clone_support() -> tuple[ctypes.PyDLL, int] | None:
+    if os.environ.get("DIFFCTL_FORK_CLONE", "1") == "0" or not sys.platform.startswith("linux"):
+        return None
+    if os.uname().machine != "x86_64":
+        return None  # clone's argument order and the descriptor's layout differ elsewhere
+    try:
+        libc = ctypes.PyDLL(None, use_errno=True)  # PyDLL: the GIL stays held across the call, as around fork()
+        libc.syscall.restype = ctypes.c_long
+        libc.pthread_self.restype = ctypes.c_void_p
+        libc.gnu_get_libc_version.restype = ctypes.c_char_p
+        libc.gnu_get_libc_version()  # glibc, not another C library
+        tid_address = libc.pthread_self() + GLIBC_TID_OFFSET
+        if ctypes.c_int.from_address(tid_address).value != libc.syscall(ctypes.c_long(SYS_GETTID_X86_64)):
+            return None
+    except (AttributeError, OSError, ValueError):
+        return None
+    return libc, tid_address
 
 
 def _settle(launcher_pid: int, report_fd: int) -> None:
@@ -381,6 +461,8 @@ def main() -> None:
     sock = socket.socket(fileno=fd)
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # only the launcher's close or its death ends the server
     preload(spec)
+    global _clone_call
+    _clone_call = _clone_support()  # looked at now, not at the first request
     request = serve(sock, launcher_pid, spec.later)
     if request is None:
         os._exit(0)  # the launcher is done: nothing of this process needs finalising

@@ -50,8 +50,8 @@ class Sink:
 class Launcher:
     """A LauncherSpawner with a fork server, driven on a loop of its own (as a LaunchService drives it)."""
 
-    def __init__(self) -> None:
-        self.env = dict(os.environ, DIFFCTL_FORK_TEST="yes", PYTHONUNBUFFERED="1")
+    def __init__(self, clone: str = "1") -> None:
+        self.env = dict(os.environ, DIFFCTL_FORK_TEST="yes", PYTHONUNBUFFERED="1", DIFFCTL_FORK_CLONE=clone)
         self.loop = asyncio.new_event_loop()
         self.spawner = LauncherSpawner(fork_server=ForkServer(self.env, preload=SPEC))
         self.children: list = []
@@ -75,8 +75,8 @@ class Launcher:
 
 
 @pytest.fixture
-def launcher() -> Iterator[Launcher]:
-    launcher = Launcher()
+def launcher(request) -> Iterator[Launcher]:
+    launcher = Launcher(getattr(request, "param", "1"))
     try:
         yield launcher
     finally:
@@ -84,6 +84,9 @@ def launcher() -> Iterator[Launcher]:
         launcher.close()
 
 
+# the server makes them the launcher's children by clone(CLONE_PARENT), or (DIFFCTL_FORK_CLONE=0, or where the
+# kernel or the C library do not allow it) by forking twice
+@pytest.mark.parametrize("launcher", ["1", "0"], indirect=True, ids=["clone", "fork-twice"])
 def test_forked_components_are_separate_children_of_the_launcher_in_their_own_groups(launcher, tmp_path) -> None:
     ports = [free_port(), free_port()]
     children = [launcher.router(ports[0], cwd=str(tmp_path)), launcher.router(ports[1])]
