@@ -15,6 +15,8 @@ server off.
 
 from __future__ import annotations
 
+import collections
+import contextlib
 import ctypes
 import json
 import os
@@ -22,7 +24,9 @@ import signal
 import socket
 import subprocess
 import sys
+import threading
 from collections.abc import Callable, Mapping, Sequence
+from concurrent.futures import Future
 
 from diffctl.supervision.exit_wait import wait_exited
 from diffctl.supervision.zygote import MAX_MESSAGE, PR_SET_PDEATHSIG, TITLE_ROOM, Preload
@@ -107,6 +111,14 @@ class ForkServer:
             theirs.close()
         self._sock: socket.socket | None = ours
         ours.settimeout(REPLY_TIMEOUT_S)
+        self._answering()
+
+    def _answering(self) -> None:
+        # Requests are answered in the order they were sent, so one may be sent before the last is answered:
+        # the zygote then goes from one fork to the next without waiting for the launcher's next request.
+        self._lock = threading.Lock()
+        self._waiting: collections.deque[Future[int | None]] = collections.deque()
+        self._replies: threading.Thread | None = None
 
     @property
     def pid(self) -> int | None:
@@ -121,37 +133,92 @@ class ForkServer:
         self, argv: list[str], env: Mapping[str, str], cwd: str | None, stdout_w: int, stderr_w: int
     ) -> int | None:
         """Fork `argv` from the zygote with these pipe ends as its stdout and stderr; None: exec it instead."""
-        if self._sock is None:
-            return None
+        return self.submit(argv, env, cwd, stdout_w, stderr_w).result()
+
+    def submit(
+        self, argv: list[str], env: Mapping[str, str], cwd: str | None, stdout_w: int, stderr_w: int
+    ) -> Future[int | None]:
+        """Send the request now (the pipe ends may be closed once this returns); the future gets the pid, or
+        None when the component must be exec'd instead. Sent requests are answered in order."""
+        answer: Future[int | None] = Future()
         message = json.dumps({"argv": argv, "env": dict(env), "cwd": cwd}).encode()
-        if len(message) > MAX_MESSAGE:
-            return None
-        try:
-            socket.send_fds(self._sock, [message], [stdout_w, stderr_w])
-            reply = json.loads(self._sock.recv(4096) or b"{}")
-        except (OSError, ValueError):
+        with self._lock:
+            sock = self._sock
+            if sock is None or len(message) > MAX_MESSAGE:
+                answer.set_result(None)
+                return answer
+            try:
+                socket.send_fds(sock, [message], [stdout_w, stderr_w])
+            except OSError:
+                answer.set_result(None)
+                broken = True
+            else:
+                self._waiting.append(answer)
+                broken = False
+                if self._replies is None:
+                    self._replies = threading.Thread(
+                        target=self._read_replies, args=(sock,), name="fork-server-replies", daemon=True
+                    )
+                    self._replies.start()
+        if broken:
             self.close()  # a zygote that does not answer serves nobody: exec from now on
-            return None
-        pid = reply.get("pid")
-        return pid if isinstance(pid, int) and pid > 0 else None
+        return answer
+
+    def _read_replies(self, sock: socket.socket) -> None:
+        while True:
+            try:
+                data = sock.recv(4096)
+            except TimeoutError:
+                with self._lock:
+                    if not self._waiting:
+                        continue  # nothing asked: quiet is no failure
+                data = b""
+            except OSError:
+                data = b""
+            if not data:
+                break
+            try:
+                pid = json.loads(data).get("pid")
+            except (ValueError, AttributeError):
+                pid = None
+            with self._lock:
+                answer = self._waiting.popleft() if self._waiting else None
+            if answer is not None:
+                _answer(answer, pid if isinstance(pid, int) and not isinstance(pid, bool) and pid > 0 else None)
+        with self._lock:
+            unanswered, self._waiting = list(self._waiting), collections.deque()
+            stopped = self._sock is not sock  # closed by the launcher, not lost
+        for answer in unanswered:
+            _answer(answer, None)
+        if not stopped:
+            self.close()  # a zygote that does not answer serves nobody: exec from now on
 
     def kill(self) -> None:
         """SIGKILL the zygote now without waiting for it (`close` reaps it): a launch that is ending forks nothing
         more, and the zygote's exit then overlaps the stopping of the launch's processes. A request under way
         gets no pid, and is exec'd."""
-        if self.process is not None:
-            self.process.kill()
+        process = self.process
+        if process is not None:
+            process.kill()
 
     def close(self, *, kill: bool = False) -> None:
         """Closing our end ends the zygote once it has imported everything (its children are the launcher's,
         not its own); kill=True ends it now."""
-        if self._sock is not None:
-            self._sock.close()
-            self._sock = None
-        if self.process is not None:
+        with self._lock:
+            sock, self._sock = self._sock, None
+            process, self.process = self.process, None
+        if sock is not None:
+            with contextlib.suppress(OSError):
+                sock.shutdown(socket.SHUT_RDWR)  # wakes the thread reading the replies
+            sock.close()
+        if process is not None:
             if kill:
-                self.process.kill()
-            if not wait_exited(self.process, 2.0):
-                self.process.kill()
-                wait_exited(self.process, 2.0)
-            self.process = None
+                process.kill()
+            if not wait_exited(process, 2.0):
+                process.kill()
+                wait_exited(process, 2.0)
+
+
+def _answer(answer: Future[int | None], pid: int | None) -> None:
+    if answer.set_running_or_notify_cancel():  # a launch that stopped waiting has cancelled it
+        answer.set_result(pid)

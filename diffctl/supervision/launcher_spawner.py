@@ -149,13 +149,16 @@ class LauncherSpawner(PosixSpawner):
         out_r, out_w = os.pipe()
         err_r, err_w = os.pipe()
         try:
-            # The first request waits for the server's imports: off the loop, which goes on starting the
-            # launch's other processes and hearing signals meanwhile; one request at a time on its socket.
+            # Sent off the loop (a socket the server is not reading yet, during its imports, can fill up), one
+            # at a time and in the launch's order; each is answered in turn, so the next request is sent
+            # while the server forks this one. The first waits for the server's imports meanwhile; the loop
+            # goes on starting the launch's other processes and hearing signals.
             async with self._fork_lock:
-                pid = await loop.run_in_executor(None, server.spawn, request.cmd, env, request.cwd, out_w, err_w)
+                answer = await loop.run_in_executor(None, server.submit, request.cmd, env, request.cwd, out_w, err_w)
         finally:
             _close(out_w)
             _close(err_w)
+        pid = await asyncio.wrap_future(answer)
         if pid is None:
             _close(out_r)
             _close(err_r)

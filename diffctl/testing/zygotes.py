@@ -94,6 +94,7 @@ class InheritedForkServer(ForkServer):
         self._env: dict[str, str] = {}
         self._sock: socket.socket | None = ours
         self.process = _Forked(pid)  # type: ignore[assignment]
+        self._answering()
 
     def for_env(self, env: Mapping[str, str]) -> InheritedForkServer:
         self._env = dict(env)

@@ -60,10 +60,22 @@ class Launcher:
         return self.loop.run_until_complete(asyncio.wait_for(coro, timeout_s))
 
     def router(self, port: int, cwd: str | None = None, env: dict[str, str] | None = None):
-        cmd = [sys.executable, "-m", "diffctl", "router", "--listen", f"tcp/127.0.0.1:{port}"]
-        child = self.run(self.spawner.spawn(SpawnRequest(cmd=cmd, cwd=cwd, env=env or self.env), Sink()))
-        self.children.append(child)
-        return child
+        return self.routers([(port, cwd)], env)[0]
+
+    def routers(self, where: list[tuple[int, str | None]], env: dict[str, str] | None = None) -> list:
+        """Routers asked for all at once (as a launch asks for its first processes), in this order."""
+        requests = [
+            SpawnRequest(cmd=[sys.executable, "-m", "diffctl", "router", "--listen", f"tcp/127.0.0.1:{port}"],
+                         cwd=cwd, env=env or self.env)
+            for port, cwd in where
+        ]
+
+        async def spawn_all():
+            return await asyncio.gather(*(self.spawner.spawn(request, Sink()) for request in requests))
+
+        children = self.run(spawn_all())
+        self.children += children
+        return children
 
     def exit_code(self, child) -> int:
         return self.run(child.complete)
@@ -88,13 +100,14 @@ def launcher(request) -> Iterator[Launcher]:
 # kernel or the C library do not allow it) by forking twice
 @pytest.mark.parametrize("launcher", ["1", "0"], indirect=True, ids=["clone", "fork-twice"])
 def test_forked_components_are_separate_children_of_the_launcher_in_their_own_groups(launcher, tmp_path) -> None:
-    ports = [free_port(), free_port()]
-    children = [launcher.router(ports[0], cwd=str(tmp_path)), launcher.router(ports[1])]
+    ports = [free_port(), free_port(), free_port()]
+    # sent together: each answer is matched to its own request
+    children = launcher.routers([(ports[0], str(tmp_path)), (ports[1], None), (ports[2], None)])
     for port in ports:
         wait_port(port, timeout_s=60)  # each listens where its own argv says
     zygote = launcher.spawner.fork_server.pid
     pids = [c.pid for c in children]
-    assert len(set(pids)) == 2 and zygote not in pids
+    assert len(set(pids)) == 3 and zygote not in pids
     for pid, port in zip(pids, ports, strict=True):
         p = psutil.Process(pid)
         assert _preloaded(pid), "not forked from the zygote"
@@ -104,6 +117,8 @@ def test_forked_components_are_separate_children_of_the_launcher_in_their_own_gr
         assert _environ(pid)["DIFFCTL_FORK_TEST"] == "yes"
     assert psutil.Process(pids[0]).cwd() == str(tmp_path)
     assert psutil.Process(pids[1]).cwd() == os.getcwd()
+    children[2].send_signal(signal.SIGKILL)
+    assert launcher.exit_code(children[2]) == -signal.SIGKILL
     # Signals reach each group on its own; each is reaped here with its own status.
     children[0].send_signal(signal.SIGINT)
     assert launcher.exit_code(children[0]) in (0, 130)
