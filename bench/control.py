@@ -60,6 +60,7 @@ def run(duration_s: float = 10.0, rate_hz: int = 100) -> dict:
         )
         node = ControlNode(opts, ["-p", "use_sim_time:=false", "-p", f"update_rate:={rate_hz}"])
         node.start()
+        node.start_spinning()  # as ros2_control_node: without it no controller's subscription is served
         cm = node.cm
         assert cm is not None
         cm.set_controller_param("diffbot_base_controller", "type", "diff_drive_controller/DiffDriveController")
@@ -84,6 +85,9 @@ def run(duration_s: float = 10.0, rate_hz: int = 100) -> dict:
         time.sleep(duration_s)
         s = node.stats.summary(1.0 / rate_hz)
         updates = {n: mc.update_count for n, mc in cm.controllers.items()}
+        odometry = cm.controllers["diffbot_base_controller"].instance.odometry
+        if odometry is None or odometry.x_m == 0.0:  # the cycle timed must be the one that drives and publishes
+            raise RuntimeError("diffbot_base_controller received no command: its odometry never moved")
     finally:
         if node is not None:
             node.shutdown()

@@ -196,6 +196,12 @@ class ControlNode:
         finally:
             self.stop.set()
 
+    def start_spinning(self) -> None:
+        """Spin the executor on a thread of its own: the manager's services and the controllers' subscriptions
+        (a controller's ~/cmd_vel) are served from then on."""
+        self._spin_thread = threading.Thread(target=self._spin, name="controller_manager_executor", daemon=True)
+        self._spin_thread.start()
+
     def serve(self) -> None:
         """Run until SIGINT/SIGTERM; raises the ConfigError that stopped start-up, if any."""
         import signal
@@ -208,8 +214,7 @@ class ControlNode:
 
         for sig in (signal.SIGINT, signal.SIGTERM):
             signal.signal(sig, on_signal)
-        self._spin_thread = threading.Thread(target=self._spin, name="controller_manager_executor", daemon=True)
-        self._spin_thread.start()
+        self.start_spinning()
         try:
             if self.description is None:
                 # Relative, as current Jazzy: /robot_description at the root, /<ns>/robot_description in a namespace.
