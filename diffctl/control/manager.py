@@ -78,9 +78,11 @@ class ControllerManager:
         self._lock = threading.RLock()  # held by the real-time cycle and by structural changes
         self._admin = threading.RLock()  # serialises service calls
         self._active: tuple[ManagedController, ...] = ()
-        # The cycle's view of `_active`: (controller, its bound update, runs every cycle, the claimed commands a
-        # joint limiter bounds or None)
-        self._updates: tuple[tuple[ManagedController, Callable[[Any, Any], Any], bool, Any], ...] = ()
+        # The cycle's view of `_active`: (controller, its update, whether that update takes integer nanoseconds,
+        # runs every cycle, the claimed commands a joint limiter bounds or None). diffctl's own controllers take
+        # (time_ns, period_ns) through `update_ns`, the same work as update(time, period) without building the
+        # Time and Duration; any other controller (a user's subclass of them too) gets update(time, period).
+        self._updates: tuple[tuple[ManagedController, Callable[[Any, Any], Any], bool, bool, Any], ...] = ()
         self._period = _duration(0)  # the last cycle's period, handed on while it does not change
         self._pending: _PendingSwitch | None = None
         self.cycle_count = 0
@@ -452,7 +454,8 @@ class ControllerManager:
         rate = self.params.update_rate
         limited = self.rm.limited_commands if self.rm.joint_limiters else None
         self._updates = tuple(
-            (mc, mc.instance.update, mc.update_rate >= rate, (limited(mc.claimed) or None) if limited else None)
+            (mc, *_update_entry(mc.instance), mc.update_rate >= rate,
+             (limited(mc.claimed) or None) if limited else None)
             for mc in self._active
         )
 
@@ -537,21 +540,29 @@ class ControllerManager:
         thread once they all ran; woken in the middle of them, it would take the GIL from this loop)."""
         self.cycle_count += 1
         failed: list[tuple[ManagedController, str]] | None = None
-        time = _ros_time(time_ns)
-        period_ns = round(period_s * 1e9)
-        cycle_period = self._period if self._period.nanoseconds == period_ns else _duration(period_ns)
-        self._period = cycle_period
-        for mc, update, every_cycle, limited in self._updates:
-            period = cycle_period
+        cycle_period_ns = round(period_s * 1e9)
+        time = None  # the public API's Time, built for the first controller that takes it
+        for mc, update, takes_ns, every_cycle, limited in self._updates:
+            period_ns = cycle_period_ns
             if not every_cycle and mc.last_update_ns is not None:
                 # ros2_control: run on the cycle whose elapsed time is closest to the controller's period.
                 actual = (time_ns - mc.last_update_ns) * 1e-9
                 r = mc.update_rate
                 if abs(actual * r - 1.0) > abs((actual + 1.0 / rate) * r - 1.0):
                     continue
-                period = _duration(time_ns - mc.last_update_ns)
+                period_ns = time_ns - mc.last_update_ns
             try:
-                ret = update(time, period)
+                if takes_ns:
+                    ret = update(time_ns, period_ns)
+                else:
+                    if time is None:
+                        time = _ros_time(time_ns)
+                    period = self._period
+                    if period.nanoseconds != period_ns:
+                        period = _duration(period_ns)
+                        if period_ns == cycle_period_ns:
+                            self._period = period
+                    ret = update(time, period)
                 if limited is not None:
                     # ros2_control limits a command as the controller sets it, at the manager's period
                     rm_limit, desired_s = self.rm.limit_command, 1.0 / rate
@@ -669,6 +680,14 @@ def _controller_rate(mc: ManagedController, cm_rate: int, log: Any) -> int:
         )
         return achievable
     return raw
+
+
+def _update_entry(instance: Any) -> tuple[Callable[[Any, Any], Any], bool]:
+    """(the update the cycle calls, whether it takes integer nanoseconds): `update_ns` when the controller's own
+    class defines it (diffctl's controllers; a subclass, which may override update(), is called through update())."""
+    if "update_ns" in vars(type(instance)):
+        return instance.update_ns, True
+    return instance.update, False
 
 
 # Made once per cycle, on the real-time thread: the fast paths (the values are the manager's own clock's).

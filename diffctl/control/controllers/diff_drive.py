@@ -352,10 +352,23 @@ class DiffDriveController(ChainableControllerInterface):
             self._command = (linear, angular, stamp_ns, True)  # one atomic store, read whole by update()
 
     # --- real-time loop ---------------------------------------------------------------------------------------
+    def update_ns(self, time_ns: int, period_ns: int) -> ReturnType:
+        """update() on integer nanoseconds (the manager's cycle calls this one: no Time object per cycle)."""
+        if not self._chained_mode:
+            self._references_from_command(time_ns)
+        return self._write_commands(time_ns, period_ns * 1e-9)
+
     def update_reference_from_subscribers(self, time: Any, period: Any) -> ReturnType:
+        self._references_from_command(time.nanoseconds)
+        return _OK
+
+    def update_and_write_commands(self, time: Any, period: Any) -> ReturnType:
+        return self._write_commands(time.nanoseconds, period.nanoseconds * 1e-9)
+
+    def _references_from_command(self, time_ns: int) -> None:
         ref_linear, ref_angular = self.reference_interfaces
         linear, angular, stamp_ns, real = self._command
-        if self._timeout_ns and time.nanoseconds - stamp_ns > self._timeout_ns:
+        if self._timeout_ns and time_ns - stamp_ns > self._timeout_ns:
             ref_linear.value = ref_angular.value = 0.0
             if real and self._braking_logged_for != stamp_ns:  # a received command expired
                 self._braking_logged_for = stamp_ns
@@ -368,12 +381,10 @@ class DiffDriveController(ChainableControllerInterface):
                 "Command message contains NaNs. Not updating reference interfaces. "
                 f"(linear.x = {linear!r}, angular.z = {angular!r})",
             )
-        return _OK
 
-    def update_and_write_commands(self, time: Any, period: Any) -> ReturnType:
+    def _write_commands(self, time_ns: int, period_s: float) -> ReturnType:
         if self._runtime_params is not None:
             self._take_runtime_params()
-        time_ns, period_s = time.nanoseconds, period.nanoseconds * 1e-9
         ref_linear_handle, ref_angular_handle = self.reference_interfaces
         ref_linear, ref_angular = ref_linear_handle.value, ref_angular_handle.value
         if not (_isfinite(ref_linear) and _isfinite(ref_angular)):

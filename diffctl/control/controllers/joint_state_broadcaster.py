@@ -249,7 +249,11 @@ class JointStateBroadcaster(ControllerInterface):
         self._close_endpoints()
 
     def update(self, time: Any, period: Any) -> ReturnType:
-        stamp = divmod(time.nanoseconds, _NS)
+        return self.update_ns(time.nanoseconds, period.nanoseconds)
+
+    def update_ns(self, time_ns: int, period_ns: int) -> ReturnType:
+        """update() on integer nanoseconds (the manager's cycle calls this one: no Time object per cycle)."""
+        stamp = divmod(time_ns, _NS)
         values = tuple(map(_VALUE, self._handles))
         for pub, template, pick in self._fast:
             pub.publish_values(template, stamp + pick(values))
