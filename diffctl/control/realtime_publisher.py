@@ -12,7 +12,11 @@ skips a cycle whose previous message is still being sent.
 While the controller manager runs its controllers (`hold()` … `release()`, once per cycle), samples are
 queued without waking the publishing thread; `release` wakes it once, after the controllers ran, instead of
 once per message in the middle of them, where it would take the GIL (and the CPU) from the loop. Samples
-from any other thread wake it at once.
+from any other thread wake it at once. With `poll_held(True)` (the wall-clock control loop of
+ros2_control_node), the control thread does not wake it at all: once held cycles hand samples over, the
+publishing thread polls the queue every POLL_S between cycles, as realtime_tools' publishing loop polls its
+message, until none has come for IDLE_NS — the wake-up, a futex system call of ~15-20 µs on a cold cycle, is
+then no part of the real-time cycle.
 
 The publisher wrapped is a client (rclpy-API) Publisher, as `get_node().create_publisher(…)` returns it.
 """
@@ -22,6 +26,7 @@ from __future__ import annotations
 import collections
 import functools
 import threading
+import time
 from collections.abc import Sequence
 from threading import get_ident as _get_ident
 from typing import Any
@@ -29,6 +34,8 @@ from typing import Any
 # Waiting samples across all publishers of the process before the oldest are dropped: generous, since a put is
 # fast when the machine is not starved and a burst (start-up, a stall) should not lose data.
 CAPACITY = 1024
+POLL_S = 0.0005  # realtime_tools' publishing loop sleeps this long between looks at its message
+IDLE_NS = 100_000_000  # polling stops when held cycles have handed nothing over for this long
 
 
 class PublishingThread:
@@ -44,6 +51,8 @@ class PublishingThread:
         self._signal.acquire()
         self.dropped = 0
         self._holder: int | None = None  # the thread whose samples wait for its release()
+        self.poll_held = False  # poll for held cycles' samples instead of being woken by release()
+        self._polling = False  # polling now: release() leaves the samples to the next look
         self._thread = threading.Thread(target=self._run, name="realtime_publisher", daemon=True)
         self._thread.start()
 
@@ -75,11 +84,26 @@ class PublishingThread:
 
     def _run(self) -> None:
         queue = self._queue
+        idle_since: int | None = None
         while True:
+            if not queue or (self._polling and self._holder is not None):  # polling: not in the middle of a cycle
+                if self._polling:
+                    now = time.monotonic_ns()
+                    if idle_since is None:
+                        idle_since = now
+                    if now - idle_since < IDLE_NS or self._holder is not None:
+                        time.sleep(POLL_S)
+                        continue
+                    self._polling = False  # a release from now on wakes this thread
+                    if queue:
+                        continue
+                idle_since = None
+                self._signal.acquire()  # until a producer appends and signals (or signalled meanwhile)
+                continue
+            idle_since = None
             try:
                 publisher, template, data = queue.popleft()
             except IndexError:
-                self._signal.acquire()  # until a producer appends and signals (or signalled meanwhile)
                 continue
             try:
                 publisher.publish(data if template is None else template.encode(data))
@@ -118,7 +142,8 @@ def release(t: PublishingThread | None) -> None:
     if t is None:
         return
     t._holder = None
-    if t._queue:
+    if t._queue and not t._polling:
+        t._polling = t.poll_held  # when it polls, the following cycles need not wake it
         try:
             t._signal.release()  # _wake(), without its frame: this runs on every control cycle
         except RuntimeError:  # already signalled, not yet taken
@@ -127,6 +152,11 @@ def release(t: PublishingThread | None) -> None:
 
 _thread: PublishingThread | None = None
 _lock = threading.Lock()
+
+
+def poll_held(on: bool) -> None:
+    """Let the process's publishing thread poll for held cycles' samples (True) or be woken by `release`."""
+    publishing_thread().poll_held = on
 
 
 def publishing_thread() -> PublishingThread:

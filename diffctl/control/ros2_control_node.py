@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Any
 
 from diffctl import ros_args
+from diffctl.control import realtime_publisher
 from diffctl.control.controller_node import make_controller_node, spin_resiliently
 from diffctl.control.manager import ControllerManager
 from diffctl.control.manager_node import make_manager_node, manager_flat_params
@@ -133,6 +134,10 @@ class ControlNode:
         # start-up never become garbage; freezing them keeps full collections short inside the loop.
         sys.setswitchinterval(SWITCH_INTERVAL_S)
         gc.freeze()
+        if isinstance(self.ticker, WallTicker):
+            # The controllers' samples are fetched by the publishing thread's polling between cycles: waking it
+            # from the cycle is a system call on the real-time thread (realtime_tools' publishers poll too).
+            realtime_publisher.poll_held(True)
         self.cm.loop_running = True
         self._loop_thread = threading.Thread(target=self._loop, name="controller_manager_rt", daemon=True)
         self._loop_thread.start()
@@ -241,6 +246,7 @@ class ControlNode:
             self._loop_thread.join(2.0)
         if self.cm is not None:
             self.cm.loop_running = False
+            realtime_publisher.poll_held(False)
             self.cm.shutdown()
         if self.services is not None:
             self.services.close()

@@ -88,3 +88,35 @@ def test_a_held_cycle_hands_its_samples_over_at_release_and_other_threads_at_onc
     other.join()
     assert sink.got.wait(5) and sink.sent == [1.0, 2.0, 3.0]  # not the holder's: woken at once
     realtime_publisher.release(held)
+
+
+def test_a_polling_thread_takes_held_cycles_samples_without_being_woken_and_stops_when_idle(monkeypatch) -> None:
+    from diffctl.control import realtime_publisher
+
+    monkeypatch.setattr(realtime_publisher, "IDLE_NS", 50_000_000)
+    thread = PublishingThread()
+    thread.poll_held = True  # as ros2_control_node's wall-clock loop sets it
+    monkeypatch.setattr(realtime_publisher, "_thread", thread)
+    sink = Sink()
+    pub = RealtimePublisher(sink, thread)
+    for i in range(3):
+        held = realtime_publisher.hold()
+        sink.got.clear()
+        pub.publish(value(float(i)))
+        assert not sink.got.wait(0.02)  # never taken in the middle of a cycle
+        realtime_publisher.release(held)
+        if i:  # the first release woke the thread and set it polling; the later ones leave it to the polling
+            assert thread._polling and thread._signal.locked()
+        assert sink.got.wait(5)
+    assert sink.sent == [0.0, 1.0, 2.0]
+    pause = threading.Event()
+    for _ in range(500):  # idle for IDLE_NS: back to being woken (5 s: a generous failure bound)
+        if not thread._polling:
+            break
+        pause.wait(0.01)
+    assert not thread._polling
+    sink.got.clear()
+    held = realtime_publisher.hold()
+    pub.publish(value(3.0))
+    realtime_publisher.release(held)
+    assert sink.got.wait(5) and sink.sent[-1] == 3.0

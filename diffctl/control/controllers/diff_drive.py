@@ -55,7 +55,6 @@ from diffctl.control.controllers.param_decl import (
     set_result,
 )
 from diffctl.control.controllers.throttled_log import ThrottledLog
-from diffctl.control.math.kinematics import wheel_velocities_radps
 from diffctl.control.math.odometry import Odometry
 from diffctl.control.math.speed_limiter import SpeedLimiter
 from diffctl.control.realtime_publisher import RealtimePublisher
@@ -352,18 +351,76 @@ class DiffDriveController(ChainableControllerInterface):
             self._command = (linear, angular, stamp_ns, True)  # one atomic store, read whole by update()
 
     # --- real-time loop ---------------------------------------------------------------------------------------
-    def update_ns(self, time_ns: int, period_ns: int) -> ReturnType:
-        """update() on integer nanoseconds (the manager's cycle calls this one: no Time object per cycle)."""
-        if not self._chained_mode:
+    def update_ns(self, time_ns: int, period_ns: int, intake: bool = True) -> ReturnType:
+        """update() on integer nanoseconds, as the manager's cycle calls it (no Time object per cycle); with
+        `intake` False, update_and_write_commands alone. The usual update runs in this one frame: after a
+        10 ms sleep every function and object a cycle touches is a cache and TLB miss."""
+        if intake and not self._chained_mode:
             self._references_from_command(time_ns)
-        return self._write_commands(time_ns, period_ns * 1e-9)
+        if self._runtime_params is not None:
+            self._take_runtime_params()
+        period_s = period_ns * 1e-9
+        ref_linear_handle, ref_angular_handle = self.reference_interfaces
+        ref_linear, ref_angular = ref_linear_handle.value, ref_angular_handle.value
+        if not (_isfinite(ref_linear) and _isfinite(ref_angular)):
+            return _OK  # no command yet (or a chained controller wrote none)
+
+        last, second = self._previous_linear
+        v = self._limiter_linear.limit(ref_linear, last, second, period_s)
+        self._previous_linear = (v, last)
+        last, second = self._previous_angular
+        w = self._limiter_angular.limit(ref_angular, last, second, period_s)
+        self._previous_angular = (w, last)
+
+        p = self.params
+        odom = self.odometry
+        if p.open_loop and not self._odom_needs_init:  # _update_odometry's usual case, without its frame
+            odom.update_open_loop(v, w, time_ns / _NS)
+        elif not self._update_odometry(v, w, time_ns, period_s):
+            return ReturnType.ERROR
+
+        # ~/cmd_vel_out on every update; odometry and TF at publish_rate
+        last_ns, every_ns = self._last_publish_ns, self._publish_period_ns
+        odom_due = last_ns is None or time_ns < last_ns or time_ns - last_ns > 2 * every_ns
+        if odom_due:
+            self._last_publish_ns = time_ns  # first publish, a clock reset, or a long pause: start over
+        elif last_ns + every_ns < time_ns:
+            self._last_publish_ns = last_ns + every_ns
+            odom_due = True
+        if self._odom_cdr is None:
+            self._publish_messages(time_ns, v, w, odom_due)
+        else:
+            sec, nanosec = divmod(time_ns, _NS)
+            if self._cmd_out_cdr is not None:
+                self._cmd_out_pub.publish_values(self._cmd_out_cdr, (sec, nanosec, v, w))
+            if odom_due:
+                half = odom.heading_rad * 0.5
+                qz, qw = _sin(half), _cos(half)  # heading_quaternion(heading)'s z and w, without the call
+                x, y = odom.x_m, odom.y_m
+                self._odom_pub.publish_values(
+                    self._odom_cdr, (sec, nanosec, x, y, qz, qw, odom.linear_mps, odom.angular_radps)
+                )
+                if self._tf_cdr is not None:
+                    self._tf_pub.publish_values(self._tf_cdr, (sec, nanosec, x, y, qz, qw))
+
+        geometry = self._geometry
+        if geometry[0] is not p:  # the (frozen) parameters were replaced: derive the wheels again
+            geometry = (p, p.effective_wheel_separation_m, p.left_wheel_radius_m, p.right_wheel_radius_m)
+            self._geometry = geometry
+        half_turn_mps = w * geometry[1] / 2.0  # wheel_velocities_radps, written out
+        left, right = (v - half_turn_mps) / geometry[2], (v + half_turn_mps) / geometry[3]
+        for handle in self._left_commands:
+            handle.value = left  # set_value(), without the call
+        for handle in self._right_commands:
+            handle.value = right
+        return _OK
 
     def update_reference_from_subscribers(self, time: Any, period: Any) -> ReturnType:
         self._references_from_command(time.nanoseconds)
         return _OK
 
     def update_and_write_commands(self, time: Any, period: Any) -> ReturnType:
-        return self._write_commands(time.nanoseconds, period.nanoseconds * 1e-9)
+        return self.update_ns(time.nanoseconds, period.nanoseconds, intake=False)
 
     def _references_from_command(self, time_ns: int) -> None:
         ref_linear, ref_angular = self.reference_interfaces
@@ -381,39 +438,6 @@ class DiffDriveController(ChainableControllerInterface):
                 "Command message contains NaNs. Not updating reference interfaces. "
                 f"(linear.x = {linear!r}, angular.z = {angular!r})",
             )
-
-    def _write_commands(self, time_ns: int, period_s: float) -> ReturnType:
-        if self._runtime_params is not None:
-            self._take_runtime_params()
-        ref_linear_handle, ref_angular_handle = self.reference_interfaces
-        ref_linear, ref_angular = ref_linear_handle.value, ref_angular_handle.value
-        if not (_isfinite(ref_linear) and _isfinite(ref_angular)):
-            return _OK  # no command yet (or a chained controller wrote none)
-
-        last, second = self._previous_linear
-        v = self._limiter_linear.limit(ref_linear, last, second, period_s)
-        self._previous_linear = (v, last)
-        last, second = self._previous_angular
-        w = self._limiter_angular.limit(ref_angular, last, second, period_s)
-        self._previous_angular = (w, last)
-
-        p = self.params
-        if p.open_loop and not self._odom_needs_init:  # _update_odometry's usual case, without its frame
-            self.odometry.update_open_loop(v, w, time_ns / _NS)
-        elif not self._update_odometry(v, w, time_ns, period_s):
-            return ReturnType.ERROR
-        self._publish(time_ns, v, w)
-
-        geometry = self._geometry
-        if geometry[0] is not p:  # the (frozen) parameters were replaced: derive the wheels again
-            geometry = (p, p.effective_wheel_separation_m, p.left_wheel_radius_m, p.right_wheel_radius_m)
-            self._geometry = geometry
-        left, right = wheel_velocities_radps(v, w, geometry[1], geometry[2], geometry[3])
-        for handle in self._left_commands:
-            handle.value = left  # set_value(), without the call
-        for handle in self._right_commands:
-            handle.value = right
-        return _OK
 
     def _update_odometry(self, v: float, w: float, time_ns: int, period_s: float) -> bool:
         odom = self.odometry
@@ -452,37 +476,19 @@ class DiffDriveController(ChainableControllerInterface):
             )
         return True
 
-    def _publish(self, time_ns: int, v: float, w: float) -> None:
+    def _publish_messages(self, time_ns: int, v: float, w: float, odom_due: bool) -> None:
+        """Publishers without templates (a controller built on publishers that take messages)."""
         if self._cmd_out_pub is not None:
-            if self._cmd_out_cdr is not None:
-                sec, nanosec = divmod(time_ns, _NS)
-                self._cmd_out_pub.publish_values(self._cmd_out_cdr, (sec, nanosec, v, w))
-            else:
-                msg = self._cmd_out_msg
-                _set_stamp(msg.header.stamp, time_ns)
-                msg.twist.linear.x, msg.twist.angular.z = v, w
-                self._cmd_out_pub.publish(msg)
-
-        last = self._last_publish_ns
-        period = self._publish_period_ns
-        if last is None or time_ns < last or time_ns - last > 2 * period:
-            self._last_publish_ns = time_ns  # first publish, a clock reset, or a long pause: start over
-        elif last + period < time_ns:
-            self._last_publish_ns = last + period
-        else:
+            msg = self._cmd_out_msg
+            _set_stamp(msg.header.stamp, time_ns)
+            msg.twist.linear.x, msg.twist.angular.z = v, w
+            self._cmd_out_pub.publish(msg)
+        if not odom_due:
             return
         odom = self.odometry
         half = odom.heading_rad * 0.5
-        qz, qw = _sin(half), _cos(half)  # heading_quaternion(heading)'s z and w, without the call
+        qz, qw = _sin(half), _cos(half)
         x, y = odom.x_m, odom.y_m
-        if self._odom_cdr is not None:
-            sec, nanosec = divmod(time_ns, _NS)
-            self._odom_pub.publish_values(
-                self._odom_cdr, (sec, nanosec, x, y, qz, qw, odom.linear_mps, odom.angular_radps)
-            )
-            if self._tf_cdr is not None:
-                self._tf_pub.publish_values(self._tf_cdr, (sec, nanosec, x, y, qz, qw))
-            return
         msg = self._odom_msg
         _set_stamp(msg.header.stamp, time_ns)
         pose = msg.pose.pose
