@@ -6,13 +6,14 @@ spawner that could not activate its controller). `where` names the file, line an
 
 from __future__ import annotations
 
-import difflib
 import re
 from collections.abc import Iterable
 
 
 def suggest(word: str, candidates: Iterable[str], n: int = 3) -> str:
     """A ' (did you mean X?)' suffix listing close matches of `word`, or '' when nothing is close."""
+    import difflib  # imported on a suggestion's first use: every command imports this module
+
     matches = difflib.get_close_matches(word, list(candidates), n=n, cutoff=0.6)
     if not matches:
         return ""

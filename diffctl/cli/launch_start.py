@@ -14,7 +14,11 @@ import atexit
 import os
 import sys
 from pathlib import Path
-from typing import Any
+
+# typing is imported by nothing else before the fork server's exec, which waits for this module: 6 ms
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from typing import Any
 
 # `launch`'s options that take a value, and those of them the environment and the server depend on
 VALUE_OPTIONS = ("--log-dir", "--workspace", "--output-default", "--exit-code", "--signal", "--process-names")

@@ -13,7 +13,9 @@ spawner's asyncio, ssl and concurrent.futures, which no component uses.
 
 from __future__ import annotations
 
-from typing import Any
+TYPE_CHECKING = False  # typing unimported: the launcher reads this package before its fork server's exec
+if TYPE_CHECKING:
+    from typing import Any
 
 __all__ = ['ChildProcess', 'OutputSink', 'PosixSpawner', 'SpawnRequest', 'Spawner']
 

@@ -12,10 +12,13 @@ from __future__ import annotations
 import os
 from collections.abc import MutableMapping
 from pathlib import Path
-from typing import Any
 
 from diffctl.workspace.builtin import DEMO_DESCRIPTION_PACKAGE, DEMO_PACKAGE, project_root
 from diffctl.workspace.discovery import WORKSPACE_ENV, find_workspace
+
+TYPE_CHECKING = False  # typing unimported: `diffctl launch` reads this before its fork server's exec
+if TYPE_CHECKING:
+    from typing import Any
 
 # The package index (resolve: package.xml, CMake install rules, lxml) is imported on first use: `diffctl launch`
 # sets its children's environment with find_workspace and use_in_children before it starts the fork server,

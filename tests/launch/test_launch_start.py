@@ -42,11 +42,15 @@ def test_the_fork_server_is_execd_before_click_and_serves_the_launch(tmp_path) -
     program = textwrap.dedent(
         """
         import subprocess, sys
+        before = set(sys.modules)
         real = subprocess.Popen.__init__
         def popen(self, args, *a, **k):
             if "diffctl.supervision.zygote" in args:
                 print("imported at the server's start:", "click" in sys.modules, "diffctl.cli.main" in sys.modules,
                       flush=True)
+                # nor what only later steps use (each a few ms before the server's exec)
+                later = {"typing", "concurrent.futures", "difflib", "asyncio"}
+                print("also:", sorted(later & (set(sys.modules) - before)), flush=True)
             real(self, args, *a, **k)
         subprocess.Popen.__init__ = popen
         sys.argv = ["diffctl", "launch", sys.argv[1], "--log-dir", sys.argv[2], "--no-router"]
@@ -66,6 +70,7 @@ def test_the_fork_server_is_execd_before_click_and_serves_the_launch(tmp_path) -
     lines = out.splitlines()
     # one server, started first thing; the component it forked printed the version
     assert [line for line in lines if line.startswith("imported at")] == ["imported at the server's start: False False"]
+    assert [line for line in lines if line.startswith("also:")] == ["also: []"]
     assert any("diffctl, version" in line for line in lines), out
 
 
