@@ -17,6 +17,7 @@ main as the interpreter would — uncaught exceptions, SystemExit, KeyboardInter
 
 from __future__ import annotations
 
+import collections
 import contextlib
 import ctypes
 import gc
@@ -209,12 +210,48 @@ def _freeze() -> None:
     gc.freeze()
 
 
+class _Starting:
+    """A request's answer in the making, kept in request order: a component's pid is read from its report pipe
+    (and an intermediate, if any, reaped) while the server goes on to the next request."""
+
+    __slots__ = ("answer", "middle", "report", "text")
+
+    def __init__(self, report: int | None = None, middle: int | None = None,
+                 answer: dict[str, object] | None = None) -> None:
+        self.report = report
+        self.middle = middle
+        self.answer = answer
+        self.text = b""
+
+    def read(self) -> None:
+        assert self.report is not None
+        chunk = os.read(self.report, 64)
+        if chunk:
+            self.text += chunk
+            return
+        os.close(self.report)  # the component wrote its pid and closed its end, or died first
+        self.report = None
+        if self.middle is not None:
+            os.waitpid(self.middle, 0)
+        try:
+            self.answer = {"pid": int(self.text)}
+        except ValueError:
+            self.answer = {"error": "fork failed in the intermediate process"}
+
+
 def serve(sock: socket.socket, launcher_pid: int, later_modules: tuple[str, ...] = ()) -> Request | None:
-    """Answer requests until the launcher closes its end (None); in a forked component, its Request."""
+    """Answer requests until the launcher closes its end (None); in a forked component, its Request.
+
+    Answers go out in the order of the requests; the next request is taken as soon as a component is started,
+    not once it has reported its pid (it must first be scheduled, which on a busy machine held the next fork
+    back)."""
     later = list(later_modules)
     last_request = time.monotonic()
+    starting: collections.deque[_Starting] = collections.deque()
     while True:
-        if later:
+        while starting and starting[0].answer is not None:
+            _reply(sock, starting.popleft().answer)  # type: ignore[arg-type]
+        if later and not starting:
             quiet = time.monotonic() - last_request
             if not select.select([sock], [], [], max(0.0, LATER_QUIET_S - quiet))[0]:
                 if time.monotonic() - last_request >= LATER_QUIET_S:
@@ -222,6 +259,13 @@ def serve(sock: socket.socket, launcher_pid: int, later_modules: tuple[str, ...]
                     if not later:
                         _freeze()
                 continue
+        reports = {s.report: s for s in starting if s.report is not None}
+        ready = select.select([sock, *reports], [], [])[0]
+        for fd in ready:
+            if fd in reports:
+                reports[fd].read()
+        if sock not in ready:
+            continue
         last_request = time.monotonic()
         try:
             data, fds, _, _ = socket.recv_fds(sock, MAX_MESSAGE, 2)
@@ -237,14 +281,14 @@ def serve(sock: socket.socket, launcher_pid: int, later_modules: tuple[str, ...]
         except (ValueError, KeyError, TypeError) as e:
             for fd in fds:
                 os.close(fd)
-            _reply(sock, {"error": f"bad request: {e}"})
+            starting.append(_Starting(answer={"error": f"bad request: {e}"}))
             continue
-        child = _fork_twice(sock, request, launcher_pid)
+        child = _start_child(sock, request, launcher_pid)
         if isinstance(child, Request):
             return child
         os.close(request.stdout_fd)
         os.close(request.stderr_fd)
-        _reply(sock, child)
+        starting.append(child)
 
 
 def _reply(sock: socket.socket, message: dict[str, object]) -> None:
@@ -252,7 +296,7 @@ def _reply(sock: socket.socket, message: dict[str, object]) -> None:
         sock.send(json.dumps(message).encode())
 
 
-def _fork_twice(sock: socket.socket, request: Request, launcher_pid: int) -> Request | dict[str, object]:
+def _start_child(sock: socket.socket, request: Request, launcher_pid: int) -> Request | _Starting:
     """Start the component as the launcher's child: made so directly where the kernel allows it (clone with
     CLONE_PARENT, `_clone_for_launcher`), else through an intermediate that forks the component and exits at
     once, re-parenting it to the launcher before its pid is reported, so the launcher's waitpid() never races
@@ -273,7 +317,7 @@ def _fork_twice(sock: socket.socket, request: Request, launcher_pid: int) -> Req
         signal.pthread_sigmask(signal.SIG_SETMASK, held)
         os.close(r)
         os.close(w)
-        return {"error": f"fork failed: {e.strerror}"}
+        return _Starting(answer={"error": f"fork failed: {e.strerror}"})
     if component == 0:
         os.close(r)
         _start_component(sock, launcher_pid, w)
@@ -290,11 +334,7 @@ def _fork_twice(sock: socket.socket, request: Request, launcher_pid: int) -> Req
         os._exit(0)
     signal.pthread_sigmask(signal.SIG_SETMASK, held)
     os.close(w)
-    with os.fdopen(r, "rb") as pipe:
-        text = pipe.read()
-    if middle is not None:
-        os.waitpid(middle, 0)
-    return {"pid": int(text)} if text else {"error": "fork failed in the intermediate process"}
+    return _Starting(report=r, middle=middle)
 
 
 def _start_component(sock: socket.socket, launcher_pid: int, report_fd: int) -> None:
