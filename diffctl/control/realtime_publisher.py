@@ -14,9 +14,10 @@ queued without waking the publishing thread; `release` wakes it once, after the 
 once per message in the middle of them, where it would take the GIL (and the CPU) from the loop. Samples
 from any other thread wake it at once. With `poll_held(True)` (the wall-clock control loop of
 ros2_control_node), the control thread does not wake it at all: once held cycles hand samples over, the
-publishing thread polls the queue every POLL_S between cycles, as realtime_tools' publishing loop polls its
-message, until none has come for IDLE_NS — the wake-up, a futex system call of ~15-20 µs on a cold cycle, is
-then no part of the real-time cycle.
+publishing thread polls the queue, as realtime_tools' publishing loop polls its message, until none has come
+for IDLE_NS — the wake-up, a futex system call of ~15-20 µs on a cold cycle, is then no part of the real-time
+cycle. It sleeps through most of the period the batches come at and looks every POLL_S from LEAD_NS before
+the next is due (looking every POLL_S throughout cost 6 % of a core at 100 Hz).
 
 The publisher wrapped is a client (rclpy-API) Publisher, as `get_node().create_publisher(…)` returns it.
 """
@@ -36,6 +37,7 @@ from typing import Any
 CAPACITY = 1024
 POLL_S = 0.0005  # realtime_tools' publishing loop sleeps this long between looks at its message
 IDLE_NS = 100_000_000  # polling stops when held cycles have handed nothing over for this long
+LEAD_NS = 1_000_000  # polling starts this long before the next batch is due (by the gap between the last two)
 
 
 class PublishingThread:
@@ -84,31 +86,39 @@ class PublishingThread:
 
     def _run(self) -> None:
         queue = self._queue
-        idle_since: int | None = None
+        idle_since: int | None = None  # polling: since when no sample has been found
+        found_ns = 0  # polling: when the last batch of samples was found
+        gap_ns = 0  # polling: the time between the last two batches (the control period, give or take a look)
         while True:
-            if not queue or (self._polling and self._holder is not None):  # polling: not in the middle of a cycle
-                if self._polling:
+            if queue and not (self._polling and self._holder is not None):  # polling: never in the middle of a cycle
+                if idle_since is not None:  # a new batch
                     now = time.monotonic_ns()
-                    if idle_since is None:
-                        idle_since = now
-                    if now - idle_since < IDLE_NS or self._holder is not None:
-                        time.sleep(POLL_S)
-                        continue
-                    self._polling = False  # a release from now on wakes this thread
-                    if queue:
-                        continue
-                idle_since = None
-                self._signal.acquire()  # until a producer appends and signals (or signalled meanwhile)
+                    gap_ns = now - found_ns if now - found_ns < IDLE_NS else 0
+                    found_ns = now
+                    idle_since = None
+                try:
+                    publisher, template, data = queue.popleft()
+                except IndexError:
+                    continue
+                try:
+                    publisher.publish(data if template is None else template.encode(data))
+                except Exception:  # a publisher closed meanwhile (controller unloaded, shutdown): nowhere to send
+                    pass
                 continue
+            if self._polling:
+                now = time.monotonic_ns()
+                if idle_since is None:
+                    idle_since = now
+                if now - idle_since < IDLE_NS or self._holder is not None:
+                    # Asleep through most of the period the batches come at, then a look every POLL_S.
+                    ahead_ns = found_ns + gap_ns - LEAD_NS - now
+                    time.sleep(ahead_ns / 1e9 if ahead_ns > POLL_S * 1e9 else POLL_S)
+                    continue
+                self._polling = False  # a release from now on wakes this thread
+                if queue:
+                    continue
             idle_since = None
-            try:
-                publisher, template, data = queue.popleft()
-            except IndexError:
-                continue
-            try:
-                publisher.publish(data if template is None else template.encode(data))
-            except Exception:  # a publisher closed meanwhile (controller unloaded, shutdown): nothing to send to
-                pass
+            self._signal.acquire()  # until a producer appends and signals (or signalled meanwhile)
 
     def flush(self, timeout_s: float = 1.0) -> bool:
         """Wait until everything queued so far has been put (tests, shutdown)."""
