@@ -29,8 +29,6 @@ class Ticker(Protocol):
         """Block until the next cycle; (time_ns, period_s) or None when stopped / nothing to do yet."""
         ...
 
-    def cycle_done(self) -> None: ...
-
 
 def configure_sched_fifo(priority: int) -> str | None:
     """Give the calling thread SCHED_FIFO at `priority`, as ros2_control_node does (thread_priority, default 50);
@@ -144,9 +142,6 @@ class WallTicker:
         self._prev_wall_ns = wall
         return wall, period
 
-    def cycle_done(self) -> None:
-        pass
-
 
 class SimClockTicker:
     """Cycles on sim time: waits until previous + period on the node's ROS clock (which follows /clock)."""
@@ -176,9 +171,6 @@ class SimClockTicker:
         self._prev = now
         return now, period
 
-    def cycle_done(self) -> None:
-        pass
-
 
 def run(
     cycle: Callable[[int, float], None],
@@ -192,11 +184,11 @@ def run(
         tick = ticker.wait(stop)
         if tick is None:
             continue
-        wake = time.monotonic_ns()
+        # The thread's CPU clock is a system call: read outside the wall-clock span, which ends before it too.
         cpu = thread_time_ns()
+        wake = time.monotonic_ns()
         t_ns, period_s = tick
         if on_time is not None:
             on_time(t_ns)
         cycle(t_ns, period_s)
-        ticker.cycle_done()
         stats.record(wake, time.monotonic_ns() - wake, thread_time_ns() - cpu)

@@ -157,7 +157,8 @@ class JointStateBroadcaster(ControllerInterface):
         self._js_pub: Any = None
         self._djs_pub: Any = None
         self._handles: list[Any] = []
-        self._fast: list[tuple[Any, CdrTemplate, Any]] = []  # (publisher, template, values → its leaves' values)
+        # (the publisher's publish_values, template, values → its leaves' values)
+        self._fast: list[tuple[Any, CdrTemplate, Any]] = []
         self.joint_names: list[str] = []
 
     def on_init(self) -> None:
@@ -232,12 +233,13 @@ class JointStateBroadcaster(ControllerInterface):
         self._fast = []
         if self._js_pub is not None:
             template = CdrTemplate(js, JOINT_STATE, stamp + [(f"{f}[{i}]", "d") for f, i, _ in js_leaves])
-            self._fast.append((self._js_pub, template, _picker([position[id(si)] for _, _, si in js_leaves])))
+            pick = _picker([position[id(si)] for _, _, si in js_leaves])
+            self._fast.append((self._js_pub.publish_values, template, pick))
         if self._djs_pub is not None:
             leaves = [f"interface_values[{j}].values[{k}]" for j, sis in enumerate(by_joint.values())
                       for k in range(len(sis))]  # fmt: skip
             template = CdrTemplate(djs, DYNAMIC_JOINT_STATE, stamp + [(leaf, "d") for leaf in leaves])
-            self._fast.append((self._djs_pub, template, tuple))
+            self._fast.append((self._djs_pub.publish_values, template, tuple))
 
     def on_deactivate(self, previous_state: Any) -> None:
         self._fast = []
@@ -255,8 +257,8 @@ class JointStateBroadcaster(ControllerInterface):
         """update() on integer nanoseconds (the manager's cycle calls this one: no Time object per cycle)."""
         stamp = divmod(time_ns, _NS)
         values = tuple(map(_VALUE, self._handles))
-        for pub, template, pick in self._fast:
-            pub.publish_values(template, stamp + pick(values))
+        for put, template, pick in self._fast:
+            put(template, stamp + pick(values))
         return _OK
 
     def _close_endpoints(self) -> None:

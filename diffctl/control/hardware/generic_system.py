@@ -29,6 +29,7 @@ from diffctl.errors import ParameterError
 
 _MODES = ("position", "velocity", "acceleration")
 _INFINITE = (math.inf, -math.inf)
+_OK = ReturnType.OK
 _BOOL = {"true": True, "false": False, "1": True, "0": False}
 
 
@@ -179,20 +180,21 @@ class GenericSystem(HardwareComponent):
                 self._last_warn = now
                 self.log.warn(f"{self.name}: Command propagation is disabled - no values will be returned!")
             return ReturnType.OK
-        plan = self._cached_plan or self._plan()
-        for c in plan.commands:
+        # One tuple, its empty parts None: a cycle touches no object it has nothing to do with.
+        commands, by_velocity, integrate, mirror, custom_offset, mimics, position_offset = (
+            self._cached_plan or self._plan()).steps
+        for c in commands:
             v = c.value
             if v in _INFINITE:
                 if self.log is not None:
                     self.log.error(f"{self.name}: command {c.name} is {v}")
                 return ReturnType.ERROR
         dt = period_s
-        if plan.by_velocity and dt > 0.0:
+        if by_velocity and dt > 0.0:
             # Velocity-commanded joints (a wheel), the mock's dynamics written for that mode alone: position
             # advances by the previous velocity, the command becomes the velocity, the change the acceleration
             # (when the joint has that state).
-            position_offset = plan.position_offset
-            for command, pos_s, vel_s, acc_s in plan.by_velocity:
+            for command, pos_s, vel_s, acc_s in by_velocity:
                 cmd = command.value
                 vel = vel_s.value
                 pos_s.value += vel * dt + position_offset
@@ -200,10 +202,9 @@ class GenericSystem(HardwareComponent):
                     if acc_s is not None:
                         acc_s.value = (cmd - vel) / dt
                     vel_s.value = cmd
-        if plan.integrate and dt > 0.0:
+        if integrate and dt > 0.0:
             # The position- and acceleration-commanded joints (backward integration as above).
-            position_offset = plan.position_offset
-            for mode, command, pos_s, vel_s, acc_s in plan.integrate:
+            for mode, command, pos_s, vel_s, acc_s in integrate:
                 cmd = command.value
                 pos = pos_s.value
                 vel = vel_s.value
@@ -222,17 +223,20 @@ class GenericSystem(HardwareComponent):
                 vel_s.value = vel
                 acc_s.value = acc
         # Commands mirrored to the state of the same name (a NaN command is no command), in the commands' order.
-        for cmd, st, offset in plan.mirror:
-            v = cmd.value
-            if v == v:
-                st.value = v if offset is None else v + offset
-        for cmd, target in plan.custom_offset:
-            v = cmd.value
-            if v == v:
-                target.value = v + self.offset
-        for dst, src, multiplier in plan.mimics:
-            dst.value = multiplier * src.value
-        return ReturnType.OK
+        if mirror:
+            for cmd, st, offset in mirror:
+                v = cmd.value
+                if v == v:
+                    st.value = v if offset is None else v + offset
+        if custom_offset:
+            for cmd, target in custom_offset:
+                v = cmd.value
+                if v == v:
+                    target.value = v + self.offset
+        if mimics:
+            for dst, src, multiplier in mimics:
+                dst.value = multiplier * src.value
+        return _OK
 
     def write(self, time_ns: int, period_s: float) -> ReturnType:
         return ReturnType.OK
@@ -306,3 +310,6 @@ class _Plan:
                 src = states.get(f"{mimicked}/{iface}")
                 if src is not None:
                     self.mimics.append((states[f"{joint}/{iface}"], src, multiplier))
+        # What read() takes, in one tuple; the empty parts None.
+        self.steps = (tuple(self.commands), *(tuple(part) or None for part in (
+            self.by_velocity, self.integrate, self.mirror, self.custom_offset, self.mimics)), self.position_offset)
