@@ -57,7 +57,10 @@ def quat_multiply(a: Quat, b: Quat) -> Quat:
 
 
 def quat_normalize(q: Sequence[float]) -> Quat:
-    n = math.sqrt(sum(c * c for c in q))
+    # the sum written out: the same additions in the same order as sum() over the squares, without a generator
+    # (an IMU normalizes one per sample)
+    x, y, z, w = q
+    n = math.sqrt(x * x + y * y + z * z + w * w)
     if n == 0.0 or not math.isfinite(n):
         raise ValueError(f"quaternion {tuple(q)} cannot be normalized")
     return (q[0] / n, q[1] / n, q[2] / n, q[3] / n)
