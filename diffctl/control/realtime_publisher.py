@@ -110,9 +110,10 @@ class PublishingThread:
                 if idle_since is None:
                     idle_since = now
                 if now - idle_since < IDLE_NS or self._holder is not None:
-                    # Asleep through most of the period the batches come at, then a look every POLL_S.
+                    # Asleep through most of the period the batches come at, then a look every POLL_S; a sample
+                    # from another thread than the cycle's signals, and ends the wait at once.
                     ahead_ns = found_ns + gap_ns - LEAD_NS - now
-                    time.sleep(ahead_ns / 1e9 if ahead_ns > POLL_S * 1e9 else POLL_S)
+                    self._signal.acquire(timeout=ahead_ns / 1e9 if ahead_ns > POLL_S * 1e9 else POLL_S)
                     continue
                 self._polling = False  # a release from now on wakes this thread
                 if queue:

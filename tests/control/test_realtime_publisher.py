@@ -109,6 +109,11 @@ def test_a_polling_thread_takes_held_cycles_samples_without_being_woken_and_stop
             assert thread._polling and thread._signal.locked()
         assert sink.got.wait(5)
     assert sink.sent == [0.0, 1.0, 2.0]
+    sink.got.clear()
+    other = threading.Thread(target=pub.publish, args=(value(2.5),))  # another thread's sample, while polling
+    other.start()
+    other.join()
+    assert sink.got.wait(5) and sink.sent[-1] == 2.5
     pause = threading.Event()
     for _ in range(500):  # idle for IDLE_NS: back to being woken (5 s: a generous failure bound)
         if not thread._polling:
