@@ -46,6 +46,8 @@ class TfPublisher:
         self._warn = warn
         self._warned: set[str] = set()
         self._last_ns: dict[str, int] = {}
+        # the node's /tf messages by the moving joints they carry, refilled per sample (`moved_message`)
+        self._reused: dict[tuple[str, ...], Any] = {}
 
     def _frame(self, link: str) -> str:
         return link if link == "world" else self.frame_prefix + link
@@ -61,6 +63,32 @@ class TfPublisher:
 
     def moved(self, msg: Any, now_ns: int, interval_ns: int, ignore_timestamp: bool) -> list[Any]:
         """The transforms a joint_states message makes, [] when it is rate limited or names no moving joint."""
+        return [transform_msg(self._frame(seg.parent), self._frame(seg.child), pose, stamp_ns)
+                for seg, pose, stamp_ns in self._poses(msg, now_ns, interval_ns, ignore_timestamp)]
+
+    def moved_message(self, msg: Any, now_ns: int, interval_ns: int, ignore_timestamp: bool) -> Any | None:
+        """`moved` as one tf2_msgs/TFMessage, None when there is nothing to send. The message (and its transforms)
+        is this publisher's own, filled again by the next call: publish it before then (publishing serializes).
+        At rtf 0 a car's joint_states come hundreds of times a second, and building fresh messages was a sixth
+        of the node's time."""
+        poses = self._poses(msg, now_ns, interval_ns, ignore_timestamp)
+        if not poses:
+            return None
+        key = tuple(seg.child for seg, _, _ in poses)
+        out = self._reused.get(key)
+        if out is None:
+            out = cls("tf2_msgs/msg/TFMessage")(transforms=[
+                transform_msg(self._frame(seg.parent), self._frame(seg.child), pose, stamp_ns)
+                for seg, pose, stamp_ns in poses])
+            self._reused[key] = out
+            return out
+        for t, (_, pose, stamp_ns) in zip(out.transforms, poses, strict=True):
+            _fill(t, pose, stamp_ns)
+        return out
+
+    def _poses(
+        self, msg: Any, now_ns: int, interval_ns: int, ignore_timestamp: bool
+    ) -> list[tuple[Segment, Pose, int]]:
         names, positions = list(msg.name), list(msg.position)
         if len(names) != len(positions):
             self._warn_once("sizes", f"joint_states with {len(names)} names but {len(positions)} positions: ignored")
@@ -84,7 +112,7 @@ class TfPublisher:
                 self._warn_once(name, f"joint {name!r} position is {q}: not published")
                 continue
             seg: Segment = self.moving[name]
-            out.append(transform_msg(self._frame(seg.parent), self._frame(seg.child), seg.transform(q), stamp_ns))
+            out.append((seg, seg.transform(q), stamp_ns))
             self._last_ns[name] = stamp_ns
         return out
 
@@ -93,16 +121,21 @@ def transform_msg(parent: str, child: str, pose: Pose, stamp_ns: int) -> Any:
     # Filled in place: keyword arguments would build every nested default first and then replace it (twice the
     # messages per transform, on every joint_states sample).
     msg = cls("geometry_msgs/msg/TransformStamped")()
-    header = msg.header
-    header.stamp.sec, header.stamp.nanosec = divmod(stamp_ns, 1_000_000_000)
-    header.frame_id = parent
+    msg.header.frame_id = parent
     msg.child_frame_id = child
+    _fill(msg, pose, stamp_ns)
+    return msg
+
+
+def _fill(msg: Any, pose: Pose, stamp_ns: int) -> None:
+    """A TransformStamped's stamp and transform, set in place."""
+    stamp = msg.header.stamp
+    stamp.sec, stamp.nanosec = divmod(stamp_ns, 1_000_000_000)
     t, r = msg.transform.translation, msg.transform.rotation
     x, y, z = pose.xyz
     qx, qy, qz, qw = pose.quat
     t.x, t.y, t.z = float(x), float(y), float(z)
     r.x, r.y, r.z, r.w = float(qx), float(qy), float(qz), float(qw)
-    return msg
 
 
 def description_text(description_file: Path | None, override: Any) -> tuple[str, Path | None]:
@@ -166,9 +199,9 @@ def make_node(description: str, model: Model, base_dir: Path | None, overrides: 
         limits["ignore_timestamp"] = node.get_parameter("ignore_timestamp").value
 
     def on_joint_states(msg: Any) -> None:
-        transforms = state.moved(msg, now_ns(), limits["interval_ns"], limits["ignore_timestamp"])
-        if transforms:
-            pub_tf.publish(tf_message(transforms=transforms))
+        out = state.moved_message(msg, now_ns(), limits["interval_ns"], limits["ignore_timestamp"])
+        if out is not None:
+            pub_tf.publish(out)
 
     parsed: dict[str, Model] = {}
 

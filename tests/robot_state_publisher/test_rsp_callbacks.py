@@ -52,3 +52,18 @@ def test_bad_joint_states_are_skipped_with_one_warning_and_frames_get_the_prefix
     assert len(warnings) == 2, warnings
     # the fixed transforms, with the root at base_footprint
     assert {t.header.frame_id for t in tf.fixed(0)} == {"car/base_footprint", "car/base_link"}
+
+
+def test_the_nodes_reused_message_is_byte_for_byte_a_fresh_one() -> None:
+    from diffctl.client.interfaces import serialize
+
+    fresh, reused = TfPublisher(load_model(CAR), "car/", print), TfPublisher(load_model(CAR), "car/", print)
+    samples = [([LEFT, RIGHT], [0.1 * i, -0.3 * i]) for i in range(4)] + [([RIGHT], [2.0]), ([LEFT, RIGHT], [1.0, 0.5])]
+    for i, (names, positions) in enumerate(samples):
+        stamp = 10**9 + i * 60 * MS
+        want = fresh.moved(joint_states(stamp, names, positions), 0, 50 * MS, False)
+        got = reused.moved_message(joint_states(stamp, names, positions), 0, 50 * MS, False)
+        assert got is not None
+        assert serialize(got) == serialize(cls("tf2_msgs/msg/TFMessage")(transforms=want))
+    # rate limited: nothing to send
+    assert reused.moved_message(joint_states(stamp + MS, [LEFT], [0.0]), 0, 50 * MS, False) is None
