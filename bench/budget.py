@@ -44,7 +44,7 @@ HOW: dict[str, str] = {
     "stack_cmd_vel_to_wheel_p99_ms": "p99 of 200 commands at real time after a ramp to steady speed (warm), wall",
     "stack_rss_mb": "PSS of the launcher and every descendant, once, while driving (warm)",
     "bus_rtt_p50_vs_zenoh": "median of 5000 round trips after 500 warm-up ÷ bare zenoh-python's, same router, "
-                            "wall",
+                            "the two in alternating blocks of 250, wall",
     "bus_rtt_p99_vs_zenoh": "p99 of the same 5000 round trips ÷ bare zenoh-python's",
     "bus_throughput_msgs_s": "one 3 s flood (warm sessions), decoded messages ÷ the window up to the last one "
                              "received",

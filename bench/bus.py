@@ -25,6 +25,8 @@ from bench.drain import drained
 from bench.ports import free_port, wait_port
 
 SAMPLES = 5000
+WARMUP = 500
+BLOCK = 250  # round trips of one kind before the other kind's turn
 TYPE = "geometry_msgs/msg/TwistStamped"
 
 PONG = textwrap.dedent(f"""
@@ -63,6 +65,7 @@ def percentile(values: list[float], q: float) -> float:
 
 
 def run() -> dict:
+    from bench import bus_zenoh
     from bench.probe import Probe
     from diffctl.bus.session import close_session
     from diffctl.interfaces import types
@@ -88,19 +91,39 @@ def run() -> dict:
         while pub.subscription_count == 0:
             time.sleep(0.01)
         time.sleep(0.3)
-        rtts: list[float] = []
-        timeouts = 0
-        for i in range(SAMPLES + 500):
-            msg.header.stamp.sec = i  # this ping's own echo, told apart from a late one of an earlier ping
-            expect[0] = types.serialize(msg, TYPE)
-            got.clear()
-            t0 = time.perf_counter()
-            pub.publish(msg)  # serialize + put, as a real publisher does
-            if not got.wait(1.0):
-                timeouts += 1
-                continue
-            if i >= 500:  # warm-up
-                rtts.append((time.perf_counter() - t0) * 1e6)
+        def bus_round_trips(count: int, first: int) -> tuple[list[float], int]:
+            times: list[float] = []
+            lost = 0
+            for i in range(first, first + count):
+                msg.header.stamp.sec = i  # this ping's own echo, told apart from a late one of an earlier ping
+                expect[0] = types.serialize(msg, TYPE)
+                got.clear()
+                t0 = time.perf_counter()
+                pub.publish(msg)  # serialize + put, as a real publisher does
+                if not got.wait(1.0):
+                    lost += 1
+                    continue
+                times.append((time.perf_counter() - t0) * 1e6)
+            return times, lost
+
+        raw_pingpong = bus_zenoh.RawPingPong(types.serialize(msg, TYPE))
+        try:
+            # Warm-up, then the bus and bare Zenoh in alternating blocks: a machine whose speed drifts (a shared
+            # VM's does, by tens of percent within a minute) weighs on both alike, so their ratio is the bus's.
+            bus_round_trips(WARMUP, 0)
+            raw_pingpong.round_trips(WARMUP, 0)
+            rtts: list[float] = []
+            raw_rtts: list[float] = []
+            timeouts = raw_timeouts = 0
+            for first in range(WARMUP, WARMUP + SAMPLES, BLOCK):
+                times, lost = bus_round_trips(BLOCK, first)
+                rtts += times
+                timeouts += lost
+                times, lost = raw_pingpong.round_trips(BLOCK, first)
+                raw_rtts += times
+                raw_timeouts += lost
+        finally:
+            raw_pingpong.close()
 
         count = [0]
 
@@ -124,9 +147,6 @@ def run() -> dict:
         received = final - start_count
         elapsed = max(t_last, t_sent) - t0
         node.close()
-        from bench import bus_zenoh
-
-        raw = bus_zenoh.run(types.serialize(msg, TYPE), SAMPLES, percentile)
         result = {
             "bus_rtt_p50_us": round(statistics.median(rtts), 1),
             "bus_rtt_p99_us": round(percentile(rtts, 0.99), 1),
@@ -138,7 +158,9 @@ def run() -> dict:
             # What the publisher got out; the rest was dropped (reliable keep-last 10 drops under congestion).
             "bus_flood_sent_msgs_s": round(int(sent_line[1]) / duration) if len(sent_line) == 2 else 0,
             "bus_load_avg_1min": round(os.getloadavg()[0], 2),  # the machine is shared: say how busy it was
-            **raw,
+            "zenoh_raw_rtt_p50_us": round(statistics.median(raw_rtts), 1),
+            "zenoh_raw_rtt_p99_us": round(percentile(raw_rtts, 0.99), 1),
+            "zenoh_raw_rtt_timeouts": raw_timeouts,
         }
     finally:
         close_session()
