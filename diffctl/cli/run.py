@@ -19,9 +19,12 @@ from pathlib import Path
 import click
 
 # A SIGINT sent to this command alone (`kill -INT`, a supervisor) is passed on when the child, which did not get
-# it from a terminal, is still running this long after. Then, as diffctl launch does (launch's sigterm_timeout
-# and sigkill_timeout), a child still running escalates to SIGTERM and SIGKILL, each step said.
-SIGINT_GRACE_S = 1.0
+# it from a terminal, is still running this long after. A child that did get it (a Ctrl-C, a signal to the group)
+# may still be exiting then on a loaded machine — a client program's exit joins Zenoh's threads — and a second
+# SIGINT cuts that exit short (seen at 1 s: the node had stopped cleanly, then died of the second one, exit 130).
+# Then, as diffctl launch does (launch's sigterm_timeout and sigkill_timeout), a child still running escalates to
+# SIGTERM and SIGKILL, each step said.
+SIGINT_GRACE_S = 2.5
 SIGTERM_TIMEOUT_S = 5.0
 SIGKILL_TIMEOUT_S = 5.0
 
