@@ -67,14 +67,18 @@ def _signal_outcome(p: subprocess.Popen, sig: int) -> tuple[int, str]:
 def test_signals_end_spin_as_in_rclpy(router: str, procs: Procs, sig: int) -> None:
     """Ctrl-C: KeyboardInterrupt out of spin; SIGTERM: ExternalShutdownException — the exit and the last line the
     real rclpy gives. (The real one races on SIGTERM: a context shut down between two waits lets spin return
-    normally now and then, or rcl_wait raises RCLError; diffctl always reports the external shutdown.)"""
+    normally now and then, or rcl_wait raises RCLError; diffctl always reports the external shutdown. On Ctrl-C
+    under load its KeyboardInterrupt now and then lands inside the Task rclpy builds for the due timer, and its
+    last line is then that half-built Task's __del__ failing, `'Task' object has no attribute '_exception'`.)"""
     code = (PROGRAMS / "spin_forever.py").read_text()
     real = procs.start([str(jazzy_venv.python()), "-I", "-c", code], env=jazzy_venv.env(), stderr=subprocess.PIPE)
     ours = procs.start([sys.executable, str(PROGRAMS / "spin_forever.py")], stderr=subprocess.PIPE)
     real_outcome, our_outcome = _signal_outcome(real, sig), _signal_outcome(ours, sig)
     if sig == signal.SIGINT:
-        assert our_outcome == real_outcome
-        assert our_outcome[1] == "KeyboardInterrupt"
+        assert our_outcome == (-signal.SIGINT, "KeyboardInterrupt")
+        assert real_outcome == our_outcome or (
+            real_outcome[0] == -signal.SIGINT and "'Task' object has no attribute '_exception'" in real_outcome[1]
+        ), real_outcome
     else:
         assert our_outcome == (1, "rclpy.executors.ExternalShutdownException")
         # The real one's race has a third outcome: the context is shut down inside rcl_wait, which raises RCLError.
