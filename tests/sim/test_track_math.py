@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 import pytest
-from hypothesis import given
+from hypothesis import example, given
 from hypothesis import strategies as st
 
 from diffctl.description.model import Plugin
@@ -54,6 +54,7 @@ def test_belt_speeds_cancel_the_vehicles_motion_where_the_belt_is() -> None:
         max_size=12,
     )
 )
+@example([(0.0, 5e-324, 1.0)])  # a subnormal load: its pulls times the span underflowed to 0 (found at random)
 def test_the_settled_rate_lies_among_the_asks_and_balances_their_pulls(asks) -> None:
     rate = settled_rate(asks)
     assert rate is not None

@@ -137,7 +137,8 @@ def settled_rate(
 
     def crossing(k: int) -> float:  # the zero of the segment knots[k - 1], knots[k]
         p0, p1 = pulls[k - 1], pulls[k]
-        return float(knots[k - 1] + (knots[k] - knots[k - 1]) * p0 / (p0 - p1)) if p0 != p1 else float(knots[k])
+        # the fraction first: pulls of a subnormal load times the span underflow to 0 (5e-324 · 0.04 = 0)
+        return float(knots[k - 1] + (knots[k] - knots[k - 1]) * (p0 / (p0 - p1))) if p0 != p1 else float(knots[k])
 
     # (the lowest knot pulls up, the highest down: both indices exist; a pull within rounding of 0 is 0)
     rounding = 1e-9 * float(moment.sum())
