@@ -50,6 +50,12 @@ def drive_steady(stack: Stack, topic: str, typename: str, values: dict, target: 
             stack.wait_sim(stack.clock_ns + SEC // 100)
         start, end = last.t_ns, last.t_ns + int(measure_s * SEC)
         stack.wait_sim(end + SEC // 5)  # a little past the end so odom has a sample there
+        # Odometry comes on its own topic and can trail /clock on a busy machine (two suites at load 8+ saw no
+        # odometry sample between start and end yet): the window is read once odometry itself got past its end.
+        deadline = time.monotonic() + 60
+        while stack.watch.last(stack.watch.odom).t_ns < end:
+            assert time.monotonic() < deadline, f"no odometry past {end / 1e9:.3f} s of sim time"
+            stack.wait_sim(stack.clock_ns + SEC // 100)
         window = [s for s in stack.watch.odom if start <= s.t_ns <= end]
         if all(abs(s.value[index] - value) <= tolerance for s in window):
             return start, end
