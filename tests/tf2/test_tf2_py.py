@@ -59,3 +59,67 @@ def test_message_level_core_and_do_transform() -> None:
     assert [moved.position.x, moved.position.y, moved.position.z] == pytest.approx(list(want_p[0]))
     assert [o.x, o.y, o.z, o.w] == pytest.approx(list(want_p[1])) or \
         [o.x, o.y, o.z, o.w] == pytest.approx([-c for c in want_p[1]])
+
+
+def test_covariance_polygon_and_conversions() -> None:
+    """PoseWithCovarianceStamped's 6x6 covariance turns with the transform's rotation (both the position and the
+    orientation blocks, Bullet's matrix of the quaternion), PolygonStamped's vertices move as points do, a pose's
+    quaternion comes back with w >= 0, and tf2_ros.convert passes the stamped messages through."""
+    import numpy as np
+    import tf2_ros
+    from geometry_msgs.msg import Point32, PolygonStamped, PoseWithCovarianceStamped
+
+    q = pybullet.getQuaternionFromEuler([0.3, -0.4, 1.1])
+    t = stamped("map", "base", 2, (1.0, -2.0, 0.5), q)
+    rotation = np.array(pybullet.getMatrixFromQuaternion(q)).reshape(3, 3)
+    cov = np.arange(36, dtype=np.float64).reshape(6, 6)
+    pose = PoseWithCovarianceStamped()
+    pose.header.frame_id = "base"
+    pose.pose.covariance = cov.reshape(36)
+    pose.pose.pose.orientation.w = 1.0
+    out = tf2_geometry_msgs.do_transform_pose_with_covariance_stamped(pose, t)
+    got = np.asarray(out.pose.covariance).reshape(6, 6)
+    for rows in (slice(0, 3), slice(3, 6)):
+        for cols in (slice(0, 3), slice(3, 6)):
+            assert got[rows, cols] == pytest.approx(rotation @ cov[rows, cols] @ rotation.T)
+    assert list(tf2_geometry_msgs.transform_covariance(cov.reshape(36), t)) == pytest.approx(list(got.reshape(36)))
+    assert (out.header.frame_id, out.header.stamp.sec) == ("map", 2)
+    o = out.pose.pose.orientation
+    assert [o.x, o.y, o.z, o.w] == pytest.approx(list(q))
+
+    polygon = PolygonStamped()
+    polygon.polygon.points = [Point32(x=1.0, y=2.0, z=3.0), Point32(x=-1.0, y=0.5, z=0.0)]
+    moved = tf2_geometry_msgs.do_transform_polygon_stamped(polygon, t)
+    assert moved.header.frame_id == "map"
+    for before, after in zip(polygon.polygon.points, moved.polygon.points, strict=True):
+        want = pybullet.multiplyTransforms([1.0, -2.0, 0.5], q, [before.x, before.y, before.z], [0, 0, 0, 1])[0]
+        assert [after.x, after.y, after.z] == pytest.approx(list(want), abs=1e-6)
+
+    half_turn = stamped("a", "b", 0, (0.0, 0.0, 0.0), (1.0, 0.0, 0.0, 0.0))
+    flipped = Pose()
+    flipped.orientation.x, flipped.orientation.w = 1.0, 0.0
+    o = tf2_geometry_msgs.do_transform_pose(flipped, half_turn).orientation
+    assert [o.x, o.y, o.z, o.w] == pytest.approx([0.0, 0.0, 0.0, 1.0])
+
+    point = PointStamped()
+    point.point.x = 4.0
+    assert tf2_ros.convert(point, PointStamped) == point
+
+
+def test_module_attributes_as_ros_loads_them() -> None:
+    """ROS's tf2_py extension imports rclpy.time, and tf2_ros imports its submodules and rclpy.action, so code
+    written against them reaches these names after plain imports (a fresh interpreter: nothing loaded before)."""
+    import subprocess
+    import sys
+
+    program = (
+        "import rclpy, tf2_py\n"
+        "assert rclpy.time.Time is not None\n"
+        "import tf2_ros\n"
+        "assert rclpy.action.ActionClient is not None\n"
+        "assert tf2_ros.BufferClient is tf2_ros.buffer_client.BufferClient\n"
+        "assert tf2_ros.buffer.Buffer is tf2_ros.Buffer\n"
+        "assert tf2_ros.transform_listener.TransformListener is tf2_ros.TransformListener\n"
+    )
+    done = subprocess.run([sys.executable, "-c", program], capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr

@@ -10,6 +10,10 @@ from diffctl.tf2.exceptions import (
 )
 from diffctl.tf2.ros_io import BufferCore
 
+# ROS's tf2_py extension imports rclpy.time when it loads (it builds rclpy Time objects), so code written
+# against it may reach `rclpy.time` after a bare `import rclpy`.
+import rclpy.time  # noqa: E402, F401
+
 __all__ = [
     "BufferCore",
     "ConnectivityException",
