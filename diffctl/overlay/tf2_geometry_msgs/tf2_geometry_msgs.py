@@ -1,5 +1,7 @@
 """tf2_geometry_msgs.tf2_geometry_msgs, from diffctl.tf2.geometry."""
 
+from tf2_ros import ConvertRegistration, TransformRegistration
+
 from diffctl.tf2.geometry import (  # noqa: F401
     do_transform_point,
     do_transform_polygon_stamped,
@@ -12,6 +14,5 @@ from diffctl.tf2.geometry import (  # noqa: F401
     to_msg_msg,
     transform_covariance,
 )
-from tf2_ros import ConvertRegistration, TransformRegistration
 
 register(TransformRegistration(), ConvertRegistration())

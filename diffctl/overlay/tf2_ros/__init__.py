@@ -13,6 +13,7 @@ from tf2_py import (
     TimeoutException,
     TransformException,
 )
+
 from tf2_ros.buffer import Buffer
 from tf2_ros.buffer_client import BufferClient
 from tf2_ros.buffer_interface import (
