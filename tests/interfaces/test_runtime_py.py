@@ -30,6 +30,10 @@ obs('unknown', lambda: get_interfaces(['nope_msgs']))
 obs('packages', lambda: {'test_msgs', 'geometry_msgs', 'example_interfaces'} <= set(get_interface_packages()))
 obs('path', lambda: get_interface_path('test_msgs/msg/Arrays').endswith('src/test_msgs/msg/Arrays.msg'))
 obs('path of a store type', lambda: get_interface_path('geometry_msgs/msg/Twist'))
+obs('path, suffix given', lambda: get_interface_path('test_msgs/action/Fibonacci.action').endswith('.action'))
+obs('path, another suffix', lambda: get_interface_path('test_msgs/msg/Arrays.idl'))
+obs('packages without interfaces', lambda: get_interfaces(['rosidl_parser', 'rclpy', 'std_srvs']))
+obs('messages of those', lambda: get_message_interfaces(['tf2_ros']))
 ''', {"DIFFCTL_WORKSPACE": str(test_msgs_workspace)})
     assert ours["std_srvs"] == ["ok", "{'std_srvs': ['srv/Empty', 'srv/SetBool', 'srv/Trigger']}"]
     assert ours["msgs"] == ["ok", "['msg/Bool', 'msg/Byte', 'msg/ByteMultiArray']"]
@@ -39,3 +43,11 @@ obs('path of a store type', lambda: get_interface_path('geometry_msgs/msg/Twist'
     assert ours["unknown"] == ["raise", "LookupError", "Unknown package 'nope_msgs'"]
     assert ours["packages"] == ["ok", True] and ours["path"] == ["ok", True]
     assert ours["path of a store type"][:2] == ["raise", "LookupError"]
+    # A named suffix is that file or none (the source package has no generated .idl beside its .msg).
+    assert ours["path, suffix given"] == ["ok", True]
+    assert ours["path, another suffix"] == [
+        "raise", "LookupError", "Could not find the interface 'test_msgs/msg/Arrays.idl'"]
+    # Packages that exist but define no interfaces are left out, not "unknown" (ROS's are in its index).
+    assert ours["packages without interfaces"] == [
+        "ok", "{'std_srvs': ['srv/Empty', 'srv/SetBool', 'srv/Trigger']}"]
+    assert ours["messages of those"] == ["ok", "{}"]

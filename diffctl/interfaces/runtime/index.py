@@ -21,14 +21,30 @@ def get_interface_packages() -> dict[str, str]:
     return out
 
 
+def _is_package(name: str) -> bool:
+    """A package that exists but defines no interfaces: one diffctl resolves (workspace, install trees, its
+    own) or a ROS Python package its overlay provides (rclpy, rosidl_parser, tf2_ros, …)."""
+    from diffctl.errors import DiffctlError
+    from diffctl.workspace import PYTHON_PATH, find_package
+
+    if (PYTHON_PATH / name / "__init__.py").is_file():
+        return True
+    try:
+        find_package(name)
+    except DiffctlError:  # not found, or not a valid package name
+        return False
+    return True
+
+
 def _interfaces(package_names: Iterable[str]) -> dict[str, dict[str, list[str]]]:
     names = list(package_names) or registry.all_package_names()
     out = {}
     for name in names:
         p = registry.package(name)
-        if p is None:
+        if p is not None:
+            out[name] = p.interfaces
+        elif not _is_package(name):
             raise LookupError(f"Unknown package '{name}'")
-        out[name] = p.interfaces
     return out
 
 
@@ -70,8 +86,11 @@ def get_interface_path(interface_name: str) -> str:
     p = registry.package(parts[0])
     if p is None:
         raise LookupError(f"Unknown package '{parts[0]}'")
-    stem = parts[-1].rsplit(".", 1)[0]
+    stem, dot, suffix = parts[-1].partition(".")
     path = p.files.get("/".join([*parts[:-1], stem]))
+    if path is not None and dot:
+        # a suffix asks for that very file (`.idl` beside the `.msg`, as rosidl_adapter installs it)
+        path = Path(path).with_name(parts[-1])
     if path is None or not Path(path).exists():
         raise LookupError(f"Could not find the interface '{interface_name}'")
     return str(path)
