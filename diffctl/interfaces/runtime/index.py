@@ -86,7 +86,7 @@ def get_interface_path(interface_name: str) -> str:
     p = registry.package(parts[0])
     if p is None:
         raise LookupError(f"Unknown package '{parts[0]}'")
-    stem, dot, suffix = parts[-1].partition(".")
+    stem, dot, _ = parts[-1].partition(".")
     path = p.files.get("/".join([*parts[:-1], stem]))
     if path is not None and dot:
         # a suffix asks for that very file (`.idl` beside the `.msg`, as rosidl_adapter installs it)
