@@ -9,6 +9,7 @@ Quaternions from matrices are returned with w >= 0, as Jazzy's tf_transformation
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Sequence
 
@@ -19,8 +20,29 @@ _EPS = np.finfo(float).eps * 4.0
 _AXES = "xyz"
 
 
-def _parse_axes(axes: str) -> tuple[list[int], bool]:
-    """The static axis sequence [I, J, K] (K == I for proper Euler angles) and whether the angles reverse."""
+def _axis_tuples() -> dict[str, tuple[int, int, int, int]]:
+    """Euler conventions as tf's (first axis, parity, repetition, frame) tuples: a rotating-frame sequence is
+    the static one read backwards."""
+    table = {}
+    for a, b, c in itertools.product(range(3), repeat=3):
+        if a == b or b == c:
+            continue
+        static = _AXES[a] + _AXES[b] + _AXES[c]
+        code = (a, 0 if b == (a + 1) % 3 else 1, int(c == a))
+        table["s" + static] = (*code, 0)
+        table["r" + static[::-1]] = (*code, 1)
+    return table
+
+
+_AXES2TUPLE = _axis_tuples()
+_TUPLE2AXES = {v: k for k, v in _AXES2TUPLE.items()}
+
+
+def _parse_axes(axes: str | tuple[int, int, int, int]) -> tuple[list[int], bool]:
+    """The static axis sequence [I, J, K] (K == I for proper Euler angles) and whether the angles reverse;
+    a convention may be given by name or by its tuple."""
+    if isinstance(axes, tuple):
+        axes = _TUPLE2AXES.get(axes, "")
     name = axes.lower() if isinstance(axes, str) else ""
     seq = [_AXES.index(c) for c in name[1:] if c in _AXES]
     if len(name) != 4 or name[0] not in "sr" or len(seq) != 3 or seq[0] == seq[1] or seq[1] == seq[2]:
@@ -60,19 +82,30 @@ def translation_from_matrix(matrix: np.ndarray) -> np.ndarray:
     return np.array(matrix, dtype=float)[:3, 3].copy()
 
 
-def vector_norm(data: Sequence[float] | np.ndarray, axis: int | None = None) -> float | np.ndarray:
+def vector_norm(data: Sequence[float] | np.ndarray, axis: int | None = None,
+                out: np.ndarray | None = None) -> float | np.ndarray | None:
+    """Euclidean length (along `axis`); with `out`, written there and None returned, as tf's does."""
     arr = np.asarray(data, dtype=float)
-    if axis is None:
+    if axis is None and out is None:
         return float(math.sqrt(float(np.dot(arr.ravel(), arr.ravel()))))
-    return np.sqrt(np.sum(arr * arr, axis=axis))
+    norms = np.sqrt(np.sum(arr * arr, axis=axis))
+    if out is None:
+        return norms
+    out[...] = norms
+    return None
 
 
-def unit_vector(data: Sequence[float] | np.ndarray, axis: int | None = None) -> np.ndarray:
+def unit_vector(data: Sequence[float] | np.ndarray, axis: int | None = None,
+                out: np.ndarray | None = None) -> np.ndarray | None:
+    """`data` divided by its length (along `axis`); with `out`, written there and None returned."""
     arr = np.array(data, dtype=float)
     norm = vector_norm(arr, axis)
     if axis is not None:
         norm = np.expand_dims(norm, axis)
-    return arr / norm
+    if out is None:
+        return arr / norm
+    out[...] = arr / norm
+    return None
 
 
 def rotation_matrix(angle: float, direction: Sequence[float], point: Sequence[float] | None = None) -> np.ndarray:
