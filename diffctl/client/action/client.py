@@ -14,6 +14,8 @@ import weakref
 from collections.abc import Callable
 from typing import Any
 
+from diffctl.client.waitable import NumberOfEntities
+
 WAIT_FOR_SERVER_POLL_S = 0.25  # rclpy's wait_for_server sleeps this long between looks
 
 
@@ -121,6 +123,8 @@ class ActionClient:
 
         from diffctl.client.task import Future
 
+        if not isinstance(goal, self._action_type.Goal):
+            raise TypeError()
         if goal_uuid is None:
             goal_uuid = UUID(uuid=list(uuidlib.uuid4().bytes))
         request = self._action_type.Impl.SendGoalService.Request()
@@ -156,6 +160,8 @@ class ActionClient:
 
     def send_goal(self, goal: Any, **kwargs: Any) -> Any:
         """Send a goal and block until its result (another thread must be spinning the node)."""
+        if not isinstance(goal, self._action_type.Goal):
+            raise TypeError()
         handle = self._wait(self.send_goal_async(goal, **kwargs))
         if handle is None or not handle.accepted:
             return None
@@ -233,6 +239,10 @@ class ActionClient:
             time.sleep(WAIT_FOR_SERVER_POLL_S)
             remaining -= WAIT_FOR_SERVER_POLL_S
         return self.server_is_ready()
+
+    def get_num_entities(self) -> NumberOfEntities:
+        """What rcl_action's client holds: the feedback and status subscriptions and the three clients."""
+        return NumberOfEntities(num_subs=2, num_clients=3)
 
     def destroy(self) -> None:
         for client in (self._goal_client, self._cancel_client, self._result_client):

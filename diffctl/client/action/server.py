@@ -19,6 +19,7 @@ from typing import Any
 from diffctl.client.action import goal_states as gs
 from diffctl.client.action.deferred import serve
 from diffctl.client.exceptions import RCLError
+from diffctl.client.waitable import NumberOfEntities
 
 
 class GoalResponse(Enum):
@@ -353,6 +354,10 @@ class ActionServer:
                 self._results.pop(uuid, None)
         # As rclpy: forgetting goals publishes no status array (the last one still lists them).
         self._schedule_expiry()
+
+    def get_num_entities(self) -> NumberOfEntities:
+        """What rcl_action's server holds: its three services and the goal-expiry timer (a thread here)."""
+        return NumberOfEntities(num_timers=1, num_services=3)
 
     def destroy(self) -> None:
         with self._lock:

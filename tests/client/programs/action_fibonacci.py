@@ -78,6 +78,16 @@ def main():
     spinner.start()
 
     print("server ready", client.wait_for_server(timeout_sec=10.0), client.server_is_ready())
+    for name, entities in (("client", client.get_num_entities()), ("server", server.server.get_num_entities())):
+        print(name, "entities", entities.num_subscriptions, entities.num_guard_conditions, entities.num_timers,
+              entities.num_clients, entities.num_services, entities.num_events)
+    for wrong in ("a string", Fibonacci.Result()):  # a goal must be the action's Goal, not any message
+        for send in (client.send_goal_async, client.send_goal):
+            try:
+                send(wrong)
+                print(send.__name__, "took", type(wrong).__name__)
+            except TypeError as e:
+                print(send.__name__, "refused", type(wrong).__name__, repr(e))
     feedback = []
     handle = wait(client.send_goal_async(Fibonacci.Goal(order=5), feedback_callback=lambda m: feedback.append(
         (type(m).__name__.endswith("FeedbackMessage"), list(m.feedback.sequence)))))
