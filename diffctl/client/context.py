@@ -9,6 +9,7 @@ from collections.abc import Callable
 from typing import Any
 
 from diffctl.client import waiting
+from diffctl.client.destroyable import Handle, handle_of
 from diffctl.client.exceptions import RCLError
 
 
@@ -23,6 +24,7 @@ class Context:
         self._args: list[str] = []
         self._domain_id: int | None = None
         self._nodes: weakref.WeakSet[Any] = weakref.WeakSet()
+        self._destroyed = False
 
     def __enter__(self) -> Context:
         self.init()
@@ -32,8 +34,9 @@ class Context:
         self.try_shutdown()
 
     @property
-    def handle(self) -> Context:
-        return self
+    def handle(self) -> Handle | None:
+        """None until init(), as rclpy's (its rcl context is made there); valid until destroy()."""
+        return handle_of(self) if self._init_called else None
 
     def init(self, args: list[str] | None = None, *, initialize_logging: bool = True,
              domain_id: int | None = None) -> None:
@@ -116,6 +119,7 @@ class Context:
 
     def destroy(self) -> None:
         self.try_shutdown()
+        self._destroyed = True
 
 
 _default_context: Context | None = None

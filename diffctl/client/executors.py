@@ -377,6 +377,10 @@ class Executor:
                 services.extend(e for e in node._services if can(e))
                 guards.extend(e for e in node._guards if can(e))
                 waitables.extend(e for e in node._waitables if can(e))
+                # A user's Waitable learns of each wait (there is no rcl wait set: the argument is None).
+                for e in node._joining_waitables:
+                    if can(e):
+                        e.add_to_wait_set(None)
 
             if not _any_ready(subs, timers, guards, clients, services, waitables):
                 wait_s = None if deadline is None else max(0.0, deadline - time.monotonic())

@@ -6,6 +6,7 @@ from collections.abc import Callable
 from typing import Any
 
 from diffctl.client import waiting
+from diffctl.client.destroyable import Handle, handle_of
 from diffctl.client.timer import await_or_execute
 
 
@@ -19,8 +20,8 @@ class GuardCondition:
         self._node: Any = None
 
     @property
-    def handle(self) -> GuardCondition:
-        return self
+    def handle(self) -> Handle:
+        return handle_of(self)
 
     def __enter__(self) -> GuardCondition:
         return self

@@ -24,6 +24,7 @@ from diffctl.client.callback_groups import CallbackGroup, MutuallyExclusiveCallb
 from diffctl.client.client import Client
 from diffctl.client.clock import Clock, ROSClock
 from diffctl.client.context import Context, get_default_context
+from diffctl.client.destroyable import handle_of
 from diffctl.client.event_handler import PublisherEventCallbacks, SubscriptionEventCallbacks
 from diffctl.client.exceptions import NodeNameNonExistentError, NotInitializedException, RCLError
 from diffctl.client.guard_condition import GuardCondition
@@ -52,6 +53,7 @@ from diffctl.client.subscription import Subscription
 from diffctl.client.timer import Rate, Timer
 from diffctl.client.topic_endpoint_info import TopicEndpointInfo, TopicEndpointTypeEnum  # noqa: F401 (rclpy.node has it)
 from diffctl.client.type_support import check_is_valid_msg_type, check_is_valid_srv_type
+from diffctl.client.waitable import Waitable
 from diffctl.errors import NoRouterError
 
 CLOCK_TOPIC = "/clock"
@@ -209,6 +211,8 @@ class Node:
         self._timers: list[Timer] = []
         self._guards: list[GuardCondition] = []
         self._waitables: list[Any] = []
+        # those whose add_to_wait_set does something: the executor calls it before each wait
+        self._joining_waitables: list[Any] = []
         self._default_callback_group = MutuallyExclusiveCallbackGroup()
         self._rate_group = ReentrantCallbackGroup()
         self._executor_ref: Any = None
@@ -257,6 +261,13 @@ class Node:
         if start_parameter_event_publisher:
             self._parameter_events = self._bus.create_publisher(
                 "/parameter_events", "rcl_interfaces/msg/ParameterEvent", qos=PARAMETER_EVENTS_QOS)
+            # Listed in `publishers` as rclpy lists its own; events go out raw from the bus publisher. No
+            # default QoS event handlers: they would watch the graph on behalf of every node in the process.
+            self._parameter_events.client_node = self
+            self._publishers.append(Publisher(
+                self._parameter_events, cls("rcl_interfaces/msg/ParameterEvent"), "/parameter_events",
+                _qos.qos_profile_parameter_events, callback_group=self._default_callback_group,
+                event_callbacks=PublisherEventCallbacks(use_default_callbacks=False)))
             self._params.on_event = self._publish_parameter_event
         self._rosout = Rosout(self._bus, self._logger_name) if enable_rosout and ros_logging.rosout_enabled else None
         if automatically_declare_parameters_from_overrides:
@@ -359,15 +370,17 @@ class Node:
     def default_callback_group(self) -> CallbackGroup:
         return self._default_callback_group
 
-    @property
-    def handle(self) -> Node:
-        return self
-
     def __enter__(self) -> Node:
         return self
 
     def __exit__(self, *exc: Any) -> None:
         self.destroy_node()
+
+    def _refuse_handle(self, value: Any) -> None:
+        raise AttributeError("handle cannot be modified after node creation")
+
+    # `with node.handle:` raises InvalidHandle once the node is destroyed; the handle is the node's for good
+    handle = property(handle_of, _refuse_handle)
 
     @property
     def bus_node(self) -> Participant:
@@ -514,11 +527,15 @@ class Node:
     # ------------------------------------------------------------------ entities
     def add_waitable(self, waitable: Any) -> None:
         self._waitables.append(waitable)
+        if getattr(type(waitable), "add_to_wait_set", Waitable.add_to_wait_set) is not Waitable.add_to_wait_set:
+            self._joining_waitables.append(waitable)
         self._wake_executor()
 
     def remove_waitable(self, waitable: Any) -> None:
         if waitable in self._waitables:
             self._waitables.remove(waitable)
+            if waitable in self._joining_waitables:
+                self._joining_waitables.remove(waitable)
             self._wake_executor()
 
     def create_publisher(self, msg_type: Any, topic: str, qos_profile: Any, *,

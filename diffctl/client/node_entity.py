@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from typing import Any, Self
 
+from diffctl.client.destroyable import Handle, handle_of
+
 
 class NodeEntity:
     """`handle`, the context-manager form and `logger_name`; the entity keeps its node in `_node`."""
@@ -11,8 +13,8 @@ class NodeEntity:
     _node: Any
 
     @property
-    def handle(self) -> Self:
-        return self
+    def handle(self) -> Handle:
+        return handle_of(self)
 
     def __enter__(self) -> Self:
         return self

@@ -8,6 +8,7 @@ from rclpy.callback_groups import MutuallyExclusiveCallbackGroup, ReentrantCallb
 from rclpy.executors import MultiThreadedExecutor, SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.task import Future
+from rclpy.waitable import NumberOfEntities, Waitable
 from std_msgs.msg import String
 
 out = []
@@ -149,6 +150,43 @@ def overlap(group_factory):
     n.destroy_node()
     return state["max"]
 
+
+class Watcher(Waitable):
+    """A user's waitable that never has work: it only records that an executor asked it into a wait."""
+
+    def __init__(self):
+        super().__init__(ReentrantCallbackGroup())
+        self.asked = threading.Event()
+
+    def add_to_wait_set(self, wait_set):
+        self.asked.set()
+
+    def get_num_entities(self):
+        return NumberOfEntities()
+
+    def is_ready(self, wait_set):
+        return False
+
+    def take_data(self):
+        raise AssertionError("a waitable that is never ready is never taken from")
+
+    async def execute(self, taken_data):
+        raise AssertionError("a waitable that is never ready never runs")
+
+
+watched = Node("waitable_demo")
+spinning = SingleThreadedExecutor()
+spinning.add_node(watched)
+spinner = threading.Thread(target=spinning.spin, daemon=True)
+spinner.start()
+time.sleep(0.2)  # let the executor settle into its wait, so the waitable arrives while it waits
+watcher = Watcher()
+watched.add_waitable(watcher)
+out.append(["a waitable added while spinning joins the wait", watcher.asked.wait(5.0)])
+watched.remove_waitable(watcher)
+spinning.shutdown()
+spinner.join(5.0)
+watched.destroy_node()
 
 out.append(["mutually exclusive max overlap", overlap(MutuallyExclusiveCallbackGroup)])
 out.append(["reentrant callbacks overlap", overlap(ReentrantCallbackGroup) >= 2])

@@ -4,8 +4,10 @@ import json
 import time
 
 import rclpy
+from rclpy.context import Context
 from rclpy.node import Node
 from rclpy.parameter import Parameter
+from rclpy.topic_endpoint_info import TopicEndpointInfo
 from std_msgs.msg import String
 from std_srvs.srv import SetBool
 
@@ -19,9 +21,22 @@ def obs(label, fn):
         out.append([label, type(e).__name__, str(e)])
 
 
+def enter(handle):
+    """What a `with` block on an entity's handle does: enters, or the error that refuses it."""
+    try:
+        with handle:
+            return "entered"
+    except Exception as e:
+        return [type(e).__name__, str(e)]
+
+
 rclpy.init()
 n = Node("ex2", namespace="a/b")
 obs("ns", lambda: [n.get_namespace(), n.get_fully_qualified_name(), n.get_logger().name])
+obs("a new node's publishers", lambda: [x.topic_name for x in n.publishers])
+obs("node handle is read-only", lambda: setattr(n, "handle", None))
+obs("context handle before init", lambda: Context().handle)
+obs("empty endpoint info", lambda: str(TopicEndpointInfo()).splitlines())
 p = n.create_publisher(String, "~/private", 10)
 obs(
     "topic",
@@ -39,6 +54,7 @@ obs(
     "service names",
     lambda: [s.srv_name, getattr(s, "service_name", None), c.srv_name, getattr(c, "service_name", None)],
 )
+obs("handles in use", lambda: [enter(x.handle) for x in (p, s, c, n, n.context)])
 obs("destroy twice", lambda: [n.destroy_publisher(p), n.destroy_publisher(p)])
 obs("get_parameter_or", lambda: (lambda q: [q.name, q.value])(n.get_parameter_or("nope", Parameter("nope", value=3))))
 obs(
@@ -74,7 +90,14 @@ obs(
 obs("rate bad", lambda: n.create_rate(0))
 obs("timer negative", lambda: n.create_timer(-1, lambda: None))
 obs("publish after destroy", lambda: p.publish(String()))
+gc = n.create_guard_condition(lambda: None)
+obs("destroy service, client, guard condition", lambda: [n.destroy_service(s), n.destroy_client(c),
+                                                         n.destroy_guard_condition(gc)])
+obs("handles of destroyed entities", lambda: [enter(x.handle) for x in (p, s, c, gc)])
+context_handle = n.context.handle
 n.destroy_node()
 obs("destroy node twice", lambda: n.destroy_node())
+obs("handle of a destroyed node", lambda: enter(n.handle))
 rclpy.shutdown()
+obs("context handle after shutdown", lambda: enter(context_handle))
 print(json.dumps(out, default=lambda o: type(o).__name__))

@@ -103,7 +103,8 @@ class Probe:
 
     @property
     def publishers(self) -> set[str]:
-        return {p.topic_name for p in self.node.publishers}
+        """The controller's publishers: the node's own /parameter_events (listed, as rclpy lists it) left out."""
+        return {p.topic_name for p in self.node.publishers} - {"/parameter_events"}
 
     @property
     def subscriptions(self) -> dict[str, Any]:
