@@ -89,6 +89,8 @@ def test_paths_joined_from_substitution_lists_and_with_slash() -> None:
     context.launch_configurations['who'] = 'share'
     assert slashed.perform(context) == 'hello share/urdf/my_model.xacro'
     assert (PathSubstitution('/opt') / '/abs').perform(context) == '/abs'  # os.path.join's rule
+    # Text pieces need no context, as in Jazzy, where each piece performs itself.
+    assert PathJoinSubstitution(['share', 'urdf', 'x.xacro']).perform(None) == 'share/urdf/x.xacro'
 
 
 def test_handlers_timers_and_events_from_another_thread() -> None:

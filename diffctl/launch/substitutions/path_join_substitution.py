@@ -10,7 +10,6 @@ from .._private.operands import joined
 from ..some_substitutions_type import SomeSubstitutionsType
 from ..substitution import Substitution
 from ..utilities.normalize_to_list_of_substitutions_impl import normalize_to_list_of_substitutions
-from ..utilities.perform_substitutions_impl import perform_substitutions
 
 if TYPE_CHECKING:
     from ..launch_context import LaunchContext
@@ -37,7 +36,8 @@ class PathJoinSubstitution(Substitution):
         return f"PathJoin('{' + '.join(joined(part) for part in self._components)}')"
 
     def perform(self, context: LaunchContext) -> str:
-        return os.path.join(*[perform_substitutions(context, part) for part in self._components])
+        # Each piece performs itself, as Jazzy's does: all-text paths join without a context (`perform(None)`).
+        return os.path.join(*[''.join(sub.perform(context) for sub in part) for part in self._components])
 
 
 class PathSubstitution(PathJoinSubstitution):
