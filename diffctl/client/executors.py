@@ -195,8 +195,7 @@ class Executor:
         _live_executors.add(self)
         self._shutdown_lock = threading.Lock()
         self._cb_iter: Generator[tuple[Task, Any, Any], None, None] | None = None
-        self._last_args: Any = None
-        self._last_kwargs: Any = None
+        self._cb_asked: Any = None
         self._context.on_shutdown(self.wake)
 
     @property
@@ -226,8 +225,7 @@ class Executor:
         with self._nodes_lock:
             self._nodes = set()
         self._cb_iter = None
-        self._last_args = None
-        self._last_kwargs = None
+        self._cb_asked = None
         return True
 
     def add_node(self, node: Any) -> bool:
@@ -439,15 +437,17 @@ class Executor:
             raise ConditionReachedException()
 
     def wait_for_ready_callbacks(self, *args: Any, **kwargs: Any) -> tuple[Task, Any, Any]:
+        # Work found by one wait is handed out over consecutive calls with the same arguments before the
+        # next wait, as rclpy's executors do; other arguments start a new wait.
+        asked = (args, kwargs)
         while True:
-            if self._cb_iter is None or self._last_args != args or self._last_kwargs != kwargs:
-                self._last_args = args
-                self._last_kwargs = kwargs
+            if self._cb_iter is None or self._cb_asked != asked:
+                self._cb_asked = asked
                 self._cb_iter = self._wait_for_ready_callbacks(*args, **kwargs)
-            try:
-                return next(self._cb_iter)
-            except StopIteration:
-                self._cb_iter = None
+            work = next(self._cb_iter, None)
+            if work is not None:
+                return work
+            self._cb_iter = None
 
 
 def _any_ready(subs: list[Any], timers: list[Any], guards: list[Any], clients: list[Any], services: list[Any],

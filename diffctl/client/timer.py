@@ -176,25 +176,33 @@ class Timer:
 
 
 class Rate:
-    """Sleeps until its timer fires; needs another thread spinning the node, as rclpy's Rate does."""
+    """Sleeps until its timer next fires; another thread must spin the node, as with rclpy's Rate."""
 
     def __init__(self, timer: Timer, *, context: Any) -> None:
         self._timer = timer
+        # Timer fires so far, and the count the last sleeper woke to: a fire nobody slept through yet ends the
+        # next sleep at once, so a loop whose work overran the period keeps the rate, as with rclpy's Rate.
+        self._ticks = 0
+        self._ticks_slept = 0
+        self._wake = threading.Condition()
         self._is_shutdown = False
         self._is_destroyed = False
-        self._event = threading.Event()
-        self._lock = threading.Lock()
-        self._num_sleepers = 0
-        self._timer.callback = self._event.set
+        timer.callback = self._tick
         context.on_shutdown(self._on_shutdown)
+
+    def _tick(self) -> None:
+        with self._wake:
+            self._ticks += 1
+            self._wake.notify_all()
 
     def _on_shutdown(self) -> None:
         self._is_shutdown = True
         self.destroy()
 
     def destroy(self) -> None:
-        self._is_destroyed = True
-        self._event.set()
+        with self._wake:
+            self._is_destroyed = True
+            self._wake.notify_all()
 
     def sleep(self) -> None:
         if self._is_shutdown:
@@ -204,15 +212,9 @@ class Rate:
         if not self._timer:
             self.destroy()
             raise InvalidHandle("Rate cannot sleep because the timer has been destroyed")
-        with self._lock:
-            self._num_sleepers += 1
-        try:
-            self._event.wait()
-        finally:
-            with self._lock:
-                self._num_sleepers -= 1
-                if self._num_sleepers == 0:
-                    self._event.clear()
-            if self._is_shutdown:
-                self.destroy()
-                raise ROSInterruptException()
+        with self._wake:
+            slept = self._ticks_slept
+            self._wake.wait_for(lambda: self._ticks != slept or self._is_destroyed)
+            self._ticks_slept = self._ticks
+        if self._is_shutdown:
+            raise ROSInterruptException()

@@ -1,10 +1,12 @@
 # Node API details as a user observes them: names, graph queries about a node, errors of destroyed entities,
 # descriptions of the built-in parameters, timer and rate argument checks.
 import json
+import threading
 import time
 
 import rclpy
 from rclpy.context import Context
+from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
 from rclpy.topic_endpoint_info import TopicEndpointInfo
@@ -94,6 +96,35 @@ gc = n.create_guard_condition(lambda: None)
 obs("destroy service, client, guard condition", lambda: [n.destroy_service(s), n.destroy_client(c),
                                                          n.destroy_guard_condition(gc)])
 obs("handles of destroyed entities", lambda: [enter(x.handle) for x in (p, s, c, gc)])
+
+
+def rate_keeps_pace():
+    """A Rate's sleep after work that overran the period returns at once; two sleepers wake on one tick."""
+    executor = SingleThreadedExecutor()
+    executor.add_node(n)
+    spinner = threading.Thread(target=executor.spin, daemon=True)
+    spinner.start()
+    rate = n.create_rate(20)
+    rate.sleep()
+    start = time.monotonic()
+    time.sleep(0.07)
+    rate.sleep()
+    seen = {"overrun": time.monotonic() - start < 0.1}
+    woke = []
+    sleepers = [threading.Thread(target=lambda: (rate.sleep(), woke.append(time.monotonic()))) for _ in range(2)]
+    rate.sleep()
+    for s in sleepers:
+        s.start()
+    for s in sleepers:
+        s.join(5)
+    seen["two sleepers"] = len(woke) == 2 and abs(woke[0] - woke[1]) < 0.04
+    rate.destroy()
+    executor.shutdown()
+    spinner.join(5)
+    return seen
+
+
+obs("rate keeps pace", rate_keeps_pace)
 context_handle = n.context.handle
 n.destroy_node()
 obs("destroy node twice", lambda: n.destroy_node())
