@@ -220,12 +220,30 @@ def _rcl_loader(base: Any) -> Any:
             for key, _ in node.value:
                 if key.tag == "tag:diffctl,rcl-scalar":
                     key.tag = "tag:yaml.org,2002:str"
-            return super().construct_mapping(node, deep)
+            names = [key.value for key, _ in node.value if isinstance(key.value, str)]
+            if len(set(names)) == len(names):
+                return super().construct_mapping(node, deep)
+            # A key given twice (`/**:` heading two places of one file) adds to the first, as rcl's
+            # event-driven parser reads it, where PyYAML would keep the last mapping alone.
+            self.flatten_mapping(node)
+            mapping: dict[Any, Any] = {}
+            for key_node, value_node in node.value:
+                _merge_into(mapping, self.construct_object(key_node, deep=True),
+                            self.construct_object(value_node, deep=True))
+            return mapping
 
     RclLoader.yaml_implicit_resolvers = {}  # every plain scalar resolves to the one tag below
     RclLoader.add_implicit_resolver("tag:diffctl,rcl-scalar", re.compile(r"(?s).*"), None)
     RclLoader.add_constructor("tag:diffctl,rcl-scalar", RclLoader.construct_undefined_plain)
     return RclLoader
+
+
+def _merge_into(mapping: dict[Any, Any], key: Any, value: Any) -> None:
+    if isinstance(mapping.get(key), dict) and isinstance(value, dict):
+        for k, v in value.items():
+            _merge_into(mapping[key], k, v)
+    else:
+        mapping[key] = value
 
 
 _loaders: dict[str, Any] = {}
@@ -368,6 +386,7 @@ def _split_rule(rule: str, what: str, example: str) -> tuple[str | None, str, st
 
 def _parse_argv(ros_argv: list[str]) -> _Parsed:
     out = _Parsed()
+    unknown: list[str] = []
     i = 0
 
     def need(flag: str) -> str:
@@ -392,6 +411,9 @@ def _parse_argv(ros_argv: list[str]) -> _Parsed:
             i += 2
         elif a == "--log-level":
             out.log_level = need(a)
+            if out.log_level.rpartition(":=")[2].upper() not in _SEVERITIES:
+                raise ConfigError(f"--ros-args: log level {out.log_level!r} is no severity",
+                                  hint="valid: [LOGGER:=]DEBUG, INFO, WARN, ERROR, FATAL or UNSET")
             i += 2
         elif a in ("-e", "--enclave", "--log-config-file"):
             i += 2
@@ -399,14 +421,31 @@ def _parse_argv(ros_argv: list[str]) -> _Parsed:
             # rcl's logging switches (the client library reads what it needs), and a repeated `--ros-args`
             # (launch_ros's ros_arguments, then its own): rcl just goes on
             i += 1
-        else:
-            raise ConfigError(
-                f"--ros-args: unknown flag {a!r}",
-                hint="valid: -r FROM:=TO, -p NAME:=VALUE, --params-file FILE, --log-level LEVEL",
-            )
+        else:  # rcl reads on and reports every argument it did not know, once all the rules parsed
+            unknown.append(a)
+            i += 1
+    if unknown:
+        raise UnknownRosArgsError(unknown)
     return out
 
 
+class UnknownRosArgsError(ConfigError):
+    """`--ros-args` spans held arguments that are no ROS flag or rule; `unknown` lists them all, in order."""
+
+    def __init__(self, unknown: list[str]) -> None:
+        self.unknown = list(unknown)
+        listed = ", ".join(repr(a) for a in unknown)
+        super().__init__(f"--ros-args: unknown flag{'s' if len(unknown) > 1 else ''} {listed}",
+                         hint="valid: -r FROM:=TO, -p NAME:=VALUE, --params-file FILE, --log-level LEVEL")
+
+
+def check(ros_argv: list[str]) -> None:
+    """Raise what `parse` would for these arguments (a malformed rule, an unreadable parameter file, then
+    `UnknownRosArgsError`), as rcl does at init for the process's global arguments."""
+    _parse_argv(ros_argv)
+
+
+_SEVERITIES = ("UNSET", "DEBUG", "INFO", "WARN", "ERROR", "FATAL")
 _LOGGING_SWITCHES = ("--enable-rosout-logs", "--disable-rosout-logs", "--enable-stdout-logs", "--disable-stdout-logs",
                      "--enable-external-lib-logs", "--disable-external-lib-logs")
 

@@ -11,6 +11,7 @@ from typing import Any
 from diffctl.client import waiting
 from diffctl.client.destroyable import Handle, handle_of
 from diffctl.client.exceptions import RCLError
+from diffctl.errors import ConfigError
 
 
 class Context:
@@ -49,7 +50,11 @@ class Context:
                 raise RuntimeError("Context.init() must only be called once")
             if domain_id is not None and not (isinstance(domain_id, int) and domain_id >= 0):
                 raise RuntimeError(f"Domain ID must be a non-negative integer, got {domain_id!r}")
-            self._args = list(sys.argv if args is None else args)
+            argv = list(sys.argv if args is None else args)
+            for a in argv:
+                a.encode("utf-8")  # rcl takes C strings: a lone surrogate (an undecodable byte) fails as in rclpy
+            _check_ros_args(argv)
+            self._args = argv
             self._domain_id = env_domain() if domain_id is None else domain_id
             if domain_id is not None:
                 # The process's one Zenoh session reads its domain where nodes are made: an explicit domain
@@ -125,6 +130,27 @@ class Context:
 _default_context: Context | None = None
 _default_lock = threading.Lock()
 _all_contexts: weakref.WeakSet[Context] = weakref.WeakSet()
+
+
+class _InitArgumentsError(RCLError, ConfigError):
+    """rclpy's init fails on a malformed --ros-args rule with a plain RCLError; diffctl's ConfigError too, so a
+    component started with one ends with a one-line message and exit code 2."""
+
+    def __init__(self, message: str) -> None:
+        ConfigError.__init__(self, message)
+
+
+def _check_ros_args(argv: list[str]) -> None:
+    """rcl's init reads the process's --ros-args: a malformed rule fails it, then unknown arguments do."""
+    from diffctl import ros_args
+    from diffctl.client.exceptions import UnknownROSArgsError
+
+    try:
+        ros_args.check(ros_args.split_argv(argv)[1])
+    except ros_args.UnknownRosArgsError as e:
+        raise UnknownROSArgsError(str(e.unknown)) from None
+    except ConfigError as e:
+        raise _InitArgumentsError(f"failed to initialize rcl: {e}") from None
 
 
 def get_default_context(*, shutting_down: bool = False) -> Context:

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from typing import Any
 
+from diffctl import errors as _errors
+
 
 class NotInitializedException(Exception):
     """Raised when the rclpy context is used before init() or after shutdown()."""
@@ -119,6 +121,21 @@ class UnsupportedEventTypeError(Exception):
 
 class RCLError(RuntimeError):
     """rclpy's RCLError (a RuntimeError): a failure the rcl layer would report."""
+
+
+class RCLInvalidROSArgsError(RCLError, _errors.ConfigError):
+    """`--ros-args` with a malformed rule or an unreadable parameter file. Also diffctl's ConfigError, so a
+    component handed such arguments ends with one line and exit code 2."""
+
+    def __init__(self, message: str) -> None:
+        _errors.ConfigError.__init__(self, message)
+
+
+class UnknownROSArgsError(RuntimeError, _errors.ConfigError):
+    """`--ros-args` holding arguments that are no ROS flag; the message lists them as a Python list."""
+
+    def __init__(self, message: str) -> None:
+        _errors.ConfigError.__init__(self, message)
 
 
 class InvalidQosOverridesError(Exception):

@@ -26,7 +26,13 @@ from diffctl.client.clock import Clock, ROSClock
 from diffctl.client.context import Context, get_default_context
 from diffctl.client.destroyable import handle_of
 from diffctl.client.event_handler import PublisherEventCallbacks, SubscriptionEventCallbacks
-from diffctl.client.exceptions import NodeNameNonExistentError, NotInitializedException, RCLError
+from diffctl.client.exceptions import (
+    NodeNameNonExistentError,
+    NotInitializedException,
+    RCLError,
+    RCLInvalidROSArgsError,
+    UnknownROSArgsError,
+)
 from diffctl.client.guard_condition import GuardCondition
 from diffctl.client.interfaces import cls, serialize, type_name
 from diffctl.client.names import (
@@ -54,7 +60,7 @@ from diffctl.client.timer import Rate, Timer
 from diffctl.client.topic_endpoint_info import TopicEndpointInfo, TopicEndpointTypeEnum  # noqa: F401 (rclpy.node has it)
 from diffctl.client.type_support import check_is_valid_msg_type, check_is_valid_srv_type
 from diffctl.client.waitable import Waitable
-from diffctl.errors import NoRouterError
+from diffctl.errors import ConfigError, NoRouterError
 
 CLOCK_TOPIC = "/clock"
 USE_SIM_TIME_NAME = "use_sim_time"
@@ -80,23 +86,41 @@ class TimeSource:
     as rclcpp's clock thread does.
     """
 
-    def __init__(self, node: Node) -> None:
-        self._node: Node | None = node
+    def __init__(self, *, node: Node | None = None) -> None:
+        self._node: Node | None = None
         self._clocks: list[ROSClock] = []
         self._active = False
-        self._sub: Any = None
+        self._clock_sub: Any = None
         self._last_ns = 0
         # Held while a /clock sample is applied and while the subscription is let go: a sample being applied on
         # another thread must not move the clocks after use_sim_time went false or the node was detached (a
         # hosting simulator's override was overwritten by a /clock tick in flight).
         self._following = threading.RLock()
         self._follows = False
+        if node is not None:
+            self.attach_node(node)
+
+    def attach_node(self, node: Node) -> None:
+        """Follow `node`'s use_sim_time (declared false when it is not yet) and, while it is true, its /clock.
+        A node attached before is detached first."""
+        if not isinstance(node, Node):
+            raise TypeError("Node must be of type rclpy.node.Node")
+        if self._node is not None:
+            self.detach_node()
+        self._node = node
         if not node.has_parameter(USE_SIM_TIME_NAME):
             node.declare_parameter(USE_SIM_TIME_NAME, False)
         p = node.get_parameter(USE_SIM_TIME_NAME)
         if p.type_ == Parameter.Type.BOOL:
             self.ros_time_is_active = p.value
+        elif p.type_ != Parameter.Type.NOT_SET:
+            node.get_logger().error(f"Invalid type for parameter '{USE_SIM_TIME_NAME}' {p.type_!r} should be bool")
+        if self._active and self._clock_sub is None:  # already following time: the new node's /clock now
+            self._follow(node)
         node.add_on_set_parameters_callback(self._on_parameters)
+
+    def _get_node(self) -> Node | None:
+        return self._node
 
     @property
     def ros_time_is_active(self) -> bool:
@@ -112,18 +136,26 @@ class TimeSource:
         node = self._node
         if node is None:  # detached: whoever detached it sets the time (set_ros_time_override)
             return
-        if enabled and self._sub is None:
-            qos = _qos.QoSProfile(depth=1, reliability=_qos.ReliabilityPolicy.BEST_EFFORT)
-            self._follows = True
-            if node._rclcpp:
-                declare_qos_parameters("subscription", node, CLOCK_TOPIC, qos, _ALL_OVERRIDES, rclcpp=True)
-                self._sub = node._bus.create_subscription(CLOCK_TOPIC, "rosgraph_msgs/msg/Clock", self._on_clock,
-                                                          raw=True, qos=wire.QoS(reliable=False, depth=1))
-            else:
-                self._sub = node.create_subscription(cls("rosgraph_msgs/msg/Clock"), CLOCK_TOPIC, self._on_clock,
-                                                     qos, raw=True)
-        elif not enabled and self._sub is not None:
+        if enabled and self._clock_sub is None:
+            self._follow(node)
+        elif not enabled and self._clock_sub is not None:
             self._stop_following(node)
+
+    def _follow(self, node: Node) -> None:
+        qos = _qos.QoSProfile(depth=1, reliability=_qos.ReliabilityPolicy.BEST_EFFORT)
+        self._follows = True
+        if node._rclcpp:
+            declare_qos_parameters("subscription", node, CLOCK_TOPIC, qos, _ALL_OVERRIDES, rclcpp=True)
+            self._clock_sub = node._bus.create_subscription(CLOCK_TOPIC, "rosgraph_msgs/msg/Clock", self._on_clock,
+                                                            raw=True, qos=wire.QoS(reliable=False, depth=1))
+        else:
+            self._clock_sub = node.create_subscription(cls("rosgraph_msgs/msg/Clock"), CLOCK_TOPIC, self._on_clock,
+                                                       qos, raw=True)
+
+    def clock_callback(self, msg: Any) -> None:
+        """rclpy's: take the time of a rosgraph_msgs/msg/Clock message for the attached clocks."""
+        with self._following:
+            self.set_time_ns(Time.from_msg(msg.clock).nanoseconds)
 
     def _on_clock(self, data: bytes) -> None:
         # builtin_interfaces/Time right after the little-endian CDR header: sec (int32), nanosec (uint32)
@@ -143,7 +175,7 @@ class TimeSource:
     def _stop_following(self, node: Node) -> None:
         with self._following:
             self._follows = False
-        sub, self._sub = self._sub, None
+        sub, self._clock_sub = self._clock_sub, None
         if node._rclcpp:
             node._bus.destroy(sub)
         else:
@@ -162,7 +194,7 @@ class TimeSource:
         node, self._node = self._node, None
         if node is None:
             return
-        if self._sub is not None:
+        if self._clock_sub is not None:
             self._stop_following(node)
         node.remove_on_set_parameters_callback(self._on_parameters)
 
@@ -232,7 +264,12 @@ class Node:
         # namespace takes part in matching parameter-file keys (/ns/name, /**/name).
         glob = ros_args.split_argv(self._context.args)[1] if use_global_arguments else []
         local = ros_args.split_argv(list(cli_args))[1] if cli_args else []
-        ra = ros_args.parse(glob, node_name, namespace, local_argv=local)
+        try:
+            ra = ros_args.parse(glob, node_name, namespace, local_argv=local)
+        except ros_args.UnknownRosArgsError as e:
+            raise UnknownROSArgsError(str(e.unknown)) from None
+        except ConfigError as e:
+            raise RCLInvalidROSArgsError(f"Failed to parse ROS arguments: {e}") from None
         name = ra.node_name or node_name
         if ra.namespace:
             namespace = normalize_namespace(ra.namespace)
@@ -278,7 +315,7 @@ class Node:
 
             self._parameter_service = ParameterService(self)
         self._clock = ROSClock()
-        self._time_source = TimeSource(self)
+        self._time_source = TimeSource(node=self)
         self._time_source.attach_clock(self._clock)
         from diffctl.client.type_description_service import TypeDescriptionService
 
@@ -495,6 +532,20 @@ class Node:
 
     def remove_post_set_parameters_callback(self, callback: Callable[..., Any]) -> None:
         self._params.post_set.remove(callback)
+
+    # rclpy's own lists under rclpy's names: community code counts them (`len(node._on_set_parameters_callbacks)`)
+    # before it adds one
+    @property
+    def _pre_set_parameters_callbacks(self) -> list[Callable[[list[Parameter]], list[Parameter]]]:
+        return self._params.pre_set
+
+    @property
+    def _on_set_parameters_callbacks(self) -> list[Callable[[list[Parameter]], Any]]:
+        return self._params.on_set
+
+    @property
+    def _post_set_parameters_callbacks(self) -> list[Callable[[list[Parameter]], None]]:
+        return self._params.post_set
 
     # ------------------------------------------------------------------ names
     def _validate_topic_or_service_name(self, name: str, *, is_service: bool = False) -> None:

@@ -30,29 +30,66 @@ class ParameterEventCallbackHandle:
 
 
 class ParameterEventHandler:
+    class Callbacks:
+        """The handler's registry (rclpy's `handler._callbacks`): parameter callbacks by (parameter, node) and
+        event callbacks, each newest first; `event_callback` serves one ParameterEvent."""
+
+        def __init__(self) -> None:
+            self.parameter_callbacks: dict[tuple[str, str], list[ParameterCallbackHandle]] = {}
+            self.event_callbacks: list[ParameterEventCallbackHandle] = []
+            self.mutex = threading.Lock()
+
+        def event_callback(self, event: Any) -> None:
+            with self.mutex:
+                for (param_name, node_name), handles in self.parameter_callbacks.items():
+                    parameter = ParameterEventHandler.get_parameter_from_event(
+                        event, parameter_name=param_name, node_name=node_name)
+                    if parameter is not None:
+                        for h in handles:
+                            with h.mutex:
+                                h.callback(parameter)
+                for h in self.event_callbacks:
+                    with h.mutex:
+                        h.callback(event)
+
+        def add_parameter_callback(self, parameter_name: str, node_name: str,
+                                   callback: Callable[[Any], None]) -> ParameterCallbackHandle:
+            handle = ParameterCallbackHandle(parameter_name, node_name, callback)
+            with self.mutex:
+                self.parameter_callbacks.setdefault((parameter_name, node_name), []).insert(0, handle)
+            return handle
+
+        def remove_parameter_callback(self, handle: ParameterCallbackHandle) -> None:
+            key = (handle.parameter_name, handle.node_name)
+            with self.mutex:
+                handles = self.parameter_callbacks.get(key)
+                if not handles or handle not in handles:
+                    raise RuntimeError("Callback doesn't exist")
+                handles.remove(handle)
+                if not handles:
+                    del self.parameter_callbacks[key]
+
+        def add_parameter_event_callback(self, callback: Callable[[Any], None]) -> ParameterEventCallbackHandle:
+            handle = ParameterEventCallbackHandle(callback)
+            with self.mutex:
+                self.event_callbacks.insert(0, handle)
+            return handle
+
+        def remove_parameter_event_callback(self, handle: ParameterEventCallbackHandle) -> None:
+            with self.mutex:
+                if handle not in self.event_callbacks:
+                    raise RuntimeError("Callback doesn't exist")
+                self.event_callbacks.remove(handle)
+
     def __init__(self, node: Any, qos_profile: Any = qos_profile_parameter_events, callback_group: Any = None,
                  event_callbacks: Any = None, qos_overriding_options: Any = None, raw: bool = False) -> None:
         self.node = node
         self.qos_profile = qos_profile
-        self._mutex = threading.Lock()
-        self._parameter_callbacks: dict[tuple[str, str], list[ParameterCallbackHandle]] = {}
-        self._event_callbacks: list[ParameterEventCallbackHandle] = []
+        self._callbacks = ParameterEventHandler.Callbacks()
         self.parameter_event_subscription = node.create_subscription(
-            cls("rcl_interfaces/msg/ParameterEvent"), "/parameter_events", self._on_event, qos_profile,
-            callback_group=callback_group, event_callbacks=event_callbacks,
+            cls("rcl_interfaces/msg/ParameterEvent"), "/parameter_events", self._callbacks.event_callback,
+            qos_profile, callback_group=callback_group, event_callbacks=event_callbacks,
             qos_overriding_options=qos_overriding_options, raw=raw)
-
-    def _on_event(self, event: Any) -> None:
-        with self._mutex:
-            for (param_name, node_name), handles in self._parameter_callbacks.items():
-                parameter = self.get_parameter_from_event(event, parameter_name=param_name, node_name=node_name)
-                if parameter is not None:
-                    for h in handles:
-                        with h.mutex:
-                            h.callback(parameter)
-            for h in self._event_callbacks:
-                with h.mutex:
-                    h.callback(event)
 
     def destroy(self) -> None:
         self.node.destroy_subscription(self.parameter_event_subscription)
@@ -71,32 +108,16 @@ class ParameterEventHandler:
 
     def add_parameter_callback(self, parameter_name: str, node_name: str,
                                callback: Callable[[Any], None]) -> ParameterCallbackHandle:
-        handle = ParameterCallbackHandle(parameter_name, self._resolve_path(node_name), callback)
-        with self._mutex:
-            self._parameter_callbacks.setdefault((parameter_name, handle.node_name), []).insert(0, handle)
-        return handle
+        return self._callbacks.add_parameter_callback(parameter_name, self._resolve_path(node_name), callback)
 
     def remove_parameter_callback(self, handle: ParameterCallbackHandle) -> None:
-        key = (handle.parameter_name, handle.node_name)
-        with self._mutex:
-            handles = self._parameter_callbacks.get(key)
-            if not handles or handle not in handles:
-                raise RuntimeError("Callback doesn't exist")
-            handles.remove(handle)
-            if not handles:
-                del self._parameter_callbacks[key]
+        self._callbacks.remove_parameter_callback(handle)
 
     def add_parameter_event_callback(self, callback: Callable[[Any], None]) -> ParameterEventCallbackHandle:
-        handle = ParameterEventCallbackHandle(callback)
-        with self._mutex:
-            self._event_callbacks.insert(0, handle)
-        return handle
+        return self._callbacks.add_parameter_event_callback(callback)
 
     def remove_parameter_event_callback(self, handle: ParameterEventCallbackHandle) -> None:
-        with self._mutex:
-            if handle not in self._event_callbacks:
-                raise RuntimeError("Callback doesn't exist")
-            self._event_callbacks.remove(handle)
+        self._callbacks.remove_parameter_event_callback(handle)
 
     def _resolve_path(self, node_path: str | None = None) -> str:
         if not node_path:

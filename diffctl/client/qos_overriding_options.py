@@ -108,3 +108,19 @@ def declare_qos_parameters(kind: str, node: Any, topic_name: str, qos: QoSProfil
         if not result.successful:
             raise InvalidQosOverridesError(
                 f"{description('Provided QoS overrides')}, are not valid: {result.reason}")
+
+
+def _declare_qos_parameters(entity_type: type, node: Any, topic_name: str, qos: QoSProfile,
+                            options: QoSOverridingOptions) -> None:
+    """rclpy's private spelling, which community code calls: the entity is named by its class."""
+    from diffctl.client.publisher import Publisher
+    from diffctl.client.subscription import Subscription
+
+    if not (isinstance(entity_type, type) and issubclass(entity_type, (Publisher, Subscription))):
+        raise TypeError("Argument `entity_type` should be a subclass of Publisher or Subscription")
+    kind = "publisher" if issubclass(entity_type, Publisher) else "subscription"
+    declare_qos_parameters(kind, node, topic_name, qos, options)
+
+
+# rclpy's name for one policy's parameter value (enum policies by their short name, durations in nanoseconds)
+_get_qos_policy_parameter = _policy_value

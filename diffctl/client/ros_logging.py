@@ -89,11 +89,18 @@ def get_logging_severity_from_string(log_severity: str) -> LoggingSeverity:
 
 
 def set_logger_level(name: str, level: int | LoggingSeverity, detailed_error: bool = False) -> None:
-    _levels[name] = LoggingSeverity(level)
+    """The empty name is the root: its level is the default every unset logger inherits (UNSET included,
+    which lets every severity through, as rcutils does)."""
+    global _default_level
+    severity = LoggingSeverity(level)
+    if name:
+        _levels[name] = severity
+    else:
+        _default_level = severity
 
 
 def get_logger_level(name: str) -> LoggingSeverity:
-    return _levels.get(name, LoggingSeverity.UNSET)
+    return _levels.get(name, LoggingSeverity.UNSET) if name else _default_level
 
 
 def get_logger_effective_level(name: str) -> LoggingSeverity:
@@ -189,7 +196,10 @@ def _caller() -> tuple[str, str, int, int]:
     return frame.f_code.co_name, os.path.abspath(frame.f_code.co_filename), frame.f_lineno, frame.f_lasti
 
 
-_FILTER_PARAMS = ["throttle_duration_sec", "throttle_time_source_type", "skip_first", "once"]
+# Each call-site filter and the options it keeps from its first call (later calls may not change them)
+_FILTER_OPTIONS = {"throttle": ("throttle_duration_sec", "throttle_time_source_type"),
+                   "skip_first": ("skip_first",), "once": ("once",)}
+_FILTER_PARAMS = [p for opts in _FILTER_OPTIONS.values() for p in opts]
 
 
 def _filters(kwargs: dict[str, Any]) -> list[str]:
@@ -239,8 +249,9 @@ class RcutilsLogger:
         function, file, line, lasti = _caller()
         key = (function, file, line, lasti)
         ctx = self.contexts.get(key)
+        params = {p: kwargs.get(p) for f in filters for p in _FILTER_OPTIONS[f]}
         if ctx is None:
-            ctx = {"name": name, "severity": severity, "filters": filters, "params": dict(kwargs),
+            ctx = {"name": name, "severity": severity, "filters": filters, "params": params,
                    "last_ns": 0, "skipped": False, "logged_once": False}
             clock = kwargs.get("throttle_time_source_type")
             if clock is not None:
@@ -256,6 +267,8 @@ class RcutilsLogger:
                 raise ValueError("Logger name cannot be changed between calls.")
             if filters != ctx["filters"]:
                 raise ValueError("Requested logging filters cannot be changed between calls.")
+            if params != ctx["params"]:
+                raise ValueError("Logging filter parameters cannot be changed between calls.")
         for f in filters:
             if f == "throttle":
                 clock = kwargs.get("throttle_time_source_type")

@@ -48,6 +48,9 @@ def try_shutdown(*, context: Context | None = None, uninstall_handlers: bool | N
 
 def _shutdown(*, context: Context | None, uninstall_handlers: bool | None, try_only: bool) -> None:
     global _global_executor
+    if uninstall_handlers is None:
+        # rclpy's shutdown of the default context takes its signal handlers away (try_shutdown, in Jazzy, not)
+        uninstall_handlers = not try_only and (context is None or context is get_default_context())
     if context is None:
         context = get_default_context(shutting_down=True)
     if try_only:

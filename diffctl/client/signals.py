@@ -23,6 +23,13 @@ class SignalHandlerOptions(enum.IntEnum):
     SIGTERM = 2
     ALL = 3
 
+    # printed as rclpy's (a pybind11 enum) prints it, not as the bare number an IntEnum gives
+    def __str__(self) -> str:
+        return f"{type(self).__name__}.{self.name}"
+
+    def __format__(self, spec: str) -> str:
+        return format(str(self), spec)
+
 
 _installed: dict[int, Any] = {}
 _options = SignalHandlerOptions.NO

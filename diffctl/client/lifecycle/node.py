@@ -27,6 +27,24 @@ class LifecycleState(NamedTuple):
     state_id: int
 
 
+class LifecycleStateMachine:
+    """What rclpy holds as `node._state_machine` (rcl_lifecycle's machine, which packages read): the current
+    state as (id, label) and the node's lifecycle services, None while the communication interface is off."""
+
+    def __init__(self, node: LifecycleNodeMixin) -> None:
+        self._node = node
+        self.service_change_state: Any = None
+        self.service_get_state: Any = None
+        self.service_get_available_states: Any = None
+        self.service_get_available_transitions: Any = None
+        self.service_get_transition_graph: Any = None
+
+    @property
+    def current_state(self) -> tuple[int, str]:
+        state = self._node._lifecycle_state
+        return state, sm.STATES[state]
+
+
 class LifecycleNodeMixin(ManagedEntity):
     """Shared by LifecycleNode; expects to be mixed into a Node (it uses the node's entities)."""
 
@@ -36,6 +54,9 @@ class LifecycleNodeMixin(ManagedEntity):
 
         from diffctl.client.qos import qos_profile_services_default
 
+        if not isinstance(enable_communication_interface, bool):  # rclpy's binding takes a bool only
+            raise TypeError("enable_communication_interface must be a bool, "
+                            f"not {type(enable_communication_interface).__name__}")
         self._lifecycle_lock = threading.RLock()
         self._lifecycle_state = sm.UNCONFIGURED
         self._managed_entities: set[ManagedEntity] = set()
@@ -43,6 +64,7 @@ class LifecycleNodeMixin(ManagedEntity):
             state: getattr(self, name) for state, name in sm.CALLBACK_OF_STATE.items()
         }
         self._transition_event_pub = None
+        self._state_machine = LifecycleStateMachine(self)
         if not enable_communication_interface:
             return
         group = callback_group if callback_group is not None else self.default_callback_group
@@ -57,8 +79,9 @@ class LifecycleNodeMixin(ManagedEntity):
             (srv.GetAvailableTransitions, "~/get_available_transitions", self.__on_get_available_transitions),
             (srv.GetAvailableTransitions, "~/get_transition_graph", self.__on_get_transition_graph),
         ):
-            self.create_service(srv_type, name, handler, qos_profile=qos_profile_services_default,
-                                callback_group=group)
+            service = self.create_service(srv_type, name, handler, qos_profile=qos_profile_services_default,
+                                          callback_group=group)
+            setattr(self._state_machine, f"service_{name[2:]}", service)
 
     # --- the user's API -------------------------------------------------------------------------------
     def trigger_configure(self) -> TransitionCallbackReturn:

@@ -140,6 +140,18 @@ def main():
     print("events", [(e.timestamp, e.transition.id, e.start_state.label, e.goal_state.label) for e in events])
     print("state consts", State.PRIMARY_STATE_ACTIVE, Transition.TRANSITION_ON_ERROR_FAILURE,
           int(TransitionCallbackReturn.ERROR))
+    # node._state_machine, rcl_lifecycle's machine as packages read it: (id, label), no services when off
+    quiet = LifecycleNode("quiet_lifecycle", enable_communication_interface=False)
+    quiet.trigger_configure()
+    machine = quiet._state_machine
+    print("state machine", talker._state_machine.current_state, machine.current_state,
+          bool(talker._state_machine.service_get_state), bool(machine.service_change_state),
+          bool(machine.service_get_transition_graph))
+    quiet.destroy_node()
+    try:
+        LifecycleNode("typed_lifecycle", enable_communication_interface="yes")
+    except TypeError:
+        print("non-bool communication interface", "TypeError")
     executor.shutdown()  # the orderly teardown, as in action_fibonacci.py
     spinner.join(timeout=10.0)
     talker.destroy_node()

@@ -59,6 +59,8 @@ try:
 except RuntimeError as e:
     out.append(["remove twice", str(e)])
 handler.remove_parameter_event_callback(eh)
+# the handler's registry (rclpy's handler._callbacks), which a subclass feeds events through
+out.append(["registry", [sorted(handler._callbacks.parameter_callbacks), len(handler._callbacks.event_callbacks)]])
 
 services = sorted(s for s, _ in watcher.get_service_names_and_types() if "logger_levels" in s)
 out.append(["logger services", services])

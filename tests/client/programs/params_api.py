@@ -129,6 +129,9 @@ obs("refused by callback", lambda: node.set_parameters([Parameter("i", value=99)
 obs("callback order refused", lambda: list(log))
 node.remove_on_set_parameters_callback(refuse)
 obs("remove unknown callback", lambda: node.remove_on_set_parameters_callback(refuse))
+# rclpy's lists, which packages count before adding their own (the time source's use_sim_time one included)
+obs("callback lists", lambda: [len(node._pre_set_parameters_callbacks), len(node._on_set_parameters_callbacks),
+                               len(node._post_set_parameters_callbacks), refuse in node._on_set_parameters_callbacks])
 
 auto = Node("auto_demo", parameter_overrides=[Parameter("x", value=2.5), Parameter("name", value="n")],
             automatically_declare_parameters_from_overrides=True)

@@ -51,5 +51,24 @@ try:
     out.append(["read only", None])
 except Exception as e:
     out.append(["read only", type(e).__name__])
+# rclpy's module-private helpers, which packages import: the entity named by its class, one policy's value
+from rclpy.publisher import Publisher  # noqa: E402
+from rclpy.qos import QoSPolicyKind, QoSProfile  # noqa: E402
+from rclpy.qos_overriding_options import _declare_qos_parameters, _get_qos_policy_parameter  # noqa: E402
+
+helper_node = Node("qos_helper_demo")
+profile = QoSProfile(depth=3)
+_declare_qos_parameters(Publisher, helper_node, "/helped", profile,
+                        QoSOverridingOptions.with_default_policies(entity_id="x"))
+try:
+    _declare_qos_parameters(int, helper_node, "/helped", profile, QoSOverridingOptions.with_default_policies())
+    refused_type = "no error"
+except TypeError as e:
+    refused_type = str(e)
+out.append(["private helpers", [sorted((k, p.value) for k, p in helper_node.get_parameters_by_prefix(
+    "qos_overrides").items()), [_get_qos_policy_parameter(profile, k) for k in (
+        QoSPolicyKind.HISTORY, QoSPolicyKind.DEPTH, QoSPolicyKind.RELIABILITY, QoSPolicyKind.DEADLINE)],
+    refused_type]])
+helper_node.destroy_node()
 rclpy.shutdown()
 print(json.dumps(out))

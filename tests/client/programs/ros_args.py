@@ -19,7 +19,10 @@ with open(params, "w") as f:
             "    odom0_config:\n      - [true, false,\n         true]\n"
             # keys are names, whatever words they are (interactive_marker_twist_server's linear_scale: {x, y})
             "    linear_scale:\n      x: 1.0\n      y: 2.0\n      on: 3\n"
-            "/robots/listener:\n  ros__parameters:\n    shared: 3\n")
+            "/robots/listener:\n  ros__parameters:\n    shared: 3\n"
+            # a node key given twice in one file adds to its first place, as rcl's parser reads it
+            "/**:\n  ros__parameters:\n    again: 4\n"
+            "talker:\n  ros__parameters:\n    label: early\n    more: 5\n")
 rclpy.init(args=[sys.argv[0], "--ros-args", "-r", "chatter:=talk", "-r", "listener:__ns:=/robots",
                  "--params-file", params, "-p", "shared:=2", "-p", "talker:label:=mine", "-p", "talker:exp:=1e-3",
                  "-r", "renamed_later:__node:=never", "--log-level", "info"])
@@ -37,9 +40,9 @@ def describe(node, *names):
 talker = Node("talker", automatically_declare_parameters_from_overrides=True)
 out.append(["talker", describe(talker, "shared", "rate", "nested.gain", "label", "tiny", "hexa", "octal", "word",
                                  "quoted", "big", "under", "covariance", "odom0_config", "exp",
-                                 "linear_scale.y", "linear_scale.on")])
+                                 "linear_scale.y", "linear_scale.on", "again", "more")])
 listener = Node("listener", automatically_declare_parameters_from_overrides=True)
-out.append(["listener", describe(listener, "shared", "rate", "label")])
+out.append(["listener", describe(listener, "shared", "rate", "label", "again", "more")])
 local = Node("local", cli_args=["--ros-args", "-r", "__node:=renamed", "-p", "shared:=9", "-r", "chatter:=mine"],
              automatically_declare_parameters_from_overrides=True)
 out.append(["cli_args", describe(local, "shared", "rate")])
@@ -48,7 +51,42 @@ isolated = Node("isolated", cli_args=["--ros-args", "-p", "own:=1"], use_global_
 out.append(["no global arguments", describe(isolated, "shared", "own")])
 out.append(["remove_ros_args", remove_ros_args(["prog", "a", "--ros-args", "-p", "x:=1", "--",
                                                                 "b"])])
+
+from rclpy.context import Context  # noqa: E402
+from rclpy.impl.implementation_singleton import rclpy_implementation as _rclpy  # noqa: E402
+from rclpy.signals import get_current_signal_handlers_options  # noqa: E402
+from rpyutils import add_dll_directories_from_env, import_c_library  # noqa: E402
+
+
+def failure(fn, prefix_only=False):
+    """The error's type (as rclpy's binding exposes them) and message; rcl's own parser words only by prefix."""
+    try:
+        fn()
+        return "no error"
+    except Exception as e:
+        kinds = [k for k in ("RCLError", "RCLInvalidROSArgsError", "UnknownROSArgsError")
+                 if isinstance(e, getattr(_rclpy, k))]
+        text = str(e)
+        return [kinds if kinds else type(e).__name__, text.split(":")[0] if prefix_only else text,
+                "not-a-remap" in text or "--log-level" in text or "bogus" in text]
+
+
+out.append(["bad cli_args", [
+    failure(lambda: Node("bad_remap", cli_args=["--ros-args", "-r", "not-a-remap"]), prefix_only=True),
+    failure(lambda: Node("bad_level", cli_args=["--ros-args", "--log-level", "bogus"]), prefix_only=True),
+    failure(lambda: Node("unknown", cli_args=["--ros-args", "--my-flag", "-r", "a:=b", "extra"])),
+]])
+out.append(["bad init args", [
+    failure(lambda: rclpy.init(context=Context(), args=["prog", "--ros-args", "unknown", "-x"])),
+    failure(lambda: rclpy.init(context=Context(), args=["prog", "--ros-args", "-r"]), prefix_only=True),
+    failure(lambda: rclpy.init(context=Context(), args=["prog", "Ragnar\udcc3\udcb6k"])),
+]])
+out.append(["signal handlers while initialised", str(get_current_signal_handlers_options())])
 for n in (talker, listener, local, isolated):
     n.destroy_node()
 rclpy.shutdown()
+out.append(["signal handlers after shutdown", str(get_current_signal_handlers_options())])
+with add_dll_directories_from_env("PATH") as handles:
+    out.append(["rpyutils", [handles, import_c_library("_json").__name__, import_c_library(".decoder", "json").__name__,
+                             failure(lambda: import_c_library("_no_such_extension_here"))[0]]])
 print(json.dumps(out))

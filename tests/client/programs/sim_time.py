@@ -75,6 +75,32 @@ while time.monotonic() < end and sim_seconds[0] < before + 0.5:
 out.append(["detached", [hosted.get_clock().now().nanoseconds, hosted.get_clock().ros_time_is_active,
                          sim_seconds[0] >= before + 0.5]])
 hosted.destroy_node()
+# A time source made without a node (rclpy's keyword-only `node=None`): clocks follow what it is told, and a
+# node attached later brings its use_sim_time (false here) and /clock subscription with it.
+from rclpy.clock import ROSClock  # noqa: E402
+from rclpy.time_source import TimeSource  # noqa: E402
+
+alone = TimeSource()
+followed = ROSClock()
+alone.attach_clock(followed)
+alone.ros_time_is_active = True
+alone.clock_callback(ClockMsg(clock=Time(seconds=3, nanoseconds=4).to_msg()))
+wall_node = Node("attached_later_demo")
+try:
+    alone.attach_node("not a node")
+    refused = "no error"
+except TypeError as e:
+    refused = str(e)
+seen = [followed.ros_time_is_active, followed.now().nanoseconds, alone._clock_sub is None, refused]
+alone.attach_node(wall_node)
+seen += [alone._get_node() is wall_node, alone.ros_time_is_active, followed.ros_time_is_active,
+         alone._clock_sub is None, wall_node.get_parameter("use_sim_time").value]
+wall_node.set_parameters([Parameter("use_sim_time", value=True)])
+seen += [alone.ros_time_is_active, alone._clock_sub is not None]
+alone.detach_node()
+seen += [alone._get_node(), alone._clock_sub is None, followed.ros_time_is_active]
+out.append(["time source without a node", seen])
+wall_node.destroy_node()
 # rclpy takes /clock in its executor: a node in none yet reads 0 however long /clock has flowed (a node that
 # keeps now() from its constructor starts from 0), and follows once spun.
 idle = Node("idle_sim_demo", parameter_overrides=[Parameter("use_sim_time", value=True)])

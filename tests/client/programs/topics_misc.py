@@ -95,6 +95,28 @@ child = logger.get_child("child")
 obs("child logger", lambda: [child.name, child.info("from the child")])
 obs("log non-str", lambda: logger.info(42))
 out[-1][2] = out[-1][2].splitlines()[0]
+# The root logger (rclpy.logging._root_logger, which packages log through): its level is every unset logger's,
+# UNSET included (everything passes); a call site may not change its filter's options between calls.
+root = rclpy.logging._root_logger
+
+
+def root_levels():
+    seen = []
+    for level in (rclpy.logging.LoggingSeverity.UNSET, rclpy.logging.LoggingSeverity.WARN):
+        root.set_level(level)
+        seen.append([root.get_effective_level().name, rclpy.logging.get_logger_level("").name,
+                     rclpy.logging.get_logger_effective_level("some.unset.child").name,
+                     root.debug("root debug line")])
+    rclpy.logging.set_logger_level("", rclpy.logging.LoggingSeverity.INFO)
+    return [*seen, root.get_effective_level().name, root.name]
+
+
+def changed_throttle():
+    return [root.info("throttled root line", throttle_duration_sec=d) for d in (1, 2)]
+
+
+obs("root logger", root_levels)
+obs("filter options changed", changed_throttle)
 node.destroy_node()
 obs("shutdown", lambda: rclpy.shutdown())
 obs("ok after", lambda: rclpy.ok())
