@@ -12,8 +12,10 @@ from typing import Any
 
 from diffctl.bus import wire
 from diffctl.client import waiting
+from diffctl.client.destroyable import Handle
 from diffctl.client.endpoint_statuses import EndpointStatuses
 from diffctl.client.event_handler import dds_events
+from diffctl.client.exceptions import InvalidHandle
 from diffctl.client.interfaces import deserialize
 from diffctl.client.node_entity import NodeEntity
 from diffctl.client.qos import HistoryPolicy
@@ -31,6 +33,18 @@ def _attachment(sample: Any) -> tuple[int, int, bytes]:
 
 _BAD_CALLBACK = ("Subscription.__init__(): callback should be either be callable with one argument(to get only the "
                  "message) or two (to get message and message info)")
+
+
+class SubscriptionHandle(Handle):
+    """A subscription's `handle`, which also takes messages as rclpy's binding does."""
+
+    __slots__ = ()
+
+    def take_message(self, msg_type: Any, raw: bool) -> tuple[Any, dict[str, int]] | None:
+        sub = self._owner()
+        if sub is None or not self._valid():
+            raise InvalidHandle("cannot use Destroyable because destruction was requested")
+        return sub._take_message(msg_type, raw)
 
 
 class Subscription(NodeEntity):
@@ -145,6 +159,29 @@ class Subscription(NodeEntity):
             await await_or_execute(callback, *args)
 
         return _execute
+
+    def _take_message(self, msg_type: Any, raw: bool) -> tuple[Any, dict[str, int]] | None:
+        """The oldest queued sample as (message, info), or None: rclpy's `sub.handle.take_message`, by which
+        custom executors and recorders take outside any executor (the executor's own path is `_take`)."""
+        while True:
+            try:
+                sample, rx = self._queue.popleft()
+            except IndexError:
+                return None
+            seq, stamp_ns, _ = _attachment(sample)
+            if self._lifespan_ns is None or time.time_ns() - stamp_ns <= self._lifespan_ns:
+                break
+        data = sample.payload.to_bytes()
+        msg = data if raw else deserialize(data, msg_type)
+        return msg, {"source_timestamp": stamp_ns, "received_timestamp": time.time_ns(),
+                     "publication_sequence_number": seq, "reception_sequence_number": rx}
+
+    @property
+    def handle(self) -> Handle:
+        handle = self.__dict__.get("_handle")
+        if handle is None:
+            handle = self.__dict__["_handle"] = SubscriptionHandle(self)
+        return handle
 
     def get_publisher_count(self) -> int:
         return sum(1 for e in self._node._bus.graph.publishers(self._bus_topic) if e.type == self._bus.type)

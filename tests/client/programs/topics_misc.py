@@ -95,6 +95,35 @@ child = logger.get_child("child")
 obs("child logger", lambda: [child.name, child.info("from the child")])
 obs("log non-str", lambda: logger.info(42))
 out[-1][2] = out[-1][2].splitlines()[0]
+# Taking outside any executor through the subscription's handle (custom executors and recorders do)
+
+
+def take_by_handle():
+    sub = node.create_subscription(String, "handle_take", lambda m: None, 5)
+    pub = node.create_publisher(String, "handle_take", 5)
+    with sub.handle:
+        seen = [sub.handle.take_message(sub.msg_type, False)]
+    deadline = time.monotonic() + 5
+    while pub.get_subscription_count() < 1 and time.monotonic() < deadline:
+        time.sleep(0.01)
+    pub.publish(String(data="first"))
+    pub.publish(String(data="second"))
+    taken = []
+    while len(taken) < 2 and time.monotonic() < deadline:
+        with sub.handle:
+            got = sub.handle.take_message(sub.msg_type, len(taken) == 1)
+        if got is None:
+            time.sleep(0.01)
+            continue
+        msg, info = got
+        taken.append([msg.data if len(taken) == 0 else msg[:4].hex(), sorted(info),
+                      info["publication_sequence_number"] > 0, info["source_timestamp"] > 0])
+    node.destroy_subscription(sub)
+    node.destroy_publisher(pub)
+    return [*seen, *taken]
+
+
+obs("take by handle", take_by_handle)
 # The root logger (rclpy.logging._root_logger, which packages log through): its level is every unset logger's,
 # UNSET included (everything passes); a call site may not change its filter's options between calls.
 root = rclpy.logging._root_logger
