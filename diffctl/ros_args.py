@@ -415,7 +415,7 @@ def _parse_argv(ros_argv: list[str]) -> _Parsed:
                 raise ConfigError(f"--ros-args: log level {out.log_level!r} is no severity",
                                   hint="valid: [LOGGER:=]DEBUG, INFO, WARN, ERROR, FATAL or UNSET")
             i += 2
-        elif a in ("-e", "--enclave", "--log-config-file"):
+        elif a in ("-e", "--enclave", "--log-config-file", "--log-file-name"):
             i += 2
         elif a in _LOGGING_SWITCHES or a == "--ros-args":
             # rcl's logging switches (the client library reads what it needs), and a repeated `--ros-args`

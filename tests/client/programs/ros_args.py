@@ -76,6 +76,9 @@ out.append(["bad cli_args", [
     failure(lambda: Node("bad_level", cli_args=["--ros-args", "--log-level", "bogus"]), prefix_only=True),
     failure(lambda: Node("unknown", cli_args=["--ros-args", "--my-flag", "-r", "a:=b", "extra"])),
 ]])
+out.append(["rcl's other flags", failure(lambda: Node("flags", cli_args=[
+    "--ros-args", "--log-file-name", "mine", "-e", "/enclave", "--enable-external-lib-logs", "--log-level",
+    "flags:=debug"]).destroy_node())])
 out.append(["bad init args", [
     failure(lambda: rclpy.init(context=Context(), args=["prog", "--ros-args", "unknown", "-x"])),
     failure(lambda: rclpy.init(context=Context(), args=["prog", "--ros-args", "-r"]), prefix_only=True),
