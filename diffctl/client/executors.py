@@ -395,7 +395,7 @@ class Executor:
             if self._is_shutdown:
                 raise ShutdownException()
 
-            timers_ready = {id(e) for e in timers if e.is_ready()}
+            timers_ready = {id(e) for e in timers if e._ready()}
             subs_ready = {id(e) for e in subs if e._ready()}
             clients_ready = {id(e) for e in clients if e._ready()}
             services_ready = {id(e) for e in services if e._ready()}
@@ -409,7 +409,7 @@ class Executor:
                         yield self._make_handler(wt, node, self._take_waitable), wt, node
             for node in nodes_to_use:
                 for tmr in list(node._timers):
-                    if id(tmr) in timers_ready and tmr.is_ready() and tmr.callback_group.can_execute(tmr):
+                    if id(tmr) in timers_ready and tmr._ready() and tmr.callback_group.can_execute(tmr):
                         yielded_work = True
                         yield self._make_handler(tmr, node, self._take_plain), tmr, node
                 for sub in list(node._subscriptions):
@@ -452,7 +452,7 @@ class Executor:
 
 def _any_ready(subs: list[Any], timers: list[Any], guards: list[Any], clients: list[Any], services: list[Any],
                waitables: list[Any]) -> bool:
-    return (any(e._ready() for e in subs) or any(e.is_ready() for e in timers) or any(e._ready() for e in guards)
+    return (any(e._ready() for e in subs) or any(e._ready() for e in timers) or any(e._ready() for e in guards)
             or any(e._ready() for e in clients) or any(e._ready() for e in services)
             or any(w.is_ready(None) for w in waitables))
 

@@ -8,6 +8,7 @@ from typing import Any
 
 from diffctl.client import waiting
 from diffctl.client.clock import Clock, ClockType, JumpThreshold
+from diffctl.client.destroyable import Handle, handle_of
 from diffctl.client.duration import Duration
 from diffctl.client.exceptions import InvalidHandle, ROSInterruptException
 
@@ -73,19 +74,13 @@ class Timer:
         waiting.notify()
 
     @property
-    def handle(self) -> Timer:
+    def handle(self) -> Handle:
+        return handle_of(self)
+
+    def _check(self) -> None:
+        # rclpy's timer methods each enter the rcl timer's handle: a destroyed timer answers nothing.
         if self._destroyed:
-            raise InvalidHandle("the timer has been destroyed")
-        return self
-
-    def __enter__(self) -> Timer:
-        return self.handle
-
-    def __exit__(self, *exc: Any) -> None:
-        pass
-
-    def __bool__(self) -> bool:
-        return not self._destroyed
+            raise InvalidHandle("cannot use Destroyable because destruction was requested")
 
     @property
     def clock(self) -> Clock:
@@ -93,19 +88,23 @@ class Timer:
 
     @property
     def timer_period_ns(self) -> int:
+        self._check()
         return self._period_ns
 
     @timer_period_ns.setter
     def timer_period_ns(self, value: int) -> None:
+        self._check()
         with self._lock:
             self._next_call_ns = self._last_call_ns + int(value)
             self._period_ns = int(value)
         waiting.notify()
 
-    def is_ready(self) -> bool:
+    def _ready(self) -> bool:
         return not self._canceled and not self._destroyed and self._clock.now_ns() >= self._next_call_ns
 
-    _ready = is_ready
+    def is_ready(self) -> bool:
+        self._check()
+        return self._ready()
 
     def _due_in_s(self) -> float | None:
         """Seconds of wall time to wait before this timer may be ready (None: only a clock update tells)."""
@@ -116,12 +115,15 @@ class Timer:
         return max(0.0, (self._next_call_ns - self._clock.now_ns()) / 1e9)
 
     def is_canceled(self) -> bool:
+        self._check()
         return self._canceled
 
     def cancel(self) -> None:
+        self._check()
         self._canceled = True
 
     def reset(self) -> None:
+        self._check()
         with self._lock:
             now = self._clock.now_ns()
             self._next_call_ns = now + self._period_ns
@@ -129,9 +131,11 @@ class Timer:
         waiting.notify()
 
     def time_since_last_call(self) -> int:
+        self._check()
         return self._clock.now_ns() - self._last_call_ns
 
     def time_until_next_call(self) -> int | None:
+        self._check()
         if self._canceled:
             return None
         return self._next_call_ns - self._clock.now_ns()
@@ -209,7 +213,7 @@ class Rate:
             raise ROSInterruptException()
         if self._is_destroyed:
             raise RuntimeError("Rate cannot sleep because it has been destroyed")
-        if not self._timer:
+        if self._timer._destroyed:
             self.destroy()
             raise InvalidHandle("Rate cannot sleep because the timer has been destroyed")
         with self._wake:

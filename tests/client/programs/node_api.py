@@ -91,6 +91,12 @@ obs(
 )
 obs("rate bad", lambda: n.create_rate(0))
 obs("timer negative", lambda: n.create_timer(-1, lambda: None))
+gone = n.create_timer(1.0, lambda: None)
+obs("destroy timer", lambda: [n.destroy_timer(gone), n.destroy_timer(gone), bool(gone)])
+for method in ("cancel", "reset", "is_canceled", "is_ready", "time_since_last_call", "time_until_next_call"):
+    obs(f"destroyed timer {method}", getattr(gone, method))
+obs("destroyed timer period", lambda: gone.timer_period_ns)
+obs("destroyed timer handle", lambda: enter(gone.handle))
 obs("publish after destroy", lambda: p.publish(String()))
 gc = n.create_guard_condition(lambda: None)
 obs("destroy service, client, guard condition", lambda: [n.destroy_service(s), n.destroy_client(c),
