@@ -24,7 +24,7 @@ from typing import Any
 from diffctl.bus import wire
 from diffctl.client import waiting
 from diffctl.client.exceptions import UnsupportedEventTypeError
-from diffctl.client.qos import QoSPolicyKind, from_wire, incompatible_policies, qos_policy_name_from_kind
+from diffctl.client.qos import from_wire, incompatible_policies, qos_policy_name_from_kind
 from diffctl.client.qos_status import ChangedLiveliness, LostLiveliness, LostMessages, MissedDeadlines
 from diffctl.client.ros_logging import get_logger
 from diffctl.client.timer import await_or_execute
@@ -55,11 +55,47 @@ class QoSSubscriptionEventType(enum.IntEnum):
     RCL_SUBSCRIPTION_MATCHED = 5
 
 
+class rmw_qos_policy_kind_t(enum.IntEnum):
+    """The kind in an incompatible-QoS event, as rclpy's pybind11 enum: compares equal to QoSPolicyKind's
+    values, but prints as `rmw_qos_policy_kind_t.RMW_QOS_POLICY_DURABILITY` (what the QoS demos log)."""
+
+    RMW_QOS_POLICY_INVALID = 1 << 0
+    RMW_QOS_POLICY_DURABILITY = 1 << 1
+    RMW_QOS_POLICY_DEADLINE = 1 << 2
+    RMW_QOS_POLICY_LIVELINESS = 1 << 3
+    RMW_QOS_POLICY_RELIABILITY = 1 << 4
+    RMW_QOS_POLICY_HISTORY = 1 << 5
+    RMW_QOS_POLICY_LIFESPAN = 1 << 6
+    RMW_QOS_POLICY_DEPTH = 1 << 7
+    RMW_QOS_POLICY_LIVELINESS_LEASE_DURATION = 1 << 8
+    RMW_QOS_POLICY_AVOID_ROS_NAMESPACE_CONVENTIONS = 1 << 9
+
+    @classmethod
+    def _missing_(cls, value: object) -> rmw_qos_policy_kind_t | None:
+        # pybind11 holds any int; one that names no kind (a status nobody filled: 0) prints as `???`.
+        if not isinstance(value, int):
+            return None
+        member = int.__new__(cls, value)
+        member._name_ = "???"
+        member._value_ = value
+        return member
+
+    def __str__(self) -> str:
+        return f"{type(self).__name__}.{self._name_}"
+
+    def __format__(self, spec: str) -> str:
+        return format(str(self), spec)
+
+
+rmw_qos_policy_kind_t.__module__ = "rclpy._rclpy_pybind11"
+_KIND_UNSET = rmw_qos_policy_kind_t(0)
+
+
 @dataclass
 class QoSRequestedIncompatibleQoSInfo:
     total_count: int = 0
     total_count_change: int = 0
-    last_policy_kind: int = int(QoSPolicyKind.INVALID)
+    last_policy_kind: rmw_qos_policy_kind_t = _KIND_UNSET
 
 
 QoSOfferedIncompatibleQoSInfo = QoSRequestedIncompatibleQoSInfo
@@ -226,7 +262,7 @@ def _incompatible_qos(endpoint: Any, handler: EventHandler, *, is_publisher: boo
         bad = incompatible_policies(pub, sub)
         if bad:
             count[0] += 1
-            handler.post(QoSRequestedIncompatibleQoSInfo(count[0], 1, int(bad[-1][0])))
+            handler.post(QoSRequestedIncompatibleQoSInfo(count[0], 1, rmw_qos_policy_kind_t(bad[-1][0])))
 
     return _GraphWatch(endpoint, is_publisher=is_publisher, on_graph=on_graph)
 

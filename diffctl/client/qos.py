@@ -278,7 +278,20 @@ def incompatible_policies(pub: QoSProfile, sub: QoSProfile) -> list[tuple[QoSPol
     if pub.liveliness == LivelinessPolicy.AUTOMATIC and sub.liveliness == LivelinessPolicy.MANUAL_BY_TOPIC:
         out.append((QoSPolicyKind.LIVELINESS,
                     "ERROR: Publisher's liveliness is automatic and subscription's is manual by topic;"))
+    # rmw checks the lease as its own policy; DDS (and so the event's kind) counts it under LIVELINESS.
+    pub_lease, sub_lease = _lease_ns(pub), _lease_ns(sub)
+    if sub_lease and not pub_lease:
+        out.append((QoSPolicyKind.LIVELINESS,
+                    "ERROR: Subscription has a liveliness lease duration, but publisher does not;"))
+    elif sub_lease and pub_lease and sub_lease < pub_lease:
+        out.append((QoSPolicyKind.LIVELINESS, "ERROR: Subscription liveliness lease duration is less than publisher;"))
     return out
+
+
+def _lease_ns(profile: QoSProfile) -> int:
+    """The lease in ns, 0 when left to the default (rmw's "no lease duration")."""
+    ns = profile.liveliness_lease_duration.nanoseconds
+    return 0 if ns == RMW_QOS_DEADLINE_BEST_AVAILABLE else ns
 
 
 def _unknown(policy: Any) -> bool:

@@ -59,8 +59,21 @@ node.create_subscription(
         incompatible_qos=lambda e: events.append(qos_policy_name_from_kind(e.last_policy_kind))))
 node.create_subscription(String, "incompatible_topic", lambda m: None,
                          QoSProfile(depth=5, reliability=ReliabilityPolicy.RELIABLE))
+# A shorter lease on the subscription (the QoS demo's liveliness_lease_duration case): DDS refuses it under
+# LIVELINESS; the kind prints as rclpy's enum (str and f-string: what the demos log).
+from rclpy.duration import Duration  # noqa: E402
+from rclpy.event_handler import PublisherEventCallbacks  # noqa: E402
+
+offered = []
+node.create_publisher(String, "lease_topic", QoSProfile(depth=5, liveliness_lease_duration=Duration(seconds=3)),
+                      event_callbacks=PublisherEventCallbacks(incompatible_qos=lambda e: offered.append(
+                          (qos_policy_name_from_kind(e.last_policy_kind), str(e.last_policy_kind),
+                           f"{e.last_policy_kind}", e.total_count))))
+node.create_subscription(String, "lease_topic", lambda m: None,
+                         QoSProfile(depth=5, liveliness_lease_duration=Duration(seconds=1)))
 spin_for(1.5)
 out.append(["user incompatible qos callback", sorted(set(events))])
+out.append(["lease incompatible, kind as printed", sorted(set(offered))])
 
 from rcl_interfaces.msg import SetParametersResult  # noqa: E402
 from rclpy.parameter import Parameter  # noqa: E402
@@ -82,8 +95,6 @@ try:
     out.append(["qos override callback", "accepted"])
 except InvalidQosOverridesError as e:
     out.append(["qos override callback", str(e)])
-
-from rclpy.event_handler import PublisherEventCallbacks  # noqa: E402
 
 matched_pub, matched_sub = [], []
 mpub = tuned.create_publisher(String, "matched_topic", 10, event_callbacks=PublisherEventCallbacks(

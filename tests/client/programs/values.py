@@ -50,6 +50,9 @@ obs("from short", lambda: DurabilityPolicy.get_from_short_key("transient_local")
 obs("qos eq", lambda: [QoSProfile(depth=10) == qos_profile_default, QoSProfile(depth=10) == 10])
 obs("compat deadline", lambda: compat(QoSProfile(depth=1, deadline=Duration(seconds=2)),
                                       QoSProfile(depth=1, deadline=Duration(seconds=1))))
+obs("compat lease", lambda: [compat(QoSProfile(depth=1, liveliness_lease_duration=Duration(seconds=a)),
+                                     QoSProfile(depth=1, liveliness_lease_duration=Duration(seconds=b)))
+                              for a, b in ((2, 1), (0, 1), (1, 0), (1, 2), (1e9, 1), (0, 1e9))])
 obs("compat system default", lambda: compat(qos_profile_system_default, QoSProfile(depth=1)))
 profiles = [QoSProfile(depth=1, reliability=r, durability=d, liveliness=lv)
             for r in (0, 1, 2) for d in (0, 1, 2) for lv in (0, 1, 3)]
