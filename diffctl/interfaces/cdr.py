@@ -36,12 +36,15 @@ from diffctl.interfaces.bytecode import compiled
 # The struct codes rosbags uses for each ROS primitive (note `byte` is signed there), size = alignment.
 _CODE = {
     "bool": "?", "byte": "b", "char": "B", "int8": "b", "uint8": "B", "int16": "h", "uint16": "H",
-    "int32": "i", "uint32": "I", "int64": "q", "uint64": "Q", "float32": "f", "float64": "d",
+    "int32": "i", "uint32": "I", "int64": "q", "uint64": "Q", "float32": "f", "float64": "d", "wchar": "I",
 }
 _SIZE = {name: struct.calcsize(code) for name, code in _CODE.items()}
 # array.array type codes rosidl_generator_py uses for numeric sequences.
 _TYPECODE = {"int8": "b", "uint8": "B", "char": "B", "int16": "h", "uint16": "H", "int32": "i", "uint32": "I",
-             "int64": "q", "uint64": "Q", "float32": "f", "float64": "d"}
+             "int64": "q", "uint64": "Q", "float32": "f", "float64": "d", "wchar": "I"}
+# An .idl char or wchar (a .msg char is uint8 by then) is a 1-character str in the classes: its code goes on
+# the wire, 1 byte for a char, 4 for a wchar (Fast CDR writes a wchar_t as a uint32).
+_CHARACTERS = ("char", "wchar")
 _HEADER_LE = b"\x00\x01\x00\x00"
 _EMPTY = "structure_needs_at_least_one_member"
 
@@ -212,6 +215,8 @@ class _Decoder(_Emitter):
                 return self.wstring()
             if spec[0] not in _CODE:
                 raise Unsupported(spec[0])
+            if self.classes is not None and spec[0] in _CHARACTERS:
+                return f"CHR({self.primitive(spec[0])})"
             return self.primitive(spec[0])
         if kind == Nodetype.NAME:
             names = [n for n, _ in _fields(self.ts, spec)]
@@ -252,7 +257,7 @@ class _Decoder(_Emitter):
             return v
         if sub[0] == Nodetype.BASE and sub[1][0] in _CODE:
             size = _SIZE[sub[1][0]]
-            dtype = self.const(numpy.dtype(ndtype(sub[1][0])), "D")
+            dtype = self.const(numpy.dtype("<u4" if sub[1][0] == "wchar" else ndtype(sub[1][0])), "D")
             if fixed:
                 self.flush()
                 n = str(length)
@@ -266,6 +271,9 @@ class _Decoder(_Emitter):
                 self.lines.append(f"{guard}pos = ((pos + {size - 5}) & -{size}) + 4")
             if self.classes is None:
                 self.lines.append(f"{v} = frombuffer(buf, dtype={dtype}, count={n}, offset=pos)")
+            elif sub[1][0] in _CHARACTERS:
+                code = self.const(_TYPECODE[sub[1][0]], "T")
+                self.lines.append(f"{v} = list(map(CHR, ARRAY({code}, buf[pos:pos + {n} * {size}])))")
             elif fixed:
                 self.lines.append(f"{v} = frombuffer(buf, dtype={dtype}, count={n}, offset=pos).copy()")
             else:
@@ -384,7 +392,7 @@ def compile_decoder(
     ns: dict[str, Any] = {"U32": struct.Struct("<I").unpack_from, "frombuffer": numpy.frombuffer, "NEW": object.__new__,
                           "MAXSEQ": getattr(ts, "max_sequence_length", 2**32 - 1),
                           "FALLBACK": ts.deserialize_cdr, "TYPENAME": typename, "ERROR": error,
-                          "ARRAY": array.array, "WDEC": _wstring_decode}
+                          "ARRAY": array.array, "WDEC": _wstring_decode, "CHR": chr}
     if classes is not None:
         ns["FALLBACK"] = _big_endian_unsupported
     src = _decoder_source(ts, typename, ns, wrap=error is not None, classes=classes)
@@ -453,6 +461,8 @@ class _Encoder(_Emitter):
             self.run_base = self.known
         self.run_fmt += "c" if base == "byte" and self.prefix else _CODE[base]
         # rosidl's C conversion reads a bool field as `field == Py_True`: 1, "x" or numpy.True_ send false
+        if self.prefix and base in _CHARACTERS:
+            expr = f"ORD({expr})"
         self.run_exprs.append(f"({expr} is True)" if base == "bool" and self.prefix else expr)
         self.run_size += size
 
@@ -508,11 +518,12 @@ class _Encoder(_Emitter):
             self.lines += [f"parts.append({v} if {v}.__class__ in BYTESLIKE else b''.join({v}))", f"pos += {n}"]
         elif sub[0] == Nodetype.BASE and sub[1][0] in _CODE:
             size = _SIZE[sub[1][0]]
-            dtype = self.const(numpy.dtype(ndtype(sub[1][0])), "D")
+            dtype = self.const(numpy.dtype("<u4" if sub[1][0] == "wchar" else ndtype(sub[1][0])), "D")
             if size > self.known:
                 self.lines.append(f"if {n}:")
                 self._align(size, "    ")
-            self.lines += [f"parts.append(asarray({v}, dtype={dtype}).tobytes())", f"pos += {n} * {size}"]
+            items = f"[ORD(c_) for c_ in {v}]" if self.prefix and sub[1][0] in _CHARACTERS else v
+            self.lines += [f"parts.append(asarray({items}, dtype={dtype}).tobytes())", f"pos += {n} * {size}"]
         elif sub[0] == Nodetype.BASE and sub[1][0] == "wstring":
             self.lines += [f"for i_ in {v}:", "    p_ = -pos & 3", "    parts.append(ZEROS[p_])",
                            "    n_, b_ = WENC(i_)", "    parts.append(U32(n_))", "    parts.append(b_)",
@@ -556,7 +567,7 @@ def compile_encoder(ts: Any, typename: str, rosidl: bool = False) -> Callable[[A
     `rosidl`: the message is of a rosidl-style class (fields read from their `_name` slots)."""
     ns: dict[str, Any] = {"U32": struct.Struct("<I").pack, "NUL": b"\x00", "asarray": numpy.asarray,
                           "ZEROS": tuple(bytes(i) for i in range(8)), "BYTESLIKE": (bytes, bytearray),
-                          "WENC": _wstring_encode}
+                          "WENC": _wstring_encode, "ORD": ord}
     src = _encoder_source(ts, typename, ns, "_" if rosidl else "")
     ns = {k: v for k, v in ns.items() if isinstance(k, str)}
     exec(compiled(src, f"<cdr encoder {typename}>"), ns)

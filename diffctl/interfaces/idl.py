@@ -287,8 +287,14 @@ def action_wrappers(name: str) -> list[TypeDef]:
 
 
 def interface_defs(name: str, text: str, source: str | None = None) -> list[TypeDef]:
-    """Every type one interface file defines: a message; a service's four; an action's sixteen."""
+    """Every type one interface file (.msg/.srv/.action, or .idl) defines: a message; a service's four; an
+    action's sixteen."""
     kind = name.split("/")[1]
+    if source is not None and source.endswith(".idl") and kind in ("msg", "srv", "action"):
+        from diffctl.interfaces.idl_files import idl_defs
+
+        wrappers = service_wrappers(name) if kind == "srv" else action_wrappers(name) if kind == "action" else []
+        return [*idl_defs(name, text, source), *wrappers]
     if kind == "msg":
         return [parse_message(text, name, source)]
     if kind == "srv":

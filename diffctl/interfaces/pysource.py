@@ -23,13 +23,16 @@ from rosbags.typesys.base import Nodetype
 
 from diffctl.interfaces.idl import TypeDef
 
-# .msg primitive (rosbags' name) → IDL basic type name, as rosidl_adapter converts them.
-IDL_NAME = {"bool": "boolean", "byte": "octet", "char": "uint8", "float32": "float", "float64": "double",
+# Definition primitive → IDL basic type name, as rosidl_adapter converts them. A .msg `char` is uint8 by
+# then (idl.py); a "char" or "wchar" here comes from an .idl file and is a character.
+IDL_NAME = {"bool": "boolean", "byte": "octet", "char": "char", "wchar": "wchar", "float32": "float",
+            "float64": "double",
             **{t: t for t in ("int8", "uint8", "int16", "uint16", "int32", "uint32", "int64", "uint64")}}
 SPECIAL = {"float": ("numpy.float32", "f"), "double": ("numpy.float64", "d"), "int8": ("numpy.int8", "b"),
            "uint8": ("numpy.uint8", "B"), "int16": ("numpy.int16", "h"), "uint16": ("numpy.uint16", "H"),
            "int32": ("numpy.int32", "i"), "uint32": ("numpy.uint32", "I"), "int64": ("numpy.int64", "q"),
            "uint64": ("numpy.uint64", "Q")}
+CHARACTERS = ("char", "wchar")
 SPECIAL_ORDER = ["float", "double", "int8", "uint8", "int16", "uint16", "int32", "uint32", "int64", "uint64"]
 _BUILTIN_NAMES = set(dir(__import__("builtins")))
 
@@ -80,7 +83,7 @@ def python_type(m: Member) -> str:
     """rosidl_generator_py's get_python_type for the member's (element) type."""
     if m.vt == "named":
         return m.ref.split("/")[-1]
-    if m.vt in ("string", "wstring"):
+    if m.vt in ("string", "wstring") or m.typename in CHARACTERS:
         return "str"
     if m.typename == "boolean":
         return "bool"
@@ -106,6 +109,8 @@ def primitive_py(m: Member, value: Any) -> str:
         return "True" if value else "False"
     if m.typename == "octet":
         return repr(bytes([value]))
+    if m.typename in CHARACTERS:
+        return repr(value)
     if m.typename in ("float", "double"):
         return "%s" % float(value)
     return str(int(value))
@@ -133,6 +138,8 @@ def constant_py(ctype: str, value: Any) -> str:
         return "%s" % float(value)
     if ctype in ("string", "wstring"):
         return quoted(str(value))
+    if ctype in CHARACTERS:
+        return repr(value)
     return str(int(value))
 
 
@@ -222,6 +229,8 @@ def _setter(m: Member) -> list[str]:
         out.append(f"{i}from collections import UserString")
     elif m.vt == "basic" and m.typename == "octet":
         out.append(f"{i}from collections.abc import ByteString")
+    elif m.vt == "basic" and m.typename in CHARACTERS:
+        out.append(f"{i}from collections import UserString")
     out.append(f"{i}assert \\")
     j = i + "    "
     if m.nest is not None:
@@ -250,6 +259,9 @@ def _setter(m: Member) -> list[str]:
             lo, hi, _ = _int_bounds(t)
             out.append(f"{j} all(val >= 0 and val < {hi} for val in value)), \\")
             msgs.append("and each unsigned integer in [0, %d]" % (hi - 1))
+        elif t == "char":
+            out.append(f"{j} all(ord(val) >= 0 and ord(val) < 256 for val in value)), \\")
+            msgs.append("and each char in [0, 255]")
         elif t in _FLOAT_BOUND:
             b = _FLOAT_BOUND[t]
             out.append(f"{j} all(not (val < -{b!r} or val > {b!r}) or math.isinf(val) for val in value)), \\")
@@ -266,6 +278,13 @@ def _setter(m: Member) -> list[str]:
     elif m.vt == "basic" and m.typename == "octet":
         out += [f"{j}(isinstance(value, (bytes, ByteString)) and", f"{j} len(value) == 1), \\",
                 f"{j}\"The '{n}' field must be of type 'bytes' or 'ByteString' with length 1\""]
+    elif m.vt == "basic" and m.typename == "char":
+        out += [f"{j}(isinstance(value, (str, UserString)) and",
+                f"{j} len(value) == 1 and ord(value) >= -128 and ord(value) < 128), \\",
+                f"{j}\"The '{n}' field must be of type 'str' or 'UserString' \" \\",
+                f"{j}'with length 1 and the character ord() in [-128, 127]'"]
+    elif m.vt == "basic" and m.typename == "wchar":
+        out.append(f"{j}False")  # rosidl_generator_py (Jazzy) has no check for a wchar: any value fails
     elif m.vt in ("string", "wstring"):
         out += [f"{j}isinstance(value, str), \\", f"{j}\"The '{n}' field must be of type 'str'\""]
     else:
@@ -306,6 +325,9 @@ def _init_lines(cls: str, m: Member, has_default: bool) -> list[str]:
         if m.vt == "basic" and m.typename == "octet":
             out += [f"        self.{n} = kwargs.get(", f"            '{n}',",
                     f"            [bytes([0]) for x in range({m.size})]", "        )"]
+        elif m.vt == "basic" and m.typename in CHARACTERS:
+            out += [f"        self.{n} = kwargs.get(", f"            '{n}',",
+                    f"            [chr(0) for x in range({m.size})]", "        )"]
         elif m.special:
             dtype, _ = SPECIAL[m.typename]
             out += [f"        if '{n}' not in kwargs:",
@@ -322,6 +344,8 @@ def _init_lines(cls: str, m: Member, has_default: bool) -> list[str]:
             out.append(f"        self.{n} = kwargs.get('{n}', [])")
     elif m.vt == "basic" and m.typename == "octet":
         out.append(f"        self.{n} = kwargs.get('{n}', bytes([0]))")
+    elif m.vt == "basic" and m.typename in CHARACTERS:
+        out.append(f"        self.{n} = kwargs.get('{n}', chr(0))")
     else:
         out.append(f"        self.{n} = kwargs.get('{n}', {python_type(m)}())")
     return out

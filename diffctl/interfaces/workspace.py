@@ -3,7 +3,7 @@
 Read from the sources without building, with diffctl's CMake reader (variables, lists, globs and
 subdirectories are followed as for install rules). `rosidl_generate_interfaces(<target> files…
 [DEPENDENCIES pkgs…] [LIBRARY_NAME n] [ADD_LINTER_TESTS] [SKIP_INSTALL] …)`: every file names one interface,
-`<pkg>/<msg|srv|action>/<stem>` by its extension, as rosidl_cmake does.
+`<pkg>/<msg|srv|action>/<stem>` by its extension (an .idl file by its folder), as rosidl_cmake does.
 """
 
 from __future__ import annotations
@@ -39,12 +39,14 @@ def _interfaces_of(pkg_dir: Path, name: str) -> InterfacePackage | None:
             path = Path(rel) if sep and len(base) > 1 else Path(arg)
             root = Path(base) if sep and len(base) > 1 else call.current_dir
             full = path if path.is_absolute() else root / path
-            kind = _KIND_OF.get(full.suffix)
+            # an .idl file's kind is its folder's name, as rosidl_cmake takes it
+            kind = _KIND_OF.get(full.suffix) or (full.parent.name if full.suffix == ".idl" else None)
             where = {"source": str(call.source), "line": call.line}
-            if kind is None:
+            if kind not in _KIND_OF.values():
                 raise InterfaceError(
                     f"rosidl_generate_interfaces: {arg!r} is not a .msg, .srv or .action file"
-                    + (" (.idl files are not read by diffctl)" if full.suffix == ".idl" else ""), **where)
+                    + (", nor an .idl file in a msg, srv or action folder" if full.suffix == ".idl" else ""),
+                    **where)
             if not full.is_file():
                 raise InterfaceError(f"rosidl_generate_interfaces: {arg!r} does not exist ({full})", **where)
             names = found.interfaces.setdefault(kind, [])
