@@ -32,7 +32,9 @@ def ws(tmp_path: Path) -> Path:
 
 def env() -> dict[str, str]:
     # The workspace is the one enclosing the current directory, as for a user in ~/ros2_ws.
-    e = {k: v for k, v in os.environ.items() if not k.startswith(("ROS_", "AMENT_", "COLCON_", "DIFFCTL_WORK"))}
+    # ROS_DOMAIN_ID stays: a user's shell may export one, and the stack the nodes join was started in it.
+    e = {k: v for k, v in os.environ.items()
+         if k == "ROS_DOMAIN_ID" or not k.startswith(("ROS_", "AMENT_", "COLCON_", "DIFFCTL_WORK"))}
     e["PYTHONUNBUFFERED"] = "1"
     return e
 
