@@ -150,6 +150,33 @@ def _split_list(text: str) -> list[str]:
     return [i.strip() for i in items]
 
 
+def _split_strings(text: str, where: dict[str, Any]) -> list[str]:
+    """A string array's elements as rosidl_adapter walks them: a quoted element runs to the next quote of
+    its kind that no backslash escapes (escaped ones of that kind unescaped, commas kept), an unquoted one
+    to the next comma; a trailing comma adds nothing, an empty element is an error."""
+    items: list[str] = []
+    rest = text.lstrip(" ")
+    while rest:
+        if rest[0] == ",":
+            raise InterfaceError(f"unexpected ',' at {rest!r} in the string array default", **where,
+                                 hint='e.g. ["a", "b,c", \'d\']')
+        quote = rest[0] if rest[0] in "\"'" else None
+        if quote:
+            end = next((i for i in range(1, len(rest)) if rest[i] == quote and rest[i - 1] != "\\"), -1)
+            if end < 0:
+                raise InterfaceError(f"string {rest!r} has no closing {quote}", **where)
+            items.append(rest[1:end].replace("\\" + quote, quote))
+            rest = rest[end + 1:]
+        else:
+            comma = rest.find(",")
+            items.append(rest if comma < 0 else rest[:comma])
+            rest = "" if comma < 0 else rest[comma:]
+        rest = rest.lstrip(" ")
+        if rest.startswith(","):
+            rest = rest[1:].lstrip(" ")
+    return items
+
+
 def parse_default(desc: tuple, text: str, where: dict[str, Any]) -> Any:
     kind, spec = desc
     if kind == Nodetype.BASE:
@@ -162,7 +189,9 @@ def parse_default(desc: tuple, text: str, where: dict[str, Any]) -> Any:
     t = text.strip()
     if not (t.startswith("[") and t.endswith("]")):
         raise InterfaceError(f"invalid array default {text!r}", **where, hint="e.g. [1, 2, 3]")
-    values = [parse_primitive(sub[1][0], sub[1][1], v, where) for v in _split_list(t[1:-1])]
+    strings = sub[1][0] in ("string", "wstring")
+    elements = _split_strings(t[1:-1], where) if strings else _split_list(t[1:-1])
+    values = [parse_primitive(sub[1][0], sub[1][1], v, where) for v in elements]
     if kind == Nodetype.ARRAY and len(values) != n:
         raise InterfaceError(f"the default has {len(values)} values, the array {n}", **where)
     if kind == Nodetype.SEQUENCE and n and len(values) > n:

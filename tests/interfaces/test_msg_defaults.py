@@ -1,0 +1,49 @@
+"""A .msg file's string array defaults are read as rosidl_adapter reads them (the oracle venv's parser runs on
+the same lines): quoted elements keep their commas and unescape their own quote, unquoted ones run to the
+next comma and are trimmed, a trailing comma adds nothing, and what rosidl refuses is refused."""
+
+from __future__ import annotations
+
+import json
+
+from diffctl.interfaces import idl
+from tests.interfaces.programs import run_oracle
+
+LINES = [
+    r'''string[] a ["What", "a", "world", "!"]''',
+    r'''string[] b ["H\"el'lo", 'Wo\'r"ld']''',
+    r'''string[] c ["Hel,lo", ',World', abcd , "!,",]''',
+    r'''string[3] d ['x', "y,z" ,  w  ]''',
+    r'''string<=5[<=3] e ["abc", 'de']''',
+    r'''string[] f []''',
+    r'''string[] g ["a\\b", 'c\"d', "e'f"]''',
+    r'''string[] h [ "spaced" , 'also' ,bare words ]''',
+    r'''wstring[] i ["ä,ö", 'ü']''',
+    r'''string[] j [,"a"]''',
+    r'''string[] k ["a",,"b"]''',
+    r'''string[] l ["unclosed]''',
+    r'''string[2] m ["one", "two", "three"]''',
+    r'''string<=2[] n ["abc"]''',
+    r'''string[] o ["'quoted'", '"dq"']''',
+]
+
+ORACLE = r'''
+from rosidl_adapter.parser import parse_message_string
+for i, line in enumerate(LINES):
+    def read(line=line):
+        return [f.default_value for f in parse_message_string('pkg', 'M', line).fields]
+    obs(str(i), read)
+'''
+
+
+def test_string_array_defaults_as_rosidl_adapter() -> None:
+    real = run_oracle(f"LINES = {json.dumps(LINES)}\n" + ORACLE)
+    ours = {}
+    for i, line in enumerate(LINES):
+        try:
+            td = idl.parse_message(line, "pkg/msg/M")
+            ours[str(i)] = ["ok", repr([td.defaults[n] for n, _ in td.fields])]
+        except idl.InterfaceError:
+            ours[str(i)] = ["raise"]
+    # rosidl's exception types differ (InvalidValue, ValueError, …): that both refuse is what matters
+    assert ours == {k: v if v[0] == "ok" else ["raise"] for k, v in real.items()}, (ours, real)
