@@ -143,6 +143,12 @@ class QoSMatchedInfo:
     current_count_change: int = 0
 
 
+def _bound_struct_repr(self: object) -> str:
+    # pybind11's default for a bound struct: what `print(event)` or an f-string of an event shows in rclpy.
+    cls = type(self)
+    return f"<{cls.__module__}.{cls.__qualname__} object at {id(self):#x}>"
+
+
 # rclpy's info classes are rmw's status structs as pybind11 binds them: they carry rmw's names.
 for _cls, _rmw in ((QoSRequestedIncompatibleQoSInfo, "rmw_requested_qos_incompatible_event_status_t"),
                    (QoSOfferedDeadlineMissedInfo, "rmw_offered_deadline_missed_status_t"),
@@ -153,6 +159,8 @@ for _cls, _rmw in ((QoSRequestedIncompatibleQoSInfo, "rmw_requested_qos_incompat
                    (IncompatibleTypeInfo, "rmw_incompatible_type_status_t"),
                    (QoSMatchedInfo, "rmw_matched_status_t")):
     _cls.__name__ = _cls.__qualname__ = _rmw
+    _cls.__module__ = "rclpy._rclpy_pybind11"
+    _cls.__repr__ = _bound_struct_repr  # type: ignore[method-assign]
 
 
 QoSSubscriptionMatchedInfo = QoSMatchedInfo

@@ -1,6 +1,7 @@
 # QoS as a user observes it: a transient-local late joiner gets the newest samples, a volatile one none;
 # incompatible QoS is reported (default warnings and a user callback).
 import json
+import re
 import time
 
 import rclpy
@@ -68,7 +69,7 @@ offered = []
 node.create_publisher(String, "lease_topic", QoSProfile(depth=5, liveliness_lease_duration=Duration(seconds=3)),
                       event_callbacks=PublisherEventCallbacks(incompatible_qos=lambda e: offered.append(
                           (qos_policy_name_from_kind(e.last_policy_kind), str(e.last_policy_kind),
-                           f"{e.last_policy_kind}", e.total_count))))
+                           f"{e.last_policy_kind}", e.total_count, re.sub("0x[0-9a-f]+", "0x", f"{e}")))))
 node.create_subscription(String, "lease_topic", lambda m: None,
                          QoSProfile(depth=5, liveliness_lease_duration=Duration(seconds=1)))
 spin_for(1.5)
