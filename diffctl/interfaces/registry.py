@@ -3,7 +3,8 @@
 diffctl's own types are the bus's (rosbags' Jazzy store and the project's definitions, `diffctl.interfaces.typedefs`)
 plus the Jazzy texts shipped beside this module (`jazzy/`: services, actions, example_interfaces, and the
 messages whose fields have .msg defaults, which rosbags does not keep). The user's workspace packages
-(`rosidl_generate_interfaces` in their CMakeLists) and install trees' `share/<pkg>/{msg,srv,action}` come
+(`rosidl_generate_interfaces` in their CMakeLists) and install trees' `share/<pkg>/{msg,srv,action}` (.msg,
+.srv, .action files, or .idl where an interface has only that) come
 first: a package is taken whole from the first place that has it. Every definition served is also entered
 in the bus's definitions, so the bus declares, hashes and (de)serializes those types like its own.
 """
@@ -71,7 +72,10 @@ def _scan_share(share: Path, name: str, origin: str) -> InterfacePackage | None:
     for kind in KINDS:
         d = share / kind
         if d.is_dir():
-            files = sorted(d.glob("*" + _EXT[kind]))
+            files = list(d.glob("*" + _EXT[kind]))
+            # rosidl installs each interface's .idl beside its .msg/.srv/.action; one declared as .idl has only that
+            stems = {f.stem for f in files}
+            files = sorted([*files, *(f for f in d.glob("*.idl") if f.stem not in stems)], key=lambda f: f.stem)
             if files:
                 p.interfaces[kind] = [f.stem for f in files]
                 p.files.update({f"{name}/{kind}/{f.stem}": f for f in files})

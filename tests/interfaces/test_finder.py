@@ -114,15 +114,22 @@ def test_install_trees_and_the_workspace_before_them(tmp_path: Path) -> None:
     (prefix / "share" / "tree_msgs" / "msg" / "Level.msg").write_text("float32 level 0.25\n")
     (prefix / "share" / "my_msgs" / "msg").mkdir(parents=True)
     (prefix / "share" / "my_msgs" / "msg" / "Level.msg").write_text("int8 installed\n")
+    # a package declared with .idl files installs only those
+    (prefix / "share" / "tree_msgs" / "srv").mkdir(parents=True)
+    (prefix / "share" / "tree_msgs" / "srv" / "Probe.idl").write_text(
+        "module tree_msgs { module srv { struct Probe_Request { @default (value=3) int8 depth; };\n"
+        "struct Probe_Response { string<4> answer; }; }; };\n")
     ws = tmp_path / "ws"
     pkg = ws / "src" / "my_msgs"
     (pkg / "msg").mkdir(parents=True)
     (pkg / "package.xml").write_text("<package><name>my_msgs</name></package>")
     (pkg / "CMakeLists.txt").write_text('project(my_msgs)\nrosidl_generate_interfaces(${PROJECT_NAME} msg/Level.msg)\n')
     (pkg / "msg" / "Level.msg").write_text("int8 from_source\n")
-    p = python("from tree_msgs.msg import Level; print(Level())\nfrom my_msgs.msg import Level; print(Level())",
+    p = python("from tree_msgs.msg import Level; print(Level())\nfrom my_msgs.msg import Level; print(Level())\n"
+               "from tree_msgs.srv import Probe; print(Probe.Request(), Probe.Response.get_fields_and_field_types())",
                {"AMENT_PREFIX_PATH": str(prefix), "DIFFCTL_WORKSPACE": str(ws)})
-    assert p.stdout.splitlines() == ["tree_msgs.msg.Level(level=0.25)", "my_msgs.msg.Level(from_source=0)"], p.stderr
+    assert p.stdout.splitlines() == ["tree_msgs.msg.Level(level=0.25)", "my_msgs.msg.Level(from_source=0)",
+                                     "tree_msgs.srv.Probe_Request(depth=3) {'answer': 'string<4>'}"], p.stderr
 
 
 def test_a_package_with_python_code_and_interfaces(tmp_path: Path) -> None:
