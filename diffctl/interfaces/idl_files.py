@@ -208,7 +208,7 @@ class _Reader:
         if word in scope.typedefs:
             return scope.typedefs[word]
         parts = word.split("::")
-        if len(parts) == 1:
+        if len(parts) == 1 and word[:1].isupper():
             parts = [*scope.path, word]
         if len(parts) != 3:
             self.fail(f"unknown type {word!r}: a basic type, a typedef or package::msg::Name", tok.line)

@@ -163,3 +163,44 @@ def test_hand_written_idl_as_rosidl_generator_py(tmp_path: Path) -> None:
     ours = run_ours("from diffctl.interfaces import type_hash\nfrom idl_only.msg import Chars\n"
                     "HASH = type_hash(Chars)\n" + OBSERVE, {"DIFFCTL_WORKSPACE": str(tmp_path)})
     assert_same(ours, oracle)
+
+
+def test_every_installed_idl_reads_as_its_ros_file() -> None:
+    """rosidl installs each interface's .idl (rosidl_adapter's translation) beside its .msg/.srv/.action: for
+    every one in the oracle venv (about 200, all field kinds, defaults and constants of Jazzy's packages) the
+    definitions read from the .idl equal those read from the ROS file."""
+    from diffctl.interfaces import idl
+
+    checked = 0
+    for path in sorted(jazzy_venv.share("").glob("*/*/*.idl")):
+        pkg, kind = path.parent.parent.name, path.parent.name
+        ros = path.with_suffix("." + kind)
+        name = f"{pkg}/{kind}/{path.stem}"
+        from_ros = idl.interface_defs(name, ros.read_text(encoding="utf-8"), str(ros))
+        from_idl = idl.interface_defs(name, path.read_text(encoding="utf-8"), str(path))
+        assert [(t.name, t.constants, t.fields, t.defaults) for t in from_idl] == \
+            [(t.name, t.constants, t.fields, t.defaults) for t in from_ros], name
+        checked += 1
+    assert checked > 150
+
+
+@pytest.mark.parametrize("body, line, error", [
+    ("struct T { floatt64 x; };", 2, "unknown type 'floatt64'"),
+    ("struct T { int8 a; int8 a; };", 2, "duplicate member 'a'"),
+    ("struct T {\n  @default (value=300)\n  int8 small;\n};", 4, "small: int8 value 300 out of range [-128, 127]"),
+    ("struct T {\n  @default (value=\"(1, 2)\")\n  int32 a[3];\n};", 4, "the default has 2 values, the array 3"),
+    ("struct T { sequence<int32[3]> a; };", 2, "expected '>', found '['"),
+    ("struct T { string<0> s; };", 2, "the string bound must be a positive integer"),
+    ("struct T { long double d; };", 2, "'long double' has no ROS 2 Python or wire form"),
+    ("struct Other { int8 a; };", None, "defines no struct T in module p::msg (found: p/msg/Other)"),
+    ("module T_Constants { const int8 C = 1.5; };\nstruct T { int8 a; };", 2, "C: 1.5 is not an integer"),
+    ("struct T { int8 a; }", 3, "expected ';', found '}'"),
+    ("struct T { int8 a; };\n}; };\n};", 4, "unexpected '}'"),
+])
+def test_malformed_idl_names_file_and_line(body: str, line: int | None, error: str) -> None:
+    from diffctl.interfaces.idl import InterfaceError, interface_defs
+
+    with pytest.raises(InterfaceError) as e:
+        interface_defs("p/msg/T", "module p { module msg {\n" + body + "\n}; };\n", "p/msg/T.idl")
+    assert str(e.value).startswith(f"p/msg/T.idl{'' if line is None else f':{line}'}: "), str(e.value)
+    assert error in str(e.value), str(e.value)
