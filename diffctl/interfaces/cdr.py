@@ -42,9 +42,15 @@ _SIZE = {name: struct.calcsize(code) for name, code in _CODE.items()}
 # array.array type codes rosidl_generator_py uses for numeric sequences.
 _TYPECODE = {"int8": "b", "uint8": "B", "char": "B", "int16": "h", "uint16": "H", "int32": "i", "uint32": "I",
              "int64": "q", "uint64": "Q", "float32": "f", "float64": "d", "wchar": "I"}
-# An .idl char or wchar (a .msg char is uint8 by then) is a 1-character str in the classes: its code goes on
-# the wire, 1 byte for a char, 4 for a wchar (Fast CDR writes a wchar_t as a uint32).
+# An .idl char or wchar (a .msg char is uint8 by then) is a 1-character str in the classes. A char is sent as
+# rosidl's C conversion takes it, the first byte of the str's UTF-8 (0 for ''); a wchar as its code point in
+# 4 bytes (Fast CDR writes a wchar_t as a uint32).
 _CHARACTERS = ("char", "wchar")
+_TO_CODE = {"char": "CHARBYTE", "wchar": "ORD"}
+
+
+def _char_byte(text: str) -> int:
+    return text.encode()[0] if text else 0
 _HEADER_LE = b"\x00\x01\x00\x00"
 _EMPTY = "structure_needs_at_least_one_member"
 
@@ -462,7 +468,7 @@ class _Encoder(_Emitter):
         self.run_fmt += "c" if base == "byte" and self.prefix else _CODE[base]
         # rosidl's C conversion reads a bool field as `field == Py_True`: 1, "x" or numpy.True_ send false
         if self.prefix and base in _CHARACTERS:
-            expr = f"ORD({expr})"
+            expr = f"{_TO_CODE[base]}({expr})"
         self.run_exprs.append(f"({expr} is True)" if base == "bool" and self.prefix else expr)
         self.run_size += size
 
@@ -522,7 +528,9 @@ class _Encoder(_Emitter):
             if size > self.known:
                 self.lines.append(f"if {n}:")
                 self._align(size, "    ")
-            items = f"[ORD(c_) for c_ in {v}]" if self.prefix and sub[1][0] in _CHARACTERS else v
+            items = v
+            if self.prefix and sub[1][0] in _CHARACTERS:
+                items = f"[{_TO_CODE[sub[1][0]]}(c_) for c_ in {v}]"
             self.lines += [f"parts.append(asarray({items}, dtype={dtype}).tobytes())", f"pos += {n} * {size}"]
         elif sub[0] == Nodetype.BASE and sub[1][0] == "wstring":
             self.lines += [f"for i_ in {v}:", "    p_ = -pos & 3", "    parts.append(ZEROS[p_])",
@@ -567,7 +575,8 @@ def compile_encoder(ts: Any, typename: str, rosidl: bool = False) -> Callable[[A
     `rosidl`: the message is of a rosidl-style class (fields read from their `_name` slots)."""
     ns: dict[str, Any] = {"U32": struct.Struct("<I").pack, "NUL": b"\x00", "asarray": numpy.asarray,
                           "ZEROS": tuple(bytes(i) for i in range(8)), "BYTESLIKE": (bytes, bytearray),
-                          "WENC": _wstring_encode, "ORD": ord}
+                          "WENC": _wstring_encode, "ORD": ord,
+                          "CHARBYTE": _char_byte}
     src = _encoder_source(ts, typename, ns, "_" if rosidl else "")
     ns = {k: v for k, v in ns.items() if isinstance(k, str)}
     exec(compiled(src, f"<cdr encoder {typename}>"), ns)

@@ -67,7 +67,7 @@ def _wrap(value: Any, base: str) -> int:
 
 
 def _scalar(value: Any, base: str) -> Any:
-    if base in ("string", "wstring"):
+    if base in ("string", "wstring", "char", "wchar"):
         if not isinstance(value, str):
             raise TypeError("bad argument type for built-in operation")
         return value

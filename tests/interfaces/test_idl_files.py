@@ -154,6 +154,17 @@ obs('checked construction', lambda: C(check_fields=True))
 '''
 
 
+WIRE = r'''
+from diffctl.interfaces import serialize, deserialize
+m = C(c='\u00e9', cs=['a', 'bc', ''], w='\u0436')
+raw = serialize(m)[4:]
+obs('wire c', lambda: raw[:1].hex())
+obs('wire cs', lambda: raw[12:16].hex() + ' ' + raw[16:19].hex(' '))
+obs('wire w', lambda: raw[4:8].hex())
+obs('wire back', lambda: f"{deserialize(serialize(m), C).cs} {deserialize(serialize(m), C).w}")
+'''
+
+
 def test_hand_written_idl_as_rosidl_generator_py(tmp_path: Path) -> None:
     """Classes and type hash of an .idl only a hand can write: rosidl_generator_py and rosidl's type
     description generator (the oracle venv's) against diffctl's workspace finder."""
@@ -161,8 +172,13 @@ def test_hand_written_idl_as_rosidl_generator_py(tmp_path: Path) -> None:
     assert oracle["hash"][1].startswith("RIHS01_") and oracle["repr"][0] == "ok", oracle
     _package(tmp_path, "idl_only", {"msg/Chars.idl": HAND_WRITTEN})
     ours = run_ours("from diffctl.interfaces import type_hash\nfrom idl_only.msg import Chars\n"
-                    "HASH = type_hash(Chars)\n" + OBSERVE, {"DIFFCTL_WORKSPACE": str(tmp_path)})
+                    "HASH = type_hash(Chars)\n" + OBSERVE + WIRE, {"DIFFCTL_WORKSPACE": str(tmp_path)})
+    wire = {k: ours.pop(k)[1] for k in list(ours) if k.startswith("wire ")}
     assert_same(ours, oracle)
+    # The oracle venv has no compiled type support for a new package: the wire is checked against what
+    # rosidl's C conversion and Fast CDR do (a char is the first UTF-8 byte of its str, a wchar 4 bytes).
+    assert wire == {"wire c": "c3", "wire cs": "03000000 61 62 00", "wire w": "36040000",
+                    "wire back": "['a', 'b', '\\x00'] ж"}, wire
 
 
 def test_every_installed_idl_reads_as_its_ros_file() -> None:
