@@ -12,6 +12,7 @@ subscription, …), with rclpy's text.
 
 from __future__ import annotations
 
+import dataclasses
 import enum
 import os
 import threading
@@ -91,7 +92,7 @@ rmw_qos_policy_kind_t.__module__ = "rclpy._rclpy_pybind11"
 _KIND_UNSET = rmw_qos_policy_kind_t(0)
 
 
-@dataclass
+@dataclass(frozen=True)
 class QoSRequestedIncompatibleQoSInfo:
     total_count: int = 0
     total_count_change: int = 0
@@ -101,7 +102,7 @@ class QoSRequestedIncompatibleQoSInfo:
 QoSOfferedIncompatibleQoSInfo = QoSRequestedIncompatibleQoSInfo
 
 
-@dataclass
+@dataclass(frozen=True)
 class _CountInfo:
     total_count: int = 0
     total_count_change: int = 0
@@ -127,7 +128,7 @@ class IncompatibleTypeInfo(_CountInfo):
     pass
 
 
-@dataclass
+@dataclass(frozen=True)
 class QoSLivelinessChangedInfo:
     alive_count: int = 0
     not_alive_count: int = 0
@@ -135,7 +136,7 @@ class QoSLivelinessChangedInfo:
     not_alive_count_change: int = 0
 
 
-@dataclass
+@dataclass(frozen=True)
 class QoSMatchedInfo:
     total_count: int = 0
     total_count_change: int = 0
@@ -147,6 +148,25 @@ def _bound_struct_repr(self: object) -> str:
     # pybind11's default for a bound struct: what `print(event)` or an f-string of an event shows in rclpy.
     cls = type(self)
     return f"<{cls.__module__}.{cls.__qualname__} object at {id(self):#x}>"
+
+
+def _no_such_field(self: object, name: str, cut: int) -> AttributeError:
+    # CPython names the type by its C-level name (pybind11's is the dotted one), cut to 50 characters on a
+    # read and to 100 on a write.
+    cls = type(self)
+    return AttributeError(f"'{f'{cls.__module__}.{cls.__qualname__}'[:cut]}' object has no attribute '{name}'")
+
+
+def _bound_struct_getattr(self: object, name: str) -> Any:
+    raise _no_such_field(self, name, 50)
+
+
+def _bound_struct_setattr(self: object, name: str, value: Any) -> None:
+    # rclpy binds the status fields read-only (a callback reading the wrong kind's field, as the liveliness
+    # demo's publisher callback does, fails with these words).
+    if name in getattr(type(self), "__dataclass_fields__", {}):
+        raise AttributeError(f"property of '{type(self).__qualname__}' object has no setter")
+    raise _no_such_field(self, name, 100)
 
 
 # rclpy's info classes are rmw's status structs as pybind11 binds them: they carry rmw's names.
@@ -161,6 +181,8 @@ for _cls, _rmw in ((QoSRequestedIncompatibleQoSInfo, "rmw_requested_qos_incompat
     _cls.__name__ = _cls.__qualname__ = _rmw
     _cls.__module__ = "rclpy._rclpy_pybind11"
     _cls.__repr__ = _bound_struct_repr  # type: ignore[method-assign]
+    _cls.__getattr__ = _bound_struct_getattr  # type: ignore[attr-defined]
+    _cls.__setattr__ = _bound_struct_setattr  # type: ignore[method-assign,assignment]
 
 
 QoSSubscriptionMatchedInfo = QoSMatchedInfo
@@ -202,10 +224,9 @@ class EventHandler(Waitable):
         if not pending:
             return None
         last = pending[-1]
-        for field in ("total_count_change", "current_count_change"):
-            if hasattr(last, field):
-                setattr(last, field, sum(getattr(p, field, 0) for p in pending))
-        return last
+        summed = {field: sum(getattr(p, field) for p in pending)
+                  for field in ("total_count_change", "current_count_change") if hasattr(last, field)}
+        return dataclasses.replace(last, **summed) if len(pending) > 1 else last
 
     async def execute(self, taken_data: Any) -> None:
         if taken_data:

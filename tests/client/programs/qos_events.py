@@ -66,10 +66,23 @@ from rclpy.duration import Duration  # noqa: E402
 from rclpy.event_handler import PublisherEventCallbacks  # noqa: E402
 
 offered = []
+
+
+def on_offered(e):
+    # What a callback sees: the kind as printed, the event as printed, and the read-only fields' errors (the
+    # liveliness demo reads alive_count off a lost-liveliness status).
+    errors = []
+    for attempt in (lambda: e.alive_count, lambda: setattr(e, "total_count", 9), lambda: setattr(e, "extra", 1)):
+        try:
+            attempt()
+        except AttributeError as x:
+            errors.append(str(x))
+    offered.append((qos_policy_name_from_kind(e.last_policy_kind), str(e.last_policy_kind), f"{e.last_policy_kind}",
+                    e.total_count, re.sub("0x[0-9a-f]+", "0x", f"{e}"), tuple(errors)))
+
+
 node.create_publisher(String, "lease_topic", QoSProfile(depth=5, liveliness_lease_duration=Duration(seconds=3)),
-                      event_callbacks=PublisherEventCallbacks(incompatible_qos=lambda e: offered.append(
-                          (qos_policy_name_from_kind(e.last_policy_kind), str(e.last_policy_kind),
-                           f"{e.last_policy_kind}", e.total_count, re.sub("0x[0-9a-f]+", "0x", f"{e}")))))
+                      event_callbacks=PublisherEventCallbacks(incompatible_qos=on_offered))
 node.create_subscription(String, "lease_topic", lambda m: None,
                          QoSProfile(depth=5, liveliness_lease_duration=Duration(seconds=1)))
 spin_for(1.5)
