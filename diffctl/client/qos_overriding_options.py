@@ -73,8 +73,8 @@ def _apply(qos: QoSProfile, policy: QoSPolicyKind, value: Any) -> None:
     if policy in _ENUMS:
         try:
             value = _ENUMS[policy][str(value).upper()]
-        except KeyError:
-            raise RuntimeError(f"Unexpected QoS override for policy `{policy.name.lower()}`: `{value}`") from None
+        except KeyError:  # left chained, as rclpy's: the traceback shows the KeyError of the upper-cased value too
+            raise RuntimeError(f"Unexpected QoS override for policy `{policy.name.lower()}`: `{value}`")  # noqa: B904
     elif policy in _DURATIONS:
         value = Duration(nanoseconds=value)
     setattr(qos, policy.name.lower(), value)

@@ -110,6 +110,14 @@ try:
 except InvalidQosOverridesError as e:
     out.append(["qos override callback", str(e)])
 
+try:  # an override no policy has (ros2/demos' qos_overrides_talker with a bad -p): the traceback as rclpy's
+    Node("qos_bad_override", parameter_overrides=[
+        Parameter("qos_overrides./bad.publisher.reliability", value="sometimes")]).create_publisher(
+        String, "bad", 10, qos_overriding_options=QoSOverridingOptions.with_default_policies())
+    out.append(["bad qos override", "accepted"])
+except RuntimeError as e:
+    out.append(["bad qos override", str(e), repr(e.__context__), e.__suppress_context__])
+
 matched_pub, matched_sub = [], []
 mpub = tuned.create_publisher(String, "matched_topic", 10, event_callbacks=PublisherEventCallbacks(
     matched=lambda e: matched_pub.append([e.total_count, e.current_count])))
