@@ -90,11 +90,15 @@ def parse_type(text: str, pkg: str, where: dict[str, Any]) -> tuple:
     return (Nodetype.SEQUENCE, (desc, 0))
 
 
-def _unquote(text: str) -> str:
-    """rosidl_adapter's string values: outer quotes removed, escaped quotes of that kind unescaped."""
+def _unquote(text: str, where: dict[str, Any]) -> str:
+    """rosidl_adapter's string values: outer quotes removed, an unescaped inner quote of that kind refused and
+    the escaped ones unescaped."""
     for quote in "\"'":
         if len(text) >= 2 and text.startswith(quote) and text.endswith(quote):
-            return text[1:-1].replace("\\" + quote, quote)
+            inner = text[1:-1]
+            if re.search(r"(?<!\\)" + quote, inner):
+                raise InterfaceError(f"string value {text}: an inner {quote} must be escaped as \\{quote}", **where)
+            return inner.replace("\\" + quote, quote)
     return text
 
 
@@ -124,7 +128,7 @@ def parse_primitive(base: str, bound: int, text: str, where: dict[str, Any]) -> 
             return float(text)
         except ValueError:
             raise InterfaceError(f"invalid {base} value {text!r}", **where) from None
-    value = _unquote(text)
+    value = _unquote(text, where)
     if bound and len(value) > bound:
         raise InterfaceError(f"string value {value!r} longer than its bound {bound}", **where)
     return value

@@ -1,6 +1,7 @@
-"""A .msg file's string array defaults are read as rosidl_adapter reads them (the oracle venv's parser runs on
-the same lines): quoted elements keep their commas and unescape their own quote, unquoted ones run to the
-next comma and are trimmed, a trailing comma adds nothing, and what rosidl refuses is refused."""
+"""A .msg file's defaults and constants are read as rosidl_adapter reads them (the oracle venv's parser runs on
+the same lines): in string arrays quoted elements keep their commas and unescape their own quote, unquoted
+ones run to the next comma and are trimmed, a trailing comma adds nothing; a quoted string refuses an
+unescaped inner quote of its kind; and what rosidl refuses is refused."""
 
 from __future__ import annotations
 
@@ -25,24 +26,38 @@ LINES = [
     r'''string[2] m ["one", "two", "three"]''',
     r'''string<=2[] n ["abc"]''',
     r'''string[] o ["'quoted'", '"dq"']''',
+    r"string a 'it''s'",
+    r'''string a "dq\"inner"''',
+    r'''string S="a"b"''',
+    r'''string a "'x'"''',
+    r'''string a hello world''',
+    r'''string a "a#b"''',
+    r'''string S='a' ''',
+    r'''float64 a -.5''',
+    r'''int32 a 0x10''',
+    r'''bool a TRUE''',
+    r'''uint8 a 256''',
+    r'''int32 A=5 # c''',
 ]
 
 ORACLE = r'''
 from rosidl_adapter.parser import parse_message_string
 for i, line in enumerate(LINES):
     def read(line=line):
-        return [f.default_value for f in parse_message_string('pkg', 'M', line).fields]
+        spec = parse_message_string('pkg', 'M', line)
+        return [f.default_value for f in spec.fields], [(c.name, c.value) for c in spec.constants]
     obs(str(i), read)
 '''
 
 
-def test_string_array_defaults_as_rosidl_adapter() -> None:
+def test_defaults_and_constants_as_rosidl_adapter() -> None:
     real = run_oracle(f"LINES = {json.dumps(LINES)}\n" + ORACLE)
     ours = {}
     for i, line in enumerate(LINES):
         try:
             td = idl.parse_message(line, "pkg/msg/M")
-            ours[str(i)] = ["ok", repr([td.defaults[n] for n, _ in td.fields])]
+            fields = [td.defaults.get(n) for n, _ in td.fields if n != idl.EMPTY_MEMBER]
+            ours[str(i)] = ["ok", repr((fields, [(c[0], c[2]) for c in td.constants]))]
         except idl.InterfaceError:
             ours[str(i)] = ["raise"]
     # rosidl's exception types differ (InvalidValue, ValueError, …): that both refuse is what matters
