@@ -257,7 +257,7 @@ def _sections(text: str, count: int, what: str, source: str | None) -> list[tupl
     out: list[tuple[str, int]] = []
     start, buf = 1, []
     for i, line in enumerate(text.splitlines(), 1):
-        if line.strip() == "---":
+        if line == "---":  # rosidl_adapter takes only this exact line as the separator
             out.append(("\n".join(buf), start))
             buf, start = [], i + 1
         else:

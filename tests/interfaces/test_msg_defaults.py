@@ -62,3 +62,29 @@ def test_defaults_and_constants_as_rosidl_adapter() -> None:
             ours[str(i)] = ["raise"]
     # rosidl's exception types differ (InvalidValue, ValueError, …): that both refuse is what matters
     assert ours == {k: v if v[0] == "ok" else ["raise"] for k, v in real.items()}, (ours, real)
+
+
+SERVICES = ["int32 a\n---\nint32 b", "int32 a\n--- \nint32 b", "int32 a\n  ---\nint32 b", "int32 a\n---  # c\nint32 b",
+            "---", "int32 a\n---\nint32 b\n---\nint32 c", "# only\n---\n# comment"]
+
+SERVICE_ORACLE = r'''
+from rosidl_adapter.parser import parse_service_string
+for i, text in enumerate(SERVICES):
+    def read(text=text):
+        s = parse_service_string('pkg', 'S', text)
+        return [f.name for f in s.request.fields], [f.name for f in s.response.fields]
+    obs(str(i), read)
+'''
+
+
+def test_service_separator_as_rosidl_adapter() -> None:
+    """Only a line that is exactly `---` separates request from response."""
+    real = run_oracle(f"SERVICES = {json.dumps(SERVICES)}\n" + SERVICE_ORACLE)
+    ours = {}
+    for i, text in enumerate(SERVICES):
+        try:
+            req, resp = idl.interface_defs("pkg/srv/S", text)[:2]
+            ours[str(i)] = ["ok", repr(tuple([n for n, _ in t.fields if n != idl.EMPTY_MEMBER] for t in (req, resp)))]
+        except idl.InterfaceError:
+            ours[str(i)] = ["raise"]
+    assert ours == {k: v if v[0] == "ok" else ["raise"] for k, v in real.items()}, (ours, real)
