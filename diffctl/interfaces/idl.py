@@ -54,6 +54,8 @@ def _base_desc(base: str, sbound: str | None, pkg: str, where: dict[str, Any]) -
     if base in PRIMITIVES:
         if sbound is not None and base not in ("string", "wstring"):
             raise InterfaceError(f"only strings take an upper bound, not {base!r}", **where)
+        if sbound is not None and int(sbound) == 0:
+            raise InterfaceError(f"invalid type '{base}<={sbound}': the upper bound must be > 0", **where)
         # rosidl reads a .msg `char` as uint8 (rosidl_adapter); the RIHS01 hash depends on it.
         return (Nodetype.BASE, ("uint8" if base == "char" else base, int(sbound or 0)))
     if sbound is not None:
@@ -61,6 +63,10 @@ def _base_desc(base: str, sbound: str | None, pkg: str, where: dict[str, Any]) -
     parts = base.split("/")
     if len(parts) == 1:
         parts = [pkg, parts[0]]
+    if len(parts) == 3 and all(parts):
+        # rosidl_adapter takes a message type of another package as package/Name only
+        raise InterfaceError(f"invalid type {base!r}: in a .msg another package's type is package/Name",
+                             **where, hint=f"{parts[0]}/{parts[2]}")
     if len(parts) == 2:
         parts = [parts[0], "msg", parts[1]]
     if len(parts) != 3 or not all(parts) or not parts[2][:1].isupper():
@@ -225,9 +231,10 @@ def parse_message(text: str, typename: str, source: str | None = None, first_lin
             where["field"] = name
             if desc[0] != Nodetype.BASE:
                 raise InterfaceError("constants must be of a primitive or string type", **where)
-            if not _CONST_NAME.match(name):
-                raise InterfaceError(f"invalid constant name {name!r}", **where,
-                                     hint="upper case letters, digits and '_', starting with a letter")
+            if not _CONST_NAME.match(name) or "__" in name or name.endswith("_"):
+                raise InterfaceError(
+                    f"invalid constant name {name!r}", **where,
+                    hint="upper case letters, digits and single '_', starting with a letter, not ending with '_'")
             if name in names:
                 raise InterfaceError(f"duplicate name {name!r}", **where)
             names.add(name)

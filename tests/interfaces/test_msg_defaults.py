@@ -1,7 +1,8 @@
-"""A .msg file's defaults and constants are read as rosidl_adapter reads them (the oracle venv's parser runs on
+"""A .msg file's types, defaults and constants are read as rosidl_adapter reads them (the oracle venv's parser runs on
 the same lines): in string arrays quoted elements keep their commas and unescape their own quote, unquoted
 ones run to the next comma and are trimmed, a trailing comma adds nothing; a quoted string refuses an
-unescaped inner quote of its kind; and what rosidl refuses is refused."""
+unescaped inner quote of its kind; another package's type is package/Name, not package/msg/Name;
+constant names take single underscores; and what rosidl refuses is refused."""
 
 from __future__ import annotations
 
@@ -38,6 +39,12 @@ LINES = [
     r'''bool a TRUE''',
     r'''uint8 a 256''',
     r'''int32 A=5 # c''',
+    r'''geometry_msgs/msg/Point p''',
+    r'''geometry_msgs/Point p''',
+    r'''string<=0 a''',
+    r'''int32 C__A=1''',
+    r'''int32 C_=1''',
+    r'''int32 C_1=1''',
 ]
 
 ORACLE = r'''
