@@ -10,13 +10,14 @@ show the line, as they do through rosidl's files; its bytecode is cached (`bytec
 from __future__ import annotations
 
 import importlib
+import keyword
 import linecache
 import types
 from typing import Any
 
 from diffctl.interfaces import pysource, registry
 from diffctl.interfaces.bytecode import compiled
-from diffctl.interfaces.idl import TypeDef
+from diffctl.interfaces.idl import InterfaceError, TypeDef
 from diffctl.interfaces.registry import InterfacePackage
 
 # class → its type name (pkg/msg/T, pkg/srv/T_Request, …): what the codecs and type_name() key on.
@@ -78,6 +79,13 @@ def fill_interface_module(module: types.ModuleType, p: InterfacePackage, kind: s
             raise ImportError(f"{t} has no definition", name=module.__name__)
         defs[t] = td
     origin = str(p.files.get(full, f"diffctl's {full}"))
+    for td in defs.values():
+        for fname, _ in td.fields:
+            if keyword.iskeyword(fname):
+                # rosidl_adapter accepts it, but the property rosidl_generator_py writes for it is a SyntaxError
+                raise InterfaceError(
+                    f"{td.name}: field {fname!r} is a Python keyword, so its message class cannot be generated",
+                    source=origin, line=td.lines.get(fname), field=fname, hint=f"rename it, e.g. {fname}_value")
     source = pysource.module_source(kind, full, defs, origin)
     filename = f"<{module.__name__} generated from {origin}>"
     linecache.cache[filename] = (len(source), None, source.splitlines(True), filename)

@@ -85,6 +85,12 @@ def test_malformed_interface_file_is_located(tmp_path: Path) -> None:
     last = p.stderr.strip().splitlines()[-1]
     assert last.endswith("Bad.msg: bad_msgs/msg/Bad: field 'v' has type bad_msgs/msg/Vector3, which package "
                          "bad_msgs does not define (did you mean 'geometry_msgs/msg/Vector3'?)"), p.stderr
+    # valid for rosidl_adapter, but rosidl_generator_py's class for it would be a SyntaxError
+    (pkg / "msg" / "Bad.msg").write_text("float64 x\nint32 from\n")
+    p = python("from bad_msgs.msg import Bad", {"DIFFCTL_WORKSPACE": str(tmp_path / "ws")})
+    last = p.stderr.strip().splitlines()[-1]
+    assert last.endswith("Bad.msg:2: from: bad_msgs/msg/Bad: field 'from' is a Python keyword, so its message "
+                         "class cannot be generated (rename it, e.g. from_value)"), p.stderr
 
 
 @pytest.mark.parametrize("text, error", [
