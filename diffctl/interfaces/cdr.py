@@ -36,15 +36,16 @@ from diffctl.interfaces.bytecode import compiled
 # The struct codes rosbags uses for each ROS primitive (note `byte` is signed there), size = alignment.
 _CODE = {
     "bool": "?", "byte": "b", "char": "B", "int8": "b", "uint8": "B", "int16": "h", "uint16": "H",
-    "int32": "i", "uint32": "I", "int64": "q", "uint64": "Q", "float32": "f", "float64": "d", "wchar": "I",
+    "int32": "i", "uint32": "I", "int64": "q", "uint64": "Q", "float32": "f", "float64": "d", "wchar": "H",
 }
 _SIZE = {name: struct.calcsize(code) for name, code in _CODE.items()}
 # array.array type codes rosidl_generator_py uses for numeric sequences.
 _TYPECODE = {"int8": "b", "uint8": "B", "char": "B", "int16": "h", "uint16": "H", "int32": "i", "uint32": "I",
-             "int64": "q", "uint64": "Q", "float32": "f", "float64": "d", "wchar": "I"}
+             "int64": "q", "uint64": "Q", "float32": "f", "float64": "d", "wchar": "H"}
 # An .idl char or wchar (a .msg char is uint8 by then) is a 1-character str in the classes. A char is sent as
 # rosidl's C conversion takes it, the first byte of the str's UTF-8 (0 for ''); a wchar as its code point in
-# 4 bytes (Fast CDR writes a wchar_t as a uint32).
+# 2 bytes (Fast CDR writes a wchar_t as a uint16; collections of wchar the same way, though rosidl's C type
+# support has no working code for them).
 _CHARACTERS = ("char", "wchar")
 _TO_CODE = {"char": "CHARBYTE", "wchar": "ORD"}
 
@@ -263,7 +264,7 @@ class _Decoder(_Emitter):
             return v
         if sub[0] == Nodetype.BASE and sub[1][0] in _CODE:
             size = _SIZE[sub[1][0]]
-            dtype = self.const(numpy.dtype("<u4" if sub[1][0] == "wchar" else ndtype(sub[1][0])), "D")
+            dtype = self.const(numpy.dtype("<u2" if sub[1][0] == "wchar" else ndtype(sub[1][0])), "D")
             if fixed:
                 self.flush()
                 n = str(length)
@@ -524,7 +525,7 @@ class _Encoder(_Emitter):
             self.lines += [f"parts.append({v} if {v}.__class__ in BYTESLIKE else b''.join({v}))", f"pos += {n}"]
         elif sub[0] == Nodetype.BASE and sub[1][0] in _CODE:
             size = _SIZE[sub[1][0]]
-            dtype = self.const(numpy.dtype("<u4" if sub[1][0] == "wchar" else ndtype(sub[1][0])), "D")
+            dtype = self.const(numpy.dtype("<u2" if sub[1][0] == "wchar" else ndtype(sub[1][0])), "D")
             if size > self.known:
                 self.lines.append(f"if {n}:")
                 self._align(size, "    ")

@@ -159,8 +159,8 @@ from diffctl.interfaces import serialize, deserialize
 m = C(c='\u00e9', cs=['a', 'bc', ''], w='\u0436')
 raw = serialize(m)[4:]
 obs('wire c', lambda: raw[:1].hex())
-obs('wire cs', lambda: raw[12:16].hex() + ' ' + raw[16:19].hex(' '))
-obs('wire w', lambda: raw[4:8].hex())
+obs('wire cs', lambda: raw[8:12].hex() + ' ' + raw[12:15].hex(' '))
+obs('wire w', lambda: raw[2:4].hex())
 obs('wire back', lambda: f"{deserialize(serialize(m), C).cs} {deserialize(serialize(m), C).w}")
 '''
 
@@ -176,8 +176,8 @@ def test_hand_written_idl_as_rosidl_generator_py(tmp_path: Path) -> None:
     wire = {k: ours.pop(k)[1] for k in list(ours) if k.startswith("wire ")}
     assert_same(ours, oracle)
     # The oracle venv has no compiled type support for a new package: the wire is checked against what
-    # rosidl's C conversion and Fast CDR do (a char is the first UTF-8 byte of its str, a wchar 4 bytes).
-    assert wire == {"wire c": "c3", "wire cs": "03000000 61 62 00", "wire w": "36040000",
+    # rosidl's C conversion and Fast CDR do (a char is the first UTF-8 byte of its str, a wchar a uint16).
+    assert wire == {"wire c": "c3", "wire cs": "03000000 61 62 00", "wire w": "3604",
                     "wire back": "['a', 'b', '\\x00'] ж"}, wire
 
 
