@@ -176,7 +176,8 @@ def test_hand_written_idl_as_rosidl_generator_py(tmp_path: Path) -> None:
     wire = {k: ours.pop(k)[1] for k in list(ours) if k.startswith("wire ")}
     assert_same(ours, oracle)
     # The oracle venv has no compiled type support for a new package: the wire is checked against what
-    # rosidl's C conversion and Fast CDR do (a char is the first UTF-8 byte of its str, a wchar a uint16).
+    # rosidl's C conversion and Fast CDR do (a char is the first UTF-8 byte of its str, a wchar a uint16),
+    # bytes once compared with rosidl_typesupport_fastrtps_c's code for such a type, built by hand.
     assert wire == {"wire c": "c3", "wire cs": "03000000 61 62 00", "wire w": "3604",
                     "wire back": "['a', 'b', '\\x00'] ж"}, wire
 
