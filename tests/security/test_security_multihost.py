@@ -36,8 +36,11 @@ X_RE = re.compile(r"^x: (-?[0-9.e+-]+)$", re.M)
 
 def diffctl(host: Host, *args: str, config: Path | None) -> list[str]:
     """`diffctl ARGS` on `host`, its session configured by `config` (ZENOH_SESSION_CONFIG_URI)."""
+    # Domain 0: the shipped access-control lists name rmw_zenoh keys of domain 0 (config/security/README.md),
+    # whatever ROS_DOMAIN_ID the shell running the tests exports.
     env = ["env", "-u", "DIFFCTL_ROUTER", "-u", "ZENOH_CONFIG_OVERRIDE", "-u", "ZENOH_ROUTER_CONFIG_URI"]
     env += [f"ZENOH_SESSION_CONFIG_URI={config}"] if config else ["-u", "ZENOH_SESSION_CONFIG_URI"]
+    env += ["ROS_DOMAIN_ID=0"]  # env's unsets come before its assignments
     return host.argv(*env, sys.executable, "-u", "-m", "diffctl", *args)
 
 
