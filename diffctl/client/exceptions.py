@@ -106,7 +106,11 @@ class ROSInterruptException(Exception):
         Exception.__init__(self, "rclpy.shutdown() has been called", *args)
 
 
-class InvalidHandle(Exception):
+class RCLError(RuntimeError):
+    """rclpy's RCLError (a RuntimeError): a failure the rcl layer would report."""
+
+
+class InvalidHandle(RuntimeError):
     pass
 
 
@@ -115,12 +119,8 @@ class InvalidQoSProfileException(Exception):
         Exception.__init__(self, "Invalid QoSProfile", *args)
 
 
-class UnsupportedEventTypeError(Exception):
+class UnsupportedEventTypeError(RCLError):
     pass
-
-
-class RCLError(RuntimeError):
-    """rclpy's RCLError (a RuntimeError): a failure the rcl layer would report."""
 
 
 class RCLInvalidROSArgsError(RCLError, _errors.ConfigError):
@@ -152,3 +152,7 @@ for _cls in list(globals().values()):
     if isinstance(_cls, type) and issubclass(_cls, Exception) and _cls.__module__ == __name__:
         _cls.__module__ = "rclpy.exceptions"
 InvalidQosOverridesError.__module__ = "rclpy.qos_overriding_options"  # where rclpy defines it
+# The ones rclpy's C++ binding defines: a traceback's last line reads `rclpy._rclpy_pybind11.RCLError: …`.
+for _cls in (InvalidHandle, RCLError, RCLInvalidROSArgsError, UnknownROSArgsError, UnsupportedEventTypeError,
+             NodeNameNonExistentError):
+    _cls.__module__ = "rclpy._rclpy_pybind11"

@@ -3,6 +3,7 @@
 import json
 
 import rclpy
+from rclpy.context import Context
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from std_msgs.msg import String
@@ -72,4 +73,28 @@ obs("destroy", lambda: [node.destroy_subscription(sub), node.destroy_client(cli)
                         node.destroy_timer(timer), node.destroy_guard_condition(guard), node.destroy_publisher(pub)])
 obs("destroy node", lambda: node.destroy_node())
 obs("node", lambda: Node("again"))
+
+
+def as_printed(fn):
+    """The last traceback line a user sees (the binding's exceptions name rclpy._rclpy_pybind11) and the classes
+    an `except` can catch them by."""
+    import traceback
+    try:
+        fn()
+        return "no error"
+    except Exception as e:
+        return [traceback.format_exception_only(e)[-1].strip(),
+                [c.__name__ for c in type(e).__mro__ if c.__module__.split(".")[0] in ("builtins", "rclpy")]]
+
+
+def destroyed_handle():
+    with pub.handle:
+        pass
+
+
+out.append(["printed: publish after shutdown", as_printed(lambda: pub.publish(String(data="x")))])
+out.append(["printed: a second shutdown", as_printed(rclpy.shutdown)])
+out.append(["printed: a destroyed publisher's handle", as_printed(destroyed_handle)])
+out.append(["printed: not a ROS flag", as_printed(lambda: rclpy.init(args=["--ros-args", "--no-such-flag"],
+                                                                   context=Context()))])
 print(json.dumps(out))
