@@ -140,6 +140,10 @@ class _InitArgumentsError(RCLError, ConfigError):
         ConfigError.__init__(self, message)
 
 
+# A traceback names it as rclpy's plain RCLError (`rclpy._rclpy_pybind11.RCLError: failed to initialize rcl: …`).
+_InitArgumentsError.__module__, _InitArgumentsError.__qualname__ = "rclpy._rclpy_pybind11", "RCLError"
+
+
 def _check_ros_args(argv: list[str]) -> None:
     """rcl's init reads the process's --ros-args: a malformed rule fails it, then unknown arguments do."""
     from diffctl import ros_args

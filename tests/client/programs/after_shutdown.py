@@ -95,6 +95,8 @@ def destroyed_handle():
 out.append(["printed: publish after shutdown", as_printed(lambda: pub.publish(String(data="x")))])
 out.append(["printed: a second shutdown", as_printed(rclpy.shutdown)])
 out.append(["printed: a destroyed publisher's handle", as_printed(destroyed_handle)])
+out.append(["printed: a malformed remap rule, its class", as_printed(
+    lambda: rclpy.init(args=["--ros-args", "-r", "a"], context=Context()))[0].split(":")[0]])
 out.append(["printed: not a ROS flag", as_printed(lambda: rclpy.init(args=["--ros-args", "--no-such-flag"],
                                                                    context=Context()))])
 print(json.dumps(out))
