@@ -130,7 +130,8 @@ class Subscription(NodeEntity):
     def _ready(self) -> bool:
         return bool(self._queue)
 
-    def _take(self) -> Callable[[], Any] | None:
+    def _pop(self) -> tuple[Any, int, int, int] | None:
+        """The oldest queued sample still within its lifespan: (sample, reception seq, publication seq, stamp)."""
         while True:
             try:
                 sample, rx = self._queue.popleft()
@@ -139,7 +140,13 @@ class Subscription(NodeEntity):
             seq, stamp_ns, _ = _attachment(sample)
             # lifespan: a sample older than this subscription's lifespan is gone from its queue, as DDS's
             if self._lifespan_ns is None or time.time_ns() - stamp_ns <= self._lifespan_ns:
-                break
+                return sample, rx, seq, stamp_ns
+
+    def _take(self) -> Callable[[], Any] | None:
+        popped = self._pop()
+        if popped is None:
+            return None
+        sample, rx, seq, stamp_ns = popped
         data = sample.payload.to_bytes()
         try:
             msg = data if self.raw else deserialize(data, self.msg_type)
@@ -163,14 +170,10 @@ class Subscription(NodeEntity):
     def _take_message(self, msg_type: Any, raw: bool) -> tuple[Any, dict[str, int]] | None:
         """The oldest queued sample as (message, info), or None: rclpy's `sub.handle.take_message`, by which
         custom executors and recorders take outside any executor (the executor's own path is `_take`)."""
-        while True:
-            try:
-                sample, rx = self._queue.popleft()
-            except IndexError:
-                return None
-            seq, stamp_ns, _ = _attachment(sample)
-            if self._lifespan_ns is None or time.time_ns() - stamp_ns <= self._lifespan_ns:
-                break
+        popped = self._pop()
+        if popped is None:
+            return None
+        sample, rx, seq, stamp_ns = popped
         data = sample.payload.to_bytes()
         msg = data if raw else deserialize(data, msg_type)
         return msg, {"source_timestamp": stamp_ns, "received_timestamp": time.time_ns(),
