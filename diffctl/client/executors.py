@@ -176,6 +176,9 @@ class Executor:
     """The base: nodes, tasks and the wait; subclasses decide which thread runs a handler."""
 
     _notify_on_handler = False
+    # Whether this class's spin_once lets a wait's ExternalShutdownException out (rclpy's
+    # MultiThreadedExecutor swallows it: its spin just ends when a signal shuts the context down)
+    _raises_external_shutdown = True
 
     def __init__(self, *, context: Context | None = None) -> None:
         self._context = get_default_context() if context is None else context
@@ -253,7 +256,7 @@ class Executor:
     def spin(self) -> None:
         while self._context.ok() and not self._is_shutdown:
             self.spin_once()
-        if shut_down_by_signal(self._context):
+        if self._raises_external_shutdown and shut_down_by_signal(self._context):
             raise ExternalShutdownException()
 
     def spin_until_future_complete(self, future: Future, timeout_sec: float | None = None) -> None:
@@ -489,6 +492,7 @@ class MultiThreadedExecutor(Executor):
     """Runs callbacks on a pool of `num_threads` threads (default: the CPUs this process may use)."""
 
     _notify_on_handler = True
+    _raises_external_shutdown = False
 
     def __init__(self, num_threads: int | None = None, *, context: Context | None = None) -> None:
         super().__init__(context=context)

@@ -306,7 +306,8 @@ class Node:
                 _qos.qos_profile_parameter_events, callback_group=self._default_callback_group,
                 event_callbacks=PublisherEventCallbacks(use_default_callbacks=False)))
             self._params.on_event = self._publish_parameter_event
-        self._rosout = Rosout(self._bus, self._logger_name) if enable_rosout and ros_logging.rosout_enabled else None
+        self._rosout = (Rosout(self._bus, self._logger_name, self._context)
+                        if enable_rosout and ros_logging.rosout_enabled else None)
         if automatically_declare_parameters_from_overrides:
             desc = cls("rcl_interfaces/msg/ParameterDescriptor")
             self.declare_parameters("", [(n, p.value, desc()) for n, p in overrides.items()], ignore_override=True)

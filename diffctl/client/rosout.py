@@ -8,6 +8,7 @@ handed to one background thread per process: a control loop that logs never wait
 from __future__ import annotations
 
 import collections
+import sys
 import threading
 from typing import TYPE_CHECKING, Any
 
@@ -15,6 +16,7 @@ from diffctl.bus import wire
 from diffctl.bus.session import before_close, closing
 from diffctl.client import ros_logging
 from diffctl.client.ros_logging import LogRecord
+from diffctl.client.signals import shut_down_by_signal
 
 if TYPE_CHECKING:
     from diffctl.bus.endpoints import Publisher
@@ -22,6 +24,7 @@ if TYPE_CHECKING:
 TOPIC = "/rosout"
 LOG_TYPE = "rcl_interfaces/msg/Log"
 ROSOUT_QOS = wire.QoS(transient_local=True, depth=1000, lifespan_ns=10_000_000_000)
+_CONTEXT_INVALID = "publisher's context is invalid, at /project/src/rcl/publisher.c:423"
 _QUEUE_MAX = 10_000  # lines waiting for the publisher thread; the oldest go first when a flood outruns it
 
 
@@ -99,12 +102,23 @@ def _message(rec: LogRecord) -> dict:
 class Rosout:
     """A node's `/rosout` publisher, fed by the loggers named as the node (and their children)."""
 
-    def __init__(self, participant: Any, logger_name: str) -> None:
+    def __init__(self, participant: Any, logger_name: str, context: Any = None) -> None:
         self.pub = participant.create_publisher(TOPIC, LOG_TYPE, qos=ROSOUT_QOS)
         self._name = logger_name
+        self._context = context
         ros_logging.attach_rosout(logger_name, self._sink)
 
     def _sink(self, rec: LogRecord) -> None:
+        if self._context is not None and shut_down_by_signal(self._context):
+            # A signal shuts the context down under rcl's logging (rclpy.shutdown() also ends the rosout
+            # handler): rcl's handler then refuses the publisher and says so on stderr after the console line,
+            # which is what a node that logs after Ctrl-C or SIGTERM prints under the real rclpy
+            try:
+                sys.stderr.write(f"Failed to publish log message to rosout: {_CONTEXT_INVALID}\n")
+                sys.stderr.flush()
+            except (ValueError, OSError):
+                pass
+            return
         _outbox.put(self.pub, rec)
 
     def close(self) -> None:

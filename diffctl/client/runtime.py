@@ -119,7 +119,7 @@ def spin(node: Any, executor: Any = None) -> None:
         executor.add_node(node)
         while executor.context.ok():
             executor.spin_once()
-        if shut_down_by_signal(executor.context):
+        if getattr(executor, "_raises_external_shutdown", True) and shut_down_by_signal(executor.context):
             from diffctl.client.executors import ExternalShutdownException
 
             raise ExternalShutdownException()

@@ -5,6 +5,7 @@ and must print the same observations line for line."""
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -34,11 +35,22 @@ def run_both(name: str) -> tuple[subprocess.CompletedProcess[str], subprocess.Co
     return real, ours
 
 
+def _unstamped(stderr: str) -> str:
+    return re.sub(r"^\[(\w+)\] \[\d+\.\d{9}\] ", r"[\1] ", stderr, flags=re.MULTILINE)
+
+
 @pytest.mark.usefixtures("router")
 def test_actions_goal_feedback_result_cancel_agree() -> None:
     real, ours = run_both("action_fibonacci.py")
     assert ours.stdout.splitlines() == real.stdout.splitlines()
     assert "result 4 [0, 1, 1, 2, 3, 5]" in ours.stdout  # the program ran to its end on both
+    assert "feedback after shutdown rclpy._rclpy_pybind11 RCLError Failed to publish feedback with an action " \
+        "server: feedback publisher is invalid" in ours.stdout
+    # The server logs through its `action_server` child logger (the line a user's log filter or
+    # --log-level late_server.action_server:=... picks)
+    for text in ("[ERROR] [late_server.action_server]: Error raised in execute callback: gave up",
+                 "[WARN] [late_server.action_server]: Goal state not set, assuming aborted. Goal ID: ["):
+        assert text in _unstamped(real.stderr) and text in _unstamped(ours.stderr), text
 
 
 @pytest.mark.usefixtures("router")

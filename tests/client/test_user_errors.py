@@ -85,6 +85,29 @@ def test_signals_end_spin_as_in_rclpy(router: str, procs: Procs, sig: int) -> No
         assert real_outcome == our_outcome or real_outcome[0] == 0 or "RCLError" in real_outcome[1], real_outcome
 
 
+def test_sigterm_ends_a_multithreaded_spin_quietly(router: str, procs: Procs) -> None:
+    """rclpy's MultiThreadedExecutor swallows the external shutdown: rclpy.spin returns, exit 0 (ros2/examples'
+    minimal_action_server then fails only in its own rclpy.shutdown()), and a line logged afterwards is
+    followed by rcl's rosout handler refusing the signal-shut context on stderr."""
+    code = (PROGRAMS / "spin_forever.py").read_text()
+    real = procs.start([str(jazzy_venv.python()), "-I", "-c", code, "multi"], env=jazzy_venv.env(),
+                       stderr=subprocess.PIPE)
+    ours = procs.start([sys.executable, str(PROGRAMS / "spin_forever.py"), "multi"], stderr=subprocess.PIPE)
+    stamp = re.compile(r"\[\d+\.\d{9}\] ")
+    outcomes = []
+    for p in (real, ours):
+        assert p.stdout.readline().strip() == "spinning"
+        time.sleep(0.5)
+        p.send_signal(signal.SIGTERM)
+        _, err = p.communicate(timeout=20)
+        outcomes.append((p.returncode, [stamp.sub("", ln) for ln in err.splitlines() if "[rcl]" not in ln]))
+    expected = (0, ["[INFO] [spinner]: spin returned", "Failed to publish log message to rosout: publisher's context "
+                    "is invalid, at /project/src/rcl/publisher.c:423"])
+    assert outcomes[1] == expected
+    # The real one's race: the context shut down inside rcl_wait raises RCLError out of the pool's wait.
+    assert outcomes[0] == expected or "RCLError" in "".join(outcomes[0][1]), outcomes[0]
+
+
 @pytest.mark.parametrize("env", [{"RCUTILS_COLORIZED_OUTPUT": "1"},
                                  {"RCUTILS_CONSOLE_OUTPUT_FORMAT": "{severity} {name} {function_name}:{line_number} "
                                                                    "{message}", "RCUTILS_COLORIZED_OUTPUT": "0"}])

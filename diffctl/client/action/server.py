@@ -133,7 +133,12 @@ class ServerGoalHandle:
             message = action_type.Impl.FeedbackMessage()
             message.goal_id = self._goal_info.goal_id
             message.feedback = feedback
-        self._action_server._feedback_pub.publish(message)
+        pub = self._action_server._feedback_pub
+        if not pub._context._ok:
+            # rcl_action's refusal, not rcl's: what an execute callback still running after Ctrl-C raises
+            raise RCLError("Failed to publish feedback with an action server: feedback publisher is invalid, "
+                           "at /project/src/rcl_action/action_server.c:984")
+        pub.publish(message)
 
     def succeed(self) -> None:
         self._update_state(gs.GoalEvent.SUCCEED)
@@ -185,7 +190,7 @@ class ActionServer:
         self._results: dict[bytes, Any] = {}
         self._result_waiters: dict[bytes, list[Callable[[Any], None]]] = {}
         self._expire_timer: threading.Timer | None = None
-        self._logger = node.get_logger()
+        self._logger = node.get_logger().get_child("action_server")
         group = callback_group if callback_group is not None else node.default_callback_group
         self.callback_group = group
         base = f"{action_name}/_action"

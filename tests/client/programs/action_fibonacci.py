@@ -158,6 +158,39 @@ def main():
     server.destroy_node()
     client_node.destroy_node()
     rclpy.shutdown()
+    feedback_after_shutdown()
+
+
+def feedback_after_shutdown():
+    """An execute callback still running when the context goes (Ctrl-C mid-goal): its feedback is refused
+    with rcl_action's error, and the server's own lines come from its `action_server` child logger."""
+    rclpy.init()
+    node = Node("late_server")
+    started, go = threading.Event(), threading.Event()
+
+    def execute(goal_handle):
+        started.set()
+        go.wait(10.0)
+        try:
+            goal_handle.publish_feedback(Fibonacci.Feedback())
+        except Exception as e:  # the error is the observation
+            print("feedback after shutdown", type(e).__module__, type(e).__name__, e)
+        raise ValueError("gave up")
+
+    ActionServer(node, Fibonacci, "late", execute, callback_group=ReentrantCallbackGroup())
+    client = ActionClient(node, Fibonacci, "late")
+    executor = MultiThreadedExecutor(num_threads=2)
+    executor.add_node(node)
+    spinner = threading.Thread(target=executor.spin, daemon=True)
+    spinner.start()
+    client.wait_for_server(timeout_sec=10.0)
+    client.send_goal_async(Fibonacci.Goal(order=3))
+    print("late goal started", started.wait(10.0))
+    rclpy.shutdown()
+    spinner.join(timeout=10.0)
+    go.set()
+    executor.shutdown()
+    node.destroy_node()
 
 
 if __name__ == "__main__":
