@@ -56,7 +56,13 @@ class QoSSubscriptionEventType(enum.IntEnum):
     RCL_SUBSCRIPTION_MATCHED = 5
 
 
-class rmw_qos_policy_kind_t(enum.IntEnum):
+class _BoundEnumType(enum.EnumType):
+    def __repr__(cls) -> str:
+        # pybind11's enums are classes: `<class 'rclpy._rclpy_pybind11.rmw_qos_policy_kind_t'>`, not `<enum …>`
+        return f"<class '{cls.__module__}.{cls.__qualname__}'>"
+
+
+class rmw_qos_policy_kind_t(enum.IntEnum, metaclass=_BoundEnumType):
     """The kind in an incompatible-QoS event, as rclpy's pybind11 enum: compares equal to QoSPolicyKind's
     values, but prints as `rmw_qos_policy_kind_t.RMW_QOS_POLICY_DURABILITY` (what the QoS demos log)."""
 

@@ -78,6 +78,7 @@ def on_offered(e):
         except AttributeError as x:
             errors.append(str(x))
     offered.append((qos_policy_name_from_kind(e.last_policy_kind), str(e.last_policy_kind), f"{e.last_policy_kind}",
+                    repr(type(e.last_policy_kind)), repr(type(e)),
                     e.total_count, re.sub("0x[0-9a-f]+", "0x", f"{e}"), tuple(errors)))
 
 
