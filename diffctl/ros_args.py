@@ -384,6 +384,53 @@ def _split_rule(rule: str, what: str, example: str) -> tuple[str | None, str, st
     return node, lhs, rhs
 
 
+# rcl's lexer: a name token is a letter or underscore then letters, digits and underscores, never two
+# underscores in a row (those begin rcl's own `__node`/`__ns` words).
+_TOKEN = r"(?!\w*__)[A-Za-z_]\w*"
+_NAME = re.compile(rf"(?:/|~/)?{_TOKEN}(?:/{_TOKEN})*", re.ASCII)
+_NAMESPACE = re.compile(rf"/(?:{_TOKEN}(?:/{_TOKEN})*/?)?", re.ASCII)
+_NODE_NAME = re.compile(_TOKEN, re.ASCII)
+_NODE_PREFIX = re.compile(rf"({_TOKEN}):(?!//)", re.ASCII)
+_SCHEMES = ("rostopic://", "rosservice://")
+
+
+def _remap_rule(rule: str) -> RemapRule:
+    """`-r [node:][rostopic://|rosservice://]match:=replacement`, `[node:]__node:=name` or `[node:]__ns:=/ns`,
+    checked as rcl's remap parser checks it (no wildcards or back-references, no empty or doubled slashes)."""
+    def bad(why: str) -> ConfigError:
+        return ConfigError(f"--ros-args: cannot parse remap rule {rule!r}: {why}",
+                           hint="valid: [NODE:]FROM:=TO with names of letters, digits, '_' and '/' "
+                                "(FROM may start '~/' or rostopic:// / rosservice://), __node:=NAME, __ns:=/NS")
+
+    lhs, sep, rhs = rule.partition(":=")
+    if not sep:
+        raise bad("no ':='")
+    node = None
+    prefixed = _NODE_PREFIX.match(lhs)
+    if prefixed:
+        node, lhs = prefixed.group(1), lhs[prefixed.end():]
+    if lhs in ("__node", "__name"):
+        if not _NODE_NAME.fullmatch(rhs):
+            raise bad(f"{rhs!r} is no node name")
+        return RemapRule("__node", rhs, node)
+    if lhs == "__ns":
+        if not _NAMESPACE.fullmatch(rhs):
+            raise bad(f"{rhs!r} is no absolute namespace")
+        return RemapRule("__ns", rhs, node)
+    match = lhs
+    for scheme in _SCHEMES:
+        if match.startswith(scheme):
+            match = match[len(scheme):]
+            break
+    if "*" in match:
+        raise bad("wildcards are not implemented in rcl's remap rules")
+    if not _NAME.fullmatch(match):
+        raise bad(f"{match!r} is no name to match")
+    if not _NAME.fullmatch(rhs):
+        raise bad(f"{rhs!r} is no replacement name")
+    return RemapRule(lhs, rhs, node)
+
+
 def _parse_argv(ros_argv: list[str]) -> _Parsed:
     out = _Parsed()
     unknown: list[str] = []
@@ -397,8 +444,7 @@ def _parse_argv(ros_argv: list[str]) -> _Parsed:
     while i < len(ros_argv):
         a = ros_argv[i]
         if a in ("-r", "--remap"):
-            node, src, dst = _split_rule(need(a), "remap", "[NODE:]FROM:=TO")
-            out.rules.append(RemapRule("__node" if src == "__name" else src, dst, node))
+            out.rules.append(_remap_rule(need(a)))
             i += 2
         elif a in ("-p", "--param"):
             node, k, v = _split_rule(need(a), "parameter", "[NODE:]NAME:=VALUE")

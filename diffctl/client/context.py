@@ -141,7 +141,9 @@ class _InitArgumentsError(RCLError, ConfigError):
 
 
 # A traceback names it as rclpy's plain RCLError (`rclpy._rclpy_pybind11.RCLError: failed to initialize rcl: …`).
+# type(e).__name__ too, as a program printing the type of what init raised shows it.
 _InitArgumentsError.__module__, _InitArgumentsError.__qualname__ = "rclpy._rclpy_pybind11", "RCLError"
+_InitArgumentsError.__name__ = "RCLError"
 
 
 def _check_ros_args(argv: list[str]) -> None:

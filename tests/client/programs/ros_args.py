@@ -84,6 +84,24 @@ out.append(["bad init args", [
     failure(lambda: rclpy.init(context=Context(), args=["prog", "--ros-args", "-r"]), prefix_only=True),
     failure(lambda: rclpy.init(context=Context(), args=["prog", "Ragnar\udcc3\udcb6k"])),
 ]])
+# rcl's remap grammar: names of letters, digits and '_' (no '__' inside, no leading digit), no wildcard, no empty
+# or trailing slash in a name, an absolute namespace, a single ':='.
+REMAPS = ["a:=b:=c", "__node:=a b", "__ns:=rel", "__ns:=/a/", "__ns:=//a", "foo:=", "a/:=b", "a:=/b/", "*:=x",
+          "a:=~/c", "~/x:=y", "a:=1b", "a__b:=c", "__node:=_x", "n:rostopic://a:=b", "rostopic://__node:=x",
+          "rosparam://a:=b", "n:m:a:=b", "a:=b c", "a.b:=c"]
+
+
+def remap_verdict(rule):
+    context = Context()
+    try:
+        context.init(["prog", "--ros-args", "-r", rule])
+    except Exception as e:
+        return [k for k in ("RCLError", "RCLInvalidROSArgsError") if isinstance(e, getattr(_rclpy, k))] or str(e)
+    context.try_shutdown()
+    return "ok"
+
+
+out.append(["remap grammar", [[rule, remap_verdict(rule)] for rule in REMAPS]])
 out.append(["signal handlers while initialised", str(get_current_signal_handlers_options())])
 for n in (talker, listener, local, isolated):
     n.destroy_node()
