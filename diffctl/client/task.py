@@ -97,7 +97,9 @@ class Future:
             self._unfetched = _Unfetched(exception)
             # A finalizer only for a future that holds an exception, not a __del__ on every future: each callback
             # is a Task, and a SIGINT handled inside a __del__ loses its KeyboardInterrupt ("Exception ignored").
-            weakref.finalize(self, _report_unfetched, self._unfetched).atexit = False
+            # Also at exit, where rclpy's __del__ reports the tasks its executor still holds (an action's
+            # execute task that failed after Ctrl-C)
+            weakref.finalize(self, _report_unfetched, self._unfetched)
             self._state = FutureState.FINISHED
         self._schedule_or_invoke_done_callbacks()
 

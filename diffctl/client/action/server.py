@@ -21,6 +21,9 @@ from diffctl.client.action.deferred import serve
 from diffctl.client.exceptions import RCLError
 from diffctl.client.waitable import NumberOfEntities
 
+# rcl_action's word for a server whose context was shut down
+_SERVER_INVALID = "feedback publisher is invalid, at /project/src/rcl_action/action_server.c:984"
+
 
 class GoalResponse(Enum):
     REJECT = 1
@@ -136,8 +139,7 @@ class ServerGoalHandle:
         pub = self._action_server._feedback_pub
         if not pub._context._ok:
             # rcl_action's refusal, not rcl's: what an execute callback still running after Ctrl-C raises
-            raise RCLError("Failed to publish feedback with an action server: feedback publisher is invalid, "
-                           "at /project/src/rcl_action/action_server.c:984")
+            raise RCLError(f"Failed to publish feedback with an action server: {_SERVER_INVALID}")
         pub.publish(message)
 
     def succeed(self) -> None:
@@ -333,6 +335,9 @@ class ActionServer:
             handles = list(self._goal_handles.values())
         message = GoalStatusArray()
         message.status_list = [GoalStatus(goal_info=h._goal_info, status=h.status) for h in handles]
+        if not self._status_pub._context._ok:
+            # rcl_action checks the server (its feedback publisher first) before it builds the array
+            raise RCLError(f"Failed get goal status array: {_SERVER_INVALID}")
         self._status_pub.publish(message)
 
     def _notify_goal_done(self) -> None:
