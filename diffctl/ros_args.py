@@ -371,19 +371,6 @@ class _Parsed:
     log_level: str | None = None
 
 
-def _split_rule(rule: str, what: str, example: str) -> tuple[str | None, str, str]:
-    """`[node:]lhs:=rhs` → (node, lhs, rhs)."""
-    if ":=" not in rule:
-        raise ConfigError(f"--ros-args: {what} {rule!r} must be {example}")
-    lhs, rhs = rule.split(":=", 1)
-    node = None
-    if ":" in lhs and not lhs.startswith("rosservice:") and not lhs.startswith("rostopic:"):
-        node, lhs = lhs.split(":", 1)
-    if not lhs:
-        raise ConfigError(f"--ros-args: {what} {rule!r} must be {example}")
-    return node, lhs, rhs
-
-
 # rcl's lexer: a name token is a letter or underscore then letters, digits and underscores, never two
 # underscores in a row (those begin rcl's own `__node`/`__ns` words).
 _TOKEN = r"(?!\w*__)[A-Za-z_]\w*"
@@ -431,6 +418,43 @@ def _remap_rule(rule: str) -> RemapRule:
     return RemapRule(lhs, rhs, node)
 
 
+_PARAM_NAME = re.compile(rf"{_TOKEN}(?:[./]{_TOKEN})*", re.ASCII)
+_ENCLAVE = re.compile(r"/(?:[A-Za-z_]\w*(?:/[A-Za-z_]\w*)*)?", re.ASCII)
+
+
+def _param_rule(rule: str) -> tuple[str | None, str, Any]:
+    """`-p [node:]name:=value` as rcl's parser takes it: a plain node name, a parameter name of tokens joined by
+    '.' or '/', and a YAML value that is a scalar or a sequence of scalars of one type."""
+    import yaml
+
+    def bad(why: str) -> ConfigError:
+        return ConfigError(f"--ros-args: cannot parse parameter rule {rule!r}: {why}",
+                           hint="valid: -p [NODE:]NAME:=VALUE, NAME of letters, digits, '_', '.' and '/', VALUE a "
+                                "YAML scalar or [list] of one type")
+
+    lhs, sep, text = rule.partition(":=")
+    if not sep:
+        raise bad("no ':='")
+    node, colon, name = lhs.rpartition(":")
+    if colon and not _NODE_NAME.fullmatch(node):
+        raise bad(f"{node!r} is no node name")
+    if not _PARAM_NAME.fullmatch(name):
+        raise bad(f"{name!r} is no parameter name")
+    if text == "":
+        raise bad("no value")
+    try:
+        loaded = _load_yaml(text)
+    except yaml.YAMLError as e:
+        raise bad(f"the value is no YAML ({str(e).splitlines()[0]})") from None
+    if isinstance(loaded, dict):
+        raise bad("a mapping is no parameter value")
+    if isinstance(loaded, list):
+        items = [v for v in loaded if not isinstance(v, list)]
+        if any(isinstance(v, dict) for v in items) or len({type(v) for v in items}) > 1:
+            raise bad("the items of an array must be of one type")
+    return (node if colon else None), name, parse_value(text)
+
+
 def _parse_argv(ros_argv: list[str]) -> _Parsed:
     out = _Parsed()
     unknown: list[str] = []
@@ -447,8 +471,8 @@ def _parse_argv(ros_argv: list[str]) -> _Parsed:
             out.rules.append(_remap_rule(need(a)))
             i += 2
         elif a in ("-p", "--param"):
-            node, k, v = _split_rule(need(a), "parameter", "[NODE:]NAME:=VALUE")
-            out.overrides.set(node if node is not None else "/**", k, parse_value(v))
+            node, k, v = _param_rule(need(a))
+            out.overrides.set(node if node is not None else "/**", k, v)
             i += 2
         elif a == "--params-file":
             f = need(a)
@@ -461,7 +485,12 @@ def _parse_argv(ros_argv: list[str]) -> _Parsed:
                 raise ConfigError(f"--ros-args: log level {out.log_level!r} is no severity",
                                   hint="valid: [LOGGER:=]DEBUG, INFO, WARN, ERROR, FATAL or UNSET")
             i += 2
-        elif a in ("-e", "--enclave", "--log-config-file", "--log-file-name"):
+        elif a in ("-e", "--enclave"):
+            if not _ENCLAVE.fullmatch(need(a)):
+                raise ConfigError(f"--ros-args: enclave {ros_argv[i + 1]!r} is no absolute name",
+                                  hint="valid: -e /NAME[/NAME…], names of letters, digits and '_'")
+            i += 2
+        elif a in ("--log-config-file", "--log-file-name"):
             i += 2
         elif a in _LOGGING_SWITCHES or a == "--ros-args":
             # rcl's logging switches (the client library reads what it needs), and a repeated `--ros-args`

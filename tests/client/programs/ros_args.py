@@ -91,17 +91,25 @@ REMAPS = ["a:=b:=c", "__node:=a b", "__ns:=rel", "__ns:=/a/", "__ns:=//a", "foo:
           "rosparam://a:=b", "n:m:a:=b", "a:=b c", "a.b:=c"]
 
 
-def remap_verdict(rule):
+# -p: a plain node name, a name of tokens joined by '.' or '/', a YAML scalar or a list of one type; -e absolute.
+PARAMS = ["a.b/c:=1", "a..b:=1", "*:a:=1", "/ns/n:a:=1", "a:=", "a:= ", "a:=b:=c", "1a:=1", "a:=[1,2", "a:={x: 1}",
+          "n:m:a:=1", "a:=[1, 2.0]", "a:=[a, 1]", "a:=[]", "a:=~"]
+ENCLAVES = ["/", "/a/b", "/x/", "bad", "/1a"]
+
+
+def rule_verdict(rule, flag="-r"):
     context = Context()
     try:
-        context.init(["prog", "--ros-args", "-r", rule])
+        context.init(["prog", "--ros-args", flag, rule])
     except Exception as e:
         return [k for k in ("RCLError", "RCLInvalidROSArgsError") if isinstance(e, getattr(_rclpy, k))] or str(e)
     context.try_shutdown()
     return "ok"
 
 
-out.append(["remap grammar", [[rule, remap_verdict(rule)] for rule in REMAPS]])
+out.append(["remap grammar", [[rule, rule_verdict(rule)] for rule in REMAPS]])
+out.append(["parameter rule grammar", [[rule, rule_verdict(rule, "-p")] for rule in PARAMS]])
+out.append(["enclaves", [[name, rule_verdict(name, "-e")] for name in ENCLAVES]])
 out.append(["signal handlers while initialised", str(get_current_signal_handlers_options())])
 for n in (talker, listener, local, isolated):
     n.destroy_node()
