@@ -120,7 +120,8 @@ def attach_rosout(name: str, sink: Callable[[LogRecord], None]) -> None:
 
 def detach_rosout(name: str, sink: Callable[[LogRecord], None] | None = None) -> None:
     with _lock:
-        if sink is None or _rosout.get(name) is sink:
+        # `==`: a bound method (Rosout._sink) is a new object at each access, equal but not identical
+        if sink is None or _rosout.get(name) == sink:
             _rosout.pop(name, None)
 
 

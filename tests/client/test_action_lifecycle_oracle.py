@@ -46,6 +46,8 @@ def test_actions_goal_feedback_result_cancel_agree() -> None:
     assert "result 4 [0, 1, 1, 2, 3, 5]" in ours.stdout  # the program ran to its end on both
     assert "feedback after shutdown rclpy._rclpy_pybind11 RCLError Failed to publish feedback with an action " \
         "server: feedback publisher is invalid" in ours.stdout
+    assert "wait_for_server after shutdown RCLError Failed to check if action server is available: rcl node's " \
+        "context is invalid" in ours.stdout
     # The server logs through its `action_server` child logger (the line a user's log filter or
     # --log-level late_server.action_server:=... picks)
     for text in ("[ERROR] [late_server.action_server]: Error raised in execute callback: gave up",

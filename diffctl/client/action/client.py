@@ -14,6 +14,7 @@ import weakref
 from collections.abc import Callable
 from typing import Any
 
+from diffctl.client.exceptions import RCLError
 from diffctl.client.waitable import NumberOfEntities
 
 WAIT_FOR_SERVER_POLL_S = 0.25  # rclpy's wait_for_server sleeps this long between looks
@@ -231,6 +232,9 @@ class ActionClient:
 
     # --- the server -----------------------------------------------------------------------------------------
     def server_is_ready(self) -> bool:
+        if not self._node.context.ok():
+            raise RCLError("Failed to check if action server is available: rcl node's context is invalid, "
+                           "at /project/src/rcl/node.c:404")
         return all(c.service_is_ready() for c in (self._goal_client, self._cancel_client, self._result_client))
 
     def wait_for_server(self, timeout_sec: float | None = None) -> bool:

@@ -188,6 +188,10 @@ def feedback_after_shutdown():
     print("late goal started", started.wait(10.0))
     rclpy.shutdown()
     spinner.join(timeout=10.0)
+    try:
+        client.wait_for_server(timeout_sec=0.1)
+    except Exception as e:  # the error is the observation
+        print("wait_for_server after shutdown", type(e).__name__, e)
     go.set()
     executor.shutdown()
     node.destroy_node()
