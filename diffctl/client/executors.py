@@ -516,10 +516,10 @@ class MultiThreadedExecutor(Executor):
         else:
             self._executor.submit(handler)
             self._futures.append(handler)
-        for future in self._futures[:]:
-            if future.done():
-                self._futures.remove(future)
-                future.result()
+        # A finished callback is forgotten; one that raised raises here, on the spinning thread.
+        for future in [f for f in self._futures if f.done()]:
+            self._futures.remove(future)
+            future.result()
 
     def spin_once(self, timeout_sec: float | None = None) -> None:
         with _spinners:

@@ -165,27 +165,29 @@ class Task(Future):
         if not self._pending() or self._executing or not self._task_lock.acquire(blocking=False):
             return
         try:
-            if not self._pending():
-                return
-            self._executing = True
-            if inspect.iscoroutine(self._handler):
-                try:
-                    self._handler.send(None)
-                except StopIteration as e:
-                    self.set_result(e.value)
-                    self._complete()
-                except Exception as e:
-                    self.set_exception(e)
-                    self._complete()
-            else:
-                try:
-                    self.set_result(self._handler(*self._args, **self._kwargs))
-                except Exception as e:
-                    self.set_exception(e)
-                self._complete()
-            self._executing = False
+            if self._pending():
+                self._executing = True
+                self._step()
+                self._executing = False
         finally:
             self._task_lock.release()
+
+    def _step(self) -> None:
+        handler = self._handler
+        try:
+            if inspect.iscoroutine(handler):
+                try:
+                    handler.send(None)
+                    return  # it awaits something: pending until a later call resumes it
+                except StopIteration as returned:
+                    outcome = returned.value
+            else:
+                outcome = handler(*self._args, **self._kwargs)
+        except Exception as e:
+            self.set_exception(e)
+        else:
+            self.set_result(outcome)
+        self._complete()
 
     def _complete(self) -> None:
         self._handler = None
