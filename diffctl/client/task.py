@@ -122,18 +122,17 @@ class Future:
             self._executor = _no_executor if executor is None else weakref.ref(executor)
 
     def add_done_callback(self, callback: Callable[[Future], None]) -> None:
-        invoke = False
+        # Added to a settled future, it runs now: as a task of the future's executor if it has one, else here,
+        # outside the lock (the callback may well use this future).
         with self._lock:
-            if self._state is not FutureState.PENDING:
-                executor = self._executor()
-                if executor is not None:
-                    executor.create_task(callback, self)
-                else:
-                    invoke = True
-            else:
+            if self._state is FutureState.PENDING:
                 self._callbacks.append(callback)
-        if invoke:
-            callback(self)
+                return
+            executor = self._executor()
+            if executor is not None:
+                executor.create_task(callback, self)
+                return
+        callback(self)
 
     def remove_done_callback(self, callback: Callable[[Future], None]) -> bool:
         """Forget a done callback; False if it was not there (or the future completed already)."""
