@@ -27,6 +27,8 @@ SEC = 1_000_000_000
 def truth_at(truth: list[Sample], t_ns: int) -> tuple[float, float, float]:
     """The ground truth (x, y, yaw) at sim time t_ns, linear between the samples around it."""
     i = bisect.bisect_left([s.t_ns for s in truth], t_ns)
+    if i < len(truth) and truth[i].t_ns == t_ns:  # a sample at that very stamp (the first one, too)
+        return truth[i].value
     assert 0 < i < len(truth), f"no ground truth around {t_ns / 1e9} s"
     a, b = truth[i - 1], truth[i]
     u = (t_ns - a.t_ns) / (b.t_ns - a.t_ns) if b.t_ns > a.t_ns else 0.0
@@ -92,7 +94,8 @@ def test_ekf_tracks_the_car_along_an_arc(stack_env: str, tmp_path: Path) -> None
         # The filter and the simulator start from the same pose (the spawn point, yaw 0): compare the motion
         # since the first filtered pose, at the filter's first output from every second of the drive on, against
         # the ground truth interpolated at that output's stamp.
-        f0 = fused[0]
+        # (The first filtered pose the ground truth covers: the filter may publish before the truth's first sample.)
+        f0 = first_from(truth[0].t_ns)
         g0 = truth_at(truth, f0.t_ns)
         worst_pos = worst_yaw = 0.0
         for k in range(1, 10):
