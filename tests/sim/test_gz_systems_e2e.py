@@ -166,8 +166,16 @@ def test_a_triggered_camera_sends_one_frame_per_trigger_and_none_without(router:
         assert images == []
         trigger = node.session.declare_publisher(gz.key("/camera/trigger"))
         for n in (1, 2):
-            trigger.put(gz.encode("gz.msgs.Boolean", {"data": True}))
-            wait_for(lambda n=n: len(images) >= n, 30, f"frame {n} after trigger {n}")
+            # A 230 kB frame is a sample Zenoh drops when its queue stays full (its default congestion control, as
+            # rmw_zenoh's for KEEP_LAST): on a starved machine a frame, or its trigger, is triggered again.
+            for attempt in range(3):
+                trigger.put(gz.encode("gz.msgs.Boolean", {"data": True}))
+                try:
+                    wait_for(lambda n=n: len(images) >= n, 15, f"frame {n} after trigger {n}")
+                    break
+                except AssertionError:
+                    if attempt == 2:
+                        raise
             time.sleep(1.0)  # several camera ticks later: still one frame per trigger
             assert len(images) == n
         assert (images[0].width, images[0].height) == (320, 240)
