@@ -166,8 +166,8 @@ def test_a_triggered_camera_sends_one_frame_per_trigger_and_none_without(router:
         assert images == []
         trigger = node.session.declare_publisher(gz.key("/camera/trigger"))
         for n in (1, 2):
-            # A 230 kB frame is a sample Zenoh drops when its queue stays full (its default congestion control, as
-            # rmw_zenoh's for KEEP_LAST): on a starved machine a frame, or its trigger, is triggered again.
+            # A 230 kB frame is a sample Zenoh drops when its queue stays full (its default congestion control):
+            # on a starved machine a lost frame, or a lost trigger, is triggered again.
             for attempt in range(3):
                 trigger.put(gz.encode("gz.msgs.Boolean", {"data": True}))
                 try:
