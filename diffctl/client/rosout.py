@@ -13,7 +13,7 @@ import threading
 from typing import TYPE_CHECKING, Any
 
 from diffctl.bus import wire
-from diffctl.bus.session import before_close, closing
+from diffctl.bus.session import before_close, closing, join_after_close
 from diffctl.client import ros_logging
 from diffctl.client.ros_logging import LogRecord
 from diffctl.client.signals import shut_down_by_signal
@@ -42,6 +42,8 @@ class _Outbox:
             if self._thread is None:
                 self._thread = threading.Thread(target=self._run, name="rosout", daemon=True)
                 self._thread.start()
+                # A starved put can outlast stop()'s wait: the session's close then waits for it to leave Zenoh.
+                join_after_close(self._thread)
             self._cond.notify()
 
     def drain(self, pub: Publisher, timeout_s: float) -> None:
@@ -52,28 +54,24 @@ class _Outbox:
 
     _busy: Publisher | None = None
 
-    _stopping = False
-
     def stop(self, timeout_s: float = 1.0) -> None:
         """Publish what is queued (bounded), then end the thread: it must not be inside a Zenoh put when the
         session closes or the interpreter finalizes."""
         with self._cond:
             self._cond.wait_for(lambda: not self._queue and self._busy is None, timeout_s)
-            self._stopping = True
             self._queue.clear()
-            thread, self._thread = self._thread, None
+            thread, self._thread = self._thread, None  # the thread ends once it is no longer the outbox's
             self._cond.notify_all()
         if thread is not None and thread is not threading.current_thread():
             thread.join(timeout_s)
-        with self._cond:
-            self._stopping = False
 
     def _run(self) -> None:
+        me = threading.current_thread()
         while True:
             with self._cond:
-                while not self._queue and not self._stopping:
+                while not self._queue and self._thread is me:
                     self._cond.wait()
-                if self._stopping:
+                if self._thread is not me:
                     return
                 pub, rec = self._queue.popleft()
                 self._busy = pub
